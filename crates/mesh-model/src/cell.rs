@@ -1,0 +1,183 @@
+//! Cell types: the shape, the polynomial order, and what follows from them (node counts,
+//! corner edges). Node ordering everywhere in the data model is Gmsh's: corners first, then
+//! edge nodes edge by edge, then face nodes, then interior nodes.
+
+use serde::{Deserialize, Serialize};
+
+/// The shape of a cell, independent of its order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Shape {
+    /// Two-node segment (a boundary facet in 2D).
+    Line,
+    /// Triangle.
+    Tri,
+    /// Quadrilateral.
+    Quad,
+    /// Tetrahedron.
+    Tet,
+    /// Pyramid with a quadrilateral base.
+    Pyramid,
+    /// Triangular prism (wedge).
+    Prism,
+    /// Hexahedron.
+    Hex,
+}
+
+impl Shape {
+    /// Topological dimension of the shape.
+    pub fn dim(self) -> u8 {
+        match self {
+            Shape::Line => 1,
+            Shape::Tri | Shape::Quad => 2,
+            Shape::Tet | Shape::Pyramid | Shape::Prism | Shape::Hex => 3,
+        }
+    }
+
+    /// Number of corner (vertex) nodes.
+    pub fn corners(self) -> usize {
+        match self {
+            Shape::Line => 2,
+            Shape::Tri => 3,
+            Shape::Quad => 4,
+            Shape::Tet => 4,
+            Shape::Pyramid => 5,
+            Shape::Prism => 6,
+            Shape::Hex => 8,
+        }
+    }
+
+    /// Lower-case name used in reports (`tri`, `quad`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Line => "line",
+            Shape::Tri => "tri",
+            Shape::Quad => "quad",
+            Shape::Tet => "tet",
+            Shape::Pyramid => "pyramid",
+            Shape::Prism => "prism",
+            Shape::Hex => "hex",
+        }
+    }
+
+    /// The edges of the shape as pairs of local corner indices, in Gmsh's edge order
+    /// (which is also the order of the edge nodes of high-order cells).
+    pub fn edges(self) -> &'static [[usize; 2]] {
+        match self {
+            Shape::Line => &[[0, 1]],
+            Shape::Tri => &[[0, 1], [1, 2], [2, 0]],
+            Shape::Quad => &[[0, 1], [1, 2], [2, 3], [3, 0]],
+            Shape::Tet => &[[0, 1], [1, 2], [2, 0], [3, 0], [3, 2], [3, 1]],
+            Shape::Pyramid => &[
+                [0, 1],
+                [0, 3],
+                [0, 4],
+                [1, 2],
+                [1, 4],
+                [2, 3],
+                [2, 4],
+                [3, 4],
+            ],
+            Shape::Prism => &[
+                [0, 1],
+                [0, 2],
+                [0, 3],
+                [1, 2],
+                [1, 4],
+                [2, 5],
+                [3, 4],
+                [3, 5],
+                [4, 5],
+            ],
+            Shape::Hex => &[
+                [0, 1],
+                [0, 3],
+                [0, 4],
+                [1, 2],
+                [1, 5],
+                [2, 3],
+                [2, 6],
+                [3, 7],
+                [4, 5],
+                [4, 7],
+                [5, 6],
+                [6, 7],
+            ],
+        }
+    }
+}
+
+/// A cell type: a shape at a polynomial order (1 = linear). Only complete Lagrange cells
+/// are represented (tri6/tri10, quad9/quad16, tet10, pyramid14, prism18, hex27).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct CellType {
+    /// The shape.
+    pub shape: Shape,
+    /// Polynomial order, 1 to 3.
+    pub order: u8,
+}
+
+impl CellType {
+    /// A cell type of the given shape and order.
+    pub const fn new(shape: Shape, order: u8) -> Self {
+        CellType { shape, order }
+    }
+
+    /// Number of nodes of the complete Lagrange cell of this shape and order.
+    pub fn node_count(self) -> usize {
+        let p = self.order as usize;
+        match self.shape {
+            Shape::Line => p + 1,
+            Shape::Tri => (p + 1) * (p + 2) / 2,
+            Shape::Quad => (p + 1) * (p + 1),
+            Shape::Tet => (p + 1) * (p + 2) * (p + 3) / 6,
+            Shape::Pyramid => (p + 1) * (p + 2) * (2 * p + 3) / 6,
+            Shape::Prism => (p + 1) * (p + 1) * (p + 2) / 2,
+            Shape::Hex => (p + 1) * (p + 1) * (p + 1),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn node_counts_match_gmsh_complete_elements() {
+        let cases = [
+            (Shape::Line, 3, 4),
+            (Shape::Tri, 2, 6),
+            (Shape::Tri, 3, 10),
+            (Shape::Quad, 2, 9),
+            (Shape::Quad, 3, 16),
+            (Shape::Tet, 2, 10),
+            (Shape::Pyramid, 1, 5),
+            (Shape::Pyramid, 2, 14),
+            (Shape::Prism, 2, 18),
+            (Shape::Hex, 2, 27),
+        ];
+        for (shape, order, n) in cases {
+            assert_eq!(
+                CellType::new(shape, order).node_count(),
+                n,
+                "{shape:?} P{order}"
+            );
+        }
+    }
+
+    #[test]
+    fn edges_reference_existing_corners() {
+        for shape in [
+            Shape::Line,
+            Shape::Tri,
+            Shape::Quad,
+            Shape::Tet,
+            Shape::Pyramid,
+            Shape::Prism,
+            Shape::Hex,
+        ] {
+            for e in shape.edges() {
+                assert!(e[0] < shape.corners() && e[1] < shape.corners());
+            }
+        }
+    }
+}

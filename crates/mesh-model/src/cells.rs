@@ -1,0 +1,139 @@
+//! A compact store of mixed cells: one flat node array with offsets, so that a mesh of
+//! 100k mixed cells is three allocations, not 100k.
+
+use serde::{Deserialize, Serialize};
+
+use crate::cell::{CellType, Shape};
+
+/// Mixed cells of any type, nodes stored flat (compressed-row layout).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Cells {
+    types: Vec<CellType>,
+    offsets: Vec<u32>,
+    nodes: Vec<u32>,
+}
+
+/// One cell borrowed from a [`Cells`] store.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CellRef<'a> {
+    /// The cell's type.
+    pub ty: CellType,
+    /// Its node indices, in Gmsh order.
+    pub nodes: &'a [u32],
+}
+
+impl CellRef<'_> {
+    /// The corner nodes (the linear cell underneath).
+    pub fn corners(&self) -> &[u32] {
+        &self.nodes[..self.ty.shape.corners()]
+    }
+}
+
+impl Default for Cells {
+    fn default() -> Self {
+        Cells::new()
+    }
+}
+
+impl Cells {
+    /// An empty store.
+    pub fn new() -> Self {
+        Cells {
+            types: Vec::new(),
+            offsets: vec![0],
+            nodes: Vec::new(),
+        }
+    }
+
+    /// An empty store with room for `cells` cells of `nodes_per_cell` nodes.
+    pub fn with_capacity(cells: usize, nodes_per_cell: usize) -> Self {
+        let mut offsets = Vec::with_capacity(cells + 1);
+        offsets.push(0);
+        Cells {
+            types: Vec::with_capacity(cells),
+            offsets,
+            nodes: Vec::with_capacity(cells * nodes_per_cell),
+        }
+    }
+
+    /// Appends a cell and returns its index.
+    ///
+    /// # Panics
+    /// If `nodes.len()` is not the node count of `ty`: that is a bug in the caller, not bad input.
+    pub fn push(&mut self, ty: CellType, nodes: &[u32]) -> usize {
+        assert_eq!(
+            nodes.len(),
+            ty.node_count(),
+            "cell {ty:?} needs {} nodes",
+            ty.node_count()
+        );
+        self.types.push(ty);
+        self.nodes.extend_from_slice(nodes);
+        self.offsets.push(self.nodes.len() as u32);
+        self.types.len() - 1
+    }
+
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.types.len()
+    }
+
+    /// True when there is no cell.
+    pub fn is_empty(&self) -> bool {
+        self.types.is_empty()
+    }
+
+    /// Cell `i`.
+    pub fn get(&self, i: usize) -> CellRef<'_> {
+        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        CellRef {
+            ty: self.types[i],
+            nodes: &self.nodes[a..b],
+        }
+    }
+
+    /// Mutable node indices of cell `i` (to renumber or to add high-order nodes in place).
+    pub fn nodes_mut(&mut self, i: usize) -> &mut [u32] {
+        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        &mut self.nodes[a..b]
+    }
+
+    /// All cells in order.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = CellRef<'_>> + '_ {
+        (0..self.len()).map(move |i| self.get(i))
+    }
+
+    /// The types of all cells, in order.
+    pub fn types(&self) -> &[CellType] {
+        &self.types
+    }
+
+    /// All node indices of all cells, flat.
+    pub fn flat_nodes(&self) -> &[u32] {
+        &self.nodes
+    }
+
+    /// How many cells of each shape there are.
+    pub fn count(&self, shape: Shape) -> usize {
+        self.types.iter().filter(|t| t.shape == shape).count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mixed_cells_round_trip_through_the_flat_store() {
+        let mut c = Cells::new();
+        let t = c.push(CellType::new(Shape::Tri, 1), &[0, 1, 2]);
+        let q = c.push(CellType::new(Shape::Quad, 2), &[0, 1, 2, 3, 4, 5, 6, 7, 8]);
+        assert_eq!((t, q), (0, 1));
+        assert_eq!(c.get(0).nodes, &[0, 1, 2]);
+        assert_eq!(c.get(1).corners(), &[0, 1, 2, 3]);
+        assert_eq!(c.count(Shape::Quad), 1);
+        assert_eq!(c.iter().len(), 2);
+        let d = Cells::default();
+        assert!(d.is_empty());
+    }
+}
