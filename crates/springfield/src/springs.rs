@@ -1,0 +1,342 @@
+//! The spring models of the improved AFSF method (dissertation §3.2.2.1 and §4.1), written as
+//! data plus assembly functions that add forces and stiffnesses for [`crate::solve()`].
+//!
+//! Every force is the dissertation's dimensionless force; alongside it each spring adds a
+//! stiffness S (force per unit length) such that F/S is the move that would satisfy that spring
+//! alone. The solver divides by the summed S, so the spring coefficients set the balance
+//! between springs, never the stability of the iteration.
+//!
+//! Orientation convention (2D): a layer is a polyline A → K → B with the region still to be
+//! meshed on its **left**; the ideal extrusion direction at K is the bisector of the left
+//! normals of AK and KB.
+//!
+//! The extrusion spring is generic over the dimension, for reuse in 3D; the neighbour and
+//! angle springs here are the 2D ones.
+
+use serde::{Deserialize, Serialize};
+
+use crate::params::SpringParams;
+use crate::vec::{axpy, norm, sub};
+
+/// Parent–child spring along an extrusion edge:
+/// F = C_aniso·K_extru·(l_ideal − l_real)/l_ideal along the edge (§4.1, Eq. 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ExtrusionSpring {
+    /// The parent (lower-layer) node.
+    pub lower: u32,
+    /// The child (upper-layer) node.
+    pub upper: u32,
+    /// Ideal length of the edge (length units).
+    pub ideal_length: f64,
+    /// C_aniso of the lower node (the dissertation uses 1/G_ratio); the upper node's is 1.
+    pub lower_share: f64,
+}
+
+/// Neighbour spring A–K–B on one layer (§3.2.2.1; strengthened as in §4.1): pushes K, at
+/// right angles to its extrusion edge PK, toward the longer of AK and KB.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct NeighbourSpring {
+    /// A, the neighbour before K along the layer.
+    pub left: u32,
+    /// K, the node pushed.
+    pub centre: u32,
+    /// B, the neighbour after K along the layer.
+    pub right: u32,
+    /// P, K's parent (one layer down).
+    pub parent: u32,
+}
+
+/// Angle spring A–K–B–O (§4.1): keeps the extrusion edge KO along the ideal direction (the
+/// bisector at K, rotated by `offset_rad` for the children of a fan). The force on O points
+/// to O' (on the ideal direction, |KO'| = |KO|); the reaction on K points to A or B.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AngleSpring {
+    /// A, the neighbour before K along K's layer.
+    pub left: u32,
+    /// K, the parent.
+    pub centre: u32,
+    /// B, the neighbour after K along K's layer.
+    pub right: u32,
+    /// O, K's child.
+    pub child: u32,
+    /// Counter-clockwise rotation of the ideal direction from the bisector (radians); 0
+    /// except for fan children.
+    pub offset_rad: f64,
+    /// Ideal length of KO: the spring is off until |KO| reaches
+    /// `angle_activation_ratio` of it.
+    pub ideal_length: f64,
+}
+
+/// All springs of one 2D solve, indexed into the solver's position array.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SpringSet2d {
+    /// Extrusion (parent–child) springs.
+    pub extrusion: Vec<ExtrusionSpring>,
+    /// Neighbour springs.
+    pub neighbour: Vec<NeighbourSpring>,
+    /// Angle springs.
+    pub angle: Vec<AngleSpring>,
+}
+
+impl SpringSet2d {
+    /// Removes every spring.
+    pub fn clear(&mut self) {
+        self.extrusion.clear();
+        self.neighbour.clear();
+        self.angle.clear();
+    }
+}
+
+/// Adds the forces and stiffnesses of extrusion springs in any dimension.
+pub fn assemble_extrusion<const D: usize>(
+    springs: &[ExtrusionSpring],
+    params: &SpringParams,
+    positions: &[[f64; D]],
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
+    for s in springs {
+        let (lo, up) = (s.lower as usize, s.upper as usize);
+        let v = sub(&positions[up], &positions[lo]);
+        let len = norm(&v);
+        if len <= 0.0 || s.ideal_length <= 0.0 {
+            continue;
+        }
+        let f = params.k_extrusion * (s.ideal_length - len) / s.ideal_length;
+        let k = params.k_extrusion / s.ideal_length;
+        axpy(&mut force[up], f / len, &v);
+        stiffness[up] += k;
+        axpy(&mut force[lo], -s.lower_share * f / len, &v);
+        stiffness[lo] += s.lower_share * k;
+    }
+}
+
+#[inline]
+fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    (l > 0.0).then(|| [-d[1] / l, d[0] / l])
+}
+
+/// The ideal extrusion direction at K of the layer A → K → B (region to mesh on the left):
+/// the bisector of the left normals of AK and KB, or `None` when it is undefined (coincident
+/// nodes, or a front folded back on itself).
+pub fn bisector(a: [f64; 2], k: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let n1 = left_normal(a, k)?;
+    let n2 = left_normal(k, b)?;
+    let s = [n1[0] + n2[0], n1[1] + n2[1]];
+    let l = (s[0] * s[0] + s[1] * s[1]).sqrt();
+    if l > 1e-9 {
+        Some([s[0] / l, s[1] / l])
+    } else {
+        left_normal(a, b)
+    }
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+}
+
+/// Adds the forces and stiffnesses of every spring of `set` (2D).
+pub fn assemble_2d(
+    set: &SpringSet2d,
+    params: &SpringParams,
+    positions: &[[f64; 2]],
+    force: &mut [[f64; 2]],
+    stiffness: &mut [f64],
+) {
+    assemble_extrusion(&set.extrusion, params, positions, force, stiffness);
+    for s in &set.neighbour {
+        let (a, k, b, p) = (
+            positions[s.left as usize],
+            positions[s.centre as usize],
+            positions[s.right as usize],
+            positions[s.parent as usize],
+        );
+        let d = [k[0] - p[0], k[1] - p[1]];
+        let h = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        let (la, lb) = (dist(a, k), dist(k, b));
+        if h <= 0.0 || la + lb <= 0.0 {
+            continue;
+        }
+        let mut t = [-d[1] / h, d[0] / h];
+        if t[0] * (b[0] - a[0]) + t[1] * (b[1] - a[1]) < 0.0 {
+            t = [-t[0], -t[1]];
+        }
+        let aspect = (la + lb) / (2.0 * h);
+        let threshold = params.neighbour_boost_below_aspect;
+        let boost = if aspect < threshold {
+            1.0 + (params.neighbour_boost - 1.0) * (1.0 - aspect / threshold)
+        } else {
+            1.0
+        };
+        let f = params.k_neighbour * boost * (lb - la) / (la + lb);
+        let kc = &mut force[s.centre as usize];
+        kc[0] += f * t[0];
+        kc[1] += f * t[1];
+        stiffness[s.centre as usize] += params.k_neighbour * boost * 2.0 / (la + lb);
+    }
+    let deg_per_rad = 180.0 / std::f64::consts::PI;
+    for s in &set.angle {
+        let (a, k, b, o) = (
+            positions[s.left as usize],
+            positions[s.centre as usize],
+            positions[s.right as usize],
+            positions[s.child as usize],
+        );
+        let v = [o[0] - k[0], o[1] - k[1]];
+        let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        if len <= 0.0 || len < params.angle_activation_ratio * s.ideal_length {
+            continue;
+        }
+        let Some(bis) = bisector(a, k, b) else {
+            continue;
+        };
+        let (sn, cs) = s.offset_rad.sin_cos();
+        let ideal = [cs * bis[0] - sn * bis[1], sn * bis[0] + cs * bis[1]];
+        let cos_a = (v[0] * ideal[0] + v[1] * ideal[1]) / len;
+        let sin_a = (ideal[0] * v[1] - ideal[1] * v[0]) / len;
+        let shape = ((dist(a, k) + dist(k, b)) / (2.0 * len)).min(params.fac_b);
+        let gain = params.k_angle * deg_per_rad / params.fac_a * shape;
+        let k_len = gain / len;
+        let (f_mag, dir_o) = if cos_a >= 0.0 {
+            let target = [k[0] + len * ideal[0], k[1] + len * ideal[1]];
+            let c = [target[0] - o[0], target[1] - o[1]];
+            let cl = (c[0] * c[0] + c[1] * c[1]).sqrt();
+            if cl <= 0.0 {
+                continue;
+            }
+            (gain * sin_a.abs(), [c[0] / cl, c[1] / cl])
+        } else {
+            // Beyond 90°: push O at right angles to KO, back toward the ideal side (§4.1).
+            let perp = if sin_a > 0.0 {
+                [v[1] / len, -v[0] / len]
+            } else {
+                [-v[1] / len, v[0] / len]
+            };
+            (gain, perp)
+        };
+        let share_o = 1.0 - params.c_percent;
+        let fo = &mut force[s.child as usize];
+        fo[0] += share_o * f_mag * dir_o[0];
+        fo[1] += share_o * f_mag * dir_o[1];
+        stiffness[s.child as usize] += share_o * k_len;
+        if params.c_percent > 0.0 {
+            let dir_k = if cos_a >= 0.0 {
+                // O leans toward A when it is counter-clockwise of the ideal direction.
+                let toward = if sin_a > 0.0 { a } else { b };
+                let d = [toward[0] - k[0], toward[1] - k[1]];
+                let dl = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                if dl <= 0.0 {
+                    continue;
+                }
+                [d[0] / dl, d[1] / dl]
+            } else {
+                [-dir_o[0], -dir_o[1]]
+            };
+            let fk = &mut force[s.centre as usize];
+            fk[0] += params.c_percent * f_mag * dir_k[0];
+            fk[1] += params.c_percent * f_mag * dir_k[1];
+            stiffness[s.centre as usize] += params.c_percent * k_len;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{SolverParams, solve};
+
+    /// Two fixed base nodes and a free child above each: the child of the middle of a flat
+    /// layer goes straight up to its ideal length.
+    #[test]
+    fn a_child_over_a_flat_layer_goes_along_the_normal_to_its_ideal_length() {
+        // base: 0 (A), 1 (K), 2 (B) fixed; child 3 of K starts tilted and short.
+        let mut x = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [1.3, 0.05]];
+        let set = SpringSet2d {
+            extrusion: vec![ExtrusionSpring {
+                lower: 1,
+                upper: 3,
+                ideal_length: 0.1,
+                lower_share: 1.0 / 1.3,
+            }],
+            neighbour: vec![],
+            angle: vec![AngleSpring {
+                left: 0,
+                centre: 1,
+                right: 2,
+                child: 3,
+                offset_rad: 0.0,
+                ideal_length: 0.1,
+            }],
+        };
+        let params = SpringParams::default();
+        let movable = [false, false, false, true];
+        let scale = [0.1; 4];
+        let out = solve(
+            &mut x,
+            &scale,
+            &movable,
+            &SolverParams::default(),
+            |p, f, s| assemble_2d(&set, &params, p, f, s),
+        )
+        .unwrap();
+        assert!(out.converged, "{out:?}");
+        assert!((x[3][0] - 1.0).abs() < 1e-3, "{:?}", x[3]);
+        assert!((x[3][1] - 0.1).abs() < 1e-3, "{:?}", x[3]);
+        assert_eq!(x[1], [1.0, 0.0]);
+    }
+
+    #[test]
+    fn the_neighbour_spring_pushes_toward_the_longer_side() {
+        let x = [[0.0, 1.0], [1.0, 1.0], [4.0, 1.0], [1.0, 0.0]];
+        let set = SpringSet2d {
+            neighbour: vec![NeighbourSpring {
+                left: 0,
+                centre: 1,
+                right: 2,
+                parent: 3,
+            }],
+            ..SpringSet2d::default()
+        };
+        let mut f = [[0.0; 2]; 4];
+        let mut s = [0.0; 4];
+        assemble_2d(&set, &SpringParams::default(), &x, &mut f, &mut s);
+        assert!(f[1][0] > 0.0 && f[1][1].abs() < 1e-15, "{f:?}");
+        // the Jacobi move F/S evens the two sides
+        assert!((f[1][0] / s[1] - 1.0).abs() < 1e-12, "{}", f[1][0] / s[1]);
+    }
+
+    #[test]
+    fn the_angle_reaction_on_the_parent_points_to_the_side_the_child_leans_to() {
+        // child leans toward A (left, negative x): K is pushed toward A, O back toward +x.
+        let x = [[-1.0, 0.0], [0.0, 0.0], [1.0, 0.0], [-0.02, 0.1]];
+        let set = SpringSet2d {
+            angle: vec![AngleSpring {
+                left: 0,
+                centre: 1,
+                right: 2,
+                child: 3,
+                offset_rad: 0.0,
+                ideal_length: 0.1,
+            }],
+            ..SpringSet2d::default()
+        };
+        let mut f = [[0.0; 2]; 4];
+        let mut s = [0.0; 4];
+        assemble_2d(&set, &SpringParams::default(), &x, &mut f, &mut s);
+        assert!(f[1][0] < 0.0, "{f:?}");
+        assert!(f[3][0] > 0.0, "{f:?}");
+    }
+
+    #[test]
+    fn bisector_of_a_right_angle_corner() {
+        // A → K → B turning left (the region on the left is the inside of the corner)
+        let s = bisector([0.0, -1.0], [0.0, 0.0], [-1.0, 0.0]).unwrap();
+        let r = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(
+            (s[0] + r).abs() < 1e-12 && (s[1] + r).abs() < 1e-12,
+            "{s:?}"
+        );
+    }
+}
