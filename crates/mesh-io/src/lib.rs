@@ -1,1 +1,73 @@
-//! Mesh file formats: Gmsh MSH 4.1 (write and read), VTK XML .vtu with Lagrange cells, SU2, and binary snapshots of intermediate stages; every write is atomic.
+//! Mesh files: Gmsh MSH 4.1 ASCII (write and read), VTK XML `.vtu` with Lagrange cells, SU2
+//! native (linear), and binary snapshots of intermediate stages. Every file is written
+//! atomically ([`atomic`]): a failed write leaves no partial file.
+//!
+//! This crate owns the file formats and nothing else: the data model is `mesh-model`, and no
+//! meshing, geometry or quality computation happens here. It is, with `xtask`, the only crate
+//! that touches files. The node order of the data model is Gmsh's; the `.vtu` writer permutes
+//! high-order nodes into VTK's Lagrange order ([`node_order`]).
+//!
+//! Entry points: [`write`] (format chosen by the extension), [`read_msh`], and the modules
+//! [`msh`], [`vtu`], [`su2`], [`snapshot`]. Test meshes for this and other crates are in
+//! `testkit`, behind the cargo feature `testkit`.
+
+pub mod atomic;
+mod check;
+mod error;
+pub mod msh;
+pub mod node_order;
+pub mod snapshot;
+pub mod su2;
+#[cfg(any(test, feature = "testkit"))]
+pub mod testkit;
+pub mod vtu;
+
+use std::path::Path;
+
+pub use error::IoError;
+use mesh_model::Mesh;
+
+/// The mesh file formats [`write`] knows, by extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// `.msh`: Gmsh MSH 4.1 ASCII ([`msh`]).
+    Msh,
+    /// `.vtu`: VTK XML unstructured grid ([`vtu`]).
+    Vtu,
+    /// `.su2`: SU2 native, linear ([`su2`]).
+    Su2,
+}
+
+impl Format {
+    /// The format named by the extension of `path` (case ignored), if any.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "msh" => Some(Format::Msh),
+            "vtu" => Some(Format::Vtu),
+            "su2" => Some(Format::Su2),
+            _ => None,
+        }
+    }
+}
+
+/// Writes `mesh` to `path` in the format named by its extension (`.msh`, `.vtu`, `.su2`),
+/// atomically.
+///
+/// Errors: [`IoError::UnknownExtension`] for any other extension; otherwise those of
+/// [`msh::write`], [`vtu::write`], [`su2::write`].
+pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    match Format::from_path(path) {
+        Some(Format::Msh) => msh::write(path, mesh),
+        Some(Format::Vtu) => vtu::write(path, mesh),
+        Some(Format::Su2) => su2::write(path, mesh),
+        None => Err(IoError::UnknownExtension {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+/// Reads a Gmsh MSH 4.1 ASCII file (see [`msh::read`] for what becomes what).
+pub fn read_msh(path: &Path) -> Result<Mesh, IoError> {
+    msh::read(path)
+}

@@ -1,0 +1,59 @@
+//! Writing a ~100k-cell mesh (a P2 annulus of quadrilaterals and triangles, built in memory)
+//! to `.msh` and `.vtu`, into memory and into a file (atomic write included).
+//!
+//! Run: `cargo bench -p mesh-io --features testkit --bench write`.
+// `criterion_group!` generates an undocumented public function.
+#![allow(missing_docs)]
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use mesh_io::testkit::{AnnulusParams, annulus};
+
+fn big_mesh() -> mesh_model::Mesh {
+    // 80 × 1000 cells, every third cut into two triangles: 106 667 cells.
+    annulus(&AnnulusParams {
+        order: 2,
+        radial_cells: 80,
+        angular_cells: 1000,
+        inner_radius: 1.0,
+        outer_radius: 30.0,
+        triangle_mask: vec![true, false, false],
+    })
+}
+
+fn writers(c: &mut Criterion) {
+    let mesh = big_mesh();
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let mut g = c.benchmark_group("write_100k_p2");
+    g.sample_size(10);
+    g.bench_function("msh_to_memory", |b| {
+        b.iter(|| {
+            let mut out = Vec::with_capacity(64 << 20);
+            mesh_io::msh::write_to(&mut out, black_box(&mesh), "m.msh".as_ref()).unwrap();
+            out.len()
+        })
+    });
+    g.bench_function("vtu_to_memory", |b| {
+        b.iter(|| {
+            let mut out = Vec::with_capacity(64 << 20);
+            mesh_io::vtu::write_to(&mut out, black_box(&mesh), "m.vtu".as_ref()).unwrap();
+            out.len()
+        })
+    });
+    let msh = dir.path().join("m.msh");
+    g.bench_function("msh_file", |b| {
+        b.iter(|| mesh_io::write(&msh, black_box(&mesh)).unwrap())
+    });
+    let vtu = dir.path().join("m.vtu");
+    g.bench_function("vtu_file", |b| {
+        b.iter(|| mesh_io::write(&vtu, black_box(&mesh)).unwrap())
+    });
+    g.bench_function("msh_read", |b| {
+        b.iter(|| mesh_io::read_msh(&msh).unwrap().cells.len())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, writers);
+criterion_main!(benches);

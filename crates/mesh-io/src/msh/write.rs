@@ -1,0 +1,209 @@
+//! The MSH 4.1 ASCII writer (layout described in the parent module).
+
+use std::collections::BTreeMap;
+use std::io::{self, Write};
+use std::path::Path;
+
+use mesh_model::{Dim, Mesh, Role};
+
+use super::{FLUID_GROUP, PATCH_SECTION, gmsh_type_id};
+use crate::IoError;
+use crate::atomic::write_atomic;
+use crate::check::check_writable;
+
+/// Writes `mesh` to `path` as Gmsh MSH 4.1 ASCII, atomically.
+///
+/// Errors: [`IoError::NonFiniteNode`] or [`IoError::InvalidMesh`] before anything is
+/// written, [`IoError::Io`] when the file cannot be written.
+pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    let roles = prepare(mesh, path)?;
+    write_atomic(path, |w| {
+        body(w, mesh, &roles).map_err(|e| IoError::io(path, e))
+    })
+}
+
+/// Writes `mesh` as MSH 4.1 ASCII to any writer (for example a `Vec<u8>`); `path` only names
+/// the destination in errors. Not atomic: use [`write`] for files.
+pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+    let roles = prepare(mesh, path)?;
+    body(out, mesh, &roles).map_err(|e| IoError::io(path, e))
+}
+
+/// Checks the mesh and returns the roles present, in the order of their physical tags.
+fn prepare(mesh: &Mesh, path: &Path) -> Result<Vec<Role>, IoError> {
+    check_writable(mesh, path)?;
+    for (i, p) in mesh.patches.iter().enumerate() {
+        if p.name.chars().any(char::is_control) {
+            return Err(IoError::InvalidMesh {
+                path: path.to_path_buf(),
+                message: format!("patch {i} has a control character in its name {:?}", p.name),
+            });
+        }
+    }
+    Ok([Role::Wall, Role::Farfield]
+        .into_iter()
+        .filter(|r| mesh.patches.iter().any(|p| p.role == *r))
+        .collect())
+}
+
+/// Physical tag of the `fluid` group.
+const FLUID_TAG: usize = 1;
+
+/// Physical tag of role number `k` in the list of roles present.
+fn role_tag(k: usize) -> usize {
+    FLUID_TAG + 1 + k
+}
+
+/// Axis-aligned bounding box of some nodes: min then max; zeros when there is none.
+fn bounding_box(mesh: &Mesh, nodes: impl Iterator<Item = u32>) -> [f64; 6] {
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for n in nodes {
+        let p = mesh.nodes[n as usize];
+        for k in 0..3 {
+            b[k] = b[k].min(p[k]);
+            b[k + 3] = b[k + 3].max(p[k]);
+        }
+    }
+    if b[0] > b[3] { [0.0; 6] } else { b }
+}
+
+fn write_box(w: &mut dyn Write, b: &[f64; 6]) -> io::Result<()> {
+    write!(
+        w,
+        "{:?} {:?} {:?} {:?} {:?} {:?}",
+        b[0], b[1], b[2], b[3], b[4], b[5]
+    )
+}
+
+/// Quotes a name for the file: `"` and `\` are escaped with a backslash.
+pub(crate) fn quote(name: &str) -> String {
+    let mut s = String::with_capacity(name.len() + 2);
+    s.push('"');
+    for c in name.chars() {
+        if c == '"' || c == '\\' {
+            s.push('\\');
+        }
+        s.push(c);
+    }
+    s.push('"');
+    s
+}
+
+fn body(w: &mut dyn Write, mesh: &Mesh, roles: &[Role]) -> io::Result<()> {
+    let d = mesh.dim.as_u8() as usize;
+    let n_patches = mesh.patches.len();
+    let role_tag_of = |r: Role| role_tag(roles.iter().position(|x| *x == r).unwrap_or(0));
+
+    writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
+
+    writeln!(w, "$PhysicalNames\n{}", 1 + roles.len())?;
+    writeln!(w, "{d} {FLUID_TAG} {}", quote(FLUID_GROUP))?;
+    for (k, r) in roles.iter().enumerate() {
+        writeln!(w, "{} {} {}", d - 1, role_tag(k), quote(r.name()))?;
+    }
+    writeln!(w, "$EndPhysicalNames")?;
+
+    // Facets of each patch, grouped by element type (BTreeMap: deterministic block order).
+    let mut patch_blocks: Vec<BTreeMap<u32, Vec<usize>>> = vec![BTreeMap::new(); n_patches];
+    for (j, f) in mesh.boundary.iter().enumerate() {
+        let ty = gmsh_type_id(f.ty).unwrap_or(0);
+        patch_blocks[mesh.boundary_patch[j] as usize]
+            .entry(ty)
+            .or_default()
+            .push(j);
+    }
+
+    writeln!(w, "$Entities")?;
+    match mesh.dim {
+        Dim::Two => writeln!(w, "0 {n_patches} 1 0")?,
+        Dim::Three => writeln!(w, "0 0 {n_patches} 1")?,
+    }
+    for (i, p) in mesh.patches.iter().enumerate() {
+        let nodes = patch_blocks[i]
+            .values()
+            .flatten()
+            .flat_map(|&j| mesh.boundary.get(j).nodes.iter().copied());
+        write!(w, "{} ", i + 1)?;
+        write_box(w, &bounding_box(mesh, nodes))?;
+        writeln!(w, " 1 {} 0", role_tag_of(p.role))?;
+    }
+    write!(w, "1 ")?;
+    write_box(
+        w,
+        &bounding_box(mesh, mesh.cells.flat_nodes().iter().copied()),
+    )?;
+    write!(w, " 1 {FLUID_TAG} {n_patches}")?;
+    for i in 0..n_patches {
+        write!(w, " {}", i + 1)?;
+    }
+    writeln!(w, "\n$EndEntities")?;
+
+    let n = mesh.nodes.len();
+    writeln!(w, "$Nodes")?;
+    if n == 0 {
+        writeln!(w, "0 0 0 0")?;
+    } else {
+        writeln!(w, "1 {n} 1 {n}\n{d} 1 0 {n}")?;
+        for tag in 1..=n {
+            writeln!(w, "{tag}")?;
+        }
+        for p in &mesh.nodes {
+            writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+        }
+    }
+    writeln!(w, "$EndNodes")?;
+
+    let mut cell_blocks: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
+    for (i, t) in mesh.cells.types().iter().enumerate() {
+        cell_blocks
+            .entry(gmsh_type_id(*t).unwrap_or(0))
+            .or_default()
+            .push(i);
+    }
+    let n_cells = mesh.cells.len();
+    let total = n_cells + mesh.boundary.len();
+    let n_blocks = cell_blocks.len() + patch_blocks.iter().map(BTreeMap::len).sum::<usize>();
+    writeln!(w, "$Elements")?;
+    if total == 0 {
+        writeln!(w, "0 0 0 0")?;
+    } else {
+        writeln!(w, "{n_blocks} {total} 1 {total}")?;
+    }
+    for (ty, cells) in &cell_blocks {
+        writeln!(w, "{d} 1 {ty} {}", cells.len())?;
+        for &i in cells {
+            write!(w, "{}", i + 1)?;
+            for &v in mesh.cells.get(i).nodes {
+                write!(w, " {}", v as usize + 1)?;
+            }
+            writeln!(w)?;
+        }
+    }
+    for (p, blocks) in patch_blocks.iter().enumerate() {
+        for (ty, facets) in blocks {
+            writeln!(w, "{} {} {ty} {}", d - 1, p + 1, facets.len())?;
+            for &j in facets {
+                write!(w, "{}", n_cells + j + 1)?;
+                for &v in mesh.boundary.get(j).nodes {
+                    write!(w, " {}", v as usize + 1)?;
+                }
+                writeln!(w)?;
+            }
+        }
+    }
+    writeln!(w, "$EndElements")?;
+
+    writeln!(w, "${PATCH_SECTION}\n{n_patches}")?;
+    for (i, p) in mesh.patches.iter().enumerate() {
+        writeln!(w, "{} {}", i + 1, quote(&p.name))?;
+    }
+    writeln!(w, "$End{PATCH_SECTION}")?;
+    w.flush()
+}

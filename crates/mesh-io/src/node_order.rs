@@ -1,0 +1,380 @@
+//! Node orderings of the reference cells: Gmsh's (the data model's) and VTK's Lagrange
+//! cells', with the explicit permutation between them that the `.vtu` writer applies.
+//!
+//! Gmsh numbers the nodes of a high-order cell: corners, then the nodes of each edge in edge
+//! order and edge direction, then face nodes, then interior nodes, the interior of a face or
+//! cell being numbered recursively like a cell of lower order. VTK's Lagrange cells number
+//! corners, then edges, then faces, then the interior, but run the third and fourth edges of a
+//! quadrilateral along +x and +y (Gmsh runs them around the cell) and number interior points
+//! in lexicographic order (Gmsh recursively). The tables here were read off the two tools and
+//! are checked by the tests against the reference coordinates dumped from Gmsh 4.15
+//! (`gmsh.model.mesh.getElementProperties`) and VTK 9.7 (`vtkLagrange*::InterpolateFunctions`)
+//! by `tests/python/dump_reference_nodes.py` into `tests/data/reference_nodes.json`.
+//!
+//! This module holds tables only; it does no IO.
+
+use mesh_model::{CellType, Shape};
+
+/// The VTK cell type number of a cell type: the linear VTK cell for order 1, the Lagrange
+/// cell for orders 2 and 3, or `None` where no verified node ordering exists here
+/// (pyramids above order 1, prisms of order 3).
+pub fn vtk_cell_type(ty: CellType) -> Option<u8> {
+    vtk_from_gmsh(ty)?;
+    let linear = ty.order == 1;
+    Some(match ty.shape {
+        Shape::Line if linear => 3,
+        Shape::Line => 68,
+        Shape::Tri if linear => 5,
+        Shape::Tri => 69,
+        Shape::Quad if linear => 9,
+        Shape::Quad => 70,
+        Shape::Tet if linear => 10,
+        Shape::Tet => 71,
+        Shape::Hex if linear => 12,
+        Shape::Hex => 72,
+        Shape::Prism if linear => 13,
+        Shape::Prism => 73,
+        Shape::Pyramid => 14,
+    })
+}
+
+/// The permutation from Gmsh's node order to VTK's: VTK node `k` is Gmsh node `perm[k]`.
+/// `None` for cell types without a verified ordering (see [`vtk_cell_type`]).
+pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
+    const ID: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9];
+    const QUAD16: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8, 11, 10, 12, 13, 15, 14];
+    const TET10: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8];
+    const TET20: [usize; 20] = [
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 10, 15, 14, 13, 12, 17, 19, 18, 16,
+    ];
+    const HEX27: [usize; 27] = [
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20,
+        25, 26,
+    ];
+    const HEX64: [usize; 64] = [
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 14, 15, 19, 18, 10, 11, 24, 25, 28, 29, 31, 30, 26, 27, 12,
+        13, 16, 17, 20, 21, 22, 23, 40, 43, 41, 42, 44, 45, 47, 46, 36, 37, 39, 38, 49, 48, 50, 51,
+        32, 35, 33, 34, 52, 53, 55, 54, 56, 57, 59, 58, 60, 61, 63, 62,
+    ];
+    const PRISM18: [usize; 18] = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11, 15, 17, 16];
+    let n = ty.node_count();
+    match (ty.shape, ty.order) {
+        (_, 1) => Some(&ID[..n]),
+        (Shape::Line, 2) => Some(&ID[..3]),
+        (Shape::Line, 3) => Some(&[0, 1, 2, 3]),
+        (Shape::Tri, 2 | 3) | (Shape::Quad, 2) => Some(&ID[..n]),
+        (Shape::Quad, 3) => Some(&QUAD16),
+        (Shape::Tet, 2) => Some(&TET10),
+        (Shape::Tet, 3) => Some(&TET20),
+        (Shape::Hex, 2) => Some(&HEX27),
+        (Shape::Hex, 3) => Some(&HEX64),
+        (Shape::Prism, 2) => Some(&PRISM18),
+        _ => None,
+    }
+}
+
+/// Corners of Gmsh's reference cells.
+fn gmsh_corners(shape: Shape) -> &'static [[f64; 3]] {
+    match shape {
+        Shape::Line => &[[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
+        Shape::Tri => &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        Shape::Quad => &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+        ],
+        Shape::Tet => &[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ],
+        Shape::Hex => &[
+            [-1.0, -1.0, -1.0],
+            [1.0, -1.0, -1.0],
+            [1.0, 1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+        ],
+        Shape::Prism => &[
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, -1.0],
+            [0.0, 1.0, -1.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ],
+        Shape::Pyramid => &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ],
+    }
+}
+
+/// The quadrilateral faces of Gmsh's 3D reference cells, in Gmsh's order of their face nodes.
+fn gmsh_quad_faces(shape: Shape) -> &'static [[usize; 4]] {
+    match shape {
+        Shape::Hex => &[
+            [0, 3, 2, 1],
+            [0, 1, 5, 4],
+            [0, 4, 7, 3],
+            [1, 2, 6, 5],
+            [2, 3, 7, 6],
+            [4, 5, 6, 7],
+        ],
+        Shape::Prism => &[[0, 1, 4, 3], [0, 3, 5, 2], [1, 2, 5, 4]],
+        Shape::Pyramid => &[[0, 3, 2, 1]],
+        _ => &[],
+    }
+}
+
+fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+    [
+        a[0] + (b[0] - a[0]) * t,
+        a[1] + (b[1] - a[1]) * t,
+        a[2] + (b[2] - a[2]) * t,
+    ]
+}
+
+fn mean(points: &[[f64; 3]]) -> [f64; 3] {
+    let mut m = [0.0; 3];
+    for p in points {
+        for k in 0..3 {
+            m[k] += p[k] / points.len() as f64;
+        }
+    }
+    m
+}
+
+/// Gmsh's nodes of a triangle of order `p` with the given corners (recursive interior).
+fn gmsh_triangle(p: usize, c: [[f64; 3]; 3], out: &mut Vec<[f64; 3]>) {
+    if p == 0 {
+        out.push(mean(&c));
+        return;
+    }
+    out.extend_from_slice(&c);
+    for (a, b) in [(0, 1), (1, 2), (2, 0)] {
+        for i in 1..p {
+            out.push(lerp(c[a], c[b], i as f64 / p as f64));
+        }
+    }
+    if p >= 3 {
+        // The interior nodes form a triangle of order p − 3 inset by one lattice step.
+        let at = |i: f64, j: f64| {
+            let u = lerp(c[0], c[1], i / p as f64);
+            let v = lerp(c[0], c[2], j / p as f64);
+            [
+                u[0] + v[0] - c[0][0],
+                u[1] + v[1] - c[0][1],
+                u[2] + v[2] - c[0][2],
+            ]
+        };
+        let q = p as f64;
+        gmsh_triangle(
+            p - 3,
+            [at(1.0, 1.0), at(q - 2.0, 1.0), at(1.0, q - 2.0)],
+            out,
+        );
+    }
+}
+
+/// Gmsh's nodes of a quadrilateral of order `p` with the given corners (recursive interior).
+fn gmsh_quad(p: usize, c: [[f64; 3]; 4], out: &mut Vec<[f64; 3]>) {
+    if p == 0 {
+        out.push(mean(&c));
+        return;
+    }
+    out.extend_from_slice(&c);
+    for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0)] {
+        for i in 1..p {
+            out.push(lerp(c[a], c[b], i as f64 / p as f64));
+        }
+    }
+    if p >= 2 {
+        let t = 1.0 / p as f64;
+        let inset = |k: usize| lerp(c[k], c[(k + 2) % 4], t);
+        gmsh_quad(p - 2, [inset(0), inset(1), inset(2), inset(3)], out);
+    }
+}
+
+/// The reference coordinates of the nodes of a Gmsh cell, in Gmsh's node order (which is the
+/// data model's): lines on [−1, 1]; triangles and tetrahedra on the unit simplex;
+/// quadrilaterals and hexahedra on [−1, 1]ⁿ; prisms on the unit triangle × [−1, 1]; pyramids
+/// on the base [−1, 1]² with the apex at (0, 0, 1). Unused coordinates are 0.
+///
+/// Available for lines, triangles and quadrilaterals of order 1 to 3 and for 3D cells of
+/// order 1 and 2; `None` otherwise.
+pub fn gmsh_reference_nodes(ty: CellType) -> Option<Vec<[f64; 3]>> {
+    let c = gmsh_corners(ty.shape);
+    let p = ty.order as usize;
+    let mut out = Vec::with_capacity(ty.node_count());
+    match (ty.shape, p) {
+        (_, 1) => out.extend_from_slice(c),
+        (Shape::Line, 2 | 3) => {
+            out.extend_from_slice(c);
+            for i in 1..p {
+                out.push(lerp(c[0], c[1], i as f64 / p as f64));
+            }
+        }
+        (Shape::Tri, 2 | 3) => gmsh_triangle(p, [c[0], c[1], c[2]], &mut out),
+        (Shape::Quad, 2 | 3) => gmsh_quad(p, [c[0], c[1], c[2], c[3]], &mut out),
+        (Shape::Tet | Shape::Hex | Shape::Prism | Shape::Pyramid, 2) => {
+            out.extend_from_slice(c);
+            for e in ty.shape.edges() {
+                out.push(lerp(c[e[0]], c[e[1]], 0.5));
+            }
+            for f in gmsh_quad_faces(ty.shape) {
+                out.push(mean(&[c[f[0]], c[f[1]], c[f[2]], c[f[3]]]));
+            }
+            if ty.shape == Shape::Hex {
+                out.push(mean(c));
+            }
+        }
+        _ => return None,
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::msh::{cell_type_of_gmsh, gmsh_type_id};
+
+    /// One reference element as dumped from Gmsh or VTK.
+    struct Reference {
+        type_id: u32,
+        order: u8,
+        nodes: Vec<[f64; 3]>,
+    }
+
+    fn load(tool: &str) -> Vec<Reference> {
+        let text = include_str!("../tests/data/reference_nodes.json");
+        let v: serde_json::Value = serde_json::from_str(text).unwrap();
+        v[tool]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| Reference {
+                type_id: e["type"].as_u64().unwrap() as u32,
+                order: e["order"].as_u64().unwrap() as u8,
+                nodes: e["nodes"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|p| {
+                        let p = p.as_array().unwrap();
+                        [0, 1, 2].map(|k| p[k].as_f64().unwrap())
+                    })
+                    .collect(),
+            })
+            .collect()
+    }
+
+    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9)
+    }
+
+    /// Gmsh's reference coordinates mapped onto VTK's parametric domain: [0, 1] instead of
+    /// [−1, 1] along the axes where Gmsh uses the symmetric interval.
+    fn gmsh_to_vtk_domain(shape: Shape, p: [f64; 3]) -> [f64; 3] {
+        let h = |x: f64| (x + 1.0) / 2.0;
+        match shape {
+            Shape::Line => [h(p[0]), 0.0, 0.0],
+            Shape::Quad => [h(p[0]), h(p[1]), 0.0],
+            Shape::Hex => [h(p[0]), h(p[1]), h(p[2])],
+            Shape::Prism => [p[0], p[1], h(p[2])],
+            Shape::Pyramid => [h(p[0]), h(p[1]), p[2]],
+            Shape::Tri | Shape::Tet => p,
+        }
+    }
+
+    #[test]
+    fn element_types_match_gmsh_reference() {
+        let refs = load("gmsh");
+        assert!(refs.len() >= 20);
+        for r in &refs {
+            let ty = cell_type_of_gmsh(r.type_id)
+                .unwrap_or_else(|| panic!("Gmsh type {} unknown", r.type_id));
+            assert_eq!(ty.order, r.order, "type {}", r.type_id);
+            assert_eq!(ty.node_count(), r.nodes.len(), "type {}", r.type_id);
+            assert_eq!(gmsh_type_id(ty), Some(r.type_id));
+        }
+    }
+
+    #[test]
+    fn generated_gmsh_nodes_match_gmsh_itself() {
+        let mut checked = 0;
+        for r in load("gmsh") {
+            let ty = cell_type_of_gmsh(r.type_id).unwrap();
+            let Some(ours) = gmsh_reference_nodes(ty) else {
+                assert!(ty.order == 3 && ty.shape.dim() == 3, "{ty:?} not generated");
+                continue;
+            };
+            assert_eq!(ours.len(), r.nodes.len(), "{ty:?}");
+            for (k, (a, b)) in ours.iter().zip(&r.nodes).enumerate() {
+                assert!(close(*a, *b), "{ty:?} node {k}: ours {a:?}, Gmsh {b:?}");
+            }
+            checked += 1;
+        }
+        assert_eq!(checked, 17);
+    }
+
+    #[test]
+    fn permuted_gmsh_nodes_land_where_vtk_expects_them() {
+        let gmsh = load("gmsh");
+        let mut checked = 0;
+        for v in load("vtk") {
+            let shape = match v.type_id {
+                5 | 69 => Shape::Tri,
+                9 | 70 => Shape::Quad,
+                10 | 71 => Shape::Tet,
+                12 | 72 => Shape::Hex,
+                13 | 73 => Shape::Prism,
+                14 => Shape::Pyramid,
+                other => panic!("unexpected VTK type {other}"),
+            };
+            let ty = CellType::new(shape, v.order);
+            let Some(perm) = vtk_from_gmsh(ty) else {
+                assert_eq!((shape, v.order), (Shape::Prism, 3));
+                continue;
+            };
+            assert_eq!(vtk_cell_type(ty), Some(v.type_id as u8), "{ty:?}");
+            let g = gmsh
+                .iter()
+                .find(|g| g.type_id == gmsh_type_id(ty).unwrap())
+                .unwrap();
+            assert_eq!(perm.len(), v.nodes.len(), "{ty:?}");
+            let mut seen = vec![false; perm.len()];
+            for (k, &gi) in perm.iter().enumerate() {
+                assert!(!seen[gi], "{ty:?}: Gmsh node {gi} used twice");
+                seen[gi] = true;
+                let at = gmsh_to_vtk_domain(shape, g.nodes[gi]);
+                assert!(
+                    close(at, v.nodes[k]),
+                    "{ty:?}: VTK node {k} expects {:?}, Gmsh node {gi} is at {at:?}",
+                    v.nodes[k]
+                );
+            }
+            checked += 1;
+        }
+        assert_eq!(checked, 15);
+    }
+
+    #[test]
+    fn unverified_orderings_have_no_vtk_type() {
+        for ty in [
+            CellType::new(Shape::Pyramid, 2),
+            CellType::new(Shape::Pyramid, 3),
+            CellType::new(Shape::Prism, 3),
+        ] {
+            assert_eq!(vtk_cell_type(ty), None, "{ty:?}");
+        }
+    }
+}

@@ -1,0 +1,160 @@
+//! Binary snapshots of intermediate stages (a layered mesh with its layer and pipe records, a
+//! boundary mesh, …), for resuming a pipeline or comparing runs. This is the only module
+//! that uses `bincode`, so that another encoding (postcard) can replace it here alone.
+//!
+//! A snapshot file is: the 8 magic bytes [`MAGIC`], the format version [`FORMAT_VERSION`] as
+//! a little-endian `u32`, the length and UTF-8 bytes of the saved type's name (for error
+//! messages only), then the value encoded by bincode 1.3 (fixed-width integers, little
+//! endian). Snapshots are not an exchange format: they are read by the same version of the
+//! program that wrote them.
+
+use std::io::Write;
+use std::path::Path;
+
+use bincode::Options;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+use crate::IoError;
+use crate::atomic::write_atomic;
+
+/// The first bytes of every snapshot file.
+pub const MAGIC: [u8; 8] = *b"MESHSNAP";
+
+/// The snapshot format version this build writes and reads. Bump it when the encoding or
+/// the header changes.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// The longest type name a header may hold, in bytes.
+const MAX_TYPE_NAME: usize = 1024;
+
+fn options() -> impl Options {
+    bincode::DefaultOptions::new()
+        .with_fixint_encoding()
+        .with_little_endian()
+}
+
+/// Saves `value` to `path` as a snapshot, atomically.
+///
+/// Errors: [`IoError::Snapshot`] if `value` cannot be encoded (a serializer error, such as a
+/// map with non-string keys in a format that needs them), [`IoError::Io`] if the file cannot
+/// be written.
+pub fn save<T: Serialize>(path: &Path, value: &T) -> Result<(), IoError> {
+    let snapshot_error = |message: String| IoError::Snapshot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let payload = options()
+        .serialize(value)
+        .map_err(|e| snapshot_error(format!("cannot encode the value: {e}")))?;
+    let type_name = std::any::type_name::<T>().as_bytes();
+    let type_name = &type_name[..type_name.len().min(MAX_TYPE_NAME)];
+    write_atomic(path, |w: &mut dyn Write| {
+        let io = |e| IoError::io(path, e);
+        w.write_all(&MAGIC).map_err(io)?;
+        w.write_all(&FORMAT_VERSION.to_le_bytes()).map_err(io)?;
+        w.write_all(&(type_name.len() as u32).to_le_bytes())
+            .map_err(io)?;
+        w.write_all(type_name).map_err(io)?;
+        w.write_all(&payload).map_err(io)
+    })
+}
+
+/// Loads a snapshot saved by [`save`] with the same type `T`.
+///
+/// Errors: [`IoError::Io`] if the file cannot be read; [`IoError::Snapshot`] if it is not a
+/// snapshot (wrong magic bytes), is of another format version, or does not decode as `T`
+/// (the message names the type the file holds).
+pub fn load<T: DeserializeOwned>(path: &Path) -> Result<T, IoError> {
+    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
+    let snapshot_error = |message: String| IoError::Snapshot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let Some(rest) = bytes.strip_prefix(&MAGIC) else {
+        return Err(snapshot_error(
+            "not a snapshot file (it does not start with the magic bytes MESHSNAP)".into(),
+        ));
+    };
+    let u32_at = |b: &[u8], at: usize| -> Option<u32> {
+        b.get(at..at + 4)
+            .map(|s| u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    };
+    let version =
+        u32_at(rest, 0).ok_or_else(|| snapshot_error("truncated snapshot header".into()))?;
+    if version != FORMAT_VERSION {
+        return Err(snapshot_error(format!(
+            "snapshot format version {version}, but this program reads version {FORMAT_VERSION}: regenerate it"
+        )));
+    }
+    let name_len = u32_at(rest, 4)
+        .map(|n| n as usize)
+        .filter(|&n| n <= MAX_TYPE_NAME && 8 + n <= rest.len())
+        .ok_or_else(|| snapshot_error("truncated or corrupt snapshot header".into()))?;
+    let stored = String::from_utf8_lossy(&rest[8..8 + name_len]);
+    let payload = &rest[8 + name_len..];
+    options()
+        .with_limit(payload.len() as u64)
+        .deserialize::<T>(payload)
+        .map_err(|e| {
+            snapshot_error(format!(
+                "the snapshot holds a {stored} that does not decode as a {}: {e}",
+                std::any::type_name::<T>()
+            ))
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::{AnnulusParams, annulus};
+    use mesh_model::Mesh;
+
+    #[test]
+    fn a_mesh_with_layers_and_pipes_survives_a_snapshot() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.snap");
+        let m = annulus(&AnnulusParams::default());
+        assert!(!m.cell_layer.is_empty() && !m.cell_pipe.is_empty());
+        save(&path, &m).unwrap();
+        let back: Mesh = load(&path).unwrap();
+        assert_eq!(back, m);
+    }
+
+    #[test]
+    fn a_file_that_is_not_a_snapshot_is_named_as_such() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.snap");
+        std::fs::write(&path, b"$MeshFormat\n4.1 0 8\n").unwrap();
+        let err = load::<Mesh>(&path).unwrap_err();
+        assert!(err.to_string().contains("not a snapshot"), "{err}");
+    }
+
+    #[test]
+    fn another_format_version_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.snap");
+        save(&path, &42u64).unwrap();
+        let mut bytes = std::fs::read(&path).unwrap();
+        bytes[8..12].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
+        std::fs::write(&path, &bytes).unwrap();
+        let err = load::<u64>(&path).unwrap_err();
+        assert!(err.to_string().contains("format version"), "{err}");
+    }
+
+    #[test]
+    fn a_snapshot_of_another_type_or_truncated_gives_an_error_not_a_panic() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.snap");
+        save(&path, &vec![1.5f64, 2.5]).unwrap();
+        let err = load::<Mesh>(&path).unwrap_err();
+        assert!(matches!(err, IoError::Snapshot { .. }), "{err}");
+        assert!(err.to_string().contains("Vec<f64>"), "{err}");
+        let bytes = std::fs::read(&path).unwrap();
+        for cut in [4, 10, 14, bytes.len() - 3] {
+            std::fs::write(&path, &bytes[..cut]).unwrap();
+            let err = load::<Vec<f64>>(&path).unwrap_err();
+            assert!(matches!(err, IoError::Snapshot { .. }), "cut {cut}: {err}");
+        }
+    }
+}

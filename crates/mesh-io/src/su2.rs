@@ -1,0 +1,195 @@
+//! SU2 native mesh format (`.su2`), linear only.
+//!
+//! SU2 has no high-order cells, so for a mesh of order 2 or 3 this writer writes the linear
+//! mesh underneath: the corner nodes of every cell and facet, renumbered densely in their
+//! original order, with straight edges. (It does not refuse, so that one pipeline run can
+//! write `.msh` and `.su2` side by side; the curvature is in the `.msh`.)
+//!
+//! Layout: `NDIME=`, `NELEM=` with one line per cell (VTK linear type, corner indices, cell
+//! index), `NPOIN=` with one line per point (coordinates, index; z only in 3D), `NMARK=` with
+//! one marker per boundary role present, `MARKER_TAG=` the role's name (`wall`, `farfield`:
+//! patches of one role are merged), `MARKER_ELEMS=` and one line per facet (line 3 in 2D;
+//! triangle 5 or quadrilateral 9 in 3D). Indices are 0-based.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use mesh_model::{Dim, Mesh, Role, Shape};
+
+use crate::IoError;
+use crate::atomic::write_atomic;
+use crate::check::check_writable;
+
+/// Writes the linear mesh underneath `mesh` to `path` in SU2 format, atomically.
+///
+/// Errors: [`IoError::NonFiniteNode`] or [`IoError::InvalidMesh`] before anything is
+/// written, [`IoError::Io`] when the file cannot be written.
+pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    check_writable(mesh, path)?;
+    write_atomic(path, |w| body(w, mesh).map_err(|e| IoError::io(path, e)))
+}
+
+/// Writes the `.su2` to any writer; `path` only names the destination in errors. Not atomic.
+pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+    check_writable(mesh, path)?;
+    body(out, mesh).map_err(|e| IoError::io(path, e))
+}
+
+/// VTK linear type number of a shape (SU2 uses VTK's).
+fn vtk_linear(shape: Shape) -> u8 {
+    match shape {
+        Shape::Line => 3,
+        Shape::Tri => 5,
+        Shape::Quad => 9,
+        Shape::Tet => 10,
+        Shape::Hex => 12,
+        Shape::Prism => 13,
+        Shape::Pyramid => 14,
+    }
+}
+
+fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
+    // Dense renumbering of the corner nodes, in their original order.
+    let mut new_index = vec![u32::MAX; mesh.nodes.len()];
+    for c in mesh.cells.iter().chain(mesh.boundary.iter()) {
+        for &v in c.corners() {
+            new_index[v as usize] = 0;
+        }
+    }
+    let mut kept = Vec::new();
+    for (old, slot) in new_index.iter_mut().enumerate() {
+        if *slot == 0 {
+            *slot = kept.len() as u32;
+            kept.push(old);
+        }
+    }
+
+    let d = mesh.dim.as_u8();
+    writeln!(w, "NDIME= {d}")?;
+    writeln!(w, "NELEM= {}", mesh.cells.len())?;
+    for (i, c) in mesh.cells.iter().enumerate() {
+        write!(w, "{}", vtk_linear(c.ty.shape))?;
+        for &v in c.corners() {
+            write!(w, " {}", new_index[v as usize])?;
+        }
+        writeln!(w, " {i}")?;
+    }
+    writeln!(w, "NPOIN= {}", kept.len())?;
+    for (i, &old) in kept.iter().enumerate() {
+        let p = mesh.nodes[old];
+        match mesh.dim {
+            Dim::Two => writeln!(w, "{:?} {:?} {i}", p[0], p[1])?,
+            Dim::Three => writeln!(w, "{:?} {:?} {:?} {i}", p[0], p[1], p[2])?,
+        }
+    }
+    let roles: Vec<Role> = [Role::Wall, Role::Farfield]
+        .into_iter()
+        .filter(|r| mesh.patches.iter().any(|p| p.role == *r))
+        .collect();
+    writeln!(w, "NMARK= {}", roles.len())?;
+    for role in roles {
+        let facets: Vec<usize> = (0..mesh.boundary.len())
+            .filter(|&j| mesh.patches[mesh.boundary_patch[j] as usize].role == role)
+            .collect();
+        writeln!(w, "MARKER_TAG= {}", role.name())?;
+        writeln!(w, "MARKER_ELEMS= {}", facets.len())?;
+        for j in facets {
+            let f = mesh.boundary.get(j);
+            write!(w, "{}", vtk_linear(f.ty.shape))?;
+            for &v in f.corners() {
+                write!(w, " {}", new_index[v as usize])?;
+            }
+            writeln!(w)?;
+        }
+    }
+    w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::{AnnulusParams, annulus};
+
+    fn to_string(mesh: &Mesh) -> String {
+        let mut out = Vec::new();
+        write_to(&mut out, mesh, Path::new("mem.su2")).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    /// The lines after `KEY= n`, and n.
+    fn block<'a>(text: &'a str, key: &str) -> (usize, Vec<&'a str>) {
+        let mut lines = text.lines();
+        let n: usize = lines
+            .by_ref()
+            .find_map(|l| l.strip_prefix(key))
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap();
+        (n, lines.take(n).collect())
+    }
+
+    #[test]
+    fn a_p3_annulus_is_written_as_its_linear_mesh() {
+        let m = annulus(&AnnulusParams {
+            order: 3,
+            ..AnnulusParams::default()
+        });
+        let linear = annulus(&AnnulusParams {
+            order: 1,
+            ..AnnulusParams::default()
+        });
+        let text = to_string(&m);
+        let (npoin, points) = block(&text, "NPOIN=");
+        assert_eq!(npoin, linear.nodes.len());
+        // The corner points are the linear mesh's points (same lattice, same order).
+        for (line, p) in points.iter().zip(&linear.nodes) {
+            let v: Vec<f64> = line
+                .split_whitespace()
+                .map(|t| t.parse().unwrap())
+                .collect();
+            assert!((v[0] - p[0]).abs() < 1e-14 && (v[1] - p[1]).abs() < 1e-14);
+        }
+        // Cells and markers are the P1 mesh's, index for index.
+        let without_points = |t: &str| -> String {
+            let (a, b) = (t.find("NPOIN=").unwrap(), t.find("NMARK=").unwrap());
+            format!("{}{}", &t[..a], &t[b..])
+        };
+        assert_eq!(without_points(&text), without_points(&to_string(&linear)));
+        let (nelem, cells) = block(&text, "NELEM=");
+        assert_eq!(nelem, m.cells.len());
+        for (line, c) in cells.iter().zip(m.cells.iter()) {
+            let v: Vec<u32> = line
+                .split_whitespace()
+                .map(|t| t.parse().unwrap())
+                .collect();
+            assert_eq!(v[0], u32::from(vtk_linear(c.ty.shape)));
+            assert_eq!(v.len(), 2 + c.ty.shape.corners());
+            assert!(v[1..v.len() - 1].iter().all(|&k| (k as usize) < npoin));
+        }
+        assert!(text.contains("NDIME= 2\n"));
+        assert!(text.contains("NMARK= 2\n"));
+    }
+
+    #[test]
+    fn patches_of_one_role_are_merged_into_one_marker() {
+        let mut m = annulus(&AnnulusParams::default());
+        // Split the outer circle into two far-field patches.
+        m.patches.push(mesh_model::Patch {
+            name: "outer-b".into(),
+            role: Role::Farfield,
+        });
+        let outer: Vec<usize> = m.patch_facets(1).collect();
+        for &j in &outer[outer.len() / 2..] {
+            m.boundary_patch[j] = 2;
+        }
+        let text = to_string(&m);
+        assert!(text.contains("NMARK= 2\n"));
+        let after = |tag: &str| &text[text.find(tag).unwrap()..];
+        let (n, lines) = block(after("MARKER_TAG= farfield\n"), "MARKER_ELEMS=");
+        assert_eq!(n, outer.len());
+        assert!(lines.iter().all(|l| l.starts_with("3 ")));
+        let (n, _) = block(after("MARKER_TAG= wall\n"), "MARKER_ELEMS=");
+        assert_eq!(n, m.patch_facets(0).count());
+    }
+}

@@ -1,0 +1,243 @@
+//! VTK XML unstructured grid (`.vtu`, ASCII), for looking at meshes in ParaView.
+//!
+//! Only the domain cells are written (no boundary facets). Linear cells use the linear VTK
+//! types (triangle 5, quad 9, tetra 10, hexahedron 12, wedge 13, pyramid 14); orders 2 and 3
+//! use VTK's Lagrange cells (triangle 69, quadrilateral 70, tetra 71, hexahedron 72, wedge 73
+//! at order 2) with the nodes permuted from Gmsh's order by [`crate::node_order`]. High-order
+//! pyramids and order-3 prisms have no verified ordering and give [`IoError::Unsupported`].
+//!
+//! Cell data: `layer` and `pipe` (as `Int64`, −1 for [`mesh_model::NONE`]) when the mesh has
+//! them, and `order` (the polynomial order of each cell). No point data.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use mesh_model::{Mesh, NONE};
+
+use crate::IoError;
+use crate::atomic::write_atomic;
+use crate::check::check_writable;
+use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
+
+/// Writes the domain cells of `mesh` to `path` as a VTK XML unstructured grid, atomically.
+///
+/// Errors: [`IoError::NonFiniteNode`] or [`IoError::InvalidMesh`] for a mesh that breaks the
+/// data model's invariants, [`IoError::Unsupported`] for a cell type without a VTK ordering,
+/// all before anything is written; [`IoError::Io`] when the file cannot be written.
+pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    prepare(mesh, path)?;
+    write_atomic(path, |w| body(w, mesh).map_err(|e| IoError::io(path, e)))
+}
+
+/// Writes the `.vtu` to any writer; `path` only names the destination in errors. Not atomic.
+pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+    prepare(mesh, path)?;
+    body(out, mesh).map_err(|e| IoError::io(path, e))
+}
+
+fn prepare(mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+    check_writable(mesh, path)?;
+    for (i, ty) in mesh.cells.types().iter().enumerate() {
+        if vtk_cell_type(*ty).is_none() {
+            return Err(IoError::Unsupported {
+                path: path.to_path_buf(),
+                format: "vtu",
+                what: format!(
+                    "cell {i}, a {} of order {} (no verified VTK Lagrange node ordering)",
+                    ty.shape.name(),
+                    ty.order
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn int_array(w: &mut dyn Write, name: &str, values: impl Iterator<Item = i64>) -> io::Result<()> {
+    writeln!(
+        w,
+        r#"        <DataArray type="Int64" Name="{name}" format="ascii">"#
+    )?;
+    for (k, v) in values.enumerate() {
+        if k % 16 == 15 {
+            writeln!(w, "{v}")?;
+        } else {
+            write!(w, "{v} ")?;
+        }
+    }
+    writeln!(w, "\n        </DataArray>")
+}
+
+fn record(v: u32) -> i64 {
+    if v == NONE { -1 } else { i64::from(v) }
+}
+
+fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
+    writeln!(w, r#"<?xml version="1.0"?>"#)?;
+    writeln!(
+        w,
+        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
+    )?;
+    writeln!(w, "  <UnstructuredGrid>")?;
+    writeln!(
+        w,
+        r#"    <Piece NumberOfPoints="{}" NumberOfCells="{}">"#,
+        mesh.nodes.len(),
+        mesh.cells.len()
+    )?;
+    writeln!(w, "      <Points>")?;
+    writeln!(
+        w,
+        r#"        <DataArray type="Float64" Name="Points" NumberOfComponents="3" format="ascii">"#
+    )?;
+    for p in &mesh.nodes {
+        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+    }
+    writeln!(w, "        </DataArray>\n      </Points>")?;
+
+    writeln!(w, "      <Cells>")?;
+    writeln!(
+        w,
+        r#"        <DataArray type="Int64" Name="connectivity" format="ascii">"#
+    )?;
+    for c in mesh.cells.iter() {
+        let perm = vtk_from_gmsh(c.ty).unwrap_or(&[]);
+        for (k, &g) in perm.iter().enumerate() {
+            let sep = if k + 1 == perm.len() { "\n" } else { " " };
+            write!(w, "{}{sep}", c.nodes[g])?;
+        }
+    }
+    writeln!(w, "        </DataArray>")?;
+    let mut offset = 0i64;
+    let offsets = mesh.cells.iter().map(|c| {
+        offset += c.nodes.len() as i64;
+        offset
+    });
+    int_array(w, "offsets", offsets)?;
+    writeln!(
+        w,
+        r#"        <DataArray type="UInt8" Name="types" format="ascii">"#
+    )?;
+    for (k, ty) in mesh.cells.types().iter().enumerate() {
+        let sep = if k % 32 == 31 { "\n" } else { " " };
+        write!(w, "{}{sep}", vtk_cell_type(*ty).unwrap_or(0))?;
+    }
+    writeln!(w, "\n        </DataArray>\n      </Cells>")?;
+
+    writeln!(w, "      <CellData>")?;
+    int_array(
+        w,
+        "order",
+        mesh.cells.types().iter().map(|t| i64::from(t.order)),
+    )?;
+    if !mesh.cell_layer.is_empty() {
+        int_array(w, "layer", mesh.cell_layer.iter().map(|&v| record(v)))?;
+    }
+    if !mesh.cell_pipe.is_empty() {
+        int_array(w, "pipe", mesh.cell_pipe.iter().map(|&v| record(v)))?;
+    }
+    writeln!(w, "      </CellData>")?;
+    writeln!(w, "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>")?;
+    w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::{AnnulusParams, annulus, reference_cells_3d};
+    use mesh_model::Shape;
+
+    fn to_string(mesh: &Mesh) -> Result<String, IoError> {
+        let mut out = Vec::new();
+        write_to(&mut out, mesh, Path::new("mem.vtu"))?;
+        Ok(String::from_utf8(out).unwrap())
+    }
+
+    /// The numbers between `<DataArray … Name="name" …>` and `</DataArray>`.
+    fn array(text: &str, name: &str) -> Vec<f64> {
+        let start = text.find(&format!(r#"Name="{name}""#)).unwrap();
+        let open = start + text[start..].find('>').unwrap() + 1;
+        let close = open + text[open..].find("</DataArray>").unwrap();
+        text[open..close]
+            .split_ascii_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn p3_annulus_cells_are_lagrange_with_nodes_in_vtk_order() {
+        let m = annulus(&AnnulusParams {
+            order: 3,
+            ..AnnulusParams::default()
+        });
+        let text = to_string(&m).unwrap();
+        let types = array(&text, "types");
+        let offsets = array(&text, "offsets");
+        let conn = array(&text, "connectivity");
+        let points = array(&text, "Points");
+        assert_eq!(types.len(), m.cells.len());
+        assert_eq!(points.len(), 3 * m.nodes.len());
+        assert_eq!(*offsets.last().unwrap() as usize, conn.len());
+        let mut start = 0;
+        for (i, c) in m.cells.iter().enumerate() {
+            let end = offsets[i] as usize;
+            let expected_type = if c.ty.shape == Shape::Tri { 69.0 } else { 70.0 };
+            assert_eq!(types[i], expected_type);
+            let vtk: Vec<u32> = conn[start..end].iter().map(|&v| v as u32).collect();
+            if c.ty.shape == Shape::Quad {
+                // VTK runs edge 2 from corner 3 to corner 2 and edge 3 from corner 0 to 3:
+                // its node 8 is next to corner 3, its node 10 next to corner 0.
+                let d = |a: u32, b: u32| {
+                    let (p, q) = (m.xy(a), m.xy(b));
+                    (p[0] - q[0]).hypot(p[1] - q[1])
+                };
+                assert!(d(vtk[8], vtk[3]) < d(vtk[8], vtk[2]), "cell {i}");
+                assert!(d(vtk[10], vtk[0]) < d(vtk[10], vtk[3]), "cell {i}");
+            }
+            let mut sorted_vtk = vtk.clone();
+            sorted_vtk.sort_unstable();
+            let mut sorted_gmsh = c.nodes.to_vec();
+            sorted_gmsh.sort_unstable();
+            assert_eq!(sorted_vtk, sorted_gmsh, "cell {i} nodes are a permutation");
+            start = end;
+        }
+        let layers = array(&text, "layer");
+        assert_eq!(layers.len(), m.cells.len());
+        assert_eq!(layers[0], f64::from(m.cell_layer[0]));
+    }
+
+    #[test]
+    fn coordinates_are_written_to_full_precision() {
+        let mut m = annulus(&AnnulusParams::default());
+        m.nodes[1][0] = 0.1 + 0.2;
+        let text = to_string(&m).unwrap();
+        let points = array(&text, "Points");
+        for (k, p) in m.nodes.iter().enumerate() {
+            assert_eq!(points[3 * k..3 * k + 3], p[..], "node {k}");
+        }
+    }
+
+    #[test]
+    fn high_order_pyramids_are_refused_before_writing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.vtu");
+        let m = reference_cells_3d(2);
+        let err = write(&path, &m).unwrap_err();
+        assert!(matches!(err, IoError::Unsupported { .. }), "{err}");
+        assert!(err.to_string().contains("pyramid"), "{err}");
+        assert!(!path.exists());
+        let linear = reference_cells_3d(1);
+        let text = to_string(&linear).unwrap();
+        assert_eq!(array(&text, "types"), vec![10.0, 14.0, 13.0, 12.0]);
+    }
+
+    #[test]
+    fn missing_layer_records_write_no_layer_array() {
+        let mut m = annulus(&AnnulusParams::default());
+        m.cell_layer.clear();
+        m.cell_pipe[0] = NONE;
+        let text = to_string(&m).unwrap();
+        assert!(!text.contains(r#"Name="layer""#));
+        assert_eq!(array(&text, "pipe")[0], -1.0);
+    }
+}
