@@ -1,1 +1,145 @@
-//! Geometry curves: Selig and NACA inputs, approximate curvature, the C2 piecewise quintic Hermite curve with corner breaks, evaluation, arc length and closest point.
+//! Geometry curves for the boundary of a 2D domain: reading loops of points (Selig `.dat`
+//! text, NACA 4-digit sections, circles), checking that a loop is a simple closed polygon and
+//! that loops do not cross, the approximate (circumcircle) curvature of the dissertation
+//! (§3.1.1), and the C2 piecewise quintic Hermite curve through the points with C0 breaks at
+//! sharp corners (§3.1.2), with evaluation, arc length, its inverse and the closest point.
+//!
+//! It owns geometry only: no file IO (parsers take `&str`), no mesh spacing (that is
+//! `boundary1d`), no knowledge of roles such as wall or far field. Points are
+//! [`nalgebra::Point2<f64>`] and vectors [`nalgebra::Vector2<f64>`], re-exported here as
+//! [`Point2`] and [`Vector2`] so that callers need not depend on nalgebra themselves.
+//!
+//! Conventions used throughout: a loop is a slice of `n` points, closed implicitly (the first
+//! point is not repeated); edge `i` runs from point `i` to point `(i + 1) % n`, so edge `n - 1`
+//! is the closing edge. Counter-clockwise loops have positive signed area.
+
+pub mod curvature;
+pub mod hermite;
+pub mod loops;
+pub mod naca;
+mod quadrature;
+pub mod selig;
+mod shapes;
+
+pub use hermite::{ClosedCurve, CurveParams, HermiteSegment};
+pub use loops::LoopCheckParams;
+pub use nalgebra::{Point2, Vector2};
+pub use shapes::circle_points;
+
+/// Everything that can go wrong when reading or checking geometry in this crate.
+///
+/// Each message is one line that names the fault (line number, point or edge index, value).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CurveError {
+    /// A coordinate line of a Selig file is not exactly two numbers. Fix or delete that line
+    /// (line 1 is always taken as the title).
+    #[error("line {line}: expected two numbers \"x y\", found {content:?}")]
+    MalformedLine {
+        /// 1-based line number in the text.
+        line: usize,
+        /// The offending line, trimmed.
+        content: String,
+    },
+    /// A coordinate in a Selig file is NaN or infinite. Replace it with a finite number.
+    #[error("line {line}: coordinate is not finite in {content:?}")]
+    NonFiniteCoordinate {
+        /// 1-based line number in the text.
+        line: usize,
+        /// The offending line, trimmed.
+        content: String,
+    },
+    /// A loop has fewer than three points (after dropping a repeated closing point). Give at
+    /// least three distinct points.
+    #[error("a closed loop needs at least 3 points, found {count}")]
+    TooFewPoints {
+        /// Number of points found.
+        count: usize,
+    },
+    /// A point has a NaN or infinite coordinate. Fix the point.
+    #[error("point {index} is not finite: ({x}, {y})")]
+    NonFinitePoint {
+        /// Index of the point in the loop.
+        index: usize,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+    },
+    /// Two consecutive points (the last and the first included) coincide within the relative
+    /// tolerance. Remove one of them.
+    #[error(
+        "points {index} and {next} coincide (distance {distance:.3e} <= tolerance {tolerance:.3e}); remove one of them"
+    )]
+    DuplicatePoint {
+        /// Index of the first point.
+        index: usize,
+        /// Index of the following point (0 for the closing edge).
+        next: usize,
+        /// Their distance.
+        distance: f64,
+        /// The tolerance: the relative tolerance times the loop's bounding-box diagonal.
+        tolerance: f64,
+    },
+    /// The implied closing edge is much longer than every other edge and a sizeable part of
+    /// the perimeter: the points probably describe an open curve (for example a Lednicer
+    /// file read as Selig, or a surface listed only once). Close the loop or add points.
+    #[error(
+        "the loop looks open: the gap between last and first point is {gap:.4e} (longest other edge {longest_edge:.4e}, perimeter {perimeter:.4e}); close the loop or add points"
+    )]
+    OpenLoop {
+        /// Length of the closing edge.
+        gap: f64,
+        /// Length of the longest other edge.
+        longest_edge: f64,
+        /// Perimeter of the loop, closing edge included.
+        perimeter: f64,
+    },
+    /// Two non-adjacent edges of a loop touch or cross, or two adjacent edges fold back onto
+    /// each other. Fix the point order or remove the stray points.
+    #[error("the loop intersects itself: edge {edge_a} and edge {edge_b} meet at ({x}, {y})")]
+    SelfIntersection {
+        /// Index of the first edge (edge i runs from point i to point i+1).
+        edge_a: usize,
+        /// Index of the second edge.
+        edge_b: usize,
+        /// x of a common point.
+        x: f64,
+        /// y of a common point.
+        y: f64,
+    },
+    /// Two different loops touch or cross. Move or scale one of them.
+    #[error("loop {loop_a} (edge {edge_a}) crosses loop {loop_b} (edge {edge_b}) at ({x}, {y})")]
+    LoopsCross {
+        /// Index of the first loop.
+        loop_a: usize,
+        /// Edge of the first loop.
+        edge_a: usize,
+        /// Index of the second loop.
+        loop_b: usize,
+        /// Edge of the second loop.
+        edge_b: usize,
+        /// x of a common point.
+        x: f64,
+        /// y of a common point.
+        y: f64,
+    },
+    /// A NACA designation is not a valid 4-digit section. Give four digits `MPTT` with a
+    /// camber position `P` > 0 when the camber `M` > 0, and a thickness `TT` > 0.
+    #[error("invalid NACA 4-digit designation {digits:?}: {reason}")]
+    InvalidNaca {
+        /// The designation as given.
+        digits: String,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A numeric parameter is out of its valid range. Use a value within the stated range.
+    #[error("invalid parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// The parameter's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The valid range or the reason.
+        reason: &'static str,
+    },
+}
