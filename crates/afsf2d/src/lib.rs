@@ -1,1 +1,195 @@
-//! AFSF in 2D: the advancing-front spring-field linear viscous mesh of mixed quads and triangles, grown layer by layer from every boundary loop until the fronts close.
+//! AFSF in 2D: the advancing-front spring-field linear viscous mesh of mixed quads and
+//! triangles, grown layer by layer from every boundary loop until the fronts close.
+//!
+//! Entry point: [`grow_mesh`] takes closed loops of boundary nodes ([`FrontLoop`]) and
+//! [`AfsfParams`], and returns an [`AfsfOutput`]: a linear [`mesh_model::Mesh`] whose boundary
+//! facets are the input loop edges and whose cells carry their layer and pipe, the parent and
+//! layer of every node, and run statistics. [`cut_quads_shorter_diagonal`] and
+//! [`max_angle_histogram`] give triangles and the dissertation's quality figure.
+//!
+//! It owns the layer growth (`grow`), the closing of the fronts, and the filling of the region
+//! left between them (`fill`). It does not place boundary nodes (`boundary1d`), curve
+//! anything (`vector-adding`) or read files; the spring models and solver are `springfield`'s.
+//! The method and every choice the dissertation left open are in `docs/afsf.md`.
+
+mod error;
+mod fill;
+mod geom;
+mod grow;
+mod input;
+mod quality;
+
+use mesh_model::{CellType, Dim, Mesh, NONE, Patch, Role, Shape};
+
+pub use error::AfsfError;
+pub use grow::{LayerStats, Timings};
+pub use input::{AfsfParams, FrontLoop};
+pub use quality::{
+    ANGLE_BINS_DEG, AngleStats, cut_quads_shorter_diagonal, max_angle_histogram,
+    max_triangle_angle_deg,
+};
+
+use grow::{Law, Work};
+
+/// Figures of one run.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct AfsfStats {
+    /// Highest layer index reached by any front.
+    pub layers: u32,
+    /// One entry per layer step.
+    pub layer_stats: Vec<LayerStats>,
+    /// Spring-solver iterations, all steps together.
+    pub iterations: usize,
+    /// True when every step's accepted spring solve converged.
+    pub all_converged: bool,
+    /// Triangles made by the hole filling.
+    pub fill_triangles: usize,
+    /// Timings of the phases (seconds).
+    pub timings: Timings,
+}
+
+/// The mesher's result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AfsfOutput {
+    /// The linear mesh (quads and triangles). Boundary nodes come first, loop after loop in
+    /// input order and at their input coordinates; facet `k` of a loop joins its points `k`
+    /// and `k + 1`, oriented with the domain on the left; one patch per loop.
+    pub mesh: Mesh,
+    /// For every node, the node it was extruded from, or [`NONE`] for boundary nodes. A node
+    /// made by merging two children keeps the first parent.
+    pub node_parent: Vec<u32>,
+    /// For every node, its layer (0 on the boundary).
+    pub node_layer: Vec<u32>,
+    /// Run figures.
+    pub stats: AfsfStats,
+}
+
+/// Grows the layered mesh from every loop at once and fills the region where the fronts
+/// meet, so that the cells cover the domain exactly.
+pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput, AfsfError> {
+    let t0 = std::time::Instant::now();
+    params.check()?;
+    let checked = input::check_loops(loops, params)?;
+    let mut points = Vec::new();
+    let mut fronts = Vec::new();
+    let mut mesh = Mesh::new(Dim::Two, 1);
+    let line = CellType::new(Shape::Line, 1);
+    for (li, (l, c)) in loops.iter().zip(&checked).enumerate() {
+        let off = points.len() as u32;
+        let facet_off = mesh.boundary.len() as u32;
+        let n = l.points.len() as u32;
+        points.extend_from_slice(&l.points);
+        for k in 0..n {
+            let (a, b) = (off + k, off + (k + 1) % n);
+            mesh.boundary
+                .push(line, &if c.reversed { [b, a] } else { [a, b] });
+            mesh.boundary_patch.push(li as u32);
+        }
+        mesh.patches.push(Patch {
+            name: l.name.clone(),
+            role: l.role,
+        });
+        let (items, pipes): (Vec<u32>, Vec<u32>) = if c.reversed {
+            (0..n)
+                .map(|i| (off + (n - i) % n, facet_off + (2 * n - i - 1) % n))
+                .unzip()
+        } else {
+            (0..n).map(|i| (off + i, facet_off + i)).unzip()
+        };
+        let law = match l.role {
+            Role::Wall => Law::Geometric {
+                first: params.first_height,
+                growth: params.growth,
+            },
+            Role::Farfield => Law::Isotropic {
+                factor: params.farfield_height,
+            },
+        };
+        fronts.push((items, pipes, law));
+    }
+    let mut work = Work::new(params, points, fronts);
+    work.grow()?;
+    let tf = std::time::Instant::now();
+    let fill = fill::fill_fronts(&work.loops, &work.pos)?;
+    work.timings.fill = tf.elapsed().as_secs_f64();
+
+    // compact the nodes: boundary first (unchanged), then the alive layer nodes
+    let n_all = work.pos.len();
+    let mut new_index = vec![NONE; n_all];
+    let mut next = 0u32;
+    for (g, slot) in new_index.iter_mut().enumerate() {
+        if work.alive[g] {
+            *slot = next;
+            next += 1;
+        }
+    }
+    let mut node_parent = Vec::with_capacity(next as usize);
+    let mut node_layer = Vec::with_capacity(next as usize);
+    for g in 0..n_all {
+        if !work.alive[g] {
+            continue;
+        }
+        let p = work.pos[g];
+        mesh.nodes.push([p[0], p[1], 0.0]);
+        let parent = work.parent[g];
+        node_parent.push(if parent == NONE {
+            NONE
+        } else {
+            new_index[parent as usize]
+        });
+        node_layer.push(work.layer[g]);
+    }
+    // every node's pipe, for the fill triangles: boundary nodes take the facet that starts
+    // at them, layer nodes the pipe of the first cell they belong to
+    let mut node_pipe = vec![NONE; n_all];
+    for (g, slot) in node_pipe.iter_mut().enumerate().take(work.n_boundary) {
+        *slot = g as u32;
+    }
+    let quad = CellType::new(Shape::Quad, 1);
+    let tri = CellType::new(Shape::Tri, 1);
+    for c in &work.cells {
+        if c.len == 0 {
+            continue;
+        }
+        let k: Vec<u32> = c.corners().iter().map(|&g| new_index[g as usize]).collect();
+        mesh.cells.push(if c.len == 4 { quad } else { tri }, &k);
+        mesh.cell_layer.push(c.layer);
+        mesh.cell_pipe.push(c.pipe);
+        for &g in c.corners() {
+            if node_pipe[g as usize] == NONE {
+                node_pipe[g as usize] = c.pipe;
+            }
+        }
+    }
+    for t in &fill {
+        let top = *t
+            .iter()
+            .max_by_key(|&&g| work.layer[g as usize])
+            .expect("three corners");
+        let k = [
+            new_index[t[0] as usize],
+            new_index[t[1] as usize],
+            new_index[t[2] as usize],
+        ];
+        mesh.cells.push(tri, &k);
+        mesh.cell_layer.push(work.layer[top as usize]);
+        mesh.cell_pipe.push(node_pipe[top as usize]);
+    }
+    let stats = AfsfStats {
+        layers: work.layer.iter().copied().max().unwrap_or(0),
+        iterations: work.layer_stats.iter().map(|s| s.iterations).sum(),
+        all_converged: work.layer_stats.iter().all(|s| s.converged),
+        layer_stats: std::mem::take(&mut work.layer_stats),
+        fill_triangles: fill.len(),
+        timings: Timings {
+            total: t0.elapsed().as_secs_f64(),
+            ..work.timings
+        },
+    };
+    Ok(AfsfOutput {
+        mesh,
+        node_parent,
+        node_layer,
+        stats,
+    })
+}

@@ -1,0 +1,155 @@
+//! Triangles on demand and the obtuse-angle quality figure of the dissertation (Tables 1, 3,
+//! 4): cut each quad along its shorter diagonal, then count triangles by their largest angle.
+//! It owns nothing but these two functions on a linear 2D [`Mesh`].
+
+use mesh_model::{CellType, Mesh, Shape};
+
+/// Lower bounds (degrees) of the histogram bins: [95,105), [105,115), [115,125), [125,135),
+/// [135,180].
+pub const ANGLE_BINS_DEG: [f64; 5] = [95.0, 105.0, 115.0, 125.0, 135.0];
+
+/// Largest-angle figures of the triangles of a mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AngleStats {
+    /// Number of triangles (after cutting quads).
+    pub triangles: usize,
+    /// Largest angle of any triangle (degrees).
+    pub max_angle_deg: f64,
+    /// Triangles whose largest angle lies in each bin of [`ANGLE_BINS_DEG`].
+    pub histogram: [usize; 5],
+}
+
+/// The same mesh with every linear quad cut into two triangles along its shorter diagonal;
+/// both triangles keep the quad's layer and pipe. Nodes, facets and patches are unchanged.
+pub fn cut_quads_shorter_diagonal(mesh: &Mesh) -> Mesh {
+    let mut out = Mesh {
+        cells: mesh_model::Cells::with_capacity(mesh.cells.len() * 2, 3),
+        cell_layer: Vec::with_capacity(mesh.cell_layer.len() * 2),
+        cell_pipe: Vec::with_capacity(mesh.cell_pipe.len() * 2),
+        ..mesh.clone()
+    };
+    let tri = CellType::new(Shape::Tri, 1);
+    for (i, c) in mesh.cells.iter().enumerate() {
+        let pieces: Vec<[u32; 3]> = if c.ty == CellType::new(Shape::Quad, 1) {
+            let k = c.corners();
+            let d = |a: u32, b: u32| {
+                let (p, q) = (mesh.xy(a), mesh.xy(b));
+                (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)
+            };
+            if d(k[0], k[2]) <= d(k[1], k[3]) {
+                vec![[k[0], k[1], k[2]], [k[0], k[2], k[3]]]
+            } else {
+                vec![[k[0], k[1], k[3]], [k[1], k[2], k[3]]]
+            }
+        } else {
+            out.cells.push(c.ty, c.nodes);
+            if let Some(&l) = mesh.cell_layer.get(i) {
+                out.cell_layer.push(l);
+            }
+            if let Some(&p) = mesh.cell_pipe.get(i) {
+                out.cell_pipe.push(p);
+            }
+            continue;
+        };
+        for t in pieces {
+            out.cells.push(tri, &t);
+            if let Some(&l) = mesh.cell_layer.get(i) {
+                out.cell_layer.push(l);
+            }
+            if let Some(&p) = mesh.cell_pipe.get(i) {
+                out.cell_pipe.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// Largest interior angle (degrees) of the triangle abc.
+pub fn max_triangle_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let angle = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        let u = [q[0] - p[0], q[1] - p[1]];
+        let v = [r[0] - p[0], r[1] - p[1]];
+        let cross = u[0] * v[1] - u[1] * v[0];
+        let dot = u[0] * v[0] + u[1] * v[1];
+        cross.abs().atan2(dot).to_degrees()
+    };
+    angle(a, b, c).max(angle(b, c, a)).max(angle(c, a, b))
+}
+
+/// Counts the triangles of `mesh` (its quads cut along the shorter diagonal first) by largest
+/// angle.
+pub fn max_angle_histogram(mesh: &Mesh) -> AngleStats {
+    let cut;
+    let m = if mesh.count(Shape::Quad) > 0 {
+        cut = cut_quads_shorter_diagonal(mesh);
+        &cut
+    } else {
+        mesh
+    };
+    let mut stats = AngleStats::default();
+    for c in m.cells.iter() {
+        if c.ty.shape != Shape::Tri {
+            continue;
+        }
+        let k = c.corners();
+        let a = max_triangle_angle_deg(m.xy(k[0]), m.xy(k[1]), m.xy(k[2]));
+        stats.triangles += 1;
+        stats.max_angle_deg = stats.max_angle_deg.max(a);
+        if let Some(bin) = ANGLE_BINS_DEG.iter().rposition(|&lo| a >= lo) {
+            stats.histogram[bin] += 1;
+        }
+    }
+    stats
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mesh_model::Dim;
+
+    #[test]
+    fn a_skewed_quad_is_cut_on_its_shorter_diagonal_and_binned() {
+        let mut m = Mesh::new(Dim::Two, 1);
+        m.nodes = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [3.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        m.cells.push(CellType::new(Shape::Quad, 1), &[0, 1, 2, 3]);
+        m.cell_layer.push(4);
+        m.cell_pipe.push(7);
+        let t = cut_quads_shorter_diagonal(&m);
+        assert_eq!(t.count(Shape::Tri), 2);
+        assert_eq!(t.cell_layer, vec![4, 4]);
+        assert_eq!(t.cell_pipe, vec![7, 7]);
+        // the short diagonal is 1-3 (length sqrt 2), not 0-2 (sqrt 10)
+        assert!(
+            t.cells
+                .iter()
+                .all(|c| c.corners().contains(&1) && c.corners().contains(&3))
+        );
+        assert!((t.linear_area() - m.linear_area()).abs() < 1e-15);
+        let s = max_angle_histogram(&m);
+        assert_eq!(s.triangles, 2);
+        // triangles 0-1-3 and 1-2-3 are right isosceles triangles
+        assert!((s.max_angle_deg - 90.0).abs() < 1e-9, "{s:?}");
+        assert_eq!(s.histogram, [0; 5]);
+        let mut obtuse = Mesh::new(Dim::Two, 1);
+        obtuse.nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [-0.5, 0.75f64.sqrt(), 0.0],
+        ];
+        obtuse.cells.push(CellType::new(Shape::Tri, 1), &[0, 1, 2]);
+        let s = max_angle_histogram(&obtuse);
+        assert!((s.max_angle_deg - 120.0).abs() < 1e-9, "{s:?}");
+        assert_eq!(s.histogram, [0, 0, 1, 0, 0]);
+    }
+
+    #[test]
+    fn equilateral_triangles_fall_in_no_bin() {
+        let a = max_triangle_angle_deg([0.0, 0.0], [1.0, 0.0], [0.5, 3f64.sqrt() / 2.0]);
+        assert!((a - 60.0).abs() < 1e-9);
+    }
+}
