@@ -11,6 +11,9 @@ use std::collections::HashMap;
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
+use mesh_model::NONE;
+use spade::{AngleLimit, RefinementParameters};
+
 use crate::error::AfsfError;
 use crate::geom::P2;
 use crate::grow::Loop;
@@ -21,6 +24,15 @@ struct Vertex {
     node: u32,
 }
 
+impl From<Point2<f64>> for Vertex {
+    fn from(position: Point2<f64>) -> Self {
+        Vertex {
+            position,
+            node: NONE,
+        }
+    }
+}
+
 impl HasPosition for Vertex {
     type Scalar = f64;
     fn position(&self) -> Point2<f64> {
@@ -28,8 +40,15 @@ impl HasPosition for Vertex {
     }
 }
 
-/// Triangles (node indices, counter-clockwise) covering the region on the left of the fronts.
-pub(crate) fn fill_fronts(loops: &[Loop], pos: &[P2]) -> Result<Vec<[u32; 3]>, AfsfError> {
+/// Triangles (node indices, counter-clockwise) covering the region on the left of the fronts,
+/// and the positions of the nodes added inside it (numbered from `pos.len()` on). With
+/// `min_angle_deg` > 0 the triangulation is refined (Ruppert/Chew, front edges never split)
+/// toward that smallest angle, which also bounds the largest angle.
+pub(crate) fn fill_fronts(
+    loops: &[Loop],
+    pos: &[P2],
+    min_angle_deg: f64,
+) -> Result<(Vec<[u32; 3]>, Vec<P2>), AfsfError> {
     let mut cdt: ConstrainedDelaunayTriangulation<Vertex> = ConstrainedDelaunayTriangulation::new();
     let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
     for l in loops {
@@ -76,6 +95,16 @@ pub(crate) fn fill_fronts(loops: &[Loop], pos: &[P2]) -> Result<Vec<[u32; 3]>, A
             directed.push((a, b));
         }
     }
+    if min_angle_deg > 0.0 {
+        let extra = 2 * cdt.num_vertices() + 16;
+        cdt.refine(
+            RefinementParameters::<f64>::new()
+                .exclude_outer_faces(true)
+                .keep_constraint_edges()
+                .with_angle_limit(AngleLimit::from_deg(min_angle_deg))
+                .with_max_additional_vertices(extra),
+        );
+    }
     // flood fill from the left of every front edge
     let mut inside: HashMap<FixedFaceHandle<spade::handles::InnerTag>, ()> = HashMap::new();
     let mut stack = Vec::new();
@@ -109,13 +138,26 @@ pub(crate) fn fill_fronts(loops: &[Loop], pos: &[P2]) -> Result<Vec<[u32; 3]>, A
             }
         }
     }
-    let mut tris: Vec<[u32; 3]> = inside
-        .keys()
+    let mut faces: Vec<_> = inside.keys().copied().collect();
+    faces.sort_unstable_by_key(|f| f.index());
+    let mut added: HashMap<spade::handles::FixedVertexHandle, u32> = HashMap::new();
+    let mut steiner = Vec::new();
+    let tris = faces
+        .iter()
         .map(|&f| {
             let v = cdt.face(f).vertices();
-            [v[0].data().node, v[1].data().node, v[2].data().node]
+            v.map(|h| {
+                let node = h.data().node;
+                if node != NONE {
+                    return node;
+                }
+                *added.entry(h.fix()).or_insert_with(|| {
+                    let p = h.position();
+                    steiner.push([p.x, p.y]);
+                    (pos.len() + steiner.len() - 1) as u32
+                })
+            })
         })
         .collect();
-    tris.sort_unstable();
-    Ok(tris)
+    Ok((tris, steiner))
 }

@@ -381,6 +381,9 @@ impl<'p> Work<'p> {
                 stats.converged = outcome.converged;
                 saved
             };
+            if step == 1 {
+                self.pin_first_layer();
+            }
             self.timings.solve += t2.elapsed().as_secs_f64();
             let t3 = std::time::Instant::now();
             let (bad_edges, old_cells_bad) = self.verify(step, mode);
@@ -407,6 +410,24 @@ impl<'p> Work<'p> {
         Ok(())
     }
 
+    /// The first layer's height is prescribed: after its solve, every first-layer node keeps
+    /// the direction the springs gave it and gets exactly its ideal extrusion length.
+    fn pin_first_layer(&mut self) {
+        let start = self.node_step[1];
+        for g in start..self.pos.len() {
+            let p = self.parent[g];
+            if !self.alive[g] || p == NONE || self.parent2[g] != NONE {
+                continue;
+            }
+            let (a, b) = (self.pos[p as usize], self.pos[g]);
+            let l = dist(a, b);
+            if l > 0.0 {
+                let s = self.ideal[g] / l;
+                self.pos[g] = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
+            }
+        }
+    }
+
     fn truncate(&mut self, nodes: usize, cells: usize) {
         self.pos.truncate(nodes);
         self.layer.truncate(nodes);
@@ -429,6 +450,9 @@ impl<'p> Work<'p> {
         struct Seg {
             p: P2,
             q: P2,
+            /// Where the segment came from (itself for current-front segments): a planned
+            /// segment only collides with what it approaches.
+            base: [P2; 2],
             ids: [u64; 2],
             lp: u32,
             arc: f64,
@@ -455,6 +479,7 @@ impl<'p> Work<'p> {
                 segs.push(Seg {
                     p: pa,
                     q: pb,
+                    base: [pa, pb],
                     ids: [a as u64, b as u64],
                     lp: li as u32,
                     arc: mid,
@@ -469,14 +494,15 @@ impl<'p> Work<'p> {
                     let h = 0.5 * (plan.ideal[ca] + plan.ideal[cb]);
                     let c = factor * h.max(0.5 * dist(qa, qb));
                     let owner = [i as u32, NONE];
-                    for (p, q, ids) in [
-                        (pa, qa, [a as u64, child_id(ca)]),
-                        (pb, qb, [b as u64, child_id(cb)]),
-                        (qa, qb, [child_id(ca), child_id(cb)]),
+                    for (p, q, base, ids) in [
+                        (pa, qa, [pa, pa], [a as u64, child_id(ca)]),
+                        (pb, qb, [pb, pb], [b as u64, child_id(cb)]),
+                        (qa, qb, [pa, pb], [child_id(ca), child_id(cb)]),
                     ] {
                         segs.push(Seg {
                             p,
                             q,
+                            base,
                             ids,
                             lp: li as u32,
                             arc: mid,
@@ -491,9 +517,11 @@ impl<'p> Work<'p> {
                     for c in r.start..r.end - 1 {
                         let (qa, qb) = (plan.pos[c], plan.pos[c + 1]);
                         let h = plan.ideal[c];
+                        let pv = self.pos[lp.items[i] as usize];
                         segs.push(Seg {
                             p: qa,
                             q: qb,
+                            base: [pv, pv],
                             ids: [child_id(c), child_id(c + 1)],
                             lp: li as u32,
                             arc: arc[i],
@@ -527,6 +555,12 @@ impl<'p> Work<'p> {
             let c = sx.clearance.max(sy.clearance);
             let d = segment_distance(sx.p, sx.q, sy.p, sy.q);
             if d >= c {
+                return;
+            }
+            // only what comes nearer than it was counts (fronts diverging at a convex corner
+            // are close but do not close)
+            let d_base = segment_distance(sx.base[0], sx.base[1], sy.base[0], sy.base[1]);
+            if d >= d_base {
                 return;
             }
             for (a, b) in [(sx, sy), (sy, sx)] {
@@ -615,7 +649,7 @@ impl<'p> Work<'p> {
                     fan_cells[c] = self.cells.len() as u32;
                     let g = lp.items[v];
                     self.cells.push(Cell {
-                        nodes: [g, child_ids[c], child_ids[c + 1], NONE],
+                        nodes: [g, child_ids[c + 1], child_ids[c], NONE],
                         len: 3,
                         layer: self.layer[g as usize],
                         pipe,
@@ -723,6 +757,11 @@ impl<'p> Work<'p> {
     fn break_short_edges(&mut self, items: &mut Vec<u32>, edges: &mut Vec<FEdge>) -> usize {
         let k = items.len();
         let first_new = *self.node_step.last().expect("a step is open") as u32;
+        if self.node_step.len() <= 2 {
+            // the first layer stays whole: its height is the one thing the wall resolution
+            // needs exactly
+            return 0;
+        }
         let coe = self.params.coe_shrink;
         let mut chosen: Vec<usize> = Vec::new();
         let mut taken = vec![false; k];
@@ -800,7 +839,8 @@ impl<'p> Work<'p> {
             Mode::Full => self.params.moving_layers.min(step),
             _ => 1,
         };
-        let range_start = self.node_step[(step + 1 - depth) as usize];
+        // the first layer is pinned once made (its height must stay the first height)
+        let range_start = self.node_step[(step + 1 - depth).max(step.min(2)) as usize];
         let n = self.pos.len();
         // nodes on the fronts that are not new are fixed (they bound frozen parts)
         let mut fixed_front = vec![false; n - range_start];

@@ -64,6 +64,11 @@ pub struct AfsfParams {
     /// Closing: a new cell stops (its edge is frozen) when it would come nearer to another
     /// part of the fronts than this factor times max(its height, half its width). Default 1.
     pub closing_factor: f64,
+    /// Smallest angle (degrees) the filling of the region left between the fronts refines
+    /// toward, by adding nodes inside it (front edges are never split); 0 keeps the bare
+    /// constrained Delaunay triangulation of the front nodes. Default 30 (which bounds the
+    /// largest angle by 120° wherever it is reached).
+    pub fill_min_angle_deg: f64,
     /// Number of top layers that move in each spring solve (the dissertation: three).
     /// Default 3.
     pub moving_layers: u32,
@@ -85,6 +90,7 @@ impl Default for AfsfParams {
             fan_threshold_deg: 45.0,
             fan_max_angle_deg: 60.0,
             closing_factor: 1.0,
+            fill_min_angle_deg: 30.0,
             moving_layers: 3,
             springs: SpringParams::default(),
             solver: SolverParams::default(),
@@ -95,7 +101,13 @@ impl Default for AfsfParams {
 impl AfsfParams {
     /// Checks every parameter's range.
     pub fn check(&self) -> Result<(), AfsfError> {
-        let checks: [(&'static str, f64, bool, &'static str); 7] = [
+        let checks: [(&'static str, f64, bool, &'static str); 8] = [
+            (
+                "fill_min_angle_deg",
+                self.fill_min_angle_deg,
+                (0.0..=33.0).contains(&self.fill_min_angle_deg),
+                "in [0, 33]",
+            ),
             (
                 "first_height",
                 self.first_height,

@@ -55,10 +55,12 @@ pub struct AfsfOutput {
     /// input order and at their input coordinates; facet `k` of a loop joins its points `k`
     /// and `k + 1`, oriented with the domain on the left; one patch per loop.
     pub mesh: Mesh,
-    /// For every node, the node it was extruded from, or [`NONE`] for boundary nodes. A node
-    /// made by merging two children keeps the first parent.
+    /// For every node, the node it was extruded from, or [`NONE`] for boundary nodes and the
+    /// nodes the hole filling added. A node made by merging two children keeps the first
+    /// parent.
     pub node_parent: Vec<u32>,
-    /// For every node, its layer (0 on the boundary).
+    /// For every node, its layer (0 on the boundary), or [`NONE`] for the nodes the hole
+    /// filling added (they have no parent either).
     pub node_layer: Vec<u32>,
     /// Run figures.
     pub stats: AfsfStats,
@@ -110,7 +112,14 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let mut work = Work::new(params, points, fronts);
     work.grow()?;
     let tf = std::time::Instant::now();
-    let fill = fill::fill_fronts(&work.loops, &work.pos)?;
+    let n_grown = work.pos.len();
+    let (fill, steiner) = fill::fill_fronts(&work.loops, &work.pos, params.fill_min_angle_deg)?;
+    for p in steiner {
+        work.pos.push(p);
+        work.layer.push(0);
+        work.parent.push(NONE);
+        work.alive.push(true);
+    }
     work.timings.fill = tf.elapsed().as_secs_f64();
 
     // compact the nodes: boundary first (unchanged), then the alive layer nodes
@@ -137,10 +146,10 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         } else {
             new_index[parent as usize]
         });
-        node_layer.push(work.layer[g]);
+        node_layer.push(if g < n_grown { work.layer[g] } else { NONE });
     }
     // every node's pipe, for the fill triangles: boundary nodes take the facet that starts
-    // at them, layer nodes the pipe of the first cell they belong to
+    // at them, layer nodes the pipe of the first cell they belong to (fill nodes none)
     let mut node_pipe = vec![NONE; n_all];
     for (g, slot) in node_pipe.iter_mut().enumerate().take(work.n_boundary) {
         *slot = g as u32;
@@ -161,22 +170,52 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
             }
         }
     }
-    for t in &fill {
-        let top = *t
-            .iter()
-            .max_by_key(|&&g| work.layer[g as usize])
-            .expect("three corners");
+    // fill triangles take the layer and pipe of their highest grown corner; triangles whose
+    // corners are all fill nodes take them from a neighbour, pass after pass
+    let mut node_fill_layer: Vec<u32> = (0..n_all)
+        .map(|g| if g < n_grown { work.layer[g] } else { NONE })
+        .collect();
+    let mut fill_tag = vec![(NONE, NONE); fill.len()];
+    loop {
+        let mut changed = false;
+        let mut missing = false;
+        for (t, tag) in fill.iter().zip(fill_tag.iter_mut()) {
+            if tag.1 != NONE {
+                continue;
+            }
+            let best = t
+                .iter()
+                .filter(|&&g| node_pipe[g as usize] != NONE)
+                .max_by_key(|&&g| node_fill_layer[g as usize]);
+            let Some(&top) = best else {
+                missing = true;
+                continue;
+            };
+            *tag = (node_fill_layer[top as usize], node_pipe[top as usize]);
+            for &g in t {
+                if node_pipe[g as usize] == NONE {
+                    node_pipe[g as usize] = tag.1;
+                    node_fill_layer[g as usize] = tag.0;
+                }
+            }
+            changed = true;
+        }
+        if !missing || !changed {
+            break;
+        }
+    }
+    for (t, tag) in fill.iter().zip(&fill_tag) {
         let k = [
             new_index[t[0] as usize],
             new_index[t[1] as usize],
             new_index[t[2] as usize],
         ];
         mesh.cells.push(tri, &k);
-        mesh.cell_layer.push(work.layer[top as usize]);
-        mesh.cell_pipe.push(node_pipe[top as usize]);
+        mesh.cell_layer.push(tag.0);
+        mesh.cell_pipe.push(tag.1);
     }
     let stats = AfsfStats {
-        layers: work.layer.iter().copied().max().unwrap_or(0),
+        layers: work.layer[..n_grown].iter().copied().max().unwrap_or(0),
         iterations: work.layer_stats.iter().map(|s| s.iterations).sum(),
         all_converged: work.layer_stats.iter().all(|s| s.converged),
         layer_stats: std::mem::take(&mut work.layer_stats),

@@ -266,6 +266,10 @@ pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) ->
     assert!(m.cell_pipe.iter().all(|&p| (p as usize) < m.boundary.len()));
     for i in k..m.nodes.len() {
         let p = out.node_parent[i];
+        if out.node_layer[i] == NONE {
+            assert_eq!(p, NONE, "fill node {i} has a parent");
+            continue;
+        }
         assert!(
             p != NONE && (p as usize) < m.nodes.len(),
             "node {i} has no parent"
@@ -276,14 +280,24 @@ pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) ->
             "node {i}"
         );
     }
-    // first layer height
+    // first layer height, away from the corners (a corner and its two neighbours)
+    let mut near_corner = Vec::new();
+    for l in loops {
+        let n = l.is_corner.len();
+        near_corner.extend(
+            (0..n).map(|i| {
+                l.is_corner[i] || l.is_corner[(i + 1) % n] || l.is_corner[(i + n - 1) % n]
+            }),
+        );
+    }
     for i in k..m.nodes.len() {
-        if out.node_layer[i] != 1 {
+        if out.node_layer[i] != 1 || out.node_parent[i] == NONE {
             continue;
         }
         let p = out.node_parent[i] as usize;
         let wall = m.patches[m.boundary_patch[p] as usize].role == Role::Wall;
-        if !wall {
+        if !wall || near_corner[p] {
+            // at a sharp corner the first cells are legitimately compressed or fanned
             continue;
         }
         let (a, b) = (m.xy(i as u32), m.xy(p as u32));
