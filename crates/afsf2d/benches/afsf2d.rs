@@ -1,1 +1,34 @@
-fn main() {}
+//! Criterion benches of the linear mesher: NACA0012 in a 20-chord far field at about 30k
+//! triangles (after cutting quads), first height 5e-5, growth 1.3.
+//!
+//! Measured (release, one thread, this machine): see docs/afsf.md.
+
+// criterion_group! generates an undocumented public function
+#![allow(missing_docs)]
+
+use criterion::{Criterion, criterion_group, criterion_main};
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+fn naca0012_30k(c: &mut Criterion) {
+    let loops = common::naca0012(0.005);
+    let params = afsf2d::AfsfParams {
+        first_height: 5e-5,
+        growth: 1.3,
+        ..afsf2d::AfsfParams::default()
+    };
+    let out = afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes");
+    let q = afsf2d::max_angle_histogram(&out.mesh);
+    eprintln!("{}", common::summary("naca0012 bench case", &out, &q));
+    c.bench_function("naca0012_30k_triangles", |b| {
+        b.iter(|| afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes"))
+    });
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10);
+    targets = naca0012_30k
+}
+criterion_main!(benches);

@@ -307,6 +307,7 @@ impl<'p> Work<'p> {
             start: Vec::with_capacity(m + 1),
             ..Plan::default()
         };
+        #[allow(clippy::needless_range_loop)] // v also indexes the loop's items and edges
         for v in 0..m {
             plan.start.push(plan.pos.len() as u32);
             let prev = (v + m - 1) % m;
