@@ -1,1 +1,207 @@
-//! Curvature-driven 1D boundary meshes on geometry curves: the spacing law, break points, optional medial-axis refinement and graded node placement.
+//! Curvature-driven 1D boundary meshes on geometry curves (dissertation §3.1.1; method.md §2):
+//! where to put the nodes on each closed boundary loop before the layers are grown.
+//!
+//! The spacing law, in short (the full reasoning is in this crate's `README.md`):
+//! 1. at every geometry point, `l_α = 2R·cos(α_refine/2)` from the circumcircle radius `R`
+//!    through the point and its neighbours (infinite on straight parts), capped by the maximum
+//!    spacing `δ`; at a corner the cap is the first extrusion height `l_extru` (and no more than its
+//!    smooth neighbours' caps);
+//! 2. break points are the local minima of that cap, and every corner;
+//! 3. optionally (medial axis), every point's cap is lowered to what growth from every break
+//!    point of every loop allows across the gap: `l_b + (g − 1)·d`, `d` the Euclidean distance;
+//! 4. the cap is made gradable along each loop: `h(s) = min_s' cap(s') + (g − 1)·|s − s'|`
+//!    (arc length `s`), the continuous form of "grow by at most `g` from a break point";
+//! 5. nodes are placed at equal steps of `∫ ds/h` between consecutive corners, the step being
+//!    the largest that provably keeps every segment within the cap over its span and the
+//!    ratio of neighbouring segments within `g`. A rounding of the node count is absorbed by
+//!    lowering the field only where it is largest.
+//!
+//! Nodes are placed by arc length on the C2 Hermite curve ([`NodePlacement::OnCurve`], the
+//! "curved" boundary mesh) or on the polygon through the geometry points
+//! ([`NodePlacement::OnPolyline`], the "linear" one); nothing else differs.
+//!
+//! Owns spacing and node placement only: the curves come from `geom-curve`, and the loops'
+//! roles, orientation and nesting are the caller's business. No file IO.
+
+mod grading;
+pub mod spacing;
+
+use geom_curve::{ClosedCurve, Point2};
+use serde::{Deserialize, Serialize};
+
+pub use spacing::{LoopSpacing, spacing_limits};
+
+/// Errors of this crate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Boundary1dError {
+    /// A spacing parameter is outside its valid range. Use a value in the stated range.
+    #[error("invalid spacing parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// The field of [`SpacingParams`].
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The valid range.
+        reason: &'static str,
+    },
+    /// The corner spacings of a loop could not be made consistent with the node count of a
+    /// very short corner-to-corner stretch (the corner spacing is lowered repeatedly until
+    /// it fits). Should not happen; if it does, lower `first_height` or remove the tiny edge.
+    #[error(
+        "loop {loop_index}: corner spacings did not settle after {iterations} adjustments; lower first_height or remove very short corner-to-corner edges"
+    )]
+    CornerSpacingDidNotSettle {
+        /// Index of the loop in the input slice.
+        loop_index: usize,
+        /// Adjustments tried.
+        iterations: usize,
+    },
+}
+
+/// Where nodes go once their arc-length positions are known.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum NodePlacement {
+    /// On the C2 Hermite curve, arc length measured along it (curved boundary mesh).
+    #[default]
+    OnCurve,
+    /// On the straight edges between geometry points, arc length measured along the polygon
+    /// (linear boundary mesh).
+    OnPolyline,
+}
+
+/// The inputs of the spacing law `l_p = f(g_given, l_α, δ, l_extru)`. Lengths are in the units
+/// of the geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SpacingParams {
+    /// `g_given`: the largest ratio between the lengths of neighbouring boundary segments.
+    /// Must be > 1 (and at most 10); default 1.3.
+    pub growth: f64,
+    /// `α_refine`, degrees: the angle ∠ABC that three consecutive nodes on a circle of radius
+    /// R may make, hence `l_α = 2R·cos(α_refine/2)`. In (90, 180); typical and default 165.
+    /// The positive-Jacobian argument of the dissertation (§3.3.1) needs more than 135.
+    pub refine_angle_deg: f64,
+    /// `δ`: the maximum segment length. > 0; default 1.
+    pub max_spacing: f64,
+    /// `l_extru`: the first extrusion height of the layer mesh, used as the spacing at sharp
+    /// corners (capped by `δ`). > 0; default 5e-5.
+    pub first_height: f64,
+    /// Whether to refine across narrow gaps (the optional medial-axis step): each point's
+    /// spacing is capped by `l_b + (g − 1)·d` over the break points `b` of all loops, `d` the
+    /// Euclidean distance. Default true.
+    pub medial_axis: bool,
+    /// Where the nodes go. Default [`NodePlacement::OnCurve`].
+    pub placement: NodePlacement,
+}
+
+impl Default for SpacingParams {
+    fn default() -> Self {
+        Self {
+            growth: 1.3,
+            refine_angle_deg: 165.0,
+            max_spacing: 1.0,
+            first_height: 5e-5,
+            medial_axis: true,
+            placement: NodePlacement::OnCurve,
+        }
+    }
+}
+
+impl SpacingParams {
+    /// Checks every field's range.
+    ///
+    /// # Errors
+    /// [`Boundary1dError::InvalidParameter`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), Boundary1dError> {
+        let invalid = |name, value, reason| {
+            Err(Boundary1dError::InvalidParameter {
+                name,
+                value,
+                reason,
+            })
+        };
+        if !(self.growth > 1.0 && self.growth <= 10.0) {
+            return invalid("growth", self.growth, "must be > 1 and <= 10");
+        }
+        if !(self.refine_angle_deg > 90.0 && self.refine_angle_deg < 180.0) {
+            return invalid(
+                "refine_angle_deg",
+                self.refine_angle_deg,
+                "must be in (90, 180) degrees",
+            );
+        }
+        if !(self.max_spacing > 0.0 && self.max_spacing.is_finite()) {
+            return invalid(
+                "max_spacing",
+                self.max_spacing,
+                "must be finite and positive",
+            );
+        }
+        if !(self.first_height > 0.0 && self.first_height.is_finite()) {
+            return invalid(
+                "first_height",
+                self.first_height,
+                "must be finite and positive",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// The nodes of one closed loop, in loop order (the last connects back to the first), starting
+/// at the first node at or after `t = 0`, so that `t` increases strictly.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BoundaryNodes {
+    /// Curve parameter of each node (see [`ClosedCurve`]: `t = i` is geometry point `i`).
+    /// With [`NodePlacement::OnPolyline`], `t = i + f` means the fraction `f` along the
+    /// straight edge from point `i` to point `i + 1`.
+    pub t: Vec<f64>,
+    /// Node positions.
+    pub points: Vec<Point2<f64>>,
+    /// Whether each node is a corner of the curve (every corner is a node).
+    pub is_corner: Vec<bool>,
+}
+
+impl BoundaryNodes {
+    /// Number of nodes (= number of boundary segments, the loop being closed).
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether there are no nodes (never the case for a mesh returned by this crate).
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+}
+
+/// Meshes several loops together (the medial-axis step sees the break points of all of
+/// them). Returns one [`BoundaryNodes`] per curve, in the same order.
+///
+/// # Errors
+/// [`Boundary1dError::InvalidParameter`] for bad `params`;
+/// [`Boundary1dError::CornerSpacingDidNotSettle`] in the pathological case described there.
+pub fn mesh_loops(
+    curves: &[ClosedCurve],
+    params: &SpacingParams,
+) -> Result<Vec<BoundaryNodes>, Boundary1dError> {
+    let spacings = spacing_limits(curves, params)?;
+    curves
+        .iter()
+        .zip(spacings)
+        .enumerate()
+        .map(|(loop_index, (curve, spacing))| {
+            grading::place_nodes(curve, spacing, params, loop_index)
+        })
+        .collect()
+}
+
+/// Meshes one loop on its own ([`mesh_loops`] with a single curve).
+///
+/// # Errors
+/// As [`mesh_loops`].
+pub fn mesh_loop(
+    curve: &ClosedCurve,
+    params: &SpacingParams,
+) -> Result<BoundaryNodes, Boundary1dError> {
+    let mut all = mesh_loops(std::slice::from_ref(curve), params)?;
+    Ok(all.remove(0))
+}

@@ -1,5 +1,10 @@
 //! Curve construction and queries on the 30P30N main element (644 points), and the loop
 //! checks on 1000-point loops. Run: `cargo bench -p geom-curve`.
+//!
+//! Measured (release, the 2-core development machine): construction 0.28 ms; point +
+//! curvature 32 ns per call; `t_at_arc_length` 0.25 µs; `closest_point` 4.6 µs (half near,
+//! half 3 chords away); `validate_loop` on a 1000-point circle 27 µs; `check_loops_disjoint`
+//! on the three 30P30N elements 34 µs.
 
 // `criterion_group!` generates an undocumented public function.
 #![allow(missing_docs)]

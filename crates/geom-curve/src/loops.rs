@@ -517,9 +517,10 @@ mod tests {
         assert!(point_in_loop(Point2::new(0.5, 0.5), &clockwise));
     }
 
-    /// A star-shaped loop: one point per angle sector with a random radius, always simple.
+    /// A star-shaped loop: one point per angle sector with a random radius, always simple;
+    /// at least 5 sectors so that no angular gap reaches 180° and the origin is inside.
     fn star_loop() -> impl Strategy<Value = Vec<Point2<f64>>> {
-        (3usize..200)
+        (5usize..200)
             .prop_flat_map(|n| {
                 (
                     Just(n),
