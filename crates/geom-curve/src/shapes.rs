@@ -5,6 +5,10 @@ use crate::{CurveError, Point2};
 /// `n` points evenly spaced on the circle of the given centre and radius, counter-clockwise,
 /// the first at angle 0 (on the +x side of the centre), the first point not repeated.
 ///
+/// Use at least 10 points if the loop is to be fitted by [`crate::ClosedCurve`] with the
+/// default corner angle (fewer make every point a corner, i.e. a polygon), and some 64 or more
+/// for a far field whose fitted curve should be round to 1e-8 of its radius.
+///
 /// # Errors
 /// [`CurveError::InvalidParameter`] when the radius is not finite and positive, the centre is
 /// not finite, or `n < 3`.
