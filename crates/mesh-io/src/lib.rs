@@ -71,3 +71,58 @@ pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
 pub fn read_msh(path: &Path) -> Result<Mesh, IoError> {
     msh::read(path)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::{AnnulusParams, annulus};
+
+    #[test]
+    fn the_extension_chooses_the_format() {
+        let dir = tempfile::tempdir().unwrap();
+        let m = annulus(&AnnulusParams::default());
+        for (name, head) in [
+            ("m.msh", "$MeshFormat\n4.1 0 8\n"),
+            ("M.VTU", "<?xml"),
+            ("m.su2", "NDIME= 2\n"),
+        ] {
+            let path = dir.path().join(name);
+            write(&path, &m).unwrap();
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(text.starts_with(head), "{name}");
+        }
+        let back = read_msh(&dir.path().join("m.msh")).unwrap();
+        assert_eq!(back.cells, m.cells);
+    }
+
+    #[test]
+    fn an_unknown_extension_is_an_error_and_writes_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let m = annulus(&AnnulusParams::default());
+        for name in ["m.stl", "m", "m.msh.bak"] {
+            let path = dir.path().join(name);
+            let err = write(&path, &m).unwrap_err();
+            assert!(matches!(err, IoError::UnknownExtension { .. }), "{err}");
+            assert!(err.to_string().contains(name), "{err}");
+        }
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn a_failed_write_keeps_the_previous_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.vtu");
+        let good = annulus(&AnnulusParams::default());
+        write(&path, &good).unwrap();
+        let before = std::fs::read(&path).unwrap();
+        let mut bad = good.clone();
+        bad.nodes[0][2] = f64::INFINITY;
+        let err = write(&path, &bad).unwrap_err();
+        assert!(
+            matches!(err, IoError::NonFiniteNode { node: 0, .. }),
+            "{err}"
+        );
+        assert_eq!(std::fs::read(&path).unwrap(), before);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+}

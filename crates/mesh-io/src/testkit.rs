@@ -5,6 +5,8 @@
 //! - [`annulus`]: a structured annulus of quadrilaterals, some cut into triangles, of order 1
 //!   to 3, high-order nodes exactly on the circles, in Gmsh order; inner circle a wall,
 //!   outer circle the far field; valid for `mesh_model::validate`.
+//! - [`airfoil_ring`]: the same structure grown in thin layers around a real airfoil loop
+//!   (read with [`selig_points`]), for tests on real coordinates.
 //! - [`reference_cells_3d`]: one of each 3D cell type (Gmsh's reference cells side by side, not
 //!   a conforming mesh) with a few boundary facets, to exercise the 3D type tables.
 
@@ -28,7 +30,7 @@ pub struct AnnulusParams {
     /// Radius of the outer circle (the far field), in length units (> `inner_radius`).
     pub outer_radius: f64,
     /// Which quadrilaterals are cut into two triangles: cell `c` (numbered around the ring,
-    /// then outward) is cut when `triangle_mask[c % len]` is true. Empty: no triangle.
+    /// then outward, starting at angle 0) is cut when `triangle_mask[c % len]` is true. Empty: no triangle.
     pub triangle_mask: Vec<bool>,
 }
 
@@ -62,98 +64,193 @@ pub fn annulus(params: &AnnulusParams) -> Mesh {
     let (nr, na) = (params.radial_cells, params.angular_cells);
     assert!((1..=3).contains(&p) && nr >= 1 && na >= 3, "{params:?}");
     assert!(0.0 < params.inner_radius && params.inner_radius < params.outer_radius);
-    let radial_nodes = nr * p + 1;
-    let angular_nodes = na * p;
-    let node = |a: usize, b: usize| ((b % angular_nodes) * radial_nodes + a) as u32;
+    let (r0, r1) = (params.inner_radius, params.outer_radius);
+    ring(
+        params.order,
+        na,
+        nr,
+        &params.triangle_mask,
+        ["inner", "outer"],
+        |along, across| {
+            let theta = TAU * along as f64 / (na * p) as f64;
+            let r = r0 + (r1 - r0) * across as f64 / (nr * p) as f64;
+            [r * theta.cos(), r * theta.sin()]
+        },
+    )
+}
 
-    let mut mesh = Mesh::new(Dim::Two, params.order);
-    mesh.nodes = Vec::with_capacity(radial_nodes * angular_nodes);
-    for b in 0..angular_nodes {
-        let theta = TAU * b as f64 / angular_nodes as f64;
-        for a in 0..radial_nodes {
-            let r = params.inner_radius
-                + (params.outer_radius - params.inner_radius) * a as f64 / (nr * p) as f64;
-            mesh.nodes.push([r * theta.cos(), r * theta.sin(), 0.0]);
+/// Shape and size of an [`airfoil_ring`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RingParams {
+    /// Polynomial order of the cells, 1 to 3.
+    pub order: u8,
+    /// Number of cell layers.
+    pub layers: usize,
+    /// Total thickness of the layers along the vertex normals, in the loop's length units.
+    pub thickness: f64,
+    /// As in [`AnnulusParams::triangle_mask`].
+    pub triangle_mask: Vec<bool>,
+}
+
+/// The points of a Selig `.dat` airfoil file: a title line, then `x y` per line (the first
+/// point not repeated at the end).
+///
+/// # Panics
+/// On a line that is not two numbers (a test bug: the fixtures are known files).
+pub fn selig_points(text: &str) -> Vec<[f64; 2]> {
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .map(|t| t.parse().unwrap_or_else(|_| panic!("bad line {l:?}")))
+                .collect();
+            assert_eq!(v.len(), 2, "bad line {l:?}");
+            [v[0], v[1]]
+        })
+        .collect()
+}
+
+/// A structured ring of layers around a counter-clockwise closed loop (an airfoil), grown
+/// along the vertex normals: the loop is the wall (patch `wall-loop`), the outer edge of the
+/// last layer the far field (patch `outer`). High-order nodes are interpolated linearly
+/// between loop points, so edges are straight; nodes carry the loop's own coordinates. Valid
+/// for `mesh_model::validate` as long as the layers are thin against the loop's curvature.
+///
+/// # Panics
+/// On fewer than 3 loop points, order outside 1..=3, no layer (test bugs).
+pub fn airfoil_ring(points: &[[f64; 2]], params: &RingParams) -> Mesh {
+    let n = points.len();
+    let p = params.order as usize;
+    assert!(n >= 3 && (1..=3).contains(&p) && params.layers >= 1);
+    let normals: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            let (a, b) = (points[(i + n - 1) % n], points[(i + 1) % n]);
+            let t = [b[0] - a[0], b[1] - a[1]];
+            let len = t[0].hypot(t[1]);
+            [t[1] / len, -t[0] / len]
+        })
+        .collect();
+    ring(
+        params.order,
+        n,
+        params.layers,
+        &params.triangle_mask,
+        ["wall-loop", "outer"],
+        |along, across| {
+            let (i, f) = (along / p, (along % p) as f64 / p as f64);
+            let j = (i + 1) % n;
+            let h = params.thickness * across as f64 / (params.layers * p) as f64;
+            [0, 1].map(|k| {
+                let base = points[i][k] + f * (points[j][k] - points[i][k]);
+                base + h * (normals[i][k] + f * (normals[j][k] - normals[i][k]))
+            })
+        },
+    )
+}
+
+/// The common builder: `along` cells around a closed ring (counter-clockwise), `across` cells
+/// outward from the wall. `position(along, across)` maps lattice indices (`order` steps per
+/// cell; `along` in `0..along·order`, `across` in `0..=across·order`) to the plane. Nodes are numbered around, with the outward index fastest.
+fn ring(
+    order: u8,
+    along: usize,
+    across: usize,
+    triangle_mask: &[bool],
+    names: [&str; 2],
+    position: impl Fn(usize, usize) -> [f64; 2],
+) -> Mesh {
+    let p = order as usize;
+    let across_nodes = across * p + 1;
+    let along_nodes = along * p;
+    let node = |s: usize, t: usize| ((s % along_nodes) * across_nodes + t) as u32;
+
+    let mut mesh = Mesh::new(Dim::Two, order);
+    mesh.nodes = Vec::with_capacity(across_nodes * along_nodes);
+    for s in 0..along_nodes {
+        for t in 0..across_nodes {
+            let [x, y] = position(s, t);
+            mesh.nodes.push([x, y, 0.0]);
         }
     }
 
-    let tri = CellType::new(Shape::Tri, params.order);
-    let quad = CellType::new(Shape::Quad, params.order);
+    let tri = CellType::new(Shape::Tri, order);
+    let quad = CellType::new(Shape::Quad, order);
     let tri_ref = gmsh_reference_nodes(tri).unwrap_or_default();
     let quad_ref = gmsh_reference_nodes(quad).unwrap_or_default();
-    // Lattice offset (in steps) of a reference point mapped by `corners` (cell units).
-    let place = |corners: [[f64; 2]; 3], s: f64, t: f64| {
-        let u = corners[0][0]
-            + s * (corners[1][0] - corners[0][0])
-            + t * (corners[2][0] - corners[0][0]);
-        let v = corners[0][1]
-            + s * (corners[1][1] - corners[0][1])
-            + t * (corners[2][1] - corners[0][1]);
+    // Lattice offset (in steps) of the reference point (u, v) of the affine map that sends
+    // (0, 0), (1, 0), (0, 1) to `corners` (cell units, `along` then `across`).
+    let place = |corners: [[f64; 2]; 3], u: f64, v: f64| {
+        let at = |k: usize| {
+            corners[0][k]
+                + u * (corners[1][k] - corners[0][k])
+                + v * (corners[2][k] - corners[0][k])
+        };
         (
-            (u * p as f64).round() as usize,
-            (v * p as f64).round() as usize,
+            (at(0) * p as f64).round() as usize,
+            (at(1) * p as f64).round() as usize,
         )
     };
-    mesh.cells = Cells::with_capacity(2 * nr * na, quad.node_count());
+    // In (along, across) cell units the counter-clockwise corners of a cell are
+    // (1, 0), (0, 0), (0, 1), (1, 1): `along` runs counter-clockwise and `across` outward,
+    // a left-handed pair.
+    let (c0, c1, c2, c3) = ([1.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 1.0]);
+    mesh.cells = Cells::with_capacity(2 * along * across, quad.node_count());
     let mut nodes = Vec::with_capacity(16);
-    for i in 0..nr {
-        for j in 0..na {
-            let c = i * na + j;
-            let cut = !params.triangle_mask.is_empty()
-                && params.triangle_mask[c % params.triangle_mask.len()];
-            let (a0, b0) = (i * p, j * p);
+    for k in 0..across {
+        for i in 0..along {
+            let c = k * along + i;
+            let cut = !triangle_mask.is_empty() && triangle_mask[c % triangle_mask.len()];
             let pieces: Vec<(CellType, Vec<(usize, usize)>)> = if cut {
-                [
-                    [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]],
-                    [[0.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-                ]
-                .into_iter()
-                .map(|k| (tri, tri_ref.iter().map(|r| place(k, r[0], r[1])).collect()))
-                .collect()
+                [[c0, c1, c2], [c0, c2, c3]]
+                    .into_iter()
+                    .map(|k| (tri, tri_ref.iter().map(|r| place(k, r[0], r[1])).collect()))
+                    .collect()
             } else {
-                let k = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
                 let offsets = quad_ref
                     .iter()
-                    .map(|r| place(k, (r[0] + 1.0) / 2.0, (r[1] + 1.0) / 2.0))
+                    .map(|r| place([c0, c1, c3], (r[0] + 1.0) / 2.0, (r[1] + 1.0) / 2.0))
                     .collect();
                 vec![(quad, offsets)]
             };
             for (ty, offsets) in pieces {
                 nodes.clear();
-                nodes.extend(offsets.iter().map(|&(da, db)| node(a0 + da, b0 + db)));
+                nodes.extend(offsets.iter().map(|&(ds, dt)| node(i * p + ds, k * p + dt)));
                 mesh.cells.push(ty, &nodes);
-                mesh.cell_layer.push(i as u32);
-                mesh.cell_pipe.push((na - 1 - j) as u32);
+                mesh.cell_layer.push(k as u32);
+                mesh.cell_pipe.push((along - 1 - i) as u32);
             }
         }
     }
 
-    let line = CellType::new(Shape::Line, params.order);
+    let line = CellType::new(Shape::Line, order);
     mesh.patches = vec![
         Patch {
-            name: "inner".into(),
+            name: names[0].into(),
             role: Role::Wall,
         },
         Patch {
-            name: "outer".into(),
+            name: names[1].into(),
             role: Role::Farfield,
         },
     ];
-    // Inner circle, clockwise: from b = (j+1)p down to jp, for j = na−1 … 0.
-    for j in (0..na).rev() {
-        let (from, to) = ((j + 1) * p, j * p);
+    // The wall, clockwise: from s = (i+1)p down to ip, for i = along−1 … 0.
+    for i in (0..along).rev() {
+        let (from, to) = ((i + 1) * p, i * p);
         nodes.clear();
-        nodes.extend([node(0, from), node(0, to)]);
-        nodes.extend((1..p).map(|k| node(0, from - k)));
+        nodes.extend([node(from, 0), node(to, 0)]);
+        nodes.extend((1..p).map(|k| node(from - k, 0)));
         mesh.boundary.push(line, &nodes);
         mesh.boundary_patch.push(0);
     }
-    // Outer circle, counter-clockwise.
-    for j in 0..na {
-        let (from, to) = (j * p, (j + 1) * p);
+    // The outer edge, counter-clockwise.
+    let t = across * p;
+    for i in 0..along {
+        let (from, to) = (i * p, (i + 1) * p);
         nodes.clear();
-        nodes.extend([node(nr * p, from), node(nr * p, to)]);
-        nodes.extend((1..p).map(|k| node(nr * p, from + k)));
+        nodes.extend([node(from, t), node(to, t)]);
+        nodes.extend((1..p).map(|k| node(from + k, t)));
         mesh.boundary.push(line, &nodes);
         mesh.boundary_patch.push(1);
     }
@@ -262,6 +359,35 @@ mod tests {
             for &v in f.nodes {
                 let [x, y] = m.xy(v);
                 assert!((x.hypot(y) - r).abs() < 1e-14, "facet {j} node {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn rings_around_real_airfoils_are_valid() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/geometry/");
+        for (file, thickness) in [("naca0012.dat", 2e-3), ("rae2822.dat", 2e-3)] {
+            let text = std::fs::read_to_string(format!("{dir}{file}")).unwrap();
+            let points = selig_points(&text);
+            assert!(points.len() > 60, "{file}");
+            for order in 1..=3 {
+                let m = airfoil_ring(
+                    &points,
+                    &RingParams {
+                        order,
+                        layers: 2,
+                        thickness,
+                        triangle_mask: vec![false, true],
+                    },
+                );
+                assert_eq!(mesh_model::validate(&m), vec![], "{file} P{order}");
+                // The wall nodes are the file's points, exactly.
+                for (k, pt) in points.iter().enumerate() {
+                    assert_eq!(
+                        m.xy((k * order as usize * (2 * order as usize + 1)) as u32),
+                        *pt
+                    );
+                }
             }
         }
     }

@@ -78,6 +78,32 @@ fn annuli_of_order_1_2_3_round_trip_through_a_file() {
 }
 
 #[test]
+fn rings_around_real_airfoils_round_trip_bit_for_bit() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/geometry/");
+    for file in [
+        "naca0012.dat",
+        "rae2822.dat",
+        "naca0012-sharp-te-generated.dat",
+    ] {
+        let text = std::fs::read_to_string(format!("{dir}{file}")).unwrap();
+        let points = crate::testkit::selig_points(&text);
+        for order in 1..=3 {
+            let m = crate::testkit::airfoil_ring(
+                &points,
+                &crate::testkit::RingParams {
+                    order,
+                    layers: 3,
+                    thickness: 1e-3,
+                    triangle_mask: vec![false, false, true],
+                },
+            );
+            let back = from_text(&to_text(&m)).unwrap();
+            assert_eq!(back, without_records(&m), "{file} P{order}");
+        }
+    }
+}
+
+#[test]
 fn every_3d_cell_type_of_order_1_and_2_round_trips() {
     for order in 1..=2 {
         let m = reference_cells_3d(order);
