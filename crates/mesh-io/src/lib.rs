@@ -7,7 +7,7 @@
 //! that touches files. The node order of the data model is Gmsh's; the `.vtu` writer permutes
 //! high-order nodes into VTK's Lagrange order ([`node_order`]).
 //!
-//! Entry points: [`write`] (format chosen by the extension), [`read_msh`], and the modules
+//! Entry points: [`write()`] (format chosen by the extension), [`read_msh`], and the modules
 //! [`msh`], [`vtu`], [`su2`], [`snapshot`]. Test meshes for this and other crates are in
 //! `testkit`, behind the cargo feature `testkit`.
 
@@ -27,7 +27,7 @@ use std::path::Path;
 pub use error::IoError;
 use mesh_model::Mesh;
 
-/// The mesh file formats [`write`] knows, by extension.
+/// The mesh file formats [`write()`] knows, by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
     /// `.msh`: Gmsh MSH 4.1 ASCII ([`msh`]).
@@ -55,7 +55,7 @@ impl Format {
 /// atomically.
 ///
 /// Errors: [`IoError::UnknownExtension`] for any other extension; otherwise those of
-/// [`msh::write`], [`vtu::write`], [`su2::write`].
+/// [`msh::write()`], [`vtu::write()`], [`su2::write()`].
 pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
     match Format::from_path(path) {
         Some(Format::Msh) => msh::write(path, mesh),

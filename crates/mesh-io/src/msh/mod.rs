@@ -1,4 +1,4 @@
-//! Gmsh MSH 4.1 ASCII: the writer ([`write`]) and the reader ([`read`], [`parse`]).
+//! Gmsh MSH 4.1 ASCII: the writer ([`write()`]) and the reader ([`read`], [`parse`]).
 //!
 //! What is written, for a mesh of dimension `d`:
 //! - `$PhysicalNames`: one group `fluid` of dimension `d` holding every domain cell, and one

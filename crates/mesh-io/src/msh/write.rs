@@ -23,7 +23,7 @@ pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
 }
 
 /// Writes `mesh` as MSH 4.1 ASCII to any writer (for example a `Vec<u8>`); `path` only names
-/// the destination in errors. Not atomic: use [`write`] for files.
+/// the destination in errors. Not atomic: use [`write()`] for files.
 pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
     let roles = prepare(mesh, path)?;
     body(out, mesh, &roles).map_err(|e| IoError::io(path, e))
