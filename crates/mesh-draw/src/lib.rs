@@ -1,1 +1,66 @@
-//! Pictures of meshes: PNG and SVG drawings with boundary loops, layers and colour maps, whole or zoomed.
+//! Pictures of 2D meshes as a mesh engineer wants to see them: PNG (rasterised with
+//! tiny-skia) and SVG (written as text), the whole mesh or a zoomed view.
+//!
+//! What a picture shows: a white background; every mesh edge once, thin, dark grey and
+//! anti-aliased (curved P2/P3 edges drawn as the exact polynomial curve through their nodes);
+//! the boundary loops bold, coloured by role (walls black, far field dark blue); optionally the
+//! cells filled by layer, by largest angle, by the caller's scaled Jacobian or any per-cell
+//! value, with a legend; a scale bar; a title.
+//!
+//! What it owns: the layout, the colour map, the drawing. What it does not own: files (the
+//! functions return bytes and strings, the caller writes them), mesh checking beyond what
+//! drawing needs (see `mesh_model::validate`), and quality measures other than the largest
+//! angle (Jacobians are computed by the caller and passed in).
+//!
+//! Text: tiny-skia draws no text, and the picture needs only short labels, so the crate carries
+//! its own small stroke font (see the `font` module for the reasons) instead of a font
+//! rasteriser and a font file; the SVG writes `<text>` elements for the viewer's font.
+//!
+//! Inputs that are refused with a [`DrawError`] rather than drawn: an empty mesh (no cell and no
+//! boundary facet), a 3D mesh, a view that is empty or not finite, a picture side outside 16 to
+//! 16384 px, per-cell values of the wrong length, broken indices or non-finite coordinates.
+//!
+//! Speed (see `benches/draw.rs`): every edge is drawn once, cells and edges outside the view
+//! are skipped, the SVG leaves out edges shorter than a pixel, and fills of one colour and all
+//! edges are each one path.
+
+mod check;
+mod colour;
+mod error;
+mod font;
+mod frame;
+mod params;
+mod png;
+mod quality;
+mod scene;
+mod svg;
+
+use mesh_model::Mesh;
+
+pub use error::DrawError;
+pub use params::{ColourBy, DrawParams, View, mesh_view, view_around, view_of_role};
+pub use quality::{max_angle_deg, triangle_max_angle_deg};
+
+use scene::{Target, build_scene};
+
+/// Draws `mesh` as `params` asks and returns the encoded PNG file's bytes.
+pub fn render_png(mesh: &Mesh, params: &DrawParams) -> Result<Vec<u8>, DrawError> {
+    let scene = build_scene(mesh, params, Target::Png)?;
+    let pixmap = png::rasterise(&scene)?;
+    png::encode(&pixmap)
+}
+
+/// Draws `mesh` as `params` asks and returns the RGBA pixels (row by row, top row first,
+/// premultiplied alpha, fully opaque) without encoding them: for callers that compose pictures
+/// or test pixels.
+pub fn render_rgba(mesh: &Mesh, params: &DrawParams) -> Result<Vec<u8>, DrawError> {
+    let scene = build_scene(mesh, params, Target::Png)?;
+    Ok(png::rasterise(&scene)?.take())
+}
+
+/// Draws `mesh` as `params` asks and returns a standalone SVG document. Edges shorter than a
+/// pixel at the chosen view are left out to keep the file small.
+pub fn render_svg(mesh: &Mesh, params: &DrawParams) -> Result<String, DrawError> {
+    let scene = build_scene(mesh, params, Target::Svg)?;
+    Ok(svg::write_svg(&scene))
+}

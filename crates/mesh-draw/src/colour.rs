@@ -1,0 +1,428 @@
+//! Colours: the perceptual colour map, the fixed colours of the picture (edges, boundary
+//! roles, no-value grey), the per-cell colours of each [`ColourBy`] choice and the legend that
+//! explains them. It owns no layout and no drawing.
+
+use mesh_model::{Mesh, NONE, Role};
+
+use crate::error::DrawError;
+use crate::params::ColourBy;
+use crate::quality::max_angle_deg;
+
+/// An sRGB colour, 8 bits a channel.
+pub(crate) type Rgb = [u8; 3];
+
+/// Background.
+pub(crate) const WHITE: Rgb = [255, 255, 255];
+/// Mesh edges.
+pub(crate) const EDGE: Rgb = [48, 48, 48];
+/// Text, ticks, frames of the legend and scale bar.
+pub(crate) const INK: Rgb = [25, 25, 25];
+/// Plot-area frame.
+pub(crate) const FRAME: Rgb = [150, 150, 150];
+/// Cells with no value (no layer, NaN).
+pub(crate) const NO_VALUE: Rgb = [200, 200, 200];
+/// Cells whose scaled Jacobian is negative (inverted).
+pub(crate) const INVERTED: Rgb = [215, 25, 28];
+
+/// The stroke colour of a boundary loop of the given role.
+pub(crate) fn role_colour(role: Role) -> Rgb {
+    match role {
+        Role::Wall => [0, 0, 0],
+        Role::Farfield => [20, 50, 140],
+    }
+}
+
+/// matplotlib's viridis map (public domain, CC0) sampled at 17 evenly spaced points.
+const VIRIDIS: [Rgb; 17] = [
+    [68, 1, 84],
+    [72, 24, 106],
+    [71, 45, 123],
+    [66, 64, 134],
+    [59, 82, 139],
+    [51, 99, 141],
+    [44, 114, 142],
+    [38, 130, 142],
+    [33, 145, 140],
+    [31, 160, 136],
+    [40, 174, 128],
+    [63, 188, 115],
+    [94, 201, 98],
+    [132, 212, 75],
+    [173, 220, 48],
+    [216, 226, 25],
+    [253, 231, 37],
+];
+
+/// How much of white is mixed into the map's colours for cell fills: the darkest viridis
+/// colours would otherwise hide the dark edges drawn over them.
+const FILL_LIGHTEN: f64 = 0.22;
+
+/// Mixes `fraction` of white into `c`.
+pub(crate) fn lighten(c: Rgb, fraction: f64) -> Rgb {
+    c.map(|v| (v as f64 + (255.0 - v as f64) * fraction).round() as u8)
+}
+
+/// The map's colour at `t` in [0, 1] (clamped), as used for cell fills.
+pub(crate) fn map_colour(t: f64) -> Rgb {
+    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let x = t * (VIRIDIS.len() - 1) as f64;
+    let i = (x.floor() as usize).min(VIRIDIS.len() - 2);
+    let f = x - i as f64;
+    let (a, b) = (VIRIDIS[i], VIRIDIS[i + 1]);
+    let mixed = [0, 1, 2].map(|k| (a[k] as f64 + (b[k] as f64 - a[k] as f64) * f).round() as u8);
+    lighten(mixed, FILL_LIGHTEN)
+}
+
+/// How the legend's bar is painted, bottom (minimum) to top.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum BarPaint {
+    /// A smooth gradient through these stops (fraction along the bar, colour).
+    Gradient(Vec<(f64, Rgb)>),
+    /// Equal blocks, bottom to top.
+    Blocks(Vec<Rgb>),
+}
+
+/// A tick of the legend bar.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Tick {
+    /// Position along the bar, 0 at the bottom, 1 at the top.
+    pub frac: f64,
+    /// Its label.
+    pub label: String,
+    /// Labels of major ticks are placed first; others only where they do not collide.
+    pub major: bool,
+}
+
+/// What the legend shows.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Legend {
+    /// The heading above the bar.
+    pub title: String,
+    /// The bar.
+    pub bar: BarPaint,
+    /// Ticks along the bar.
+    pub ticks: Vec<Tick>,
+    /// Extra colour keys below the bar (no layer, inverted, NaN).
+    pub swatches: Vec<(Rgb, String)>,
+}
+
+/// The fill colour of every cell (`None`: not filled) and the legend that explains them.
+pub(crate) struct CellColours {
+    /// One entry per cell, or empty when cells are not filled.
+    pub per_cell: Vec<Option<Rgb>>,
+    /// The legend, when cells are coloured.
+    pub legend: Option<Legend>,
+}
+
+/// Colours the cells of `mesh` as `by` asks.
+pub(crate) fn cell_colours(mesh: &Mesh, by: &ColourBy) -> Result<CellColours, DrawError> {
+    let n = mesh.cells.len();
+    let check_len = |what, len| {
+        if len == n {
+            Ok(())
+        } else {
+            Err(DrawError::LengthMismatch {
+                what,
+                len,
+                expected: n,
+                per: "cell",
+            })
+        }
+    };
+    match by {
+        ColourBy::None => Ok(CellColours {
+            per_cell: Vec::new(),
+            legend: None,
+        }),
+        ColourBy::Layer => {
+            check_len(
+                "mesh.cell_layer (needed to colour by layer)",
+                mesh.cell_layer.len(),
+            )?;
+            Ok(layer_colours(&mesh.cell_layer))
+        }
+        ColourBy::MaxAngle => {
+            let values = max_angle_deg(mesh);
+            let ticks = [60.0, 95.0, 105.0, 115.0, 125.0, 135.0, 180.0]
+                .iter()
+                .map(|&deg| Tick {
+                    frac: (deg - 60.0) / 120.0,
+                    label: format!("{deg:.0}°"),
+                    major: deg == 60.0 || deg == 180.0,
+                })
+                .collect();
+            Ok(continuous(&values, 60.0, 180.0, "max angle", ticks, None))
+        }
+        ColourBy::ScaledJacobian(values) => {
+            check_len("the scaled-Jacobian values", values.len())?;
+            let ticks = nice_ticks(0.0, 1.0, 5);
+            Ok(continuous(
+                values,
+                0.0,
+                1.0,
+                "scaled jacobian",
+                ticks,
+                Some((INVERTED, "< 0 (inverted)")),
+            ))
+        }
+        ColourBy::CellValues { values, label } => {
+            check_len("the cell values", values.len())?;
+            let (lo, hi) = finite_range(values);
+            let ticks = nice_ticks(lo, hi, 5);
+            Ok(continuous(values, lo, hi, label, ticks, None))
+        }
+    }
+}
+
+/// Range of the finite values, widened when they are all equal; [0, 1] when there is none.
+fn finite_range(values: &[f64]) -> (f64, f64) {
+    let (lo, hi) = values
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi {
+        (0.0, 1.0)
+    } else if lo == hi {
+        let pad = if lo == 0.0 { 0.5 } else { 0.01 * lo.abs() };
+        (lo - pad, hi + pad)
+    } else {
+        (lo, hi)
+    }
+}
+
+/// Colours values on `[lo, hi]`; NaN in grey, and values below `lo` in `below.0` when given
+/// (otherwise clamped).
+fn continuous(
+    values: &[f64],
+    lo: f64,
+    hi: f64,
+    title: &str,
+    ticks: Vec<Tick>,
+    below: Option<(Rgb, &str)>,
+) -> CellColours {
+    let mut any_nan = false;
+    let mut any_below = false;
+    let per_cell = values
+        .iter()
+        .map(|&v| {
+            Some(if v.is_nan() {
+                any_nan = true;
+                NO_VALUE
+            } else if let (true, Some((c, _))) = (v < lo, below) {
+                any_below = true;
+                c
+            } else {
+                map_colour((v - lo) / (hi - lo))
+            })
+        })
+        .collect();
+    let stops = (0..=16)
+        .map(|i| {
+            let t = i as f64 / 16.0;
+            (t, map_colour(t))
+        })
+        .collect();
+    let mut swatches = Vec::new();
+    if let (Some((c, label)), true) = (below, any_below) {
+        swatches.push((c, label.to_string()));
+    }
+    if any_nan {
+        swatches.push((NO_VALUE, "no value".to_string()));
+    }
+    CellColours {
+        per_cell,
+        legend: Some(Legend {
+            title: title.to_string(),
+            bar: BarPaint::Gradient(stops),
+            ticks,
+            swatches,
+        }),
+    }
+}
+
+/// Layer colours: the map from layer 0 to the outermost layer, odd layers lighter.
+fn layer_colours(cell_layer: &[u32]) -> CellColours {
+    let max_layer = cell_layer
+        .iter()
+        .copied()
+        .filter(|&l| l != NONE)
+        .max()
+        .unwrap_or(0);
+    let colour = |layer: u32| {
+        let c = map_colour(layer as f64 / max_layer.max(1) as f64);
+        if layer % 2 == 1 { lighten(c, 0.3) } else { c }
+    };
+    let per_cell = cell_layer
+        .iter()
+        .map(|&l| Some(if l == NONE { NO_VALUE } else { colour(l) }))
+        .collect();
+    let count = max_layer as usize + 1;
+    let bar = if count <= 200 {
+        BarPaint::Blocks((0..=max_layer).map(colour).collect())
+    } else {
+        BarPaint::Gradient(
+            (0..=16)
+                .map(|i| (i as f64 / 16.0, map_colour(i as f64 / 16.0)))
+                .collect(),
+        )
+    };
+    let step = nice_step(max_layer as f64 / 6.0).max(1.0) as u32;
+    let ticks = (0..=max_layer)
+        .filter(|l| l % step == 0 || *l == max_layer)
+        .map(|l| Tick {
+            frac: (l as f64 + 0.5) / count as f64,
+            label: l.to_string(),
+            major: l == 0 || l == max_layer,
+        })
+        .collect();
+    let swatches = if cell_layer.contains(&NONE) {
+        vec![(NO_VALUE, "no layer".to_string())]
+    } else {
+        Vec::new()
+    };
+    CellColours {
+        per_cell,
+        legend: Some(Legend {
+            title: "layer".to_string(),
+            bar,
+            ticks,
+            swatches,
+        }),
+    }
+}
+
+/// The "nice" number (1, 2 or 5 × 10^k) nearest below-or-at `x` (x > 0); 0 for x <= 0.
+pub(crate) fn nice_step(x: f64) -> f64 {
+    if x.is_nan() || x <= 0.0 || !x.is_finite() {
+        return 0.0;
+    }
+    let decade = 10f64.powf(x.log10().floor());
+    let m = x / decade;
+    let nice = if m >= 5.0 {
+        5.0
+    } else if m >= 2.0 {
+        2.0
+    } else {
+        1.0
+    };
+    nice * decade
+}
+
+/// Ticks over `[lo, hi]`: both ends (major, labelled with more digits) and about `count` nice
+/// round values between.
+pub(crate) fn nice_ticks(lo: f64, hi: f64, count: usize) -> Vec<Tick> {
+    let span = hi - lo;
+    let step = nice_step(span / count as f64);
+    let mut ticks = vec![
+        Tick {
+            frac: 0.0,
+            label: format_number(lo, step / 10.0),
+            major: true,
+        },
+        Tick {
+            frac: 1.0,
+            label: format_number(hi, step / 10.0),
+            major: true,
+        },
+    ];
+    if step > 0.0 {
+        let first = (lo / step).ceil() as i64;
+        let last = (hi / step).floor() as i64;
+        for k in first..=last.min(first + 4 * count as i64) {
+            let v = k as f64 * step;
+            let frac = (v - lo) / span;
+            if frac > 1e-9 && frac < 1.0 - 1e-9 {
+                ticks.push(Tick {
+                    frac,
+                    label: format_number(v, step),
+                    major: false,
+                });
+            }
+        }
+    }
+    ticks
+}
+
+/// `v` written with as many digits as a resolution of `step` needs; exponent form for very
+/// large or very small magnitudes. Trailing zeros of the fraction are dropped.
+pub(crate) fn format_number(v: f64, step: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return if v.is_finite() {
+            "0".into()
+        } else {
+            format!("{v}")
+        };
+    }
+    let magnitude = v.abs().log10().floor();
+    let resolution = if step > 0.0 && step.is_finite() {
+        step.abs().log10().floor()
+    } else {
+        magnitude - 3.0
+    };
+    if v.abs() >= 1e5 || v.abs() < 1e-3 {
+        let digits = (magnitude - resolution).clamp(0.0, 4.0) as usize;
+        let s = format!("{v:.digits$e}");
+        // Trim zeros in the mantissa: "1.50e-5" -> "1.5e-5".
+        if let Some((mantissa, exponent)) = s.split_once('e') {
+            let mantissa = if mantissa.contains('.') {
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                mantissa
+            };
+            return format!("{mantissa}e{exponent}");
+        }
+        return s;
+    }
+    let decimals = (-resolution).clamp(0.0, 8.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    if s == "-0" { "0".into() } else { s }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps_are_one_two_or_five_times_a_power_of_ten() {
+        assert_eq!(nice_step(7.3), 5.0);
+        assert_eq!(nice_step(0.031), 0.02);
+        assert_eq!(nice_step(1.0), 1.0);
+        assert_eq!(nice_step(0.0), 0.0);
+    }
+
+    #[test]
+    fn numbers_are_written_with_the_digits_their_step_needs() {
+        assert_eq!(format_number(0.25, 0.05), "0.25");
+        assert_eq!(format_number(3.0, 1.0), "3");
+        assert_eq!(format_number(1.5e-5, 1e-6), "1.5e-5");
+        assert_eq!(format_number(-0.0001, 1.0), "-1e-4");
+        assert_eq!(format_number(250000.0, 50000.0), "2.5e5");
+        assert_eq!(format_number(0.0, 1.0), "0");
+    }
+
+    #[test]
+    fn the_map_runs_from_dark_to_light() {
+        let lum = |c: Rgb| 0.2126 * c[0] as f64 + 0.7152 * c[1] as f64 + 0.0722 * c[2] as f64;
+        let mut prev = lum(map_colour(0.0));
+        for i in 1..=50 {
+            let l = lum(map_colour(i as f64 / 50.0));
+            assert!(l > prev, "luminance not increasing at {i}");
+            prev = l;
+        }
+    }
+
+    #[test]
+    fn ticks_lie_inside_the_bar_and_include_both_ends() {
+        let t = nice_ticks(-0.37, 2.9, 5);
+        assert!(t.iter().all(|t| (0.0..=1.0).contains(&t.frac)));
+        assert_eq!(t.iter().filter(|t| t.major).count(), 2);
+        assert!(t.iter().any(|t| t.label == "1"), "{t:?}");
+    }
+}
