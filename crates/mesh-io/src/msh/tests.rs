@@ -103,6 +103,37 @@ fn rings_around_real_airfoils_round_trip_bit_for_bit() {
     }
 }
 
+/// A mixed P3 mesh written by Gmsh itself (`tests/python/make_gmsh_fixture.py`): nodes on
+/// point and curve entities with parametric flags, bounding points, physical tags other than
+/// ours, trailing spaces.
+#[test]
+fn a_p3_mesh_written_by_gmsh_reads_as_a_valid_mesh() {
+    let path = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/gmsh_ring_p3.msh"
+    ));
+    let m = read(path).unwrap();
+    assert_eq!((m.dim, m.order), (mesh_model::Dim::Two, 3));
+    assert_eq!(m.count(mesh_model::Shape::Tri), 15);
+    assert_eq!(m.count(mesh_model::Shape::Quad), 47);
+    assert_eq!(m.nodes.len(), 537);
+    assert_eq!(mesh_model::validate(&m), vec![]);
+    let roles: Vec<Role> = m.patches.iter().map(|p| p.role).collect();
+    assert_eq!(roles, vec![Role::Wall, Role::Farfield]);
+    assert_eq!(m.patch_facets(0).count(), 8);
+    assert_eq!(m.patch_facets(1).count(), 23);
+    // Gmsh puts every node of a boundary facet, high-order ones included, on its circle.
+    for (j, f) in m.boundary.iter().enumerate() {
+        let r = if m.boundary_patch[j] == 0 { 1.0 } else { 3.0 };
+        for &v in f.nodes {
+            let [x, y] = m.xy(v);
+            assert!((x.hypot(y) - r).abs() < 1e-6, "facet {j} node {v}");
+        }
+    }
+    // And what we write of it, Gmsh's reader and ours read back unchanged.
+    assert_eq!(from_text(&to_text(&m)).unwrap(), m);
+}
+
 #[test]
 fn every_3d_cell_type_of_order_1_and_2_round_trips() {
     for order in 1..=2 {
