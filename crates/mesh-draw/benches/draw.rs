@@ -1,8 +1,9 @@
 //! How long a 2000 × 1500 px picture of a 100k-cell mesh takes (annulus of 50k quads with
 //! layers and 50k triangles), whole and zoomed, edges only and coloured, PNG and SVG.
 //!
-//! Measured (2-core shared machine, release profile, 2025): see the crate's README section in
-//! `src/lib.rs` docs; numbers are printed by `cargo bench -p mesh-draw`.
+//! Measured on the project's 2-core machine (`cargo bench -p mesh-draw`, bench profile):
+//! PNG whole, edges only 133 ms; PNG whole, by layer 226 ms; PNG zoomed, by max angle 29 ms;
+//! SVG whole, edges only 52 ms; SVG whole, by layer 119 ms (7.8 MB of SVG).
 
 #[path = "../tests/common/mod.rs"]
 mod common;

@@ -138,5 +138,43 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ..base.clone()
         },
     )?;
+    for (i, line) in [
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZ 0123456789",
+        "abcdefghijklmnopqrstuvwxyz .,-+=:;()[]/°%_×'\"!?<>#*|μ",
+    ]
+    .iter()
+    .enumerate()
+    {
+        write(
+            &format!("font-{i}"),
+            &p1,
+            &DrawParams {
+                width_px: 1400,
+                height_px: 300,
+                view: Some(view_around([0.0, 5.0], 0.1)),
+                title: Some((*line).into()),
+                show_scale_bar: false,
+                ..base.clone()
+            },
+        )?;
+    }
+    let big = annulus(&Annulus {
+        around: 625,
+        quad_rings: 80,
+        tri_rings: 40,
+        order: 1,
+        jitter: 0.2,
+    });
+    write(
+        "big-100k-layer",
+        &big,
+        &DrawParams {
+            width_px: 2000,
+            height_px: 1500,
+            colour: ColourBy::Layer,
+            title: Some("100k cells".into()),
+            ..base.clone()
+        },
+    )?;
     Ok(())
 }

@@ -195,7 +195,8 @@ pub struct DrawParams {
     pub view: Option<View>,
     /// What colours the cells. Default [`ColourBy::None`].
     pub colour: ColourBy,
-    /// Draw the colour legend at the right (only when cells are coloured). Default true.
+    /// Draw the colour legend at the right (only when cells are coloured; left out when the
+    /// picture is too narrow to keep at least half its width for the mesh). Default true.
     pub show_legend: bool,
     /// Draw a scale bar (1, 2 or 5 × 10^k mesh units, labelled) at the bottom left.
     /// Default true.
