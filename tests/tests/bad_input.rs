@@ -1,0 +1,222 @@
+//! Bad input: every fault gets a one-line error naming it, no panic, and no output file.
+
+use std::path::Path;
+
+use clap::Parser;
+use xtask::{cli::Cli, execute};
+
+/// Runs `cargo xtask mesh CASE --out DIR/out.msh --report DIR/out.json` and returns the error
+/// message, checking that nothing was written.
+fn mesh_error(dir: &Path, case: &str, extra: &[&str]) -> String {
+    let out = dir.join("out.msh");
+    let report = dir.join("out.json");
+    let mut args = vec!["cargo xtask", "mesh", case, "--quiet"];
+    let (out_s, report_s) = (out.to_str().unwrap(), report.to_str().unwrap());
+    args.extend(["--out", out_s, "--report", report_s]);
+    args.extend(extra);
+    let cli = Cli::try_parse_from(&args).expect("flags parse");
+    let err = execute(cli).expect_err("bad input must be an error");
+    let msg = format!("{err:#}");
+    assert!(!msg.contains('\n'), "message is one line: {msg}");
+    assert!(
+        !out.exists() && !report.exists(),
+        "no output file on bad input ({msg})"
+    );
+    let leftovers: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains("out."))
+        .collect();
+    assert!(
+        leftovers.is_empty(),
+        "no temporary file left: {leftovers:?}"
+    );
+    msg
+}
+
+/// A case with one wall loop from `dat` (written as wall.dat) in a circular far field.
+fn case_with_dat(dir: &Path, dat: &str) -> String {
+    std::fs::write(dir.join("wall.dat"), dat).unwrap();
+    let case = "[[loop]]\nrole = \"wall\"\nfile = \"wall.dat\"\n\n[[loop]]\nrole = \"farfield\"\n\
+                circle = { center = [0.0, 0.0], radius = 20.0 }\n";
+    let path = dir.join("case.toml");
+    std::fs::write(&path, case).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+fn case_text(dir: &Path, text: &str) -> String {
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+const SQUARE_WALL: &str = "[[loop]]\nrole = \"wall\"\npoints = [[0,0],[1,0],[1,1],[0,1]]\n";
+const FARFIELD: &str =
+    "[[loop]]\nrole = \"farfield\"\ncircle = { center = [0.5, 0.5], radius = 20.0 }\n";
+
+fn expect(msg: &str, words: &[&str]) {
+    for w in words {
+        assert!(msg.contains(w), "message {msg:?} should mention {w:?}");
+    }
+}
+
+#[test]
+fn missing_case_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("nope.toml");
+    let msg = mesh_error(dir.path(), case.to_str().unwrap(), &[]);
+    expect(&msg, &["cannot read case file", "nope.toml"]);
+}
+
+#[test]
+fn unknown_case_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let msg = mesh_error(dir.path(), "no-such-case", &[]);
+    expect(&msg, &["no-such-case", "built-in", "naca0012"]);
+}
+
+#[test]
+fn missing_data_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_with_dat(dir.path(), "title\n0 0\n1 0\n0 1\n");
+    std::fs::remove_file(dir.path().join("wall.dat")).unwrap();
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["cannot read", "wall.dat"]);
+}
+
+#[test]
+fn malformed_line_is_named_with_its_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_with_dat(dir.path(), "title\n0 0\n1 0\n1 zero\n0 1\n");
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["wall.dat", "line 4", "1 zero"]);
+}
+
+#[test]
+fn nan_coordinate() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_with_dat(dir.path(), "title\n0 0\n1 NaN\n1 1\n0 1\n");
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["line 3", "not finite"]);
+}
+
+#[test]
+fn fewer_than_three_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_with_dat(dir.path(), "title\n0 0\n1 0\n");
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["at least 3 points"]);
+}
+
+#[test]
+fn duplicate_consecutive_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_with_dat(dir.path(), "title\n0 0\n1 0\n1 0\n1 1\n0 1\n");
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["points 1 and 2 coincide"]);
+}
+
+#[test]
+fn open_loop() {
+    // The upper surface of an airfoil alone: the implied closing edge spans the chord.
+    let dir = tempfile::tempdir().unwrap();
+    let mut dat = String::from("upper surface only\n");
+    for i in 0..=40 {
+        let x = 1.0 - f64::from(i) / 40.0;
+        let y = 0.6 * (0.2969 * x.sqrt() - 0.126 * x - 0.3516 * x * x + 0.2843 * x.powi(3));
+        dat.push_str(&format!("{x} {}\n", y.max(0.0) + 1e-3 * (1.0 - x)));
+    }
+    let case = case_with_dat(dir.path(), &dat);
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["looks open"]);
+}
+
+#[test]
+fn self_intersecting_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_with_dat(dir.path(), "bow tie\n0 0\n1 1\n1 0\n0 1\n");
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["intersects itself"]);
+}
+
+#[test]
+fn loops_that_cross() {
+    let dir = tempfile::tempdir().unwrap();
+    let other = "[[loop]]\nrole = \"wall\"\nname = \"other\"\npoints = [[0.5,0.5],[1.5,0.5],[1.5,1.5],[0.5,1.5]]\n";
+    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{other}{FARFIELD}"));
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["cross", "other"]);
+}
+
+#[test]
+fn body_inside_another_body() {
+    let dir = tempfile::tempdir().unwrap();
+    let inner = "[[loop]]\nrole = \"wall\"\nname = \"inner\"\npoints = [[0.2,0.2],[0.4,0.2],[0.4,0.4],[0.2,0.4]]\n";
+    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{inner}{FARFIELD}"));
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["inner", "inside", "overlap"]);
+}
+
+#[test]
+fn body_outside_the_farfield() {
+    let dir = tempfile::tempdir().unwrap();
+    let far = "[[loop]]\nrole = \"farfield\"\ncircle = { center = [50.0, 0.0], radius = 2.0 }\n";
+    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["not inside the farfield"]);
+}
+
+#[test]
+fn unknown_key_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_text(
+        dir.path(),
+        &format!("{SQUARE_WALL}{FARFIELD}[layers]\nfirst_hieght = 1e-5\n"),
+    );
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["first_hieght", "line"]);
+}
+
+#[test]
+fn impossible_parameters() {
+    let cases = [
+        ("[boundary]\ngrowth = 1.0\n", "[boundary] growth"),
+        ("[layers]\ngrowth = 0.9\n", "[layers] growth"),
+        ("[layers]\nfirst_height = -1e-5\n", "first_height"),
+        ("[boundary]\nmax_spacing = 0.0\n", "max_spacing"),
+        ("[boundary]\nrefine_angle_deg = 200.0\n", "refine_angle_deg"),
+        ("[curving]\norder = 5\n", "order"),
+    ];
+    for (section, words) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let case = case_text(dir.path(), &format!("{SQUARE_WALL}{FARFIELD}{section}"));
+        let msg = mesh_error(dir.path(), &case, &[]);
+        expect(&msg, &[words]);
+    }
+}
+
+#[test]
+fn no_farfield_without_inside() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_text(dir.path(), SQUARE_WALL);
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["farfield", "inside = true"]);
+}
+
+#[test]
+fn unknown_output_extension() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("mesh.stl");
+    let msg = mesh_error(dir.path(), "naca0012", &["--out", bad.to_str().unwrap()]);
+    expect(&msg, &["mesh.stl", "unknown extension"]);
+    assert!(!bad.exists());
+}
+
+#[test]
+fn invalid_naca_digits() {
+    let dir = tempfile::tempdir().unwrap();
+    let wall = "[[loop]]\nrole = \"wall\"\nnaca = \"00x2\"\n";
+    let case = case_text(dir.path(), &format!("{wall}{FARFIELD}"));
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["NACA", "00x2"]);
+}

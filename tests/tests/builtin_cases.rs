@@ -1,0 +1,106 @@
+//! Every built-in case runs at every order, writes every format, and what it writes reads back
+//! as the same boundary mesh the report describes.
+
+use std::collections::HashMap;
+
+use clap::Parser;
+use mesh_model::{Role, Shape};
+use xtask::{Outcome, builtin, cli::Cli, execute};
+
+fn run(args: &[&str]) -> Outcome {
+    let mut all = vec!["cargo xtask"];
+    all.extend(args);
+    let cli = Cli::try_parse_from(&all).expect("flags parse");
+    execute(cli).unwrap_or_else(|e| panic!("{args:?}: {e:#}"))
+}
+
+#[test]
+fn every_builtin_case_at_every_order_round_trips() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in builtin::names() {
+        for order in ["1", "2", "3"] {
+            let msh = dir.path().join(format!("{name}-p{order}.msh"));
+            let vtu = dir.path().join(format!("{name}-p{order}.vtu"));
+            let su2 = dir.path().join(format!("{name}-p{order}.su2"));
+            let json = dir.path().join(format!("{name}-p{order}.json"));
+            let outcome = run(&[
+                "mesh",
+                name,
+                "--quiet",
+                "--order",
+                order,
+                "--out",
+                msh.to_str().unwrap(),
+                "--out",
+                vtu.to_str().unwrap(),
+                "--out",
+                su2.to_str().unwrap(),
+                "--report",
+                json.to_str().unwrap(),
+            ]);
+            assert_eq!(outcome, Outcome::Valid, "{name} P{order}");
+            assert!(vtu.exists() && su2.exists());
+
+            let report: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+            let mesh = mesh_io::read_msh(&msh).unwrap();
+            assert_eq!(report["case"], name);
+            assert_eq!(report["order"].as_u64(), Some(u64::from(mesh.order)));
+            assert_eq!(
+                report["nodes"].as_u64(),
+                Some(mesh.nodes.len() as u64),
+                "{name}"
+            );
+            assert!(report["timings_s"]["total"].as_f64().unwrap() > 0.0);
+
+            // Every loop is closed: each corner node of a patch's facets is used twice.
+            let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
+            for (f, &patch) in mesh.boundary.iter().zip(&mesh.boundary_patch) {
+                assert_eq!(f.ty.shape, Shape::Line);
+                assert_eq!(f.ty.order, mesh.order);
+                for &n in f.corners() {
+                    *uses.entry((patch, n)).or_default() += 1;
+                }
+            }
+            assert!(uses.values().all(|&u| u == 2), "{name}: every loop closed");
+            // The cells are conforming, positive, and cover the domain exactly: their areas
+            // sum to the area enclosed by the boundary facets (domain on their left).
+            let problems = mesh_model::validate(&mesh);
+            assert!(
+                problems.is_empty(),
+                "{name}: {:?}",
+                &problems[..problems.len().min(5)]
+            );
+            let enclosed: f64 = mesh
+                .boundary
+                .iter()
+                .map(|f| {
+                    let (a, b) = (mesh.xy(f.nodes[0]), mesh.xy(f.nodes[1]));
+                    0.5 * (a[0] * b[1] - b[0] * a[1])
+                })
+                .sum();
+            let area = mesh.linear_area();
+            assert!(
+                (area - enclosed).abs() <= 1e-9 * enclosed,
+                "{name}: {area} vs {enclosed}"
+            );
+            let reported = report["area"].as_f64().unwrap();
+            assert!(
+                (reported - area).abs() <= 1e-9 * area,
+                "{name}: report area {reported}"
+            );
+            let walls = mesh.patches.iter().filter(|p| p.role == Role::Wall).count();
+            assert!(walls >= 1, "{name}: has a wall");
+            assert_eq!(
+                report["loops"].as_array().unwrap().len(),
+                mesh.patches.len()
+            );
+        }
+    }
+}
+
+#[test]
+fn list_prints_and_succeeds() {
+    assert_eq!(run(&["mesh", "--list"]), Outcome::Valid);
+    assert!(builtin::names().len() >= 4);
+}

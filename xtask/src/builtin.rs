@@ -1,0 +1,96 @@
+//! The built-in cases and the data files they name, embedded in the binary from `fixtures/` so
+//! that `cargo xtask mesh NAME` works from any folder.
+
+/// The case used when none is named: the 30P30N three-element airfoil.
+pub const DEFAULT: &str = "30p30n";
+
+/// (name, one-line description, case file text).
+const CASES: &[(&str, &str, &str)] = &[
+    (
+        "30p30n",
+        "HLPW-4 30P30N three-element high-lift airfoil, first height 5e-6 (default)",
+        include_str!("../../fixtures/cases/30p30n.toml"),
+    ),
+    (
+        "naca0012",
+        "NACA 0012, public coordinates with a blunt trailing edge, first height 5e-5",
+        include_str!("../../fixtures/cases/naca0012.toml"),
+    ),
+    (
+        "two-element",
+        "synthetic two-element airfoil: NACA 2412 main and a 30 % NACA 4412 flap at 25 deg",
+        include_str!("../../fixtures/cases/two-element.toml"),
+    ),
+    (
+        "bat",
+        "concave bat-like loop meshed inside (wingspan 60), like the dissertation's",
+        include_str!("../../fixtures/cases/bat.toml"),
+    ),
+    (
+        "lshape",
+        "L-shaped body with sharp convex and concave corners",
+        include_str!("../../fixtures/cases/lshape.toml"),
+    ),
+];
+
+/// Data files named by the built-in cases, by the path written in the case file.
+const FILES: &[(&str, &str)] = &[
+    (
+        "../geometry/30p30n/slat.dat",
+        include_str!("../../fixtures/geometry/30p30n/slat.dat"),
+    ),
+    (
+        "../geometry/30p30n/main.dat",
+        include_str!("../../fixtures/geometry/30p30n/main.dat"),
+    ),
+    (
+        "../geometry/30p30n/flap.dat",
+        include_str!("../../fixtures/geometry/30p30n/flap.dat"),
+    ),
+    (
+        "../geometry/naca0012.dat",
+        include_str!("../../fixtures/geometry/naca0012.dat"),
+    ),
+    (
+        "../geometry/bat.dat",
+        include_str!("../../fixtures/geometry/bat.dat"),
+    ),
+];
+
+/// The text of built-in case `name`, if there is one.
+pub fn case_text(name: &str) -> Option<&'static str> {
+    CASES.iter().find(|c| c.0 == name).map(|c| c.2)
+}
+
+/// The names of the built-in cases.
+pub fn names() -> Vec<&'static str> {
+    CASES.iter().map(|c| c.0).collect()
+}
+
+/// (name, description) of every built-in case.
+pub fn list() -> impl Iterator<Item = (&'static str, &'static str)> {
+    CASES.iter().map(|c| (c.0, c.1))
+}
+
+/// An embedded data file, by the path a built-in case gives.
+pub fn data_file(path: &str) -> Option<&'static str> {
+    FILES.iter().find(|f| f.0 == path).map(|f| f.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_case_loads() {
+        for name in names() {
+            let case = crate::case::load(name);
+            assert!(
+                case.is_ok(),
+                "{name}: {:#}",
+                case.err().map(|e| e.to_string()).unwrap_or_default()
+            );
+        }
+        assert!(case_text(DEFAULT).is_some());
+    }
+}

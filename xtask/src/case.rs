@@ -1,0 +1,400 @@
+//! The case file (TOML, `../shared/design/interface.md`): its schema, the checks of its values,
+//! and turning each `[[loop]]` into the points of a closed loop. Built-in cases use the same
+//! schema; their data files are embedded (see [`crate::builtin`]).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail, ensure};
+use mesh_model::Role;
+use serde::Deserialize;
+
+use crate::builtin;
+
+/// A parsed and checked case.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// The case's name (from the file, else the file stem).
+    pub name: String,
+    /// Mesh the inside of the single wall loop instead of the region between the loops.
+    pub inside: bool,
+    /// The loops, points in the order given (orientation is fixed later).
+    pub loops: Vec<LoopInput>,
+    /// `[boundary]`.
+    pub boundary: BoundarySpec,
+    /// `[layers]`.
+    pub layers: LayerSpec,
+    /// `[curving]`.
+    pub curving: CurvingSpec,
+}
+
+/// One closed boundary loop, read and transformed.
+#[derive(Debug, Clone)]
+pub struct LoopInput {
+    /// A name for people: the loop's `name`, else its file stem, else its role.
+    pub name: String,
+    /// Wall or far field.
+    pub role: Role,
+    /// The loop's points after scale, rotation and translation.
+    pub points: Vec<[f64; 2]>,
+    /// Where the points came from, for messages.
+    pub origin: String,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CaseFile {
+    name: Option<String>,
+    #[serde(default)]
+    inside: bool,
+    #[serde(rename = "loop", default)]
+    loops: Vec<LoopSpec>,
+    #[serde(default)]
+    boundary: BoundarySpec,
+    #[serde(default)]
+    layers: LayerSpec,
+    #[serde(default)]
+    curving: CurvingSpec,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoopSpec {
+    role: RoleSpec,
+    name: Option<String>,
+    file: Option<String>,
+    naca: Option<String>,
+    /// Points per side of a generated NACA section.
+    naca_points: Option<usize>,
+    points: Option<Vec<[f64; 2]>>,
+    circle: Option<CircleSpec>,
+    #[serde(default = "one")]
+    scale: f64,
+    #[serde(default)]
+    rotate_deg: f64,
+    #[serde(default)]
+    translate: [f64; 2],
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum RoleSpec {
+    Wall,
+    Farfield,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CircleSpec {
+    center: [f64; 2],
+    radius: f64,
+    /// Points that define the circle as geometry (not the mesh spacing).
+    #[serde(default = "circle_points_default")]
+    points: usize,
+}
+
+/// `[boundary]`: the 1D boundary mesh (method.md §2).
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BoundarySpec {
+    /// g_given: largest ratio of neighbouring segment lengths, > 1.
+    pub growth: f64,
+    /// α_refine in degrees: the angle two segments on a circle may make; in (90, 180).
+    pub refine_angle_deg: f64,
+    /// δ: the longest boundary segment, in mesh units.
+    pub max_spacing: f64,
+    /// Cap the spacing by growth from the break points of every loop (refines narrow gaps).
+    pub medial_axis: bool,
+}
+
+impl Default for BoundarySpec {
+    fn default() -> Self {
+        BoundarySpec {
+            growth: 1.3,
+            refine_angle_deg: 165.0,
+            max_spacing: 1.0,
+            medial_axis: true,
+        }
+    }
+}
+
+/// `[layers]`: the viscous layers (method.md §3).
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LayerSpec {
+    /// l_extru: height of the first layer, in mesh units.
+    pub first_height: f64,
+    /// G_ratio: growth of the layer height from one layer to the next, > 1.
+    pub growth: f64,
+    /// Most layers grown from any boundary.
+    pub max_layers: u32,
+}
+
+impl Default for LayerSpec {
+    fn default() -> Self {
+        LayerSpec {
+            first_height: 5e-5,
+            growth: 1.3,
+            max_layers: 60,
+        }
+    }
+}
+
+/// `[curving]`: the high-order mesh (method.md §4).
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CurvingSpec {
+    /// Polynomial order of the cells: 1, 2 or 3.
+    pub order: u8,
+    /// Fewest layers curved above a curved wall.
+    pub min_curved_layers: u32,
+}
+
+impl Default for CurvingSpec {
+    fn default() -> Self {
+        CurvingSpec {
+            order: 3,
+            min_curved_layers: 2,
+        }
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn circle_points_default() -> usize {
+    256
+}
+
+/// Where a case's relative file names are looked up.
+enum FileSource<'a> {
+    /// On disk, relative to the case file's folder.
+    Dir(&'a Path),
+    /// Embedded in the binary (built-in cases).
+    Builtin,
+}
+
+/// Loads a case: `spec` is a path to a `.toml` file or the name of a built-in case.
+pub fn load(spec: &str) -> Result<Case> {
+    if let Some(text) = builtin::case_text(spec) {
+        return parse(text, spec, FileSource::Builtin, spec);
+    }
+    let path = PathBuf::from(spec);
+    if path.extension().is_none_or(|e| e != "toml") && !path.exists() {
+        bail!(
+            "'{spec}' is neither a built-in case ({}) nor a case file (.toml)",
+            builtin::names().join(", ")
+        );
+    }
+    let text = std::fs::read_to_string(&path)
+        .with_context(|| format!("cannot read case file {}", path.display()))?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("case")
+        .to_string();
+    parse(
+        &text,
+        &path.display().to_string(),
+        FileSource::Dir(dir),
+        &stem,
+    )
+}
+
+fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) -> Result<Case> {
+    let file: CaseFile = toml::from_str(text).map_err(|e| {
+        let msg = e.message().trim().to_string();
+        match e.span() {
+            Some(span) => {
+                let line = text[..span.start].matches('\n').count() + 1;
+                anyhow::anyhow!("{origin}, line {line}: {msg}")
+            }
+            None => anyhow::anyhow!("{origin}: {msg}"),
+        }
+    })?;
+    check_params(&file, origin)?;
+    ensure!(
+        !file.loops.is_empty(),
+        "{origin}: no [[loop]]: a case needs at least one boundary loop"
+    );
+    let walls = file
+        .loops
+        .iter()
+        .filter(|l| matches!(l.role, RoleSpec::Wall))
+        .count();
+    let farfields = file.loops.len() - walls;
+    if file.inside {
+        ensure!(
+            walls == 1 && farfields == 0,
+            "{origin}: inside = true needs exactly one wall loop and no farfield loop \
+             (found {walls} wall and {farfields} farfield)"
+        );
+    } else {
+        ensure!(
+            farfields == 1,
+            "{origin}: a case needs exactly one farfield loop around the walls (found {farfields}); \
+             or set inside = true to mesh the inside of a single wall loop"
+        );
+    }
+    let mut loops = Vec::with_capacity(file.loops.len());
+    for (i, spec) in file.loops.iter().enumerate() {
+        let what = format!("{origin}: loop {}", i + 1);
+        loops.push(read_loop(spec, &files, &what)?);
+    }
+    Ok(Case {
+        name: file
+            .name
+            .clone()
+            .unwrap_or_else(|| default_name.to_string()),
+        inside: file.inside,
+        loops,
+        boundary: file.boundary,
+        layers: file.layers,
+        curving: file.curving,
+    })
+}
+
+fn check_params(file: &CaseFile, origin: &str) -> Result<()> {
+    let b = &file.boundary;
+    let l = &file.layers;
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    let growth = |v: f64| v.is_finite() && v > 1.0;
+    ensure!(
+        growth(b.growth),
+        "{origin}: [boundary] growth = {}: must be greater than 1",
+        b.growth
+    );
+    ensure!(
+        b.refine_angle_deg.is_finite() && b.refine_angle_deg > 90.0 && b.refine_angle_deg < 180.0,
+        "{origin}: [boundary] refine_angle_deg = {}: must lie between 90 and 180 (typical 165)",
+        b.refine_angle_deg
+    );
+    ensure!(
+        positive(b.max_spacing),
+        "{origin}: [boundary] max_spacing = {}: must be positive",
+        b.max_spacing
+    );
+    ensure!(
+        positive(l.first_height),
+        "{origin}: [layers] first_height = {}: must be positive",
+        l.first_height
+    );
+    ensure!(
+        growth(l.growth),
+        "{origin}: [layers] growth = {}: must be greater than 1",
+        l.growth
+    );
+    ensure!(
+        l.max_layers >= 1,
+        "{origin}: [layers] max_layers = 0: must be at least 1"
+    );
+    let c = &file.curving;
+    ensure!(
+        (1..=3).contains(&c.order),
+        "{origin}: [curving] order = {}: must be 1, 2 or 3",
+        c.order
+    );
+    Ok(())
+}
+
+fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<LoopInput> {
+    let sources = [
+        spec.file.is_some(),
+        spec.naca.is_some(),
+        spec.points.is_some(),
+        spec.circle.is_some(),
+    ];
+    let given = sources.iter().filter(|&&s| s).count();
+    ensure!(
+        given == 1,
+        "{what}: give exactly one of file, naca, points or circle (found {given})"
+    );
+    ensure!(
+        spec.scale.is_finite() && spec.scale > 0.0,
+        "{what}: scale = {}: must be positive",
+        spec.scale
+    );
+    ensure!(
+        spec.rotate_deg.is_finite() && spec.translate.iter().all(|v| v.is_finite()),
+        "{what}: rotate_deg and translate must be finite numbers"
+    );
+    let role = match spec.role {
+        RoleSpec::Wall => Role::Wall,
+        RoleSpec::Farfield => Role::Farfield,
+    };
+    let (raw, origin, stem) = if let Some(name) = &spec.file {
+        let (text, shown) = match files {
+            FileSource::Dir(dir) => {
+                let path = dir.join(name);
+                let text = std::fs::read_to_string(&path)
+                    .with_context(|| format!("{what}: cannot read {}", path.display()))?;
+                (text, path.display().to_string())
+            }
+            FileSource::Builtin => match builtin::data_file(name) {
+                Some(text) => (text.to_string(), format!("built-in {name}")),
+                None => bail!("{what}: built-in data file {name} does not exist"),
+            },
+        };
+        let points = geom_curve::selig::parse(&text).with_context(|| shown.clone())?;
+        let stem = Path::new(name)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .map(str::to_string);
+        (points, shown, stem)
+    } else if let Some(digits) = &spec.naca {
+        let n = spec.naca_points.unwrap_or(101);
+        let points =
+            geom_curve::naca::naca4(digits, n, true).with_context(|| format!("{what}: naca"))?;
+        (
+            points,
+            format!("NACA {digits}"),
+            Some(format!("naca{digits}")),
+        )
+    } else if let Some(points) = &spec.points {
+        let pts: Vec<geom_curve::Point2<f64>> = points
+            .iter()
+            .map(|p| geom_curve::Point2::new(p[0], p[1]))
+            .collect();
+        (pts, format!("{what} points"), None)
+    } else if let Some(c) = spec.circle {
+        ensure!(
+            c.radius.is_finite() && c.radius > 0.0,
+            "{what}: circle radius = {}: must be positive",
+            c.radius
+        );
+        ensure!(
+            c.points >= 8,
+            "{what}: circle points = {}: need at least 8",
+            c.points
+        );
+        let centre = geom_curve::Point2::new(c.center[0], c.center[1]);
+        let pts = geom_curve::circle_points(centre, c.radius, c.points)
+            .with_context(|| format!("{what}: circle"))?;
+        (pts, format!("circle of radius {}", c.radius), None)
+    } else {
+        unreachable!("exactly one source was checked above")
+    };
+    let (s, (sin, cos)) = (spec.scale, spec.rotate_deg.to_radians().sin_cos());
+    let points = raw
+        .iter()
+        .map(|p| {
+            let (x, y) = (p.x * s, p.y * s);
+            [
+                x * cos - y * sin + spec.translate[0],
+                x * sin + y * cos + spec.translate[1],
+            ]
+        })
+        .collect();
+    let name = spec
+        .name
+        .clone()
+        .or(stem)
+        .unwrap_or_else(|| role.name().to_string());
+    Ok(LoopInput {
+        name,
+        role,
+        points,
+        origin,
+    })
+}

@@ -1,0 +1,69 @@
+//! Command-line flags of every subcommand, in one place.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+/// Curved (high-order) viscous mesh generation: Spring-Field and Vector-Adding.
+#[derive(Debug, Parser)]
+#[command(name = "cargo xtask", bin_name = "cargo xtask", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Mesh a case: boundary curves, 1D boundary mesh, then the layered domain mesh.
+    Mesh(MeshArgs),
+    /// Time each stage of the pipeline on the built-in cases (release build, one thread).
+    Bench(BenchArgs),
+}
+
+/// Flags of `cargo xtask mesh`.
+#[derive(Debug, Args)]
+pub struct MeshArgs {
+    /// A case file (.toml) or the name of a built-in case (see --list). Default: the 30P30N.
+    pub case: Option<String>,
+
+    /// List the built-in cases and exit.
+    #[arg(long)]
+    pub list: bool,
+
+    /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
+    #[arg(long, value_name = "P", value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub order: Option<u8>,
+
+    /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK
+    /// XML, Lagrange cells for P2/P3) or .su2 (linear). May be given several times.
+    /// Default: out/CASE.msh.
+    #[arg(long = "out", value_name = "FILE")]
+    pub outs: Vec<PathBuf>,
+
+    /// Write the JSON report (cells, layers, timings, quality) to this file.
+    /// Default when no --out is given: out/CASE.json.
+    #[arg(long, value_name = "FILE.json")]
+    pub report: Option<PathBuf>,
+
+    /// Cut every quad along its shorter diagonal into two triangles.
+    #[arg(long)]
+    pub triangles: bool,
+
+    /// No summary table on stdout and no progress on stderr; errors are still printed.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Flags of `cargo xtask bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Fewer repetitions: a quick look rather than a measurement.
+    #[arg(long)]
+    pub quick: bool,
+
+    /// Only these built-in cases (default: all).
+    #[arg(long = "case", value_name = "NAME")]
+    pub cases: Vec<String>,
+}

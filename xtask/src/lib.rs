@@ -1,0 +1,39 @@
+//! `cargo xtask`: the command-line tool. It composes the crates of the pipeline —
+//! `geom-curve` → `boundary1d` → the domain meshers → `mesh-io` — into the commands of
+//! `../shared/design/interface.md`. Flags are parsed in [`cli`]; each subcommand has its own
+//! module with a `run`. This is the only crate (with `mesh-io`) that touches files, and the
+//! only one that uses `anyhow`.
+//!
+//! The library half holds everything, so that the end-to-end tests in `tests/` can drive the
+//! commands in-process; `main.rs` only parses the flags and turns the outcome into an exit
+//! status.
+//!
+//! Exit status: 0 on success, 1 on bad input (one line on stderr naming the fault, no output
+//! file left behind), 2 when a mesh was made but failed validation.
+
+mod bench_cmd;
+pub mod builtin;
+mod case;
+pub mod cli;
+mod mesh_cmd;
+mod pipeline;
+mod report;
+mod summary;
+
+/// How a run that did not fail on bad input ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// Everything was made and passed validation.
+    Valid,
+    /// A mesh was written, but it failed validation (named in the report).
+    Invalid,
+}
+
+/// Runs one parsed command. An `Err` is bad input (exit status 1); its `{:#}` display is the
+/// one-line message for the user.
+pub fn execute(cli: cli::Cli) -> anyhow::Result<Outcome> {
+    match cli.command {
+        cli::Command::Mesh(args) => mesh_cmd::run(&args),
+        cli::Command::Bench(args) => bench_cmd::run(&args),
+    }
+}

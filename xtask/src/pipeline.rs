@@ -1,0 +1,123 @@
+//! The stages of the pipeline as plain functions, shared by `mesh` and `bench`: checked loops
+//! → curves → boundary nodes → the layered linear mesh. No file is touched here.
+
+use anyhow::{Result, bail};
+use boundary1d::{BoundaryNodes, SpacingParams};
+use geom_curve::{ClosedCurve, CurveParams, Point2, loops};
+use mesh_model::Role;
+
+use crate::case::Case;
+
+/// The loops of a case as curves, each counter-clockwise, in the case's order.
+pub fn curves(case: &Case) -> Result<Vec<ClosedCurve>> {
+    let params = CurveParams::default();
+    let mut curves = Vec::with_capacity(case.loops.len());
+    let mut polygons = Vec::with_capacity(case.loops.len());
+    for l in &case.loops {
+        let mut points: Vec<Point2<f64>> =
+            l.points.iter().map(|p| Point2::new(p[0], p[1])).collect();
+        let at = || format!("loop '{}' ({})", l.name, l.origin);
+        loops::validate_loop(&points, &params.loop_checks)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", at()))?;
+        loops::make_counter_clockwise(&mut points);
+        let curve =
+            ClosedCurve::new(&points, &params).map_err(|e| anyhow::anyhow!("{}: {e}", at()))?;
+        curves.push(curve);
+        polygons.push(points);
+    }
+    if let Err(e) = loops::check_loops_disjoint(&polygons) {
+        let name = |i: usize| format!("'{}'", case.loops[i].name);
+        if let geom_curve::CurveError::LoopsCross {
+            loop_a,
+            loop_b,
+            x,
+            y,
+            ..
+        } = e
+        {
+            bail!(
+                "loops {} and {} cross at ({x}, {y}): move or scale one of them",
+                name(loop_a),
+                name(loop_b)
+            );
+        }
+        bail!("{e}");
+    }
+    check_nesting(case, &polygons)?;
+    Ok(curves)
+}
+
+/// Walls must lie inside the far field and outside each other.
+fn check_nesting(case: &Case, polygons: &[Vec<Point2<f64>>]) -> Result<()> {
+    let walls: Vec<usize> = (0..case.loops.len())
+        .filter(|&i| case.loops[i].role == Role::Wall)
+        .collect();
+    if let Some(ff) = case.loops.iter().position(|l| l.role == Role::Farfield) {
+        for &w in &walls {
+            if !loops::loop_inside_loop(&polygons[w], &polygons[ff]) {
+                bail!(
+                    "wall loop '{}' is not inside the farfield loop '{}'",
+                    case.loops[w].name,
+                    case.loops[ff].name
+                );
+            }
+        }
+    }
+    for &a in &walls {
+        for &b in &walls {
+            if a != b && loops::loop_inside_loop(&polygons[a], &polygons[b]) {
+                bail!(
+                    "wall loop '{}' lies inside wall loop '{}': bodies must not overlap",
+                    case.loops[a].name,
+                    case.loops[b].name
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The spacing parameters of a case.
+pub fn spacing_params(case: &Case) -> SpacingParams {
+    SpacingParams {
+        growth: case.boundary.growth,
+        refine_angle_deg: case.boundary.refine_angle_deg,
+        max_spacing: case.boundary.max_spacing,
+        first_height: case.layers.first_height,
+        medial_axis: case.boundary.medial_axis,
+        ..SpacingParams::default()
+    }
+}
+
+/// The 1D boundary mesh of every loop.
+pub fn boundary_nodes(case: &Case, curves: &[ClosedCurve]) -> Result<Vec<BoundaryNodes>> {
+    boundary1d::mesh_loops(curves, &spacing_params(case))
+        .map_err(|e| anyhow::anyhow!("boundary mesh: {e}"))
+}
+
+/// The mesher's parameters for a case.
+pub fn afsf_params(case: &Case) -> afsf2d::AfsfParams {
+    afsf2d::AfsfParams {
+        first_height: case.layers.first_height,
+        growth: case.layers.growth,
+        max_layers: case.layers.max_layers,
+        inside: case.inside,
+        ..afsf2d::AfsfParams::default()
+    }
+}
+
+/// The layered linear mesh grown from the boundary nodes of every loop.
+pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfOutput> {
+    let loops: Vec<afsf2d::FrontLoop> = case
+        .loops
+        .iter()
+        .zip(nodes)
+        .map(|(input, bn)| afsf2d::FrontLoop {
+            points: bn.points.iter().map(|p| [p.x, p.y]).collect(),
+            is_corner: bn.is_corner.clone(),
+            role: input.role,
+            name: input.name.clone(),
+        })
+        .collect();
+    afsf2d::grow_mesh(&loops, &afsf_params(case)).map_err(|e| anyhow::anyhow!("linear mesh: {e}"))
+}

@@ -1,0 +1,71 @@
+//! The JSON report of a run (`--report`), with the keys of the interface contract. Keys whose
+//! stage has not run are left out rather than filled with made-up values.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+/// Everything a run reports.
+#[derive(Debug, Default, Serialize)]
+pub struct Report {
+    /// The case's name.
+    pub case: String,
+    /// 2 or 3.
+    pub dimension: u8,
+    /// Polynomial order of the cells.
+    pub order: u8,
+    /// Number of mesh nodes (high-order nodes included).
+    pub nodes: usize,
+    /// Domain cells by type (`tri`, `quad`).
+    pub cells: BTreeMap<&'static str, usize>,
+    /// Boundary facets by patch role (`wall`, `farfield`).
+    pub boundary_facets: BTreeMap<&'static str, usize>,
+    /// Most layers grown from any boundary, when the domain was meshed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layers: Option<u32>,
+    /// Seconds spent in each stage, and in all.
+    pub timings_s: BTreeMap<&'static str, f64>,
+    /// Quality figures, when the domain was meshed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quality: Option<Quality>,
+    /// Fraction of the edges left curved, when the mesh was curved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curved_edge_fraction: Option<f64>,
+    /// Area of the meshed domain (integrated over the curved cells when curved), when meshed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area: Option<f64>,
+    /// Each boundary loop: name, role, node count, corner count.
+    pub loops: Vec<LoopReport>,
+    /// The files written.
+    pub files: Vec<String>,
+    /// What a user should know about this run (stages not available, limits reached).
+    pub notes: Vec<String>,
+    /// What failed validation, if anything (the run then exits with status 2).
+    pub problems: Vec<String>,
+}
+
+/// The quality block of the report.
+#[derive(Debug, Default, Serialize)]
+pub struct Quality {
+    /// Largest interior angle of any triangle (quads cut on the shorter diagonal), degrees.
+    pub max_angle_deg: f64,
+    /// Triangles by largest angle in [95,105), [105,115), [115,125), [125,135), [135,180].
+    pub obtuse_hist: [usize; 5],
+}
+
+/// One boundary loop in the report.
+#[derive(Debug, Serialize)]
+pub struct LoopReport {
+    /// The loop's name.
+    pub name: String,
+    /// `wall` or `farfield`.
+    pub role: &'static str,
+    /// Boundary mesh nodes on the loop.
+    pub nodes: usize,
+    /// Sharp corners kept as nodes.
+    pub corners: usize,
+    /// Shortest and longest boundary segment.
+    pub spacing_min: f64,
+    /// Longest boundary segment.
+    pub spacing_max: f64,
+}

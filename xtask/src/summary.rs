@@ -1,0 +1,61 @@
+//! The summary table printed on stdout after a run: what was made, how long it took, what was
+//! written.
+
+use std::fmt::Write;
+
+use crate::report::Report;
+
+/// The table for a report, as text.
+pub fn table(r: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "case {}  (dimension {}, order {})",
+        r.case, r.dimension, r.order
+    );
+    let _ = writeln!(s, "  {:<22} {:>12}", "nodes", r.nodes);
+    for (kind, n) in &r.cells {
+        let _ = writeln!(s, "  {:<22} {:>12}", format!("cells {kind}"), n);
+    }
+    for (role, n) in &r.boundary_facets {
+        let _ = writeln!(s, "  {:<22} {:>12}", format!("boundary facets {role}"), n);
+    }
+    if let Some(layers) = r.layers {
+        let _ = writeln!(s, "  {:<22} {:>12}", "layers", layers);
+    }
+    for l in &r.loops {
+        let _ = writeln!(
+            s,
+            "  loop {:<17} {:>12}  ({}, {} corners, spacing {:.2e} .. {:.2e})",
+            l.name, l.nodes, l.role, l.corners, l.spacing_min, l.spacing_max
+        );
+    }
+    if let Some(q) = &r.quality {
+        let _ = writeln!(s, "  {:<22} {:>12.1}", "max angle (deg)", q.max_angle_deg);
+        let h = q.obtuse_hist;
+        let _ = writeln!(
+            s,
+            "  obtuse triangles      95-105: {}  105-115: {}  115-125: {}  125-135: {}  >=135: {}",
+            h[0], h[1], h[2], h[3], h[4]
+        );
+    }
+    if let Some(a) = r.area {
+        let _ = writeln!(s, "  {:<22} {:>12.6e}", "area", a);
+    }
+    let timings: Vec<String> = r
+        .timings_s
+        .iter()
+        .map(|(k, v)| format!("{k} {:.1} ms", v * 1e3))
+        .collect();
+    let _ = writeln!(s, "  time: {}", timings.join(", "));
+    for n in &r.notes {
+        let _ = writeln!(s, "  note: {n}");
+    }
+    for p in &r.problems {
+        let _ = writeln!(s, "  PROBLEM: {p}");
+    }
+    for f in &r.files {
+        let _ = writeln!(s, "  wrote {f}");
+    }
+    s
+}
