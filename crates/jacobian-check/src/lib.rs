@@ -1,0 +1,1 @@
+//! Validity of high-order cells (skeleton; see Cargo.toml description).
