@@ -2,6 +2,7 @@
 //! and turning each `[[loop]]` into the points of a closed loop. Built-in cases use the same
 //! schema; their data files are embedded (see [`crate::builtin`]).
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail, ensure};
@@ -25,6 +26,8 @@ pub struct Case {
     pub layers: LayerSpec,
     /// `[curving]`.
     pub curving: CurvingSpec,
+    /// `[views]`: named rectangles `x0, y0, x1, y1` for pictures (`--png FILE@NAME`).
+    pub views: BTreeMap<String, [f64; 4]>,
 }
 
 /// One closed boundary loop, read and transformed.
@@ -54,6 +57,8 @@ struct CaseFile {
     layers: LayerSpec,
     #[serde(default)]
     curving: CurvingSpec,
+    #[serde(default)]
+    views: BTreeMap<String, [f64; 4]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -252,6 +257,7 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
         boundary: file.boundary,
         layers: file.layers,
         curving: file.curving,
+        views: file.views,
     })
 }
 

@@ -18,6 +18,8 @@ pub struct Cli {
 pub enum Command {
     /// Mesh a case: boundary curves, 1D boundary mesh, then the layered domain mesh.
     Mesh(MeshArgs),
+    /// Check a mesh file: structure, orientation, conformity, angles; draw it on request.
+    Quality(QualityArgs),
     /// Time each stage of the pipeline on the built-in cases (release build, one thread).
     Bench(BenchArgs),
 }
@@ -51,6 +53,30 @@ pub struct MeshArgs {
     #[arg(long)]
     pub triangles: bool,
 
+    /// Draw the mesh to a PNG picture; `FILE@VIEW` picks the view: `all`, `walls`, a view
+    /// named in the case's `[views]` (built-in cases: `le`, `te`, and for the 30P30N
+    /// `slat-cove`, `flap-gap`) or `x0,y0,x1,y1`. May be given several times.
+    #[arg(long = "png", value_name = "FILE[@VIEW]")]
+    pub pngs: Vec<String>,
+
+    /// Draw the mesh to an SVG picture (edges shorter than a pixel are skipped); `FILE@VIEW`
+    /// as for --png. May be given several times.
+    #[arg(long = "svg", value_name = "FILE[@VIEW]")]
+    pub svgs: Vec<String>,
+
+    /// The view of pictures given without `@VIEW` (default: all).
+    #[arg(long, value_name = "VIEW")]
+    pub view: Option<String>,
+
+    /// What colours the cells in pictures.
+    #[arg(long, value_enum, default_value = "layer")]
+    pub colour: crate::pictures::Colour,
+
+    /// Width of PNG pictures in pixels (the height is three quarters of it).
+    #[arg(long, value_name = "PX", default_value_t = 2000,
+          value_parser = clap::value_parser!(u32).range(64..=16384))]
+    pub width: u32,
+
     /// No summary table on stdout and no progress on stderr; errors are still printed.
     #[arg(long, short)]
     pub quiet: bool,
@@ -66,4 +92,40 @@ pub struct BenchArgs {
     /// Only these built-in cases (default: all).
     #[arg(long = "case", value_name = "NAME")]
     pub cases: Vec<String>,
+}
+
+/// Flags of `cargo xtask quality`.
+#[derive(Debug, Args)]
+pub struct QualityArgs {
+    /// The mesh to check (Gmsh MSH 4.1 ASCII).
+    pub mesh: PathBuf,
+
+    /// Write the JSON report to this file.
+    #[arg(long, value_name = "FILE.json")]
+    pub report: Option<PathBuf>,
+
+    /// Draw the mesh to a PNG picture, `FILE@VIEW` with VIEW `all`, `walls` or `x0,y0,x1,y1`.
+    #[arg(long = "png", value_name = "FILE[@VIEW]")]
+    pub pngs: Vec<String>,
+
+    /// Draw the mesh to an SVG picture, `FILE@VIEW` as for --png.
+    #[arg(long = "svg", value_name = "FILE[@VIEW]")]
+    pub svgs: Vec<String>,
+
+    /// The view of pictures given without `@VIEW` (default: all).
+    #[arg(long, value_name = "VIEW")]
+    pub view: Option<String>,
+
+    /// What colours the cells in pictures (a .msh file keeps no layer index).
+    #[arg(long, value_enum, default_value = "angle")]
+    pub colour: crate::pictures::Colour,
+
+    /// Width of PNG pictures in pixels.
+    #[arg(long, value_name = "PX", default_value_t = 2000,
+          value_parser = clap::value_parser!(u32).range(64..=16384))]
+    pub width: u32,
+
+    /// No summary table on stdout.
+    #[arg(long, short)]
+    pub quiet: bool,
 }

@@ -16,7 +16,10 @@ pub mod builtin;
 mod case;
 pub mod cli;
 mod mesh_cmd;
+mod pictures;
 mod pipeline;
+mod progress;
+mod quality_cmd;
 mod report;
 mod summary;
 
@@ -34,6 +37,7 @@ pub enum Outcome {
 pub fn execute(cli: cli::Cli) -> anyhow::Result<Outcome> {
     match cli.command {
         cli::Command::Mesh(args) => mesh_cmd::run(&args),
+        cli::Command::Quality(args) => quality_cmd::run(&args),
         cli::Command::Bench(args) => bench_cmd::run(&args),
     }
 }

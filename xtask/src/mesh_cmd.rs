@@ -1,16 +1,17 @@
-//! `cargo xtask mesh`: load the case, run the stages, check the result, write the files and the
-//! report, print the summary. Every check of the input happens before the first file is
-//! written, so bad input leaves nothing behind.
+//! `cargo xtask mesh`: load the case, run the stages, check the result, write the files, the
+//! pictures and the report, print the summary. Every check of the input happens before the
+//! first file is written, so bad input leaves nothing behind.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use mesh_io::Format;
-use mesh_model::{Role, Shape};
 
 use crate::cli::MeshArgs;
-use crate::report::{LoopReport, Quality, Report};
+use crate::pictures;
+use crate::progress::stage;
+use crate::report::{LoopReport, Report};
 use crate::{Outcome, builtin, case, pipeline, summary};
 
 /// Runs `cargo xtask mesh`.
@@ -26,25 +27,33 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
     let case = case::load(spec)?;
     let order = args.order.unwrap_or(case.curving.order);
     let (outs, report_path) = outputs(args, &case.name)?;
+    let pictures = pictures::parse(&args.pngs, &args.svgs, args.view.as_deref(), &case.views)?;
 
-    let mut report = Report {
-        case: case.name.clone(),
-        dimension: 2,
-        order,
-        ..Report::default()
-    };
+    let mut report = Report::new(&case.name, order);
 
     let t = Instant::now();
+    let progress = stage(args.quiet, "boundary curves and 1D mesh");
     let curves = pipeline::curves(&case)?;
     let nodes = pipeline::boundary_nodes(&case, &curves)?;
+    drop(progress);
     report
         .timings_s
         .insert("boundary", t.elapsed().as_secs_f64());
+    for ((input, curve_nodes), _) in case.loops.iter().zip(&nodes).zip(&curves) {
+        report.loops.push(loop_report(input, curve_nodes));
+    }
 
     let t = Instant::now();
+    let progress = stage(args.quiet, "linear layered mesh (AFSF)");
     let grown = pipeline::linear_mesh(&case, &nodes)?;
+    drop(progress);
     report.timings_s.insert("linear", t.elapsed().as_secs_f64());
     report.layers = Some(grown.stats.layers);
+    if !grown.stats.all_converged {
+        report.notes.push(
+            "some layers' spring solves ran out of iterations (the mesh passed its checks)".into(),
+        );
+    }
     let mut mesh = grown.mesh;
     if args.triangles {
         mesh = afsf2d::cut_quads_shorter_diagonal(&mesh);
@@ -56,57 +65,37 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
         ));
         report.order = 1;
     }
-    let angles = afsf2d::max_angle_histogram(&mesh);
-    report.quality = Some(Quality {
-        max_angle_deg: angles.max_angle_deg,
-        obtuse_hist: angles.histogram,
-    });
-    report.area = Some(mesh.linear_area());
-
-    report.nodes = mesh.nodes.len();
-    for shape in [Shape::Tri, Shape::Quad] {
-        report.cells.insert(shape.name(), mesh.count(shape));
-    }
-    for (role, name) in [(Role::Wall, "wall"), (Role::Farfield, "farfield")] {
-        let n = mesh
-            .boundary_patch
-            .iter()
-            .filter(|&&p| mesh.patches[p as usize].role == role)
-            .count();
-        if n > 0 {
-            report.boundary_facets.insert(name, n);
-        }
-    }
-    for ((input, curve_nodes), curve) in case.loops.iter().zip(&nodes).zip(&curves) {
-        report.loops.push(loop_report(input, curve_nodes, curve));
-    }
-    report.problems = mesh_model::validate(&mesh)
-        .iter()
-        .map(ToString::to_string)
-        .collect();
+    report.describe(&mesh);
 
     let t = Instant::now();
+    let progress = stage(args.quiet, "writing");
     for out in &outs {
-        create_parent(out)?;
+        pictures::create_parent(out)?;
         mesh_io::write(out, &mesh).with_context(|| format!("writing {}", out.display()))?;
         report.files.push(out.display().to_string());
     }
     report.timings_s.insert("write", t.elapsed().as_secs_f64());
+    let t = Instant::now();
+    report.files.extend(pictures::draw_all(
+        &mesh,
+        &pictures,
+        args.colour,
+        &case.name,
+        args.width,
+    )?);
+    drop(progress);
+    if !pictures.is_empty() {
+        report
+            .timings_s
+            .insert("pictures", t.elapsed().as_secs_f64());
+    }
     report
         .timings_s
         .insert("total", total.elapsed().as_secs_f64());
     if let Some(path) = &report_path {
         report.files.push(path.display().to_string());
-        create_parent(path)?;
         let json = serde_json::to_string_pretty(&report)?;
-        mesh_io::atomic::write_atomic(path, |w| {
-            w.write_all(json.as_bytes())
-                .map_err(|source| mesh_io::IoError::Io {
-                    path: path.clone(),
-                    source,
-                })
-        })
-        .with_context(|| format!("writing {}", path.display()))?;
+        pictures::write_bytes(path, json.as_bytes())?;
     }
     if !args.quiet {
         print!("{}", summary::table(&report));
@@ -148,19 +137,7 @@ fn outputs(args: &MeshArgs, name: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>
     Ok((outs, report))
 }
 
-fn create_parent(path: &Path) -> Result<()> {
-    match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() && !dir.exists() => std::fs::create_dir_all(dir)
-            .with_context(|| format!("cannot create the folder {}", dir.display())),
-        _ => Ok(()),
-    }
-}
-
-fn loop_report(
-    input: &case::LoopInput,
-    nodes: &boundary1d::BoundaryNodes,
-    _curve: &geom_curve::ClosedCurve,
-) -> LoopReport {
+fn loop_report(input: &case::LoopInput, nodes: &boundary1d::BoundaryNodes) -> LoopReport {
     let n = nodes.points.len();
     let lengths = (0..n).map(|i| (nodes.points[(i + 1) % n] - nodes.points[i]).norm());
     let (min, max) = lengths.fold((f64::INFINITY, 0.0f64), |(lo, hi), l| {

@@ -3,6 +3,7 @@
 
 use std::collections::BTreeMap;
 
+use mesh_model::{Mesh, Role, Shape};
 use serde::Serialize;
 
 /// Everything a run reports.
@@ -42,6 +43,49 @@ pub struct Report {
     pub notes: Vec<String>,
     /// What failed validation, if anything (the run then exits with status 2).
     pub problems: Vec<String>,
+}
+
+impl Report {
+    /// An empty report for a case at an order.
+    pub fn new(case: &str, order: u8) -> Report {
+        Report {
+            case: case.to_string(),
+            dimension: 2,
+            order,
+            ..Report::default()
+        }
+    }
+
+    /// Fills what can be read off a finished 2D mesh: counts, quality, area, and the
+    /// structural problems found by `mesh_model::validate`.
+    pub fn describe(&mut self, mesh: &Mesh) {
+        self.nodes = mesh.nodes.len();
+        for shape in [Shape::Tri, Shape::Quad] {
+            self.cells.insert(shape.name(), mesh.count(shape));
+        }
+        for role in [Role::Wall, Role::Farfield] {
+            let n = mesh
+                .boundary_patch
+                .iter()
+                .filter(|&&p| mesh.patches.get(p as usize).is_some_and(|q| q.role == role))
+                .count();
+            if n > 0 {
+                self.boundary_facets.insert(role.name(), n);
+            }
+        }
+        self.problems = mesh_model::validate(mesh)
+            .iter()
+            .map(ToString::to_string)
+            .collect();
+        if self.problems.is_empty() && !mesh.cells.is_empty() {
+            let angles = afsf2d::max_angle_histogram(mesh);
+            self.quality = Some(Quality {
+                max_angle_deg: angles.max_angle_deg,
+                obtuse_hist: angles.histogram,
+            });
+            self.area = Some(mesh.linear_area());
+        }
+    }
 }
 
 /// The quality block of the report.

@@ -1,0 +1,112 @@
+//! Pictures from the command line: `--png FILE@VIEW` and `--svg`, named views of the built-in
+//! cases, and clear errors for bad picture requests.
+
+use clap::Parser;
+use xtask::{Outcome, cli::Cli, execute};
+
+fn run(args: &[&str]) -> anyhow::Result<Outcome> {
+    let mut all = vec!["cargo xtask"];
+    all.extend(args);
+    execute(Cli::try_parse_from(&all).expect("flags parse"))
+}
+
+#[test]
+fn whole_and_zoomed_views_are_drawn_and_differ() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (whole, le, svg, msh) = (p("whole.png"), p("le.png"), p("te.svg"), p("m.msh"));
+    let outcome = run(&[
+        "mesh",
+        "naca0012",
+        "--quiet",
+        "--order",
+        "1",
+        "--out",
+        &msh,
+        "--width",
+        "400",
+        "--png",
+        &whole,
+        "--png",
+        &format!("{le}@le"),
+        "--svg",
+        &format!("{svg}@te"),
+    ])
+    .unwrap();
+    assert_eq!(outcome, Outcome::Valid);
+    let a = tiny_skia::Pixmap::load_png(&whole).unwrap();
+    let b = tiny_skia::Pixmap::load_png(&le).unwrap();
+    assert_eq!((a.width(), a.height()), (400, 300));
+    let not_white = a
+        .pixels()
+        .iter()
+        .filter(|p| p.red() < 250 || p.blue() < 250)
+        .count();
+    assert!(
+        not_white > 400 * 300 / 10,
+        "the picture is not blank ({not_white} pixels drawn)"
+    );
+    assert_ne!(
+        a.data(),
+        b.data(),
+        "the zoomed view differs from the whole view"
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).expect("the SVG is well-formed XML");
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+}
+
+#[test]
+fn quality_reads_a_mesh_and_draws_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let msh = dir.path().join("m.msh").to_str().unwrap().to_string();
+    let png = dir.path().join("q.png").to_str().unwrap().to_string();
+    let json = dir.path().join("q.json").to_str().unwrap().to_string();
+    run(&["mesh", "lshape", "--quiet", "--order", "1", "--out", &msh]).unwrap();
+    let outcome = run(&[
+        "quality",
+        &msh,
+        "--quiet",
+        "--report",
+        &json,
+        "--png",
+        &format!("{png}@walls"),
+    ])
+    .unwrap();
+    assert_eq!(outcome, Outcome::Valid);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(report["quality"]["max_angle_deg"].as_f64().unwrap() > 60.0);
+    assert!(report["problems"].as_array().unwrap().is_empty());
+    assert!(tiny_skia::Pixmap::load_png(&png).is_ok());
+}
+
+#[test]
+fn bad_picture_requests_are_named_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let msh = dir.path().join("m.msh").to_str().unwrap().to_string();
+    let png = dir.path().join("p.png").to_str().unwrap().to_string();
+    let cases: [(Vec<String>, &str); 4] = [
+        (
+            vec!["--png".into(), format!("{png}@nowhere")],
+            "no view named 'nowhere'",
+        ),
+        (vec!["--png".into(), format!("{png}@1,2,3")], "four numbers"),
+        (vec!["--png".into(), format!("{png}@1,1,0,2")], "x0 < x1"),
+        (vec!["--svg".into(), png.clone()], "must end in .svg"),
+    ];
+    for (extra, words) in cases {
+        let mut args = vec!["mesh", "naca0012", "--quiet", "--out", &msh];
+        args.extend(extra.iter().map(String::as_str));
+        let err = run(&args).expect_err("bad picture request");
+        let msg = format!("{err:#}");
+        assert!(msg.contains(words), "{msg:?} should mention {words:?}");
+        assert!(!std::path::Path::new(&msh).exists() && !std::path::Path::new(&png).exists());
+    }
+}
+
+#[test]
+fn quality_of_a_missing_file_is_a_clear_error() {
+    let err = run(&["quality", "/nonexistent/mesh.msh"]).expect_err("missing file");
+    assert!(format!("{err:#}").contains("/nonexistent/mesh.msh"));
+}

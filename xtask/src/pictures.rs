@@ -1,0 +1,189 @@
+//! Pictures of the mesh (`--png`, `--svg`): parsing what was asked for before any work is done,
+//! and drawing and writing each picture (atomically) at the end. Drawing is `mesh-draw`'s job.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use mesh_draw::{ColourBy, DrawParams, View};
+use mesh_model::{Mesh, Role};
+
+/// Picture formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Raster, drawn with tiny-skia.
+    Png,
+    /// Vector text.
+    Svg,
+}
+
+/// One picture to draw: where, what part of the plane.
+#[derive(Debug, Clone)]
+pub struct Picture {
+    /// The file to write.
+    pub path: PathBuf,
+    /// PNG or SVG.
+    pub format: Format,
+    /// The view as given (a name or four numbers), for the title.
+    pub view_name: String,
+    /// What part of the plane to show.
+    pub view: ViewSpec,
+}
+
+/// A view not yet tied to a mesh.
+#[derive(Debug, Clone, Copy)]
+pub enum ViewSpec {
+    /// The whole mesh.
+    All,
+    /// The bounding box of every wall loop.
+    Walls,
+    /// A rectangle of the plane.
+    Rect(View),
+}
+
+/// What the cells are coloured by (`--colour`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Colour {
+    /// Edges only.
+    None,
+    /// Layer index counted from the boundary each cell grew from.
+    Layer,
+    /// Largest interior angle (quads cut along the shorter diagonal).
+    Angle,
+}
+
+/// Parses `FILE` or `FILE@VIEW` for each picture flag; `VIEW` is a name (`all`, `walls`, or a
+/// view of the case's `[views]`) or `x0,y0,x1,y1`. `default_view` applies where no `@VIEW` is
+/// given.
+pub fn parse(
+    pngs: &[String],
+    svgs: &[String],
+    default_view: Option<&str>,
+    named: &BTreeMap<String, [f64; 4]>,
+) -> Result<Vec<Picture>> {
+    let mut pictures = Vec::new();
+    for (specs, format, flag) in [(pngs, Format::Png, "--png"), (svgs, Format::Svg, "--svg")] {
+        for spec in specs {
+            let (file, view) = match spec.rsplit_once('@') {
+                Some((file, view)) => (file, view),
+                None => (spec.as_str(), default_view.unwrap_or("all")),
+            };
+            let path = PathBuf::from(file);
+            let ext = if format == Format::Png { "png" } else { "svg" };
+            if path
+                .extension()
+                .is_none_or(|e| !e.eq_ignore_ascii_case(ext))
+            {
+                bail!("{flag} {file}: the file name must end in .{ext}");
+            }
+            let view_spec = view_spec(view, named).with_context(|| format!("{flag} {spec}"))?;
+            pictures.push(Picture {
+                path,
+                format,
+                view_name: view.to_string(),
+                view: view_spec,
+            });
+        }
+    }
+    Ok(pictures)
+}
+
+fn view_spec(view: &str, named: &BTreeMap<String, [f64; 4]>) -> Result<ViewSpec> {
+    match view {
+        "all" => return Ok(ViewSpec::All),
+        "walls" => return Ok(ViewSpec::Walls),
+        _ => {}
+    }
+    let rect = if let Some(r) = named.get(view) {
+        *r
+    } else if view.contains(',') {
+        let numbers: Vec<f64> = view
+            .split(',')
+            .map(|v| v.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .with_context(|| format!("view '{view}' is not four numbers x0,y0,x1,y1"))?;
+        let Ok(r) = <[f64; 4]>::try_from(numbers) else {
+            bail!("view '{view}' is not four numbers x0,y0,x1,y1");
+        };
+        r
+    } else {
+        let mut names: Vec<&str> = vec!["all", "walls"];
+        names.extend(named.keys().map(String::as_str));
+        bail!(
+            "no view named '{view}' (this case has: {})",
+            names.join(", ")
+        );
+    };
+    let v = View {
+        x0: rect[0],
+        y0: rect[1],
+        x1: rect[2],
+        y1: rect[3],
+    };
+    v.check()
+        .map_err(|e| anyhow::anyhow!("view '{view}': {e}"))?;
+    Ok(ViewSpec::Rect(v))
+}
+
+/// Draws and writes every picture; returns the files written.
+pub fn draw_all(
+    mesh: &Mesh,
+    pictures: &[Picture],
+    colour: Colour,
+    title: &str,
+    width_px: u32,
+) -> Result<Vec<String>> {
+    let mut written = Vec::with_capacity(pictures.len());
+    for p in pictures {
+        let view = match p.view {
+            ViewSpec::All => None,
+            ViewSpec::Walls => Some(
+                mesh_draw::view_of_role(mesh, Role::Wall, 0.05)
+                    .or_else(|_| mesh_draw::mesh_view(mesh, 0.04))?,
+            ),
+            ViewSpec::Rect(v) => Some(v),
+        };
+        let colour = match colour {
+            Colour::Layer if mesh.cell_layer.len() == mesh.cells.len() => ColourBy::Layer,
+            Colour::None | Colour::Layer => ColourBy::None,
+            Colour::Angle => ColourBy::MaxAngle,
+        };
+        let params = DrawParams {
+            width_px,
+            height_px: width_px * 3 / 4,
+            view,
+            colour,
+            title: Some(format!("{title}, view {}", p.view_name)),
+            ..DrawParams::default()
+        };
+        let bytes = match p.format {
+            Format::Png => mesh_draw::render_png(mesh, &params),
+            Format::Svg => mesh_draw::render_svg(mesh, &params).map(String::into_bytes),
+        }
+        .map_err(|e| anyhow::anyhow!("drawing {}: {e}", p.path.display()))?;
+        write_bytes(&p.path, &bytes)?;
+        written.push(p.path.display().to_string());
+    }
+    Ok(written)
+}
+
+/// Writes `bytes` to `path` atomically, creating its folder if needed.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
+    create_parent(path)?;
+    mesh_io::atomic::write_atomic(path, |w| {
+        w.write_all(bytes).map_err(|source| mesh_io::IoError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    })
+    .with_context(|| format!("writing {}", path.display()))
+}
+
+/// Creates the folder of `path` when it does not exist.
+pub fn create_parent(path: &Path) -> Result<()> {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.exists() => std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create the folder {}", dir.display())),
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,73 @@
+//! `cargo xtask quality MESH.msh`: reads a mesh file and reports what `mesh` would report of
+//! it — counts, structural problems, largest angles, area — and draws it on request. Exit
+//! status 2 when the mesh fails validation.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use mesh_model::Dim;
+
+use crate::cli::QualityArgs;
+use crate::report::Report;
+use crate::{Outcome, pictures, summary};
+
+/// Runs `cargo xtask quality`.
+pub fn run(args: &QualityArgs) -> Result<Outcome> {
+    let total = Instant::now();
+    if let Some(r) = &args.report
+        && r.extension().is_none_or(|e| e != "json")
+    {
+        bail!(
+            "--report {}: the report is JSON: give a .json file name",
+            r.display()
+        );
+    }
+    let pics = pictures::parse(
+        &args.pngs,
+        &args.svgs,
+        args.view.as_deref(),
+        &Default::default(),
+    )?;
+    let mesh = mesh_io::read_msh(&args.mesh)
+        .with_context(|| format!("reading {}", args.mesh.display()))?;
+    if mesh.dim != Dim::Two || mesh.cells.is_empty() {
+        bail!(
+            "{}: has no 2D cells to check (a surface or boundary-only mesh)",
+            args.mesh.display()
+        );
+    }
+    let name = args
+        .mesh
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("mesh");
+    let mut report = Report::new(name, mesh.order);
+    if mesh.order > 1 {
+        report.notes.push(
+            "angles and area are those of the linear cells under the curved ones".to_string(),
+        );
+    }
+    report.describe(&mesh);
+    report.files.extend(pictures::draw_all(
+        &mesh,
+        &pics,
+        args.colour,
+        name,
+        args.width,
+    )?);
+    report
+        .timings_s
+        .insert("total", total.elapsed().as_secs_f64());
+    if let Some(path) = &args.report {
+        report.files.push(path.display().to_string());
+        pictures::write_bytes(path, serde_json::to_string_pretty(&report)?.as_bytes())?;
+    }
+    if !args.quiet {
+        print!("{}", summary::table(&report));
+    }
+    Ok(if report.problems.is_empty() {
+        Outcome::Valid
+    } else {
+        Outcome::Invalid
+    })
+}
