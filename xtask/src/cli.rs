@@ -49,6 +49,11 @@ pub struct MeshArgs {
     #[arg(long, value_name = "FILE.json")]
     pub report: Option<PathBuf>,
 
+    /// Save the intermediate stages (boundary nodes, the layered linear mesh with its layers,
+    /// pipes and node parents) to this binary snapshot, for later stages or inspection.
+    #[arg(long, value_name = "FILE.bin")]
+    pub snapshot: Option<PathBuf>,
+
     /// Cut every quad along its shorter diagonal into two triangles.
     #[arg(long)]
     pub triangles: bool,

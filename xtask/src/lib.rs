@@ -21,6 +21,7 @@ mod pipeline;
 mod progress;
 mod quality_cmd;
 mod report;
+pub mod stages;
 mod summary;
 
 /// How a run that did not fail on bad input ended.

@@ -12,6 +12,7 @@ use crate::cli::MeshArgs;
 use crate::pictures;
 use crate::progress::stage;
 use crate::report::{LoopReport, Report};
+use crate::stages::Snapshot;
 use crate::{Outcome, builtin, case, pipeline, summary};
 
 /// Runs `cargo xtask mesh`.
@@ -55,6 +56,16 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
         );
     }
     let mut mesh = grown.mesh;
+    let snapshot = args.snapshot.as_ref().map(|path| {
+        let stages = Snapshot {
+            case: case.name.clone(),
+            boundary: nodes.clone(),
+            mesh: mesh.clone(),
+            node_parent: grown.node_parent,
+            node_layer: grown.node_layer,
+        };
+        (path, stages)
+    });
     if args.triangles {
         mesh = afsf2d::cut_quads_shorter_diagonal(&mesh);
     }
@@ -73,6 +84,12 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
         pictures::create_parent(out)?;
         mesh_io::write(out, &mesh).with_context(|| format!("writing {}", out.display()))?;
         report.files.push(out.display().to_string());
+    }
+    if let Some((path, stages)) = &snapshot {
+        pictures::create_parent(path)?;
+        mesh_io::snapshot::save(path, stages)
+            .with_context(|| format!("writing {}", path.display()))?;
+        report.files.push(path.display().to_string());
     }
     report.timings_s.insert("write", t.elapsed().as_secs_f64());
     let t = Instant::now();

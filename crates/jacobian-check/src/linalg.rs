@@ -10,7 +10,8 @@ pub(crate) fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
         inv[i * n + i] = 1.0;
     }
     for col in 0..n {
-        let pivot = (col..n).max_by(|&r, &s| m[r * n + col].abs().total_cmp(&m[s * n + col].abs()))?;
+        let pivot =
+            (col..n).max_by(|&r, &s| m[r * n + col].abs().total_cmp(&m[s * n + col].abs()))?;
         if m[pivot * n + col].abs() < 1e-300 {
             return None;
         }

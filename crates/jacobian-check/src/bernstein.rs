@@ -1,0 +1,381 @@
+//! Bernstein (Bézier) polynomial spaces on the reference simplex and box, in which the
+//! Jacobian determinant of a cell is expanded to bound its sign (Johnen, Remacle &
+//! Geuzaine 2013).
+//!
+//! A space of degree n holds, per type and computed once: the equispaced lattice points at
+//! which the determinant is sampled; the inverse of the Bernstein–Lagrange matrix
+//! `T[k][m] = B_m(lattice_k)` that turns the samples into Bernstein coefficients; and, for
+//! each child of the regular subdivision (4 triangles, 8 tetrahedra, 2ᵈ boxes), the matrix
+//! that turns a region's coefficients into the child's. The child matrices give exactly
+//! what the de Casteljau algorithm gives (the Bernstein coefficients of the restriction of
+//! the polynomial to the child); as precomputed matrices they cost one small
+//! matrix–vector product per child.
+//!
+//! Regions are parametrised by unit coordinates t: the unit simplex, or [0, 1]ᵈ for
+//! boxes; a [`Region`] maps them affinely into Gmsh's reference coordinates.
+
+use crate::lagrange::RefPoint;
+use crate::linalg::{invert, mat_mul};
+
+/// The shape of a Bernstein space's domain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Domain {
+    /// The unit simplex of the dimension.
+    Simplex,
+    /// The unit box of the dimension (tensor-product basis, same degree per direction).
+    Box,
+}
+
+/// An affine map from unit coordinates to reference coordinates:
+/// `x = origin + Σ_k t_k · axes[k]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Region {
+    pub(crate) origin: RefPoint,
+    pub(crate) axes: [RefPoint; 3],
+}
+
+impl Region {
+    /// The region spanning a reference cell: the unit simplex itself, or [−1, 1]ᵈ.
+    pub(crate) fn root(domain: Domain, dim: usize) -> Region {
+        let mut axes = [[0.0; 3]; 3];
+        let mut origin = [0.0; 3];
+        for k in 0..dim {
+            match domain {
+                Domain::Simplex => axes[k][k] = 1.0,
+                Domain::Box => {
+                    axes[k][k] = 2.0;
+                    origin[k] = -1.0;
+                }
+            }
+        }
+        Region { origin, axes }
+    }
+
+    /// The point at unit coordinates `t`.
+    pub(crate) fn apply(&self, t: RefPoint) -> RefPoint {
+        let mut x = self.origin;
+        for (k, a) in self.axes.iter().enumerate() {
+            for i in 0..3 {
+                x[i] += t[k] * a[i];
+            }
+        }
+        x
+    }
+
+    /// The child region `child` (given in this region's unit coordinates).
+    pub(crate) fn compose(&self, child: &Region) -> Region {
+        let origin = self.apply(child.origin);
+        let o0 = self.apply([0.0; 3]);
+        let axes = child.axes.map(|a| {
+            let p = self.apply(a);
+            [p[0] - o0[0], p[1] - o0[1], p[2] - o0[2]]
+        });
+        Region { origin, axes }
+    }
+}
+
+/// A Bernstein space with its sampling lattice and subdivision matrices.
+#[derive(Debug)]
+pub(crate) struct Space {
+    pub(crate) domain: Domain,
+    pub(crate) dim: usize,
+    pub(crate) degree: usize,
+    /// Multi-indices: the exponents of t₁…t_d (simplex; λ₀ takes the rest) or the
+    /// per-direction indices (box).
+    index: Vec<[usize; 3]>,
+    /// Lattice points in unit coordinates, one per coefficient.
+    pub(crate) lattice_unit: Vec<RefPoint>,
+    /// Indices of the coefficients at the corners of the domain (equal to the polynomial's
+    /// value there).
+    pub(crate) corners: Vec<usize>,
+    /// Inverse of the Bernstein–Lagrange matrix (row-major, `len × len`).
+    pub(crate) to_bernstein: Vec<f64>,
+    /// The subdivision children: their region in unit coordinates and the matrix from the
+    /// parent's coefficients to theirs.
+    pub(crate) children: Vec<(Region, Vec<f64>)>,
+}
+
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+fn factorial(n: usize) -> f64 {
+    (1..=n).fold(1.0, |acc, i| acc * i as f64)
+}
+
+impl Space {
+    /// Builds the space (lattice, transformation and subdivision matrices).
+    pub(crate) fn new(domain: Domain, dim: usize, degree: usize) -> Space {
+        let n = degree;
+        let mut index = Vec::new();
+        let top = if dim == 3 { n } else { 0 };
+        for c in 0..=top {
+            for b in 0..=n {
+                for a in 0..=n {
+                    let keep = match domain {
+                        Domain::Simplex => a + b + c <= n,
+                        Domain::Box => true,
+                    };
+                    if keep {
+                        index.push([a, b, c]);
+                    }
+                }
+            }
+        }
+        let lattice_unit: Vec<RefPoint> = index
+            .iter()
+            .map(|m| {
+                if n == 0 {
+                    let c = match domain {
+                        Domain::Simplex => 1.0 / (dim as f64 + 1.0),
+                        Domain::Box => 0.5,
+                    };
+                    let mut t = [0.0; 3];
+                    t[..dim].fill(c);
+                    t
+                } else {
+                    m.map(|k| k as f64 / n as f64)
+                }
+            })
+            .collect();
+        let corners = index
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| match domain {
+                Domain::Simplex => {
+                    let sum: usize = m.iter().sum();
+                    sum == 0 || m.contains(&n)
+                }
+                Domain::Box => m[..dim].iter().all(|&k| k == 0 || k == n),
+            })
+            .map(|(i, _)| i)
+            .collect();
+        let mut space = Space {
+            domain,
+            dim,
+            degree,
+            index,
+            lattice_unit,
+            corners,
+            to_bernstein: Vec::new(),
+            children: Vec::new(),
+        };
+        let len = space.len();
+        let t = space.basis_matrix(&Region::root_unit());
+        space.to_bernstein = invert(&t, len).expect("Bernstein–Lagrange matrix is invertible");
+        space.children = space
+            .child_regions()
+            .into_iter()
+            .map(|r| {
+                let s = space.basis_matrix(&r);
+                let m = mat_mul(&space.to_bernstein, &s, len);
+                (r, m)
+            })
+            .collect();
+        space
+    }
+
+    /// Number of coefficients.
+    pub(crate) fn len(&self) -> usize {
+        self.index.len()
+    }
+
+    /// `M[k][m] = B_m(region(lattice_k))` (row-major).
+    fn basis_matrix(&self, region: &Region) -> Vec<f64> {
+        let len = self.len();
+        let mut out = vec![0.0; len * len];
+        for (k, t) in self.lattice_unit.iter().enumerate() {
+            let p = region.apply(*t);
+            for m in 0..len {
+                out[k * len + m] = self.basis(m, p);
+            }
+        }
+        out
+    }
+
+    /// The Bernstein basis function `m` at unit coordinates `t`.
+    pub(crate) fn basis(&self, m: usize, t: RefPoint) -> f64 {
+        let n = self.degree;
+        let a = self.index[m];
+        match self.domain {
+            Domain::Simplex => {
+                let rest = n - a[..self.dim].iter().sum::<usize>();
+                let l0 = 1.0 - t[..self.dim].iter().sum::<f64>();
+                let mut v = factorial(n) / factorial(rest) * l0.powi(rest as i32);
+                for k in 0..self.dim {
+                    v *= t[k].powi(a[k] as i32) / factorial(a[k]);
+                }
+                v
+            }
+            Domain::Box => (0..self.dim)
+                .map(|k| {
+                    binomial(n, a[k])
+                        * t[k].powi(a[k] as i32)
+                        * (1.0 - t[k]).powi((n - a[k]) as i32)
+                })
+                .product(),
+        }
+    }
+
+    /// The children of the regular subdivision, in unit coordinates.
+    fn child_regions(&self) -> Vec<Region> {
+        let simplex = |v: &[RefPoint]| {
+            let mut axes = [[0.0; 3]; 3];
+            for k in 1..v.len() {
+                axes[k - 1] = [0, 1, 2].map(|i| v[k][i] - v[0][i]);
+            }
+            Region { origin: v[0], axes }
+        };
+        let h = 0.5;
+        match (self.domain, self.dim) {
+            (Domain::Simplex, 2) => {
+                let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+                let (ab, bc, ca) = ([h, 0.0, 0.0], [h, h, 0.0], [0.0, h, 0.0]);
+                vec![
+                    simplex(&[a, ab, ca]),
+                    simplex(&[ab, b, bc]),
+                    simplex(&[ca, bc, c]),
+                    simplex(&[bc, ca, ab]),
+                ]
+            }
+            (Domain::Simplex, _) => {
+                let v = [
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 0.0, 1.0],
+                ];
+                let mid = |i: usize, j: usize| [0, 1, 2].map(|k| 0.5 * (v[i][k] + v[j][k]));
+                let (m01, m02, m03, m12, m13, m23) = (
+                    mid(0, 1),
+                    mid(0, 2),
+                    mid(0, 3),
+                    mid(1, 2),
+                    mid(1, 3),
+                    mid(2, 3),
+                );
+                vec![
+                    simplex(&[v[0], m01, m02, m03]),
+                    simplex(&[m01, v[1], m12, m13]),
+                    simplex(&[m02, m12, v[2], m23]),
+                    simplex(&[m03, m13, m23, v[3]]),
+                    // The inner octahedron, cut along its diagonal m02–m13.
+                    simplex(&[m02, m13, m01, m03]),
+                    simplex(&[m02, m13, m03, m23]),
+                    simplex(&[m02, m13, m23, m12]),
+                    simplex(&[m02, m13, m12, m01]),
+                ]
+            }
+            (Domain::Box, dim) => (0..1usize << dim)
+                .map(|bits| {
+                    let mut r = Region {
+                        origin: [0.0; 3],
+                        axes: [[0.0; 3]; 3],
+                    };
+                    for k in 0..dim {
+                        r.origin[k] = if bits >> k & 1 == 1 { h } else { 0.0 };
+                        r.axes[k][k] = h;
+                    }
+                    r
+                })
+                .collect(),
+        }
+    }
+}
+
+impl Region {
+    /// The identity region in unit coordinates.
+    fn root_unit() -> Region {
+        Region {
+            origin: [0.0; 3],
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::mat_vec;
+
+    /// A polynomial of degree ≤ n: its Bernstein coefficients reproduce it everywhere, and
+    /// the child coefficients reproduce it on the child.
+    fn check_reproduction(domain: Domain, dim: usize, n: usize) {
+        let space = Space::new(domain, dim, n);
+        let f = |t: RefPoint| {
+            let s = t[0] + 0.3 * t[1] + 0.2 * t[2];
+            (0..=n)
+                .map(|k| (k as f64 + 1.0) * s.powi(k as i32))
+                .sum::<f64>()
+                - 0.7
+        };
+        let samples: Vec<f64> = space.lattice_unit.iter().map(|&t| f(t)).collect();
+        let mut coeffs = vec![0.0; space.len()];
+        mat_vec(&space.to_bernstein, &samples, &mut coeffs);
+        let eval = |c: &[f64], t: RefPoint| -> f64 {
+            (0..space.len()).map(|m| c[m] * space.basis(m, t)).sum()
+        };
+        let mut probe = [0.21, 0.13, 0.31];
+        probe[dim..].fill(0.0);
+        assert!(
+            (eval(&coeffs, probe) - f(probe)).abs() < 1e-10,
+            "{domain:?} {dim} {n}"
+        );
+        for &c in &space.corners {
+            assert!((coeffs[c] - f(space.lattice_unit[c])).abs() < 1e-10);
+        }
+        for (region, m) in &space.children {
+            let mut child = vec![0.0; space.len()];
+            mat_vec(m, &coeffs, &mut child);
+            let inside = region.apply(probe);
+            assert!(
+                (eval(&child, probe) - f(inside)).abs() < 1e-9,
+                "{domain:?} {dim} {n}: child {region:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn bernstein_expansions_and_subdivision_reproduce_polynomials() {
+        for (domain, dim, n) in [
+            (Domain::Simplex, 2, 0),
+            (Domain::Simplex, 2, 2),
+            (Domain::Simplex, 2, 4),
+            (Domain::Box, 2, 1),
+            (Domain::Box, 2, 3),
+            (Domain::Box, 2, 5),
+            (Domain::Simplex, 3, 3),
+            (Domain::Box, 3, 2),
+        ] {
+            check_reproduction(domain, dim, n);
+        }
+    }
+
+    #[test]
+    fn children_tile_the_domain() {
+        for (domain, dim, whole) in [
+            (Domain::Simplex, 2, 0.5),
+            (Domain::Simplex, 3, 1.0 / 6.0),
+            (Domain::Box, 2, 1.0),
+            (Domain::Box, 3, 1.0),
+        ] {
+            let space = Space::new(domain, dim, 1);
+            let measure = |r: &Region| {
+                let a = r.axes;
+                let d = if dim == 2 {
+                    a[0][0] * a[1][1] - a[0][1] * a[1][0]
+                } else {
+                    crate::jacobian::det3(&a)
+                };
+                let unit = if domain == Domain::Simplex {
+                    whole
+                } else {
+                    1.0
+                };
+                d.abs() * unit
+            };
+            let total: f64 = space.children.iter().map(|(r, _)| measure(r)).sum();
+            assert!((total - whole).abs() < 1e-14, "{domain:?} {dim}: {total}");
+        }
+    }
+}

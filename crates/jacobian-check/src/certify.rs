@@ -1,0 +1,580 @@
+//! The validity of a cell: the sign of its Jacobian determinant over the whole reference
+//! cell, certified from Bernstein coefficients (Johnen, Remacle & Geuzaine 2013), plus the
+//! sampled check the dissertation used, and the whole-mesh check built on both.
+//!
+//! The determinant of a P_p triangle is a polynomial of degree 2(p − 1), of a Q_p
+//! quadrilateral of degree 2p − 1 per direction, of a P_p tetrahedron 3(p − 1), of a Q_p
+//! hexahedron 3p − 1 per direction. It is sampled at the lattice points of that degree and
+//! turned into Bernstein coefficients by a per-type matrix. The coefficients bound the
+//! determinant (convex hull property) and the corner coefficients equal it at the corners:
+//! all coefficients > 0 proves validity, a corner coefficient ≤ 0 proves invalidity,
+//! otherwise the region is subdivided and each child examined, down to a depth limit;
+//! a region still undecided there makes the cell [`Certificate::Undecided`].
+//!
+//! Certified: triangles and quadrilaterals of order 1–3, tetrahedra and hexahedra of order
+//! 1–2. Prisms and the linear pyramid have the sampled check only; P2 pyramids neither.
+//! This module does not move nodes or repair cells.
+
+use std::sync::OnceLock;
+
+use mesh_model::{CellType, Dim, Mesh, Shape};
+
+use crate::bernstein::{Domain, Region, Space};
+use crate::error::JacobianError;
+use crate::jacobian::{check_cell, det3, matrix_from_gradients};
+use crate::lagrange::{RefPoint, basis};
+use crate::linalg::mat_vec;
+
+/// Parameters of the certified and sampled checks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CertifyParams {
+    /// Deepest level of regular subdivision before a cell is declared
+    /// [`Certificate::Undecided`] (each level splits a triangle or quadrilateral into 4,
+    /// a tetrahedron or hexahedron into 8). 0 to 20; default 8.
+    pub max_depth: u32,
+    /// Points per edge of the sampling lattice used where no certificate exists (3D cells
+    /// without one) and for the sampled scaled Jacobian of cells that are not certified
+    /// valid. At least 2; default 11.
+    pub sample_points_per_edge: usize,
+}
+
+impl Default for CertifyParams {
+    fn default() -> Self {
+        CertifyParams {
+            max_depth: 8,
+            sample_points_per_edge: 11,
+        }
+    }
+}
+
+impl CertifyParams {
+    fn check(&self) -> Result<(), JacobianError> {
+        if self.max_depth > 20 {
+            return Err(JacobianError::BadParameter {
+                name: "max_depth",
+                value: self.max_depth as f64,
+                rule: "0 to 20",
+            });
+        }
+        check_points_per_edge(self.sample_points_per_edge)
+    }
+}
+
+fn check_points_per_edge(n: usize) -> Result<(), JacobianError> {
+    if n < 2 {
+        return Err(JacobianError::BadParameter {
+            name: "sample_points_per_edge",
+            value: n as f64,
+            rule: "at least 2",
+        });
+    }
+    Ok(())
+}
+
+/// The outcome of the certified check of one cell. `P` is a reference point (`[f64; 2]`
+/// in 2D, `[f64; 3]` in 3D).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Certificate<P = [f64; 2]> {
+    /// The determinant is positive everywhere in the cell (proved).
+    Valid {
+        /// The least Bernstein coefficient over the final subdivision: a lower bound of the
+        /// determinant (physical area or volume per reference area or volume).
+        min_coeff: f64,
+        /// The greatest Bernstein coefficient over the final subdivision: an upper bound of
+        /// the determinant.
+        max_coeff: f64,
+    },
+    /// The determinant is ≤ 0 at the reference point `at` (proved: it is a corner value).
+    Invalid {
+        /// Where, in the reference coordinates of the cell.
+        at: P,
+    },
+    /// Neither proved within [`CertifyParams::max_depth`] (the determinant comes within
+    /// rounding of zero somewhere, or the depth limit is too low).
+    Undecided,
+}
+
+impl<P> Certificate<P> {
+    /// `min_coeff / max_coeff` for a valid cell: a lower bound, in (0, 1], of the scaled
+    /// Jacobian min J / max J. `None` otherwise.
+    pub fn scaled_jacobian_lower_bound(&self) -> Option<f64> {
+        match self {
+            Certificate::Valid {
+                min_coeff,
+                max_coeff,
+            } => Some(min_coeff / max_coeff),
+            _ => None,
+        }
+    }
+
+    /// True for [`Certificate::Valid`].
+    pub fn is_valid(&self) -> bool {
+        matches!(self, Certificate::Valid { .. })
+    }
+}
+
+/// The per-type tables of the certified check: the Bernstein space of the determinant and
+/// the shape-function gradients at its lattice points.
+#[derive(Debug)]
+struct CertTable {
+    space: Space,
+    /// `grads[k · nodes + i]`: gradient of shape function i at lattice point k.
+    grads: Vec<[f64; 3]>,
+    nodes: usize,
+}
+
+const CERTIFIED: [(Shape, u8); 10] = [
+    (Shape::Tri, 1),
+    (Shape::Tri, 2),
+    (Shape::Tri, 3),
+    (Shape::Quad, 1),
+    (Shape::Quad, 2),
+    (Shape::Quad, 3),
+    (Shape::Tet, 1),
+    (Shape::Tet, 2),
+    (Shape::Hex, 1),
+    (Shape::Hex, 2),
+];
+
+/// The domain and degree of the determinant's polynomial space.
+fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
+    let p = ty.order as usize;
+    match ty.shape {
+        Shape::Tri => (Domain::Simplex, 2, 2 * (p - 1)),
+        Shape::Quad => (Domain::Box, 2, 2 * p - 1),
+        Shape::Tet => (Domain::Simplex, 3, 3 * (p - 1)),
+        _ => (Domain::Box, 3, 3 * p - 1),
+    }
+}
+
+fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
+    static CACHE: [OnceLock<CertTable>; CERTIFIED.len()] =
+        [const { OnceLock::new() }; CERTIFIED.len()];
+    let i = CERTIFIED
+        .iter()
+        .position(|&(s, o)| s == ty.shape && o == ty.order)
+        .ok_or(JacobianError::Unsupported {
+            ty,
+            what: "the certified check",
+        })?;
+    let b = basis(ty)?;
+    Ok(CACHE[i].get_or_init(|| {
+        let (domain, dim, degree) = determinant_space(ty);
+        let space = Space::new(domain, dim, degree);
+        let root = Region::root(domain, dim);
+        let nodes = ty.node_count();
+        let mut grads = vec![[0.0; 3]; space.len() * nodes];
+        for (k, t) in space.lattice_unit.iter().enumerate() {
+            b.gradients(root.apply(*t), &mut grads[k * nodes..(k + 1) * nodes]);
+        }
+        CertTable {
+            space,
+            grads,
+            nodes,
+        }
+    }))
+}
+
+/// Determinant of a D × D matrix (D = 2 or 3).
+fn det<const D: usize>(m: &[[f64; D]; D]) -> f64 {
+    let mut a = [[0.0; 3]; 3];
+    a[2][2] = 1.0;
+    for i in 0..D {
+        a[i][..D].copy_from_slice(&m[i]);
+    }
+    det3(&a)
+}
+
+fn to_point<const D: usize>(x: RefPoint) -> [f64; D] {
+    std::array::from_fn(|k| x[k])
+}
+
+/// The Bernstein coefficients of the determinant of a checked cell.
+fn coefficients<const D: usize>(table: &CertTable, nodes: &[[f64; D]]) -> Vec<f64> {
+    let len = table.space.len();
+    let samples: Vec<f64> = (0..len)
+        .map(|k| {
+            let g = &table.grads[k * table.nodes..(k + 1) * table.nodes];
+            det(&matrix_from_gradients(nodes, g))
+        })
+        .collect();
+    let mut coeffs = vec![0.0; len];
+    mat_vec(&table.space.to_bernstein, &samples, &mut coeffs);
+    coeffs
+}
+
+/// The Bernstein coefficients of the Jacobian determinant of a 2D cell, in the order of the
+/// lattice `(i, j)` with i fastest (simplex: i + j ≤ degree). Their minimum and maximum
+/// bound the determinant over the cell; a straight-sided cell has all of them equal.
+///
+/// # Errors
+/// Unsupported type, wrong dimension, wrong node count, non-finite node.
+pub fn determinant_bernstein_coefficients(
+    ty: CellType,
+    nodes: &[[f64; 2]],
+) -> Result<Vec<f64>, JacobianError> {
+    check_cell(ty, nodes)?;
+    Ok(coefficients(cert_table(ty)?, nodes))
+}
+
+fn min_max(c: &[f64]) -> (f64, f64) {
+    c.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+/// The certified check of the sign of the determinant from its root coefficients.
+fn certify_coefficients(
+    space: &Space,
+    root: Region,
+    coeffs: Vec<f64>,
+    max_depth: u32,
+) -> Certificate<RefPoint> {
+    let mut stack = vec![(coeffs, root, 0u32)];
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut undecided = false;
+    while let Some((c, region, depth)) = stack.pop() {
+        if let Some(&k) = space
+            .corners
+            .iter()
+            .find(|&&k| c[k] <= 0.0 || c[k].is_nan())
+        {
+            return Certificate::Invalid {
+                at: region.apply(space.lattice_unit[k]),
+            };
+        }
+        let (cmin, cmax) = min_max(&c);
+        if cmin > 0.0 {
+            lo = lo.min(cmin);
+            hi = hi.max(cmax);
+            continue;
+        }
+        if depth >= max_depth {
+            undecided = true;
+            continue;
+        }
+        for (child, m) in &space.children {
+            let mut cc = vec![0.0; c.len()];
+            mat_vec(m, &c, &mut cc);
+            stack.push((cc, region.compose(child), depth + 1));
+        }
+    }
+    if undecided {
+        Certificate::Undecided
+    } else {
+        Certificate::Valid {
+            min_coeff: lo,
+            max_coeff: hi,
+        }
+    }
+}
+
+fn certify_any<const D: usize>(
+    ty: CellType,
+    nodes: &[[f64; D]],
+    params: &CertifyParams,
+) -> Result<Certificate<[f64; D]>, JacobianError> {
+    params.check()?;
+    check_cell(ty, nodes)?;
+    let table = cert_table(ty)?;
+    let coeffs = coefficients(table, nodes);
+    let root = Region::root(table.space.domain, table.space.dim);
+    Ok(
+        match certify_coefficients(&table.space, root, coeffs, params.max_depth) {
+            Certificate::Valid {
+                min_coeff,
+                max_coeff,
+            } => Certificate::Valid {
+                min_coeff,
+                max_coeff,
+            },
+            Certificate::Invalid { at } => Certificate::Invalid { at: to_point(at) },
+            Certificate::Undecided => Certificate::Undecided,
+        },
+    )
+}
+
+/// The certified validity of a 2D cell (triangle or quadrilateral of order 1 to 3) with
+/// node coordinates `nodes` in Gmsh order. Valid means the Jacobian determinant is > 0
+/// everywhere in the cell, i.e. the cell is not folded and is counter-clockwise.
+///
+/// # Errors
+/// Unsupported type, wrong dimension, wrong node count, non-finite node, bad parameter.
+pub fn certify_cell(
+    ty: CellType,
+    nodes: &[[f64; 2]],
+    params: &CertifyParams,
+) -> Result<Certificate, JacobianError> {
+    certify_any(ty, nodes, params)
+}
+
+/// The certified validity of a 3D cell (tetrahedron or hexahedron of order 1 or 2).
+///
+/// # Errors
+/// Unsupported type (prisms, pyramids: use [`sampled_check_3d`]), wrong dimension, wrong
+/// node count, non-finite node, bad parameter.
+pub fn certify_cell_3d(
+    ty: CellType,
+    nodes: &[[f64; 3]],
+    params: &CertifyParams,
+) -> Result<Certificate<[f64; 3]>, JacobianError> {
+    certify_any(ty, nodes, params)
+}
+
+/// The result of evaluating the determinant on a lattice of points in a cell.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampledCheck<P = [f64; 2]> {
+    /// The least determinant found.
+    pub min_det: f64,
+    /// The greatest determinant found.
+    pub max_det: f64,
+    /// Where the least was found, in reference coordinates.
+    pub at_min: P,
+    /// How many points were evaluated.
+    pub samples: usize,
+}
+
+impl<P> SampledCheck<P> {
+    /// True when every sampled determinant is > 0 (which proves nothing between samples).
+    pub fn all_positive(&self) -> bool {
+        self.min_det > 0.0
+    }
+
+    /// The sampled scaled Jacobian `min J / max |J|`, in [−1, 1].
+    pub fn scaled_jacobian(&self) -> f64 {
+        let scale = self.max_det.abs().max(self.min_det.abs());
+        if scale > 0.0 {
+            self.min_det / scale
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The sampling lattice of a shape with `m` divisions per edge, in reference coordinates.
+pub(crate) fn sample_points(shape: Shape, m: usize) -> Vec<RefPoint> {
+    let f = m as f64;
+    let s = |i: usize| -1.0 + 2.0 * i as f64 / f;
+    let u = |i: usize| i as f64 / f;
+    let mut out = Vec::new();
+    match shape {
+        Shape::Line => out.extend((0..=m).map(|i| [s(i), 0.0, 0.0])),
+        Shape::Tri => {
+            for j in 0..=m {
+                for i in 0..=m - j {
+                    out.push([u(i), u(j), 0.0]);
+                }
+            }
+        }
+        Shape::Quad => {
+            for j in 0..=m {
+                for i in 0..=m {
+                    out.push([s(i), s(j), 0.0]);
+                }
+            }
+        }
+        Shape::Tet => {
+            for k in 0..=m {
+                for j in 0..=m - k {
+                    for i in 0..=m - j - k {
+                        out.push([u(i), u(j), u(k)]);
+                    }
+                }
+            }
+        }
+        Shape::Prism => {
+            for k in 0..=m {
+                for j in 0..=m {
+                    for i in 0..=m - j {
+                        out.push([u(i), u(j), s(k)]);
+                    }
+                }
+            }
+        }
+        Shape::Hex => {
+            for k in 0..=m {
+                for j in 0..=m {
+                    for i in 0..=m {
+                        out.push([s(i), s(j), s(k)]);
+                    }
+                }
+            }
+        }
+        Shape::Pyramid => {
+            for k in 0..=m {
+                let w = u(k);
+                let n = m - k;
+                for j in 0..=n {
+                    for i in 0..=n {
+                        let a = |i: usize| {
+                            if n == 0 {
+                                0.0
+                            } else {
+                                (1.0 - w) * (-1.0 + 2.0 * i as f64 / n as f64)
+                            }
+                        };
+                        out.push([a(i), a(j), w]);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+fn sampled_any<const D: usize>(
+    ty: CellType,
+    nodes: &[[f64; D]],
+    points_per_edge: usize,
+) -> Result<SampledCheck<[f64; D]>, JacobianError> {
+    check_points_per_edge(points_per_edge)?;
+    check_cell(ty, nodes)?;
+    let b = basis(ty)?;
+    let points = sample_points(ty.shape, points_per_edge - 1);
+    let mut grads = vec![[0.0; 3]; nodes.len()];
+    let mut result = SampledCheck {
+        min_det: f64::INFINITY,
+        max_det: f64::NEG_INFINITY,
+        at_min: [0.0; D],
+        samples: points.len(),
+    };
+    for xi in points {
+        b.gradients(xi, &mut grads);
+        let d = det(&matrix_from_gradients(nodes, &grads));
+        if d < result.min_det || d.is_nan() {
+            result.min_det = d;
+            result.at_min = to_point(xi);
+        }
+        result.max_det = result.max_det.max(d);
+    }
+    Ok(result)
+}
+
+/// The determinant of a 2D cell sampled on a lattice of `points_per_edge` points per edge
+/// (a triangle gets n(n+1)/2 points, a quadrilateral n²). The dissertation sampled 900
+/// points per triangle (41 points per edge give 861). Sampling cannot see a fold between
+/// its points; [`certify_cell`] can.
+///
+/// # Errors
+/// Unsupported type, wrong dimension, wrong node count, non-finite node, fewer than 2
+/// points per edge.
+pub fn sampled_check(
+    ty: CellType,
+    nodes: &[[f64; 2]],
+    points_per_edge: usize,
+) -> Result<SampledCheck, JacobianError> {
+    sampled_any(ty, nodes, points_per_edge)
+}
+
+/// [`sampled_check`] for a 3D cell (every type with shape functions, pyramids included).
+///
+/// # Errors
+/// As [`sampled_check`].
+pub fn sampled_check_3d(
+    ty: CellType,
+    nodes: &[[f64; 3]],
+    points_per_edge: usize,
+) -> Result<SampledCheck<[f64; 3]>, JacobianError> {
+    sampled_any(ty, nodes, points_per_edge)
+}
+
+/// The validity of every cell of a mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshValidity {
+    /// Cells proved invalid (a non-positive determinant somewhere), or, for 3D cells
+    /// without a certificate, found non-positive at a sample point.
+    pub invalid_cells: Vec<usize>,
+    /// Cells neither proved valid nor invalid within the depth limit.
+    pub undecided: Vec<usize>,
+    /// 3D cells without a certificate (prisms, pyramids) whose samples were all positive:
+    /// probably valid, not proved.
+    pub uncertified: Vec<usize>,
+    /// The least of `per_cell_scaled_jacobian` (1 for a mesh without cells).
+    pub min_scaled_jacobian: f64,
+    /// Per cell, min J / max J: for cells certified valid the certified lower bound
+    /// `min_coeff / max_coeff`; for the others the sampled `min J / max |J|`, lowered to
+    /// the determinant at the proved invalid point when there is one (≤ 0).
+    pub per_cell_scaled_jacobian: Vec<f64>,
+}
+
+/// Checks every cell of a 2D or 3D mesh: certified where a certificate exists, sampled
+/// elsewhere (see [`MeshValidity`]).
+///
+/// # Errors
+/// A cell naming a missing node, a non-finite node, an unsupported cell type, a bad
+/// parameter.
+pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, JacobianError> {
+    params.check()?;
+    let mut out = MeshValidity {
+        invalid_cells: Vec::new(),
+        undecided: Vec::new(),
+        uncertified: Vec::new(),
+        min_scaled_jacobian: 1.0,
+        per_cell_scaled_jacobian: Vec::with_capacity(mesh.cells.len()),
+    };
+    for (i, cell) in mesh.cells.iter().enumerate() {
+        if let Some(&node) = cell.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
+            return Err(JacobianError::NodeOutOfRange { cell: i, node });
+        }
+        let scaled = match mesh.dim {
+            Dim::Two => {
+                let xy: Vec<[f64; 2]> = cell.nodes.iter().map(|&n| mesh.xy(n)).collect();
+                judge(cell.ty, &xy, params, i, &mut out)?
+            }
+            Dim::Three => {
+                let xyz: Vec<[f64; 3]> =
+                    cell.nodes.iter().map(|&n| mesh.nodes[n as usize]).collect();
+                judge(cell.ty, &xyz, params, i, &mut out)?
+            }
+        };
+        out.per_cell_scaled_jacobian.push(scaled);
+        out.min_scaled_jacobian = out.min_scaled_jacobian.min(scaled);
+    }
+    Ok(out)
+}
+
+/// Certifies (or samples) one cell, records it, and returns its scaled Jacobian.
+fn judge<const D: usize>(
+    ty: CellType,
+    nodes: &[[f64; D]],
+    params: &CertifyParams,
+    index: usize,
+    out: &mut MeshValidity,
+) -> Result<f64, JacobianError> {
+    let certificate = match certify_any(ty, nodes, params) {
+        Ok(c) => Some(c),
+        Err(JacobianError::Unsupported { .. }) if D == 3 => None,
+        Err(e) => return Err(e),
+    };
+    if let Some(Certificate::Valid {
+        min_coeff,
+        max_coeff,
+    }) = certificate
+    {
+        return Ok(min_coeff / max_coeff);
+    }
+    let sampled = sampled_any(ty, nodes, params.sample_points_per_edge)?;
+    let mut scaled = sampled.scaled_jacobian();
+    match certificate {
+        Some(Certificate::Invalid { at }) => {
+            out.invalid_cells.push(index);
+            let mut grads = vec![[0.0; 3]; nodes.len()];
+            basis(ty)?.gradients(
+                std::array::from_fn(|k| if k < D { at[k] } else { 0.0 }),
+                &mut grads,
+            );
+            let d = det(&matrix_from_gradients(nodes, &grads));
+            let scale = sampled.max_det.abs().max(sampled.min_det.abs());
+            if scale > 0.0 {
+                scaled = scaled.min(d / scale);
+            } else {
+                scaled = scaled.min(0.0);
+            }
+        }
+        Some(Certificate::Undecided) => out.undecided.push(index),
+        None if sampled.all_positive() => out.uncertified.push(index),
+        _ => out.invalid_cells.push(index),
+    }
+    Ok(scaled)
+}

@@ -1,0 +1,348 @@
+//! Lagrange shape functions of the reference cells, in Gmsh's node order and on Gmsh's
+//! reference domains: triangles and tetrahedra on the unit simplex; quadrilaterals and
+//! hexahedra on [−1, 1]ⁿ; prisms on the unit triangle × [−1, 1]; pyramids on the base
+//! [−1, 1]² with the apex at (0, 0, 1).
+//!
+//! Supported: triangles and quadrilaterals of order 1 to 3; tetrahedra, prisms and
+//! hexahedra of order 1 and 2; the linear pyramid (its classical rational shape functions).
+//! The 14-node pyramid of Gmsh uses a rational (Bergot) basis and is reported as
+//! [`JacobianError::Unsupported`]. Polynomial bases are built once per type from their
+//! monomial space and reference nodes (the inverse of the Vandermonde matrix) and cached.
+//!
+//! This module owns the reference cells only; mapping to physical space is
+//! [`crate::jacobian`].
+
+use std::sync::OnceLock;
+
+use mesh_model::{CellType, Shape};
+
+use crate::error::JacobianError;
+use crate::linalg::invert;
+
+/// A point in reference coordinates (unused coordinates are 0).
+pub type RefPoint = [f64; 3];
+
+/// The supported cell types, in the order of the basis cache.
+const SUPPORTED: [(Shape, u8); 13] = [
+    (Shape::Tri, 1),
+    (Shape::Tri, 2),
+    (Shape::Tri, 3),
+    (Shape::Quad, 1),
+    (Shape::Quad, 2),
+    (Shape::Quad, 3),
+    (Shape::Tet, 1),
+    (Shape::Tet, 2),
+    (Shape::Prism, 1),
+    (Shape::Prism, 2),
+    (Shape::Hex, 1),
+    (Shape::Hex, 2),
+    (Shape::Pyramid, 1),
+];
+
+/// Position of a supported type in [`SUPPORTED`].
+fn type_index(ty: CellType) -> Option<usize> {
+    SUPPORTED
+        .iter()
+        .position(|&(s, o)| s == ty.shape && o == ty.order)
+}
+
+fn unsupported(ty: CellType) -> JacobianError {
+    JacobianError::Unsupported {
+        ty,
+        what: "the Lagrange shape functions",
+    }
+}
+
+/// Corners of Gmsh's reference cells.
+fn corners(shape: Shape) -> &'static [RefPoint] {
+    match shape {
+        Shape::Line => &[[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
+        Shape::Tri => &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        Shape::Quad => &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+        ],
+        Shape::Tet => &[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ],
+        Shape::Prism => &[
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, -1.0],
+            [0.0, 1.0, -1.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ],
+        Shape::Pyramid => &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ],
+        Shape::Hex => &[
+            [-1.0, -1.0, -1.0],
+            [1.0, -1.0, -1.0],
+            [1.0, 1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+        ],
+    }
+}
+
+/// The quadrilateral faces of the 3D reference cells in Gmsh's order of their face nodes.
+fn quad_faces(shape: Shape) -> &'static [[usize; 4]] {
+    match shape {
+        Shape::Hex => &[
+            [0, 3, 2, 1],
+            [0, 1, 5, 4],
+            [0, 4, 7, 3],
+            [1, 2, 6, 5],
+            [2, 3, 7, 6],
+            [4, 5, 6, 7],
+        ],
+        Shape::Prism => &[[0, 1, 4, 3], [0, 3, 5, 2], [1, 2, 5, 4]],
+        Shape::Pyramid => &[[0, 3, 2, 1]],
+        _ => &[],
+    }
+}
+
+fn lerp(a: RefPoint, b: RefPoint, t: f64) -> RefPoint {
+    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
+}
+
+fn centroid(points: &[RefPoint]) -> RefPoint {
+    let n = points.len() as f64;
+    [0, 1, 2].map(|k| points.iter().map(|p| p[k]).sum::<f64>() / n)
+}
+
+/// The reference coordinates of the nodes of a cell type, in Gmsh's node order: corners,
+/// then the nodes of each edge (in [`Shape::edges`] order, running from the edge's first
+/// corner to its second), then face nodes, then interior nodes (the centroid of a P3
+/// triangle; the centre of a P2 quadrilateral; the four nodes at ±1/3 of a P3
+/// quadrilateral, counter-clockwise from (−1/3, −1/3); the quadrilateral-face centres and
+/// the centre of P2 3D cells).
+///
+/// # Errors
+/// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
+pub fn reference_nodes(ty: CellType) -> Result<Vec<RefPoint>, JacobianError> {
+    type_index(ty).ok_or_else(|| unsupported(ty))?;
+    let c = corners(ty.shape);
+    let p = ty.order as usize;
+    let mut out = c.to_vec();
+    for e in ty.shape.edges() {
+        for i in 1..p {
+            out.push(lerp(c[e[0]], c[e[1]], i as f64 / p as f64));
+        }
+    }
+    match (ty.shape, p) {
+        (_, 1) => {}
+        (Shape::Tri, 2) => {}
+        (Shape::Tri, 3) => out.push(centroid(c)),
+        (Shape::Quad, 2) => out.push([0.0; 3]),
+        (Shape::Quad, 3) => {
+            let t = 1.0 / 3.0;
+            out.extend_from_slice(&[[-t, -t, 0.0], [t, -t, 0.0], [t, t, 0.0], [-t, t, 0.0]]);
+        }
+        (Shape::Tet | Shape::Prism | Shape::Hex, 2) => {
+            for f in quad_faces(ty.shape) {
+                out.push(centroid(&[c[f[0]], c[f[1]], c[f[2]], c[f[3]]]));
+            }
+            if ty.shape == Shape::Hex {
+                out.push([0.0; 3]);
+            }
+        }
+        _ => return Err(unsupported(ty)),
+    }
+    debug_assert_eq!(out.len(), ty.node_count());
+    Ok(out)
+}
+
+/// The monomial exponents spanning the polynomial space of a (polynomial) cell type.
+fn monomials(ty: CellType) -> Vec<[u8; 3]> {
+    let p = ty.order;
+    let mut out = Vec::new();
+    for c in 0..=p {
+        for b in 0..=p {
+            for a in 0..=p {
+                let keep = match ty.shape {
+                    Shape::Tri => c == 0 && a + b <= p,
+                    Shape::Quad => c == 0,
+                    Shape::Tet => a + b + c <= p,
+                    Shape::Prism => a + b <= p,
+                    Shape::Hex => true,
+                    Shape::Line | Shape::Pyramid => false,
+                };
+                if keep {
+                    out.push([a, b, c]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Powers 0..=3 of each coordinate of `xi`.
+fn powers(xi: RefPoint) -> [[f64; 4]; 3] {
+    xi.map(|x| [1.0, x, x * x, x * x * x])
+}
+
+/// A cached shape-function basis of one cell type.
+#[derive(Debug)]
+pub(crate) enum Basis {
+    /// A polynomial Lagrange basis: `N_i = Σ_j coeffs[j·n + i] · m_j`.
+    Polynomial {
+        monomials: Vec<[u8; 3]>,
+        coeffs: Vec<f64>,
+    },
+    /// The linear pyramid's rational shape functions.
+    Pyramid1,
+}
+
+impl Basis {
+    fn build(ty: CellType) -> Basis {
+        if ty.shape == Shape::Pyramid {
+            return Basis::Pyramid1;
+        }
+        let nodes = reference_nodes(ty).expect("supported type");
+        let monomials = monomials(ty);
+        let n = nodes.len();
+        assert_eq!(monomials.len(), n, "{ty:?}: monomial space size");
+        let mut v = vec![0.0; n * n];
+        for (i, x) in nodes.iter().enumerate() {
+            let pw = powers(*x);
+            for (j, m) in monomials.iter().enumerate() {
+                v[i * n + j] = pw[0][m[0] as usize] * pw[1][m[1] as usize] * pw[2][m[2] as usize];
+            }
+        }
+        let coeffs = invert(&v, n).expect("unisolvent reference nodes");
+        Basis::Polynomial { monomials, coeffs }
+    }
+
+    /// The shape functions at `xi` into `values` (one per node).
+    pub(crate) fn values(&self, xi: RefPoint, values: &mut [f64]) {
+        match self {
+            Basis::Polynomial { monomials, coeffs } => {
+                let n = monomials.len();
+                let pw = powers(xi);
+                values.iter_mut().for_each(|v| *v = 0.0);
+                for (j, m) in monomials.iter().enumerate() {
+                    let mj = pw[0][m[0] as usize] * pw[1][m[1] as usize] * pw[2][m[2] as usize];
+                    for (i, v) in values.iter_mut().enumerate() {
+                        *v += coeffs[j * n + i] * mj;
+                    }
+                }
+            }
+            Basis::Pyramid1 => {
+                let [u, v, w] = xi;
+                let r = pyramid_ratio(u, v, w);
+                for (i, c) in corners(Shape::Pyramid)[..4].iter().enumerate() {
+                    let (a, b) = (c[0], c[1]);
+                    values[i] = 0.25 * ((1.0 - w) + a * u + b * v + a * b * r);
+                }
+                values[4] = w;
+            }
+        }
+    }
+
+    /// The gradients of the shape functions with respect to the reference coordinates.
+    pub(crate) fn gradients(&self, xi: RefPoint, grads: &mut [[f64; 3]]) {
+        match self {
+            Basis::Polynomial { monomials, coeffs } => {
+                let n = monomials.len();
+                let pw = powers(xi);
+                grads.iter_mut().for_each(|g| *g = [0.0; 3]);
+                for (j, m) in monomials.iter().enumerate() {
+                    let e = m.map(|k| k as usize);
+                    let d = |k: usize| -> f64 {
+                        if e[k] == 0 {
+                            return 0.0;
+                        }
+                        let mut t = e[k] as f64 * pw[k][e[k] - 1];
+                        for l in 0..3 {
+                            if l != k {
+                                t *= pw[l][e[l]];
+                            }
+                        }
+                        t
+                    };
+                    let dm = [d(0), d(1), d(2)];
+                    for (i, g) in grads.iter_mut().enumerate() {
+                        let c = coeffs[j * n + i];
+                        for k in 0..3 {
+                            g[k] += c * dm[k];
+                        }
+                    }
+                }
+            }
+            Basis::Pyramid1 => {
+                let [u, v, w] = xi;
+                let s = 1.0 - w;
+                let (ru, rv, rw) = if s.abs() < 1e-14 {
+                    (0.0, 0.0, 0.0)
+                } else {
+                    (v / s, u / s, u * v / (s * s))
+                };
+                for (i, c) in corners(Shape::Pyramid)[..4].iter().enumerate() {
+                    let (a, b) = (c[0], c[1]);
+                    grads[i] = [
+                        0.25 * (a + a * b * ru),
+                        0.25 * (b + a * b * rv),
+                        0.25 * (-1.0 + a * b * rw),
+                    ];
+                }
+                grads[4] = [0.0, 0.0, 1.0];
+            }
+        }
+    }
+}
+
+/// `u·v / (1 − w)`, taken as 0 at the apex (its limit inside the pyramid).
+fn pyramid_ratio(u: f64, v: f64, w: f64) -> f64 {
+    let s = 1.0 - w;
+    if s.abs() < 1e-14 { 0.0 } else { u * v / s }
+}
+
+/// The cached basis of a supported type.
+pub(crate) fn basis(ty: CellType) -> Result<&'static Basis, JacobianError> {
+    static CACHE: [OnceLock<Basis>; SUPPORTED.len()] = [const { OnceLock::new() }; SUPPORTED.len()];
+    let i = type_index(ty).ok_or_else(|| unsupported(ty))?;
+    Ok(CACHE[i].get_or_init(|| Basis::build(ty)))
+}
+
+/// The values of the shape functions of `ty` at the reference point `xi`, one per node in
+/// Gmsh order. They are 1 at their own node, 0 at the others, and sum to 1.
+///
+/// # Errors
+/// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
+pub fn shape_functions(ty: CellType, xi: RefPoint) -> Result<Vec<f64>, JacobianError> {
+    let b = basis(ty)?;
+    let mut v = vec![0.0; ty.node_count()];
+    b.values(xi, &mut v);
+    Ok(v)
+}
+
+/// The gradients of the shape functions of `ty` with respect to the reference coordinates
+/// at `xi`, one `[∂/∂ξ, ∂/∂η, ∂/∂ζ]` per node (the unused components are 0 in 2D).
+///
+/// # Errors
+/// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
+pub fn shape_gradients(ty: CellType, xi: RefPoint) -> Result<Vec<[f64; 3]>, JacobianError> {
+    let b = basis(ty)?;
+    let mut g = vec![[0.0; 3]; ty.node_count()];
+    b.gradients(xi, &mut g);
+    Ok(g)
+}
+
+/// Every supported cell type (see the module docs).
+pub fn supported_types() -> impl Iterator<Item = CellType> {
+    SUPPORTED.iter().map(|&(s, o)| CellType::new(s, o))
+}

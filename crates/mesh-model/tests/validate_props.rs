@@ -1,0 +1,100 @@
+//! Properties of `validate` on structured grids of mixed cells: a good grid has no problem and
+//! covers its rectangle exactly; flipping any one cell or dropping any one cell is found.
+
+use mesh_model::{CellType, Cells, Dim, Mesh, Patch, Problem, Role, Shape, validate};
+use proptest::prelude::*;
+
+/// An nx × ny grid on [0, w] × [0, h], jittered interior nodes, cells in `tri_mask` split into
+/// two triangles, boundary facets counter-clockwise.
+fn grid(nx: usize, ny: usize, w: f64, h: f64, jitter: &[f64], tri_mask: &[bool]) -> Mesh {
+    let mut m = Mesh::new(Dim::Two, 1);
+    let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let interior = i > 0 && i < nx && j > 0 && j < ny;
+            let k = (j * (nx + 1) + i) % jitter.len();
+            let (dx, dy) = if interior {
+                (jitter[k], jitter[(k + 1) % jitter.len()])
+            } else {
+                (0.0, 0.0)
+            };
+            let x = w * (i as f64 + 0.3 * dx) / nx as f64;
+            let y = h * (j as f64 + 0.3 * dy) / ny as f64;
+            m.nodes.push([x, y, 0.0]);
+        }
+    }
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if tri_mask[(j * nx + i) % tri_mask.len()] {
+                m.cells.push(CellType::new(Shape::Tri, 1), &[a, b, c]);
+                m.cells.push(CellType::new(Shape::Tri, 1), &[a, c, d]);
+            } else {
+                m.cells.push(CellType::new(Shape::Quad, 1), &[a, b, c, d]);
+            }
+        }
+    }
+    let line = CellType::new(Shape::Line, 1);
+    let mut ring = Vec::new();
+    ring.extend((0..nx).map(|i| id(i, 0)));
+    ring.extend((0..ny).map(|j| id(nx, j)));
+    ring.extend((0..nx).map(|i| id(nx - i, ny)));
+    ring.extend((0..ny).map(|j| id(0, ny - j)));
+    for k in 0..ring.len() {
+        m.boundary
+            .push(line, &[ring[k], ring[(k + 1) % ring.len()]]);
+        m.boundary_patch.push(0);
+    }
+    m.patches.push(Patch {
+        name: "box".into(),
+        role: Role::Farfield,
+    });
+    m
+}
+
+fn grid_strategy() -> impl Strategy<Value = Mesh> {
+    (
+        1usize..8,
+        1usize..8,
+        0.1f64..100.0,
+        0.1f64..100.0,
+        prop::collection::vec(-1.0f64..1.0, 1..20),
+        prop::collection::vec(any::<bool>(), 1..10),
+    )
+        .prop_map(|(nx, ny, w, h, jitter, mask)| grid(nx, ny, w, h, &jitter, &mask))
+}
+
+proptest! {
+    #[test]
+    fn a_jittered_grid_is_valid_and_covers_its_rectangle(m in grid_strategy()) {
+        prop_assert_eq!(validate(&m), vec![]);
+        let w = m.nodes.iter().map(|p| p[0]).fold(0.0, f64::max);
+        let h = m.nodes.iter().map(|p| p[1]).fold(0.0, f64::max);
+        prop_assert!((m.linear_area() - w * h).abs() <= 1e-12 * w * h);
+    }
+
+    #[test]
+    fn flipping_one_cell_is_found(m in grid_strategy(), pick in any::<prop::sample::Index>()) {
+        let mut m = m;
+        let i = pick.index(m.cells.len());
+        m.cells.nodes_mut(i).reverse();
+        let expected = Problem::NotPositive { cell: i, area: m.linear_cell_area(i) };
+        let found = validate(&m).contains(&expected);
+        prop_assert!(found);
+    }
+
+    #[test]
+    fn dropping_one_cell_is_found(m in grid_strategy(), pick in any::<prop::sample::Index>()) {
+        let drop = pick.index(m.cells.len());
+        let mut cells = Cells::new();
+        for (i, c) in m.cells.iter().enumerate() {
+            if i != drop {
+                cells.push(c.ty, c.nodes);
+            }
+        }
+        let mut m = m;
+        m.cells = cells;
+        let found = validate(&m).iter().any(|p| matches!(p, Problem::NonConforming { .. }));
+        prop_assert!(found);
+    }
+}

@@ -1,0 +1,43 @@
+//! `--snapshot FILE.bin`: the intermediate stages are saved and load back as they were.
+
+use clap::Parser;
+use xtask::{Outcome, cli::Cli, execute};
+
+fn run(args: &[&str]) -> anyhow::Result<Outcome> {
+    let mut all = vec!["cargo xtask"];
+    all.extend(args);
+    execute(Cli::try_parse_from(&all).expect("flags parse"))
+}
+
+#[test]
+fn snapshot_holds_the_stages_and_loads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let msh = dir.path().join("m.msh").to_str().unwrap().to_string();
+    let bin = dir.path().join("m.bin").to_str().unwrap().to_string();
+    run(&[
+        "mesh",
+        "bat",
+        "--quiet",
+        "--order",
+        "1",
+        "--out",
+        &msh,
+        "--snapshot",
+        &bin,
+    ])
+    .unwrap();
+    let stages: xtask::stages::Snapshot =
+        mesh_io::snapshot::load(std::path::Path::new(&bin)).unwrap();
+    let written = mesh_io::read_msh(std::path::Path::new(&msh)).unwrap();
+    assert_eq!(stages.case, "bat");
+    assert_eq!(stages.mesh.nodes, written.nodes);
+    assert_eq!(stages.mesh.cells, written.cells);
+    assert_eq!(stages.mesh.cell_layer.len(), stages.mesh.cells.len());
+    assert_eq!(stages.node_parent.len(), stages.mesh.nodes.len());
+    let boundary_nodes: usize = stages.boundary.iter().map(|b| b.points.len()).sum();
+    assert_eq!(
+        stages.mesh.boundary.len(),
+        boundary_nodes,
+        "one facet per boundary node"
+    );
+}
