@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use anyhow::{Result, bail};
+use mesh_model::Shape;
 
 use crate::cli::BenchArgs;
 use crate::{Outcome, builtin, case, pipeline};
@@ -24,16 +25,15 @@ pub fn run(args: &BenchArgs) -> Result<Outcome> {
             );
         }
     }
-    let runs = if args.quick { 3 } else { 21 };
+    let runs = if args.quick { 3 } else { 11 };
     println!(
-        "{:<14} {:>12} {:>12} {:>10}   (median of {runs} runs)",
-        "case", "curves ms", "boundary ms", "nodes"
+        "{:<12} {:>10} {:>12} {:>10} {:>9} {:>9} {:>9}   (median of {runs} runs, one thread)",
+        "case", "curves ms", "boundary ms", "linear ms", "nodes", "quads", "triangles"
     );
     for name in &names {
         let case = case::load(name)?;
-        let mut curve_s = Vec::with_capacity(runs);
-        let mut boundary_s = Vec::with_capacity(runs);
-        let mut node_count = 0;
+        let (mut curve_s, mut boundary_s, mut linear_s) = (vec![], vec![], vec![]);
+        let mut counts = (0, 0, 0);
         for _ in 0..runs {
             let t = Instant::now();
             let curves = pipeline::curves(&case)?;
@@ -41,12 +41,20 @@ pub fn run(args: &BenchArgs) -> Result<Outcome> {
             let t = Instant::now();
             let nodes = pipeline::boundary_nodes(&case, &curves)?;
             boundary_s.push(t.elapsed().as_secs_f64());
-            node_count = nodes.iter().map(|n| n.points.len()).sum();
+            let t = Instant::now();
+            let grown = pipeline::linear_mesh(&case, &nodes)?;
+            linear_s.push(t.elapsed().as_secs_f64());
+            let m = &grown.mesh;
+            counts = (m.nodes.len(), m.count(Shape::Quad), m.count(Shape::Tri));
         }
         println!(
-            "{name:<14} {:>12.3} {:>12.3} {node_count:>10}",
+            "{name:<12} {:>10.3} {:>12.3} {:>10.1} {:>9} {:>9} {:>9}",
             median(&mut curve_s) * 1e3,
-            median(&mut boundary_s) * 1e3
+            median(&mut boundary_s) * 1e3,
+            median(&mut linear_s) * 1e3,
+            counts.0,
+            counts.1,
+            counts.2
         );
     }
     Ok(Outcome::Valid)
