@@ -6,7 +6,7 @@
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
@@ -16,7 +16,7 @@ use spade::{AngleLimit, RefinementParameters};
 
 use crate::error::AfsfError;
 use crate::geom::P2;
-use crate::grow::Loop;
+use crate::grow::Cell;
 
 #[derive(Debug, Clone, Copy)]
 struct Vertex {
@@ -40,63 +40,60 @@ impl HasPosition for Vertex {
     }
 }
 
-/// Triangles (node indices, counter-clockwise) covering the region on the left of the fronts,
-/// and the positions of the nodes added inside it (numbered from `pos.len()` on). With
-/// `min_angle_deg` > 0 the triangulation is refined (Ruppert/Chew, front edges never split)
-/// toward that smallest angle, which also bounds the largest angle.
-pub(crate) fn fill_fronts(
-    loops: &[Loop],
+/// Triangles (node indices, counter-clockwise) covering the region on the left of the
+/// directed edges `directed` (the region's whole boundary), with the nodes `free` inserted
+/// inside it, and the positions of the nodes added inside it (numbered from `pos.len()` on).
+/// With `min_angle_deg` > 0 the triangulation is refined (Ruppert/Chew, boundary edges never
+/// split) toward that smallest angle, which also bounds the largest angle.
+pub(crate) fn fill_region(
+    directed_edges: &[(u32, u32)],
+    free: &[u32],
     pos: &[P2],
     min_angle_deg: f64,
 ) -> Result<(Vec<[u32; 3]>, Vec<P2>), AfsfError> {
     let mut cdt: ConstrainedDelaunayTriangulation<Vertex> = ConstrainedDelaunayTriangulation::new();
     let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
-    for l in loops {
-        for &g in &l.items {
-            if handle_of.contains_key(&g) {
-                continue;
-            }
-            let p = pos[g as usize];
-            let h = cdt
-                .insert(Vertex {
-                    position: Point2::new(p[0], p[1]),
-                    node: g,
-                })
-                .map_err(|e| AfsfError::Fill(format!("node {g} at {p:?}: {e:?}")))?;
-            if cdt.vertex(h).data().node != g {
-                return Err(AfsfError::Fill(format!(
-                    "front nodes {g} and {} coincide",
-                    cdt.vertex(h).data().node
-                )));
-            }
-            handle_of.insert(g, h);
+    let nodes = directed_edges
+        .iter()
+        .flat_map(|&(a, b)| [a, b])
+        .chain(free.iter().copied());
+    for g in nodes {
+        if handle_of.contains_key(&g) {
+            continue;
         }
+        let p = pos[g as usize];
+        let h = cdt
+            .insert(Vertex {
+                position: Point2::new(p[0], p[1]),
+                node: g,
+            })
+            .map_err(|e| AfsfError::Fill(format!("node {g} at {p:?}: {e:?}")))?;
+        if cdt.vertex(h).data().node != g {
+            return Err(AfsfError::Fill(format!(
+                "front nodes {g} and {} coincide",
+                cdt.vertex(h).data().node
+            )));
+        }
+        handle_of.insert(g, h);
     }
-    let mut directed = Vec::new();
-    for l in loops {
-        let k = l.items.len();
-        for i in 0..k {
-            let (a, b) = (handle_of[&l.items[i]], handle_of[&l.items[(i + 1) % k]]);
-            if !cdt.can_add_constraint(a, b) {
-                return Err(AfsfError::Fill(format!(
-                    "front edge {}-{} crosses another front edge",
-                    l.items[i],
-                    l.items[(i + 1) % k]
-                )));
-            }
-            cdt.add_constraint(a, b);
-            if !cdt.exists_constraint(a, b) {
-                return Err(AfsfError::Fill(format!(
-                    "front edge {}-{} passes through a front node",
-                    l.items[i],
-                    l.items[(i + 1) % k]
-                )));
-            }
-            directed.push((a, b));
+    let mut directed = Vec::with_capacity(directed_edges.len());
+    for &(ga, gb) in directed_edges {
+        let (a, b) = (handle_of[&ga], handle_of[&gb]);
+        if !cdt.can_add_constraint(a, b) {
+            return Err(AfsfError::Fill(format!(
+                "front edge {ga}-{gb} crosses another front edge"
+            )));
         }
+        cdt.add_constraint(a, b);
+        if !cdt.exists_constraint(a, b) {
+            return Err(AfsfError::Fill(format!(
+                "front edge {ga}-{gb} passes through a front node"
+            )));
+        }
+        directed.push((a, b));
     }
     if min_angle_deg > 0.0 {
-        let extra = 2 * cdt.num_vertices() + 16;
+        let extra = 8 * cdt.num_vertices() + 64;
         cdt.refine(
             RefinementParameters::<f64>::new()
                 .exclude_outer_faces(true)
@@ -142,7 +139,7 @@ pub(crate) fn fill_fronts(
     faces.sort_unstable_by_key(|f| f.index());
     let mut added: HashMap<spade::handles::FixedVertexHandle, u32> = HashMap::new();
     let mut steiner = Vec::new();
-    let tris = faces
+    let tris: Vec<[u32; 3]> = faces
         .iter()
         .map(|&f| {
             let v = cdt.face(f).vertices();
@@ -159,5 +156,194 @@ pub(crate) fn fill_fronts(
             })
         })
         .collect();
+    smooth_steiner(&tris, pos, &mut steiner);
     Ok((tris, steiner))
+}
+
+/// Sweeps of the Steiner-node smoothing.
+const SMOOTHING_SWEEPS: usize = 6;
+
+/// Moves each added node toward the centroid of its triangles' other corners when that
+/// lowers the largest angle of its triangles (and keeps them positive): the refinement
+/// leaves obtuse triangles where it may not split a front edge, and these moves mend most
+/// of them. Front nodes never move.
+fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
+    if steiner.is_empty() {
+        return;
+    }
+    let n0 = pos.len();
+    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); steiner.len()];
+    for (t, tri) in tris.iter().enumerate() {
+        for &g in tri {
+            if g as usize >= n0 {
+                incident[g as usize - n0].push(t as u32);
+            }
+        }
+    }
+    let at = |g: u32, steiner: &[P2]| {
+        if (g as usize) < n0 {
+            pos[g as usize]
+        } else {
+            steiner[g as usize - n0]
+        }
+    };
+    let worst = |s: usize, p: P2, steiner: &[P2]| -> f64 {
+        let g = (n0 + s) as u32;
+        let mut w = 0.0f64;
+        for &t in &incident[s] {
+            let c = tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) });
+            if crate::geom::orient(c[0], c[1], c[2]) <= 0.0 {
+                return f64::INFINITY;
+            }
+            w = w.max(crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]));
+        }
+        w
+    };
+    for _ in 0..SMOOTHING_SWEEPS {
+        for s in 0..steiner.len() {
+            let g = (n0 + s) as u32;
+            let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
+            for &t in &incident[s] {
+                for &v in &tris[t as usize] {
+                    if v != g {
+                        let q = at(v, steiner);
+                        sx += q[0];
+                        sy += q[1];
+                        k += 1.0;
+                    }
+                }
+            }
+            if k == 0.0 {
+                continue;
+            }
+            let old = steiner[s];
+            let centroid = [sx / k, sy / k];
+            let before = worst(s, old, steiner);
+            for f in [1.0, 0.5, 0.25] {
+                let p = [
+                    old[0] + f * (centroid[0] - old[0]),
+                    old[1] + f * (centroid[1] - old[1]),
+                ];
+                if worst(s, p, steiner) < before {
+                    steiner[s] = p;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// The fill triangles, the added nodes and the number of cells peeled.
+pub(crate) type PeeledFill = (Vec<[u32; 3]>, Vec<P2>, usize);
+
+/// Only cells whose longest edge is at most this many times their shortest are peeled:
+/// peeling a boundary-layer cell would lay bare the side of its neighbours' stack of thin
+/// cells, whose short edges no triangle can meet with good angles.
+const PEEL_MAX_EDGE_RATIO: f64 = 4.0;
+
+fn edge_ratio(c: &Cell, pos: &[P2]) -> f64 {
+    let k = c.corners();
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for i in 0..k.len() {
+        let l = crate::geom::dist(pos[k[i] as usize], pos[k[(i + 1) % k.len()] as usize]);
+        lo = lo.min(l);
+        hi = hi.max(l);
+    }
+    hi / lo
+}
+
+/// Fills the region left between the layered cells and, while some fill triangle has an
+/// angle of `max_angle_deg` or more, peels the layered cells (not the first layer) that touch
+/// those triangles into the region and fills again, at most `rounds` times: a coarse cell
+/// whose corner pinches the region between fronts of very different sizes thus becomes room
+/// for well-shaped triangles. Peeled cells get `len` 0; their nodes are kept (inside the
+/// region, as triangulation vertices, when no remaining cell uses them). `facets` are the
+/// boundary facets with the domain on their left. Returns the triangles, the added nodes
+/// (numbered from `pos.len()` on) and the number of cells peeled.
+pub(crate) fn fill_with_peeling(
+    cells: &mut [Cell],
+    facets: &[(u32, u32)],
+    pos: &[P2],
+    min_angle_deg: f64,
+    max_angle_deg: f64,
+    rounds: u32,
+) -> Result<PeeledFill, AfsfError> {
+    let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
+    let facet_set: HashSet<(u32, u32)> = facets.iter().map(|&(a, b)| key(a, b)).collect();
+    let mut peeled: Vec<u32> = Vec::new();
+    let mut round = 0;
+    loop {
+        let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut used = vec![false; pos.len()];
+        for c in cells.iter().filter(|c| c.len > 0) {
+            let k = c.corners();
+            for i in 0..k.len() {
+                *count.entry(key(k[i], k[(i + 1) % k.len()])).or_insert(0) += 1;
+                used[k[i] as usize] = true;
+            }
+        }
+        let mut directed = Vec::new();
+        for c in cells.iter().filter(|c| c.len > 0) {
+            let k = c.corners();
+            for i in 0..k.len() {
+                let (a, b) = (k[i], k[(i + 1) % k.len()]);
+                if count[&key(a, b)] == 1 && !facet_set.contains(&key(a, b)) {
+                    directed.push((b, a));
+                }
+            }
+        }
+        for &(a, b) in facets {
+            if !count.contains_key(&key(a, b)) {
+                directed.push((a, b));
+            }
+        }
+        let free: Vec<u32> = peeled
+            .iter()
+            .flat_map(|&c| cells[c as usize].nodes)
+            .filter(|&g| g != mesh_model::NONE && !used[g as usize])
+            .collect();
+        let (tris, steiner) = fill_region(&directed, &free, pos, min_angle_deg)?;
+        if round == rounds {
+            return Ok((tris, steiner, peeled.len()));
+        }
+        round += 1;
+        let at = |g: u32| {
+            if (g as usize) < pos.len() {
+                pos[g as usize]
+            } else {
+                steiner[g as usize - pos.len()]
+            }
+        };
+        let mut bad_node = vec![false; pos.len()];
+        let mut any = false;
+        for t in &tris {
+            if crate::quality::max_triangle_angle_deg(at(t[0]), at(t[1]), at(t[2])) >= max_angle_deg
+            {
+                for &g in t {
+                    if (g as usize) < pos.len() {
+                        bad_node[g as usize] = true;
+                        any = true;
+                    }
+                }
+            }
+        }
+        if !any {
+            return Ok((tris, steiner, peeled.len()));
+        }
+        let before = peeled.len();
+        for (ci, c) in cells.iter_mut().enumerate() {
+            if c.len == 0
+                || c.layer == 0
+                || !c.corners().iter().any(|&g| bad_node[g as usize])
+                || edge_ratio(c, pos) > PEEL_MAX_EDGE_RATIO
+            {
+                continue;
+            }
+            peeled.push(ci as u32);
+            c.len = 0;
+        }
+        if peeled.len() == before {
+            return Ok((tris, steiner, peeled.len()));
+        }
+    }
 }

@@ -939,11 +939,13 @@ impl<'p> Work<'p> {
                 if me_moving {
                     let (a, b, p) = (self.left[g], self.right[g], self.parent[g]);
                     if a != NONE && b != NONE && p != NONE {
+                        let left_share = parent_share(&self.pos, &self.parent, a, p, b);
                         springs.neighbour.push(NeighbourSpring {
                             left: loc(a),
                             centre: loc(gu),
                             right: loc(b),
                             parent: loc(p),
+                            left_share,
                         });
                     }
                 }
@@ -994,7 +996,15 @@ impl<'p> Work<'p> {
         };
         for ci in first_cell..self.cells.len() {
             let c = &self.cells[ci];
-            if c.len == 0 || self.cell_ok(c) {
+            if c.len == 0 {
+                continue;
+            }
+            // a cell above the first layer must also cut into triangles with no angle of
+            // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill
+            // takes over; an old one makes the step retry with fewer moving layers)
+            let shape_ok =
+                c.layer == 0 || self.cell_cut_angle_deg(c) < self.params.cell_max_angle_deg;
+            if self.cell_ok(c) && shape_ok {
                 continue;
             }
             if ci >= new_cell {
@@ -1070,6 +1080,21 @@ impl<'p> Work<'p> {
         (bad, old_bad)
     }
 
+    /// The largest angle of the triangles of a cell, a quad being cut along its shorter
+    /// diagonal.
+    fn cell_cut_angle_deg(&self, c: &Cell) -> f64 {
+        let p = |i: usize| self.pos[c.nodes[i] as usize];
+        let tri = crate::quality::max_triangle_angle_deg;
+        if c.len == 3 {
+            return tri(p(0), p(1), p(2));
+        }
+        if dist(p(0), p(2)) <= dist(p(1), p(3)) {
+            tri(p(0), p(1), p(2)).max(tri(p(0), p(2), p(3)))
+        } else {
+            tri(p(0), p(1), p(3)).max(tri(p(1), p(2), p(3)))
+        }
+    }
+
     /// A cell is acceptable when every corner turns left by a relatively non-negligible
     /// angle (convex, positive).
     fn cell_ok(&self, c: &Cell) -> bool {
@@ -1083,6 +1108,23 @@ impl<'p> Work<'p> {
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
     }
+}
+
+/// The share of |AK| + |KB| that |AK| should take for the neighbour spring of K (parent
+/// P): the share of the parents' spacing |A'P| / (|A'P| + |PB'|), so that a wall's
+/// graded spacing carries up the layers; ½ where a neighbour shares K's parent (fan
+/// children) or has none. Clamped to [0.2, 0.8].
+fn parent_share(pos: &[P2], parent: &[u32], a: u32, p: u32, b: u32) -> f64 {
+    let (pa, pb) = (parent[a as usize], parent[b as usize]);
+    if pa == NONE || pb == NONE || pa == p || pb == p {
+        return 0.5;
+    }
+    let pp = pos[p as usize];
+    let (la, lb) = (dist(pos[pa as usize], pp), dist(pp, pos[pb as usize]));
+    if la + lb <= 0.0 {
+        return 0.5;
+    }
+    (la / (la + lb)).clamp(0.2, 0.8)
 }
 
 /// Removes repeated corners of a cell after a merge; a cell left with fewer than three

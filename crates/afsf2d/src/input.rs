@@ -69,6 +69,16 @@ pub struct AfsfParams {
     /// constrained Delaunay triangulation of the front nodes. Default 30 (which bounds the
     /// largest angle by 120° wherever it is reached).
     pub fill_min_angle_deg: f64,
+    /// Largest angle (degrees) a fill triangle may have before the layered cells touching it
+    /// are peeled back into the filled region (never first-layer cells), see
+    /// `peel_rounds`. Default 120.
+    pub peel_max_angle_deg: f64,
+    /// A new layered cell (above the first layer) whose triangles, a quad cut along its
+    /// shorter diagonal, have an angle of this many degrees or more is refused: its front
+    /// edge freezes and the fill covers the place. Default 130.
+    pub cell_max_angle_deg: f64,
+    /// Rounds of peeling and filling again; 0 fills once and never peels. Default 8.
+    pub peel_rounds: u32,
     /// Number of top layers that move in each spring solve (the dissertation: three).
     /// Default 3.
     pub moving_layers: u32,
@@ -91,6 +101,9 @@ impl Default for AfsfParams {
             fan_max_angle_deg: 60.0,
             closing_factor: 1.0,
             fill_min_angle_deg: 30.0,
+            peel_max_angle_deg: 120.0,
+            peel_rounds: 16,
+            cell_max_angle_deg: 130.0,
             moving_layers: 3,
             springs: SpringParams::default(),
             solver: SolverParams::default(),
@@ -101,7 +114,19 @@ impl Default for AfsfParams {
 impl AfsfParams {
     /// Checks every parameter's range.
     pub fn check(&self) -> Result<(), AfsfError> {
-        let checks: [(&'static str, f64, bool, &'static str); 8] = [
+        let checks: [(&'static str, f64, bool, &'static str); 10] = [
+            (
+                "cell_max_angle_deg",
+                self.cell_max_angle_deg,
+                self.cell_max_angle_deg > 90.0 && self.cell_max_angle_deg <= 180.0,
+                "in (90, 180]",
+            ),
+            (
+                "peel_max_angle_deg",
+                self.peel_max_angle_deg,
+                self.peel_max_angle_deg > 60.0 && self.peel_max_angle_deg <= 180.0,
+                "in (60, 180]",
+            ),
             (
                 "fill_min_angle_deg",
                 self.fill_min_angle_deg,

@@ -44,6 +44,8 @@ pub struct AfsfStats {
     pub all_converged: bool,
     /// Triangles made by the hole filling.
     pub fill_triangles: usize,
+    /// Layered cells peeled back into the filled region to give its triangles room.
+    pub peeled_cells: usize,
     /// Timings of the phases (seconds).
     pub timings: Timings,
 }
@@ -113,7 +115,19 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     work.grow()?;
     let tf = std::time::Instant::now();
     let n_grown = work.pos.len();
-    let (fill, steiner) = fill::fill_fronts(&work.loops, &work.pos, params.fill_min_angle_deg)?;
+    let facets: Vec<(u32, u32)> = mesh
+        .boundary
+        .iter()
+        .map(|f| (f.nodes[0], f.nodes[1]))
+        .collect();
+    let (fill, steiner, peeled) = fill::fill_with_peeling(
+        &mut work.cells,
+        &facets,
+        &work.pos,
+        params.fill_min_angle_deg,
+        params.peel_max_angle_deg,
+        params.peel_rounds,
+    )?;
     for p in steiner {
         work.pos.push(p);
         work.layer.push(0);
@@ -220,6 +234,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         all_converged: work.layer_stats.iter().all(|s| s.converged),
         layer_stats: std::mem::take(&mut work.layer_stats),
         fill_triangles: fill.len(),
+        peeled_cells: peeled,
         timings: Timings {
             total: t0.elapsed().as_secs_f64(),
             ..work.timings

@@ -33,7 +33,8 @@ pub struct ExtrusionSpring {
 }
 
 /// Neighbour spring A–K–B on one layer (§3.2.2.1; strengthened as in §4.1): pushes K, at
-/// right angles to its extrusion edge PK, toward the longer of AK and KB.
+/// right angles to its extrusion edge PK, until |AK| is the share `left_share` of
+/// |AK| + |KB| (the dissertation's spring evens the two sides: share ½).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct NeighbourSpring {
     /// A, the neighbour before K along the layer.
@@ -44,6 +45,10 @@ pub struct NeighbourSpring {
     pub right: u32,
     /// P, K's parent (one layer down).
     pub parent: u32,
+    /// The share of |AK| + |KB| that |AK| should take, in (0, 1): ½ evens the sides; the
+    /// mesher gives the share of the parents' spacing, so graded spacing along a wall is kept
+    /// instead of being evened out (which shears the layers).
+    pub left_share: f64,
 }
 
 /// Angle spring A–K–B–O (§4.1): keeps the extrusion edge KO along the ideal direction (the
@@ -170,7 +175,7 @@ pub fn assemble_2d(
         } else {
             1.0
         };
-        let f = params.k_neighbour * boost * (lb - la) / (la + lb);
+        let f = params.k_neighbour * boost * 2.0 * (s.left_share - la / (la + lb));
         let kc = &mut force[s.centre as usize];
         kc[0] += f * t[0];
         kc[1] += f * t[1];
@@ -296,6 +301,7 @@ mod tests {
                 centre: 1,
                 right: 2,
                 parent: 3,
+                left_share: 0.5,
             }],
             ..SpringSet2d::default()
         };

@@ -3,6 +3,8 @@
 //! every case must pass.
 #![allow(dead_code)]
 
+pub mod real;
+
 use afsf2d::{AfsfOutput, AfsfParams, AngleStats, FrontLoop, max_angle_histogram};
 use mesh_model::{NONE, Role, validate};
 
