@@ -58,29 +58,9 @@ pub struct MeshArgs {
     #[arg(long)]
     pub triangles: bool,
 
-    /// Draw the mesh to a PNG picture; `FILE@VIEW` picks the view: `all`, `walls`, a view
-    /// named in the case's `[views]` (built-in cases: `le`, `te`, and for the 30P30N
-    /// `slat-cove`, `flap-gap`) or `x0,y0,x1,y1`. May be given several times.
-    #[arg(long = "png", value_name = "FILE[@VIEW]")]
-    pub pngs: Vec<String>,
-
-    /// Draw the mesh to an SVG picture (edges shorter than a pixel are skipped); `FILE@VIEW`
-    /// as for --png. May be given several times.
-    #[arg(long = "svg", value_name = "FILE[@VIEW]")]
-    pub svgs: Vec<String>,
-
-    /// The view of pictures given without `@VIEW` (default: all).
-    #[arg(long, value_name = "VIEW")]
-    pub view: Option<String>,
-
-    /// What colours the cells in pictures.
-    #[arg(long, value_enum, default_value = "layer")]
-    pub colour: crate::pictures::Colour,
-
-    /// Width of PNG pictures in pixels (the height is three quarters of it).
-    #[arg(long, value_name = "PX", default_value_t = 2000,
-          value_parser = clap::value_parser!(u32).range(64..=16384))]
-    pub width: u32,
+    /// Pictures of the mesh.
+    #[command(flatten)]
+    pub pictures: PictureArgs,
 
     /// No summary table on stdout and no progress on stderr; errors are still printed.
     #[arg(long, short)]
@@ -109,11 +89,26 @@ pub struct QualityArgs {
     #[arg(long, value_name = "FILE.json")]
     pub report: Option<PathBuf>,
 
-    /// Draw the mesh to a PNG picture, `FILE@VIEW` with VIEW `all`, `walls` or `x0,y0,x1,y1`.
+    /// Pictures of the mesh.
+    #[command(flatten)]
+    pub pictures: PictureArgs,
+
+    /// No summary table on stdout.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Picture flags, shared by `mesh` and `quality`.
+#[derive(Debug, Args)]
+pub struct PictureArgs {
+    /// Draw the mesh to a PNG picture; `FILE@VIEW` picks the view: `all`, `walls`, a view
+    /// named in the case's `[views]` (built-in cases: `le`, `te`, and for the 30P30N
+    /// `slat-cove`, `flap-gap`) or `x0,y0,x1,y1`. May be given several times.
     #[arg(long = "png", value_name = "FILE[@VIEW]")]
     pub pngs: Vec<String>,
 
-    /// Draw the mesh to an SVG picture, `FILE@VIEW` as for --png.
+    /// Draw the mesh to an SVG picture (edges shorter than a pixel are skipped); `FILE@VIEW`
+    /// as for --png. May be given several times.
     #[arg(long = "svg", value_name = "FILE[@VIEW]")]
     pub svgs: Vec<String>,
 
@@ -121,16 +116,13 @@ pub struct QualityArgs {
     #[arg(long, value_name = "VIEW")]
     pub view: Option<String>,
 
-    /// What colours the cells in pictures (a .msh file keeps no layer index).
-    #[arg(long, value_enum, default_value = "angle")]
-    pub colour: crate::pictures::Colour,
+    /// What colours the cells in pictures (default: layer for `mesh`; angle for `quality`,
+    /// since a .msh file keeps no layer index).
+    #[arg(long, value_enum)]
+    pub colour: Option<crate::pictures::Colour>,
 
-    /// Width of PNG pictures in pixels.
+    /// Width of PNG pictures in pixels (the height is three quarters of it).
     #[arg(long, value_name = "PX", default_value_t = 2000,
           value_parser = clap::value_parser!(u32).range(64..=16384))]
     pub width: u32,
-
-    /// No summary table on stdout.
-    #[arg(long, short)]
-    pub quiet: bool,
 }

@@ -9,11 +9,11 @@ use anyhow::{Context, Result, bail};
 use mesh_io::Format;
 
 use crate::cli::MeshArgs;
-use crate::pictures;
+use crate::pictures::{self, Colour};
 use crate::progress::stage;
 use crate::report::{LoopReport, Report};
 use crate::stages::Snapshot;
-use crate::{Outcome, builtin, case, pipeline, summary};
+use crate::{Outcome, builtin, case, pipeline};
 
 /// Runs `cargo xtask mesh`.
 pub fn run(args: &MeshArgs) -> Result<Outcome> {
@@ -28,7 +28,7 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
     let case = case::load(spec)?;
     let order = args.order.unwrap_or(case.curving.order);
     let (outs, report_path) = outputs(args, &case.name)?;
-    let pictures = pictures::parse(&args.pngs, &args.svgs, args.view.as_deref(), &case.views)?;
+    let pictures = pictures::parse(&args.pictures, &case.views)?;
 
     let mut report = Report::new(&case.name, order);
 
@@ -93,13 +93,8 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
     }
     report.timings_s.insert("write", t.elapsed().as_secs_f64());
     let t = Instant::now();
-    report.files.extend(pictures::draw_all(
-        &mesh,
-        &pictures,
-        args.colour,
-        &case.name,
-        args.width,
-    )?);
+    let drawn = pictures::draw_all(&mesh, &pictures, &args.pictures, Colour::Layer, &case.name)?;
+    report.files.extend(drawn);
     drop(progress);
     if !pictures.is_empty() {
         report
@@ -109,19 +104,7 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
     report
         .timings_s
         .insert("total", total.elapsed().as_secs_f64());
-    if let Some(path) = &report_path {
-        report.files.push(path.display().to_string());
-        let json = serde_json::to_string_pretty(&report)?;
-        pictures::write_bytes(path, json.as_bytes())?;
-    }
-    if !args.quiet {
-        print!("{}", summary::table(&report));
-    }
-    Ok(if report.problems.is_empty() {
-        Outcome::Valid
-    } else {
-        Outcome::Invalid
-    })
+    report.finish(report_path.as_deref(), args.quiet)
 }
 
 /// The mesh files and the report to write; checked before any work is done.

@@ -8,6 +8,8 @@ use anyhow::{Context, Result, bail};
 use mesh_draw::{ColourBy, DrawParams, View};
 use mesh_model::{Mesh, Role};
 
+use crate::cli::PictureArgs;
+
 /// Picture formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
@@ -52,15 +54,10 @@ pub enum Colour {
     Angle,
 }
 
-/// Parses `FILE` or `FILE@VIEW` for each picture flag; `VIEW` is a name (`all`, `walls`, or a
-/// view of the case's `[views]`) or `x0,y0,x1,y1`. `default_view` applies where no `@VIEW` is
-/// given.
-pub fn parse(
-    pngs: &[String],
-    svgs: &[String],
-    default_view: Option<&str>,
-    named: &BTreeMap<String, [f64; 4]>,
-) -> Result<Vec<Picture>> {
+/// Parses `FILE` or `FILE@VIEW` of each `--png` and `--svg`; `VIEW` is a name (`all`, `walls`, or a
+/// view of the case's `[views]`) or `x0,y0,x1,y1`. `--view` applies where no `@VIEW` is given.
+pub fn parse(args: &PictureArgs, named: &BTreeMap<String, [f64; 4]>) -> Result<Vec<Picture>> {
+    let (pngs, svgs, default_view) = (&args.pngs, &args.svgs, args.view.as_deref());
     let mut pictures = Vec::new();
     for (specs, format, flag) in [(pngs, Format::Png, "--png"), (svgs, Format::Svg, "--svg")] {
         for spec in specs {
@@ -125,14 +122,16 @@ fn view_spec(view: &str, named: &BTreeMap<String, [f64; 4]>) -> Result<ViewSpec>
     Ok(ViewSpec::Rect(v))
 }
 
-/// Draws and writes every picture; returns the files written.
+/// Draws and writes every picture, coloured as the flags say or else by `default_colour`;
+/// returns the files written.
 pub fn draw_all(
     mesh: &Mesh,
     pictures: &[Picture],
-    colour: Colour,
+    args: &PictureArgs,
+    default_colour: Colour,
     title: &str,
-    width_px: u32,
 ) -> Result<Vec<String>> {
+    let (colour, width_px) = (args.colour.unwrap_or(default_colour), args.width);
     let mut written = Vec::with_capacity(pictures.len());
     for p in pictures {
         let view = match p.view {

@@ -7,9 +7,10 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use mesh_model::Dim;
 
+use crate::Outcome;
 use crate::cli::QualityArgs;
+use crate::pictures::{self, Colour};
 use crate::report::Report;
-use crate::{Outcome, pictures, summary};
 
 /// Runs `cargo xtask quality`.
 pub fn run(args: &QualityArgs) -> Result<Outcome> {
@@ -22,12 +23,7 @@ pub fn run(args: &QualityArgs) -> Result<Outcome> {
             r.display()
         );
     }
-    let pics = pictures::parse(
-        &args.pngs,
-        &args.svgs,
-        args.view.as_deref(),
-        &Default::default(),
-    )?;
+    let pics = pictures::parse(&args.pictures, &Default::default())?;
     let mesh = mesh_io::read_msh(&args.mesh)
         .with_context(|| format!("reading {}", args.mesh.display()))?;
     if mesh.dim != Dim::Two || mesh.cells.is_empty() {
@@ -48,26 +44,10 @@ pub fn run(args: &QualityArgs) -> Result<Outcome> {
         );
     }
     report.describe(&mesh);
-    report.files.extend(pictures::draw_all(
-        &mesh,
-        &pics,
-        args.colour,
-        name,
-        args.width,
-    )?);
+    let drawn = pictures::draw_all(&mesh, &pics, &args.pictures, Colour::Angle, name)?;
+    report.files.extend(drawn);
     report
         .timings_s
         .insert("total", total.elapsed().as_secs_f64());
-    if let Some(path) = &args.report {
-        report.files.push(path.display().to_string());
-        pictures::write_bytes(path, serde_json::to_string_pretty(&report)?.as_bytes())?;
-    }
-    if !args.quiet {
-        print!("{}", summary::table(&report));
-    }
-    Ok(if report.problems.is_empty() {
-        Outcome::Valid
-    } else {
-        Outcome::Invalid
-    })
+    report.finish(args.report.as_deref(), args.quiet)
 }

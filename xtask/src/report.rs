@@ -2,9 +2,14 @@
 //! stage has not run are left out rather than filled with made-up values.
 
 use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::Result;
 
 use mesh_model::{Mesh, Role, Shape};
 use serde::Serialize;
+
+use crate::Outcome;
 
 /// Everything a run reports.
 #[derive(Debug, Default, Serialize)]
@@ -54,6 +59,23 @@ impl Report {
             order,
             ..Report::default()
         }
+    }
+
+    /// Writes the report (when asked), prints the summary table (unless quiet) and tells how
+    /// the run ended: invalid when validation found a problem.
+    pub fn finish(mut self, path: Option<&Path>, quiet: bool) -> Result<Outcome> {
+        if let Some(path) = path {
+            self.files.push(path.display().to_string());
+            crate::pictures::write_bytes(path, serde_json::to_string_pretty(&self)?.as_bytes())?;
+        }
+        if !quiet {
+            print!("{}", crate::summary::table(&self));
+        }
+        Ok(if self.problems.is_empty() {
+            Outcome::Valid
+        } else {
+            Outcome::Invalid
+        })
     }
 
     /// Fills what can be read off a finished 2D mesh: counts, quality, area, and the
