@@ -5,7 +5,7 @@
 #![allow(missing_docs)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use jacobian_check::{CertifyParams, certify_cell, reference_nodes};
+use jacobian_check::{CertifyParams, certify_cell, reference_nodes, sampled_check};
 use mesh_model::{CellType, Shape};
 use std::hint::black_box;
 
@@ -53,6 +53,11 @@ fn certify_100k(c: &mut Criterion) {
         (CellType::new(Shape::Quad, 2), "100k_p2_quads"),
     ] {
         let cells = curved_cells(ty, 100_000, 0.05);
+        let valid = cells
+            .iter()
+            .filter(|n| certify_cell(ty, n, &params).unwrap().is_valid())
+            .count();
+        println!("{name}: {valid} of {} certified valid", cells.len());
         group.bench_function(name, |b| {
             b.iter(|| {
                 let valid = cells
@@ -63,6 +68,18 @@ fn certify_100k(c: &mut Criterion) {
             })
         });
     }
+    // The dissertation's check: 861 sample points per triangle (41 per edge), on 10k cells.
+    let ty = CellType::new(Shape::Tri, 3);
+    let cells = curved_cells(ty, 10_000, 0.05);
+    group.bench_function("10k_p3_triangles_sampled_861_points", |b| {
+        b.iter(|| {
+            let positive = cells
+                .iter()
+                .filter(|n| sampled_check(ty, n, 41).unwrap().all_positive())
+                .count();
+            black_box(positive)
+        })
+    });
     group.finish();
 }
 
