@@ -200,6 +200,11 @@ fn coefficients<const D: usize>(table: &CertTable, nodes: &[[f64; D]]) -> Vec<f6
         .collect();
     let mut coeffs = vec![0.0; len];
     mat_vec(&table.space.to_bernstein, &samples, &mut coeffs);
+    // A corner coefficient is the value at the corner: take it exactly, not through the
+    // (rounded) inverse matrix, so that an invalid verdict rests on an evaluated value.
+    for &k in &table.space.corners {
+        coeffs[k] = samples[k];
+    }
     coeffs
 }
 
