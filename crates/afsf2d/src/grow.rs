@@ -22,7 +22,7 @@
 //! It does not fill the region left between the fronts (`fill`), nor build the output mesh.
 
 use mesh_model::NONE;
-use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d};
+use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active};
 
 use crate::geom::{
     Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance, segments_meet,
@@ -958,10 +958,15 @@ impl<'p> Work<'p> {
             .map(|(&g, &m)| if m { self.ideal[g as usize] } else { 1.0 })
             .collect();
         let params = self.params.springs;
-        let outcome =
-            springfield::solve(&mut x, &scale, &movable, &self.params.solver, |p, f, s| {
-                assemble_2d(&springs, &params, p, f, s)
-            })?;
+        let influence = springs.influence(x.len());
+        let outcome = springfield::solve_active(
+            &mut x,
+            &scale,
+            &movable,
+            &influence,
+            &self.params.solver,
+            |p, active, f, s| assemble_2d_active(&springs, &params, p, active, f, s),
+        )?;
         let mut saved = Vec::new();
         for (l, &g) in local_nodes.iter().enumerate() {
             if movable[l] {

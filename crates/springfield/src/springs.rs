@@ -84,6 +84,30 @@ pub struct SpringSet2d {
 }
 
 impl SpringSet2d {
+    /// The influence table of these springs over `n` nodes, for [`crate::solve_active()`]:
+    /// each node pushed by a spring depends on every node of that spring.
+    pub fn influence(&self, n: usize) -> crate::Influence {
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(
+            2 * self.extrusion.len() + 3 * self.neighbour.len() + 8 * self.angle.len(),
+        );
+        for s in &self.extrusion {
+            pairs.push((s.upper, s.lower));
+            pairs.push((s.lower, s.upper));
+        }
+        for s in &self.neighbour {
+            for d in [s.left, s.right, s.parent] {
+                pairs.push((s.centre, d));
+            }
+        }
+        for s in &self.angle {
+            for d in [s.left, s.right, s.centre, s.child] {
+                pairs.push((s.child, d));
+                pairs.push((s.centre, d));
+            }
+        }
+        crate::Influence::from_pairs(n, pairs)
+    }
+
     /// Removes every spring.
     pub fn clear(&mut self) {
         self.extrusion.clear();
@@ -100,8 +124,38 @@ pub fn assemble_extrusion<const D: usize>(
     force: &mut [[f64; D]],
     stiffness: &mut [f64],
 ) {
+    extrusion_masked(springs, params, positions, None, force, stiffness);
+}
+
+/// [`assemble_extrusion`] for [`crate::solve_active()`]: skips the springs that push no
+/// node flagged in `active`.
+pub fn assemble_extrusion_active<const D: usize>(
+    springs: &[ExtrusionSpring],
+    params: &SpringParams,
+    positions: &[[f64; D]],
+    active: &[bool],
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
+    extrusion_masked(springs, params, positions, Some(active), force, stiffness);
+}
+
+#[inline(always)]
+fn extrusion_masked<const D: usize>(
+    springs: &[ExtrusionSpring],
+    params: &SpringParams,
+    positions: &[[f64; D]],
+    active: Option<&[bool]>,
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
     for s in springs {
         let (lo, up) = (s.lower as usize, s.upper as usize);
+        if let Some(active) = active
+            && !(active[lo] || active[up])
+        {
+            continue;
+        }
         let v = sub(&positions[up], &positions[lo]);
         let len = norm(&v);
         if len <= 0.0 || s.ideal_length <= 0.0 {
@@ -150,8 +204,39 @@ pub fn assemble_2d(
     force: &mut [[f64; 2]],
     stiffness: &mut [f64],
 ) {
-    assemble_extrusion(&set.extrusion, params, positions, force, stiffness);
+    assemble_2d_masked(set, params, positions, None, force, stiffness);
+}
+
+/// [`assemble_2d`] for [`crate::solve_active()`]: adds the complete force and stiffness of
+/// every node flagged in `active`, skipping the springs that push none of them (the other
+/// nodes may get partial sums).
+pub fn assemble_2d_active(
+    set: &SpringSet2d,
+    params: &SpringParams,
+    positions: &[[f64; 2]],
+    active: &[bool],
+    force: &mut [[f64; 2]],
+    stiffness: &mut [f64],
+) {
+    assemble_2d_masked(set, params, positions, Some(active), force, stiffness);
+}
+
+#[inline(always)]
+fn assemble_2d_masked(
+    set: &SpringSet2d,
+    params: &SpringParams,
+    positions: &[[f64; 2]],
+    active: Option<&[bool]>,
+    force: &mut [[f64; 2]],
+    stiffness: &mut [f64],
+) {
+    extrusion_masked(&set.extrusion, params, positions, active, force, stiffness);
     for s in &set.neighbour {
+        if let Some(active) = active
+            && !active[s.centre as usize]
+        {
+            continue;
+        }
         let (a, k, b, p) = (
             positions[s.left as usize],
             positions[s.centre as usize],
@@ -183,6 +268,11 @@ pub fn assemble_2d(
     }
     let deg_per_rad = 180.0 / std::f64::consts::PI;
     for s in &set.angle {
+        if let Some(active) = active
+            && !(active[s.child as usize] || active[s.centre as usize])
+        {
+            continue;
+        }
         let (a, k, b, o) = (
             positions[s.left as usize],
             positions[s.centre as usize],
@@ -197,8 +287,13 @@ pub fn assemble_2d(
         let Some(bis) = bisector(a, k, b) else {
             continue;
         };
-        let (sn, cs) = s.offset_rad.sin_cos();
-        let ideal = [cs * bis[0] - sn * bis[1], sn * bis[0] + cs * bis[1]];
+        // most springs have no fan offset: skip the rotation (and its sin/cos) for them
+        let ideal = if s.offset_rad == 0.0 {
+            bis
+        } else {
+            let (sn, cs) = s.offset_rad.sin_cos();
+            [cs * bis[0] - sn * bis[1], sn * bis[0] + cs * bis[1]]
+        };
         let cos_a = (v[0] * ideal[0] + v[1] * ideal[1]) / len;
         let sin_a = (ideal[0] * v[1] - ideal[1] * v[0]) / len;
         let shape = ((dist(a, k) + dist(k, b)) / (2.0 * len)).min(params.fac_b);
