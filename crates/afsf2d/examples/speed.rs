@@ -1,7 +1,8 @@
 //! Timing aid: meshes every built-in case (boundary nodes as the pipeline makes them) at
 //! growth 1.3, 1.4 and 1.5 and prints the median time of `REPS` runs (default 5), the share
 //! of the spring solve, the total solver iterations and the largest angle after cutting.
-//! With `LAYERS=1` it also lists each layer's iterations and whether its solve converged.
+//! With `LAYERS=1` it also lists each layer's iterations and whether its solve converged;
+//! `RELAX=ω` and `WAKE=f` override the solver's relaxation and wake fraction.
 //!
 //! `cargo run --release -p afsf2d --example speed -- [CASE...]`
 
@@ -27,7 +28,14 @@ fn main() {
         let case = real::real_case(name);
         let loops = case.front_loops(case.first_height);
         for growth in [1.3, 1.4, 1.5] {
-            let params = case.params(case.first_height, growth);
+            let mut params = case.params(case.first_height, growth);
+            let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());
+            if let Some(v) = env("RELAX") {
+                params.solver.relaxation = v;
+            }
+            if let Some(v) = env("WAKE") {
+                params.solver.wake_fraction = v;
+            }
             let mut times = Vec::new();
             let mut last = None;
             for _ in 0..reps {
@@ -44,8 +52,11 @@ fn main() {
             let s = &out.stats;
             let unconverged = s.layer_stats.iter().filter(|l| !l.converged).count();
             println!(
-                "{name:12} G{growth}: {median:7.1} ms (solve {:5.1} ms) iters {:5} unconv {:2}/{:2} tris {:6} max {:.1} hist {:?}",
+                "{name:12} G{growth}: {median:7.1} ms (solve {:5.1} plan {:4.1} verify {:4.1} fill {:4.1} ms) iters {:5} unconv {:2}/{:2} tris {:6} max {:.1} hist {:?}",
                 s.timings.solve * 1e3,
+                s.timings.plan_and_closing * 1e3,
+                s.timings.verify * 1e3,
+                s.timings.fill * 1e3,
                 s.iterations,
                 unconverged,
                 s.layers,

@@ -553,6 +553,20 @@ impl<'p> Work<'p> {
             if sx.ids.iter().any(|i| sy.ids.contains(i)) {
                 return;
             }
+            // a segment whose owner is near the other along their loop (path shorter than
+            // path_ratio × its clearance) is never frozen by it, whatever their distance:
+            // when that holds both ways, skip the distance (most candidate pairs)
+            let never_frozen = |a: &Seg, b: &Seg| {
+                a.owner[0] == NONE
+                    || (a.lp == b.lp && {
+                        let total = loop_len[a.lp as usize];
+                        let delta = (a.arc - b.arc).abs();
+                        delta.min(total - delta) < path_ratio * a.clearance
+                    })
+            };
+            if never_frozen(sx, sy) && never_frozen(sy, sx) {
+                return;
+            }
             let c = sx.clearance.max(sy.clearance);
             let d = segment_distance(sx.p, sx.q, sy.p, sy.q);
             if d >= c {
