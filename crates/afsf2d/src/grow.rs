@@ -973,13 +973,14 @@ impl<'p> Work<'p> {
             .collect();
         let params = self.params.springs;
         let influence = springs.influence(x.len());
+        let index = springs.index(x.len());
         let outcome = springfield::solve_active(
             &mut x,
             &scale,
             &movable,
             &influence,
             &self.params.solver,
-            |p, active, f, s| assemble_2d_active(&springs, &params, p, active, f, s),
+            |p, active, f, s| assemble_2d_active(&springs, &index, &params, p, active, f, s),
         )?;
         let mut saved = Vec::new();
         for (l, &g) in local_nodes.iter().enumerate() {

@@ -25,10 +25,10 @@ pub struct SolveOutcome {
     pub heavy_nodes: usize,
 }
 
-/// Which nodes' forces depend on which: for node `i`, `targets[offsets[i]..offsets[i + 1]]`
-/// lists the other nodes whose position enters the force on `i` (the nodes of every spring
-/// that pushes `i`). Built by [`Influence::from_pairs`] or
-/// [`crate::springs::SpringSet2d::influence`].
+/// Which nodes' forces depend on which, stored the way the active set needs it: for node
+/// `j`, [`Influence::dependents`] lists the other nodes whose force depends on the position of
+/// `j` (the nodes pushed by a spring that `j` belongs to). Built by [`Influence::from_pairs`]
+/// or [`crate::springs::SpringSet2d::influence`].
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Influence {
     offsets: Vec<u32>,
@@ -36,26 +36,27 @@ pub struct Influence {
 }
 
 impl Influence {
-    /// Builds the table for `n` nodes from (pushed node, node it depends on) pairs; repeated
-    /// pairs and pairs of a node with itself are dropped. Pairs naming a node `>= n` are
-    /// ignored.
+    /// Builds the table for `n` nodes from (pushed node, node its force depends on) pairs;
+    /// repeated pairs and pairs of a node with itself are dropped. Pairs naming a node
+    /// `>= n` are ignored.
     pub fn from_pairs(n: usize, pairs: impl IntoIterator<Item = (u32, u32)>) -> Self {
         let mut pairs: Vec<(u32, u32)> = pairs
             .into_iter()
             .filter(|&(a, b)| a != b && (a as usize) < n && (b as usize) < n)
+            .map(|(pushed, on)| (on, pushed))
             .collect();
         pairs.sort_unstable();
         pairs.dedup();
         let mut offsets = vec![0u32; n + 1];
-        for &(a, _) in &pairs {
-            offsets[a as usize + 1] += 1;
+        for &(on, _) in &pairs {
+            offsets[on as usize + 1] += 1;
         }
         for i in 0..n {
             offsets[i + 1] += offsets[i];
         }
         Influence {
             offsets,
-            targets: pairs.into_iter().map(|(_, b)| b).collect(),
+            targets: pairs.into_iter().map(|(_, pushed)| pushed).collect(),
         }
     }
 
@@ -69,10 +70,19 @@ impl Influence {
         self.len() == 0
     }
 
-    /// The nodes whose position enters the force on `node`.
-    pub fn of(&self, node: usize) -> &[u32] {
+    /// The nodes whose force depends on the position of `node`.
+    pub fn dependents(&self, node: usize) -> &[u32] {
         &self.targets[self.offsets[node] as usize..self.offsets[node + 1] as usize]
     }
+}
+
+/// The nodes a [`solve_active()`] iteration updates, as flags (one per node) and as a list.
+#[derive(Debug, Clone, Copy)]
+pub struct Active<'a> {
+    /// `flags[i]`: node i is updated this iteration.
+    pub flags: &'a [bool],
+    /// The flagged nodes (each once, in no particular order).
+    pub nodes: &'a [u32],
 }
 
 /// Balances the springs by damped explicit pseudo-time stepping.
@@ -111,8 +121,8 @@ where
 /// at rest.
 ///
 /// `assemble(positions, active, force, stiffness)` must add the complete force and
-/// stiffness of every node flagged in `active` (it may skip springs that push no active
-/// node; the forces of the other nodes are not read).
+/// stiffness of every active node (it may skip springs that push no active node; the
+/// forces of the other nodes are not read, nor zeroed).
 pub fn solve_active<const D: usize, A>(
     positions: &mut [[f64; D]],
     scale: &[f64],
@@ -122,7 +132,7 @@ pub fn solve_active<const D: usize, A>(
     assemble: A,
 ) -> Result<SolveOutcome, SpringError>
 where
-    A: FnMut(&[[f64; D]], &[bool], &mut [[f64; D]], &mut [f64]),
+    A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
     if influence.len() != positions.len() {
         return Err(SpringError::LengthMismatch {
@@ -143,7 +153,7 @@ fn solve_core<const D: usize, A>(
     mut assemble: A,
 ) -> Result<SolveOutcome, SpringError>
 where
-    A: FnMut(&[[f64; D]], &[bool], &mut [[f64; D]], &mut [f64]),
+    A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
     params.check()?;
     let n = positions.len();
@@ -167,36 +177,53 @@ where
     let mut mass = vec![1.0f64; n];
     let mut travel = vec![0.0f64; n];
     let mut anchor: Vec<[f64; D]> = positions.to_vec();
+    let all_movable: Vec<u32> = (0..n as u32).filter(|&i| movable[i as usize]).collect();
     let mut active: Vec<bool> = movable.to_vec();
-    // moved by at least the wake threshold in the last iteration
-    let mut moved = vec![false; n];
+    let mut active_nodes: Vec<u32> = all_movable.clone();
+    // nodes that moved by at least the wake threshold in the last iteration
+    let mut moved: Vec<u32> = Vec::new();
     let wake = params.wake_fraction * params.tolerance;
     let mut full_sweep = true;
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
         if let Some(influence) = influence {
+            for &i in &active_nodes {
+                active[i as usize] = false;
+            }
+            active_nodes.clear();
             if full_sweep {
-                active.copy_from_slice(movable);
+                active_nodes.extend_from_slice(&all_movable);
+                for &i in &active_nodes {
+                    active[i as usize] = true;
+                }
             } else {
-                for i in 0..n {
-                    active[i] = movable[i]
-                        && (moved[i] || influence.of(i).iter().any(|&j| moved[j as usize]));
+                for &j in &moved {
+                    for &i in std::iter::once(&j).chain(influence.dependents(j as usize)) {
+                        if movable[i as usize] && !active[i as usize] {
+                            active[i as usize] = true;
+                            active_nodes.push(i);
+                        }
+                    }
                 }
             }
-            moved.iter_mut().for_each(|m| *m = false);
         }
-        for i in 0..n {
-            if active[i] {
-                force[i] = [0.0; D];
-                stiffness[i] = 0.0;
-            }
+        moved.clear();
+        for &i in &active_nodes {
+            force[i as usize] = [0.0; D];
+            stiffness[i as usize] = 0.0;
         }
-        assemble(positions, &active, &mut force, &mut stiffness);
+        assemble(
+            positions,
+            Active {
+                flags: &active,
+                nodes: &active_nodes,
+            },
+            &mut force,
+            &mut stiffness,
+        );
         let mut max_step = 0.0f64;
-        for i in 0..n {
-            if !active[i] {
-                continue;
-            }
+        for &iu in &active_nodes {
+            let i = iu as usize;
             let (f, s) = (force[i], stiffness[i]);
             if !(s.is_finite() && f.iter().all(|c| c.is_finite())) {
                 return Err(SpringError::NonFiniteForce { node: i, iteration });
@@ -218,7 +245,9 @@ where
             }
             let relative = len / scale[i];
             max_step = max_step.max(relative);
-            moved[i] = relative >= wake;
+            if relative >= wake {
+                moved.push(iu);
+            }
             travel[i] += len;
             if travel[i] > params.judge_travel * scale[i] {
                 let net = norm(&crate::vec::sub(&positions[i], &anchor[i]));
@@ -308,7 +337,7 @@ mod tests {
             params,
             |p, a, f, s| {
                 for i in 0..n - 1 {
-                    if !(a[i] || a[i + 1]) {
+                    if !(a.flags[i] || a.flags[i + 1]) {
                         continue;
                     }
                     let d = p[i + 1][0] - p[i][0];
@@ -369,9 +398,10 @@ mod tests {
     fn influence_table_lists_each_dependency_once() {
         let t = Influence::from_pairs(4, [(0, 1), (0, 1), (0, 0), (2, 3), (2, 1), (9, 1)]);
         assert_eq!(t.len(), 4);
-        assert_eq!(t.of(0), &[1]);
-        assert_eq!(t.of(1), &[] as &[u32]);
-        assert_eq!(t.of(2), &[1, 3]);
+        assert_eq!(t.dependents(1), &[0, 2]);
+        assert_eq!(t.dependents(3), &[2]);
+        assert_eq!(t.dependents(0), &[] as &[u32]);
+        assert_eq!(t.dependents(2), &[] as &[u32]);
         let mut x = vec![[0.0f64]; 3];
         let e = solve_active(
             &mut x,
