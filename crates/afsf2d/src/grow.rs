@@ -260,6 +260,7 @@ impl<'p> Work<'p> {
     fn plan_loop(&self, lp: &Loop) -> Plan {
         let m = lp.items.len();
         let fan_threshold = self.params.fan_threshold_deg.to_radians();
+        let cos_fan_threshold = fan_threshold.cos();
         let fan_max = self.params.fan_max_angle_deg.to_radians();
         // directions (and fan offsets) of every node on an active edge
         let mut dirs: Vec<Vec<(P2, f64)>> = vec![Vec::new(); m];
@@ -277,8 +278,15 @@ impl<'p> Work<'p> {
                 .flatten();
             match (n1, n2) {
                 (Some(a), Some(b)) => {
-                    let theta = cross(a, b).atan2(dot(a, b));
-                    if -theta > fan_threshold {
+                    // the turn angle (atan2) is needed only for an outward turn of more
+                    // than the fan threshold: cross < 0 and cos(turn) < cos(threshold)
+                    let maybe_fan = cross(a, b) < 0.0 && dot(a, b) < cos_fan_threshold + 1e-9;
+                    let theta = if maybe_fan {
+                        cross(a, b).atan2(dot(a, b))
+                    } else {
+                        0.0
+                    };
+                    if maybe_fan && -theta > fan_threshold {
                         let pieces = (-theta / fan_max).ceil().max(1.0) as usize;
                         for j in 0..=pieces {
                             let phi = theta * j as f64 / pieces as f64;

@@ -40,24 +40,40 @@ impl Influence {
     /// repeated pairs and pairs of a node with itself are dropped. Pairs naming a node
     /// `>= n` are ignored.
     pub fn from_pairs(n: usize, pairs: impl IntoIterator<Item = (u32, u32)>) -> Self {
-        let mut pairs: Vec<(u32, u32)> = pairs
+        // counting sort into rows keyed by the node depended on, then each (short) row is
+        // sorted and deduplicated in place
+        let pairs: Vec<(u32, u32)> = pairs
             .into_iter()
             .filter(|&(a, b)| a != b && (a as usize) < n && (b as usize) < n)
-            .map(|(pushed, on)| (on, pushed))
             .collect();
-        pairs.sort_unstable();
-        pairs.dedup();
-        let mut offsets = vec![0u32; n + 1];
-        for &(on, _) in &pairs {
-            offsets[on as usize + 1] += 1;
+        let mut start = vec![0u32; n + 1];
+        for &(_, on) in &pairs {
+            start[on as usize + 1] += 1;
         }
         for i in 0..n {
-            offsets[i + 1] += offsets[i];
+            start[i + 1] += start[i];
         }
-        Influence {
-            offsets,
-            targets: pairs.into_iter().map(|(_, pushed)| pushed).collect(),
+        let mut fill = start.clone();
+        let mut rows = vec![0u32; pairs.len()];
+        for &(pushed, on) in &pairs {
+            rows[fill[on as usize] as usize] = pushed;
+            fill[on as usize] += 1;
         }
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0u32);
+        let mut targets: Vec<u32> = Vec::with_capacity(rows.len());
+        for i in 0..n {
+            let row = &mut rows[start[i] as usize..start[i + 1] as usize];
+            row.sort_unstable();
+            let first = targets.len();
+            for &t in row.iter() {
+                if targets.len() == first || targets[targets.len() - 1] != t {
+                    targets.push(t);
+                }
+            }
+            offsets.push(targets.len() as u32);
+        }
+        Influence { offsets, targets }
     }
 
     /// Number of nodes the table covers.
