@@ -198,14 +198,27 @@ fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
 /// the bisector of the left normals of AK and KB, or `None` when it is undefined (coincident
 /// nodes, or a front folded back on itself).
 pub fn bisector(a: [f64; 2], k: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
-    let n1 = left_normal(a, k)?;
-    let n2 = left_normal(k, b)?;
+    bisector_and_sides(a, k, b).map(|(d, _, _)| d)
+}
+
+/// [`bisector`] with the lengths |AK| and |KB| it computes on the way.
+#[inline(always)]
+fn bisector_and_sides(a: [f64; 2], k: [f64; 2], b: [f64; 2]) -> Option<([f64; 2], f64, f64)> {
+    let d1 = [k[0] - a[0], k[1] - a[1]];
+    let l1 = (d1[0] * d1[0] + d1[1] * d1[1]).sqrt();
+    let d2 = [b[0] - k[0], b[1] - k[1]];
+    let l2 = (d2[0] * d2[0] + d2[1] * d2[1]).sqrt();
+    if !(l1 > 0.0 && l2 > 0.0) {
+        return None;
+    }
+    let n1 = [-d1[1] / l1, d1[0] / l1];
+    let n2 = [-d2[1] / l2, d2[0] / l2];
     let s = [n1[0] + n2[0], n1[1] + n2[1]];
     let l = (s[0] * s[0] + s[1] * s[1]).sqrt();
     if l > 1e-9 {
-        Some([s[0] / l, s[1] / l])
+        Some(([s[0] / l, s[1] / l], l1, l2))
     } else {
-        left_normal(a, b)
+        left_normal(a, b).map(|d| (d, l1, l2))
     }
 }
 
@@ -375,7 +388,7 @@ fn angle_one(
     if len <= 0.0 || len < params.angle_activation_ratio * s.ideal_length {
         return;
     }
-    let Some(bis) = bisector(a, k, b) else {
+    let Some((bis, side_a, side_b)) = bisector_and_sides(a, k, b) else {
         return;
     };
     // most springs have no fan offset: skip the rotation (and its sin/cos) for them
@@ -387,7 +400,7 @@ fn angle_one(
     };
     let cos_a = (v[0] * ideal[0] + v[1] * ideal[1]) / len;
     let sin_a = (ideal[0] * v[1] - ideal[1] * v[0]) / len;
-    let shape = ((dist(a, k) + dist(k, b)) / (2.0 * len)).min(params.fac_b);
+    let shape = ((side_a + side_b) / (2.0 * len)).min(params.fac_b);
     let gain = params.k_angle * deg_per_rad / params.fac_a * shape;
     let k_len = gain / len;
     let (f_mag, dir_o) = if cos_a >= 0.0 {
