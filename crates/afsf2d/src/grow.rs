@@ -22,7 +22,7 @@
 //! It does not fill the region left between the fronts (`fill`), nor build the output mesh.
 
 use mesh_model::NONE;
-use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d};
+use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active};
 
 use crate::geom::{
     Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance, segments_meet,
@@ -260,6 +260,7 @@ impl<'p> Work<'p> {
     fn plan_loop(&self, lp: &Loop) -> Plan {
         let m = lp.items.len();
         let fan_threshold = self.params.fan_threshold_deg.to_radians();
+        let cos_fan_threshold = fan_threshold.cos();
         let fan_max = self.params.fan_max_angle_deg.to_radians();
         // directions (and fan offsets) of every node on an active edge
         let mut dirs: Vec<Vec<(P2, f64)>> = vec![Vec::new(); m];
@@ -277,8 +278,15 @@ impl<'p> Work<'p> {
                 .flatten();
             match (n1, n2) {
                 (Some(a), Some(b)) => {
-                    let theta = cross(a, b).atan2(dot(a, b));
-                    if -theta > fan_threshold {
+                    // the turn angle (atan2) is needed only for an outward turn of more
+                    // than the fan threshold: cross < 0 and cos(turn) < cos(threshold)
+                    let maybe_fan = cross(a, b) < 0.0 && dot(a, b) < cos_fan_threshold + 1e-9;
+                    let theta = if maybe_fan {
+                        cross(a, b).atan2(dot(a, b))
+                    } else {
+                        0.0
+                    };
+                    if maybe_fan && -theta > fan_threshold {
                         let pieces = (-theta / fan_max).ceil().max(1.0) as usize;
                         for j in 0..=pieces {
                             let phi = theta * j as f64 / pieces as f64;
@@ -551,6 +559,20 @@ impl<'p> Work<'p> {
                 return;
             }
             if sx.ids.iter().any(|i| sy.ids.contains(i)) {
+                return;
+            }
+            // a segment whose owner is near the other along their loop (path shorter than
+            // path_ratio × its clearance) is never frozen by it, whatever their distance:
+            // when that holds both ways, skip the distance (most candidate pairs)
+            let never_frozen = |a: &Seg, b: &Seg| {
+                a.owner[0] == NONE
+                    || (a.lp == b.lp && {
+                        let total = loop_len[a.lp as usize];
+                        let delta = (a.arc - b.arc).abs();
+                        delta.min(total - delta) < path_ratio * a.clearance
+                    })
+            };
+            if never_frozen(sx, sy) && never_frozen(sy, sx) {
                 return;
             }
             let c = sx.clearance.max(sy.clearance);
@@ -958,10 +980,16 @@ impl<'p> Work<'p> {
             .map(|(&g, &m)| if m { self.ideal[g as usize] } else { 1.0 })
             .collect();
         let params = self.params.springs;
-        let outcome =
-            springfield::solve(&mut x, &scale, &movable, &self.params.solver, |p, f, s| {
-                assemble_2d(&springs, &params, p, f, s)
-            })?;
+        let influence = springs.influence(x.len());
+        let index = springs.index(x.len());
+        let outcome = springfield::solve_active(
+            &mut x,
+            &scale,
+            &movable,
+            &influence,
+            &self.params.solver,
+            |p, active, f, s| assemble_2d_active(&springs, &index, &params, p, active, f, s),
+        )?;
         let mut saved = Vec::new();
         for (l, &g) in local_nodes.iter().enumerate() {
             if movable[l] {

@@ -20,5 +20,8 @@ mod vec;
 
 pub use error::SpringError;
 pub use params::{SolverParams, SpringParams};
-pub use solver::{SolveOutcome, solve};
-pub use springs::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d};
+pub use solver::{Active, Influence, SolveOutcome, solve, solve_active};
+pub use springs::{
+    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringIndex2d, SpringSet2d, assemble_2d,
+    assemble_2d_active,
+};

@@ -128,6 +128,11 @@ pub struct SolverParams {
     /// Convergence: largest move of any node in one iteration, relative to its scale.
     /// Default 1e-3.
     pub tolerance: f64,
+    /// Active set of [`crate::solve_active()`]: a node stays awake while it, or a node its
+    /// force depends on, moved by at least this fraction of `tolerance` (relative to its
+    /// scale) in the last iteration. In (0, 1]; smaller is closer to updating every node
+    /// every iteration. Default 0.1.
+    pub wake_fraction: f64,
 }
 
 impl Default for SolverParams {
@@ -140,6 +145,7 @@ impl Default for SolverParams {
             mass_factor: 2.0,
             judge_travel: 0.5,
             tolerance: 1e-3,
+            wake_fraction: 0.1,
         }
     }
 }
@@ -147,7 +153,7 @@ impl Default for SolverParams {
 impl SolverParams {
     /// Checks every setting's range.
     pub fn check(&self) -> Result<(), SpringError> {
-        let checks: [(&'static str, f64, bool, &'static str); 5] = [
+        let checks: [(&'static str, f64, bool, &'static str); 6] = [
             (
                 "relaxation",
                 self.relaxation,
@@ -177,6 +183,12 @@ impl SolverParams {
                 self.tolerance,
                 self.tolerance > 0.0,
                 "finite and > 0",
+            ),
+            (
+                "wake_fraction",
+                self.wake_fraction,
+                self.wake_fraction > 0.0 && self.wake_fraction <= 1.0,
+                "in (0, 1]",
             ),
         ];
         for (name, value, ok, expected) in checks {

@@ -25,6 +25,82 @@ pub struct SolveOutcome {
     pub heavy_nodes: usize,
 }
 
+/// Which nodes' forces depend on which, stored the way the active set needs it: for node
+/// `j`, [`Influence::dependents`] lists the other nodes whose force depends on the position of
+/// `j` (the nodes pushed by a spring that `j` belongs to). Built by [`Influence::from_pairs`]
+/// or [`crate::springs::SpringSet2d::influence`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Influence {
+    offsets: Vec<u32>,
+    targets: Vec<u32>,
+}
+
+impl Influence {
+    /// Builds the table for `n` nodes from (pushed node, node its force depends on) pairs;
+    /// repeated pairs and pairs of a node with itself are dropped. Pairs naming a node
+    /// `>= n` are ignored.
+    pub fn from_pairs(n: usize, pairs: impl IntoIterator<Item = (u32, u32)>) -> Self {
+        // counting sort into rows keyed by the node depended on, then each (short) row is
+        // sorted and deduplicated in place
+        let pairs: Vec<(u32, u32)> = pairs
+            .into_iter()
+            .filter(|&(a, b)| a != b && (a as usize) < n && (b as usize) < n)
+            .collect();
+        let mut start = vec![0u32; n + 1];
+        for &(_, on) in &pairs {
+            start[on as usize + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut rows = vec![0u32; pairs.len()];
+        for &(pushed, on) in &pairs {
+            rows[fill[on as usize] as usize] = pushed;
+            fill[on as usize] += 1;
+        }
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0u32);
+        let mut targets: Vec<u32> = Vec::with_capacity(rows.len());
+        for i in 0..n {
+            let row = &mut rows[start[i] as usize..start[i + 1] as usize];
+            row.sort_unstable();
+            let first = targets.len();
+            for &t in row.iter() {
+                if targets.len() == first || targets[targets.len() - 1] != t {
+                    targets.push(t);
+                }
+            }
+            offsets.push(targets.len() as u32);
+        }
+        Influence { offsets, targets }
+    }
+
+    /// Number of nodes the table covers.
+    pub fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// True when the table covers no node.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The nodes whose force depends on the position of `node`.
+    pub fn dependents(&self, node: usize) -> &[u32] {
+        &self.targets[self.offsets[node] as usize..self.offsets[node + 1] as usize]
+    }
+}
+
+/// The nodes a [`solve_active()`] iteration updates, as flags (one per node) and as a list.
+#[derive(Debug, Clone, Copy)]
+pub struct Active<'a> {
+    /// `flags[i]`: node i is updated this iteration.
+    pub flags: &'a [bool],
+    /// The flagged nodes (each once, in no particular order).
+    pub nodes: &'a [u32],
+}
+
 /// Balances the springs by damped explicit pseudo-time stepping.
 ///
 /// - `positions`: node coordinates, updated in place (fixed nodes are never written);
@@ -33,6 +109,9 @@ pub struct SolveOutcome {
 /// - `movable`: which nodes may move;
 /// - `assemble(positions, force, stiffness)`: adds each spring's force and stiffness into
 ///   the two arrays, which the solver zeroes before each call.
+///
+/// Every iteration updates every movable node; [`solve_active`] gives the same balance for
+/// much less work when few nodes move.
 ///
 /// Running out of iterations is an outcome (`converged: false`), not an error.
 pub fn solve<const D: usize, A>(
@@ -44,6 +123,53 @@ pub fn solve<const D: usize, A>(
 ) -> Result<SolveOutcome, SpringError>
 where
     A: FnMut(&[[f64; D]], &mut [[f64; D]], &mut [f64]),
+{
+    solve_core(positions, scale, movable, None, params, |p, _, f, s| {
+        assemble(p, f, s)
+    })
+}
+
+/// [`solve()`] with an active set: a node is updated only while it, or a node its force
+/// depends on (`influence`), moved by at least `wake_fraction × tolerance` of its scale in
+/// the previous iteration; the others are at rest and keep their place. When the active
+/// nodes' largest move falls below the tolerance, one full iteration over every movable
+/// node decides convergence (the same test as [`solve()`]), and wakes whatever is not yet
+/// at rest.
+///
+/// `assemble(positions, active, force, stiffness)` must add the complete force and
+/// stiffness of every active node (it may skip springs that push no active node; the
+/// forces of the other nodes are not read, nor zeroed).
+pub fn solve_active<const D: usize, A>(
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    movable: &[bool],
+    influence: &Influence,
+    params: &SolverParams,
+    assemble: A,
+) -> Result<SolveOutcome, SpringError>
+where
+    A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
+{
+    if influence.len() != positions.len() {
+        return Err(SpringError::LengthMismatch {
+            positions: positions.len(),
+            scales: scale.len(),
+            movable: influence.len(),
+        });
+    }
+    solve_core(positions, scale, movable, Some(influence), params, assemble)
+}
+
+fn solve_core<const D: usize, A>(
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    movable: &[bool],
+    influence: Option<&Influence>,
+    params: &SolverParams,
+    mut assemble: A,
+) -> Result<SolveOutcome, SpringError>
+where
+    A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
     params.check()?;
     let n = positions.len();
@@ -67,16 +193,53 @@ where
     let mut mass = vec![1.0f64; n];
     let mut travel = vec![0.0f64; n];
     let mut anchor: Vec<[f64; D]> = positions.to_vec();
+    let all_movable: Vec<u32> = (0..n as u32).filter(|&i| movable[i as usize]).collect();
+    let mut active: Vec<bool> = movable.to_vec();
+    let mut active_nodes: Vec<u32> = all_movable.clone();
+    // nodes that moved by at least the wake threshold in the last iteration
+    let mut moved: Vec<u32> = Vec::new();
+    let wake = params.wake_fraction * params.tolerance;
+    let mut full_sweep = true;
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
-        force.iter_mut().for_each(|f| *f = [0.0; D]);
-        stiffness.iter_mut().for_each(|s| *s = 0.0);
-        assemble(positions, &mut force, &mut stiffness);
-        let mut max_step = 0.0f64;
-        for i in 0..n {
-            if !movable[i] {
-                continue;
+        if let Some(influence) = influence {
+            for &i in &active_nodes {
+                active[i as usize] = false;
             }
+            active_nodes.clear();
+            if full_sweep {
+                active_nodes.extend_from_slice(&all_movable);
+                for &i in &active_nodes {
+                    active[i as usize] = true;
+                }
+            } else {
+                for &j in &moved {
+                    for &i in std::iter::once(&j).chain(influence.dependents(j as usize)) {
+                        if movable[i as usize] && !active[i as usize] {
+                            active[i as usize] = true;
+                            active_nodes.push(i);
+                        }
+                    }
+                }
+            }
+        }
+        moved.clear();
+        for &i in &active_nodes {
+            force[i as usize] = [0.0; D];
+            stiffness[i as usize] = 0.0;
+        }
+        assemble(
+            positions,
+            Active {
+                flags: &active,
+                nodes: &active_nodes,
+            },
+            &mut force,
+            &mut stiffness,
+        );
+        let mut max_step = 0.0f64;
+        for &iu in &active_nodes {
+            let i = iu as usize;
             let (f, s) = (force[i], stiffness[i]);
             if !(s.is_finite() && f.iter().all(|c| c.is_finite())) {
                 return Err(SpringError::NonFiniteForce { node: i, iteration });
@@ -96,7 +259,11 @@ where
             for k in 0..D {
                 positions[i][k] += step[k];
             }
-            max_step = max_step.max(len / scale[i]);
+            let relative = len / scale[i];
+            max_step = max_step.max(relative);
+            if relative >= wake {
+                moved.push(iu);
+            }
             travel[i] += len;
             if travel[i] > params.judge_travel * scale[i] {
                 let net = norm(&crate::vec::sub(&positions[i], &anchor[i]));
@@ -113,8 +280,13 @@ where
         outcome.iterations = iteration + 1;
         outcome.max_relative_step = max_step;
         if max_step < params.tolerance {
-            outcome.converged = true;
-            break;
+            if full_sweep || influence.is_none() {
+                outcome.converged = true;
+                break;
+            }
+            full_sweep = true;
+        } else {
+            full_sweep = false;
         }
     }
     Ok(outcome)
@@ -160,6 +332,103 @@ mod tests {
             prop_assert_eq!(x[0][0], 0.0);
             prop_assert_eq!(x[n - 1][0], 1.0);
         }
+    }
+
+    /// The chain of `chain`, solved with the active set.
+    fn chain_active(
+        n: usize,
+        params: &SolverParams,
+        start: &[f64],
+    ) -> (Vec<[f64; 1]>, SolveOutcome) {
+        let mut x: Vec<[f64; 1]> = start.iter().map(|&v| [v]).collect();
+        let movable: Vec<bool> = (0..n).map(|i| i != 0 && i != n - 1).collect();
+        let scale = vec![1.0 / (n - 1) as f64; n];
+        let influence =
+            Influence::from_pairs(n, (0..n as u32 - 1).flat_map(|i| [(i, i + 1), (i + 1, i)]));
+        let out = solve_active(
+            &mut x,
+            &scale,
+            &movable,
+            &influence,
+            params,
+            |p, a, f, s| {
+                for i in 0..n - 1 {
+                    if !(a.flags[i] || a.flags[i + 1]) {
+                        continue;
+                    }
+                    let d = p[i + 1][0] - p[i][0];
+                    f[i][0] += d;
+                    f[i + 1][0] -= d;
+                    s[i] += 1.0;
+                    s[i + 1] += 1.0;
+                }
+            },
+        )
+        .unwrap();
+        (x, out)
+    }
+
+    proptest! {
+        #[test]
+        fn the_active_set_reaches_the_same_balance(
+            jitter in proptest::collection::vec(-0.4f64..0.4, 39),
+            still in 0usize..39,
+        ) {
+            // a chain at rest except for a disturbed stretch: the active set must settle it
+            // to the same spacing as the full solve, and converge by the same test
+            let n = 41;
+            let h = 1.0 / 40.0;
+            let start: Vec<f64> = (0..n)
+                .map(|i| {
+                    let j = if i == 0 || i == n - 1 || (i > still && i < still + 8) { 0.0 } else { jitter[i - 1] };
+                    (i as f64 + j) * h
+                })
+                .collect();
+            let params = SolverParams { max_iterations: 20000, tolerance: 1e-7, ..SolverParams::default() };
+            let (x_full, out_full) = chain(n, &params, &start);
+            let (x_act, out_act) = chain_active(n, &params, &start);
+            prop_assert!(out_full.converged && out_act.converged, "{out_full:?} {out_act:?}");
+            for i in 0..n {
+                prop_assert!((x_act[i][0] - i as f64 * h).abs() < 1e-4, "node {i} at {}", x_act[i][0]);
+                prop_assert!((x_act[i][0] - x_full[i][0]).abs() < 1e-4);
+            }
+        }
+    }
+
+    #[test]
+    fn a_long_chain_disturbed_at_one_node_settles_with_the_active_set() {
+        // a long chain at rest with one displaced node: the disturbance spreads from a
+        // single awake node, and the active solve still settles it
+        let n = 201;
+        let h = 1.0 / 200.0;
+        let mut start: Vec<f64> = (0..n).map(|i| i as f64 * h).collect();
+        start[100] += 0.3 * h;
+        let params = SolverParams::default();
+        let (x, out) = chain_active(n, &params, &start);
+        assert!(out.converged, "{out:?}");
+        assert!((x[100][0] - 100.0 * h).abs() < 0.05 * h, "{:?}", x[100]);
+        assert!((x[0][0], x[n - 1][0]) == (0.0, 1.0));
+    }
+
+    #[test]
+    fn influence_table_lists_each_dependency_once() {
+        let t = Influence::from_pairs(4, [(0, 1), (0, 1), (0, 0), (2, 3), (2, 1), (9, 1)]);
+        assert_eq!(t.len(), 4);
+        assert_eq!(t.dependents(1), &[0, 2]);
+        assert_eq!(t.dependents(3), &[2]);
+        assert_eq!(t.dependents(0), &[] as &[u32]);
+        assert_eq!(t.dependents(2), &[] as &[u32]);
+        let mut x = vec![[0.0f64]; 3];
+        let e = solve_active(
+            &mut x,
+            &[1.0; 3],
+            &[true; 3],
+            &t,
+            &SolverParams::default(),
+            |_, _, _, _| {},
+        )
+        .unwrap_err();
+        assert!(matches!(e, SpringError::LengthMismatch { .. }), "{e}");
     }
 
     #[test]

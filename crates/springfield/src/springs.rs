@@ -84,6 +84,30 @@ pub struct SpringSet2d {
 }
 
 impl SpringSet2d {
+    /// The influence table of these springs over `n` nodes, for [`crate::solve_active()`]:
+    /// each node pushed by a spring depends on every node of that spring.
+    pub fn influence(&self, n: usize) -> crate::Influence {
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(
+            2 * self.extrusion.len() + 3 * self.neighbour.len() + 8 * self.angle.len(),
+        );
+        for s in &self.extrusion {
+            pairs.push((s.upper, s.lower));
+            pairs.push((s.lower, s.upper));
+        }
+        for s in &self.neighbour {
+            for d in [s.left, s.right, s.parent] {
+                pairs.push((s.centre, d));
+            }
+        }
+        for s in &self.angle {
+            for d in [s.left, s.right, s.centre, s.child] {
+                pairs.push((s.child, d));
+                pairs.push((s.centre, d));
+            }
+        }
+        crate::Influence::from_pairs(n, pairs)
+    }
+
     /// Removes every spring.
     pub fn clear(&mut self) {
         self.extrusion.clear();
@@ -100,20 +124,67 @@ pub fn assemble_extrusion<const D: usize>(
     force: &mut [[f64; D]],
     stiffness: &mut [f64],
 ) {
+    extrusion_masked(springs, params, positions, None, force, stiffness);
+}
+
+/// [`assemble_extrusion`] for [`crate::solve_active()`]: skips the springs that push no
+/// node flagged in `active`.
+pub fn assemble_extrusion_active<const D: usize>(
+    springs: &[ExtrusionSpring],
+    params: &SpringParams,
+    positions: &[[f64; D]],
+    active: crate::Active<'_>,
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
+    extrusion_masked(
+        springs,
+        params,
+        positions,
+        Some(active.flags),
+        force,
+        stiffness,
+    );
+}
+
+fn extrusion_masked<const D: usize>(
+    springs: &[ExtrusionSpring],
+    params: &SpringParams,
+    positions: &[[f64; D]],
+    active: Option<&[bool]>,
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
     for s in springs {
-        let (lo, up) = (s.lower as usize, s.upper as usize);
-        let v = sub(&positions[up], &positions[lo]);
-        let len = norm(&v);
-        if len <= 0.0 || s.ideal_length <= 0.0 {
+        if let Some(active) = active
+            && !(active[s.lower as usize] || active[s.upper as usize])
+        {
             continue;
         }
-        let f = params.k_extrusion * (s.ideal_length - len) / s.ideal_length;
-        let k = params.k_extrusion / s.ideal_length;
-        axpy(&mut force[up], f / len, &v);
-        stiffness[up] += k;
-        axpy(&mut force[lo], -s.lower_share * f / len, &v);
-        stiffness[lo] += s.lower_share * k;
+        extrusion_one(s, params, positions, force, stiffness);
     }
+}
+
+#[inline(always)]
+fn extrusion_one<const D: usize>(
+    s: &ExtrusionSpring,
+    params: &SpringParams,
+    positions: &[[f64; D]],
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
+    let (lo, up) = (s.lower as usize, s.upper as usize);
+    let v = sub(&positions[up], &positions[lo]);
+    let len = norm(&v);
+    if len <= 0.0 || s.ideal_length <= 0.0 {
+        return;
+    }
+    let f = params.k_extrusion * (s.ideal_length - len) / s.ideal_length;
+    let k = params.k_extrusion / s.ideal_length;
+    axpy(&mut force[up], f / len, &v);
+    stiffness[up] += k;
+    axpy(&mut force[lo], -s.lower_share * f / len, &v);
+    stiffness[lo] += s.lower_share * k;
 }
 
 #[inline]
@@ -127,14 +198,27 @@ fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
 /// the bisector of the left normals of AK and KB, or `None` when it is undefined (coincident
 /// nodes, or a front folded back on itself).
 pub fn bisector(a: [f64; 2], k: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
-    let n1 = left_normal(a, k)?;
-    let n2 = left_normal(k, b)?;
+    bisector_and_sides(a, k, b).map(|(d, _, _)| d)
+}
+
+/// [`bisector`] with the lengths |AK| and |KB| it computes on the way.
+#[inline(always)]
+fn bisector_and_sides(a: [f64; 2], k: [f64; 2], b: [f64; 2]) -> Option<([f64; 2], f64, f64)> {
+    let d1 = [k[0] - a[0], k[1] - a[1]];
+    let l1 = (d1[0] * d1[0] + d1[1] * d1[1]).sqrt();
+    let d2 = [b[0] - k[0], b[1] - k[1]];
+    let l2 = (d2[0] * d2[0] + d2[1] * d2[1]).sqrt();
+    if !(l1 > 0.0 && l2 > 0.0) {
+        return None;
+    }
+    let n1 = [-d1[1] / l1, d1[0] / l1];
+    let n2 = [-d2[1] / l2, d2[0] / l2];
     let s = [n1[0] + n2[0], n1[1] + n2[1]];
     let l = (s[0] * s[0] + s[1] * s[1]).sqrt();
     if l > 1e-9 {
-        Some([s[0] / l, s[1] / l])
+        Some(([s[0] / l, s[1] / l], l1, l2))
     } else {
-        left_normal(a, b)
+        left_normal(a, b).map(|d| (d, l1, l2))
     }
 }
 
@@ -150,100 +234,214 @@ pub fn assemble_2d(
     force: &mut [[f64; 2]],
     stiffness: &mut [f64],
 ) {
-    assemble_extrusion(&set.extrusion, params, positions, force, stiffness);
+    extrusion_masked(&set.extrusion, params, positions, None, force, stiffness);
     for s in &set.neighbour {
-        let (a, k, b, p) = (
-            positions[s.left as usize],
-            positions[s.centre as usize],
-            positions[s.right as usize],
-            positions[s.parent as usize],
-        );
-        let d = [k[0] - p[0], k[1] - p[1]];
-        let h = (d[0] * d[0] + d[1] * d[1]).sqrt();
-        let (la, lb) = (dist(a, k), dist(k, b));
-        if h <= 0.0 || la + lb <= 0.0 {
-            continue;
-        }
-        let mut t = [-d[1] / h, d[0] / h];
-        if t[0] * (b[0] - a[0]) + t[1] * (b[1] - a[1]) < 0.0 {
-            t = [-t[0], -t[1]];
-        }
-        let aspect = (la + lb) / (2.0 * h);
-        let threshold = params.neighbour_boost_below_aspect;
-        let boost = if aspect < threshold {
-            1.0 + (params.neighbour_boost - 1.0) * (1.0 - aspect / threshold)
-        } else {
-            1.0
-        };
-        let f = params.k_neighbour * boost * 2.0 * (s.left_share - la / (la + lb));
-        let kc = &mut force[s.centre as usize];
-        kc[0] += f * t[0];
-        kc[1] += f * t[1];
-        stiffness[s.centre as usize] += params.k_neighbour * boost * 2.0 / (la + lb);
+        neighbour_one(s, params, positions, force, stiffness);
     }
-    let deg_per_rad = 180.0 / std::f64::consts::PI;
     for s in &set.angle {
-        let (a, k, b, o) = (
-            positions[s.left as usize],
-            positions[s.centre as usize],
-            positions[s.right as usize],
-            positions[s.child as usize],
+        angle_one(s, params, positions, force, stiffness);
+    }
+}
+
+/// For each node, the springs of a [`SpringSet2d`] that push it (built by
+/// [`SpringSet2d::index`]), so that [`assemble_2d_active`] visits only the springs of the
+/// active nodes.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SpringIndex2d {
+    offsets: Vec<u32>,
+    /// Spring kind in the top two bits (0 extrusion, 1 neighbour, 2 angle), index below.
+    springs: Vec<u32>,
+}
+
+const KIND_SHIFT: u32 = 30;
+const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
+
+impl SpringSet2d {
+    /// The per-node spring index over `n` nodes, for [`assemble_2d_active`].
+    pub fn index(&self, n: usize) -> SpringIndex2d {
+        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(
+            2 * self.extrusion.len() + self.neighbour.len() + 2 * self.angle.len(),
         );
-        let v = [o[0] - k[0], o[1] - k[1]];
-        let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
-        if len <= 0.0 || len < params.angle_activation_ratio * s.ideal_length {
-            continue;
+        for (i, s) in self.extrusion.iter().enumerate() {
+            entries.push((s.upper, i as u32));
+            entries.push((s.lower, i as u32));
         }
-        let Some(bis) = bisector(a, k, b) else {
-            continue;
-        };
-        let (sn, cs) = s.offset_rad.sin_cos();
-        let ideal = [cs * bis[0] - sn * bis[1], sn * bis[0] + cs * bis[1]];
-        let cos_a = (v[0] * ideal[0] + v[1] * ideal[1]) / len;
-        let sin_a = (ideal[0] * v[1] - ideal[1] * v[0]) / len;
-        let shape = ((dist(a, k) + dist(k, b)) / (2.0 * len)).min(params.fac_b);
-        let gain = params.k_angle * deg_per_rad / params.fac_a * shape;
-        let k_len = gain / len;
-        let (f_mag, dir_o) = if cos_a >= 0.0 {
-            let target = [k[0] + len * ideal[0], k[1] + len * ideal[1]];
-            let c = [target[0] - o[0], target[1] - o[1]];
-            let cl = (c[0] * c[0] + c[1] * c[1]).sqrt();
-            if cl <= 0.0 {
-                continue;
-            }
-            (gain * sin_a.abs(), [c[0] / cl, c[1] / cl])
-        } else {
-            // Beyond 90°: push O at right angles to KO, back toward the ideal side (§4.1).
-            let perp = if sin_a > 0.0 {
-                [v[1] / len, -v[0] / len]
-            } else {
-                [-v[1] / len, v[0] / len]
-            };
-            (gain, perp)
-        };
-        let share_o = 1.0 - params.c_percent;
-        let fo = &mut force[s.child as usize];
-        fo[0] += share_o * f_mag * dir_o[0];
-        fo[1] += share_o * f_mag * dir_o[1];
-        stiffness[s.child as usize] += share_o * k_len;
-        if params.c_percent > 0.0 {
-            let dir_k = if cos_a >= 0.0 {
-                // O leans toward A when it is counter-clockwise of the ideal direction.
-                let toward = if sin_a > 0.0 { a } else { b };
-                let d = [toward[0] - k[0], toward[1] - k[1]];
-                let dl = (d[0] * d[0] + d[1] * d[1]).sqrt();
-                if dl <= 0.0 {
-                    continue;
+        for (i, s) in self.neighbour.iter().enumerate() {
+            entries.push((s.centre, (1 << KIND_SHIFT) | i as u32));
+        }
+        for (i, s) in self.angle.iter().enumerate() {
+            entries.push((s.child, (2 << KIND_SHIFT) | i as u32));
+            entries.push((s.centre, (2 << KIND_SHIFT) | i as u32));
+        }
+        entries.retain(|&(node, _)| (node as usize) < n);
+        let mut offsets = vec![0u32; n + 1];
+        for &(node, _) in &entries {
+            offsets[node as usize + 1] += 1;
+        }
+        for i in 0..n {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut fill = offsets.clone();
+        let mut springs = vec![0u32; entries.len()];
+        for (node, id) in entries {
+            springs[fill[node as usize] as usize] = id;
+            fill[node as usize] += 1;
+        }
+        SpringIndex2d { offsets, springs }
+    }
+}
+
+/// [`assemble_2d`] for [`crate::solve_active()`]: adds the complete force and stiffness of
+/// every active node, evaluating only the springs that push an active node (each once; the
+/// other nodes may get partial sums). `index` must be `set.index(n)` for the solve's `n`.
+pub fn assemble_2d_active(
+    set: &SpringSet2d,
+    index: &SpringIndex2d,
+    params: &SpringParams,
+    positions: &[[f64; 2]],
+    active: crate::Active<'_>,
+    force: &mut [[f64; 2]],
+    stiffness: &mut [f64],
+) {
+    let flags = active.flags;
+    for &node in active.nodes {
+        let n = node as usize;
+        let range = index.offsets[n] as usize..index.offsets[n + 1] as usize;
+        for &id in &index.springs[range] {
+            let i = (id & INDEX_MASK) as usize;
+            match id >> KIND_SHIFT {
+                0 => {
+                    // pushed both ways: evaluated from the upper node when it is active
+                    let s = &set.extrusion[i];
+                    if s.upper == node || !flags[s.upper as usize] {
+                        extrusion_one(s, params, positions, force, stiffness);
+                    }
                 }
-                [d[0] / dl, d[1] / dl]
-            } else {
-                [-dir_o[0], -dir_o[1]]
-            };
-            let fk = &mut force[s.centre as usize];
-            fk[0] += params.c_percent * f_mag * dir_k[0];
-            fk[1] += params.c_percent * f_mag * dir_k[1];
-            stiffness[s.centre as usize] += params.c_percent * k_len;
+                1 => neighbour_one(&set.neighbour[i], params, positions, force, stiffness),
+                _ => {
+                    // pushes child and centre: evaluated from the child when it is active
+                    let s = &set.angle[i];
+                    if s.child == node || !flags[s.child as usize] {
+                        angle_one(s, params, positions, force, stiffness);
+                    }
+                }
+            }
         }
+    }
+}
+
+#[inline(always)]
+fn neighbour_one(
+    s: &NeighbourSpring,
+    params: &SpringParams,
+    positions: &[[f64; 2]],
+    force: &mut [[f64; 2]],
+    stiffness: &mut [f64],
+) {
+    let (a, k, b, p) = (
+        positions[s.left as usize],
+        positions[s.centre as usize],
+        positions[s.right as usize],
+        positions[s.parent as usize],
+    );
+    let d = [k[0] - p[0], k[1] - p[1]];
+    let h = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let (la, lb) = (dist(a, k), dist(k, b));
+    if h <= 0.0 || la + lb <= 0.0 {
+        return;
+    }
+    let mut t = [-d[1] / h, d[0] / h];
+    if t[0] * (b[0] - a[0]) + t[1] * (b[1] - a[1]) < 0.0 {
+        t = [-t[0], -t[1]];
+    }
+    let aspect = (la + lb) / (2.0 * h);
+    let threshold = params.neighbour_boost_below_aspect;
+    let boost = if aspect < threshold {
+        1.0 + (params.neighbour_boost - 1.0) * (1.0 - aspect / threshold)
+    } else {
+        1.0
+    };
+    let f = params.k_neighbour * boost * 2.0 * (s.left_share - la / (la + lb));
+    let kc = &mut force[s.centre as usize];
+    kc[0] += f * t[0];
+    kc[1] += f * t[1];
+    stiffness[s.centre as usize] += params.k_neighbour * boost * 2.0 / (la + lb);
+}
+
+#[inline(always)]
+fn angle_one(
+    s: &AngleSpring,
+    params: &SpringParams,
+    positions: &[[f64; 2]],
+    force: &mut [[f64; 2]],
+    stiffness: &mut [f64],
+) {
+    let deg_per_rad = 180.0 / std::f64::consts::PI;
+    let (a, k, b, o) = (
+        positions[s.left as usize],
+        positions[s.centre as usize],
+        positions[s.right as usize],
+        positions[s.child as usize],
+    );
+    let v = [o[0] - k[0], o[1] - k[1]];
+    let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
+    if len <= 0.0 || len < params.angle_activation_ratio * s.ideal_length {
+        return;
+    }
+    let Some((bis, side_a, side_b)) = bisector_and_sides(a, k, b) else {
+        return;
+    };
+    // most springs have no fan offset: skip the rotation (and its sin/cos) for them
+    let ideal = if s.offset_rad == 0.0 {
+        bis
+    } else {
+        let (sn, cs) = s.offset_rad.sin_cos();
+        [cs * bis[0] - sn * bis[1], sn * bis[0] + cs * bis[1]]
+    };
+    let cos_a = (v[0] * ideal[0] + v[1] * ideal[1]) / len;
+    let sin_a = (ideal[0] * v[1] - ideal[1] * v[0]) / len;
+    let shape = ((side_a + side_b) / (2.0 * len)).min(params.fac_b);
+    let gain = params.k_angle * deg_per_rad / params.fac_a * shape;
+    let k_len = gain / len;
+    let (f_mag, dir_o) = if cos_a >= 0.0 {
+        let target = [k[0] + len * ideal[0], k[1] + len * ideal[1]];
+        let c = [target[0] - o[0], target[1] - o[1]];
+        let cl = (c[0] * c[0] + c[1] * c[1]).sqrt();
+        if cl <= 0.0 {
+            return;
+        }
+        (gain * sin_a.abs(), [c[0] / cl, c[1] / cl])
+    } else {
+        // Beyond 90°: push O at right angles to KO, back toward the ideal side (§4.1).
+        let perp = if sin_a > 0.0 {
+            [v[1] / len, -v[0] / len]
+        } else {
+            [-v[1] / len, v[0] / len]
+        };
+        (gain, perp)
+    };
+    let share_o = 1.0 - params.c_percent;
+    let fo = &mut force[s.child as usize];
+    fo[0] += share_o * f_mag * dir_o[0];
+    fo[1] += share_o * f_mag * dir_o[1];
+    stiffness[s.child as usize] += share_o * k_len;
+    if params.c_percent > 0.0 {
+        let dir_k = if cos_a >= 0.0 {
+            // O leans toward A when it is counter-clockwise of the ideal direction.
+            let toward = if sin_a > 0.0 { a } else { b };
+            let d = [toward[0] - k[0], toward[1] - k[1]];
+            let dl = (d[0] * d[0] + d[1] * d[1]).sqrt();
+            if dl <= 0.0 {
+                return;
+            }
+            [d[0] / dl, d[1] / dl]
+        } else {
+            [-dir_o[0], -dir_o[1]]
+        };
+        let fk = &mut force[s.centre as usize];
+        fk[0] += params.c_percent * f_mag * dir_k[0];
+        fk[1] += params.c_percent * f_mag * dir_k[1];
+        stiffness[s.centre as usize] += params.c_percent * k_len;
     }
 }
 
@@ -333,6 +531,48 @@ mod tests {
         assemble_2d(&set, &SpringParams::default(), &x, &mut f, &mut s);
         assert!(f[1][0] < 0.0, "{f:?}");
         assert!(f[3][0] > 0.0, "{f:?}");
+    }
+
+    proptest::proptest! {
+        /// The indexed assembly gives every active node the same force and stiffness as the
+        /// full assembly, whichever nodes are active.
+        #[test]
+        fn indexed_assembly_matches_the_full_one_on_active_nodes(
+            jitter in proptest::collection::vec(-0.2f64..0.2, 16),
+            active_bits in 0u16..,
+        ) {
+            // two layers of four nodes over a base of four: 0..4 base, 4..8 and 8..12 above
+            let mut x: Vec<[f64; 2]> = (0..12).map(|i| [(i % 4) as f64, (i / 4) as f64 * 0.3]).collect();
+            for i in 4..12 {
+                x[i][0] += jitter[2 * (i - 4)];
+                x[i][1] += 0.5 * jitter[2 * (i - 4) + 1];
+            }
+            let mut set = SpringSet2d::default();
+            for child in 4..12u32 {
+                let parent = child - 4;
+                set.extrusion.push(ExtrusionSpring { lower: parent, upper: child, ideal_length: 0.3, lower_share: 0.8 });
+                let col = child % 4;
+                if col > 0 && col < 3 {
+                    set.neighbour.push(NeighbourSpring { left: child - 1, centre: child, right: child + 1, parent, left_share: 0.5 });
+                    set.angle.push(AngleSpring { left: parent - 1, centre: parent, right: parent + 1, child, offset_rad: if col == 1 { 0.0 } else { 0.1 }, ideal_length: 0.3 });
+                }
+            }
+            let params = SpringParams::default();
+            let mut f_full = vec![[0.0; 2]; 12];
+            let mut s_full = vec![0.0; 12];
+            assemble_2d(&set, &params, &x, &mut f_full, &mut s_full);
+            let flags: Vec<bool> = (0..12).map(|i| active_bits & (1 << i) != 0).collect();
+            let nodes: Vec<u32> = (0..12u32).filter(|&i| flags[i as usize]).collect();
+            let index = set.index(12);
+            let mut f = vec![[0.0; 2]; 12];
+            let mut s = vec![0.0; 12];
+            assemble_2d_active(&set, &index, &params, &x, crate::Active { flags: &flags, nodes: &nodes }, &mut f, &mut s);
+            for &i in &nodes {
+                let i = i as usize;
+                proptest::prop_assert!((f[i][0] - f_full[i][0]).abs() < 1e-12 && (f[i][1] - f_full[i][1]).abs() < 1e-12, "node {i}: {:?} vs {:?}", f[i], f_full[i]);
+                proptest::prop_assert!((s[i] - s_full[i]).abs() < 1e-12);
+            }
+        }
     }
 
     #[test]
