@@ -4,7 +4,8 @@
 use mesh_model::{CellType, Cells, Dim, Mesh, Patch, Problem, Role, Shape, validate};
 use proptest::prelude::*;
 
-/// An nx × ny grid on [0, w] × [0, h], jittered interior nodes, cells in `tri_mask` split into
+/// An nx × ny grid on [0, w] × [0, h], interior nodes jittered by at most 0.15 of a cell (so
+/// that every quad and both triangles of its split stay positive), cells in `tri_mask` split into
 /// two triangles, boundary facets counter-clockwise.
 fn grid(nx: usize, ny: usize, w: f64, h: f64, jitter: &[f64], tri_mask: &[bool]) -> Mesh {
     let mut m = Mesh::new(Dim::Two, 1);
@@ -18,8 +19,8 @@ fn grid(nx: usize, ny: usize, w: f64, h: f64, jitter: &[f64], tri_mask: &[bool])
             } else {
                 (0.0, 0.0)
             };
-            let x = w * (i as f64 + 0.3 * dx) / nx as f64;
-            let y = h * (j as f64 + 0.3 * dy) / ny as f64;
+            let x = w * (i as f64 + 0.15 * dx) / nx as f64;
+            let y = h * (j as f64 + 0.15 * dy) / ny as f64;
             m.nodes.push([x, y, 0.0]);
         }
     }
