@@ -1,5 +1,5 @@
 //! The pipeline's built-in cases (NACA0012, two-element, the bat meshed inside, the L-shape,
-//! 30P30N at first height 5e-6), with boundary nodes made as `cargo xtask mesh` makes them
+//! 30P30N at first heights 5e-6 and 5e-5), with boundary nodes made as `cargo xtask mesh` makes them
 //! (`geom-curve` + `boundary1d`), at growth 1.3, 1.4 and 1.5: every mesh must keep the
 //! structural guarantees (conforming, positive, exact area, boundary nodes untouched, first
 //! layer height within 5 %), and no triangle — quads cut along the shorter diagonal — may
@@ -13,9 +13,14 @@ use common::{check_mesh, summary};
 
 fn case_at_three_growths(name: &str) {
     let case = real_case(name);
-    let loops = case.front_loops(case.first_height);
+    three_growths(name, case.first_height);
+}
+
+fn three_growths(name: &str, first_height: f64) {
+    let case = real_case(name);
+    let loops = case.front_loops(first_height);
     for growth in [1.3, 1.4, 1.5] {
-        let params = case.params(case.first_height, growth);
+        let params = case.params(first_height, growth);
         let out = grow_mesh(&loops, &params).unwrap_or_else(|e| panic!("{name} G{growth}: {e}"));
         let q = check_mesh(&loops, &params, &out);
         eprintln!("{}", summary(&format!("{name} G{growth}"), &out, &q));
@@ -57,4 +62,9 @@ fn lshape_real_boundary() {
 #[test]
 fn thirty_p_thirty_n_real_boundary() {
     case_at_three_growths("30p30n");
+}
+
+#[test]
+fn thirty_p_thirty_n_first_height_5e_5() {
+    three_growths("30p30n", 5e-5);
 }
