@@ -53,77 +53,6 @@ fn unsupported(ty: CellType) -> JacobianError {
     }
 }
 
-/// Corners of Gmsh's reference cells.
-fn corners(shape: Shape) -> &'static [RefPoint] {
-    match shape {
-        Shape::Line => &[[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
-        Shape::Tri => &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-        Shape::Quad => &[
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        Shape::Tet => &[
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ],
-        Shape::Prism => &[
-            [0.0, 0.0, -1.0],
-            [1.0, 0.0, -1.0],
-            [0.0, 1.0, -1.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 0.0, 1.0],
-            [0.0, 1.0, 1.0],
-        ],
-        Shape::Pyramid => &[
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ],
-        Shape::Hex => &[
-            [-1.0, -1.0, -1.0],
-            [1.0, -1.0, -1.0],
-            [1.0, 1.0, -1.0],
-            [-1.0, 1.0, -1.0],
-            [-1.0, -1.0, 1.0],
-            [1.0, -1.0, 1.0],
-            [1.0, 1.0, 1.0],
-            [-1.0, 1.0, 1.0],
-        ],
-    }
-}
-
-/// The quadrilateral faces of the 3D reference cells in Gmsh's order of their face nodes.
-fn quad_faces(shape: Shape) -> &'static [[usize; 4]] {
-    match shape {
-        Shape::Hex => &[
-            [0, 3, 2, 1],
-            [0, 1, 5, 4],
-            [0, 4, 7, 3],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [4, 5, 6, 7],
-        ],
-        Shape::Prism => &[[0, 1, 4, 3], [0, 3, 5, 2], [1, 2, 5, 4]],
-        Shape::Pyramid => &[[0, 3, 2, 1]],
-        _ => &[],
-    }
-}
-
-fn lerp(a: RefPoint, b: RefPoint, t: f64) -> RefPoint {
-    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
-}
-
-fn centroid(points: &[RefPoint]) -> RefPoint {
-    let n = points.len() as f64;
-    [0, 1, 2].map(|k| points.iter().map(|p| p[k]).sum::<f64>() / n)
-}
-
 /// The reference coordinates of the nodes of a cell type, in Gmsh's node order: corners,
 /// then the nodes of each edge (in [`Shape::edges`] order, running from the edge's first
 /// corner to its second), then face nodes, then interior nodes (the centroid of a P3
@@ -135,35 +64,7 @@ fn centroid(points: &[RefPoint]) -> RefPoint {
 /// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
 pub fn reference_nodes(ty: CellType) -> Result<Vec<RefPoint>, JacobianError> {
     type_index(ty).ok_or_else(|| unsupported(ty))?;
-    let c = corners(ty.shape);
-    let p = ty.order as usize;
-    let mut out = c.to_vec();
-    for e in ty.shape.edges() {
-        for i in 1..p {
-            out.push(lerp(c[e[0]], c[e[1]], i as f64 / p as f64));
-        }
-    }
-    match (ty.shape, p) {
-        (_, 1) => {}
-        (Shape::Tri, 2) => {}
-        (Shape::Tri, 3) => out.push(centroid(c)),
-        (Shape::Quad, 2) => out.push([0.0; 3]),
-        (Shape::Quad, 3) => {
-            let t = 1.0 / 3.0;
-            out.extend_from_slice(&[[-t, -t, 0.0], [t, -t, 0.0], [t, t, 0.0], [-t, t, 0.0]]);
-        }
-        (Shape::Tet | Shape::Prism | Shape::Hex, 2) => {
-            for f in quad_faces(ty.shape) {
-                out.push(centroid(&[c[f[0]], c[f[1]], c[f[2]], c[f[3]]]));
-            }
-            if ty.shape == Shape::Hex {
-                out.push([0.0; 3]);
-            }
-        }
-        _ => return Err(unsupported(ty)),
-    }
-    debug_assert_eq!(out.len(), ty.node_count());
-    Ok(out)
+    mesh_model::reference::reference_nodes(ty).ok_or_else(|| unsupported(ty))
 }
 
 /// The monomial exponents spanning the polynomial space of a (polynomial) cell type.
@@ -244,7 +145,10 @@ impl Basis {
             Basis::Pyramid1 => {
                 let [u, v, w] = xi;
                 let r = pyramid_ratio(u, v, w);
-                for (i, c) in corners(Shape::Pyramid)[..4].iter().enumerate() {
+                for (i, c) in mesh_model::reference::corners(Shape::Pyramid)[..4]
+                    .iter()
+                    .enumerate()
+                {
                     let (a, b) = (c[0], c[1]);
                     values[i] = 0.25 * ((1.0 - w) + a * u + b * v + a * b * r);
                 }
@@ -291,7 +195,10 @@ impl Basis {
                 } else {
                     (v / s, u / s, u * v / (s * s))
                 };
-                for (i, c) in corners(Shape::Pyramid)[..4].iter().enumerate() {
+                for (i, c) in mesh_model::reference::corners(Shape::Pyramid)[..4]
+                    .iter()
+                    .enumerate()
+                {
                     let (a, b) = (c[0], c[1]);
                     grads[i] = [
                         0.25 * (a + a * b * ru),

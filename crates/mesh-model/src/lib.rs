@@ -8,6 +8,7 @@
 pub mod cell;
 pub mod cells;
 pub mod mesh;
+pub mod reference;
 pub mod validate;
 
 pub use cell::{CellType, Shape};
