@@ -104,3 +104,34 @@ fn list_prints_and_succeeds() {
     assert_eq!(run(&["mesh", "--list"]), Outcome::Valid);
     assert!(builtin::names().len() >= 4);
 }
+
+#[test]
+fn a_loop_can_have_its_own_max_spacing() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("caps.toml");
+    std::fs::write(
+        &case,
+        "[[loop]]\nrole = \"wall\"\nnaca = \"0012\"\nmax_spacing = 0.02\n\n[[loop]]\n\
+         role = \"farfield\"\ncircle = { center = [0.5, 0.0], radius = 20.0 }\n\n\
+         [boundary]\nmax_spacing = 2.0\n",
+    )
+    .unwrap();
+    let json = dir.path().join("caps.json");
+    let msh = dir.path().join("caps.msh");
+    let case_s = case.to_str().unwrap();
+    let (msh_s, json_s) = (msh.to_str().unwrap(), json.to_str().unwrap());
+    let outcome = run(&[
+        "mesh", case_s, "--quiet", "--order", "1", "--out", msh_s, "--report", json_s,
+    ]);
+    assert_eq!(outcome, Outcome::Valid);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let loops = report["loops"].as_array().unwrap();
+    let wall_max = loops[0]["spacing_max"].as_f64().unwrap();
+    let far_max = loops[1]["spacing_max"].as_f64().unwrap();
+    assert!(wall_max <= 0.02 * (1.0 + 1e-6), "wall spacing {wall_max}");
+    assert!(
+        far_max > 0.5 && far_max <= 2.0 * (1.0 + 1e-6),
+        "farfield spacing {far_max}"
+    );
+}

@@ -41,6 +41,8 @@ pub struct LoopInput {
     pub points: Vec<[f64; 2]>,
     /// Where the points came from, for messages.
     pub origin: String,
+    /// This loop's largest boundary segment, overriding `[boundary] max_spacing`.
+    pub max_spacing: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -78,6 +80,8 @@ struct LoopSpec {
     rotate_deg: f64,
     #[serde(default)]
     translate: [f64; 2],
+    /// This loop's largest boundary segment (overrides `[boundary] max_spacing`).
+    max_spacing: Option<f64>,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -325,6 +329,12 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         spec.rotate_deg.is_finite() && spec.translate.iter().all(|v| v.is_finite()),
         "{what}: rotate_deg and translate must be finite numbers"
     );
+    if let Some(cap) = spec.max_spacing {
+        ensure!(
+            cap.is_finite() && cap > 0.0,
+            "{what}: max_spacing = {cap}: must be positive"
+        );
+    }
     let role = match spec.role {
         RoleSpec::Wall => Role::Wall,
         RoleSpec::Farfield => Role::Farfield,
@@ -402,5 +412,6 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         role,
         points,
         origin,
+        max_spacing: spec.max_spacing,
     })
 }

@@ -91,7 +91,12 @@ pub fn spacing_params(case: &Case) -> SpacingParams {
 
 /// The 1D boundary mesh of every loop.
 pub fn boundary_nodes(case: &Case, curves: &[ClosedCurve]) -> Result<Vec<BoundaryNodes>> {
-    boundary1d::mesh_loops(curves, &spacing_params(case))
+    let caps: Vec<f64> = case
+        .loops
+        .iter()
+        .map(|l| l.max_spacing.unwrap_or(case.boundary.max_spacing))
+        .collect();
+    boundary1d::mesh_loops_with_caps(curves, &spacing_params(case), &caps)
         .map_err(|e| anyhow::anyhow!("boundary mesh: {e}"))
 }
 

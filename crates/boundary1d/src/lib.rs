@@ -29,7 +29,7 @@ pub mod spacing;
 use geom_curve::{ClosedCurve, Point2};
 use serde::{Deserialize, Serialize};
 
-pub use spacing::{LoopSpacing, spacing_limits};
+pub use spacing::{LoopSpacing, spacing_limits, spacing_limits_with_caps};
 
 /// Errors of this crate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -184,12 +184,40 @@ pub fn mesh_loops(
     params: &SpacingParams,
 ) -> Result<Vec<BoundaryNodes>, Boundary1dError> {
     let spacings = spacing_limits(curves, params)?;
+    place_all(curves, spacings, &vec![*params; curves.len()])
+}
+
+/// [`mesh_loops`] where each loop has its own largest spacing `caps[i]` (a far field coarser
+/// than the bodies, say); everything else comes from `params`.
+///
+/// # Errors
+/// As [`mesh_loops`], and [`Boundary1dError::InvalidParameter`] when `caps` does not have one
+/// finite positive value per curve.
+pub fn mesh_loops_with_caps(
+    curves: &[ClosedCurve],
+    params: &SpacingParams,
+    caps: &[f64],
+) -> Result<Vec<BoundaryNodes>, Boundary1dError> {
+    let spacings = spacing_limits_with_caps(curves, params, caps)?;
+    place_all(
+        curves,
+        spacings,
+        &spacing::per_loop(curves.len(), params, Some(caps))?,
+    )
+}
+
+fn place_all(
+    curves: &[ClosedCurve],
+    spacings: Vec<LoopSpacing>,
+    params: &[SpacingParams],
+) -> Result<Vec<BoundaryNodes>, Boundary1dError> {
     curves
         .iter()
         .zip(spacings)
+        .zip(params)
         .enumerate()
-        .map(|(loop_index, (curve, spacing))| {
-            grading::place_nodes(curve, spacing, params, loop_index)
+        .map(|(loop_index, ((curve, spacing), p))| {
+            grading::place_nodes(curve, spacing, p, loop_index)
         })
         .collect()
 }

@@ -40,20 +40,74 @@ pub fn spacing_limits(
     curves: &[ClosedCurve],
     params: &SpacingParams,
 ) -> Result<Vec<LoopSpacing>, Boundary1dError> {
+    spacing_limits_each(&per_loop(curves.len(), params, None)?, curves)
+}
+
+/// The parameters of each loop: `params`, with its `max_spacing` replaced by the loop's own
+/// cap where `caps` gives one. Checks `params` and the caps.
+pub(crate) fn per_loop(
+    loops: usize,
+    params: &SpacingParams,
+    caps: Option<&[f64]>,
+) -> Result<Vec<SpacingParams>, Boundary1dError> {
     params.validate()?;
+    let Some(caps) = caps else {
+        return Ok(vec![*params; loops]);
+    };
+    if caps.len() != loops {
+        return Err(Boundary1dError::InvalidParameter {
+            name: "loop max_spacing",
+            value: caps.len() as f64,
+            reason: "give one cap per loop",
+        });
+    }
+    caps.iter()
+        .map(|&max_spacing| {
+            let p = SpacingParams {
+                max_spacing,
+                ..*params
+            };
+            p.validate().map(|()| p)
+        })
+        .collect()
+}
+
+/// [`spacing_limits`] with parameters per loop (they differ only in `max_spacing`; growth and
+/// the medial-axis switch are taken from the first).
+fn spacing_limits_each(
+    params: &[SpacingParams],
+    curves: &[ClosedCurve],
+) -> Result<Vec<LoopSpacing>, Boundary1dError> {
+    let Some(first) = params.first() else {
+        return Ok(Vec::new());
+    };
     let mut loops: Vec<LoopSpacing> = curves
         .iter()
-        .map(|curve| initial_spacing(curve, params))
+        .zip(params)
+        .map(|(curve, p)| initial_spacing(curve, p))
         .collect();
-    if params.medial_axis {
-        refine_across_gaps(curves, &mut loops, params.growth - 1.0);
+    if first.medial_axis {
+        refine_across_gaps(curves, &mut loops, first.growth - 1.0);
     }
-    for spacing in &mut loops {
-        settle_corner_caps(spacing, params.max_spacing);
+    for (spacing, p) in loops.iter_mut().zip(params) {
+        settle_corner_caps(spacing, p.max_spacing);
         spacing.break_points = break_points(&spacing.cap, &spacing.is_corner);
-        spacing.graded = graded_field(&spacing.cap, &spacing.arc_positions, params.growth - 1.0);
+        spacing.graded = graded_field(&spacing.cap, &spacing.arc_positions, first.growth - 1.0);
     }
     Ok(loops)
+}
+
+/// [`spacing_limits`] where each loop has its own largest spacing `caps[i]`.
+///
+/// # Errors
+/// As [`spacing_limits`], and [`Boundary1dError::InvalidParameter`] when `caps` does not have
+/// one finite positive value per curve.
+pub fn spacing_limits_with_caps(
+    curves: &[ClosedCurve],
+    params: &SpacingParams,
+    caps: &[f64],
+) -> Result<Vec<LoopSpacing>, Boundary1dError> {
+    spacing_limits_each(&per_loop(curves.len(), params, Some(caps))?, curves)
 }
 
 /// `l_α`, caps and break points before the medial-axis step.
