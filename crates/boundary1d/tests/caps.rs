@@ -40,7 +40,8 @@ proptest! {
 fn one_cap_per_loop_is_required() {
     let c = curve(&circle_points(Point2::new(0.0, 0.0), 1.0, 64).expect("circle"));
     let p = SpacingParams::default();
-    let err = mesh_loops_with_caps(&[c.clone()], &p, &[0.1, 0.2]).expect_err("two caps, one loop");
+    let err = mesh_loops_with_caps(std::slice::from_ref(&c), &p, &[0.1, 0.2])
+        .expect_err("two caps, one loop");
     assert!(
         matches!(err, Boundary1dError::InvalidParameter { .. }),
         "{err}"
