@@ -60,13 +60,7 @@ fn area_rule(ty: CellType) -> Result<&'static AreaRule, JacobianError> {
         (Shape::Quad, 3),
     ];
     static CACHE: [OnceLock<AreaRule>; 6] = [const { OnceLock::new() }; 6];
-    let i = TYPES
-        .iter()
-        .position(|&(s, o)| s == ty.shape && o == ty.order)
-        .ok_or(JacobianError::Unsupported {
-            ty,
-            what: "area integration",
-        })?;
+    let i = crate::lagrange::table_slot(&TYPES, ty, "area integration")?;
     let b = basis(ty)?;
     Ok(CACHE[i].get_or_init(|| {
         // Degree of the determinant: 2(p − 1) (triangle), 2p − 1 per direction (quad).

@@ -150,13 +150,7 @@ fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
 fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
     static CACHE: [OnceLock<CertTable>; CERTIFIED.len()] =
         [const { OnceLock::new() }; CERTIFIED.len()];
-    let i = CERTIFIED
-        .iter()
-        .position(|&(s, o)| s == ty.shape && o == ty.order)
-        .ok_or(JacobianError::Unsupported {
-            ty,
-            what: "the certified check",
-        })?;
+    let i = crate::lagrange::table_slot(&CERTIFIED, ty, "the certified check")?;
     let b = basis(ty)?;
     Ok(CACHE[i].get_or_init(|| {
         let (domain, dim, degree) = determinant_space(ty);

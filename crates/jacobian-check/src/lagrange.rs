@@ -40,10 +40,8 @@ const SUPPORTED: [(Shape, u8); 13] = [
 ];
 
 /// Position of a supported type in [`SUPPORTED`].
-fn type_index(ty: CellType) -> Option<usize> {
-    SUPPORTED
-        .iter()
-        .position(|&(s, o)| s == ty.shape && o == ty.order)
+fn type_index(ty: CellType) -> Result<usize, JacobianError> {
+    table_slot(&SUPPORTED, ty, "the Lagrange shape functions")
 }
 
 fn unsupported(ty: CellType) -> JacobianError {
@@ -51,6 +49,19 @@ fn unsupported(ty: CellType) -> JacobianError {
         ty,
         what: "the Lagrange shape functions",
     }
+}
+
+/// The position of `ty` in a table of supported types (the slot of its cached data), or
+/// [`JacobianError::Unsupported`] naming `what` is not available for it.
+pub(crate) fn table_slot(
+    types: &[(Shape, u8)],
+    ty: CellType,
+    what: &'static str,
+) -> Result<usize, JacobianError> {
+    types
+        .iter()
+        .position(|&(s, o)| s == ty.shape && o == ty.order)
+        .ok_or(JacobianError::Unsupported { ty, what })
 }
 
 /// The reference coordinates of the nodes of a cell type, in Gmsh's node order: corners,
@@ -63,7 +74,7 @@ fn unsupported(ty: CellType) -> JacobianError {
 /// # Errors
 /// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
 pub fn reference_nodes(ty: CellType) -> Result<Vec<RefPoint>, JacobianError> {
-    type_index(ty).ok_or_else(|| unsupported(ty))?;
+    type_index(ty)?;
     mesh_model::reference::reference_nodes(ty).ok_or_else(|| unsupported(ty))
 }
 
@@ -221,7 +232,7 @@ fn pyramid_ratio(u: f64, v: f64, w: f64) -> f64 {
 /// The cached basis of a supported type.
 pub(crate) fn basis(ty: CellType) -> Result<&'static Basis, JacobianError> {
     static CACHE: [OnceLock<Basis>; SUPPORTED.len()] = [const { OnceLock::new() }; SUPPORTED.len()];
-    let i = type_index(ty).ok_or_else(|| unsupported(ty))?;
+    let i = type_index(ty)?;
     Ok(CACHE[i].get_or_init(|| Basis::build(ty)))
 }
 
