@@ -51,15 +51,7 @@ fn main() {
     for (ci, c) in m.cells.iter().enumerate() {
         let k = c.corners();
         let tris: Vec<[u32; 3]> = if c.ty.shape == Shape::Quad {
-            let d = |a: u32, b: u32| {
-                let (p, q) = (m.xy(a), m.xy(b));
-                (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)
-            };
-            if d(k[0], k[2]) <= d(k[1], k[3]) {
-                vec![[k[0], k[1], k[2]], [k[0], k[2], k[3]]]
-            } else {
-                vec![[k[0], k[1], k[3]], [k[1], k[2], k[3]]]
-            }
+            mesh_model::measure::split_quad_shorter_diagonal(m, k).to_vec()
         } else {
             vec![[k[0], k[1], k[2]]]
         };

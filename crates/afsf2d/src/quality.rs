@@ -2,6 +2,7 @@
 //! 4): cut each quad along its shorter diagonal, then count triangles by their largest angle.
 //! It owns nothing but these two functions on a linear 2D [`Mesh`].
 
+use mesh_model::measure::split_quad_shorter_diagonal;
 use mesh_model::{CellType, Mesh, Shape};
 
 /// Lower bounds (degrees) of the histogram bins: [95,105), [105,115), [115,125), [125,135),
@@ -31,16 +32,7 @@ pub fn cut_quads_shorter_diagonal(mesh: &Mesh) -> Mesh {
     let tri = CellType::new(Shape::Tri, 1);
     for (i, c) in mesh.cells.iter().enumerate() {
         let pieces: Vec<[u32; 3]> = if c.ty == CellType::new(Shape::Quad, 1) {
-            let k = c.corners();
-            let d = |a: u32, b: u32| {
-                let (p, q) = (mesh.xy(a), mesh.xy(b));
-                (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)
-            };
-            if d(k[0], k[2]) <= d(k[1], k[3]) {
-                vec![[k[0], k[1], k[2]], [k[0], k[2], k[3]]]
-            } else {
-                vec![[k[0], k[1], k[3]], [k[1], k[2], k[3]]]
-            }
+            split_quad_shorter_diagonal(mesh, c.corners()).to_vec()
         } else {
             out.cells.push(c.ty, c.nodes);
             if let Some(&l) = mesh.cell_layer.get(i) {
@@ -64,17 +56,7 @@ pub fn cut_quads_shorter_diagonal(mesh: &Mesh) -> Mesh {
     out
 }
 
-/// Largest interior angle (degrees) of the triangle abc.
-pub fn max_triangle_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let angle = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
-        let u = [q[0] - p[0], q[1] - p[1]];
-        let v = [r[0] - p[0], r[1] - p[1]];
-        let cross = u[0] * v[1] - u[1] * v[0];
-        let dot = u[0] * v[0] + u[1] * v[1];
-        cross.abs().atan2(dot).to_degrees()
-    };
-    angle(a, b, c).max(angle(b, c, a)).max(angle(c, a, b))
-}
+pub use mesh_model::measure::triangle_max_angle_deg as max_triangle_angle_deg;
 
 /// Counts the triangles of `mesh` (its quads cut along the shorter diagonal first) by largest
 /// angle.

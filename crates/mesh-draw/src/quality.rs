@@ -3,28 +3,9 @@
 //! one). It owns that measure only; Jacobians are the caller's (see
 //! [`crate::ColourBy::ScaledJacobian`]).
 
-use mesh_model::{Mesh, Shape};
+use mesh_model::Mesh;
 
-/// Largest interior angle of triangle `a b c`, degrees; 180 for a triangle with a zero-length
-/// side (the worst value, so that degenerate cells stand out).
-pub fn triangle_max_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let corners = [a, b, c];
-    let mut largest: f64 = 0.0;
-    for i in 0..3 {
-        let p = corners[i];
-        let q = corners[(i + 1) % 3];
-        let r = corners[(i + 2) % 3];
-        let u = [q[0] - p[0], q[1] - p[1]];
-        let v = [r[0] - p[0], r[1] - p[1]];
-        if (u[0] == 0.0 && u[1] == 0.0) || (v[0] == 0.0 && v[1] == 0.0) {
-            return 180.0;
-        }
-        let cross = u[0] * v[1] - u[1] * v[0];
-        let dot = u[0] * v[0] + u[1] * v[1];
-        largest = largest.max(cross.abs().atan2(dot).to_degrees());
-    }
-    largest
-}
+pub use mesh_model::measure::triangle_max_angle_deg;
 
 /// Largest interior angle of each cell of a 2D mesh, degrees, from its corners: a triangle's
 /// own; a quad is cut along its shorter diagonal and the larger of the two triangles' values
@@ -33,32 +14,15 @@ pub fn triangle_max_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 /// # Panics
 /// If a cell names a node that does not exist (the drawing functions check this first).
 pub fn max_angle_deg(mesh: &Mesh) -> Vec<f64> {
-    mesh.cells
-        .iter()
-        .map(|cell| {
-            let k: Vec<[f64; 2]> = cell.corners().iter().map(|&n| mesh.xy(n)).collect();
-            match cell.ty.shape {
-                Shape::Quad => {
-                    let d02 = (k[2][0] - k[0][0]).hypot(k[2][1] - k[0][1]);
-                    let d13 = (k[3][0] - k[1][0]).hypot(k[3][1] - k[1][1]);
-                    if d02 <= d13 {
-                        triangle_max_angle_deg(k[0], k[1], k[2])
-                            .max(triangle_max_angle_deg(k[0], k[2], k[3]))
-                    } else {
-                        triangle_max_angle_deg(k[0], k[1], k[3])
-                            .max(triangle_max_angle_deg(k[1], k[2], k[3]))
-                    }
-                }
-                _ => triangle_max_angle_deg(k[0], k[1], k[2]),
-            }
-        })
+    (0..mesh.cells.len())
+        .map(|i| mesh_model::measure::cell_max_angle_deg(mesh, i))
         .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_model::{CellType, Dim};
+    use mesh_model::{CellType, Dim, Shape};
     use proptest::prelude::*;
 
     #[test]

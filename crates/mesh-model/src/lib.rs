@@ -7,6 +7,7 @@
 
 pub mod cell;
 pub mod cells;
+pub mod measure;
 pub mod mesh;
 pub mod reference;
 pub mod validate;
