@@ -1,46 +1,66 @@
 #!/usr/bin/env python3
-"""Independent check of a .msh file with Gmsh's own reader.
+"""Independent check of .msh files with Gmsh's own reader.
 
-Usage: python3 tests/python/check_msh.py MESH.msh      (needs: pip install gmsh)
+Usage: python3 tests/python/check_msh.py MESH.msh...      (needs: pip install gmsh)
 
-Prints one JSON line: node count, element counts per Gmsh element type name, the physical
-groups (dim, tag, name, element count), and the minimum over all 2D/3D elements of Gmsh's
-scaled Jacobian (`minSJ` from gmsh.model.mesh.getElementQualities). Exits 1 if Gmsh cannot
-read the file (or reports an error while reading it).
+Prints one JSON line per file: node count, element counts per Gmsh element type name
+("Triangle 6", ...), the element types with their dimension, order and node count, the physical
+groups (dim, tag, name, element count), the minimum over all 2D/3D elements of Gmsh's scaled
+Jacobian (`minSJ` from gmsh.model.mesh.getElementQualities), and the area (2D) or volume (3D)
+that Gmsh integrates from its own Jacobians of the curved elements. A file Gmsh cannot read
+(or reports an error while reading) gives a line with an "error" key; the exit status is then 1.
 """
 import json
 import sys
 
 import gmsh
+import numpy as np
+
+# Gmsh's Gauss rule exact to degree 12: the Jacobian determinant of a cubic quadrilateral is of
+# degree 5 in each variable (10 in all), of a cubic triangle 4, so the integral is exact.
+QUADRATURE = "Gauss12"
 
 
-def main(path):
-    gmsh.initialize(["-noenv"], readConfigFiles=False)
-    gmsh.option.setNumber("General.Terminal", 0)
+def measure(etype):
+    """Sum over all elements of one type of the integral of det J (area in 2D, volume in 3D),
+    from Gmsh's Jacobians at Gmsh's own Gauss points; signed, so an inverted cell lowers it."""
+    uvw, weights = gmsh.model.mesh.getIntegrationPoints(etype, QUADRATURE)
+    _, det, _ = gmsh.model.mesh.getJacobians(etype, uvw)
+    det = np.asarray(det).reshape(-1, len(weights))
+    return float((det @ np.asarray(weights)).sum())
+
+
+def read(path):
+    """The summary of one file, as a dict (see the module doc)."""
+    gmsh.clear()
+    gmsh.logger.stop()
     gmsh.logger.start()
     try:
         gmsh.open(path)
     except Exception as e:  # Gmsh raises on a read error
-        print(json.dumps({"file": path, "error": str(e), "log": gmsh.logger.get()}))
-        return 1
+        return {"file": path, "error": str(e), "log": gmsh.logger.get()}
     log = gmsh.logger.get()
     errors = [l for l in log if l.startswith("Error")]
     if errors:
-        print(json.dumps({"file": path, "error": errors}))
-        return 1
+        return {"file": path, "error": errors}
 
     node_tags, _, _ = gmsh.model.mesh.getNodes()
-    counts = {}
-    min_sj = None
+    counts, types = {}, []
+    min_sj, area = None, 0.0
+    top = max((d for d in (1, 2, 3) if len(gmsh.model.mesh.getElements(d)[0])), default=0)
     for dim in (1, 2, 3):
-        types, tags, _ = gmsh.model.mesh.getElements(dim)
-        for t, ts in zip(types, tags):
-            name = gmsh.model.mesh.getElementProperties(t)[0]
+        etypes, tags, _ = gmsh.model.mesh.getElements(dim)
+        for t, ts in zip(etypes, tags):
+            name, _, order, nodes, _, _ = gmsh.model.mesh.getElementProperties(t)
             counts[name] = counts.get(name, 0) + len(ts)
+            types.append({"name": name, "dim": dim, "order": order, "nodes": nodes,
+                          "count": len(ts)})
             if dim >= 2 and len(ts):
                 q = gmsh.model.mesh.getElementQualities(ts, "minSJ")
                 m = float(min(q))
                 min_sj = m if min_sj is None else min(min_sj, m)
+            if dim == top and dim >= 2:
+                area += measure(t)
     groups = []
     for dim, tag in gmsh.model.getPhysicalGroups():
         n = 0
@@ -50,14 +70,24 @@ def main(path):
         groups.append({"dim": dim, "tag": tag,
                        "name": gmsh.model.getPhysicalName(dim, tag), "elements": n})
     warnings = [l for l in log if l.startswith("Warning")]
-    print(json.dumps({"file": path, "nodes": len(node_tags), "elements": counts,
-                      "physical_groups": groups, "min_scaled_jacobian": min_sj,
-                      "warnings": warnings}))
+    return {"file": path, "nodes": len(node_tags), "elements": counts, "element_types": types,
+            "physical_groups": groups, "min_scaled_jacobian": min_sj,
+            "area" if top == 2 else "volume": area, "warnings": warnings}
+
+
+def main(paths):
+    gmsh.initialize(["-noenv"], readConfigFiles=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    status = 0
+    for path in paths:
+        out = read(path)
+        status |= "error" in out
+        print(json.dumps(out), flush=True)
     gmsh.finalize()
-    return 0
+    return int(status)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
+    if len(sys.argv) < 2:
         sys.exit(__doc__)
-    sys.exit(main(sys.argv[1]))
+    sys.exit(main(sys.argv[1:]))

@@ -1,51 +1,135 @@
 #!/usr/bin/env python3
-"""Independent check of a .vtu file with VTK's own reader.
+"""Independent check of .vtu files with VTK's own reader and VTK's own Lagrange cells.
 
-Usage: python3 tests/python/check_vtu.py MESH.vtu      (needs: pip install vtk)
+Usage: python3 tests/python/check_vtu.py MESH.vtu...      (needs: pip install vtk)
 
-Prints one JSON line: point and cell counts, cell counts per VTK type, the cell-data arrays,
-and the area (2D) or volume (3D) that VTK integrates over the cells (vtkIntegrateAttributes,
-which follows the curved Lagrange cells through their nodes: a wrong node order shows as a
-wrong area). Exits 1 if VTK cannot read the file.
+Prints one JSON line per file: point and cell counts, cell counts per VTK type id, the point
+counts of the cells of each type, the cell-data arrays, and two areas of a 2D mesh:
+- "area": the integral of det J over every cell, with the Jacobian built from VTK's own shape
+  function derivatives of each cell type (vtkLagrangeTriangle, vtkLagrangeQuadrilateral, ...)
+  applied to the cell's points in the file's order: exact for the curved cells, so a node order
+  that VTK reads differently from what we meant shows as a wrong area;
+- "area_linearised": what VTK's own filter vtkIntegrateAttributes gives. VTK's filters
+  (vtkIntegrateAttributes, vtkCellSizeFilter) cannot integrate Lagrange cells: they cut a
+  curved cell into linear pieces through its points, so for P2/P3 cells this is only close to
+  the true area (exact for linear cells). 3D meshes give "volume_linearised" only.
+A file VTK cannot read gives a line with an "error" key; the exit status is then 1.
 """
 import collections
 import json
 import sys
 
+import numpy as np
 import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+GAUSS_POINTS = 6  # per direction: exact for det J of cubic quads (degree 5 in each variable)
 
 
-def main(path):
+def quadrature(triangle):
+    """Gauss points and weights on VTK's parametric cells: the unit square [0,1]², or the unit
+    triangle by collapsing the square (Duffy), which stays exact for polynomials."""
+    x, w = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+    x, w = (x + 1) / 2, w / 2
+    u, v = (a.ravel() for a in np.meshgrid(x, x, indexing="ij"))
+    ww = np.outer(w, w).ravel()
+    if triangle:
+        return np.c_[u, v * (1 - u)], ww * (1 - u)
+    return np.c_[u, v], ww
+
+
+def shape_derivatives(cell, n, pcoords):
+    """dN/dr and dN/ds of a 2D VTK cell with n points at each parametric point, shape (q, 2, n).
+
+    VTK lays InterpolateDerivs out as all d/dr then all d/ds for some cell classes and
+    interleaved per point for others (vtkLagrangeQuadrilateral); the layout is chosen by
+    comparing with central differences of InterpolateFunctions, so neither is assumed."""
+    def functions(p):
+        f = [0.0] * n
+        cell.InterpolateFunctions([p[0], p[1], 0.0], f)
+        return np.asarray(f)
+
+    def derivs(p):
+        d = [0.0] * (2 * n)
+        cell.InterpolateDerivs([p[0], p[1], 0.0], d)
+        return np.asarray(d)
+
+    probe, h = np.array([0.21, 0.17]), 1e-6
+    fd = np.array([(functions(probe + h * e) - functions(probe - h * e)) / (2 * h)
+                   for e in np.eye(2)])
+    d = derivs(probe)
+    layouts = [lambda a: a.reshape(2, n), lambda a: a.reshape(n, 2).T]
+    for layout in layouts:
+        if np.allclose(layout(d), fd, rtol=1e-5, atol=1e-5 * np.abs(fd).max()):
+            return np.array([layout(derivs(p)) for p in pcoords])
+    raise RuntimeError(f"VTK cell {cell.GetClassName()}: derivatives match no known layout")
+
+
+def lagrange_area(grid):
+    """The integral of det J over the 2D cells of grid, with VTK's own shape functions."""
+    pts = vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
+    types = vtk_to_numpy(grid.GetCellTypes())
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
+    conn = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
+    sizes = np.diff(offsets)
+    total = 0.0
+    for t, n in sorted(set(zip(types.tolist(), sizes.tolist()))):
+        ids = np.nonzero((types == t) & (sizes == n))[0]
+        cell = grid.GetCell(int(ids[0]))
+        pcoords, weights = quadrature(cell.GetNumberOfEdges() == 3)
+        dn = shape_derivatives(cell, n, pcoords)  # (q, 2, n)
+        x = pts[conn[offsets[ids][:, None] + np.arange(n)]]  # (cells, n, 2)
+        jac = np.einsum("qan,cnb->cqab", dn, x)  # d(x, y)/d(r, s)
+        det = jac[..., 0, 0] * jac[..., 1, 1] - jac[..., 0, 1] * jac[..., 1, 0]
+        total += float((det @ weights).sum())
+    return total
+
+
+def read(path):
+    """The summary of one file, as a dict (see the module doc)."""
     reader = vtk.vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     errors = []
-    observer = lambda obj, ev: errors.append(ev)
-    reader.AddObserver("ErrorEvent", observer)
+    reader.AddObserver("ErrorEvent", lambda obj, ev: errors.append(ev))
     reader.Update()
     grid = reader.GetOutput()
     if errors or grid is None or grid.GetNumberOfCells() == 0:
-        print(json.dumps({"file": path, "error": "VTK could not read the file"}))
-        return 1
-    types = collections.Counter(grid.GetCellType(i) for i in range(grid.GetNumberOfCells()))
+        return {"file": path, "error": "VTK could not read the file"}
+    types = vtk_to_numpy(grid.GetCellTypes())
+    sizes = np.diff(vtk_to_numpy(grid.GetCells().GetOffsetsArray()))
+    points_per_cell = collections.defaultdict(set)
+    for t, n in set(zip(types.tolist(), sizes.tolist())):
+        points_per_cell[str(t)].add(n)
+    dims = {grid.GetCell(int(i)).GetCellDimension()
+            for i in np.unique(types, return_index=True)[1]}
     integrate = vtk.vtkIntegrateAttributes()
     integrate.SetInputData(grid)
     integrate.Update()
-    out = integrate.GetOutput()
     measure = {}
     for name in ("Area", "Volume"):
-        arr = out.GetCellData().GetArray(name)
+        arr = integrate.GetOutput().GetCellData().GetArray(name)
         if arr is not None:
-            measure[name.lower()] = arr.GetValue(0)
+            measure[name.lower() + "_linearised"] = arr.GetValue(0)
+    if dims == {2}:
+        measure["area"] = lagrange_area(grid)
     cd = grid.GetCellData()
-    print(json.dumps({"file": path, "points": grid.GetNumberOfPoints(),
-                      "cells": grid.GetNumberOfCells(),
-                      "types": {str(k): v for k, v in sorted(types.items())},
-                      "cell_data": [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())],
-                      **measure}))
-    return 0
+    return {"file": path, "points": grid.GetNumberOfPoints(), "cells": grid.GetNumberOfCells(),
+            "types": {str(k): int(v) for k, v in sorted(collections.Counter(types).items())},
+            "points_per_cell": {k: sorted(v) for k, v in sorted(points_per_cell.items())},
+            "cell_data": [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())],
+            **measure}
+
+
+def main(paths):
+    status = 0
+    for path in paths:
+        out = read(path)
+        status |= "error" in out
+        print(json.dumps(out), flush=True)
+    return int(status)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
+    if len(sys.argv) < 2:
         sys.exit(__doc__)
-    sys.exit(main(sys.argv[1]))
+    sys.exit(main(sys.argv[1:]))

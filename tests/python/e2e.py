@@ -1,9 +1,20 @@
 #!/usr/bin/env python3
-"""End-to-end check with an independent reader: run `cargo xtask mesh` on every built-in case,
-then have Gmsh (tests/python/check_msh.py) read each .msh and compare what it finds with our
-report: node and element counts, the physical groups `fluid`, `wall`, `farfield`, and a
-positive scaled Jacobian on every cell. Also checks that bad input exits with status 1, one
-line on stderr, and no file.
+"""End-to-end check with independent readers: run `cargo xtask mesh` on every built-in case at
+orders 1, 2 and 3, mixed and `--triangles`, writing .msh, .vtu and the JSON report, then:
+- Gmsh (check_msh.py) reads each .msh: node and element counts and the physical groups `fluid`,
+  `wall`, `farfield` agree with the report, no warning, a positive scaled Jacobian on every cell,
+  element types of the requested order (Triangle 3/6/10, Quadrilateral 4/9/16, Line 2/3/4
+  nodes), and the area Gmsh integrates over the curved cells equals the report's;
+- the report itself: its order is the one asked for, no invalid cell, every cell certified, a
+  curved-edge fraction 0 at order 1 and strictly between 0 and 1 at orders 2 and 3, a positive
+  area within 1e-3 of the linear mesh's (curving moves the boundary only slightly);
+- VTK (check_vtu.py) reads each .vtu: as many cells and points as the report, cells of VTK's
+  linear types at order 1 and Lagrange types with the right point count at orders 2 and 3, and
+  the area integrated with VTK's own shape functions equals the report's;
+- PyFR (check_pyfr.py) imports every .msh: elements of the right node count, as many as the
+  report says, the report's `wall` and `farfield` faces, curved elements at orders 2 and 3 and
+  none at order 1.
+Also checks that bad input exits with status 1, one line on stderr, and no file.
 
 Usage: python3 tests/python/e2e.py XTASK_BINARY
 Ends with the line "N passed, M failed"; exit status 1 if any check failed.
@@ -13,8 +24,26 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from check_pyfr import problems  # noqa: E402  (one copy of what makes a PyFR import unusable)
+
+ORDERS = (1, 2, 3)
+SPLITS = (([], "mixed"), (["--triangles"], "tri"))
+# Cases that must be built in: a single and a multi-element airfoil (the default case).
+# (PyFR imports every case: about a second a file, while Gmsh and VTK read theirs.)
+REQUIRED_CASES = ("naca0012", "30p30n")
+AREA_TO_LINEAR = 1e-3  # relative: curved cells change the domain's area only slightly
+AREA_EXACT = 1e-9  # relative: two exact integrals of the same polynomial cells
+GMSH_NODES = {"Line": {1: 2, 2: 3, 3: 4}, "Triangle": {1: 3, 2: 6, 3: 10},
+              "Quadrilateral": {1: 4, 2: 9, 3: 16}}
+# VTK cell type ids: VTK_TRIANGLE, VTK_QUAD, VTK_LAGRANGE_TRIANGLE, VTK_LAGRANGE_QUADRILATERAL.
+VTK_TYPES = {1: {"tri": 5, "quad": 9}, 2: {"tri": 69, "quad": 70}, 3: {"tri": 69, "quad": 70}}
+CELL_NODES = {"tri": {1: 3, 2: 6, 3: 10}, "quad": {1: 4, 2: 9, 3: 16}}
+MISSING = object()
+
 passed, failed = 0, 0
 
 
@@ -25,57 +54,211 @@ def check(ok, what):
     else:
         failed += 1
         print(f"FAIL {what}")
+    return ok
 
 
-def gmsh_read(path):
-    r = subprocess.run([sys.executable, os.path.join(HERE, "check_msh.py"), path],
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        return None, r.stdout + r.stderr
-    return json.loads(r.stdout.strip().splitlines()[-1]), ""
+def close(a, b, rel):
+    return abs(a - b) <= rel * max(abs(a), abs(b))
+
+
+def lookup(report, path):
+    """report["a"]["b"] for path "a.b", or MISSING."""
+    v = report
+    for k in path.split("."):
+        if not isinstance(v, dict) or k not in v:
+            return MISSING
+        v = v[k]
+    return v
+
+
+def run_checkers(msh, vtu, pyfr):
+    """Runs the three readers side by side (each a process that reads its files in turn) and
+    returns {(reader, file): summary} for every file a reader answered for, and each reader's
+    stderr under (reader, "error")."""
+    jobs = []
+    for reader, files in (("check_msh.py", msh), ("check_vtu.py", vtu), ("check_pyfr.py", pyfr)):
+        if files:
+            err = tempfile.TemporaryFile(mode="w+")
+            p = subprocess.Popen([sys.executable, os.path.join(HERE, reader)] + files,
+                                 stdout=subprocess.PIPE, stderr=err, text=True)
+            jobs.append((reader, p, err))
+    out = {}
+    for reader, p, err in jobs:
+        stdout, _ = p.communicate()
+        for line in stdout.splitlines():
+            if line.startswith("{"):
+                d = json.loads(line)
+                out[(reader, d["file"])] = d
+        err.seek(0)
+        out[(reader, "error")] = err.read()[-3000:]
+    return out
+
+
+def check_gmsh(label, g, report, order):
+    if not check(g is not None and "error" not in g, f"{label}: gmsh reads the .msh: {g}"):
+        return
+    check(not g["warnings"], f"{label}: gmsh warnings {g['warnings'][:3]}")
+    check(g["nodes"] == report["nodes"], f"{label}: gmsh nodes {g['nodes']} vs report "
+                                         f"{report['nodes']}")
+    count = {family: 0 for family in GMSH_NODES}
+    for t in g["element_types"]:
+        family = t["name"].split()[0]
+        want = GMSH_NODES.get(family, {}).get(order)
+        check(want is not None and t["order"] == order and t["nodes"] == want,
+              f"{label}: gmsh element type {t['name']} (order {t['order']}, {t['nodes']} nodes), "
+              f"expected {family} of order {order} with {want} nodes")
+        count[family] = count.get(family, 0) + t["count"]
+    tri, quad, lines = count["Triangle"], count["Quadrilateral"], count["Line"]
+    check(tri == report["cells"]["tri"] and quad == report["cells"]["quad"],
+          f"{label}: gmsh counts tri {tri} quad {quad} vs {report['cells']}")
+    check(lines == sum(report["boundary_facets"].values()), f"{label}: boundary lines {lines}")
+    groups = {p["name"]: p["elements"] for p in g["physical_groups"]}
+    check(groups.get("fluid") == tri + quad, f"{label}: fluid group {groups}")
+    for role, n in report["boundary_facets"].items():
+        check(groups.get(role) == n, f"{label}: group {role} has {n} lines ({groups})")
+    sj = g["min_scaled_jacobian"]
+    check(sj is not None and sj > 0, f"{label}: gmsh minSJ {sj} > 0")
+    area = lookup(report, "area")
+    if area is not MISSING:
+        check(close(g["area"], area, AREA_EXACT),
+              f"{label}: gmsh integrates area {g['area']!r}, report {area!r}")
+
+
+def check_report(label, report, order, linear_area):
+    """The report's own claims; a key it lacks is a failure of its own."""
+    def key(path):
+        v = lookup(report, path)
+        check(v is not MISSING, f"{label}: report lacks {path}")
+        return v
+
+    check(report.get("order") == order, f"{label}: report order {report.get('order')}, "
+                                         f"asked for {order}")
+    v = key("quality.invalid_cells")
+    if v is not MISSING:
+        check(v == 0, f"{label}: {v} invalid cells")
+    v = key("quality.certified")
+    if v is not MISSING:
+        check(v is True, f"{label}: certified is {v!r}")
+    v = key("curved_edge_fraction")
+    if v is not MISSING:
+        ok = v == 0 if order == 1 else 0 < v < 1
+        check(ok, f"{label}: curved_edge_fraction {v} "
+                  f"(expected {'0' if order == 1 else 'strictly between 0 and 1'})")
+    v = key("area")
+    if v is not MISSING:
+        check(v > 0, f"{label}: area {v} > 0")
+        if order > 1 and linear_area is not None:
+            check(close(v, linear_area, AREA_TO_LINEAR),
+                  f"{label}: area {v!r} within {AREA_TO_LINEAR} of the linear {linear_area!r}")
+
+
+def check_vtk(label, v, report, order):
+    if not check(v is not None and "error" not in v, f"{label}: VTK reads the .vtu: {v}"):
+        return
+    cells = report["cells"]
+    check(v["cells"] == cells["tri"] + cells["quad"],
+          f"{label}: VTK cells {v['cells']} vs report {cells}")
+    # The writer shares nodes between cells as the .msh does: one point per mesh node.
+    check(v["points"] == report["nodes"], f"{label}: VTK points {v['points']} vs report nodes "
+                                          f"{report['nodes']}")
+    want = {str(VTK_TYPES[order][k]): cells[k] for k in ("tri", "quad") if cells[k]}
+    check(v["types"] == want, f"{label}: VTK cell types {v['types']}, expected {want}")
+    want = {str(VTK_TYPES[order][k]): [CELL_NODES[k][order]] for k in ("tri", "quad")
+            if cells[k]}
+    check(v["points_per_cell"] == want,
+          f"{label}: VTK points per cell {v['points_per_cell']}, expected {want}")
+    area = lookup(report, "area")
+    if area is not MISSING:
+        check(close(v["area"], area, AREA_EXACT),
+              f"{label}: VTK integrates area {v['area']!r}, report {area!r}")
+        # VTK's own vtkIntegrateAttributes cuts Lagrange cells into linear pieces through
+        # their points (check_vtu.py): it is exact, and compared, for linear cells only.
+        if order == 1:
+            check(close(v["area_linearised"], area, AREA_EXACT),
+                  f"{label}: vtkIntegrateAttributes area {v['area_linearised']!r}, "
+                  f"report {area!r}")
+
+
+def check_pyfr(label, p, report, order):
+    if not check(p is not None, f"{label}: PyFR gave no answer"):
+        return
+    bad = problems(p, [role for role, n in report["boundary_facets"].items() if n])
+    check(not bad, f"{label}: PyFR: {bad}")
+    if bad:
+        return
+    els = p["elements"]
+    cells = report["cells"]
+    for kind in ("tri", "quad"):
+        e = els.get(kind, {"count": 0, "curved": 0, "nodes_per_element": None})
+        check(e["count"] == cells[kind], f"{label}: PyFR {kind} {e['count']} vs {cells[kind]}")
+        if e["count"]:
+            check(e["nodes_per_element"] == CELL_NODES[kind][order],
+                  f"{label}: PyFR {kind} has {e['nodes_per_element']} nodes, expected "
+                  f"{CELL_NODES[kind][order]}")
+    check(set(els) <= {"tri", "quad"}, f"{label}: PyFR element kinds {sorted(els)}")
+    curved = sum(e["curved"] for e in els.values())
+    check(curved == 0 if order == 1 else curved > 0,
+          f"{label}: PyFR marks {curved} elements curved at order {order}")
+    for role, n in report["boundary_facets"].items():
+        check(p["boundaries"].get(role) == n,
+              f"{label}: PyFR {role} faces {p['boundaries'].get(role)} vs {n}")
+    return curved
 
 
 def main(xtask):
+    start = time.monotonic()
     names = [l.split()[0] for l in
              subprocess.run([xtask, "mesh", "--list"], capture_output=True, text=True,
                             check=True).stdout.splitlines() if l.strip()]
     check(len(names) >= 4, "at least four built-in cases")
+    check(all(c in names for c in REQUIRED_CASES), f"the cases {REQUIRED_CASES} are built in")
     with tempfile.TemporaryDirectory() as tmp:
+        runs = []
         for name in names:
-            for extra, tag in (([], "mixed"), (["--triangles"], "tri")):
-                msh = os.path.join(tmp, f"{name}-{tag}.msh")
-                rep = os.path.join(tmp, f"{name}-{tag}.json")
-                r = subprocess.run([xtask, "mesh", name, "--order", "1", "--quiet", "--out", msh,
-                                    "--report", rep] + extra, capture_output=True, text=True)
-                check(r.returncode == 0, f"{name} {tag}: xtask exit {r.returncode}: {r.stderr}")
-                if r.returncode != 0:
-                    continue
-                report = json.load(open(rep))
-                g, err = gmsh_read(msh)
-                check(g is not None, f"{name} {tag}: gmsh reads the file: {err}")
-                if g is None:
-                    continue
-                check(not g["warnings"], f"{name} {tag}: gmsh warnings {g['warnings'][:3]}")
-                el = g["elements"]
-                check(g["nodes"] == report["nodes"],
-                      f"{name} {tag}: nodes {g['nodes']} vs report {report['nodes']}")
-                tri = sum(v for k, v in el.items() if k.startswith("Triangle"))
-                quad = sum(v for k, v in el.items() if k.startswith("Quadrilateral"))
-                lines = sum(v for k, v in el.items() if k.startswith("Line"))
-                check(tri == report["cells"]["tri"] and quad == report["cells"]["quad"],
-                      f"{name} {tag}: gmsh counts tri {tri} quad {quad} vs {report['cells']}")
-                check(tag != "tri" or quad == 0, f"{name}: --triangles leaves no quad")
-                check(lines == sum(report["boundary_facets"].values()),
-                      f"{name} {tag}: boundary lines {lines}")
-                groups = {p["name"]: p["elements"] for p in g["physical_groups"]}
-                check(groups.get("fluid") == tri + quad, f"{name} {tag}: fluid group {groups}")
-                for role, n in report["boundary_facets"].items():
-                    check(groups.get(role) == n, f"{name} {tag}: group {role} has {n} lines")
-                sj = g["min_scaled_jacobian"]
-                check(sj is not None and sj > 0, f"{name} {tag}: gmsh minSJ {sj} > 0")
-                print(f"ok   {name:<12} {tag:<5} nodes {g['nodes']:>7}  tri {tri:>7}  "
-                      f"quad {quad:>7}  gmsh minSJ {sj:.3f}  max angle "
-                      f"{report['quality']['max_angle_deg']:.1f}")
+            for extra, split in SPLITS:
+                for order in ORDERS:
+                    stem = os.path.join(tmp, f"{name}-{split}-p{order}")
+                    run = {"name": name, "split": split, "order": order, "msh": stem + ".msh",
+                           "vtu": stem + ".vtu", "label": f"{name} {split} P{order}"}
+                    r = subprocess.run([xtask, "mesh", name, "--order", str(order), "--quiet",
+                                        "--out", run["msh"], "--out", run["vtu"], "--report",
+                                        stem + ".json"] + extra, capture_output=True, text=True)
+                    # exit 2: written but failed validation; the checks below say why
+                    if check(r.returncode == 0,
+                             f"{run['label']}: xtask exit {r.returncode}: {r.stderr.strip()}") \
+                            or r.returncode == 2:
+                        run["report"] = json.load(open(stem + ".json"))
+                        runs.append(run)
+        meshed = time.monotonic()
+        found = run_checkers([r["msh"] for r in runs], [r["vtu"] for r in runs],
+                             [r["msh"] for r in runs])
+        read = time.monotonic()
+
+        linear = {(r["name"], r["split"]): lookup(r["report"], "area") for r in runs
+                  if r["order"] == 1}
+        for run in runs:
+            label, report, order = run["label"], run["report"], run["order"]
+            before = failed
+            linear_area = linear.get((run["name"], run["split"]), MISSING)
+            check_report(label, report, order, None if linear_area is MISSING else linear_area)
+            check(run["split"] != "tri" or report["cells"]["quad"] == 0,
+                  f"{label}: --triangles leaves no quad")
+            g = found.get(("check_msh.py", run["msh"]))
+            check_gmsh(label, g, report, order)
+            check_vtk(label, found.get(("check_vtu.py", run["vtu"])), report, order)
+            curved = check_pyfr(label, found.get(("check_pyfr.py", run["msh"])), report, order)
+            sj = g.get("min_scaled_jacobian") if g else None
+            fraction = lookup(report, "curved_edge_fraction")
+            print(f"{'ok  ' if failed == before else 'bad '} {label:<20} nodes "
+                  f"{report['nodes']:>7}  tri {report['cells']['tri']:>6}  quad "
+                  f"{report['cells']['quad']:>6}  gmsh minSJ "
+                  f"{'-' if sj is None else f'{sj:.3f}'}  curved edges "
+                  f"{'-' if fraction is MISSING else f'{fraction:.4f}'}  PyFR curved {curved}")
+        # A reader that gave no answer for some file has died: show why.
+        for reader, files in (("check_msh.py", "msh"), ("check_vtu.py", "vtu"),
+                              ("check_pyfr.py", "msh")):
+            if any((reader, r[files]) not in found for r in runs):
+                print(f"-- {reader} stderr:\n{found.get((reader, 'error'), '')}")
 
         # Bad input through the real binary: exit 1, one line on stderr, no file written.
         bad = os.path.join(tmp, "bad.toml")
@@ -89,6 +272,9 @@ def main(xtask):
               f"bad input: one line naming the fault: {r.stderr!r}")
         check(not os.path.exists(out), "bad input writes no file")
         check("panicked" not in r.stderr, "no panic")
+    end = time.monotonic()
+    print(f"time: meshing {meshed - start:.1f} s, reading (Gmsh, VTK, PyFR side by side) "
+          f"{read - meshed:.1f} s, total {end - start:.1f} s")
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the release tool and runs the end-to-end checks with Gmsh's own reader.
+# Builds the release tool and runs the end-to-end checks with Gmsh's, VTK's and PyFR's own
+# readers (tests/python/e2e.py).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 cargo build --release --quiet -p xtask

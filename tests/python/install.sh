@@ -65,4 +65,4 @@ import vtk
 print("checkers:", ", ".join(f"{n} {version(n)}" for n in
                              ("gmsh", "vtk", "pyfr", "h5py", "numpy", "mpi4py")))
 PY
-pyfr --version
+python3 -m pyfr --version
