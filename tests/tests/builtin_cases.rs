@@ -71,24 +71,29 @@ fn every_builtin_case_at_every_order_round_trips() {
                 "{name}: {:?}",
                 &problems[..problems.len().min(5)]
             );
-            let enclosed: f64 = mesh
-                .boundary
-                .iter()
-                .map(|f| {
-                    let (a, b) = (mesh.xy(f.nodes[0]), mesh.xy(f.nodes[1]));
-                    0.5 * (a[0] * b[1] - b[0] * a[1])
-                })
-                .sum();
-            let area = mesh.linear_area();
+            let enclosed = enclosed_area(&mesh);
+            let area = jacobian_check::integrate_area(&mesh).unwrap();
             assert!(
                 (area - enclosed).abs() <= 1e-9 * enclosed,
-                "{name}: {area} vs {enclosed}"
+                "{name} P{order}: cells {area} vs boundary {enclosed}"
             );
             let reported = report["area"].as_f64().unwrap();
             assert!(
                 (reported - area).abs() <= 1e-9 * area,
                 "{name}: report area {reported}"
             );
+            // curving moves the boundary by far less than a cell: the area barely changes
+            let linear = mesh.linear_area();
+            assert!(
+                (area - linear).abs() <= 1e-3 * linear,
+                "{name} P{order}: curved area {area} vs linear {linear}"
+            );
+            if order != "1" {
+                assert_eq!(report["quality"]["invalid_cells"].as_u64(), Some(0), "{name}");
+                assert_eq!(report["quality"]["certified"].as_bool(), Some(true));
+                let f = report["curved_edge_fraction"].as_f64().unwrap();
+                assert!(f > 0.0 && f < 0.5, "{name} P{order}: curved fraction {f}");
+            }
             let walls = mesh.patches.iter().filter(|p| p.role == Role::Wall).count();
             assert!(walls >= 1, "{name}: has a wall");
             assert_eq!(
@@ -97,6 +102,48 @@ fn every_builtin_case_at_every_order_round_trips() {
             );
         }
     }
+}
+
+/// The area the boundary facets enclose (the domain on their left), along their curved
+/// (Lagrange) shape: ½∮(x dy − y dx) by Gauss quadrature, exact for these polynomials.
+fn enclosed_area(mesh: &mesh_model::Mesh) -> f64 {
+    const GAUSS: [(f64, f64); 4] = [
+        (0.069_431_844_202_973_71, 0.173_927_422_568_726_9),
+        (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
+        (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
+        (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
+    ];
+    let mut total = 0.0;
+    for f in mesh.boundary.iter() {
+        let p = f.ty.order as usize;
+        // Gmsh line order: the two ends, then the inner nodes from the first end
+        let at = |j: usize| -> [f64; 2] {
+            match j {
+                0 => mesh.xy(f.nodes[0]),
+                j if j == p => mesh.xy(f.nodes[1]),
+                j => mesh.xy(f.nodes[1 + j]),
+            }
+        };
+        for (s, w) in GAUSS {
+            let (mut x, mut dx) = ([0.0; 2], [0.0; 2]);
+            for j in 0..=p {
+                let sj = j as f64 / p as f64;
+                let (mut l, mut dl) = (1.0, 0.0);
+                for m in (0..=p).filter(|&m| m != j) {
+                    let sm = m as f64 / p as f64;
+                    dl = dl * (s - sm) / (sj - sm) + l / (sj - sm);
+                    l *= (s - sm) / (sj - sm);
+                }
+                let v = at(j);
+                for d in 0..2 {
+                    x[d] += l * v[d];
+                    dx[d] += dl * v[d];
+                }
+            }
+            total += 0.5 * w * (x[0] * dx[1] - x[1] * dx[0]);
+        }
+    }
+    total
 }
 
 #[test]

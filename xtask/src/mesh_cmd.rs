@@ -55,28 +55,40 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
             "some layers' spring solves ran out of iterations (the mesh passed its checks)".into(),
         );
     }
-    let mut mesh = grown.mesh;
     let snapshot = args.snapshot.as_ref().map(|path| {
         let stages = Snapshot {
             case: case.name.clone(),
             boundary: nodes.clone(),
-            mesh: mesh.clone(),
-            node_parent: grown.node_parent,
-            node_layer: grown.node_layer,
+            mesh: grown.mesh.clone(),
+            node_parent: grown.node_parent.clone(),
+            node_layer: grown.node_layer.clone(),
         };
         (path, stages)
     });
-    if args.triangles {
-        mesh = afsf2d::cut_quads_shorter_diagonal(&mesh);
-    }
-    if order > 1 {
-        report.notes.push(format!(
-            "order {order} asked for: curving (Vector-Adding) is not implemented yet, the mesh \
-             written is linear"
-        ));
-        report.order = 1;
-    }
+    let mesh = if order > 1 {
+        let t = Instant::now();
+        let progress = stage(args.quiet, "curving (Vector-Adding)");
+        let curved = pipeline::curved_mesh(&case, &curves, &nodes, &grown, order, args.triangles)?;
+        drop(progress);
+        report
+            .timings_s
+            .insert("curving", t.elapsed().as_secs_f64());
+        report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
+        report.curving = Some(curved.stats);
+        curved.mesh
+    } else if args.triangles {
+        afsf2d::cut_quads_shorter_diagonal(&grown.mesh)
+    } else {
+        grown.mesh
+    };
     report.describe(&mesh);
+    let t = Instant::now();
+    let progress = stage(args.quiet, "certified validity");
+    let scaled_jacobian = report.certify(&mesh)?;
+    drop(progress);
+    report
+        .timings_s
+        .insert("validity", t.elapsed().as_secs_f64());
 
     let t = Instant::now();
     let progress = stage(args.quiet, "writing");
@@ -93,7 +105,14 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
     }
     report.timings_s.insert("write", t.elapsed().as_secs_f64());
     let t = Instant::now();
-    let drawn = pictures::draw_all(&mesh, &pictures, &args.pictures, Colour::Layer, &case.name)?;
+    let drawn = pictures::draw_all(
+        &mesh,
+        &pictures,
+        &args.pictures,
+        Colour::Layer,
+        &case.name,
+        &scaled_jacobian,
+    )?;
     report.files.extend(drawn);
     drop(progress);
     if !pictures.is_empty() {

@@ -52,6 +52,8 @@ pub enum Colour {
     Layer,
     /// Largest interior angle (quads cut along the shorter diagonal).
     Angle,
+    /// Certified scaled Jacobian (min J / max J) of each cell.
+    Jacobian,
 }
 
 /// Parses `FILE` or `FILE@VIEW` of each `--png` and `--svg`; `VIEW` is a name (`all`, `walls`, or a
@@ -123,13 +125,15 @@ fn view_spec(view: &str, named: &BTreeMap<String, [f64; 4]>) -> Result<ViewSpec>
 }
 
 /// Draws and writes every picture, coloured as the flags say or else by `default_colour`;
-/// returns the files written.
+/// `scaled_jacobian` holds one value per cell for [`Colour::Jacobian`]. Returns the files
+/// written.
 pub fn draw_all(
     mesh: &Mesh,
     pictures: &[Picture],
     args: &PictureArgs,
     default_colour: Colour,
     title: &str,
+    scaled_jacobian: &[f64],
 ) -> Result<Vec<String>> {
     let (colour, width_px) = (args.colour.unwrap_or(default_colour), args.width);
     let mut written = Vec::with_capacity(pictures.len());
@@ -146,6 +150,7 @@ pub fn draw_all(
             Colour::Layer if mesh.cell_layer.len() == mesh.cells.len() => ColourBy::Layer,
             Colour::None | Colour::Layer => ColourBy::None,
             Colour::Angle => ColourBy::MaxAngle,
+            Colour::Jacobian => ColourBy::ScaledJacobian(scaled_jacobian.to_vec()),
         };
         let params = DrawParams {
             width_px,

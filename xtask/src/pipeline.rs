@@ -126,3 +126,37 @@ pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfO
         .collect();
     afsf2d::grow_mesh(&loops, &afsf_params(case)).map_err(|e| anyhow::anyhow!("linear mesh: {e}"))
 }
+
+/// The curving parameters of a case at an order.
+pub fn curving_params(case: &Case, order: u8, triangles: bool) -> vector_adding::CurvingParams {
+    vector_adding::CurvingParams {
+        order,
+        min_curved_layers: case.curving.min_curved_layers,
+        triangles,
+        ..vector_adding::CurvingParams::default()
+    }
+}
+
+/// The curved mesh of order 2 or 3 made from the layered linear mesh by Vector-Adding, with
+/// the boundary's high-order nodes on the case's curves.
+pub fn curved_mesh(
+    case: &Case,
+    curves: &[ClosedCurve],
+    nodes: &[BoundaryNodes],
+    grown: &afsf2d::AfsfOutput,
+    order: u8,
+    triangles: bool,
+) -> Result<vector_adding::Curved> {
+    let loops: Vec<vector_adding::LoopCurve<'_>> = curves
+        .iter()
+        .zip(nodes)
+        .map(|(curve, bn)| vector_adding::LoopCurve { curve, t: &bn.t })
+        .collect();
+    let layered = vector_adding::LayeredMesh {
+        mesh: &grown.mesh,
+        node_layer: &grown.node_layer,
+        layered_cells: grown.layered_cells,
+    };
+    vector_adding::curve_mesh(&layered, &loops, &curving_params(case, order, triangles))
+        .map_err(|e| anyhow::anyhow!("curving: {e}"))
+}

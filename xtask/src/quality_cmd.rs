@@ -39,12 +39,27 @@ pub fn run(args: &QualityArgs) -> Result<Outcome> {
         .unwrap_or("mesh");
     let mut report = Report::new(name, mesh.order);
     if mesh.order > 1 {
-        report.notes.push(
-            "angles and area are those of the linear cells under the curved ones".to_string(),
-        );
+        report
+            .notes
+            .push("angles are those of the linear cells under the curved ones".to_string());
     }
     report.describe(&mesh);
-    let drawn = pictures::draw_all(&mesh, &pics, &args.pictures, Colour::Angle, name)?;
+    let t = Instant::now();
+    let scaled_jacobian = report.certify(&mesh)?;
+    report
+        .timings_s
+        .insert("validity", t.elapsed().as_secs_f64());
+    if mesh.order > 1 {
+        report.curved_edge_fraction = Some(jacobian_check::curved_edge_fraction(&mesh));
+    }
+    let drawn = pictures::draw_all(
+        &mesh,
+        &pics,
+        &args.pictures,
+        Colour::Angle,
+        name,
+        &scaled_jacobian,
+    )?;
     report.files.extend(drawn);
     report
         .timings_s

@@ -37,6 +37,9 @@ pub struct Report {
     /// Fraction of the edges left curved, when the mesh was curved.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub curved_edge_fraction: Option<f64>,
+    /// What the curving did, when the mesh was curved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curving: Option<vector_adding::CurvingStats>,
     /// Area of the meshed domain (integrated over the curved cells when curved), when meshed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub area: Option<f64>,
@@ -104,9 +107,39 @@ impl Report {
             self.quality = Some(Quality {
                 max_angle_deg: angles.max_angle_deg,
                 obtuse_hist: angles.histogram,
+                ..Quality::default()
             });
-            self.area = Some(mesh.linear_area());
         }
+    }
+
+    /// Certifies every cell (Bernstein coefficients of the Jacobian determinant), fills the
+    /// validity figures and the area integrated over the curved cells, and names every
+    /// invalid or undecided cell as a problem. Returns the scaled Jacobian of each cell.
+    pub fn certify(&mut self, mesh: &Mesh) -> Result<Vec<f64>> {
+        if mesh.cells.is_empty() || !self.problems.is_empty() {
+            return Ok(Vec::new());
+        }
+        let v = jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default())
+            .map_err(|e| anyhow::anyhow!("certifying the mesh: {e}"))?;
+        let q = self.quality.get_or_insert_with(Quality::default);
+        q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
+        q.invalid_cells = Some(v.invalid_cells.len());
+        q.certified = Some(v.undecided.is_empty() && v.uncertified.is_empty());
+        for (what, cells) in [("invalid", &v.invalid_cells), ("undecided", &v.undecided)] {
+            if !cells.is_empty() {
+                let first: Vec<String> = cells.iter().take(5).map(ToString::to_string).collect();
+                self.problems.push(format!(
+                    "{} cells {what} by the certified Jacobian check (first: {})",
+                    cells.len(),
+                    first.join(", ")
+                ));
+            }
+        }
+        self.area = Some(
+            jacobian_check::integrate_area(mesh)
+                .map_err(|e| anyhow::anyhow!("integrating the area: {e}"))?,
+        );
+        Ok(v.per_cell_scaled_jacobian)
     }
 }
 
@@ -117,6 +150,16 @@ pub struct Quality {
     pub max_angle_deg: f64,
     /// Triangles by largest angle in [95,105), [105,115), [115,125), [125,135), [135,180].
     pub obtuse_hist: [usize; 5],
+    /// Least scaled Jacobian (min J / max J) over the cells: certified lower bounds for the
+    /// cells proved valid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_scaled_jacobian: Option<f64>,
+    /// Cells whose Jacobian determinant is not positive everywhere (certified check).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub invalid_cells: Option<usize>,
+    /// False only if some cell could be neither proved valid nor proved invalid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub certified: Option<bool>,
 }
 
 /// One boundary loop in the report.

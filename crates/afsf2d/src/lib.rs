@@ -64,6 +64,10 @@ pub struct AfsfOutput {
     /// For every node, its layer (0 on the boundary), or [`NONE`] for the nodes the hole
     /// filling added (they have no parent either).
     pub node_layer: Vec<u32>,
+    /// Cells `0..layered_cells` are layered cells (quadrilaterals and the triangles of fans
+    /// and merges, each above its bottom edge in a pipe); the rest are the filled region's
+    /// triangles, whose `cell_layer` and `cell_pipe` are borrowed from a neighbour.
+    pub layered_cells: usize,
     /// Run figures.
     pub stats: AfsfStats,
 }
@@ -189,6 +193,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let mut node_fill_layer: Vec<u32> = (0..n_all)
         .map(|g| if g < n_grown { work.layer[g] } else { NONE })
         .collect();
+    let layered_cells = mesh.cells.len();
     let mut fill_tag = vec![(NONE, NONE); fill.len()];
     loop {
         let mut changed = false;
@@ -244,6 +249,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         mesh,
         node_parent,
         node_layer,
+        layered_cells,
         stats,
     })
 }

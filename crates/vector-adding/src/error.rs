@@ -1,0 +1,44 @@
+//! What can go wrong when curving: bad parameters, or an input that is not the layered
+//! linear mesh and boundary curves this crate expects.
+
+use thiserror::Error;
+
+/// A curving failure. Each names the value or the cell at fault.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum CurvingError {
+    /// A parameter outside its range.
+    #[error("curving parameter {name} = {value}: {rule}")]
+    BadParameter {
+        /// The parameter's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must satisfy.
+        rule: &'static str,
+    },
+    /// The input mesh is not a linear 2D mesh of triangles and quadrilaterals.
+    #[error("curving needs a linear 2D mesh of triangles and quadrilaterals: {0}")]
+    NotLinear2d(String),
+    /// The per-node or per-cell layer data do not match the mesh.
+    #[error("layer data do not match the mesh: {0}")]
+    BadLayers(String),
+    /// A boundary facet does not join two consecutive nodes of its loop's curve, or a
+    /// boundary node is not on its curve.
+    #[error("boundary facet {facet} (patch {patch}): {what}")]
+    BoundaryMismatch {
+        /// The facet's index in the mesh's boundary.
+        facet: usize,
+        /// Its patch.
+        patch: u32,
+        /// What is wrong.
+        what: String,
+    },
+    /// The certified check could not run on a cell (a non-finite node, say).
+    #[error("cell {cell}: {source}")]
+    Check {
+        /// The cell.
+        cell: usize,
+        /// The checker's error.
+        source: jacobian_check::JacobianError,
+    },
+}

@@ -1,0 +1,161 @@
+//! Curving by Vector-Adding (the dissertation's §2.2 and §3.3; method.md §4): turns the
+//! layered linear mesh that `afsf2d` grows into a P2 or P3 mesh for high-order solvers.
+//!
+//! The boundary edges get their high-order nodes on the C2 curves (equally spaced in arc
+//! length). Then, up each pipe of cells above a curved boundary edge, the top edge of every
+//! cell receives the deviation of its bottom edge from its chord — the same as adding to each
+//! high-order node the blend `(1 − s)·V_left + s·V_right` of the cell's two extrusion vectors —
+//! until the pipe stops: its two children merged (the last cell is a triangle), it met
+//! something that is not the next cell of the pipe, or the cell is certified valid with a
+//! straight top, once `min_curved_layers` are curved. Extrusion edges stay straight, and so
+//! does every edge the marching did not reach, except where a cell left invalid (a triangle
+//! of the filled region on a curved boundary edge, say) is mended by bending its straight
+//! edges the same way. Each decision is taken with the certified
+//! Jacobian check of `jacobian-check`; a top that would make its cell invalid gets a part of
+//! the deviation, or none. Interior nodes follow from the map the edges define. On request
+//! quadrilaterals are cut into triangles with a straight diagonal where both halves stay
+//! valid.
+//!
+//! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
+//! IO, and does not certify the final mesh as a whole (the caller runs
+//! `jacobian_check::check_mesh` on the result).
+
+mod assemble;
+mod boundary;
+mod cellcheck;
+mod cellmap;
+mod edges;
+pub mod error;
+mod march;
+pub mod params;
+mod repair;
+mod split;
+pub mod stats;
+
+use geom_curve::ClosedCurve;
+use mesh_model::{Dim, Mesh, Shape};
+
+pub use error::CurvingError;
+pub use params::{CurvingParams, Strategy};
+pub use stats::{CurvingStats, StopCounts};
+
+/// The layered linear mesh and what the marching needs to know of its layers.
+#[derive(Debug, Clone, Copy)]
+pub struct LayeredMesh<'a> {
+    /// The linear mesh: triangles and quadrilaterals, with `cell_layer` and `cell_pipe`, the
+    /// boundary nodes first, loop after loop in patch order.
+    pub mesh: &'a Mesh,
+    /// The layer of every node (0 on the boundary; `mesh_model::NONE` for nodes not grown
+    /// in layers).
+    pub node_layer: &'a [u32],
+    /// Cells `0..layered_cells` are layered cells; the rest (the filled region) are never
+    /// curved.
+    pub layered_cells: usize,
+}
+
+/// The curve of one boundary loop and the parameters of its nodes, as `boundary1d` placed
+/// them: node `k` of the loop is at `curve.point(t[k])`.
+#[derive(Debug, Clone, Copy)]
+pub struct LoopCurve<'a> {
+    /// The loop's curve.
+    pub curve: &'a ClosedCurve,
+    /// The curve parameter of each of its boundary nodes, in node order.
+    pub t: &'a [f64],
+}
+
+/// The curved mesh and the figures of the run.
+#[derive(Debug, Clone)]
+pub struct Curved {
+    /// The mesh of order `params.order`.
+    pub mesh: Mesh,
+    /// What was done.
+    pub stats: CurvingStats,
+}
+
+/// Curves `input` to order `params.order`. `loops[l]` is the curve of patch `l`.
+///
+/// # Errors
+/// Bad parameters, a mesh that is not linear 2D or lacks layer data, boundary facets that do
+/// not match the curves, a cell the certified check cannot evaluate.
+pub fn curve_mesh(
+    input: &LayeredMesh<'_>,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+) -> Result<Curved, CurvingError> {
+    params.check()?;
+    let mesh = input.mesh;
+    check_input(input)?;
+    let p = params.order as usize;
+    let interiors = cellmap::Interiors::new(p);
+    let mut edges = edges::EdgeTable::new(mesh, p);
+    let sorted_edges = edges.len();
+    boundary::place_on_curves(mesh, loops, &mut edges)?;
+    let curved_boundary_edges = edges.curved.iter().filter(|&&c| c).count();
+    let roles = march::classify(mesh, input.node_layer, input.layered_cells);
+    let marched = march::march(mesh, &roles, &mut edges, &interiors, params)?;
+    let repaired = repair::repair(mesh, &roles, &mut edges, &interiors, params)?;
+    let (cells, cut) = if params.triangles {
+        split::cut(mesh, &roles, &mut edges, &interiors, params)?
+    } else {
+        (split::keep(mesh, &edges), split::CutOutcome::default())
+    };
+    let out = assemble::assemble(mesh, &edges, sorted_edges, &cells, &interiors);
+    let curved_edges = edges.curved.iter().filter(|&&c| c).count();
+    let stats = CurvingStats {
+        edges: edges.len(),
+        curved_edges,
+        curved_edge_fraction: curved_edges as f64 / edges.len().max(1) as f64,
+        curved_boundary_edges,
+        stops: marched.stops,
+        reduced_tops: marched.reduced_tops,
+        deepest_curved_layer: marched.deepest_curved_layer,
+        repaired_cells: repaired.repaired,
+        unrepaired_cells: repaired.unrepaired,
+        curved_diagonals: cut.curved_diagonals,
+        invalid_after_cut: cut.invalid,
+    };
+    Ok(Curved { mesh: out, stats })
+}
+
+/// The mesh is linear 2D with layer data of the right lengths.
+fn check_input(input: &LayeredMesh<'_>) -> Result<(), CurvingError> {
+    let mesh = input.mesh;
+    if mesh.dim != Dim::Two || mesh.order != 1 {
+        return Err(CurvingError::NotLinear2d(format!(
+            "the mesh is {}D of order {}",
+            if mesh.dim == Dim::Two { 2 } else { 3 },
+            mesh.order
+        )));
+    }
+    if let Some(ty) = mesh
+        .cells
+        .types()
+        .iter()
+        .find(|t| t.order != 1 || !matches!(t.shape, Shape::Tri | Shape::Quad))
+    {
+        return Err(CurvingError::NotLinear2d(format!("it has a {ty:?} cell")));
+    }
+    if input.node_layer.len() != mesh.nodes.len() {
+        return Err(CurvingError::BadLayers(format!(
+            "{} node layers for {} nodes",
+            input.node_layer.len(),
+            mesh.nodes.len()
+        )));
+    }
+    if mesh.cell_layer.len() != mesh.cells.len() || mesh.cell_pipe.len() != mesh.cells.len() {
+        return Err(CurvingError::BadLayers(format!(
+            "{} cell layers and {} cell pipes for {} cells",
+            mesh.cell_layer.len(),
+            mesh.cell_pipe.len(),
+            mesh.cells.len()
+        )));
+    }
+    if input.layered_cells > mesh.cells.len() {
+        return Err(CurvingError::BadLayers(format!(
+            "{} layered cells of {}",
+            input.layered_cells,
+            mesh.cells.len()
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,194 @@
+//! Repair of the cells the marching leaves invalid, typically a triangle of the filled region
+//! that sits on a curved boundary edge, or the last cell of a pipe that had to stop. Such a
+//! cell is mended by giving one or more of its straight interior edges the deviation of its
+//! most curved edge — Vector-Adding from a shared corner instead of up a pipe — as long as the
+//! neighbour across each bent edge stays valid too.
+
+use mesh_model::{Mesh, NONE};
+
+use crate::cellcheck::{Candidate, Ctx, Scratch, check};
+use crate::cellmap::Interiors;
+use crate::edges::{EdgeTable, lerp};
+use crate::error::CurvingError;
+use crate::params::CurvingParams;
+
+/// What the repair did.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct RepairOutcome {
+    /// Cells made valid.
+    pub repaired: usize,
+    /// Cells still invalid after the last pass.
+    pub unrepaired: usize,
+}
+
+/// Mends invalid cells, pass after pass, until a pass changes nothing.
+pub(crate) fn repair(
+    mesh: &Mesh,
+    roles: &[[u8; 2]],
+    edges: &mut EdgeTable,
+    interiors: &Interiors,
+    params: &CurvingParams,
+) -> Result<RepairOutcome, CurvingError> {
+    let ctx = Ctx {
+        mesh,
+        interiors,
+        params,
+        roles,
+    };
+    let mut s = Scratch::default();
+    let mut out = RepairOutcome::default();
+    for _pass in 0..4 {
+        let mut changed = false;
+        let mut still = 0;
+        for ci in 0..mesh.cells.len() {
+            let n = mesh.cells.get(ci).corners().len();
+            if !edges.cell_edges[ci][..n]
+                .iter()
+                .any(|&e| edges.curved[e as usize])
+            {
+                continue;
+            }
+            if check(&ctx, edges, ci, &[], &mut s)?.is_valid() {
+                continue;
+            }
+            if mend(&ctx, ci, edges, &mut s)? {
+                out.repaired += 1;
+                changed = true;
+            } else {
+                still += 1;
+            }
+        }
+        out.unrepaired = still;
+        if !changed {
+            break;
+        }
+    }
+    Ok(out)
+}
+
+/// Tries to make cell `ci` valid by bending its straight interior edges; commits the first
+/// choice under which the cell and its neighbours across the bent edges are all valid.
+fn mend(
+    ctx: &Ctx<'_>,
+    ci: usize,
+    edges: &mut EdgeTable,
+    s: &mut Scratch,
+) -> Result<bool, CurvingError> {
+    let mesh = ctx.mesh;
+    let ty = mesh.cells.get(ci).ty;
+    let p = edges.p;
+    let q = p - 1;
+    let k: Vec<u32> = mesh.cells.get(ci).corners().to_vec();
+    let n = k.len();
+    let local = ty.shape.edges();
+    let ce = edges.cell_edges[ci];
+    // the most curved edge is the source of the deviation
+    let mut source = None;
+    let mut most = 0.0;
+    let mut dev = vec![[0.0; 2]; q];
+    for j in 0..n {
+        if !edges.curved[ce[j] as usize] {
+            continue;
+        }
+        let d = deviation(mesh, edges, ce[j], k[local[j][0]], &mut dev);
+        if d > most {
+            most = d;
+            source = Some(j);
+        }
+    }
+    let Some(src) = source else {
+        return Ok(false);
+    };
+    let (a, b) = (k[local[src][0]], k[local[src][1]]);
+    deviation(mesh, edges, ce[src], a, &mut dev);
+    let free: Vec<usize> = (0..n)
+        .filter(|&j| {
+            let e = ce[j] as usize;
+            !edges.curved[e] && edges.cells[e][1] != NONE
+        })
+        .collect();
+    let mut subsets: Vec<Vec<usize>> = free.iter().map(|&j| vec![j]).collect();
+    if free.len() > 1 {
+        subsets.push(free.clone());
+    }
+    let mut cand: Vec<(u8, u32, Vec<[f64; 2]>)> = Vec::new();
+    for subset in &subsets {
+        for lambda in [1.0, 0.5] {
+            cand.clear();
+            for &j in subset {
+                let (u, w) = (k[local[j][0]], k[local[j][1]]);
+                // walk the bent edge from the corner it shares with the source edge, or, on
+                // a quadrilateral's opposite edge, from the corner above the source's start
+                let (from, to, reverse) = if u == a || w == a {
+                    let other = if u == a { w } else { u };
+                    (a, other, false)
+                } else if u == b || w == b {
+                    let other = if u == b { w } else { u };
+                    (b, other, true)
+                } else {
+                    (w, u, false)
+                };
+                let (xf, xt) = (mesh.xy(from), mesh.xy(to));
+                let pts: Vec<[f64; 2]> = (0..q)
+                    .map(|i| {
+                        let f = (i + 1) as f64 / p as f64;
+                        let d = if reverse { dev[q - 1 - i] } else { dev[i] };
+                        let l = lerp(xf, xt, f);
+                        [l[0] + lambda * d[0], l[1] + lambda * d[1]]
+                    })
+                    .collect();
+                cand.push((j as u8, from, pts));
+            }
+            let mine: Vec<Candidate<'_>> = cand
+                .iter()
+                .map(|(j, f, pts)| (*j, *f, pts.as_slice()))
+                .collect();
+            if !check(ctx, edges, ci, &mine, s)?.is_valid() {
+                continue;
+            }
+            let mut neighbours_ok = true;
+            for (j, from, pts) in &cand {
+                let e = ce[*j as usize];
+                let nb = edges.other_cell(e, ci as u32);
+                if nb == NONE {
+                    continue;
+                }
+                let nb = nb as usize;
+                let nb_local = edges.cell_edges[nb].iter().position(|&x| x == e);
+                let Some(l) = nb_local else {
+                    neighbours_ok = false;
+                    break;
+                };
+                let theirs = [(l as u8, *from, pts.as_slice())];
+                if !check(ctx, edges, nb, &theirs, s)?.is_valid() {
+                    neighbours_ok = false;
+                    break;
+                }
+            }
+            if neighbours_ok {
+                for (j, from, pts) in &cand {
+                    edges.set_points_from(ce[*j as usize], *from, pts, true);
+                }
+                return Ok(true);
+            }
+        }
+    }
+    Ok(false)
+}
+
+/// The deviation of edge `e`'s inner points from its chord, listed from node `from`; returns
+/// its largest length.
+fn deviation(mesh: &Mesh, edges: &EdgeTable, e: u32, from: u32, dev: &mut [[f64; 2]]) -> f64 {
+    let p = edges.p;
+    edges.points_from(e, from, dev);
+    let [u, w] = edges.ends[e as usize];
+    let to = if u == from { w } else { u };
+    let (xf, xt) = (mesh.xy(from), mesh.xy(to));
+    let mut most: f64 = 0.0;
+    for (i, d) in dev.iter_mut().enumerate() {
+        let l = lerp(xf, xt, (i + 1) as f64 / p as f64);
+        *d = [d[0] - l[0], d[1] - l[1]];
+        most = most.max(d[0].hypot(d[1]));
+    }
+    most
+}
