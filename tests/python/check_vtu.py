@@ -8,7 +8,10 @@ counts of the cells of each type, the cell-data arrays, and two areas of a 2D me
 - "area": the integral of det J over every cell, with the Jacobian built from VTK's own shape
   function derivatives of each cell type (vtkLagrangeTriangle, vtkLagrangeQuadrilateral, ...)
   applied to the cell's points in the file's order: exact for the curved cells, so a node order
-  that VTK reads differently from what we meant shows as a wrong area;
+  that VTK reads differently from what we meant shows as a wrong area on curved cells;
+- "min_scaled_jacobian": the least, over the cells, of min det J / max det J at those Gauss
+  points: a node order VTK reads differently folds even a straight-sided cell, so it shows here
+  as a value ≤ 0;
 - "area_linearised": what VTK's own filter vtkIntegrateAttributes gives. VTK's filters
   (vtkIntegrateAttributes, vtkCellSizeFilter) cannot integrate Lagrange cells: they cut a
   curved cell into linear pieces through its points, so for P2/P3 cells this is only close to
@@ -66,13 +69,14 @@ def shape_derivatives(cell, n, pcoords):
 
 
 def lagrange_area(grid):
-    """The integral of det J over the 2D cells of grid, with VTK's own shape functions."""
+    """The integral of det J over the 2D cells of grid, with VTK's own shape functions, and the
+    least ratio min det J / max det J of a cell at the quadrature points."""
     pts = vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
     types = vtk_to_numpy(grid.GetCellTypes())
     offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
     conn = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
     sizes = np.diff(offsets)
-    total = 0.0
+    total, min_ratio = 0.0, 1.0
     for t, n in sorted(set(zip(types.tolist(), sizes.tolist()))):
         ids = np.nonzero((types == t) & (sizes == n))[0]
         cell = grid.GetCell(int(ids[0]))
@@ -82,7 +86,8 @@ def lagrange_area(grid):
         jac = np.einsum("qan,cnb->cqab", dn, x)  # d(x, y)/d(r, s)
         det = jac[..., 0, 0] * jac[..., 1, 1] - jac[..., 0, 1] * jac[..., 1, 0]
         total += float((det @ weights).sum())
-    return total
+        min_ratio = min(min_ratio, float((det.min(axis=1) / np.abs(det).max(axis=1)).min()))
+    return total, min_ratio
 
 
 def read(path):
@@ -111,7 +116,7 @@ def read(path):
         if arr is not None:
             measure[name.lower() + "_linearised"] = arr.GetValue(0)
     if dims == {2}:
-        measure["area"] = lagrange_area(grid)
+        measure["area"], measure["min_scaled_jacobian"] = lagrange_area(grid)
     cd = grid.GetCellData()
     return {"file": path, "points": grid.GetNumberOfPoints(), "cells": grid.GetNumberOfCells(),
             "types": {str(k): int(v) for k, v in sorted(collections.Counter(types).items())},

@@ -9,8 +9,9 @@ orders 1, 2 and 3, mixed and `--triangles`, writing .msh, .vtu and the JSON repo
   curved-edge fraction 0 at order 1 and strictly between 0 and 1 at orders 2 and 3, a positive
   area within 1e-3 of the linear mesh's (curving moves the boundary only slightly);
 - VTK (check_vtu.py) reads each .vtu: as many cells and points as the report, cells of VTK's
-  linear types at order 1 and Lagrange types with the right point count at orders 2 and 3, and
-  the area integrated with VTK's own shape functions equals the report's;
+  linear types at order 1 and Lagrange types with the right point count at orders 2 and 3, a
+  positive Jacobian at the Gauss points of every cell and an area equal to the report's, both
+  with VTK's own shape functions;
 - PyFR (check_pyfr.py) imports every .msh: elements of the right node count, as many as the
   report says, the report's `wall` and `farfield` faces, curved elements at orders 2 and 3 and
   none at order 1.
@@ -167,6 +168,8 @@ def check_vtk(label, v, report, order):
             if cells[k]}
     check(v["points_per_cell"] == want,
           f"{label}: VTK points per cell {v['points_per_cell']}, expected {want}")
+    check(v["min_scaled_jacobian"] > 0,
+          f"{label}: VTK's Jacobian at the Gauss points, min/max {v['min_scaled_jacobian']} > 0")
     area = lookup(report, "area")
     if area is not MISSING:
         check(close(v["area"], area, AREA_EXACT),
