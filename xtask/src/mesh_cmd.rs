@@ -76,10 +76,14 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
         report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
         report.curving = Some(curved.stats);
         curved.mesh
-    } else if args.triangles {
-        afsf2d::cut_quads_shorter_diagonal(&grown.mesh)
     } else {
-        grown.mesh
+        // a linear mesh has no curved edge
+        report.curved_edge_fraction = Some(0.0);
+        if args.triangles {
+            afsf2d::cut_quads_shorter_diagonal(&grown.mesh)
+        } else {
+            grown.mesh
+        }
     };
     report.describe(&mesh);
     let t = Instant::now();

@@ -49,9 +49,7 @@ pub fn run(args: &QualityArgs) -> Result<Outcome> {
     report
         .timings_s
         .insert("validity", t.elapsed().as_secs_f64());
-    if mesh.order > 1 {
-        report.curved_edge_fraction = Some(jacobian_check::curved_edge_fraction(&mesh));
-    }
+    report.curved_edge_fraction = Some(jacobian_check::curved_edge_fraction(&mesh));
     let drawn = pictures::draw_all(
         &mesh,
         &pics,

@@ -276,6 +276,27 @@ fn certify_any<const D: usize>(
 ) -> Result<Certificate<[f64; D]>, JacobianError> {
     params.check()?;
     check_cell(ty, nodes)?;
+    if let Some(tolerance) = crate::straight::is_straight(ty, nodes)? {
+        // The cell is its corners' order-1 map up to `tolerance` per node; that moves the
+        // determinant by far less than the margin asked for here (the nodes' shape
+        // gradients are O(10) and the cell's extent bounds the other factor).
+        let linear = CellType::new(ty.shape, 1);
+        let c = certify_any(linear, &nodes[..ty.shape.corners()], params)?;
+        let extent = nodes
+            .iter()
+            .map(|x| {
+                (0..D)
+                    .map(|d| (x[d] - nodes[0][d]).abs())
+                    .fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        let margin = 1024.0 * tolerance * extent.powi(D as i32 - 1);
+        match c {
+            Certificate::Valid { min_coeff, .. } if min_coeff > margin => return Ok(c),
+            Certificate::Invalid { .. } => return Ok(c),
+            _ => {}
+        }
+    }
     let table = cert_table(ty)?;
     let coeffs = coefficients(table, nodes);
     let root = Region::root(table.space.domain, table.space.dim);
@@ -504,7 +525,30 @@ pub struct MeshValidity {
 /// A cell naming a missing node, a non-finite node, an unsupported cell type, a bad
 /// parameter.
 pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, JacobianError> {
+    use rayon::prelude::*;
     params.check()?;
+    // cells are judged in parallel, in chunks large enough to amortise the scheduling
+    let verdicts: Vec<(f64, Verdict)> = (0..mesh.cells.len())
+        .into_par_iter()
+        .with_min_len(256)
+        .map(|i| {
+            let cell = mesh.cells.get(i);
+            if let Some(&node) = cell.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
+                return Err(JacobianError::NodeOutOfRange { cell: i, node });
+            }
+            match mesh.dim {
+                Dim::Two => {
+                    let xy: Vec<[f64; 2]> = cell.nodes.iter().map(|&n| mesh.xy(n)).collect();
+                    judge(cell.ty, &xy, params)
+                }
+                Dim::Three => {
+                    let xyz: Vec<[f64; 3]> =
+                        cell.nodes.iter().map(|&n| mesh.nodes[n as usize]).collect();
+                    judge(cell.ty, &xyz, params)
+                }
+            }
+        })
+        .collect::<Result<_, _>>()?;
     let mut out = MeshValidity {
         invalid_cells: Vec::new(),
         undecided: Vec::new(),
@@ -512,35 +556,34 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
         min_scaled_jacobian: 1.0,
         per_cell_scaled_jacobian: Vec::with_capacity(mesh.cells.len()),
     };
-    for (i, cell) in mesh.cells.iter().enumerate() {
-        if let Some(&node) = cell.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
-            return Err(JacobianError::NodeOutOfRange { cell: i, node });
+    for (i, (scaled, verdict)) in verdicts.into_iter().enumerate() {
+        match verdict {
+            Verdict::Valid => {}
+            Verdict::Invalid => out.invalid_cells.push(i),
+            Verdict::Undecided => out.undecided.push(i),
+            Verdict::Uncertified => out.uncertified.push(i),
         }
-        let scaled = match mesh.dim {
-            Dim::Two => {
-                let xy: Vec<[f64; 2]> = cell.nodes.iter().map(|&n| mesh.xy(n)).collect();
-                judge(cell.ty, &xy, params, i, &mut out)?
-            }
-            Dim::Three => {
-                let xyz: Vec<[f64; 3]> =
-                    cell.nodes.iter().map(|&n| mesh.nodes[n as usize]).collect();
-                judge(cell.ty, &xyz, params, i, &mut out)?
-            }
-        };
         out.per_cell_scaled_jacobian.push(scaled);
         out.min_scaled_jacobian = out.min_scaled_jacobian.min(scaled);
     }
     Ok(out)
 }
 
-/// Certifies (or samples) one cell, records it, and returns its scaled Jacobian.
+/// How one cell was judged.
+#[derive(Debug, Clone, Copy)]
+enum Verdict {
+    Valid,
+    Invalid,
+    Undecided,
+    Uncertified,
+}
+
+/// Certifies (or samples) one cell: its scaled Jacobian and verdict.
 fn judge<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
     params: &CertifyParams,
-    index: usize,
-    out: &mut MeshValidity,
-) -> Result<f64, JacobianError> {
+) -> Result<(f64, Verdict), JacobianError> {
     let certificate = match certify_any(ty, nodes, params) {
         Ok(c) => Some(c),
         Err(JacobianError::Unsupported { .. }) if D == 3 => None,
@@ -551,13 +594,12 @@ fn judge<const D: usize>(
         max_coeff,
     }) = certificate
     {
-        return Ok(min_coeff / max_coeff);
+        return Ok((min_coeff / max_coeff, Verdict::Valid));
     }
     let sampled = sampled_any(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();
-    match certificate {
+    let verdict = match certificate {
         Some(Certificate::Invalid { at }) => {
-            out.invalid_cells.push(index);
             let mut grads = vec![[0.0; 3]; nodes.len()];
             basis(ty)?.gradients(
                 std::array::from_fn(|k| if k < D { at[k] } else { 0.0 }),
@@ -570,10 +612,11 @@ fn judge<const D: usize>(
             } else {
                 scaled = scaled.min(0.0);
             }
+            Verdict::Invalid
         }
-        Some(Certificate::Undecided) => out.undecided.push(index),
-        None if sampled.all_positive() => out.uncertified.push(index),
-        _ => out.invalid_cells.push(index),
-    }
-    Ok(scaled)
+        Some(Certificate::Undecided) => Verdict::Undecided,
+        None if sampled.all_positive() => Verdict::Uncertified,
+        _ => Verdict::Invalid,
+    };
+    Ok((scaled, verdict))
 }

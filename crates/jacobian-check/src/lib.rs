@@ -17,6 +17,7 @@ pub mod error;
 pub mod jacobian;
 pub mod lagrange;
 mod linalg;
+mod straight;
 
 pub use area::{cell_area, integrate_area};
 pub use certify::{

@@ -4,11 +4,12 @@
 
 use mesh_model::{CellType, Shape, reference};
 
-/// The interior reference points of the cells this crate builds, as fractions (u, v) of the
-/// unit square for quadrilaterals.
+/// The interior reference points of the quadrilaterals this crate builds, as lattice indices
+/// (a, b): the point (u, v) = (a/p, b/p) of the unit square. They fall on the parameters of
+/// the edge nodes, so the Coons patch there needs no curve evaluation.
 #[derive(Debug, Clone)]
 pub(crate) struct Interiors {
-    quad: Vec<[f64; 2]>,
+    quad: Vec<[usize; 2]>,
 }
 
 impl Interiors {
@@ -17,9 +18,10 @@ impl Interiors {
         let ty = CellType::new(Shape::Quad, p as u8);
         let all = reference::reference_nodes(ty).expect("Gmsh quadrilaterals of order 2 and 3");
         let first = 4 + 4 * (p - 1);
+        let lattice = |x: f64| (0.5 * (x + 1.0) * p as f64).round() as usize;
         let quad = all[first..]
             .iter()
-            .map(|r| [0.5 * (r[0] + 1.0), 0.5 * (r[1] + 1.0)])
+            .map(|r| [lattice(r[0]), lattice(r[1])])
             .collect();
         Interiors { quad }
     }
@@ -54,12 +56,36 @@ pub(crate) fn cell_nodes(
             out.push(c);
         }
         (4, _) => {
-            for &[u, v] in &interiors.quad {
-                out.push(coons(p, corners, edges, u, v));
+            for &[a, b] in &interiors.quad {
+                out.push(coons_on_lattice(p, corners, edges, a, b));
             }
         }
         _ => {}
     }
+}
+
+/// [`coons`] at (a/p, b/p), from the edge nodes themselves.
+fn coons_on_lattice(p: usize, c: &[[f64; 2]], edges: &[[f64; 2]], a: usize, b: usize) -> [f64; 2] {
+    let q = p - 1;
+    // node i (0..=p) along edge k, from its first corner
+    let node = |k: usize, i: usize| -> [f64; 2] {
+        match i {
+            0 => c[k],
+            i if i == p => c[(k + 1) % 4],
+            i => edges[k * q + i - 1],
+        }
+    };
+    let (u, v) = (a as f64 / p as f64, b as f64 / p as f64);
+    let (bottom, right, top, left) = (node(0, a), node(1, b), node(2, p - a), node(3, p - b));
+    let mut x = [0.0; 2];
+    for d in 0..2 {
+        let bilinear = (1.0 - u) * (1.0 - v) * c[0][d]
+            + u * (1.0 - v) * c[1][d]
+            + u * v * c[2][d]
+            + (1.0 - u) * v * c[3][d];
+        x[d] = (1.0 - v) * bottom[d] + v * top[d] + (1.0 - u) * left[d] + u * right[d] - bilinear;
+    }
+    x
 }
 
 /// The Coons patch of a quadrilateral at (u, v) ∈ [0, 1]²: the blend of its four edge curves

@@ -86,20 +86,34 @@ pub fn curve_mesh(
     let mesh = input.mesh;
     check_input(input)?;
     let p = params.order as usize;
+    let mut clock = Clock::default();
     let interiors = cellmap::Interiors::new(p);
     let mut edges = edges::EdgeTable::new(mesh, p);
     let sorted_edges = edges.len();
+    clock.lap("edges");
     boundary::place_on_curves(mesh, loops, &mut edges)?;
     let curved_boundary_edges = edges.curved.iter().filter(|&&c| c).count();
+    clock.lap("boundary");
     let roles = march::classify(mesh, input.node_layer, input.layered_cells);
     let marched = march::march(mesh, &roles, &mut edges, &interiors, params)?;
-    let repaired = repair::repair(mesh, &roles, &mut edges, &interiors, params)?;
+    clock.lap("march");
+    let repaired = repair::repair(
+        mesh,
+        &roles,
+        &mut edges,
+        &interiors,
+        params,
+        &marched.certified,
+    )?;
+    clock.lap("repair");
     let (cells, cut) = if params.triangles {
         split::cut(mesh, &roles, &mut edges, &interiors, params)?
     } else {
         (split::keep(mesh, &edges), split::CutOutcome::default())
     };
+    clock.lap("cut");
     let out = assemble::assemble(mesh, &edges, sorted_edges, &cells, &interiors);
+    clock.lap("assemble");
     let curved_edges = edges.curved.iter().filter(|&&c| c).count();
     let stats = CurvingStats {
         edges: edges.len(),
@@ -113,6 +127,7 @@ pub fn curve_mesh(
         unrepaired_cells: repaired.unrepaired,
         curved_diagonals: cut.curved_diagonals,
         invalid_after_cut: cut.invalid,
+        timings_s: clock.laps,
     };
     Ok(Curved { mesh: out, stats })
 }
@@ -158,4 +173,29 @@ fn check_input(input: &LayeredMesh<'_>) -> Result<(), CurvingError> {
         )));
     }
     Ok(())
+}
+
+/// Wall-clock seconds of each phase, in order.
+#[derive(Debug)]
+struct Clock {
+    last: std::time::Instant,
+    laps: Vec<(&'static str, f64)>,
+}
+
+impl Default for Clock {
+    fn default() -> Self {
+        Clock {
+            last: std::time::Instant::now(),
+            laps: Vec::new(),
+        }
+    }
+}
+
+impl Clock {
+    fn lap(&mut self, phase: &'static str) {
+        let now = std::time::Instant::now();
+        self.laps
+            .push((phase, now.duration_since(self.last).as_secs_f64()));
+        self.last = now;
+    }
 }

@@ -3,6 +3,7 @@
 //! straight when the pipe stops. Cells are visited layer by layer, so a bottom edge is final
 //! before the cell above reads it.
 
+use jacobian_check::Certificate;
 use mesh_model::{Mesh, NONE, Role, Shape};
 
 use crate::cellcheck::{Ctx, Scratch, check};
@@ -59,6 +60,9 @@ pub(crate) struct MarchOutcome {
     pub stops: StopCounts,
     pub reduced_tops: usize,
     pub deepest_curved_layer: u32,
+    /// Cells the marching proved valid as they are now (later steps only change edges of
+    /// other cells).
+    pub certified: Vec<bool>,
 }
 
 /// Marches up every pipe whose boundary edge is curved.
@@ -75,7 +79,10 @@ pub(crate) fn march(
         .filter(|&i| roles[i as usize][0] != NO_EDGE)
         .collect();
     order.sort_by_key(|&i| mesh.cell_layer[i as usize]);
-    let mut out = MarchOutcome::default();
+    let mut out = MarchOutcome {
+        certified: vec![false; mesh.cells.len()],
+        ..MarchOutcome::default()
+    };
     let mut s = Scratch::default();
     let ctx = Ctx {
         mesh,
@@ -100,7 +107,9 @@ pub(crate) fn march(
         if top == NO_EDGE {
             // the two children merged: the pipe ends in a triangle with a curved bottom
             out.stops.collapsed += 1;
-            if !check(&ctx, edges, ci, &[], &mut s)?.is_valid() {
+            if check(&ctx, edges, ci, &[], &mut s)?.is_valid() {
+                out.certified[ci] = true;
+            } else {
                 out.stops.invalid += 1;
             }
             continue;
@@ -127,22 +136,40 @@ pub(crate) fn march(
                 *o = [l[0] + lambda * d[0], l[1] + lambda * d[1]];
             }
         };
-        top_with(0.0, &mut top_pts);
-        let straight = check(&ctx, edges, ci, &[(top, t0, &top_pts)], &mut s)?;
+        // the straight top is judged only when it may be used: lazily
+        let mut straight_cert: Option<Certificate> = None;
+        let mut straight =
+            |edges: &EdgeTable, s: &mut Scratch| -> Result<Certificate, CurvingError> {
+                if let Some(c) = straight_cert {
+                    return Ok(c);
+                }
+                let mut pts = vec![[0.0; 2]; q];
+                for (j, o) in pts.iter_mut().enumerate() {
+                    *o = lerp(xt0, xt1, (j + 1) as f64 / p as f64);
+                }
+                let c = check(&ctx, edges, ci, &[(top, t0, &pts)], s)?;
+                straight_cert = Some(c);
+                Ok(c)
+            };
         if !continues {
             out.stops.pipe_ended += 1;
-            if !straight.is_valid() {
+            if straight(edges, &mut s)?.is_valid() {
+                out.certified[ci] = true;
+            } else {
                 out.stops.invalid += 1;
             }
             continue;
         }
         let may_stop = layer + 1 >= min_layers(mesh, ci, params);
-        let good_straight = straight
-            .scaled_jacobian_lower_bound()
-            .is_some_and(|q| q >= params.stop_min_scaled_jacobian);
-        if may_stop && good_straight {
-            out.stops.jacobian += 1;
-            continue;
+        if may_stop {
+            let good_straight = straight(edges, &mut s)?
+                .scaled_jacobian_lower_bound()
+                .is_some_and(|q| q >= params.stop_min_scaled_jacobian);
+            if good_straight {
+                out.stops.jacobian += 1;
+                out.certified[ci] = true;
+                continue;
+            }
         }
         let mut chosen = None;
         for lambda in [1.0, 0.5, 0.25] {
@@ -152,7 +179,7 @@ pub(crate) fn march(
                 chosen = Some(lambda);
                 break;
             }
-            if lambda == 1.0 && straight.is_valid() {
+            if lambda == 1.0 && straight(edges, &mut s)?.is_valid() {
                 // a straight top is valid where the full deviation is not: stop here
                 break;
             }
@@ -162,12 +189,17 @@ pub(crate) fn march(
                 if lambda < 1.0 {
                     out.reduced_tops += 1;
                 }
+                out.certified[ci] = true;
                 top_with(lambda, &mut top_pts);
                 edges.set_points_from(te, t0, &top_pts, true);
             }
-            None if straight.is_valid() => out.stops.jacobian += 1,
+            None if straight(edges, &mut s)?.is_valid() => {
+                out.stops.jacobian += 1;
+                out.certified[ci] = true;
+            }
             None => {
-                // nothing valid: keep the full deviation and let the certification name it
+                // nothing valid: keep the full deviation and let the repair or the final
+                // certification deal with it
                 out.stops.invalid += 1;
                 top_with(1.0, &mut top_pts);
                 edges.set_points_from(te, t0, &top_pts, true);

@@ -43,7 +43,8 @@ pub struct CurvingParams {
     /// Cut every quadrilateral into two triangles along its shorter diagonal (kept straight
     /// where both triangles are valid with it straight). Default false.
     pub triangles: bool,
-    /// The certified check used for every decision.
+    /// The certified check used for every decision (default: subdivision depth 4; a cell
+    /// left undecided counts as not valid, so a shallow depth only curves more).
     #[serde(skip)]
     pub certify: jacobian_check::CertifyParams,
 }
@@ -56,7 +57,10 @@ impl Default for CurvingParams {
             strategy: Strategy::TwoVector,
             stop_min_scaled_jacobian: 0.25,
             triangles: false,
-            certify: jacobian_check::CertifyParams::default(),
+            certify: jacobian_check::CertifyParams {
+                max_depth: 4,
+                ..jacobian_check::CertifyParams::default()
+            },
         }
     }
 }

@@ -28,6 +28,7 @@ pub(crate) fn repair(
     edges: &mut EdgeTable,
     interiors: &Interiors,
     params: &CurvingParams,
+    certified: &[bool],
 ) -> Result<RepairOutcome, CurvingError> {
     let ctx = Ctx {
         mesh,
@@ -37,11 +38,16 @@ pub(crate) fn repair(
     };
     let mut s = Scratch::default();
     let mut out = RepairOutcome::default();
+    // cells next to an edge the repair bent lose the marching's certificate
+    let mut touched = vec![false; mesh.cells.len()];
     for _pass in 0..4 {
         let mut changed = false;
         let mut still = 0;
         for ci in 0..mesh.cells.len() {
             let n = mesh.cells.get(ci).corners().len();
+            if certified[ci] && !touched[ci] {
+                continue;
+            }
             if !edges.cell_edges[ci][..n]
                 .iter()
                 .any(|&e| edges.curved[e as usize])
@@ -51,7 +57,7 @@ pub(crate) fn repair(
             if check(&ctx, edges, ci, &[], &mut s)?.is_valid() {
                 continue;
             }
-            if mend(&ctx, ci, edges, &mut s)? {
+            if mend(&ctx, ci, edges, &mut s, &mut touched)? {
                 out.repaired += 1;
                 changed = true;
             } else {
@@ -73,6 +79,7 @@ fn mend(
     ci: usize,
     edges: &mut EdgeTable,
     s: &mut Scratch,
+    touched: &mut [bool],
 ) -> Result<bool, CurvingError> {
     let mesh = ctx.mesh;
     let ty = mesh.cells.get(ci).ty;
@@ -167,7 +174,13 @@ fn mend(
             }
             if neighbours_ok {
                 for (j, from, pts) in &cand {
-                    edges.set_points_from(ce[*j as usize], *from, pts, true);
+                    let e = ce[*j as usize];
+                    edges.set_points_from(e, *from, pts, true);
+                    for c in edges.cells[e as usize] {
+                        if c != NONE {
+                            touched[c as usize] = true;
+                        }
+                    }
                 }
                 return Ok(true);
             }

@@ -43,4 +43,6 @@ pub struct CurvingStats {
     pub curved_diagonals: usize,
     /// Triangles of cut quadrilaterals left invalid even with a curved diagonal.
     pub invalid_after_cut: usize,
+    /// Seconds spent in each phase: edges, boundary, march, repair, cut, assemble.
+    pub timings_s: Vec<(&'static str, f64)>,
 }
