@@ -89,7 +89,11 @@ fn every_builtin_case_at_every_order_round_trips() {
                 "{name} P{order}: curved area {area} vs linear {linear}"
             );
             if order != "1" {
-                assert_eq!(report["quality"]["invalid_cells"].as_u64(), Some(0), "{name}");
+                assert_eq!(
+                    report["quality"]["invalid_cells"].as_u64(),
+                    Some(0),
+                    "{name}"
+                );
                 assert_eq!(report["quality"]["certified"].as_bool(), Some(true));
                 let f = report["curved_edge_fraction"].as_f64().unwrap();
                 assert!(f > 0.0 && f < 0.5, "{name} P{order}: curved fraction {f}");
