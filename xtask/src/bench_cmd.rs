@@ -1,6 +1,9 @@
 //! `cargo xtask bench`: times each stage of the pipeline on the built-in cases, in this
-//! (release) build on one thread, and prints the median of several runs. The criterion benches
-//! of each crate measure the pieces; this measures what a user waits for.
+//! (release) build on one thread (the certification's parallel loop runs in a one-thread
+//! pool here), and prints the median of several runs: curves, boundary, the linear mesh, and
+//! at P3 the curving and the certification of every cell, with their share of the linear
+//! time. The criterion benches of each crate measure the pieces; this measures what a user
+//! waits for.
 
 use std::time::Instant;
 
@@ -26,13 +29,30 @@ pub fn run(args: &BenchArgs) -> Result<Outcome> {
         }
     }
     let runs = if args.quick { 3 } else { 11 };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     println!(
-        "{:<12} {:>10} {:>12} {:>10} {:>9} {:>9} {:>9}   (median of {runs} runs, one thread)",
-        "case", "curves ms", "boundary ms", "linear ms", "nodes", "quads", "triangles"
+        "{:<12} {:>10} {:>12} {:>10} {:>9} {:>9} {:>9} {:>11} {:>12} {:>8}   (median of {runs} runs, one thread)",
+        "case",
+        "curves ms",
+        "boundary ms",
+        "linear ms",
+        "nodes",
+        "quads",
+        "triangles",
+        "P3 curve ms",
+        "P3 certify ms",
+        "share %"
     );
-    for name in &names {
+    pool.install(|| bench_cases(&names, runs))?;
+    Ok(Outcome::Valid)
+}
+
+/// Times every case and prints its row.
+fn bench_cases(names: &[String], runs: usize) -> Result<()> {
+    for name in names {
         let case = case::load(name)?;
         let (mut curve_s, mut boundary_s, mut linear_s) = (vec![], vec![], vec![]);
+        let (mut curving_s, mut certify_s) = (vec![], vec![]);
         let mut counts = (0, 0, 0);
         for _ in 0..runs {
             let t = Instant::now();
@@ -46,18 +66,35 @@ pub fn run(args: &BenchArgs) -> Result<Outcome> {
             linear_s.push(t.elapsed().as_secs_f64());
             let m = &grown.mesh;
             counts = (m.nodes.len(), m.count(Shape::Quad), m.count(Shape::Tri));
+            let t = Instant::now();
+            let curved = pipeline::curved_mesh(&case, &curves, &nodes, &grown, 3, false)?;
+            curving_s.push(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            let validity = jacobian_check::check_mesh(&curved.mesh, &Default::default())?;
+            certify_s.push(t.elapsed().as_secs_f64());
+            if !validity.invalid_cells.is_empty() {
+                bail!(
+                    "{name}: {} invalid cells at P3",
+                    validity.invalid_cells.len()
+                );
+            }
         }
+        let linear = median(&mut linear_s);
+        let (curving, certify) = (median(&mut curving_s), median(&mut certify_s));
         println!(
-            "{name:<12} {:>10.3} {:>12.3} {:>10.1} {:>9} {:>9} {:>9}",
+            "{name:<12} {:>10.3} {:>12.3} {:>10.1} {:>9} {:>9} {:>9} {:>11.1} {:>12.1} {:>8.1}",
             median(&mut curve_s) * 1e3,
             median(&mut boundary_s) * 1e3,
-            median(&mut linear_s) * 1e3,
+            linear * 1e3,
             counts.0,
             counts.1,
-            counts.2
+            counts.2,
+            curving * 1e3,
+            certify * 1e3,
+            100.0 * (curving + certify) / linear
         );
     }
-    Ok(Outcome::Valid)
+    Ok(())
 }
 
 fn median(v: &mut [f64]) -> f64 {
