@@ -38,6 +38,32 @@ pub fn table(r: &Report) -> String {
             "  obtuse triangles      95-105: {}  105-115: {}  115-125: {}  125-135: {}  >=135: {}",
             h[0], h[1], h[2], h[3], h[4]
         );
+        if let (Some(sj), Some(bad), Some(certified)) =
+            (q.min_scaled_jacobian, q.invalid_cells, q.certified)
+        {
+            let _ = writeln!(s, "  {:<22} {:>12.3}", "min scaled Jacobian", sj);
+            let verdict = match (bad, certified) {
+                (0, true) => "every cell proved valid".to_string(),
+                (0, false) => "no cell proved invalid, some undecided".to_string(),
+                (n, _) => format!("{n} cells INVALID"),
+            };
+            let _ = writeln!(s, "  {:<22} {:>12}", "certified check", verdict);
+        }
+    }
+    if let Some(f) = r.curved_edge_fraction {
+        let _ = writeln!(s, "  {:<22} {:>11.1}%", "curved edges", 100.0 * f);
+    }
+    if let Some(c) = &r.curving {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12}  (stops: {} valid straight, {} collapsed, {} pipe ended; {} repaired)",
+            "curved layers (max)",
+            c.deepest_curved_layer,
+            c.stops.jacobian,
+            c.stops.collapsed,
+            c.stops.pipe_ended,
+            c.repaired_cells
+        );
     }
     if let Some(a) = r.area {
         let _ = writeln!(s, "  {:<22} {:>12.6e}", "area", a);
