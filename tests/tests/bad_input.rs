@@ -186,6 +186,7 @@ fn impossible_parameters() {
         ("[boundary]\nmax_spacing = 0.0\n", "max_spacing"),
         ("[boundary]\nrefine_angle_deg = 200.0\n", "refine_angle_deg"),
         ("[curving]\norder = 5\n", "order"),
+        ("[curving]\nmin_curved_layers = 500\n", "min_curved_layers"),
     ];
     for (section, words) in cases {
         let dir = tempfile::tempdir().unwrap();

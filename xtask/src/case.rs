@@ -305,6 +305,12 @@ fn check_params(file: &CaseFile, origin: &str) -> Result<()> {
         "{origin}: [curving] order = {}: must be 1, 2 or 3",
         c.order
     );
+    ensure!(
+        c.min_curved_layers <= l.max_layers,
+        "{origin}: [curving] min_curved_layers = {}: must be at most [layers] max_layers = {}",
+        c.min_curved_layers,
+        l.max_layers
+    );
     Ok(())
 }
 
