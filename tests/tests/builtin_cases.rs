@@ -71,7 +71,7 @@ fn every_builtin_case_at_every_order_round_trips() {
                 "{name}: {:?}",
                 &problems[..problems.len().min(5)]
             );
-            let enclosed = enclosed_area(&mesh);
+            let enclosed = jacobian_check::enclosed_area(&mesh).unwrap();
             let area = jacobian_check::integrate_area(&mesh).unwrap();
             assert!(
                 (area - enclosed).abs() <= 1e-9 * enclosed,
@@ -106,48 +106,6 @@ fn every_builtin_case_at_every_order_round_trips() {
             );
         }
     }
-}
-
-/// The area the boundary facets enclose (the domain on their left), along their curved
-/// (Lagrange) shape: ½∮(x dy − y dx) by Gauss quadrature, exact for these polynomials.
-fn enclosed_area(mesh: &mesh_model::Mesh) -> f64 {
-    const GAUSS: [(f64, f64); 4] = [
-        (0.069_431_844_202_973_71, 0.173_927_422_568_726_9),
-        (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
-        (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
-        (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
-    ];
-    let mut total = 0.0;
-    for f in mesh.boundary.iter() {
-        let p = f.ty.order as usize;
-        // Gmsh line order: the two ends, then the inner nodes from the first end
-        let at = |j: usize| -> [f64; 2] {
-            match j {
-                0 => mesh.xy(f.nodes[0]),
-                j if j == p => mesh.xy(f.nodes[1]),
-                j => mesh.xy(f.nodes[1 + j]),
-            }
-        };
-        for (s, w) in GAUSS {
-            let (mut x, mut dx) = ([0.0; 2], [0.0; 2]);
-            for j in 0..=p {
-                let sj = j as f64 / p as f64;
-                let (mut l, mut dl) = (1.0, 0.0);
-                for m in (0..=p).filter(|&m| m != j) {
-                    let sm = m as f64 / p as f64;
-                    dl = dl * (s - sm) / (sj - sm) + l / (sj - sm);
-                    l *= (s - sm) / (sj - sm);
-                }
-                let v = at(j);
-                for d in 0..2 {
-                    x[d] += l * v[d];
-                    dx[d] += dl * v[d];
-                }
-            }
-            total += 0.5 * w * (x[0] * dx[1] - x[1] * dx[0]);
-        }
-    }
-    total
 }
 
 #[test]

@@ -19,7 +19,7 @@ pub mod lagrange;
 mod linalg;
 mod straight;
 
-pub use area::{cell_area, integrate_area};
+pub use area::{cell_area, enclosed_area, integrate_area};
 pub use certify::{
     Certificate, CertifyParams, MeshValidity, SampledCheck, certify_cell, certify_cell_3d,
     check_mesh, determinant_bernstein_coefficients, sampled_check, sampled_check_3d,

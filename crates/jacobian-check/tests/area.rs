@@ -105,3 +105,19 @@ fn three_dimensional_cells_are_an_error() {
         Err(JacobianError::WrongDimension { .. })
     ));
 }
+
+#[test]
+fn the_enclosed_area_of_a_curved_annulus_equals_its_cells_area() {
+    for order in [1, 2, 3] {
+        let mesh = mesh_io::testkit::annulus(&mesh_io::testkit::AnnulusParams {
+            order,
+            ..Default::default()
+        });
+        let cells = jacobian_check::integrate_area(&mesh).unwrap();
+        let boundary = jacobian_check::enclosed_area(&mesh).unwrap();
+        assert!(
+            (cells - boundary).abs() <= 1e-12 * cells,
+            "P{order}: cells {cells} vs boundary {boundary}"
+        );
+    }
+}
