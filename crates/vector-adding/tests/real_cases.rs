@@ -40,7 +40,7 @@ fn row(name: &str, run: Run, curved: &Curved, c: &Checked, seconds: f64) -> Stri
     )
 }
 
-const HEADER: &str = "case         P  cells strategy     cells  curved   jac   coll  ended  inv reduced repair diag   min SJ  curve s";
+const HEADER: &str = "case         P  cut   strategy     cells  curved    jac   coll  ended  inv reduced repair  diag   min SJ curve s";
 
 fn case(name: &str, both_strategies: bool) {
     let case = real_case(name);
