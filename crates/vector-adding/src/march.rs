@@ -179,10 +179,6 @@ pub(crate) fn march(
                 chosen = Some(lambda);
                 break;
             }
-            if lambda == 1.0 && straight(edges, &mut s)?.is_valid() {
-                // a straight top is valid where the full deviation is not: stop here
-                break;
-            }
         }
         match chosen {
             Some(lambda) => {

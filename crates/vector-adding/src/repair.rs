@@ -40,6 +40,7 @@ pub(crate) fn repair(
     let mut out = RepairOutcome::default();
     // cells next to an edge the repair bent lose the marching's certificate
     let mut touched = vec![false; mesh.cells.len()];
+    let mut log = Vec::new();
     for _pass in 0..4 {
         let mut changed = false;
         let mut still = 0;
@@ -57,7 +58,15 @@ pub(crate) fn repair(
             if check(&ctx, edges, ci, &[], &mut s)?.is_valid() {
                 continue;
             }
-            if mend(&ctx, ci, edges, &mut s, &mut touched)? {
+            log.clear();
+            if mend(&ctx, ci, edges, &mut s, &mut log, MEND_DEPTH)? {
+                for (e, _, _) in &log {
+                    for c in edges.cells[*e as usize] {
+                        if c != NONE {
+                            touched[c as usize] = true;
+                        }
+                    }
+                }
                 out.repaired += 1;
                 changed = true;
             } else {
@@ -72,14 +81,23 @@ pub(crate) fn repair(
     Ok(out)
 }
 
-/// Tries to make cell `ci` valid by bending its straight interior edges; commits the first
-/// choice under which the cell and its neighbours across the bent edges are all valid.
+/// How many cells away from the invalid one a repair may reach: a bent edge may make the
+/// neighbour across it invalid (a needle of the filled region), which is then mended in turn.
+const MEND_DEPTH: u32 = 2;
+
+/// The edges changed by a repair, with their previous points and curved flag, to undo it.
+type ChangeLog = Vec<(u32, Vec<[f64; 2]>, bool)>;
+
+/// Tries to make cell `ci` valid by bending its straight interior edges. A choice is kept when
+/// the cell is valid and each neighbour across a bent edge is valid too, or, `depth` allowing,
+/// can be mended the same way. Every change is recorded in `log`; on failure nothing changes.
 fn mend(
     ctx: &Ctx<'_>,
     ci: usize,
     edges: &mut EdgeTable,
     s: &mut Scratch,
-    touched: &mut [bool],
+    log: &mut ChangeLog,
+    depth: u32,
 ) -> Result<bool, CurvingError> {
     let mesh = ctx.mesh;
     let ty = mesh.cells.get(ci).ty;
@@ -153,40 +171,45 @@ fn mend(
             if !check(ctx, edges, ci, &mine, s)?.is_valid() {
                 continue;
             }
-            let mut neighbours_ok = true;
+            // apply the choice, then look at the neighbours across the bent edges
+            let mark = log.len();
             for (j, from, pts) in &cand {
                 let e = ce[*j as usize];
+                let q = edges.p - 1;
+                let old = edges.points[e as usize * q..(e as usize + 1) * q].to_vec();
+                log.push((e, old, edges.curved[e as usize]));
+                edges.set_points_from(e, *from, pts, true);
+            }
+            let mut neighbours_ok = true;
+            for (j, _, _) in &cand {
+                let e = ce[*j as usize];
                 let nb = edges.other_cell(e, ci as u32);
-                if nb == NONE {
+                if nb == NONE || check(ctx, edges, nb as usize, &[], s)?.is_valid() {
                     continue;
                 }
-                let nb = nb as usize;
-                let nb_local = edges.cell_edges[nb].iter().position(|&x| x == e);
-                let Some(l) = nb_local else {
-                    neighbours_ok = false;
-                    break;
-                };
-                let theirs = [(l as u8, *from, pts.as_slice())];
-                if !check(ctx, edges, nb, &theirs, s)?.is_valid() {
-                    neighbours_ok = false;
-                    break;
+                if depth > 0 && mend(ctx, nb as usize, edges, s, log, depth - 1)? {
+                    continue;
                 }
+                neighbours_ok = false;
+                break;
             }
             if neighbours_ok {
-                for (j, from, pts) in &cand {
-                    let e = ce[*j as usize];
-                    edges.set_points_from(e, *from, pts, true);
-                    for c in edges.cells[e as usize] {
-                        if c != NONE {
-                            touched[c as usize] = true;
-                        }
-                    }
-                }
                 return Ok(true);
             }
+            undo(edges, log, mark);
         }
     }
     Ok(false)
+}
+
+/// Restores the edges changed since `log[mark]`, latest first.
+fn undo(edges: &mut EdgeTable, log: &mut ChangeLog, mark: usize) {
+    let q = edges.p - 1;
+    while log.len() > mark {
+        let (e, old, curved) = log.pop().expect("log longer than mark");
+        edges.points[e as usize * q..(e as usize + 1) * q].copy_from_slice(&old);
+        edges.curved[e as usize] = curved;
+    }
 }
 
 /// The deviation of edge `e`'s inner points from its chord, listed from node `from`; returns
