@@ -187,6 +187,11 @@ fn impossible_parameters() {
         ("[boundary]\nrefine_angle_deg = 200.0\n", "refine_angle_deg"),
         ("[curving]\norder = 5\n", "order"),
         ("[curving]\nmin_curved_layers = 500\n", "min_curved_layers"),
+        (
+            "[curving]\nstop_scaled_jacobian = 0.0\n",
+            "stop_scaled_jacobian",
+        ),
+        ("[curving]\nstrategy = \"three-vector\"\n", "three-vector"),
     ];
     for (section, words) in cases {
         let dir = tempfile::tempdir().unwrap();

@@ -156,13 +156,21 @@ pub struct CurvingSpec {
     pub order: u8,
     /// Fewest layers curved above a curved wall.
     pub min_curved_layers: u32,
+    /// A pipe stops where a straight top leaves its cell a certified scaled Jacobian of at
+    /// least this, in (0, 1]: higher curves more layers for better stop cells.
+    pub stop_scaled_jacobian: f64,
+    /// `two-vector` (default) or `one-vector`: how a cut quadrilateral's diagonal is curved.
+    pub strategy: vector_adding::Strategy,
 }
 
 impl Default for CurvingSpec {
     fn default() -> Self {
+        let d = vector_adding::CurvingParams::default();
         CurvingSpec {
             order: 3,
-            min_curved_layers: 2,
+            min_curved_layers: d.min_curved_layers,
+            stop_scaled_jacobian: d.stop_min_scaled_jacobian,
+            strategy: d.strategy,
         }
     }
 }
@@ -304,6 +312,11 @@ fn check_params(file: &CaseFile, origin: &str) -> Result<()> {
         (1..=3).contains(&c.order),
         "{origin}: [curving] order = {}: must be 1, 2 or 3",
         c.order
+    );
+    ensure!(
+        c.stop_scaled_jacobian > 0.0 && c.stop_scaled_jacobian <= 1.0,
+        "{origin}: [curving] stop_scaled_jacobian = {}: must lie in (0, 1]",
+        c.stop_scaled_jacobian
     );
     ensure!(
         c.min_curved_layers <= l.max_layers,

@@ -132,6 +132,8 @@ pub fn curving_params(case: &Case, order: u8, triangles: bool) -> vector_adding:
     vector_adding::CurvingParams {
         order,
         min_curved_layers: case.curving.min_curved_layers,
+        stop_min_scaled_jacobian: case.curving.stop_scaled_jacobian,
+        strategy: case.curving.strategy,
         triangles,
         ..vector_adding::CurvingParams::default()
     }

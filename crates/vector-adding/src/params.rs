@@ -38,7 +38,8 @@ pub struct CurvingParams {
     /// Vector strategy. Default [`Strategy::TwoVector`].
     pub strategy: Strategy,
     /// A pipe stops (the cell gets a straight top edge) when the cell with a straight top
-    /// is certified valid with a scaled Jacobian of at least this, in (0, 1]. Default 0.25.
+    /// is certified valid with a scaled Jacobian of at least this, in (0, 1]. Default 0.5: the
+    /// stop cell, the least good of its pipe, keeps at least half its largest Jacobian.
     pub stop_min_scaled_jacobian: f64,
     /// Cut every quadrilateral into two triangles along its shorter diagonal (kept straight
     /// where both triangles are valid with it straight). Default false.
@@ -55,7 +56,7 @@ impl Default for CurvingParams {
             order: 3,
             min_curved_layers: 2,
             strategy: Strategy::TwoVector,
-            stop_min_scaled_jacobian: 0.25,
+            stop_min_scaled_jacobian: 0.5,
             triangles: false,
             certify: jacobian_check::CertifyParams {
                 max_depth: 4,
