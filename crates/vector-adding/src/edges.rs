@@ -26,44 +26,60 @@ pub(crate) struct EdgeTable {
 impl EdgeTable {
     /// The edges of the linear mesh `mesh`, every one straight, for order `p`.
     pub fn new(mesh: &Mesh, p: usize) -> Self {
-        let mut keys: Vec<(u64, u32)> = Vec::with_capacity(mesh.cells.len() * 4);
+        // bucket every cell edge by its lower node (a counting sort), then group each
+        // bucket's few entries by the higher node: edges come out sorted by (lower, higher)
+        let n = mesh.nodes.len();
+        let mut start = vec![0u32; n + 1];
+        for cell in mesh.cells.iter() {
+            let k = cell.corners();
+            for e in cell.ty.shape.edges() {
+                start[k[e[0]].min(k[e[1]]) as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut entries = vec![(0u32, 0u32); start[n] as usize];
         for (i, cell) in mesh.cells.iter().enumerate() {
             let k = cell.corners();
             for (j, e) in cell.ty.shape.edges().iter().enumerate() {
                 let (a, b) = (k[e[0]], k[e[1]]);
-                let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-                keys.push((key, (i as u32) << 2 | j as u32));
+                let slot = &mut fill[a.min(b) as usize];
+                entries[*slot as usize] = (a.max(b), (i as u32) << 2 | j as u32);
+                *slot += 1;
             }
         }
-        keys.sort_unstable();
         let mut table = EdgeTable {
             p,
-            ends: Vec::with_capacity(keys.len() / 2 + 8),
-            cells: Vec::with_capacity(keys.len() / 2 + 8),
+            ends: Vec::with_capacity(entries.len() / 2 + 8),
+            cells: Vec::with_capacity(entries.len() / 2 + 8),
             cell_edges: vec![[NONE; 4]; mesh.cells.len()],
             points: Vec::new(),
             curved: Vec::new(),
         };
-        let mut at = 0;
-        while at < keys.len() {
-            let key = keys[at].0;
-            let id = table.ends.len() as u32;
-            table
-                .ends
-                .push([(key >> 32) as u32, (key & 0xffff_ffff) as u32]);
-            let mut cells = [NONE; 2];
-            let mut n = 0;
-            while at < keys.len() && keys[at].0 == key {
-                let slot = keys[at].1;
-                let (cell, local) = ((slot >> 2) as usize, (slot & 3) as usize);
-                table.cell_edges[cell][local] = id;
-                if n < 2 {
-                    cells[n] = cell as u32;
+        for lo in 0..n {
+            let bucket = &mut entries[start[lo] as usize..start[lo + 1] as usize];
+            bucket.sort_unstable();
+            let mut at = 0;
+            while at < bucket.len() {
+                let hi = bucket[at].0;
+                let id = table.ends.len() as u32;
+                table.ends.push([lo as u32, hi]);
+                let mut cells = [NONE; 2];
+                let mut count = 0;
+                while at < bucket.len() && bucket[at].0 == hi {
+                    let slot = bucket[at].1;
+                    let (cell, local) = ((slot >> 2) as usize, (slot & 3) as usize);
+                    table.cell_edges[cell][local] = id;
+                    if count < 2 {
+                        cells[count] = cell as u32;
+                    }
+                    count += 1;
+                    at += 1;
                 }
-                n += 1;
-                at += 1;
+                table.cells.push(cells);
             }
-            table.cells.push(cells);
         }
         let nodes: Vec<[f64; 2]> = mesh.nodes.iter().map(|v| [v[0], v[1]]).collect();
         table.points = Vec::with_capacity(table.ends.len() * (p - 1));

@@ -161,7 +161,13 @@ pub(crate) fn march(
             continue;
         }
         let may_stop = layer + 1 >= min_layers(mesh, ci, params);
-        if may_stop {
+        // A straight top over a bottom that bulges by d in a cell of height h leaves a scaled
+        // Jacobian near (h − d)/h; where even twice that estimate misses the threshold, the
+        // check is skipped and the pipe goes on (always safe: that cell is certified too).
+        let bulge = dev.iter().map(|d| d[0].hypot(d[1])).fold(0.0, f64::max);
+        let height = dist(xb0, xt0).min(dist(xb1, xt1));
+        let hopeless = height * (1.0 - params.stop_min_scaled_jacobian) < 0.5 * bulge;
+        if may_stop && !hopeless {
             let good_straight = straight(edges, &mut s)?
                 .scaled_jacobian_lower_bound()
                 .is_some_and(|q| q >= params.stop_min_scaled_jacobian);
@@ -203,6 +209,10 @@ pub(crate) fn march(
         }
     }
     Ok(out)
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
 /// The least number of curved layers of the pipe cell `ci` belongs to: walls keep
