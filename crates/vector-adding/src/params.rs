@@ -42,7 +42,8 @@ pub struct CurvingParams {
     /// stop cell, the least good of its pipe, keeps at least half its largest Jacobian.
     pub stop_min_scaled_jacobian: f64,
     /// Cut every quadrilateral into two triangles along its shorter diagonal (kept straight
-    /// where both triangles are valid with it straight). Default false.
+    /// where both triangles are valid with it straight, with a scaled Jacobian of at least
+    /// `stop_min_scaled_jacobian`). Default false.
     pub triangles: bool,
     /// The certified check used for every decision (default: subdivision depth 4; a cell
     /// left undecided counts as not valid, so a shallow depth only curves more).

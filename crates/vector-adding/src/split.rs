@@ -1,5 +1,6 @@
 //! Cutting curved quadrilaterals into two triangles along the shorter diagonal. The diagonal
-//! stays straight where both triangles are valid with it; otherwise it follows the
+//! stays straight where both triangles are valid with it and at least as good as the stop
+//! threshold asks of a pipe's last cell; otherwise it follows the
 //! quadrilateral's map (two-vector: where the top edge carries the bottom's deviation that map
 //! is a polynomial of degree p on each half, so the triangles reproduce it exactly) or its
 //! lower triangle's map (one-vector).
