@@ -198,12 +198,7 @@ impl RealCase {
         self.loops
             .iter()
             .zip(nodes)
-            .map(|((name, role, _), bn)| FrontLoop {
-                points: bn.points.iter().map(|p| [p.x, p.y]).collect(),
-                is_corner: bn.is_corner.clone(),
-                role: *role,
-                name: name.clone(),
-            })
+            .map(|((name, role, _), bn)| front_loop(bn, *role, name))
             .collect()
     }
 
@@ -254,5 +249,15 @@ impl RealCase {
             nodes,
             output,
         }
+    }
+}
+
+/// The mesher's loop made from one loop's boundary nodes.
+pub fn front_loop(nodes: &BoundaryNodes, role: Role, name: &str) -> FrontLoop {
+    FrontLoop {
+        points: nodes.points.iter().map(|p| [p.x, p.y]).collect(),
+        is_corner: nodes.is_corner.clone(),
+        role,
+        name: name.to_string(),
     }
 }

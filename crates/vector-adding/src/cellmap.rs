@@ -76,7 +76,17 @@ fn coons_on_lattice(p: usize, c: &[[f64; 2]], edges: &[[f64; 2]], a: usize, b: u
         }
     };
     let (u, v) = (a as f64 / p as f64, b as f64 / p as f64);
-    let (bottom, right, top, left) = (node(0, a), node(1, b), node(2, p - a), node(3, p - b));
+    blend(
+        c,
+        u,
+        v,
+        [node(0, a), node(1, b), node(2, p - a), node(3, p - b)],
+    )
+}
+
+/// The Coons combination at (u, v) of the four edge points there (bottom, right, top, left).
+fn blend(c: &[[f64; 2]], u: f64, v: f64, sides: [[f64; 2]; 4]) -> [f64; 2] {
+    let [bottom, right, top, left] = sides;
     let mut x = [0.0; 2];
     for d in 0..2 {
         let bilinear = (1.0 - u) * (1.0 - v) * c[0][d]
@@ -96,19 +106,12 @@ pub(crate) fn coons(p: usize, c: &[[f64; 2]], edges: &[[f64; 2]], u: f64, v: f64
         let inner = &edges[k * q..(k + 1) * q];
         lagrange_1d(p, c[k], inner, c[(k + 1) % 4], s)
     };
-    let bottom = edge(0, u);
-    let right = edge(1, v);
-    let top = edge(2, 1.0 - u);
-    let left = edge(3, 1.0 - v);
-    let mut x = [0.0; 2];
-    for d in 0..2 {
-        let bilinear = (1.0 - u) * (1.0 - v) * c[0][d]
-            + u * (1.0 - v) * c[1][d]
-            + u * v * c[2][d]
-            + (1.0 - u) * v * c[3][d];
-        x[d] = (1.0 - v) * bottom[d] + v * top[d] + (1.0 - u) * left[d] + u * right[d] - bilinear;
-    }
-    x
+    blend(
+        c,
+        u,
+        v,
+        [edge(0, u), edge(1, v), edge(2, 1.0 - u), edge(3, 1.0 - v)],
+    )
 }
 
 /// The degree-`p` curve through `a`, the `p − 1` equally spaced `inner` points and `b`, at

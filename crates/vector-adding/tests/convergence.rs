@@ -14,7 +14,7 @@
 
 mod common;
 
-use afsf2d::{AfsfParams, FrontLoop, grow_mesh};
+use afsf2d::{AfsfParams, grow_mesh};
 use boundary1d::SpacingParams;
 use common::{check_curved, curve, curve_area};
 use geom_curve::{ClosedCurve, CurveParams, Point2, circle_points};
@@ -46,15 +46,10 @@ fn area_errors(loops: &[Loop], inside: bool, h: f64) -> ([f64; 3], usize) {
     };
     let caps: Vec<f64> = loops.iter().map(|l| l.2 * h).collect();
     let nodes = boundary1d::mesh_loops_with_caps(&curves, &spacing, &caps).unwrap();
-    let front: Vec<FrontLoop> = loops
+    let front: Vec<afsf2d::FrontLoop> = loops
         .iter()
         .zip(&nodes)
-        .map(|((_, role, _), bn)| FrontLoop {
-            points: bn.points.iter().map(|p| [p.x, p.y]).collect(),
-            is_corner: bn.is_corner.clone(),
-            role: *role,
-            name: format!("{role:?}"),
-        })
+        .map(|((_, role, _), bn)| test_cases::front_loop(bn, *role, &format!("{role:?}")))
         .collect();
     let params = AfsfParams {
         first_height: 0.01,

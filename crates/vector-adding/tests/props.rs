@@ -9,7 +9,7 @@ mod common;
 
 use std::sync::OnceLock;
 
-use afsf2d::{AfsfOutput, AfsfParams, FrontLoop, grow_mesh};
+use afsf2d::{AfsfOutput, AfsfParams, grow_mesh};
 use boundary1d::{BoundaryNodes, SpacingParams};
 use common::{check_curved, curve, curved_layers_above_walls};
 use geom_curve::{ClosedCurve, CurveParams, Point2, circle_points, loops};
@@ -68,15 +68,10 @@ fn grow(d: &Domain) -> Grown {
         ..SpacingParams::default()
     };
     let nodes = boundary1d::mesh_loops(&curves, &spacing).unwrap();
-    let front: Vec<FrontLoop> = polygons
+    let front: Vec<afsf2d::FrontLoop> = polygons
         .iter()
         .zip(&nodes)
-        .map(|((_, role), bn)| FrontLoop {
-            points: bn.points.iter().map(|p| [p.x, p.y]).collect(),
-            is_corner: bn.is_corner.clone(),
-            role: *role,
-            name: format!("{role:?}"),
-        })
+        .map(|((_, role), bn)| test_cases::front_loop(bn, *role, &format!("{role:?}")))
         .collect();
     let params = AfsfParams {
         first_height: d.first_height,
