@@ -95,7 +95,14 @@ pub fn curve_mesh(
     let curved_boundary_edges = edges.curved.iter().filter(|&&c| c).count();
     clock.lap("boundary");
     let roles = march::classify(mesh, input.node_layer, input.layered_cells);
-    let marched = march::march(mesh, &roles, &mut edges, &interiors, params)?;
+    let marched = march::march(
+        mesh,
+        &roles,
+        &mut edges,
+        &interiors,
+        params,
+        input.layered_cells,
+    )?;
     clock.lap("march");
     let repaired = repair::repair(
         mesh,
@@ -122,6 +129,7 @@ pub fn curve_mesh(
         curved_boundary_edges,
         stops: marched.stops,
         reduced_tops: marched.reduced_tops,
+        handed_to_fill: marched.handed_to_fill,
         deepest_curved_layer: marched.deepest_curved_layer,
         repaired_cells: repaired.repaired,
         unrepaired_cells: repaired.unrepaired,

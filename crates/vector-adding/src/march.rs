@@ -60,6 +60,8 @@ pub(crate) struct MarchOutcome {
     pub stops: StopCounts,
     pub reduced_tops: usize,
     pub deepest_curved_layer: u32,
+    /// Pipes that ended in the filled region and bent the edge they share with it.
+    pub handed_to_fill: usize,
     /// Cells the marching proved valid as they are now (later steps only change edges of
     /// other cells).
     pub certified: Vec<bool>,
@@ -72,6 +74,7 @@ pub(crate) fn march(
     edges: &mut EdgeTable,
     interiors: &Interiors,
     params: &CurvingParams,
+    layered_cells: usize,
 ) -> Result<MarchOutcome, CurvingError> {
     let p = edges.p;
     let q = p - 1;
@@ -153,10 +156,41 @@ pub(crate) fn march(
             };
         if !continues {
             out.stops.pipe_ended += 1;
-            if straight(edges, &mut s)?.is_valid() {
-                out.certified[ci] = true;
-            } else {
-                out.stops.invalid += 1;
+            let flat = straight(edges, &mut s)?;
+            // ending in the filled region below the threshold, the pipe may hand part of its
+            // deviation to the fill triangle above, where that makes the worse of the two
+            // cells better than the straight top does
+            let mut best: Option<(f64, f64)> = None;
+            if quality(&flat) < params.stop_min_scaled_jacobian
+                && above != NONE
+                && above as usize >= layered_cells
+            {
+                let l = edges.cell_edges[above as usize]
+                    .iter()
+                    .position(|&e| e == te);
+                let l = l.expect("the cell above an edge has that edge") as u8;
+                for lambda in [1.0, 0.5, 0.25] {
+                    top_with(lambda, &mut top_pts);
+                    let mine = check(&ctx, edges, ci, &[(top, t0, &top_pts)], &mut s)?;
+                    if !mine.is_valid() {
+                        continue;
+                    }
+                    let theirs = check(&ctx, edges, above as usize, &[(l, t0, &top_pts)], &mut s)?;
+                    let worse = quality(&mine).min(quality(&theirs));
+                    if theirs.is_valid() && worse > best.map_or(quality(&flat), |b| b.0) {
+                        best = Some((worse, lambda));
+                    }
+                }
+            }
+            match best {
+                Some((_, lambda)) => {
+                    top_with(lambda, &mut top_pts);
+                    edges.set_points_from(te, t0, &top_pts, true);
+                    out.certified[ci] = true;
+                    out.handed_to_fill += 1;
+                }
+                None if flat.is_valid() => out.certified[ci] = true,
+                None => out.stops.invalid += 1,
             }
             continue;
         }
@@ -209,6 +243,11 @@ pub(crate) fn march(
         }
     }
     Ok(out)
+}
+
+/// A certificate's scaled-Jacobian lower bound, 0 when not proved valid.
+fn quality(c: &Certificate) -> f64 {
+    c.scaled_jacobian_lower_bound().unwrap_or(0.0)
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {

@@ -33,6 +33,9 @@ pub struct CurvingStats {
     /// Top edges given only part of the deviation below them, because the full one made
     /// the cell invalid.
     pub reduced_tops: usize,
+    /// Pipes that ended in the filled region and bent the edge they share with its triangle,
+    /// because that left both cells better than a straight top.
+    pub handed_to_fill: usize,
     /// The highest layer with a curved bottom edge, counting the boundary as layer 1.
     pub deepest_curved_layer: u32,
     /// Invalid cells made valid by bending their straight edges after the marching.
