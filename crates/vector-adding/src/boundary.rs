@@ -109,7 +109,7 @@ fn arc_points(curve: &ClosedCurve, t0: f64, t1: f64, p: usize, out: &mut [[f64; 
     }
 }
 
-/// The edge joining `a` and `b`, found among the edges of a cell at `a`.
+/// The edge joining `a` and `b`, by binary search in the (sorted) edges of the linear cells.
 fn edge_of(edges: &EdgeTable, a: u32, b: u32) -> Option<u32> {
     let key = [a.min(b), a.max(b)];
     edges.ends.binary_search(&key).ok().map(|e| e as u32)
