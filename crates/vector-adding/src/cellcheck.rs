@@ -38,6 +38,11 @@ pub(crate) struct Scratch {
     pub diag: Vec<[f64; 2]>,
 }
 
+/// A certificate's scaled-Jacobian lower bound, 0 when not proved valid.
+pub(crate) fn quality(c: &Certificate) -> f64 {
+    c.scaled_jacobian_lower_bound().unwrap_or(0.0)
+}
+
 /// Certifies cell `ci` built from the edge table, with the edges in `replaced` taking their
 /// candidate points.
 pub(crate) fn check(

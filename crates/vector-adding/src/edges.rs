@@ -132,6 +132,22 @@ impl EdgeTable {
         self.curved[e as usize] = curved;
     }
 
+    /// The deviation of edge `e`'s inner points from their places on its chord, listed from
+    /// node `from`; returns the largest deviation's length.
+    pub fn deviation(&self, mesh: &Mesh, e: u32, from: u32, dev: &mut [[f64; 2]]) -> f64 {
+        self.points_from(e, from, dev);
+        let [u, w] = self.ends[e as usize];
+        let to = if u == from { w } else { u };
+        let (xf, xt) = (mesh.xy(from), mesh.xy(to));
+        let mut most: f64 = 0.0;
+        for (i, d) in dev.iter_mut().enumerate() {
+            let l = lerp(xf, xt, (i + 1) as f64 / self.p as f64);
+            *d = [d[0] - l[0], d[1] - l[1]];
+            most = most.max(d[0].hypot(d[1]));
+        }
+        most
+    }
+
     /// Adds an edge that no linear cell has (the diagonal of a cut quadrilateral); returns
     /// its index.
     pub fn push(&mut self, a: u32, b: u32, from_a: &[[f64; 2]], curved: bool) -> u32 {

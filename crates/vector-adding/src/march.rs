@@ -6,7 +6,7 @@
 use jacobian_check::Certificate;
 use mesh_model::{Mesh, NONE, Role, Shape};
 
-use crate::cellcheck::{Ctx, Scratch, check};
+use crate::cellcheck::{Ctx, Scratch, check, quality};
 use crate::cellmap::Interiors;
 use crate::edges::{EdgeTable, lerp};
 use crate::error::CurvingError;
@@ -120,12 +120,8 @@ pub(crate) fn march(
         // the deviation of the bottom edge from its chord, bottom corner b0 → b1
         let (b0, b1) = (k[bottom as usize], k[(bottom as usize + 1) % n]);
         let (t0, t1) = (k[(top as usize + 1) % n], k[top as usize]); // t0 above b0
-        edges.points_from(be, b0, &mut dev);
+        let bulge = edges.deviation(mesh, be, b0, &mut dev);
         let (xb0, xb1) = (mesh.xy(b0), mesh.xy(b1));
-        for (j, d) in dev.iter_mut().enumerate() {
-            let l = lerp(xb0, xb1, (j + 1) as f64 / p as f64);
-            *d = [d[0] - l[0], d[1] - l[1]];
-        }
         let te = edges.cell_edges[ci][top as usize];
         let above = edges.other_cell(te, i);
         let continues = above != NONE
@@ -147,9 +143,7 @@ pub(crate) fn march(
                     return Ok(c);
                 }
                 let mut pts = vec![[0.0; 2]; q];
-                for (j, o) in pts.iter_mut().enumerate() {
-                    *o = lerp(xt0, xt1, (j + 1) as f64 / p as f64);
-                }
+                top_with(0.0, &mut pts);
                 let c = check(&ctx, edges, ci, &[(top, t0, &pts)], s)?;
                 straight_cert = Some(c);
                 Ok(c)
@@ -198,7 +192,6 @@ pub(crate) fn march(
         // A straight top over a bottom that bulges by d in a cell of height h leaves a scaled
         // Jacobian near (h − d)/h; where even twice that estimate misses the threshold, the
         // check is skipped and the pipe goes on (always safe: that cell is certified too).
-        let bulge = dev.iter().map(|d| d[0].hypot(d[1])).fold(0.0, f64::max);
         let height = dist(xb0, xt0).min(dist(xb1, xt1));
         let hopeless = height * (1.0 - params.stop_min_scaled_jacobian) < 0.5 * bulge;
         if may_stop && !hopeless {
@@ -243,11 +236,6 @@ pub(crate) fn march(
         }
     }
     Ok(out)
-}
-
-/// A certificate's scaled-Jacobian lower bound, 0 when not proved valid.
-fn quality(c: &Certificate) -> f64 {
-    c.scaled_jacobian_lower_bound().unwrap_or(0.0)
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {

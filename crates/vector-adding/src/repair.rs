@@ -115,7 +115,7 @@ fn mend(
         if !edges.curved[ce[j] as usize] {
             continue;
         }
-        let d = deviation(mesh, edges, ce[j], k[local[j][0]], &mut dev);
+        let d = edges.deviation(mesh, ce[j], k[local[j][0]], &mut dev);
         if d > most {
             most = d;
             source = Some(j);
@@ -125,7 +125,7 @@ fn mend(
         return Ok(false);
     };
     let (a, b) = (k[local[src][0]], k[local[src][1]]);
-    deviation(mesh, edges, ce[src], a, &mut dev);
+    edges.deviation(mesh, ce[src], a, &mut dev);
     let free: Vec<usize> = (0..n)
         .filter(|&j| {
             let e = ce[j] as usize;
@@ -210,21 +210,4 @@ fn undo(edges: &mut EdgeTable, log: &mut ChangeLog, mark: usize) {
         edges.points[e as usize * q..(e as usize + 1) * q].copy_from_slice(&old);
         edges.curved[e as usize] = curved;
     }
-}
-
-/// The deviation of edge `e`'s inner points from its chord, listed from node `from`; returns
-/// its largest length.
-fn deviation(mesh: &Mesh, edges: &EdgeTable, e: u32, from: u32, dev: &mut [[f64; 2]]) -> f64 {
-    let p = edges.p;
-    edges.points_from(e, from, dev);
-    let [u, w] = edges.ends[e as usize];
-    let to = if u == from { w } else { u };
-    let (xf, xt) = (mesh.xy(from), mesh.xy(to));
-    let mut most: f64 = 0.0;
-    for (i, d) in dev.iter_mut().enumerate() {
-        let l = lerp(xf, xt, (i + 1) as f64 / p as f64);
-        *d = [d[0] - l[0], d[1] - l[1]];
-        most = most.max(d[0].hypot(d[1]));
-    }
-    most
 }

@@ -8,7 +8,7 @@
 use jacobian_check::{Certificate, CertifyParams, JacobianError, certify_cell};
 use mesh_model::{CellType, Mesh, Shape};
 
-use crate::cellcheck::Scratch;
+use crate::cellcheck::{Scratch, quality};
 use crate::cellmap::{Interiors, coons, lagrange_1d};
 use crate::edges::{EdgeTable, lerp};
 use crate::error::CurvingError;
@@ -139,8 +139,7 @@ pub(crate) fn best_halves(
             if !c.is_valid() {
                 return Ok(c);
             }
-            let lower = |c: &Certificate| c.scaled_jacobian_lower_bound().unwrap_or(0.0);
-            if worst.as_ref().is_none_or(|w| lower(&c) < lower(w)) {
+            if worst.as_ref().is_none_or(|w| quality(&c) < quality(w)) {
                 worst = Some(c);
             }
         }
@@ -149,8 +148,7 @@ pub(crate) fn best_halves(
     diag.clear();
     diag.extend((0..q).map(|j| lerp(x[from], x[to], (j + 1) as f64 / p as f64)));
     let straight = judge(diag, false)?;
-    let lower = |c: &Certificate| c.scaled_jacobian_lower_bound().unwrap_or(0.0);
-    if lower(&straight) >= good_enough {
+    if quality(&straight) >= good_enough {
         return Ok(Halves {
             from,
             curved: false,
@@ -161,7 +159,7 @@ pub(crate) fn best_halves(
     let chord = diag.clone();
     curved_diagonal(p, x, quad_pts, from, bottom, strategy, diag);
     let certificate = judge(diag, true)?;
-    if straight.is_valid() && lower(&straight) >= lower(&certificate) {
+    if straight.is_valid() && quality(&straight) >= quality(&certificate) {
         // valid but poor either way: the straight one is no worse
         diag.clone_from(&chord);
         return Ok(Halves {
