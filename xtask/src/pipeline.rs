@@ -85,7 +85,19 @@ pub fn spacing_params(case: &Case) -> SpacingParams {
         max_spacing: case.boundary.max_spacing,
         first_height: case.layers.first_height,
         medial_axis: case.boundary.medial_axis,
+        max_bulge: 0.5 * stack_height(case),
         ..SpacingParams::default()
+    }
+}
+
+/// The height of a full stack of layers: `h₁·(Gⁿ − 1)/(G − 1)`.
+fn stack_height(case: &Case) -> f64 {
+    let (h, g) = (case.layers.first_height, case.layers.growth);
+    let n = f64::from(case.layers.max_layers);
+    if g > 1.0 {
+        h * (g.powf(n) - 1.0) / (g - 1.0)
+    } else {
+        h * n
     }
 }
 

@@ -128,10 +128,12 @@ impl Report {
         for (what, cells) in [("invalid", &v.invalid_cells), ("undecided", &v.undecided)] {
             if !cells.is_empty() {
                 let first: Vec<String> = cells.iter().take(5).map(ToString::to_string).collect();
+                let [x, y] = centroid(mesh, cells[0]);
                 self.problems.push(format!(
-                    "{} cells {what} by the certified Jacobian check (first: {})",
+                    "{} cells {what} by the certified Jacobian check (first: {}; cell {} near ({x:.6e}, {y:.6e}))",
                     cells.len(),
-                    first.join(", ")
+                    first.join(", "),
+                    cells[0]
                 ));
             }
         }
@@ -141,6 +143,18 @@ impl Report {
         );
         Ok(v.per_cell_scaled_jacobian)
     }
+}
+
+/// The mean of a cell's corners, to say where a named cell is.
+fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
+    let c = mesh.cells.get(cell);
+    let k = c.corners();
+    let n = k.len() as f64;
+    let sum = k.iter().fold([0.0, 0.0], |s, &v| {
+        let x = mesh.xy(v);
+        [s[0] + x[0], s[1] + x[1]]
+    });
+    [sum[0] / n, sum[1] / n]
 }
 
 /// The quality block of the report.

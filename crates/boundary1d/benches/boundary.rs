@@ -38,6 +38,7 @@ fn thirty_p_thirty_n(c: &mut Criterion) {
             first_height: 5e-6,
             medial_axis,
             placement,
+            ..SpacingParams::default()
         };
         c.bench_function(&format!("mesh_loops 30p30n ({label})"), |b| {
             b.iter(|| mesh_loops(black_box(&curves), &params).expect("meshes"))
@@ -50,6 +51,7 @@ fn thirty_p_thirty_n(c: &mut Criterion) {
         first_height: 5e-6,
         medial_axis: true,
         placement: NodePlacement::OnCurve,
+        ..SpacingParams::default()
     };
     c.bench_function("curves + mesh_loops 30p30n (medial, on curve)", |b| {
         b.iter(|| {

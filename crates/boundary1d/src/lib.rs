@@ -91,6 +91,17 @@ pub struct SpacingParams {
     pub medial_axis: bool,
     /// Where the nodes go. Default [`NodePlacement::OnCurve`].
     pub placement: NodePlacement,
+    /// The largest bulge `l²·κ/8` a segment may have off its chord (segment length `l`,
+    /// curvature `κ`), in geometry units; infinite (the default) for no limit. A curving
+    /// carries each wall edge's bulge up its stack of layers until the cells are tall enough
+    /// to take it; where the whole stack is thinner than the bulge it cannot, so the meshing
+    /// pipeline sets this to half the stack's height. > 0.
+    #[serde(default = "no_bulge_limit")]
+    pub max_bulge: f64,
+}
+
+fn no_bulge_limit() -> f64 {
+    f64::INFINITY
 }
 
 impl Default for SpacingParams {
@@ -102,6 +113,7 @@ impl Default for SpacingParams {
             first_height: 5e-5,
             medial_axis: true,
             placement: NodePlacement::OnCurve,
+            max_bulge: f64::INFINITY,
         }
     }
 }
@@ -142,6 +154,9 @@ impl SpacingParams {
                 self.first_height,
                 "must be finite and positive",
             );
+        }
+        if self.max_bulge.is_nan() || self.max_bulge <= 0.0 {
+            return invalid("max_bulge", self.max_bulge, "must be positive");
         }
         Ok(())
     }

@@ -87,6 +87,10 @@ fn spacing_limits_each(
         .map(|(curve, p)| initial_spacing(curve, p))
         .collect();
     if first.medial_axis {
+        cap_by_gap_width(curves, &mut loops);
+        for spacing in &mut loops {
+            spacing.break_points = break_points(&spacing.cap, &spacing.is_corner);
+        }
         refine_across_gaps(curves, &mut loops, first.growth - 1.0);
     }
     for (spacing, p) in loops.iter_mut().zip(params) {
@@ -122,7 +126,8 @@ fn initial_spacing(curve: &ClosedCurve, params: &SpacingParams) -> LoopSpacing {
             if kappa == 0.0 {
                 f64::INFINITY
             } else {
-                factor / kappa.abs()
+                // the refinement angle's length, or the length whose bulge l²κ/8 is max_bulge
+                (factor / kappa.abs()).min((8.0 * params.max_bulge / kappa.abs()).sqrt())
             }
         })
         .collect();
@@ -231,6 +236,67 @@ fn refine_across_gaps(curves: &[ClosedCurve], loops: &mut [LoopSpacing], slope: 
             }
         }
     }
+}
+
+/// How many boundary segments may span the width of a gap between two loops: a point's cap is
+/// at most `GAP_SPACING_RATIO ×` its distance to the nearest other loop.
+///
+/// Why: the dissertation's medial-axis step grades from break points only, so two smooth
+/// bodies close together (two circles, a slat over a main element) keep wall segments many
+/// times longer than the gap between them. The layers grown across such a gap meet in
+/// needles, and a curved wall edge there bulges by `l²/8R`, more than the layers in the gap
+/// are thick, so no straight-sided cell above it can be valid. With segments no longer than
+/// the gap, the bulge is a small fraction of the gap (`w/8R` of it) and the fronts meet in
+/// cells of aspect ratio near one.
+pub const GAP_SPACING_RATIO: f64 = 1.0;
+
+/// The gap-width step: caps every geometry point's spacing by [`GAP_SPACING_RATIO`] times its
+/// distance to the polygon of every other loop. Distances are measured to the polygons
+/// through the geometry points (the curves lie within a small fraction of a segment of
+/// them). Brute force over point–segment pairs, with a bounding-box rejection against the
+/// largest distance that could still lower the cap.
+fn cap_by_gap_width(curves: &[ClosedCurve], loops: &mut [LoopSpacing]) {
+    let polygons: Vec<&[Point2<f64>]> = curves.iter().map(ClosedCurve::input_points).collect();
+    for (i, spacing) in loops.iter_mut().enumerate() {
+        for (p, cap) in polygons[i].iter().zip(spacing.cap.iter_mut()) {
+            for (j, other) in polygons.iter().enumerate() {
+                if j == i {
+                    continue;
+                }
+                let reach = *cap / GAP_SPACING_RATIO;
+                let d = distance_to_polygon(*p, other, reach);
+                if d < reach {
+                    *cap = GAP_SPACING_RATIO * d;
+                }
+            }
+        }
+    }
+}
+
+/// The distance from `p` to the closed polygon `poly`, or `reach` when it is not less.
+fn distance_to_polygon(p: Point2<f64>, poly: &[Point2<f64>], reach: f64) -> f64 {
+    let n = poly.len();
+    let mut best = reach;
+    for k in 0..n {
+        let (a, b) = (poly[k], poly[(k + 1) % n]);
+        // bounding-box rejection: the segment lies farther than the best so far
+        if p.x < a.x.min(b.x) - best
+            || p.x > a.x.max(b.x) + best
+            || p.y < a.y.min(b.y) - best
+            || p.y > a.y.max(b.y) + best
+        {
+            continue;
+        }
+        let ab = b - a;
+        let len2 = ab.norm_squared();
+        let f = if len2 > 0.0 {
+            ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        best = best.min((p - (a + ab * f)).norm());
+    }
+    best
 }
 
 /// `h_i = min_j cap_j + slope·d(i, j)`, d the arc length along the closed loop.

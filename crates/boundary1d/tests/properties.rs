@@ -34,6 +34,7 @@ fn params_strategy() -> impl Strategy<Value = SpacingParams> {
                     } else {
                         NodePlacement::OnPolyline
                     },
+                    ..SpacingParams::default()
                 }
             },
         )
@@ -128,6 +129,7 @@ proptest! {
         let params = SpacingParams {
             growth, refine_angle_deg, max_spacing: 1e9, first_height: 1.0,
             medial_axis: true, placement: NodePlacement::OnCurve,
+            ..SpacingParams::default()
         };
         let points = circle_points(Point2::origin(), radius, n).unwrap();
         let curve = ClosedCurve::new(&points, &CurveParams::default()).unwrap();

@@ -14,6 +14,7 @@ fn thirty_p_params(medial_axis: bool, placement: NodePlacement) -> SpacingParams
         first_height: 5e-6,
         medial_axis,
         placement,
+        ..SpacingParams::default()
     }
 }
 
@@ -95,6 +96,7 @@ fn single_airfoils_mesh_with_every_property() {
                 first_height: 1e-4 * scale,
                 medial_axis: true,
                 placement,
+                ..SpacingParams::default()
             };
             let nodes = boundary1d::mesh_loop(&curve, &params).unwrap();
             let (problems, _) = check_mesh(&curve, &params, &nodes);

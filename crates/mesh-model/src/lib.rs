@@ -14,5 +14,5 @@ pub mod validate;
 
 pub use cell::{CellType, Shape};
 pub use cells::{CellRef, Cells};
-pub use mesh::{Dim, Mesh, NONE, Patch, Role, polygon_area};
+pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon, polygon_area};
 pub use validate::{Problem, validate};

@@ -40,7 +40,8 @@ pub enum Problem {
         /// The bad patch index.
         patch: u32,
     },
-    /// A linear 2D cell (corners) is not counter-clockwise.
+    /// A linear 2D cell (corners) is not counter-clockwise (exactly), or a quadrilateral is
+    /// not convex.
     NotPositive {
         /// Cell index.
         cell: usize,
@@ -89,7 +90,7 @@ impl fmt::Display for Problem {
             Problem::NotPositive { cell, area } => {
                 write!(
                     f,
-                    "cell {cell} is not positively oriented (signed area {area:e})"
+                    "cell {cell} is not positively oriented or not convex (signed area {area:e})"
                 )
             }
             Problem::NonConforming {
@@ -165,8 +166,15 @@ pub fn validate(mesh: &Mesh) -> Vec<Problem> {
         return problems;
     }
     for cell in 0..mesh.cells.len() {
-        let area = mesh.linear_cell_area(cell);
-        if area.is_nan() || area <= 0.0 {
+        let corners: Vec<[f64; 2]> = mesh
+            .cells
+            .get(cell)
+            .corners()
+            .iter()
+            .map(|&n| mesh.xy(n))
+            .collect();
+        if !crate::mesh::is_positive_polygon(&corners) {
+            let area = mesh.linear_cell_area(cell);
             problems.push(Problem::NotPositive { cell, area });
         }
     }

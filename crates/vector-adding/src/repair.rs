@@ -59,7 +59,8 @@ pub(crate) fn repair(
                 continue;
             }
             log.clear();
-            if mend(&ctx, ci, edges, &mut s, &mut log, MEND_DEPTH)? {
+            let mut budget = MEND_BUDGET;
+            if mend(&ctx, ci, edges, &mut s, &mut log, MEND_DEPTH, &mut budget)? {
                 for (e, _, _) in &log {
                     for c in edges.cells[*e as usize] {
                         if c != NONE {
@@ -83,7 +84,15 @@ pub(crate) fn repair(
 
 /// How many cells away from the invalid one a repair may reach: a bent edge may make the
 /// neighbour across it invalid (a needle of the filled region), which is then mended in turn.
-const MEND_DEPTH: u32 = 2;
+/// Deep enough to carry a wall edge's bulge up a stack of thin layers whose pipe was broken
+/// (a merge or a stopped neighbour front) to the filled region, where cells are large enough
+/// to take it: a thin first layer under coarse wall edges needs that.
+const MEND_DEPTH: u32 = 24;
+
+/// The most certified checks one repair may spend, whatever its depth: the search tries the
+/// pipe-like choice first (the edge opposite the source on a quadrilateral), so a chain that
+/// can be mended is usually found at once; the budget bounds the failing searches.
+const MEND_BUDGET: usize = 400;
 
 /// The edges changed by a repair, with their previous points and curved flag, to undo it.
 type ChangeLog = Vec<(u32, Vec<[f64; 2]>, bool)>;
@@ -98,6 +107,7 @@ fn mend(
     s: &mut Scratch,
     log: &mut ChangeLog,
     depth: u32,
+    budget: &mut usize,
 ) -> Result<bool, CurvingError> {
     let mesh = ctx.mesh;
     let ty = mesh.cells.get(ci).ty;
@@ -132,6 +142,13 @@ fn mend(
             !edges.curved[e] && edges.cells[e][1] != NONE
         })
         .collect();
+    // the edge that shares no corner with the source (a quadrilateral's top) first: that is
+    // how a pipe would carry the deviation
+    let mut free = free;
+    free.sort_by_key(|&j| {
+        let (u, w) = (k[local[j][0]], k[local[j][1]]);
+        u == a || w == a || u == b || w == b
+    });
     let mut subsets: Vec<Vec<usize>> = free.iter().map(|&j| vec![j]).collect();
     if free.len() > 1 {
         subsets.push(free.clone());
@@ -168,6 +185,10 @@ fn mend(
                 .iter()
                 .map(|(j, f, pts)| (*j, *f, pts.as_slice()))
                 .collect();
+            if *budget == 0 {
+                return Ok(false);
+            }
+            *budget -= 1;
             if !check(ctx, edges, ci, &mine, s)?.is_valid() {
                 continue;
             }
@@ -187,7 +208,7 @@ fn mend(
                 if nb == NONE || check(ctx, edges, nb as usize, &[], s)?.is_valid() {
                     continue;
                 }
-                if depth > 0 && mend(ctx, nb as usize, edges, s, log, depth - 1)? {
+                if depth > 0 && mend(ctx, nb as usize, edges, s, log, depth - 1, budget)? {
                     continue;
                 }
                 neighbours_ok = false;
