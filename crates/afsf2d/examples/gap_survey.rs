@@ -119,6 +119,7 @@ fn main() {
     let mut kinds: std::collections::BTreeMap<&str, usize> = Default::default();
     let (mut errors, mut over135, mut over150) = (0, 0, 0);
     let mut done = 0;
+    let mut flagged: Vec<f64> = Vec::new();
     let t0 = std::time::Instant::now();
     while done < cases {
         let bodies = rng.int(2, 4);
@@ -134,7 +135,10 @@ fn main() {
             }
         };
         done += 1;
-        let params = case.params(dom.first_height, dom.growth);
+        let mut params = case.params(dom.first_height, dom.growth);
+        // `REFUSE=1` keeps the default refusal of unresolved gaps; else they are meshed and
+        // the gap check's verdict is printed next to the angle it predicted
+        params.refuse_narrow_gaps = std::env::var("REFUSE").is_ok();
         let min_gap = dom
             .gaps
             .iter()
@@ -168,9 +172,18 @@ fn main() {
         if q.max_angle_deg >= 150.0 {
             over150 += 1;
         }
+        let verdict = out.stats.unresolved_gap.map_or("gap ok".to_string(), |g| {
+            format!(
+                "GAP {:.0}° w {:.1e} s {:.1e}",
+                g.best_angle_deg, g.width, g.spacing
+            )
+        });
+        if out.stats.unresolved_gap.is_some() {
+            flagged.push(q.max_angle_deg);
+        }
         println!(
-            "{head} | max {:.2} hist {:?} tris {} {dt:.2}s | {}",
-            q.max_angle_deg, q.histogram, q.triangles, ws[0].text
+            "{head} | max {:.2} hist {:?} tris {} bare {} {dt:.2}s | {verdict} | {}",
+            q.max_angle_deg, q.histogram, q.triangles, out.stats.bare_wall_facets, ws[0].text
         );
         if let Some(hw) = draw_here(done) {
             let png = mesh_draw::render_png(
@@ -192,6 +205,11 @@ fn main() {
         let _ = ws[0].angle;
     }
     worst_all.sort_by(f64::total_cmp);
+    flagged.sort_by(f64::total_cmp);
+    println!(
+        "flagged by the gap check: {} cases, their worst angles {flagged:.0?}",
+        flagged.len()
+    );
     println!(
         "cases {done} meshed {} errors {errors} | worst angle median {:.1} p90 {:.1} max {:.1} | >=135: {over135} >=150: {over150} | worst cell kinds (>=135) {kinds:?} | {:.0}s",
         worst_all.len(),
