@@ -83,22 +83,22 @@ fn main() {
                         pts.join(" ")
                     );
                 }
-                if let Some(d) = &draw {
-                    if name.starts_with(d.split(':').next().unwrap()) {
-                        let hw: f64 = d.split(':').nth(1).unwrap().parse().unwrap();
-                        let k = m.cells.get(rows[0].1).corners().to_vec();
-                        let at = m.xy(k[0]);
-                        let png = mesh_draw::render_png(
-                            m,
-                            &mesh_draw::DrawParams {
-                                view: Some(mesh_draw::view_around([at[0], at[1]], hw)),
-                                colour: mesh_draw::ColourBy::MaxAngle,
-                                ..Default::default()
-                            },
-                        )
-                        .unwrap();
-                        std::fs::write("/tmp/gs/repro.png", png).unwrap();
-                    }
+                if let Some(d) = &draw
+                    && name.starts_with(d.split(':').next().unwrap())
+                {
+                    let hw: f64 = d.split(':').nth(1).unwrap().parse().unwrap();
+                    let k = m.cells.get(rows[0].1).corners().to_vec();
+                    let at = m.xy(k[0]);
+                    let png = mesh_draw::render_png(
+                        m,
+                        &mesh_draw::DrawParams {
+                            view: Some(mesh_draw::view_around([at[0], at[1]], hw)),
+                            colour: mesh_draw::ColourBy::MaxAngle,
+                            ..Default::default()
+                        },
+                    )
+                    .unwrap();
+                    std::fs::write("/tmp/gap_repro.png", png).unwrap();
                 }
             }
         }

@@ -1,7 +1,8 @@
 //! Filling the region left between the closed fronts: a constrained Delaunay triangulation
 //! (`spade`) of the front nodes with every front edge as a constraint, keeping the triangles
-//! on the left of the fronts (flood fill that never crosses a constraint). No node is added,
-//! so the fill conforms to the layered cells edge for edge.
+//! on the left of the fronts (flood fill that never crosses a constraint), refined inside,
+//! then improved by largest-angle edge flips and Steiner smoothing. Front edges are never
+//! split, so the fill conforms to the layered cells edge for edge.
 //!
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.

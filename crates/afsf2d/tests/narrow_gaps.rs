@@ -34,7 +34,7 @@ fn circles_1e_5_apart_are_refused_naming_the_gap() {
         panic!("expected the narrow-gap error, got {err}");
     };
     // the facet named is the narrowest one with no usable triangle across, near the closest point
-    assert!(width >= 0.9e-5 && width < 1e-2, "{width}");
+    assert!((0.9e-5..1e-2).contains(&width), "{width}");
     assert!((x - 0.5).abs() < 0.1 && y.abs() < 0.1, "({x}, {y})");
     let text = err.to_string();
     assert!(

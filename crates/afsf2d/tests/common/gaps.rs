@@ -183,6 +183,9 @@ fn curve_distance(ca: &ClosedCurve, cb: &ClosedCurve, off: [f64; 2]) -> (f64, [f
     f(wrap(0.5 * (lo + hi)))
 }
 
+/// A placed body: label, points, curve, coarse samples.
+type Placed = (String, Vec<[f64; 2]>, ClosedCurve, Vec<[f64; 2]>);
+
 /// A random domain of `bodies` bodies, each placed at a gap drawn log-uniformly in
 /// `[gap_lo, gap_hi]` from one of the bodies placed before it; first height log-uniform in
 /// `[h_lo, h_hi]`, growth uniform in [1.1, 1.5]. None when a placement fails (rare).
@@ -192,7 +195,7 @@ pub fn random_domain(
     (gap_lo, gap_hi): (f64, f64),
     (h_lo, h_hi): (f64, f64),
 ) -> Option<Domain> {
-    let mut placed: Vec<(String, Vec<[f64; 2]>, ClosedCurve, Vec<[f64; 2]>)> = Vec::new();
+    let mut placed: Vec<Placed> = Vec::new();
     let mut gaps = Vec::new();
     for k in 0..bodies {
         let (name, pts) = body_points(rng);
