@@ -91,6 +91,37 @@ pub enum AfsfError {
         /// What it should be.
         expected: &'static str,
     },
+    /// Two loops come so near each other that no cell across the gap can have all its angles
+    /// below `gap_max_angle_deg` with these boundary nodes: the nodes of the two sides do
+    /// not face each other and are spaced far wider than the gap. Fix: refine the boundary
+    /// there (spacing at most about twice the gap), or widen the gap.
+    #[error(
+        "narrow gap between loop {loop_a} ({name_a}) and loop {loop_b} ({name_b}) at ({x:.6e}, {y:.6e}): width {width:.3e}, but the boundary nodes there are {spacing:.3e} apart and do not face each other (a cell across it would have an angle of {angle:.1}°); refine the boundary there to a spacing of at most {fits_spacing:.2e} (a first height of at most {fits_height:.2e} fits in the gap) or widen the gap"
+    )]
+    NarrowGap {
+        /// Loop of the facet with no usable cell across the gap.
+        loop_a: usize,
+        /// Its name.
+        name_a: String,
+        /// The loop it faces.
+        loop_b: usize,
+        /// Its name.
+        name_b: String,
+        /// Width of the gap.
+        width: f64,
+        /// A point in the gap.
+        x: f64,
+        /// A point in the gap.
+        y: f64,
+        /// Boundary node spacing there.
+        spacing: f64,
+        /// The best largest angle of a triangle across the gap on that facet (degrees).
+        angle: f64,
+        /// A boundary spacing that resolves the gap.
+        fits_spacing: f64,
+        /// A first height that leaves room for layers from both sides.
+        fits_height: f64,
+    },
     /// The spring parameters are invalid.
     #[error(transparent)]
     Spring(#[from] springfield::SpringError),

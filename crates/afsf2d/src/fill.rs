@@ -1,7 +1,8 @@
 //! Filling the region left between the closed fronts: a constrained Delaunay triangulation
 //! (`spade`) of the front nodes with every front edge as a constraint, keeping the triangles
-//! on the left of the fronts (flood fill that never crosses a constraint). No node is added,
-//! so the fill conforms to the layered cells edge for edge.
+//! on the left of the fronts (flood fill that never crosses a constraint), refined inside,
+//! then improved by largest-angle edge flips and Steiner smoothing. Front edges are never
+//! split, so the fill conforms to the layered cells edge for edge.
 //!
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.
@@ -156,8 +157,85 @@ pub(crate) fn fill_region(
             })
         })
         .collect();
+    let mut tris = tris;
+    let constraints: HashSet<(u32, u32)> = directed_edges
+        .iter()
+        .map(|&(a, b)| if a < b { (a, b) } else { (b, a) })
+        .collect();
+    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
     smooth_steiner(&tris, pos, &mut steiner);
+    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
     Ok((tris, steiner))
+}
+
+/// Sweeps of the largest-angle edge flips.
+const FLIP_SWEEPS: usize = 16;
+
+/// Flips the diagonal of two fill triangles that share an edge which is not a front edge,
+/// whenever the other diagonal lowers the larger of their largest angles: the constrained
+/// Delaunay triangulation maximises the smallest angle, which is not the figure a solver
+/// needs, and next to long front edges it keeps flat triangles whose other diagonal is
+/// fine. Both new triangles must be positive (the pair forms a convex quadrilateral).
+fn flip_min_max_angle(
+    tris: &mut [[u32; 3]],
+    pos: &[P2],
+    steiner: &[P2],
+    constraints: &HashSet<(u32, u32)>,
+) {
+    let n0 = pos.len();
+    let at = |g: u32| {
+        if (g as usize) < n0 {
+            pos[g as usize]
+        } else {
+            steiner[g as usize - n0]
+        }
+    };
+    let worst = |t: [u32; 3]| {
+        let (a, b, c) = (at(t[0]), at(t[1]), at(t[2]));
+        if crate::geom::orient(a, b, c) <= 0.0 {
+            return f64::INFINITY;
+        }
+        crate::quality::max_triangle_angle_deg(a, b, c)
+    };
+    for _ in 0..FLIP_SWEEPS {
+        let mut owner: HashMap<(u32, u32), (usize, usize)> = HashMap::new();
+        for (t, tri) in tris.iter().enumerate() {
+            for i in 0..3 {
+                // directed edge tri[i] -> tri[i+1], opposite corner i+2
+                owner.insert((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3));
+            }
+        }
+        let mut touched = vec![false; tris.len()];
+        let mut flips = 0;
+        let keys: Vec<(u32, u32)> = owner.keys().copied().filter(|&(a, b)| a < b).collect();
+        for (a, b) in keys {
+            if constraints.contains(&(a, b)) {
+                continue;
+            }
+            let (Some(&(t1, c1)), Some(&(t2, c2))) = (owner.get(&(a, b)), owner.get(&(b, a)))
+            else {
+                continue;
+            };
+            if touched[t1] || touched[t2] {
+                continue;
+            }
+            let (c, d) = (tris[t1][c1], tris[t2][c2]);
+            // t1 = (a, b, c), t2 = (b, a, d), both counter-clockwise
+            let before = worst(tris[t1]).max(worst(tris[t2]));
+            let (n1, n2) = ([c, a, d], [d, b, c]);
+            let after = worst(n1).max(worst(n2));
+            if after < before - 1e-6 {
+                tris[t1] = n1;
+                tris[t2] = n2;
+                touched[t1] = true;
+                touched[t2] = true;
+                flips += 1;
+            }
+        }
+        if flips == 0 {
+            break;
+        }
+    }
 }
 
 /// Sweeps of the Steiner-node smoothing.

@@ -79,6 +79,14 @@ pub struct AfsfParams {
     pub cell_max_angle_deg: f64,
     /// Rounds of peeling and filling again; 0 fills once and never peels. Default 8.
     pub peel_rounds: u32,
+    /// Narrow gaps: a boundary facet facing another loop nearer than a third of its length
+    /// must have a node across the gap that makes a triangle with all angles below this
+    /// (degrees); else the gap cannot be meshed with usable cells from these boundary nodes.
+    /// Default 150.
+    pub gap_max_angle_deg: f64,
+    /// Refuse such a gap with an error naming it (default true); when false the mesh is made
+    /// anyway and the gap is reported in `AfsfStats::unresolved_gap`.
+    pub refuse_narrow_gaps: bool,
     /// Number of top layers that move in each spring solve (the dissertation: three).
     /// Default 3.
     pub moving_layers: u32,
@@ -104,6 +112,8 @@ impl Default for AfsfParams {
             peel_max_angle_deg: 120.0,
             peel_rounds: 16,
             cell_max_angle_deg: 130.0,
+            gap_max_angle_deg: 150.0,
+            refuse_narrow_gaps: true,
             moving_layers: 3,
             springs: SpringParams::default(),
             solver: SolverParams::default(),
@@ -114,7 +124,13 @@ impl Default for AfsfParams {
 impl AfsfParams {
     /// Checks every parameter's range.
     pub fn check(&self) -> Result<(), AfsfError> {
-        let checks: [(&'static str, f64, bool, &'static str); 10] = [
+        let checks: [(&'static str, f64, bool, &'static str); 11] = [
+            (
+                "gap_max_angle_deg",
+                self.gap_max_angle_deg,
+                self.gap_max_angle_deg > 90.0 && self.gap_max_angle_deg <= 180.0,
+                "in (90, 180]",
+            ),
             (
                 "cell_max_angle_deg",
                 self.cell_max_angle_deg,

@@ -14,6 +14,7 @@
 
 mod error;
 mod fill;
+mod gaps;
 mod geom;
 mod grow;
 mod input;
@@ -22,6 +23,7 @@ mod quality;
 use mesh_model::{CellType, Dim, Mesh, NONE, Patch, Role, Shape};
 
 pub use error::AfsfError;
+pub use gaps::NarrowGap;
 pub use grow::{LayerStats, Timings};
 pub use input::{AfsfParams, FrontLoop};
 pub use quality::{
@@ -48,6 +50,12 @@ pub struct AfsfStats {
     pub peeled_cells: usize,
     /// Timings of the phases (seconds).
     pub timings: Timings,
+    /// Wall facets with no layered cell on them (their first layer did not fit: a gap
+    /// narrower than the layers, where the fill meets the wall directly).
+    pub bare_wall_facets: usize,
+    /// The narrowest gap whose boundary nodes admit no triangle across it below
+    /// `gap_max_angle_deg` (only when `refuse_narrow_gaps` is off; else it is an error).
+    pub unresolved_gap: Option<NarrowGap>,
 }
 
 /// The mesher's result.
@@ -78,6 +86,33 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let t0 = std::time::Instant::now();
     params.check()?;
     let checked = input::check_loops(loops, params)?;
+    let oriented: Vec<Vec<[f64; 2]>> = loops
+        .iter()
+        .zip(&checked)
+        .map(|(l, c)| {
+            let mut p = l.points.clone();
+            if c.reversed {
+                p.reverse();
+            }
+            p
+        })
+        .collect();
+    let unresolved_gap = gaps::unresolved_gap(&oriented, params.gap_max_angle_deg);
+    if let (Some(g), true) = (unresolved_gap, params.refuse_narrow_gaps) {
+        return Err(AfsfError::NarrowGap {
+            loop_a: g.loop_a,
+            name_a: loops[g.loop_a].name.clone(),
+            loop_b: g.loop_b,
+            name_b: loops[g.loop_b].name.clone(),
+            width: g.width,
+            x: g.at[0],
+            y: g.at[1],
+            spacing: g.spacing,
+            angle: g.best_angle_deg,
+            fits_spacing: 2.0 * g.width,
+            fits_height: 0.25 * g.width,
+        });
+    }
     let mut points = Vec::new();
     let mut fronts = Vec::new();
     let mut mesh = Mesh::new(Dim::Two, 1);
@@ -233,7 +268,20 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         mesh.cell_layer.push(tag.0);
         mesh.cell_pipe.push(tag.1);
     }
+    let mut layered_on_facet = vec![false; mesh.boundary.len()];
+    for c in &work.cells {
+        if c.len > 0 && c.layer == 0 && (c.pipe as usize) < layered_on_facet.len() {
+            layered_on_facet[c.pipe as usize] = true;
+        }
+    }
+    let bare_wall_facets = (0..mesh.boundary.len())
+        .filter(|&f| {
+            !layered_on_facet[f] && mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall
+        })
+        .count();
     let stats = AfsfStats {
+        bare_wall_facets,
+        unresolved_gap,
         layers: work.layer[..n_grown].iter().copied().max().unwrap_or(0),
         iterations: work.layer_stats.iter().map(|s| s.iterations).sum(),
         all_converged: work.layer_stats.iter().all(|s| s.converged),

@@ -3,6 +3,7 @@
 //! every case must pass.
 #![allow(dead_code)]
 
+pub mod gaps;
 pub mod real;
 
 use afsf2d::{AfsfOutput, AfsfParams, AngleStats, FrontLoop, max_angle_histogram};
