@@ -1,3 +1,6 @@
+//! Tests of the atomic writes: one file, transactions that commit all or nothing, duplicate
+//! outputs, and the removal of stale temporary files.
+
 use super::*;
 
 fn entries(dir: &Path) -> Vec<String> {
