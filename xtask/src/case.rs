@@ -198,33 +198,11 @@ fn exactly<const N: usize>(values: &[f64], what: &str, form: &str) -> Result<[f6
     })
 }
 
-/// `name` made safe as a file name: characters other than ASCII letters, digits, `.`, `_`
-/// and `-` become `_`, leading dots are dropped, an empty result is `case`. So a case named
-/// `../escape` writes `out/_escape.msh`, inside `out/`.
-pub fn file_stem_of(name: &str) -> String {
-    let safe: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    let safe = safe.trim_start_matches('.');
-    if safe.is_empty() {
-        "case".to_string()
-    } else {
-        safe.to_string()
-    }
-}
-
 impl Case {
-    /// The case's name made safe for file names ([`file_stem_of`]): the default outputs are
-    /// `out/STEM.msh` and `out/STEM.json`.
+    /// The case's name made safe for file names ([`crate::outputs::file_stem_of`]): the
+    /// default outputs are `out/STEM.msh` and `out/STEM.json`.
     pub fn file_stem(&self) -> String {
-        file_stem_of(&self.name)
+        crate::outputs::file_stem_of(&self.name)
     }
 }
 

@@ -44,7 +44,11 @@ pub fn of_usage_error(e: &clap::Error) -> Option<Exit> {
     // first paragraph, joined into one line.
     let text = e.render().to_string();
     let first = text.split("\n\n").next().unwrap_or_default();
-    let joined: Vec<&str> = first.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
+    let joined: Vec<&str> = first
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
     let what = joined.join(" ");
     let what = what.strip_prefix("error: ").unwrap_or(&what);
     Some(bad_input(&format!("{what} (see --help)")))

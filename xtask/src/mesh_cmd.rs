@@ -40,7 +40,7 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     let case = case::load(spec)?;
     let order = args.order.unwrap_or(case.curving.order);
     let mut plan = plan(args, &case)?;
-    estimate::check_loops(&case, args.max_cells)?;
+    estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
     let mut report = Report::new(&case.name, order);
     let (mesh, snapshot) = make(args, &case, order, &mut report)?;

@@ -13,6 +13,28 @@ use anyhow::{Context, Result};
 use mesh_io::IoError;
 use mesh_io::atomic::{OutputId, Transaction};
 
+/// `name` made safe as a file name: characters other than ASCII letters, digits, `.`, `_`
+/// and `-` become `_`, leading dots are dropped, an empty result is `case`. So a case named
+/// `../escape` writes `out/_escape.msh`, inside `out/`.
+pub fn file_stem_of(name: &str) -> String {
+    let safe: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let safe = safe.trim_start_matches('.');
+    if safe.is_empty() {
+        "case".to_string()
+    } else {
+        safe.to_string()
+    }
+}
+
 /// One reserved output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Output {
@@ -61,7 +83,9 @@ impl Outputs {
                     .iter()
                     .find(|(_, p)| *p == first)
                     .map_or_else(|| first.display().to_string(), |(l, _)| l.clone());
-                anyhow::bail!("{label} is the same file as {earlier}: give each output its own file")
+                anyhow::bail!(
+                    "{label} is the same file as {earlier}: give each output its own file"
+                )
             }
             Err(e) => Err(anyhow::Error::new(e).context(format!("{label}: cannot write there"))),
         }
@@ -90,7 +114,8 @@ impl Outputs {
     pub fn write_bytes(&mut self, output: Output, bytes: &[u8]) -> Result<()> {
         let path = self.labels[output.index].1.clone();
         self.write_with(output, |w| {
-            w.write_all(bytes).map_err(|source| IoError::Io { path, source })
+            w.write_all(bytes)
+                .map_err(|source| IoError::Io { path, source })
         })
     }
 

@@ -130,7 +130,11 @@ pub fn reserve(pictures: &[Picture], outputs: &mut Outputs) -> Result<Vec<Output
     pictures
         .iter()
         .map(|p| {
-            let flag = if p.format == Format::Png { "--png" } else { "--svg" };
+            let flag = if p.format == Format::Png {
+                "--png"
+            } else {
+                "--svg"
+            };
             outputs.reserve(flag, &p.path)
         })
         .collect()

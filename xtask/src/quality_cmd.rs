@@ -8,8 +8,8 @@ use anyhow::{Context, Result, bail};
 use mesh_model::Dim;
 
 use crate::Finished;
-use crate::outputs::Outputs;
 use crate::cli::QualityArgs;
+use crate::outputs::Outputs;
 use crate::pictures::{self, Colour};
 use crate::report::Report;
 

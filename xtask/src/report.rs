@@ -90,14 +90,12 @@ impl Report {
         let see = path.map_or_else(String::new, |p| format!("; see {}", p.display()));
         Finished {
             outcome: Outcome::Invalid,
-            problem: Some(format!(
-                "{subject} failed validation: {first}{more}{see}"
-            )),
+            problem: Some(format!("{subject} failed validation: {first}{more}{see}")),
         }
     }
 
-    /// Fills what can be read off a finished 2D mesh: counts, quality, area, and the
-    /// structural problems found by `mesh_model::validate`.
+    /// Fills what can be read off a finished 2D mesh: counts, angles, and the structural
+    /// problems found by `mesh_model::validate`.
     pub fn describe(&mut self, mesh: &Mesh) {
         self.nodes = mesh.nodes.len();
         for shape in [Shape::Tri, Shape::Quad] {
@@ -113,11 +111,17 @@ impl Report {
                 self.boundary_facets.insert(role.name(), n);
             }
         }
-        self.problems = mesh_model::validate(mesh)
-            .iter()
-            .map(ToString::to_string)
-            .collect();
-        if self.problems.is_empty() && !mesh.cells.is_empty() {
+        let problems = mesh_model::validate(mesh);
+        // orientation and conformity problems leave every index and array sound: the angles
+        // (and the certified check, see `certify`) still tell what is wrong where
+        let sound = problems.iter().all(|p| {
+            matches!(
+                p,
+                mesh_model::Problem::NotPositive { .. } | mesh_model::Problem::NonConforming { .. }
+            )
+        });
+        self.problems = problems.iter().map(ToString::to_string).collect();
+        if sound && !mesh.cells.is_empty() {
             let angles = afsf2d::max_angle_histogram(mesh);
             self.quality = Some(Quality {
                 max_angle_deg: angles.max_angle_deg,
@@ -140,8 +144,7 @@ impl Report {
             return Ok(Vec::new());
         }
         let broken = !self.problems.is_empty();
-        let v = match jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default())
-        {
+        let v = match jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default()) {
             Ok(v) => v,
             Err(e) if broken => {
                 self.problems
