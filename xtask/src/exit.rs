@@ -90,9 +90,8 @@ fn bad_input(message: &str) -> Exit {
 /// `error: MESSAGE` on one line: control characters escaped, cut after [`MAX_LINE`] characters.
 pub fn line(message: &str) -> String {
     let mut out = String::from("error: ");
-    let mut shown = 0;
     let total = message.chars().count();
-    for c in message.chars() {
+    for (shown, c) in message.chars().enumerate() {
         if shown == MAX_LINE {
             out.push_str(&format!("… ({} more characters)", total - shown));
             break;
@@ -102,7 +101,6 @@ pub fn line(message: &str) -> String {
         } else {
             out.push(c);
         }
-        shown += 1;
     }
     out
 }
