@@ -226,3 +226,101 @@ fn invalid_naca_digits() {
     let msg = mesh_error(dir.path(), &case, &[]);
     expect(&msg, &["NACA", "00x2"]);
 }
+
+#[test]
+fn a_point_of_three_numbers_is_refused_not_cut() {
+    let dir = tempfile::tempdir().unwrap();
+    let wall = "[[loop]]\nrole = \"wall\"\npoints = [[0,0],[1,0,7],[1,1],[0,1]]\n";
+    let case = case_text(dir.path(), &format!("{wall}{FARFIELD}"));
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["loop 1", "point 2", "3 numbers", "[x, y]"]);
+}
+
+#[test]
+fn fixed_length_lists_are_refused_at_any_other_length() {
+    let far3 =
+        "[[loop]]\nrole = \"farfield\"\ncircle = { center = [0.5, 0.5, 0.0], radius = 20.0 }\n";
+    let cases = [
+        (
+            format!("{SQUARE_WALL}translate = [1.0, 2.0, 3.0]\n{FARFIELD}"),
+            vec!["loop 1", "translate", "3 numbers"],
+        ),
+        (
+            format!("{SQUARE_WALL}translate = [1.0]\n{FARFIELD}"),
+            vec!["loop 1", "translate", "1 numbers"],
+        ),
+        (
+            format!("{SQUARE_WALL}{far3}"),
+            vec!["loop 2", "circle center", "3 numbers"],
+        ),
+        (
+            format!("{SQUARE_WALL}{FARFIELD}[views]\nle = [0, 0, 1]\n"),
+            vec!["[views] le", "3 numbers", "x0, y0, x1, y1"],
+        ),
+    ];
+    for (text, words) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let case = case_text(dir.path(), &text);
+        let msg = mesh_error(dir.path(), &case, &[]);
+        expect(&msg, &words);
+    }
+}
+
+#[test]
+fn huge_generated_point_counts_are_refused_before_allocation() {
+    // before: an abort on allocation failure (exit 134, no message)
+    let far = "[[loop]]\nrole = \"farfield\"\n\
+               circle = { center = [0.5, 0], radius = 20, points = 1000000000000 }\n";
+    let naca = "[[loop]]\nrole = \"wall\"\nnaca = \"0012\"\nnaca_points = 1000000000000\n";
+    for (text, words) in [
+        (
+            format!("{SQUARE_WALL}{far}"),
+            ["circle points = 1000000000000", "1000000"],
+        ),
+        (
+            format!("{naca}{FARFIELD}"),
+            ["naca_points = 1000000000000", "1000000"],
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let case = case_text(dir.path(), &text);
+        let msg = mesh_error(dir.path(), &case, &[]);
+        expect(&msg, &words);
+    }
+}
+
+#[test]
+fn a_boundary_too_fine_for_the_cell_limit_is_refused_before_it_is_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_text(
+        dir.path(),
+        &format!("{SQUARE_WALL}{FARFIELD}[boundary]\nmax_spacing = 1e-9\n"),
+    );
+    let t = std::time::Instant::now();
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(
+        &msg,
+        &["boundary", "max_spacing", "--max-cells", "20000000"],
+    );
+    assert!(t.elapsed().as_secs_f64() < 5.0, "refused at once");
+}
+
+#[test]
+fn a_case_expected_above_the_cell_limit_is_refused_with_its_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let msg = mesh_error(
+        dir.path(),
+        "naca0012",
+        &["--order", "1", "--max-cells", "1000"],
+    );
+    expect(
+        &msg,
+        &[
+            "cells expected",
+            "boundary nodes",
+            "limit 1000",
+            "[boundary] max_spacing",
+            "--max-cells",
+        ],
+    );
+}

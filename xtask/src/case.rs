@@ -60,7 +60,7 @@ struct CaseFile {
     #[serde(default)]
     curving: CurvingSpec,
     #[serde(default)]
-    views: BTreeMap<String, [f64; 4]>,
+    views: BTreeMap<String, Vec<f64>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -72,14 +72,15 @@ struct LoopSpec {
     naca: Option<String>,
     /// Points per side of a generated NACA section.
     naca_points: Option<usize>,
-    points: Option<Vec<[f64; 2]>>,
+    /// Read as lists of any length, so that a point of three numbers is refused, not cut.
+    points: Option<Vec<Vec<f64>>>,
     circle: Option<CircleSpec>,
     #[serde(default = "one")]
     scale: f64,
     #[serde(default)]
     rotate_deg: f64,
     #[serde(default)]
-    translate: [f64; 2],
+    translate: Option<Vec<f64>>,
     /// This loop's largest boundary segment (overrides `[boundary] max_spacing`).
     max_spacing: Option<f64>,
 }
@@ -91,10 +92,10 @@ enum RoleSpec {
     Farfield,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CircleSpec {
-    center: [f64; 2],
+    center: Vec<f64>,
     radius: f64,
     /// Points that define the circle as geometry (not the mesh spacing).
     #[serde(default = "circle_points_default")]
@@ -183,6 +184,28 @@ fn circle_points_default() -> usize {
     256
 }
 
+/// The most points a generated loop (`circle = { points = N }`, `naca_points`) may have:
+/// checked before they are made.
+pub const MAX_GENERATED_POINTS: usize = 1_000_000;
+
+/// `values` as exactly `N` numbers, or an error naming `what` and `form` (`[x, y]`).
+fn exactly<const N: usize>(values: &[f64], what: &str, form: &str) -> Result<[f64; N]> {
+    <[f64; N]>::try_from(values).map_err(|_| {
+        anyhow::anyhow!(
+            "{what} has {} numbers {values:?}: give {N}, {form}",
+            values.len()
+        )
+    })
+}
+
+impl Case {
+    /// The case's name made safe for file names ([`crate::outputs::file_stem_of`]): the
+    /// default outputs are `out/STEM.msh` and `out/STEM.json`.
+    pub fn file_stem(&self) -> String {
+        crate::outputs::file_stem_of(&self.name)
+    }
+}
+
 /// Where a case's relative file names are looked up.
 enum FileSource<'a> {
     /// On disk, relative to the case file's folder.
@@ -254,6 +277,11 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
              or set inside = true to mesh the inside of a single wall loop"
         );
     }
+    let mut views = BTreeMap::new();
+    for (name, rect) in &file.views {
+        let what = format!("{origin}: [views] {name}");
+        views.insert(name.clone(), exactly::<4>(rect, &what, "x0, y0, x1, y1")?);
+    }
     let mut loops = Vec::with_capacity(file.loops.len());
     for (i, spec) in file.loops.iter().enumerate() {
         let what = format!("{origin}: loop {}", i + 1);
@@ -269,7 +297,7 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
         boundary: file.boundary,
         layers: file.layers,
         curving: file.curving,
-        views: file.views,
+        views,
     })
 }
 
@@ -344,8 +372,12 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         "{what}: scale = {}: must be positive",
         spec.scale
     );
+    let translate = match &spec.translate {
+        Some(t) => exactly::<2>(t, &format!("{what}: translate"), "[dx, dy]")?,
+        None => [0.0, 0.0],
+    };
     ensure!(
-        spec.rotate_deg.is_finite() && spec.translate.iter().all(|v| v.is_finite()),
+        spec.rotate_deg.is_finite() && translate.iter().all(|v| v.is_finite()),
         "{what}: rotate_deg and translate must be finite numbers"
     );
     if let Some(cap) = spec.max_spacing {
@@ -379,6 +411,10 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         (points, shown, stem)
     } else if let Some(digits) = &spec.naca {
         let n = spec.naca_points.unwrap_or(101);
+        ensure!(
+            n <= MAX_GENERATED_POINTS,
+            "{what}: naca_points = {n}: at most {MAX_GENERATED_POINTS}"
+        );
         let points =
             geom_curve::naca::naca4(digits, n, true).with_context(|| format!("{what}: naca"))?;
         (
@@ -387,23 +423,28 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
             Some(format!("naca{digits}")),
         )
     } else if let Some(points) = &spec.points {
-        let pts: Vec<geom_curve::Point2<f64>> = points
+        let pts = points
             .iter()
-            .map(|p| geom_curve::Point2::new(p[0], p[1]))
-            .collect();
+            .enumerate()
+            .map(|(i, p)| {
+                let [x, y] = exactly::<2>(p, &format!("{what}: point {}", i + 1), "[x, y]")?;
+                Ok(geom_curve::Point2::new(x, y))
+            })
+            .collect::<Result<Vec<_>>>()?;
         (pts, format!("{what} points"), None)
-    } else if let Some(c) = spec.circle {
+    } else if let Some(c) = &spec.circle {
         ensure!(
             c.radius.is_finite() && c.radius > 0.0,
             "{what}: circle radius = {}: must be positive",
             c.radius
         );
         ensure!(
-            c.points >= 8,
-            "{what}: circle points = {}: need at least 8",
+            (8..=MAX_GENERATED_POINTS).contains(&c.points),
+            "{what}: circle points = {}: give 8 to {MAX_GENERATED_POINTS}",
             c.points
         );
-        let centre = geom_curve::Point2::new(c.center[0], c.center[1]);
+        let [cx, cy] = exactly::<2>(&c.center, &format!("{what}: circle center"), "[x, y]")?;
+        let centre = geom_curve::Point2::new(cx, cy);
         let pts = geom_curve::circle_points(centre, c.radius, c.points)
             .with_context(|| format!("{what}: circle"))?;
         (pts, format!("circle of radius {}", c.radius), None)
@@ -416,8 +457,8 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         .map(|p| {
             let (x, y) = (p.x * s, p.y * s);
             [
-                x * cos - y * sin + spec.translate[0],
-                x * sin + y * cos + spec.translate[1],
+                x * cos - y * sin + translate[0],
+                x * sin + y * cos + translate[1],
             ]
         })
         .collect();

@@ -1,4 +1,6 @@
-//! Command-line flags of every subcommand, in one place.
+//! Command-line flags of every subcommand, in one place. Flags whose values are lists of
+//! numbers (`--view x0,y0,x1,y1`, `--png FILE@VIEW`) accept values that start with a minus
+//! sign. Errors become one line and exit status 1 in [`crate::exit`].
 
 use std::path::PathBuf;
 
@@ -62,6 +64,11 @@ pub struct MeshArgs {
     #[command(flatten)]
     pub pictures: PictureArgs,
 
+    /// Refuse a case expected to make more cells than this (the estimate is made from the
+    /// boundary mesh, before the domain is meshed).
+    #[arg(long, value_name = "N", default_value_t = crate::estimate::DEFAULT_MAX_CELLS)]
+    pub max_cells: u64,
+
     /// No summary table on stdout and no progress on stderr; errors are still printed.
     #[arg(long, short)]
     pub quiet: bool,
@@ -104,16 +111,17 @@ pub struct PictureArgs {
     /// Draw the mesh to a PNG picture; `FILE@VIEW` picks the view: `all`, `walls`, a view
     /// named in the case's `[views]` (built-in cases: `le`, `te`, and for the 30P30N
     /// `slat-cove`, `flap-gap`) or `x0,y0,x1,y1`. May be given several times.
-    #[arg(long = "png", value_name = "FILE[@VIEW]")]
+    #[arg(long = "png", value_name = "FILE[@VIEW]", allow_hyphen_values = true)]
     pub pngs: Vec<String>,
 
     /// Draw the mesh to an SVG picture (edges shorter than a pixel are skipped); `FILE@VIEW`
     /// as for --png. May be given several times.
-    #[arg(long = "svg", value_name = "FILE[@VIEW]")]
+    #[arg(long = "svg", value_name = "FILE[@VIEW]", allow_hyphen_values = true)]
     pub svgs: Vec<String>,
 
-    /// The view of pictures given without `@VIEW` (default: all).
-    #[arg(long, value_name = "VIEW")]
+    /// The view of pictures given without `@VIEW` (default: all); `x0,y0,x1,y1` may start
+    /// with a minus sign.
+    #[arg(long, value_name = "VIEW", allow_hyphen_values = true)]
     pub view: Option<String>,
 
     /// What colours the cells in pictures (default: layer for `mesh`; angle for `quality`,

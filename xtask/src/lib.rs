@@ -8,14 +8,20 @@
 //! commands in-process; `main.rs` only parses the flags and turns the outcome into an exit
 //! status.
 //!
-//! Exit status: 0 on success, 1 on bad input (one line on stderr naming the fault, no output
-//! file left behind), 2 when a mesh was made but failed validation.
+//! Exit status ([`exit`]): 0 on success, 1 on bad input (one line on stderr naming the fault,
+//! no output file left behind), 2 when a mesh was made but failed validation (written, with
+//! one line on stderr). Every output of a run — meshes, snapshot, pictures, report — is
+//! reserved before the work starts and replaced together at the end, or not at all
+//! ([`mesh_io::atomic::Transaction`], see [`outputs`]).
 
 mod bench_cmd;
 pub mod builtin;
 mod case;
 pub mod cli;
+mod estimate;
+pub mod exit;
 mod mesh_cmd;
+pub mod outputs;
 mod pictures;
 mod pipeline;
 mod progress;
@@ -33,12 +39,37 @@ pub enum Outcome {
     Invalid,
 }
 
+/// How a run ended, with the line for stderr when the mesh failed validation.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Finished {
+    /// Valid or not.
+    pub outcome: Outcome,
+    /// For [`Outcome::Invalid`]: what failed and where the report is, on one line.
+    pub problem: Option<String>,
+}
+
+impl Finished {
+    /// A valid run.
+    pub fn valid() -> Finished {
+        Finished {
+            outcome: Outcome::Valid,
+            problem: None,
+        }
+    }
+}
+
 /// Runs one parsed command. An `Err` is bad input (exit status 1); its `{:#}` display is the
 /// one-line message for the user.
 pub fn execute(cli: cli::Cli) -> anyhow::Result<Outcome> {
+    run(cli).map(|f| f.outcome)
+}
+
+/// Runs one parsed command, as [`execute`], keeping the line that describes an invalid mesh
+/// (see [`exit::of_run`]).
+pub fn run(cli: cli::Cli) -> anyhow::Result<Finished> {
     match cli.command {
         cli::Command::Mesh(args) => mesh_cmd::run(&args),
         cli::Command::Quality(args) => quality_cmd::run(&args),
-        cli::Command::Bench(args) => bench_cmd::run(&args),
+        cli::Command::Bench(args) => bench_cmd::run(&args).map(|_| Finished::valid()),
     }
 }

@@ -1,20 +1,28 @@
-//! The `cargo xtask` binary: parses the flags, runs the command (all in the library, see
-//! `lib.rs`) and turns the outcome into the exit status: 0 success, 1 bad input (one line on
-//! stderr), 2 a mesh was written but failed validation.
+//! The `cargo xtask` binary: installs the interrupt handler, parses the flags, runs the
+//! command (all in the library, see `lib.rs`) and turns the outcome into the exit status and
+//! the line on stderr ([`xtask::exit`]): 0 success, 1 bad input or a usage error, 2 a mesh was
+//! written but failed validation, 130 interrupted.
 
 use std::process::ExitCode;
 
 use clap::Parser;
-use xtask::{Outcome, cli::Cli, execute};
+use xtask::{cli::Cli, exit};
 
 fn main() -> ExitCode {
-    match execute(Cli::parse()) {
-        Ok(Outcome::Valid) => ExitCode::SUCCESS,
-        Ok(Outcome::Invalid) => ExitCode::from(2),
-        Err(e) => {
-            // `{:#}` joins the context chain on one line: "what: why: root cause".
-            eprintln!("error: {e:#}");
-            ExitCode::from(1)
-        }
+    exit::install_interrupt_handler();
+    let end = match Cli::try_parse() {
+        Ok(cli) => exit::of_run(&xtask::run(cli)),
+        Err(e) => match exit::of_usage_error(&e) {
+            Some(end) => end,
+            None => {
+                // --help, --version: clap prints them as usual
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+        },
+    };
+    if let Some(line) = &end.stderr {
+        eprintln!("{line}");
     }
+    ExitCode::from(end.code)
 }

@@ -1,52 +1,157 @@
-//! `cargo xtask mesh`: load the case, run the stages, check the result, write the files, the
-//! pictures and the report, print the summary. Every check of the input happens before the
-//! first file is written, so bad input leaves nothing behind.
+//! `cargo xtask mesh`: load the case, reserve every output file, run the stages, check the
+//! result, write the meshes, the snapshot, the pictures and the report, put them all in place
+//! together, print the summary. Bad input, an unwritable output or an interruption leaves
+//! every output file as it was.
 
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use mesh_io::Format;
+use mesh_model::Mesh;
 
 use crate::cli::MeshArgs;
-use crate::pictures::{self, Colour};
+use crate::outputs::{Output, Outputs};
+use crate::pictures::{self, Colour, Picture};
 use crate::progress::stage;
 use crate::report::{LoopReport, Report};
 use crate::stages::Snapshot;
-use crate::{Outcome, builtin, case, pipeline};
+use crate::{Finished, builtin, case, estimate, pipeline};
+
+/// The files a run will write, reserved before any work.
+struct Planned {
+    outputs: Outputs,
+    meshes: Vec<(PathBuf, Output)>,
+    snapshot: Option<Output>,
+    pictures: Vec<(Picture, Output)>,
+    report: Option<(PathBuf, Output)>,
+}
 
 /// Runs `cargo xtask mesh`.
-pub fn run(args: &MeshArgs) -> Result<Outcome> {
+pub fn run(args: &MeshArgs) -> Result<Finished> {
     if args.list {
         for (name, about) in builtin::list() {
             println!("{name:<14} {about}");
         }
-        return Ok(Outcome::Valid);
+        return Ok(Finished::valid());
     }
     let total = Instant::now();
     let spec = args.case.as_deref().unwrap_or(builtin::DEFAULT);
     let case = case::load(spec)?;
     let order = args.order.unwrap_or(case.curving.order);
-    let (outs, report_path) = outputs(args, &case.name)?;
-    let pictures = pictures::parse(&args.pictures, &case.views)?;
+    let mut plan = plan(args, &case)?;
+    estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
     let mut report = Report::new(&case.name, order);
+    let (mesh, snapshot) = make(args, &case, order, &mut report)?;
+    report.describe(&mesh);
+    let t = Instant::now();
+    let progress = stage(args.quiet, "certified validity");
+    let scaled_jacobian = report.certify(&mesh)?;
+    drop(progress);
+    report
+        .timings_s
+        .insert("validity", t.elapsed().as_secs_f64());
 
     let t = Instant::now();
+    let progress = stage(args.quiet, "writing");
+    for (path, output) in &plan.meshes {
+        plan.outputs
+            .write_with(*output, |w| mesh_io::write_to(w, path, &mesh))?;
+    }
+    if let (Some(output), Some(stages), Some(path)) = (plan.snapshot, &snapshot, &args.snapshot) {
+        plan.outputs
+            .write_with(output, |w| mesh_io::snapshot::save_to(w, stages, path))?;
+    }
+    report.timings_s.insert("write", t.elapsed().as_secs_f64());
+    let t = Instant::now();
+    pictures::draw_all(
+        &mesh,
+        &plan.pictures,
+        &args.pictures,
+        Colour::Layer,
+        &case.name,
+        &scaled_jacobian,
+        &mut plan.outputs,
+    )?;
+    drop(progress);
+    if !plan.pictures.is_empty() {
+        report
+            .timings_s
+            .insert("pictures", t.elapsed().as_secs_f64());
+    }
+    report.files = plan.outputs.files();
+    report
+        .timings_s
+        .insert("total", total.elapsed().as_secs_f64());
+    if let Some((_, output)) = &plan.report {
+        plan.outputs.write_bytes(*output, &report.json()?)?;
+    }
+    plan.outputs.commit()?;
+    let report_path = plan.report.as_ref().map(|(p, _)| p.as_path());
+    Ok(report.finish(report_path, args.quiet, "the mesh was written but"))
+}
+
+/// Checks every output flag and reserves every output file (meshes, snapshot, pictures,
+/// report), so that a bad flag, an unwritable folder or two outputs on one file are refused
+/// before any work.
+fn plan(args: &MeshArgs, case: &case::Case) -> Result<Planned> {
+    let (outs, report_path) = outputs(args, &case.file_stem())?;
+    let pictures = pictures::parse(&args.pictures, &case.views)?;
+    let mut outputs = Outputs::new();
+    let meshes = outs
+        .into_iter()
+        .map(|p| outputs.reserve("--out", &p).map(|o| (p, o)))
+        .collect::<Result<Vec<_>>>()?;
+    let snapshot = match &args.snapshot {
+        Some(p) => Some(outputs.reserve("--snapshot", p)?),
+        None => None,
+    };
+    let picture_outputs = pictures::reserve(&pictures, &mut outputs)?;
+    let report = match report_path {
+        Some(p) => {
+            let o = outputs.reserve("--report", &p)?;
+            Some((p, o))
+        }
+        None => None,
+    };
+    Ok(Planned {
+        outputs,
+        meshes,
+        snapshot,
+        pictures: pictures.into_iter().zip(picture_outputs).collect(),
+        report,
+    })
+}
+
+/// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
+/// and the curving when `order` > 1. Returns the final mesh and, when `--snapshot` is given,
+/// the stages to save.
+fn make(
+    args: &MeshArgs,
+    case: &case::Case,
+    order: u8,
+    report: &mut Report,
+) -> Result<(Mesh, Option<Snapshot>)> {
+    let t = Instant::now();
     let progress = stage(args.quiet, "boundary curves and 1D mesh");
-    let curves = pipeline::curves(&case)?;
-    let nodes = pipeline::boundary_nodes(&case, &curves)?;
+    let curves = pipeline::curves(case)?;
+    let nodes = pipeline::boundary_nodes(case, &curves)?;
     drop(progress);
     report
         .timings_s
         .insert("boundary", t.elapsed().as_secs_f64());
-    for ((input, curve_nodes), _) in case.loops.iter().zip(&nodes).zip(&curves) {
+    for (input, curve_nodes) in case.loops.iter().zip(&nodes) {
         report.loops.push(loop_report(input, curve_nodes));
     }
+    let expected = estimate::cells(case, &nodes);
+    report.estimated_cells = Some(expected);
+    let boundary_nodes = nodes.iter().map(|n| n.points.len()).sum();
+    estimate::check_cells(expected, boundary_nodes, args.max_cells, args.quiet)?;
 
     let t = Instant::now();
     let progress = stage(args.quiet, "linear layered mesh (AFSF)");
-    let grown = pipeline::linear_mesh(&case, &nodes)?;
+    let grown = pipeline::linear_mesh(case, &nodes)?;
     drop(progress);
     report.timings_s.insert("linear", t.elapsed().as_secs_f64());
     report.layers = Some(grown.stats.layers);
@@ -55,20 +160,17 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
             "some layers' spring solves ran out of iterations (the mesh passed its checks)".into(),
         );
     }
-    let snapshot = args.snapshot.as_ref().map(|path| {
-        let stages = Snapshot {
-            case: case.name.clone(),
-            boundary: nodes.clone(),
-            mesh: grown.mesh.clone(),
-            node_parent: grown.node_parent.clone(),
-            node_layer: grown.node_layer.clone(),
-        };
-        (path, stages)
+    let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
+        case: case.name.clone(),
+        boundary: nodes.clone(),
+        mesh: grown.mesh.clone(),
+        node_parent: grown.node_parent.clone(),
+        node_layer: grown.node_layer.clone(),
     });
     let mesh = if order > 1 {
         let t = Instant::now();
         let progress = stage(args.quiet, "curving (Vector-Adding)");
-        let curved = pipeline::curved_mesh(&case, &curves, &nodes, &grown, order, args.triangles)?;
+        let curved = pipeline::curved_mesh(case, &curves, &nodes, &grown, order, args.triangles)?;
         drop(progress);
         report
             .timings_s
@@ -85,56 +187,15 @@ pub fn run(args: &MeshArgs) -> Result<Outcome> {
             grown.mesh
         }
     };
-    report.describe(&mesh);
-    let t = Instant::now();
-    let progress = stage(args.quiet, "certified validity");
-    let scaled_jacobian = report.certify(&mesh)?;
-    drop(progress);
-    report
-        .timings_s
-        .insert("validity", t.elapsed().as_secs_f64());
-
-    let t = Instant::now();
-    let progress = stage(args.quiet, "writing");
-    for out in &outs {
-        pictures::create_parent(out)?;
-        mesh_io::write(out, &mesh).with_context(|| format!("writing {}", out.display()))?;
-        report.files.push(out.display().to_string());
-    }
-    if let Some((path, stages)) = &snapshot {
-        pictures::create_parent(path)?;
-        mesh_io::snapshot::save(path, stages)
-            .with_context(|| format!("writing {}", path.display()))?;
-        report.files.push(path.display().to_string());
-    }
-    report.timings_s.insert("write", t.elapsed().as_secs_f64());
-    let t = Instant::now();
-    let drawn = pictures::draw_all(
-        &mesh,
-        &pictures,
-        &args.pictures,
-        Colour::Layer,
-        &case.name,
-        &scaled_jacobian,
-    )?;
-    report.files.extend(drawn);
-    drop(progress);
-    if !pictures.is_empty() {
-        report
-            .timings_s
-            .insert("pictures", t.elapsed().as_secs_f64());
-    }
-    report
-        .timings_s
-        .insert("total", total.elapsed().as_secs_f64());
-    report.finish(report_path.as_deref(), args.quiet)
+    Ok((mesh, snapshot))
 }
 
-/// The mesh files and the report to write; checked before any work is done.
-fn outputs(args: &MeshArgs, name: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>)> {
+/// The mesh files and the report to write, by flags or by default (under `out/`, named after
+/// the case's `stem`); checked before any work is done.
+fn outputs(args: &MeshArgs, stem: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>)> {
     let defaulted = args.outs.is_empty();
     let outs = if defaulted {
-        vec![PathBuf::from(format!("out/{name}.msh"))]
+        vec![PathBuf::from(format!("out/{stem}.msh"))]
     } else {
         args.outs.clone()
     };
@@ -154,7 +215,7 @@ fn outputs(args: &MeshArgs, name: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>
             )
         }
         Some(r) => Some(r.clone()),
-        None if defaulted => Some(PathBuf::from(format!("out/{name}.json"))),
+        None if defaulted => Some(PathBuf::from(format!("out/{stem}.json"))),
         None => None,
     };
     Ok((outs, report))

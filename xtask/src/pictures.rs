@@ -1,14 +1,15 @@
-//! Pictures of the mesh (`--png`, `--svg`): parsing what was asked for before any work is done,
-//! and drawing and writing each picture (atomically) at the end. Drawing is `mesh-draw`'s job.
+//! Pictures of the mesh (`--png`, `--svg`): parsing what was asked for and reserving the files
+//! before any work is done, and drawing each picture into its reserved file at the end. Drawing is `mesh-draw`'s job.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use mesh_draw::{ColourBy, DrawParams, View};
 use mesh_model::{Mesh, Role};
 
 use crate::cli::PictureArgs;
+use crate::outputs::{Output, Outputs};
 
 /// Picture formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -124,20 +125,34 @@ fn view_spec(view: &str, named: &BTreeMap<String, [f64; 4]>) -> Result<ViewSpec>
     Ok(ViewSpec::Rect(v))
 }
 
-/// Draws and writes every picture, coloured as the flags say or else by `default_colour`;
-/// `scaled_jacobian` holds one value per cell for [`Colour::Jacobian`]. Returns the files
-/// written.
+/// Reserves the file of every picture in `outputs`, in order.
+pub fn reserve(pictures: &[Picture], outputs: &mut Outputs) -> Result<Vec<Output>> {
+    pictures
+        .iter()
+        .map(|p| {
+            let flag = if p.format == Format::Png {
+                "--png"
+            } else {
+                "--svg"
+            };
+            outputs.reserve(flag, &p.path)
+        })
+        .collect()
+}
+
+/// Draws every picture, coloured as the flags say or else by `default_colour`, into its
+/// reserved output; `scaled_jacobian` holds one value per cell for [`Colour::Jacobian`].
 pub fn draw_all(
     mesh: &Mesh,
-    pictures: &[Picture],
+    pictures: &[(Picture, Output)],
     args: &PictureArgs,
     default_colour: Colour,
     title: &str,
     scaled_jacobian: &[f64],
-) -> Result<Vec<String>> {
+    outputs: &mut Outputs,
+) -> Result<()> {
     let (colour, width_px) = (args.colour.unwrap_or(default_colour), args.width);
-    let mut written = Vec::with_capacity(pictures.len());
-    for p in pictures {
+    for (p, output) in pictures {
         let view = match p.view {
             ViewSpec::All => None,
             ViewSpec::Walls => Some(
@@ -165,29 +180,7 @@ pub fn draw_all(
             Format::Svg => mesh_draw::render_svg(mesh, &params).map(String::into_bytes),
         }
         .map_err(|e| anyhow::anyhow!("drawing {}: {e}", p.path.display()))?;
-        write_bytes(&p.path, &bytes)?;
-        written.push(p.path.display().to_string());
+        outputs.write_bytes(*output, &bytes)?;
     }
-    Ok(written)
-}
-
-/// Writes `bytes` to `path` atomically, creating its folder if needed.
-pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
-    create_parent(path)?;
-    mesh_io::atomic::write_atomic(path, |w| {
-        w.write_all(bytes).map_err(|source| mesh_io::IoError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
-    .with_context(|| format!("writing {}", path.display()))
-}
-
-/// Creates the folder of `path` when it does not exist.
-pub fn create_parent(path: &Path) -> Result<()> {
-    match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() && !dir.exists() => std::fs::create_dir_all(dir)
-            .with_context(|| format!("cannot create the folder {}", dir.display())),
-        _ => Ok(()),
-    }
+    Ok(())
 }

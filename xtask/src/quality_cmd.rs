@@ -7,13 +7,14 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use mesh_model::Dim;
 
-use crate::Outcome;
+use crate::Finished;
 use crate::cli::QualityArgs;
+use crate::outputs::Outputs;
 use crate::pictures::{self, Colour};
 use crate::report::Report;
 
 /// Runs `cargo xtask quality`.
-pub fn run(args: &QualityArgs) -> Result<Outcome> {
+pub fn run(args: &QualityArgs) -> Result<Finished> {
     let total = Instant::now();
     if let Some(r) = &args.report
         && r.extension().is_none_or(|e| e != "json")
@@ -24,6 +25,12 @@ pub fn run(args: &QualityArgs) -> Result<Outcome> {
         );
     }
     let pics = pictures::parse(&args.pictures, &Default::default())?;
+    let mut outputs = Outputs::new();
+    let picture_outputs = pictures::reserve(&pics, &mut outputs)?;
+    let report_output = match &args.report {
+        Some(r) => Some(outputs.reserve("--report", r)?),
+        None => None,
+    };
     let mesh = mesh_io::read_msh(&args.mesh)
         .with_context(|| format!("reading {}", args.mesh.display()))?;
     if mesh.dim != Dim::Two || mesh.cells.is_empty() {
@@ -50,17 +57,24 @@ pub fn run(args: &QualityArgs) -> Result<Outcome> {
         .timings_s
         .insert("validity", t.elapsed().as_secs_f64());
     report.curved_edge_fraction = Some(jacobian_check::curved_edge_fraction(&mesh));
-    let drawn = pictures::draw_all(
+    let pics: Vec<_> = pics.into_iter().zip(picture_outputs).collect();
+    pictures::draw_all(
         &mesh,
         &pics,
         &args.pictures,
         Colour::Angle,
         name,
         &scaled_jacobian,
+        &mut outputs,
     )?;
-    report.files.extend(drawn);
+    report.files = outputs.files();
     report
         .timings_s
         .insert("total", total.elapsed().as_secs_f64());
-    report.finish(args.report.as_deref(), args.quiet)
+    if let Some(output) = report_output {
+        outputs.write_bytes(output, &report.json()?)?;
+    }
+    outputs.commit()?;
+    let subject = args.mesh.display().to_string();
+    Ok(report.finish(args.report.as_deref(), args.quiet, &subject))
 }

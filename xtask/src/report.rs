@@ -9,7 +9,7 @@ use anyhow::Result;
 use mesh_model::{Mesh, Role, Shape};
 use serde::Serialize;
 
-use crate::Outcome;
+use crate::{Finished, Outcome};
 
 /// Everything a run reports.
 #[derive(Debug, Default, Serialize)]
@@ -51,6 +51,9 @@ pub struct Report {
     pub notes: Vec<String>,
     /// What failed validation, if anything (the run then exits with status 2).
     pub problems: Vec<String>,
+    /// The cells expected before the domain was meshed (`mesh` only), see `--max-cells`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated_cells: Option<u64>,
 }
 
 impl Report {
@@ -64,25 +67,35 @@ impl Report {
         }
     }
 
-    /// Writes the report (when asked), prints the summary table (unless quiet) and tells how
-    /// the run ended: invalid when validation found a problem.
-    pub fn finish(mut self, path: Option<&Path>, quiet: bool) -> Result<Outcome> {
-        if let Some(path) = path {
-            self.files.push(path.display().to_string());
-            crate::pictures::write_bytes(path, serde_json::to_string_pretty(&self)?.as_bytes())?;
-        }
+    /// The report as pretty JSON.
+    pub fn json(&self) -> Result<Vec<u8>> {
+        Ok(serde_json::to_string_pretty(self)?.into_bytes())
+    }
+
+    /// Prints the summary table (unless quiet) and tells how the run ended: invalid when
+    /// validation found a problem, with one line naming the first problem, how many there
+    /// are, and the report at `path` (when written); `subject` is what failed ("the mesh was
+    /// written but", "FILE.msh").
+    pub fn finish(self, path: Option<&Path>, quiet: bool, subject: &str) -> Finished {
         if !quiet {
             print!("{}", crate::summary::table(&self));
         }
-        Ok(if self.problems.is_empty() {
-            Outcome::Valid
-        } else {
-            Outcome::Invalid
-        })
+        let Some(first) = self.problems.first() else {
+            return Finished::valid();
+        };
+        let more = match self.problems.len() {
+            1 => String::new(),
+            n => format!(" (and {} more problems)", n - 1),
+        };
+        let see = path.map_or_else(String::new, |p| format!("; see {}", p.display()));
+        Finished {
+            outcome: Outcome::Invalid,
+            problem: Some(format!("{subject} failed validation: {first}{more}{see}")),
+        }
     }
 
-    /// Fills what can be read off a finished 2D mesh: counts, quality, area, and the
-    /// structural problems found by `mesh_model::validate`.
+    /// Fills what can be read off a finished 2D mesh: counts, angles, and the structural
+    /// problems found by `mesh_model::validate`.
     pub fn describe(&mut self, mesh: &Mesh) {
         self.nodes = mesh.nodes.len();
         for shape in [Shape::Tri, Shape::Quad] {
@@ -98,11 +111,17 @@ impl Report {
                 self.boundary_facets.insert(role.name(), n);
             }
         }
-        self.problems = mesh_model::validate(mesh)
-            .iter()
-            .map(ToString::to_string)
-            .collect();
-        if self.problems.is_empty() && !mesh.cells.is_empty() {
+        let problems = mesh_model::validate(mesh);
+        // orientation and conformity problems leave every index and array sound: the angles
+        // (and the certified check, see `certify`) still tell what is wrong where
+        let sound = problems.iter().all(|p| {
+            matches!(
+                p,
+                mesh_model::Problem::NotPositive { .. } | mesh_model::Problem::NonConforming { .. }
+            )
+        });
+        self.problems = problems.iter().map(ToString::to_string).collect();
+        if sound && !mesh.cells.is_empty() {
             let angles = afsf2d::max_angle_histogram(mesh);
             self.quality = Some(Quality {
                 max_angle_deg: angles.max_angle_deg,
@@ -115,12 +134,25 @@ impl Report {
     /// Certifies every cell (Bernstein coefficients of the Jacobian determinant), fills the
     /// validity figures and the area integrated over the curved cells, and names every
     /// invalid or undecided cell as a problem. Returns the scaled Jacobian of each cell.
+    ///
+    /// It runs after structural problems too (a cell counted negative by its corners, a
+    /// non-conforming edge), so that they never hide real inversions; only a mesh whose
+    /// structure it cannot read (a node out of range, a non-finite coordinate) is left
+    /// uncertified, and that is then one more problem rather than an error.
     pub fn certify(&mut self, mesh: &Mesh) -> Result<Vec<f64>> {
-        if mesh.cells.is_empty() || !self.problems.is_empty() {
+        if mesh.cells.is_empty() {
             return Ok(Vec::new());
         }
-        let v = jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default())
-            .map_err(|e| anyhow::anyhow!("certifying the mesh: {e}"))?;
+        let broken = !self.problems.is_empty();
+        let v = match jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default()) {
+            Ok(v) => v,
+            Err(e) if broken => {
+                self.problems
+                    .push(format!("the certified Jacobian check could not run: {e}"));
+                return Ok(Vec::new());
+            }
+            Err(e) => anyhow::bail!("certifying the mesh: {e}"),
+        };
         let q = self.quality.get_or_insert_with(Quality::default);
         q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
         q.invalid_cells = Some(v.invalid_cells.len());
@@ -137,10 +169,13 @@ impl Report {
                 ));
             }
         }
-        self.area = Some(
-            jacobian_check::integrate_area(mesh)
-                .map_err(|e| anyhow::anyhow!("integrating the area: {e}"))?,
-        );
+        match jacobian_check::integrate_area(mesh) {
+            Ok(area) => self.area = Some(area),
+            Err(e) if broken => self
+                .notes
+                .push(format!("the area could not be integrated: {e}")),
+            Err(e) => anyhow::bail!("integrating the area: {e}"),
+        }
         Ok(v.per_cell_scaled_jacobian)
     }
 }

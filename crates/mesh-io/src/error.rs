@@ -16,6 +16,31 @@ pub enum IoError {
         source: std::io::Error,
     },
 
+    /// Two outputs of one [`crate::atomic::Transaction`] name the same file (one would replace
+    /// the other). Fix: give each output its own file name.
+    #[error("{path}: the same file as the earlier output {first}: give each output its own file", path = path.display(), first = first.display())]
+    DuplicateOutput {
+        /// The later output.
+        path: PathBuf,
+        /// The earlier output naming the same file.
+        first: PathBuf,
+    },
+
+    /// An output was reserved in a [`crate::atomic::Transaction`] but never written, so the
+    /// transaction could not commit; nothing was replaced. Fix: the caller is at fault.
+    #[error("{path}: reserved as an output but never written; no output was replaced", path = path.display())]
+    Unwritten {
+        /// The output never written.
+        path: PathBuf,
+    },
+
+    /// The process was interrupted ([`crate::atomic::on_interrupt`]); nothing was replaced.
+    #[error("{path}: interrupted; no output was replaced", path = path.display())]
+    Interrupted {
+        /// The output at hand.
+        path: PathBuf,
+    },
+
     /// The output path has an extension no writer knows.
     /// Fix: end the file name in `.msh`, `.vtu` or `.su2`.
     #[error("{path}: unknown mesh file extension (expected .msh, .vtu or .su2)", path = path.display())]

@@ -1,13 +1,15 @@
 //! Mesh files: Gmsh MSH 4.1 ASCII (write and read), VTK XML `.vtu` with Lagrange cells, SU2
 //! native (linear), and binary snapshots of intermediate stages. Every file is written
-//! atomically ([`atomic`]): a failed write leaves no partial file.
+//! atomically ([`atomic`]): a failed write leaves no partial file; a set of files written by
+//! one [`atomic::Transaction`] is replaced together or not at all.
 //!
 //! This crate owns the file formats and nothing else: the data model is `mesh-model`, and no
 //! meshing, geometry or quality computation happens here. It is, with `xtask`, the only crate
 //! that touches files. The node order of the data model is Gmsh's; the `.vtu` writer permutes
 //! high-order nodes into VTK's Lagrange order ([`node_order`]).
 //!
-//! Entry points: [`write()`] (format chosen by the extension), [`read_msh`], and the modules
+//! Entry points: [`write()`] and [`write_to`] (format chosen by the extension), [`read_msh`],
+//! [`atomic::Transaction`], and the modules
 //! [`msh`], [`vtu`], [`su2`], [`snapshot`]. Test meshes for this and other crates are in
 //! `testkit`, behind the cargo feature `testkit`.
 
@@ -61,6 +63,22 @@ pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
         Some(Format::Msh) => msh::write(path, mesh),
         Some(Format::Vtu) => vtu::write(path, mesh),
         Some(Format::Su2) => su2::write(path, mesh),
+        None => Err(IoError::UnknownExtension {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+/// Writes `mesh` to any writer (for example a file of an [`atomic::Transaction`]) in the
+/// format named by the extension of `path`, which otherwise only names the destination in
+/// errors. Not atomic by itself.
+///
+/// Errors: as [`write()`].
+pub fn write_to(out: &mut dyn std::io::Write, path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    match Format::from_path(path) {
+        Some(Format::Msh) => msh::write_to(out, mesh, path),
+        Some(Format::Vtu) => vtu::write_to(out, mesh, path),
+        Some(Format::Su2) => su2::write_to(out, mesh, path),
         None => Err(IoError::UnknownExtension {
             path: path.to_path_buf(),
         }),

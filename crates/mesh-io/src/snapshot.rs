@@ -40,24 +40,40 @@ fn options() -> impl Options {
 /// map with non-string keys in a format that needs them), [`IoError::Io`] if the file cannot
 /// be written.
 pub fn save<T: Serialize>(path: &Path, value: &T) -> Result<(), IoError> {
-    let snapshot_error = |message: String| IoError::Snapshot {
+    let (header, payload) = encode(path, value)?;
+    write_atomic(path, |w: &mut dyn Write| {
+        w.write_all(&header)
+            .and_then(|()| w.write_all(&payload))
+            .map_err(|e| IoError::io(path, e))
+    })
+}
+
+/// Writes `value` as a snapshot to any writer (for example a file of an
+/// [`crate::atomic::Transaction`]); `path` only names the destination in errors. The value is
+/// encoded in full before the first byte is written.
+///
+/// Errors: as [`save`].
+pub fn save_to<T: Serialize>(out: &mut dyn Write, value: &T, path: &Path) -> Result<(), IoError> {
+    let (header, payload) = encode(path, value)?;
+    out.write_all(&header)
+        .and_then(|()| out.write_all(&payload))
+        .map_err(|e| IoError::io(path, e))
+}
+
+/// The snapshot file of `value`: its header and its payload.
+fn encode<T: Serialize>(path: &Path, value: &T) -> Result<(Vec<u8>, Vec<u8>), IoError> {
+    let payload = options().serialize(value).map_err(|e| IoError::Snapshot {
         path: path.to_path_buf(),
-        message,
-    };
-    let payload = options()
-        .serialize(value)
-        .map_err(|e| snapshot_error(format!("cannot encode the value: {e}")))?;
+        message: format!("cannot encode the value: {e}"),
+    })?;
     let type_name = std::any::type_name::<T>().as_bytes();
     let type_name = &type_name[..type_name.len().min(MAX_TYPE_NAME)];
-    write_atomic(path, |w: &mut dyn Write| {
-        let io = |e| IoError::io(path, e);
-        w.write_all(&MAGIC).map_err(io)?;
-        w.write_all(&FORMAT_VERSION.to_le_bytes()).map_err(io)?;
-        w.write_all(&(type_name.len() as u32).to_le_bytes())
-            .map_err(io)?;
-        w.write_all(type_name).map_err(io)?;
-        w.write_all(&payload).map_err(io)
-    })
+    let mut header = Vec::with_capacity(16 + type_name.len());
+    header.extend_from_slice(&MAGIC);
+    header.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    header.extend_from_slice(&(type_name.len() as u32).to_le_bytes());
+    header.extend_from_slice(type_name);
+    Ok((header, payload))
 }
 
 /// Loads a snapshot saved by [`save`] with the same type `T`.
