@@ -160,6 +160,13 @@ fn make(
             "some layers' spring solves ran out of iterations (the mesh passed its checks)".into(),
         );
     }
+    if grown.stats.bare_wall_facets > 0 {
+        report.notes.push(format!(
+            "{} wall facets have no layers: a gap narrower than the first layer, where the \
+             filled region meets the wall directly (lower [layers] first_height to layer them)",
+            grown.stats.bare_wall_facets
+        ));
+    }
     let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
         case: case.name.clone(),
         boundary: nodes.clone(),
