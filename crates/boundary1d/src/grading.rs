@@ -319,8 +319,8 @@ pub(crate) fn plan_nodes(
             let (phi, _) = stretch.phi(f64::INFINITY);
             let count = ((phi / step) * (1.0 - 1e-12)).ceil().max(1.0);
             estimate += count;
-            // NaN compares false: a field that is not finite is refused like a huge one
-            if !(estimate <= node_limit as f64) {
+            // a field that is not finite is refused like a huge one
+            if estimate.is_nan() || estimate > node_limit as f64 {
                 return Err(Boundary1dError::TooManyNodes {
                     loop_index,
                     estimate,
