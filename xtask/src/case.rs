@@ -242,6 +242,12 @@ pub fn load(spec: &str) -> Result<Case> {
     )
 }
 
+/// Parses a case from TOML text without touching the disk: a loop's `file` names a built-in
+/// data file (for the fuzz target and tests). The case is named `case` unless it says.
+pub fn parse_case_str(text: &str) -> Result<Case> {
+    parse(text, "case", FileSource::Builtin, "case")
+}
+
 fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) -> Result<Case> {
     let file: CaseFile = toml::from_str(text).map_err(|e| {
         let msg = e.message().trim().to_string();

@@ -30,6 +30,9 @@ mod report;
 pub mod stages;
 mod summary;
 
+/// The case loader from TOML text, for the fuzz target (`xtask/fuzz`).
+pub use case::parse_case_str;
+
 /// How a run that did not fail on bad input ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Outcome {

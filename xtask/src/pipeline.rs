@@ -8,21 +8,18 @@ use mesh_model::Role;
 
 use crate::case::Case;
 
-/// The loops of a case as curves, each counter-clockwise, in the case's order.
+/// The loops of a case as curves, each counter-clockwise, in the case's order. Every loop
+/// check (each loop, crossings between loops, nesting) runs before any curve is fitted.
 pub fn curves(case: &Case) -> Result<Vec<ClosedCurve>> {
     let params = CurveParams::default();
-    let mut curves = Vec::with_capacity(case.loops.len());
+    let at = |l: &crate::case::LoopInput| format!("loop '{}' ({})", l.name, l.origin);
     let mut polygons = Vec::with_capacity(case.loops.len());
     for l in &case.loops {
         let mut points: Vec<Point2<f64>> =
             l.points.iter().map(|p| Point2::new(p[0], p[1])).collect();
-        let at = || format!("loop '{}' ({})", l.name, l.origin);
         loops::validate_loop(&points, &params.loop_checks)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", at()))?;
+            .map_err(|e| anyhow::anyhow!("{}: {e}", at(l)))?;
         loops::make_counter_clockwise(&mut points);
-        let curve =
-            ClosedCurve::new(&points, &params).map_err(|e| anyhow::anyhow!("{}: {e}", at()))?;
-        curves.push(curve);
         polygons.push(points);
     }
     if let Err(e) = loops::check_loops_disjoint(&polygons) {
@@ -44,7 +41,13 @@ pub fn curves(case: &Case) -> Result<Vec<ClosedCurve>> {
         bail!("{e}");
     }
     check_nesting(case, &polygons)?;
-    Ok(curves)
+    case.loops
+        .iter()
+        .zip(&polygons)
+        .map(|(l, points)| {
+            ClosedCurve::new(points, &params).map_err(|e| anyhow::anyhow!("{}: {e}", at(l)))
+        })
+        .collect()
 }
 
 /// Walls must lie inside the far field and outside each other.

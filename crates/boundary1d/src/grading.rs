@@ -67,13 +67,16 @@ impl Piece {
         [Some(first), Some(second)]
     }
 
-    /// `∫ ds/h` over the piece.
+    /// `∫ ds/h` over the piece: `length·ln(end/start)/(end − start)`.
     fn phi(&self) -> f64 {
         let ratio = (self.end - self.start) / self.start;
         if ratio.abs() < 1e-8 {
             self.length / self.start * (1.0 - 0.5 * ratio)
-        } else {
+        } else if ratio > -0.5 {
             self.length / self.start * ratio.ln_1p() / ratio
+        } else {
+            // `1 + ratio` would round away an `end` far below `start` (ln_1p(−1) = −∞)
+            self.length * (self.end / self.start).ln() / (self.end - self.start)
         }
     }
 
@@ -279,23 +282,52 @@ fn stretches(spacing: &LoopSpacing, slope: f64, max_spacing: f64) -> Vec<Stretch
         .collect()
 }
 
-/// Places the nodes of one loop.
-pub(crate) fn place_nodes(
-    curve: &ClosedCurve,
+/// The nodes of one loop before they are placed: the spacing after the corner adjustments,
+/// its stretches and each stretch's clip level and node count.
+pub(crate) struct NodePlan {
+    spacing: LoopSpacing,
+    stretches: Vec<Stretch>,
+    plan: Vec<(f64, usize)>,
+}
+
+impl NodePlan {
+    /// Nodes the loop will have.
+    pub(crate) fn node_count(&self) -> usize {
+        self.plan.iter().map(|&(_, count)| count).sum()
+    }
+}
+
+/// Plans the nodes of one loop: node counts per stretch, without allocating per node.
+///
+/// # Errors
+/// [`Boundary1dError::TooManyNodes`] as soon as the loop alone would exceed `node_limit`
+/// (checked before any per-node allocation); [`Boundary1dError::CornerSpacingDidNotSettle`].
+pub(crate) fn plan_nodes(
     mut spacing: LoopSpacing,
     params: &SpacingParams,
     loop_index: usize,
-) -> Result<BoundaryNodes, Boundary1dError> {
+    node_limit: usize,
+) -> Result<NodePlan, Boundary1dError> {
     let slope = params.growth - 1.0;
     let step = params.growth.ln() / slope * STEP_MARGIN;
-    let n = spacing.cap.len();
     for _ in 0..MAX_ADJUSTMENTS {
         let stretches = stretches(&spacing, slope, params.max_spacing);
         let mut plan = Vec::with_capacity(stretches.len());
         let mut adjusted = false;
+        let mut estimate = 0.0;
         for (k, stretch) in stretches.iter().enumerate() {
             let (phi, _) = stretch.phi(f64::INFINITY);
-            let count = ((phi / step) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+            let count = ((phi / step) * (1.0 - 1e-12)).ceil().max(1.0);
+            estimate += count;
+            // a field that is not finite is refused like a huge one
+            if estimate.is_nan() || estimate > node_limit as f64 {
+                return Err(Boundary1dError::TooManyNodes {
+                    loop_index,
+                    estimate,
+                    limit: node_limit,
+                });
+            }
+            let count = count as usize;
             let lambda = stretch.clip_level(count as f64 * step);
             if spacing.is_corner[stretch.start_point] {
                 let end_point = stretches[(k + 1) % stretches.len()].start_point;
@@ -313,20 +345,34 @@ pub(crate) fn place_nodes(
             spacing.graded = graded_field(&spacing.cap, &spacing.arc_positions, slope);
             continue;
         }
-        let mut arc_nodes: Vec<(f64, bool)> = Vec::new();
-        for (stretch, (lambda, count)) in stretches.iter().zip(plan) {
-            let start = stretch.start_point;
-            arc_nodes.push((spacing.arc_positions[start], spacing.is_corner[start]));
-            for s in stretch.interior_nodes(lambda, count) {
-                arc_nodes.push((s, false));
-            }
-        }
-        return Ok(to_boundary_nodes(curve, &spacing, params, &arc_nodes, n));
+        return Ok(NodePlan {
+            spacing,
+            stretches,
+            plan,
+        });
     }
     Err(Boundary1dError::CornerSpacingDidNotSettle {
         loop_index,
         iterations: MAX_ADJUSTMENTS,
     })
+}
+
+/// Places the planned nodes of one loop on its curve (or polygon).
+pub(crate) fn place_nodes(
+    curve: &ClosedCurve,
+    planned: &NodePlan,
+    params: &SpacingParams,
+) -> BoundaryNodes {
+    let spacing = &planned.spacing;
+    let mut arc_nodes: Vec<(f64, bool)> = Vec::with_capacity(planned.node_count());
+    for (stretch, &(lambda, count)) in planned.stretches.iter().zip(&planned.plan) {
+        let start = stretch.start_point;
+        arc_nodes.push((spacing.arc_positions[start], spacing.is_corner[start]));
+        for s in stretch.interior_nodes(lambda, count) {
+            arc_nodes.push((s, false));
+        }
+    }
+    to_boundary_nodes(curve, spacing, params, &arc_nodes, spacing.cap.len())
 }
 
 /// Turns arc positions into curve parameters and points, in increasing `t` from `t = 0`.

@@ -23,6 +23,7 @@
 //! Owns spacing and node placement only: the curves come from `geom-curve`, and the loops'
 //! roles, orientation and nesting are the caller's business. No file IO.
 
+mod check;
 mod grading;
 pub mod spacing;
 
@@ -56,7 +57,107 @@ pub enum Boundary1dError {
         /// Adjustments tried.
         iterations: usize,
     },
+    /// The spacing law asks for more nodes than [`MAX_BOUNDARY_NODES`]. Raise `max_spacing`
+    /// or the growth ratio, or make the far field smaller.
+    #[error(
+        "loop {loop_index}: the boundary mesh would need about {estimate:.3e} nodes, more than the limit of {limit}; raise max_spacing or the growth, or shrink the far field"
+    )]
+    TooManyNodes {
+        /// The loop at which the running total passed the limit.
+        loop_index: usize,
+        /// Estimated nodes of all loops up to and including this one.
+        estimate: f64,
+        /// [`MAX_BOUNDARY_NODES`].
+        limit: usize,
+    },
+    /// Somewhere the spacing would fall below [`MIN_RELATIVE_SPACING`] times the size of the
+    /// loop's coordinates, which floating point cannot resolve.
+    #[error(
+        "loop {loop_index}: the boundary spacing would be {spacing:.3e} near ({x:e}, {y:e}), below {limit:.3e} (1e-12 of the coordinates' size, what floating point resolves); {advice}"
+    )]
+    SpacingBelowResolution {
+        /// Index of the loop.
+        loop_index: usize,
+        /// The smallest spacing of the loop.
+        spacing: f64,
+        /// Where it occurs.
+        x: f64,
+        /// Where it occurs.
+        y: f64,
+        /// The smallest spacing allowed there.
+        limit: f64,
+        /// What to change.
+        advice: &'static str,
+    },
+    /// Two consecutive nodes came out equal (a guard: the resolution check should prevent it).
+    #[error(
+        "loop {loop_index}: boundary nodes {node} and the next coincide at ({x:e}, {y:e}); the spacing is below what the coordinates resolve: raise first_height"
+    )]
+    NodesCoincide {
+        /// Index of the loop.
+        loop_index: usize,
+        /// Index of the first node.
+        node: usize,
+        /// Where.
+        x: f64,
+        /// Where.
+        y: f64,
+    },
+    /// The C2 splines through two loops' points cross each other although the polygons through
+    /// their points do not.
+    #[error(
+        "the C2 splines through the points of loop {loop_a} and loop {loop_b} cross near ({x:e}, {y:e}), although the polygons through the points do not: add points there"
+    )]
+    SplinesCross {
+        /// First loop.
+        loop_a: usize,
+        /// Second loop.
+        loop_b: usize,
+        /// Where.
+        x: f64,
+        /// Where.
+        y: f64,
+    },
+    /// The polygon through a loop's boundary nodes crosses itself although its curve does
+    /// not: the spacing is too coarse for a thin part of the loop.
+    #[error(
+        "loop {loop_index}: the boundary mesh crosses itself near ({x:e}, {y:e}) although the curve does not: the spacing is too coarse for a thin part there; lower max_spacing or refine_angle_deg"
+    )]
+    NodesCrossThemselves {
+        /// The loop.
+        loop_index: usize,
+        /// Where.
+        x: f64,
+        /// Where.
+        y: f64,
+    },
+    /// The polygons through two loops' boundary nodes cross although the curves do not: the
+    /// spacing is too coarse for a narrow gap.
+    #[error(
+        "the boundary mesh of loop {loop_a} crosses that of loop {loop_b} near ({x:e}, {y:e}) although the curves do not: the spacing is too coarse for the gap there; lower max_spacing or turn medial_axis on"
+    )]
+    NodesCross {
+        /// First loop.
+        loop_a: usize,
+        /// Second loop.
+        loop_b: usize,
+        /// Where.
+        x: f64,
+        /// Where.
+        y: f64,
+    },
 }
+
+/// Most boundary nodes [`mesh_loops`] will place over all loops together (10 million, some
+/// 500 MB of boundary and layer data downstream); the count is estimated from the spacing
+/// field before any node is allocated.
+pub const MAX_BOUNDARY_NODES: usize = 10_000_000;
+
+/// Smallest spacing relative to the size of a loop's coordinates (their largest magnitude):
+/// below it, neighbouring nodes are fewer than ~5000 rounding units apart and the layers
+/// grown from them cannot be told apart. The same ratio as the duplicate tolerance of
+/// `geom_curve::LoopCheckParams`.
+pub const MIN_RELATIVE_SPACING: f64 = 1e-12;
 
 /// Where nodes go once their arc-length positions are known.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -193,7 +294,13 @@ impl BoundaryNodes {
 ///
 /// # Errors
 /// [`Boundary1dError::InvalidParameter`] for bad `params`;
-/// [`Boundary1dError::CornerSpacingDidNotSettle`] in the pathological case described there.
+/// [`Boundary1dError::SpacingBelowResolution`] when a spacing is too small for the
+/// coordinates; [`Boundary1dError::TooManyNodes`] beyond [`MAX_BOUNDARY_NODES`];
+/// [`Boundary1dError::SplinesCross`], [`Boundary1dError::NodesCross`],
+/// [`Boundary1dError::NodesCrossThemselves`] or
+/// [`Boundary1dError::NodesCoincide`] when the nodes would not make simple, disjoint
+/// polygons; [`Boundary1dError::CornerSpacingDidNotSettle`] in the pathological case
+/// described there.
 pub fn mesh_loops(
     curves: &[ClosedCurve],
     params: &SpacingParams,
@@ -221,20 +328,43 @@ pub fn mesh_loops_with_caps(
     )
 }
 
+/// Plans every loop (node counts bounded by [`MAX_BOUNDARY_NODES`] in total before any node
+/// is allocated), places the nodes and checks the result.
 fn place_all(
     curves: &[ClosedCurve],
     spacings: Vec<LoopSpacing>,
     params: &[SpacingParams],
 ) -> Result<Vec<BoundaryNodes>, Boundary1dError> {
-    curves
+    for (loop_index, (curve, spacing)) in curves.iter().zip(&spacings).enumerate() {
+        check::resolution(curve, spacing, loop_index)?;
+    }
+    let mut plans = Vec::with_capacity(curves.len());
+    let mut total = 0usize;
+    for (loop_index, (spacing, p)) in spacings.into_iter().zip(params).enumerate() {
+        let plan = grading::plan_nodes(spacing, p, loop_index, MAX_BOUNDARY_NODES - total)
+            .map_err(|e| match e {
+                Boundary1dError::TooManyNodes {
+                    loop_index,
+                    estimate,
+                    limit,
+                } => Boundary1dError::TooManyNodes {
+                    loop_index,
+                    estimate: estimate + total as f64,
+                    limit: limit + total,
+                },
+                other => other,
+            })?;
+        total += plan.node_count();
+        plans.push(plan);
+    }
+    let meshes: Vec<BoundaryNodes> = curves
         .iter()
-        .zip(spacings)
+        .zip(&plans)
         .zip(params)
-        .enumerate()
-        .map(|(loop_index, ((curve, spacing), p))| {
-            grading::place_nodes(curve, spacing, p, loop_index)
-        })
-        .collect()
+        .map(|((curve, plan), p)| grading::place_nodes(curve, plan, p))
+        .collect();
+    check::nodes(curves, &meshes)?;
+    Ok(meshes)
 }
 
 /// Meshes one loop on its own ([`mesh_loops`] with a single curve).

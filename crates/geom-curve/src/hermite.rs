@@ -29,6 +29,9 @@ use crate::CurveError;
 use crate::loops::{LoopCheckParams, validate_loop};
 use crate::quadrature::integrate_adaptive;
 
+/// Relative accuracy of the arc lengths (against the length being measured).
+const ARC_LENGTH_REL_TOL: f64 = 1e-15;
+
 /// How the curve is fitted through the points.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CurveParams {
@@ -155,7 +158,7 @@ impl HermiteSegment {
     /// Arc length between local parameters `u0 ≤ u1` (negative if `u1 < u0`).
     fn arc_length(&self, u0: f64, u1: f64) -> f64 {
         let speed = |u: f64| self.d1(u).norm();
-        integrate_adaptive(&speed, u0, u1, 1e-15 * self.chord_length)
+        integrate_adaptive(&speed, u0, u1, ARC_LENGTH_REL_TOL)
     }
 
     /// Lower bound of the distance from `p` to the segment (distance to its box).
@@ -251,7 +254,9 @@ impl ClosedCurve {
     /// Fits the curve through `points` (a closed loop, first point not repeated).
     ///
     /// # Errors
-    /// Any fault of [`validate_loop`] under `params.loop_checks`, and
+    /// Any fault of [`validate_loop`] under `params.loop_checks`;
+    /// [`CurveError::SplineCrossesItself`] when the fitted curve crosses itself although the
+    /// polygon does not; and
     /// [`CurveError::InvalidParameter`] when `corner_angle_deg` is not in (0, 180],
     /// `kink_min_turn_deg` is negative, `kink_turn_ratio` is below 1 or `lagrange_half_width`
     /// is not in 1..=8.
@@ -327,6 +332,7 @@ impl ClosedCurve {
                 )
             })
             .collect();
+        check_spline_simple(&segments)?;
         let mut cumulative_lengths = Vec::with_capacity(n + 1);
         cumulative_lengths.push(0.0);
         let mut total = 0.0;
@@ -341,6 +347,13 @@ impl ClosedCurve {
             segments,
             cumulative_lengths,
         })
+    }
+
+    /// The curve as a polygon: `per_segment` points on each segment at equal steps of its
+    /// local parameter, starting with the segment's first input point (`n·per_segment`
+    /// points, `per_segment ≥ 1`; point `k` is at `t = k / per_segment`).
+    pub fn sampled_polyline(&self, per_segment: usize) -> Vec<Point2<f64>> {
+        sample_segments(&self.segments, per_segment)
     }
 
     /// The points the curve interpolates (`point(i as f64)` is `input_points()[i]`).
@@ -522,6 +535,45 @@ impl ClosedCurve {
     }
 }
 
+/// Samples per segment of the self-crossing check of the spline.
+const CROSSING_SAMPLES: usize = 8;
+
+fn sample_segments(segments: &[HermiteSegment], per_segment: usize) -> Vec<Point2<f64>> {
+    let per_segment = per_segment.max(1);
+    let mut out = Vec::with_capacity(segments.len() * per_segment);
+    for segment in segments {
+        out.push(segment.point(0.0));
+        for j in 1..per_segment {
+            out.push(segment.point(j as f64 / per_segment as f64));
+        }
+    }
+    out
+}
+
+/// The spline must not cross itself where the polygon through its points does not: checked
+/// on the polygon through [`CROSSING_SAMPLES`] points per segment (exact predicates).
+fn check_spline_simple(segments: &[HermiteSegment]) -> Result<(), CurveError> {
+    let n = segments.len();
+    let samples = sample_segments(segments, CROSSING_SAMPLES);
+    let Some(crossing) = crate::loops::find_self_intersection(&samples) else {
+        return Ok(());
+    };
+    let piece = |edge: usize| {
+        let i = edge / CROSSING_SAMPLES;
+        (i, (i + 1) % n)
+    };
+    let (from_a, to_a) = piece(crossing.edge_a);
+    let (from_b, to_b) = piece(crossing.edge_b);
+    Err(CurveError::SplineCrossesItself {
+        from_a,
+        to_a,
+        from_b,
+        to_b,
+        x: crossing.point.x,
+        y: crossing.point.y,
+    })
+}
+
 /// The data needed to build the Lagrange stencil of each point.
 struct Stencils<'a> {
     points: &'a [Point2<f64>],
@@ -602,17 +654,20 @@ impl Stencils<'_> {
         nodes.push((i, 0.0));
         nodes.extend_from_slice(before);
         nodes.extend_from_slice(after);
-        let abscissae: Vec<f64> = nodes.iter().map(|&(_, x)| x).collect();
+        // Weights on abscissae scaled to [-1, 1], so that the products of up to 16 chord
+        // lengths in Fornberg's recursion neither underflow nor overflow at any scale.
+        let scale = nodes.iter().map(|&(_, x)| x.abs()).fold(0.0, f64::max);
+        let abscissae: Vec<f64> = nodes.iter().map(|&(_, x)| x / scale).collect();
         let weights = fornberg_weights(&abscissae);
         let origin = self.points[i];
         let mut d1 = Vector2::zeros();
         let mut d2 = Vector2::zeros();
         for (&(index, _), w) in nodes.iter().zip(&weights) {
-            let offset = self.points[index] - origin;
+            let offset = (self.points[index] - origin) / scale;
             d1 += w[1] * offset;
             d2 += w[2] * offset;
         }
-        (d1, d2)
+        (d1, d2 / scale)
     }
 }
 

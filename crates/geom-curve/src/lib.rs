@@ -1,5 +1,5 @@
-//! Geometry curves for the boundary of a 2D domain: reading loops of points (Selig `.dat`
-//! text, NACA 4-digit sections, circles), checking that a loop is a simple closed polygon and
+//! Geometry curves for the boundary of a 2D domain: reading loops of points (Selig and
+//! Lednicer `.dat` text, NACA 4-digit sections, circles), checking that a loop is a simple closed polygon and
 //! that loops do not cross, the approximate (circumcircle) curvature of the dissertation
 //! (§3.1.1), and the C2 piecewise quintic Hermite curve through the points with C0 breaks at
 //! sharp corners (§3.1.2), with evaluation, arc length, its inverse and the closest point.
@@ -15,6 +15,7 @@
 
 pub mod curvature;
 pub mod hermite;
+pub mod lednicer;
 pub mod loops;
 pub mod naca;
 mod quadrature;
@@ -25,6 +26,11 @@ pub use hermite::{ClosedCurve, CurveParams, HermiteSegment};
 pub use loops::LoopCheckParams;
 pub use nalgebra::{Point2, Vector2};
 pub use shapes::circle_points;
+
+/// Most points a generated loop (circle, NACA section) may have: the points define the
+/// geometry, not the mesh spacing, and a million is far beyond any resolution a curve needs.
+/// Checked before anything is allocated.
+pub const MAX_GENERATED_POINTS: usize = 1_000_000;
 
 /// Everything that can go wrong when reading or checking geometry in this crate.
 ///
@@ -118,6 +124,67 @@ pub enum CurveError {
         loop_b: usize,
         /// Edge of the second loop.
         edge_b: usize,
+        /// x of a common point.
+        x: f64,
+        /// y of a common point.
+        y: f64,
+    },
+    /// A coordinate is larger in magnitude than [`loops::MAX_COORDINATE`] (1e20): beyond it the
+    /// squares and products of lengths that later stages form, and the Delaunay library's own
+    /// limits, leave no margin. Scale the geometry down (change its units).
+    #[error(
+        "point {index} ({x:e}, {y:e}) is too large: coordinates must lie within ±1e20 (the supported range, see the README); scale the geometry down"
+    )]
+    CoordinateTooLarge {
+        /// Index of the point in the loop.
+        index: usize,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+    },
+    /// A loop spans less than [`loops::MIN_LOOP_SIZE`] (1e-20): the relative tolerances and the
+    /// first heights of the mesh would reach the limits of floating point and of the Delaunay
+    /// library. Scale the geometry up (change its units).
+    #[error(
+        "the loop is too small: it spans {size:.3e} (bounding-box diagonal), the supported range is 1e-20 to 1e20 (see the README); scale the geometry up"
+    )]
+    LoopTooSmall {
+        /// The loop's bounding-box diagonal.
+        size: f64,
+    },
+    /// One point lies so far from all the others that their own distances fall below the
+    /// duplicate tolerance (relative to the whole loop's size). Fix or remove that point.
+    #[error(
+        "point {index} ({x:e}, {y:e}) lies {distance:.3e} away from the other points, which span only {rest:.3e}: a stray point? fix or remove it"
+    )]
+    OutlierPoint {
+        /// Index of the point in the loop.
+        index: usize,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+        /// Its distance from the bounding box of the other points.
+        distance: f64,
+        /// The bounding-box diagonal of the other points.
+        rest: f64,
+    },
+    /// The polygon through the points is simple, but the C2 spline fitted through them crosses
+    /// itself (it overshoots where the points turn sharply without being a corner). Add
+    /// points there, or make the turn sharp enough to be a corner.
+    #[error(
+        "the C2 spline through the points crosses itself near ({x:e}, {y:e}), between input points {from_a}-{to_a} and {from_b}-{to_b}: add points there or make that turn a sharp corner (more than 40 degrees)"
+    )]
+    SplineCrossesItself {
+        /// Start of the first piece (input point index).
+        from_a: usize,
+        /// End of the first piece.
+        to_a: usize,
+        /// Start of the second piece.
+        from_b: usize,
+        /// End of the second piece.
+        to_b: usize,
         /// x of a common point.
         x: f64,
         /// y of a common point.

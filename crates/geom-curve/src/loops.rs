@@ -14,6 +14,20 @@ use serde::{Deserialize, Serialize};
 use crate::curvature::coord;
 use crate::{CurveError, Point2};
 
+/// Largest coordinate magnitude accepted by [`validate_loop`].
+///
+/// The supported range of the whole pipeline is: every coordinate within ±1e20 and every loop
+/// at least 1e-20 across. Why: the mesh works with lengths from about 1e-12 of a loop's size
+/// (relative tolerances, the thinnest first layers) up to some 1e6 times it (far fields), and
+/// forms their squares and fourth powers (areas, orientation predicates, Jacobian
+/// determinants); the Delaunay library (spade) refuses non-zero coordinates below 1.8e-43 or
+/// above 3.4e38. Sizes in [1e-20, 1e20] keep all of these more than ten decades away from the
+/// limits of `f64` and of spade, and cover any physical unit choice.
+pub const MAX_COORDINATE: f64 = 1e20;
+/// Smallest loop size (bounding-box diagonal) accepted by [`validate_loop`]; see
+/// [`MAX_COORDINATE`].
+pub const MIN_LOOP_SIZE: f64 = 1e-20;
+
 /// What [`validate_loop`] checks and with which tolerances.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LoopCheckParams {
@@ -53,14 +67,17 @@ pub struct EdgeCrossing {
     pub point: Point2<f64>,
 }
 
-/// Checks that `points` form a simple closed polygon: at least 3 points, all finite, no two
-/// consecutive ones coinciding (closing edge included), not apparently open (when
+/// Checks that `points` form a simple closed polygon: at least 3 points, all finite and
+/// within the supported range ([`MAX_COORDINATE`], [`MIN_LOOP_SIZE`]), no two consecutive
+/// ones coinciding (closing edge included), not apparently open (when
 /// `params.detect_open_gap`), and no two edges meeting except adjacent edges at their shared
 /// point.
 ///
 /// # Errors
 /// The first fault found, in the order listed: [`CurveError::TooFewPoints`],
-/// [`CurveError::NonFinitePoint`], [`CurveError::DuplicatePoint`], [`CurveError::OpenLoop`],
+/// [`CurveError::NonFinitePoint`], [`CurveError::CoordinateTooLarge`],
+/// [`CurveError::LoopTooSmall`], [`CurveError::OutlierPoint`] (when a stray point makes
+/// others look like duplicates), [`CurveError::DuplicatePoint`], [`CurveError::OpenLoop`],
 /// [`CurveError::SelfIntersection`].
 pub fn validate_loop(points: &[Point2<f64>], params: &LoopCheckParams) -> Result<(), CurveError> {
     let n = points.len();
@@ -77,11 +94,28 @@ pub fn validate_loop(points: &[Point2<f64>], params: &LoopCheckParams) -> Result
             y: points[index].y,
         });
     }
-    let tolerance = params.duplicate_rel_tolerance * bounding_box_diagonal(points);
+    if let Some(index) = points
+        .iter()
+        .position(|p| p.x.abs() > MAX_COORDINATE || p.y.abs() > MAX_COORDINATE)
+    {
+        return Err(CurveError::CoordinateTooLarge {
+            index,
+            x: points[index].x,
+            y: points[index].y,
+        });
+    }
+    let size = bounding_box_diagonal(points);
+    if size < MIN_LOOP_SIZE {
+        return Err(CurveError::LoopTooSmall { size });
+    }
+    let tolerance = params.duplicate_rel_tolerance * size;
     for index in 0..n {
         let next = (index + 1) % n;
         let distance = (points[next] - points[index]).norm();
         if distance <= tolerance {
+            if let Some(outlier) = outlier_hiding_edges(points, distance, params) {
+                return Err(outlier);
+            }
             return Err(CurveError::DuplicatePoint {
                 index,
                 next,
@@ -115,6 +149,54 @@ pub fn validate_loop(points: &[Point2<f64>], params: &LoopCheckParams) -> Result
         });
     }
     Ok(())
+}
+
+/// When consecutive points at `distance` look like duplicates only because one stray point
+/// inflates the loop's size: that point, as [`CurveError::OutlierPoint`]. The candidate is the
+/// point farthest from the coordinate-wise median of the points.
+fn outlier_hiding_edges(
+    points: &[Point2<f64>],
+    distance: f64,
+    params: &LoopCheckParams,
+) -> Option<CurveError> {
+    if distance == 0.0 || points.len() < 4 {
+        return None;
+    }
+    let median = |mut values: Vec<f64>| {
+        values.sort_by(f64::total_cmp);
+        values[values.len() / 2]
+    };
+    let centre = Point2::new(
+        median(points.iter().map(|p| p.x).collect()),
+        median(points.iter().map(|p| p.y).collect()),
+    );
+    let (index, _) = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (i, (p - centre).norm()))
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let rest: Vec<Point2<f64>> = points
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != index)
+        .map(|(_, p)| *p)
+        .collect();
+    let rest_size = bounding_box_diagonal(&rest);
+    if distance <= params.duplicate_rel_tolerance * rest_size {
+        return None;
+    }
+    let (min, max) = rest
+        .iter()
+        .fold((rest[0], rest[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let p = points[index];
+    let outside = Point2::new(p.x.clamp(min.x, max.x), p.y.clamp(min.y, max.y));
+    Some(CurveError::OutlierPoint {
+        index,
+        x: p.x,
+        y: p.y,
+        distance: (p - outside).norm(),
+        rest: rest_size,
+    })
 }
 
 /// The first pair of edges of the loop that meet where they should not: non-adjacent edges

@@ -27,7 +27,8 @@ pub const A4_OPEN_TE: f64 = -0.1015;
 /// # Errors
 /// [`CurveError::InvalidNaca`] unless `digits` is four ASCII digits with a positive thickness
 /// and, when the camber is non-zero, a non-zero camber position;
-/// [`CurveError::InvalidParameter`] when `points_per_side < 3`.
+/// [`CurveError::InvalidParameter`] when `points_per_side < 3` or above half of
+/// [`crate::MAX_GENERATED_POINTS`].
 pub fn naca4(
     digits: &str,
     points_per_side: usize,
@@ -60,6 +61,13 @@ pub fn naca4(
             name: "points_per_side",
             value: points_per_side as f64,
             reason: "at least 3 stations per side are needed",
+        });
+    }
+    if points_per_side > crate::MAX_GENERATED_POINTS / 2 {
+        return Err(CurveError::InvalidParameter {
+            name: "points_per_side",
+            value: points_per_side as f64,
+            reason: "at most 500000 stations per side (the mesh spacing is set separately)",
         });
     }
     let a4 = if closed_te { A4_CLOSED_TE } else { A4_OPEN_TE };

@@ -1,46 +1,35 @@
-//! Selig airfoil coordinate text: line 1 is a title, then one `x y` pair per line.
+//! Airfoil coordinate text (`.dat`): Selig, where line 1 is a title and then one `x y` pair
+//! per line, and Lednicer, recognised automatically (see [`crate::lednicer`]).
 //!
 //! Owns parsing only; it takes the text (the caller reads the file) and does no geometric
 //! checking beyond what the format needs: use [`crate::loops::validate_loop`] on the result.
+//! Lines may end in LF, CRLF or a lone CR (old Mac files); error messages echo at most the
+//! first 60 characters of a line.
 
 use crate::{CurveError, Point2};
 
-/// Parses Selig text into the points of one closed loop.
+/// Characters of a faulty line echoed in an error message.
+const ECHO_CHARS: usize = 60;
+
+/// Parses airfoil `.dat` text, Selig or Lednicer, into the points of one closed loop.
 ///
-/// Line 1 is the title and is ignored whatever it holds. Every later non-blank line must be
-/// exactly two numbers separated by white space. A final point that repeats the first one
-/// (within 1e-12 of the loop's size, files "closed by repetition") is dropped, so the result
-/// follows the crate convention of an implicitly closed loop.
+/// Lednicer text (see [`crate::lednicer`]) is recognised by its counts line and handed to
+/// [`crate::lednicer::parse`]. Otherwise the text is Selig: line 1 is the title and is ignored
+/// whatever it holds. Every later non-blank line must be exactly two numbers separated by
+/// white space. A final point that repeats the first one (within 1e-12 of the loop's size,
+/// files "closed by repetition") is dropped, so the result follows the crate convention of an
+/// implicitly closed loop.
 ///
 /// # Errors
 /// [`CurveError::MalformedLine`] or [`CurveError::NonFiniteCoordinate`] naming the 1-based
 /// line; [`CurveError::TooFewPoints`] when fewer than three points remain.
 pub fn parse(text: &str) -> Result<Vec<Point2<f64>>, CurveError> {
+    if crate::lednicer::looks_like_lednicer(text) {
+        return crate::lednicer::parse(text);
+    }
     let mut points = Vec::new();
-    for (index, raw_line) in text.lines().enumerate().skip(1) {
-        let line_number = index + 1;
-        let line = raw_line.trim();
-        if line.is_empty() {
-            continue;
-        }
-        let malformed = || CurveError::MalformedLine {
-            line: line_number,
-            content: line.to_string(),
-        };
-        let mut tokens = line.split_whitespace();
-        let (Some(x_text), Some(y_text), None) = (tokens.next(), tokens.next(), tokens.next())
-        else {
-            return Err(malformed());
-        };
-        let x: f64 = x_text.parse().map_err(|_| malformed())?;
-        let y: f64 = y_text.parse().map_err(|_| malformed())?;
-        if !x.is_finite() || !y.is_finite() {
-            return Err(CurveError::NonFiniteCoordinate {
-                line: line_number,
-                content: line.to_string(),
-            });
-        }
-        points.push(Point2::new(x, y));
+    for (line_number, line) in data_lines(text) {
+        points.push(parse_pair(line_number, line)?);
     }
     drop_repeated_closing_point(&mut points);
     if points.len() < 3 {
@@ -51,8 +40,48 @@ pub fn parse(text: &str) -> Result<Vec<Point2<f64>>, CurveError> {
     Ok(points)
 }
 
+/// The lines after the title that are not blank, trimmed, with their 1-based line numbers.
+/// Lines end in LF, CRLF or a lone CR.
+pub(crate) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    text.split('\n')
+        .flat_map(|piece| piece.strip_suffix('\r').unwrap_or(piece).split('\r'))
+        .enumerate()
+        .skip(1)
+        .map(|(index, line)| (index + 1, line.trim()))
+        .filter(|(_, line)| !line.is_empty())
+}
+
+/// The line as echoed in messages: at most [`ECHO_CHARS`] characters, then "…".
+pub(crate) fn excerpt(line: &str) -> String {
+    match line.char_indices().nth(ECHO_CHARS) {
+        Some((cut, _)) => format!("{}…", &line[..cut]),
+        None => line.to_string(),
+    }
+}
+
+/// The two numbers `x y` of a data line.
+pub(crate) fn parse_pair(line_number: usize, line: &str) -> Result<Point2<f64>, CurveError> {
+    let malformed = || CurveError::MalformedLine {
+        line: line_number,
+        content: excerpt(line),
+    };
+    let mut tokens = line.split_whitespace();
+    let (Some(x_text), Some(y_text), None) = (tokens.next(), tokens.next(), tokens.next()) else {
+        return Err(malformed());
+    };
+    let x: f64 = x_text.parse().map_err(|_| malformed())?;
+    let y: f64 = y_text.parse().map_err(|_| malformed())?;
+    if !x.is_finite() || !y.is_finite() {
+        return Err(CurveError::NonFiniteCoordinate {
+            line: line_number,
+            content: excerpt(line),
+        });
+    }
+    Ok(Point2::new(x, y))
+}
+
 /// Removes the last point when it repeats the first within 1e-12 of the bounding-box diagonal.
-fn drop_repeated_closing_point(points: &mut Vec<Point2<f64>>) {
+pub(crate) fn drop_repeated_closing_point(points: &mut Vec<Point2<f64>>) {
     if points.len() < 2 {
         return;
     }
@@ -117,6 +146,42 @@ mod tests {
                 })
             );
         }
+    }
+
+    /// D10 (issue 15): CR-only line ends (old Mac files) read as zero points.
+    #[test]
+    fn cr_lf_and_crlf_line_ends_are_all_accepted() {
+        let lf = "foil\n1 0\n0.5 0.1\n0 0\n0.5 -0.1\n";
+        let expected = parse(lf).unwrap();
+        assert_eq!(expected.len(), 4);
+        assert_eq!(parse(&lf.replace('\n', "\r")).unwrap(), expected);
+        assert_eq!(parse(&lf.replace('\n', "\r\n")).unwrap(), expected);
+        // line numbers count CR lines too, and CRLF as one
+        let bad = "foil\r1 0\r0.5 x\r";
+        assert!(matches!(
+            parse(bad),
+            Err(CurveError::MalformedLine { line: 3, .. })
+        ));
+        let bad = "foil\r\n1 0\r\n0.5 x\r\n";
+        assert!(matches!(
+            parse(bad),
+            Err(CurveError::MalformedLine { line: 3, .. })
+        ));
+    }
+
+    /// D10 (issue 15): a 1 MB line was echoed whole in the message.
+    #[test]
+    fn long_lines_are_truncated_in_messages() {
+        let long = "7 ".repeat(500_000);
+        let text = format!("foil\n1 0\n{long}\n");
+        let message = parse(&text).unwrap_err().to_string();
+        assert!(message.len() < 120, "{} chars", message.len());
+        assert!(
+            message.contains("line 3") && message.contains('…'),
+            "{message}"
+        );
+        let multibyte = format!("foil\n{}\n", "é".repeat(100));
+        assert!(parse(&multibyte).unwrap_err().to_string().contains('…'));
     }
 
     #[test]

@@ -11,7 +11,7 @@ use crate::{CurveError, Point2};
 ///
 /// # Errors
 /// [`CurveError::InvalidParameter`] when the radius is not finite and positive, the centre is
-/// not finite, or `n < 3`.
+/// not finite, `n < 3` or `n` above [`crate::MAX_GENERATED_POINTS`].
 pub fn circle_points(
     center: Point2<f64>,
     radius: f64,
@@ -40,6 +40,13 @@ pub fn circle_points(
             name: "n",
             value: n as f64,
             reason: "a circle needs at least 3 points",
+        });
+    }
+    if n > crate::MAX_GENERATED_POINTS {
+        return Err(CurveError::InvalidParameter {
+            name: "circle points",
+            value: n as f64,
+            reason: "at most 1000000 points define a circle (the mesh spacing is set separately)",
         });
     }
     Ok((0..n)
@@ -74,6 +81,9 @@ mod tests {
         assert!(circle_points(o, 0.0, 10).is_err());
         assert!(circle_points(o, f64::NAN, 10).is_err());
         assert!(circle_points(o, 1.0, 2).is_err());
+        // D5 (issue 15): 1e12 points aborted on allocation failure
+        let huge = circle_points(o, 20.0, 1_000_000_000_000).unwrap_err();
+        assert!(huge.to_string().contains("at most 1000000"), "{huge}");
         assert!(circle_points(Point2::new(f64::INFINITY, 0.0), 1.0, 10).is_err());
     }
 }

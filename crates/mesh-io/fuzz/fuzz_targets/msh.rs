@@ -1,0 +1,8 @@
+//! Fuzz target: the Gmsh `.msh` reader on arbitrary bytes. Any panic, hang or abort is a bug.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let _ = mesh_io::msh::parse(data, std::path::Path::new("fuzz.msh"));
+});
