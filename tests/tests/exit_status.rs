@@ -176,7 +176,7 @@ fn an_invalid_mesh_exits_2_with_one_line_and_is_certified_anyway() {
         problems.iter().any(|p| p
             .as_str()
             .unwrap()
-            .contains("1 cells invalid by the certified Jacobian check (first: 0)")),
+            .contains("1 cells invalid by the certified Jacobian check (first: 0;")),
         "{problems:?}"
     );
 }

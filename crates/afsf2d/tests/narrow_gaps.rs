@@ -20,27 +20,20 @@ fn mesh(dom: &Domain) -> Result<(afsf2d::AfsfOutput, afsf2d::AngleStats), AfsfEr
     Ok((out, q))
 }
 
+/// Before the boundary spacing knew gaps, the nodes across this gap were 0.11 apart and the
+/// gap check refused it (a 170.5° triangle without the check); with segments no longer than
+/// the gap (`boundary1d`'s gap-width cap) it meshes in usable cells. The refusal itself is
+/// tested on hand-placed nodes in `src/gaps.rs`.
 #[test]
-fn circles_1e_5_apart_are_refused_naming_the_gap() {
+fn circles_1e_5_apart_meet_in_usable_cells() {
     let dom = gaps::two_bodies(
         gaps::circle([0.0, 0.0], 0.5),
         gaps::circle([1.0 + 1e-5, 0.0], 0.5),
         5e-5,
         1.3,
     );
-    // before: a mesh with a 170.5° triangle in the gap
-    let err = mesh(&dom).map(|_| ()).unwrap_err();
-    let AfsfError::NarrowGap { width, x, y, .. } = err else {
-        panic!("expected the narrow-gap error, got {err}");
-    };
-    // the facet named is the narrowest one with no usable triangle across, near the closest point
-    assert!((0.9e-5..1e-2).contains(&width), "{width}");
-    assert!((x - 0.5).abs() < 0.1 && y.abs() < 0.1, "({x}, {y})");
-    let text = err.to_string();
-    assert!(
-        !text.contains('\n') && text.contains("narrow gap"),
-        "{text}"
-    );
+    let (_, q) = mesh(&dom).expect("a mesh");
+    assert!(q.max_angle_deg < 135.0, "{q:?}");
 }
 
 #[test]
