@@ -4,10 +4,13 @@
 # check_pyfr.py (also used by e2e.py); this is its command-line front.
 #
 # Usage: tests/python/check_pyfr.sh MESH.msh...
-# Needs: what tests/python/install.sh installs (Debian's libopenmpi3, PyFR from PyPI).
+# Needs: what tests/python/install.sh installs (Debian's libopenmpi3, PyFR from PyPI in the
+# checkers' virtual environment).
 set -euo pipefail
 if [ "$#" -eq 0 ]; then
-    sed -n '2,7p' "$0"
+    sed -n '2,8p' "$0"
     exit 2
 fi
-exec python3 "$(dirname "$0")/check_pyfr.py" "$@"
+source "$(dirname "$0")/venv.sh"
+require_checkers
+exec "$CHECKERS_PYTHON" "$(dirname "$0")/check_pyfr.py" "$@"

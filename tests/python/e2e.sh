@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the release tool and runs the end-to-end checks with Gmsh's, VTK's and PyFR's own
-# readers (tests/python/e2e.py).
+# readers (tests/python/e2e.py), in the checkers' virtual environment (tests/python/install.sh).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source tests/python/venv.sh
+require_checkers
 cargo build --release --quiet -p xtask
-target_dir=$(cargo metadata --format-version 1 --no-deps | python3 -c "import json,sys; print(json.load(sys.stdin)['target_directory'])")
-python3 tests/python/e2e.py "$target_dir/release/xtask"
+target_dir=$(cargo metadata --format-version 1 --no-deps | "$CHECKERS_PYTHON" -c "import json,sys; print(json.load(sys.stdin)['target_directory'])")
+"$CHECKERS_PYTHON" tests/python/e2e.py "$target_dir/release/xtask"

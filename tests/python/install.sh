@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Installs the independent checkers the end-to-end tests use (tests/python/requirements.txt):
 # Gmsh's and VTK's Python packages and PyFR, and the Debian libraries their wheels load (Gmsh's
-# GUI libraries, Open MPI for PyFR's mpi4py). Idempotent: a second run installs nothing.
-# A fresh install takes about 25 s here (apt about 5 s, pip about 20 s without its cache).
+# GUI libraries, Open MPI for PyFR's mpi4py). The Python packages go into a virtual environment,
+# `.venv-checkers/` at the repository root (git-ignored; CHECKERS_VENV overrides the place), made
+# with `python3 -m venv` — Debian's python3-venv is installed when venv or ensurepip is missing —
+# so this works where pip refuses global installs (PEP 668). Idempotent: a second run installs
+# nothing. A fresh install takes about 25 s here (apt about 5 s, pip about 20 s without its cache).
 set -euo pipefail
 cd "$(dirname "$0")"
+source ./venv.sh
 
 SUDO=""; [ "$(id -u)" = 0 ] || SUDO="sudo"
 updated=""
@@ -35,8 +39,19 @@ if [ -n "$missing" ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 
+# The virtual environment, made by the first python3 on PATH.
+if ! "$CHECKERS_PYTHON" -c 'import pip' >/dev/null 2>&1; then
+  if ! python3 -c 'import venv, ensurepip' >/dev/null 2>&1; then
+    echo "== apt-get install python3-venv (python3 has no venv or ensurepip)"
+    apt_update
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends python3-venv >/dev/null
+  fi
+  echo "== python3 -m venv $CHECKERS_VENV"
+  python3 -m venv --clear "$CHECKERS_VENV"
+fi
+
 # pip only when some pinned package is missing or at another version.
-if ! python3 - requirements.txt <<'PY'
+if ! "$CHECKERS_PYTHON" - requirements.txt <<'PY'
 import sys
 from importlib.metadata import PackageNotFoundError, version
 
@@ -54,9 +69,9 @@ for line in open(sys.argv[1]):
 PY
 then
   echo "== pip install -r tests/python/requirements.txt"
-  python3 -m pip install --quiet --disable-pip-version-check -r requirements.txt
+  "$CHECKERS_PYTHON" -m pip install --quiet --disable-pip-version-check -r requirements.txt
 fi
-python3 - <<'PY'
+"$CHECKERS_PYTHON" - <<'PY'
 from importlib.metadata import version
 
 import gmsh
@@ -65,4 +80,4 @@ import vtk
 print("checkers:", ", ".join(f"{n} {version(n)}" for n in
                              ("gmsh", "vtk", "pyfr", "h5py", "numpy", "mpi4py")))
 PY
-python3 -m pyfr --version
+"$CHECKERS_PYTHON" -m pyfr --version

@@ -8,7 +8,7 @@ use clap::{Args, Parser, Subcommand};
 
 /// Curved (high-order) viscous mesh generation: Spring-Field and Vector-Adding.
 #[derive(Debug, Parser)]
-#[command(name = "cargo xtask", bin_name = "cargo xtask", version, about, long_about = None)]
+#[command(name = "cargo xtask", bin_name = "cargo xtask", version, long_about = None)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -24,6 +24,8 @@ pub enum Command {
     Quality(QualityArgs),
     /// Time each stage of the pipeline on the built-in cases (release build, one thread).
     Bench(BenchArgs),
+    /// Regenerate every figure of the README and the user guide (docs/figures) from real runs.
+    Figures(FiguresArgs),
 }
 
 /// Flags of `cargo xtask mesh`.
@@ -84,6 +86,18 @@ pub struct BenchArgs {
     /// Only these built-in cases (default: all).
     #[arg(long = "case", value_name = "NAME")]
     pub cases: Vec<String>,
+}
+
+/// Flags of `cargo xtask figures`.
+#[derive(Debug, Args)]
+pub struct FiguresArgs {
+    /// The folder the pictures go to (made if missing); run from the repository root.
+    #[arg(long, value_name = "DIR", default_value = "docs/figures")]
+    pub dir: PathBuf,
+
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// Flags of `cargo xtask quality`.

@@ -18,8 +18,10 @@ mod bench_cmd;
 pub mod builtin;
 mod case;
 pub mod cli;
+pub mod entry;
 mod estimate;
 pub mod exit;
+pub mod figures_cmd;
 mod mesh_cmd;
 pub mod outputs;
 mod pictures;
@@ -74,5 +76,6 @@ pub fn run(cli: cli::Cli) -> anyhow::Result<Finished> {
         cli::Command::Mesh(args) => mesh_cmd::run(&args),
         cli::Command::Quality(args) => quality_cmd::run(&args),
         cli::Command::Bench(args) => bench_cmd::run(&args).map(|_| Finished::valid()),
+        cli::Command::Figures(args) => figures_cmd::run(&args),
     }
 }

@@ -1,0 +1,144 @@
+//! `cargo xtask figures`: regenerates every figure of the README and `docs/user-guide.md` from
+//! real runs of `mesh` and `quality` (the same code as the commands, run in-process), into
+//! `docs/figures/` by default. Meshes made on the way go to a scratch folder that is removed at
+//! the end; only the pictures are kept. The list of figures is [`FIGURES`]; the docs test
+//! (`xtask/tests/docs_examples.rs`) checks that the docs show exactly these files.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+
+use crate::cli::FiguresArgs;
+use crate::entry::{self, CARGO_XTASK};
+use crate::{Finished, Outcome};
+
+/// Width of every figure in pixels: small files, sharp enough on a page.
+pub const WIDTH: &str = "900";
+
+/// The case file the guide's figures are made from, relative to the repository root.
+const EXAMPLE_CASE: &str = "fixtures/cases/example.toml";
+
+/// The runs that make the figures, in order: each is a command line of `cargo xtask` in which
+/// `{fig}` stands for the figures folder and `{tmp}` for the scratch folder.
+pub const FIGURES: &[&[&str]] = &[
+    // README: the 30P30N at P3 near the slat cove
+    &[
+        "mesh",
+        "30p30n",
+        "--order",
+        "3",
+        "--out",
+        "{tmp}/30p30n.msh",
+        "--png",
+        "{fig}/30p30n-p3-slat-cove.png@slat-cove",
+    ],
+    // guide: the example case, whole and at the leading edge
+    &[
+        "mesh",
+        EXAMPLE_CASE,
+        "--out",
+        "{tmp}/example.msh",
+        "--png",
+        "{fig}/example-walls.png@walls",
+        "--png",
+        "{fig}/example-le.png@le",
+    ],
+    // guide: the angle colouring at the trailing edge of the linear mesh
+    &[
+        "mesh",
+        "naca0012",
+        "--order",
+        "1",
+        "--out",
+        "{tmp}/naca0012-p1.msh",
+        "--colour",
+        "angle",
+        "--png",
+        "{fig}/naca0012-p1-te-angle.png@te",
+    ],
+    // guide: the certified scaled Jacobian of the P3 30P30N in the flap gap
+    &[
+        "mesh",
+        "30p30n",
+        "--order",
+        "3",
+        "--out",
+        "{tmp}/30p30n-jac.msh",
+        "--colour",
+        "jacobian",
+        "--png",
+        "{fig}/30p30n-p3-flap-gap-jacobian.png@flap-gap",
+    ],
+    // guide: `quality` drawing a .msh file
+    &[
+        "quality",
+        "{tmp}/example.msh",
+        "--png",
+        "{fig}/quality-example-le.png@-0.03,-0.03,0.05,0.03",
+    ],
+];
+
+/// The file names of the figures [`FIGURES`] makes.
+pub fn names() -> Vec<String> {
+    FIGURES
+        .iter()
+        .flat_map(|run| run.iter())
+        .filter_map(|a| a.strip_prefix("{fig}/"))
+        .map(|a| a.split('@').next().unwrap_or(a).to_string())
+        .collect()
+}
+
+/// Runs `cargo xtask figures`.
+pub fn run(args: &FiguresArgs) -> Result<Finished> {
+    if !Path::new(EXAMPLE_CASE).is_file() {
+        bail!("figures: run from the repository root ({EXAMPLE_CASE} not found here)");
+    }
+    std::fs::create_dir_all(&args.dir)
+        .with_context(|| format!("figures: cannot make {}", args.dir.display()))?;
+    let tmp = std::env::temp_dir().join(format!("curvemesh-figures-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp)
+        .with_context(|| format!("figures: cannot make {}", tmp.display()))?;
+    let made = make_all(&args.dir, &tmp, args.quiet);
+    let _ = std::fs::remove_dir_all(&tmp);
+    made?;
+    if !args.quiet {
+        for name in names() {
+            println!("{}", args.dir.join(name).display());
+        }
+    }
+    Ok(Finished::valid())
+}
+
+fn make_all(fig: &Path, tmp: &Path, quiet: bool) -> Result<()> {
+    for run in FIGURES {
+        let line = command_line(run, fig, tmp);
+        if !quiet {
+            eprintln!("figures: {CARGO_XTASK} {}", line.join(" "));
+        }
+        let mut argv = vec![CARGO_XTASK.to_string()];
+        argv.extend(line.iter().cloned());
+        argv.push("--width".into());
+        argv.push(WIDTH.into());
+        argv.push("--quiet".into());
+        let cli = entry::parse(CARGO_XTASK, argv).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let finished = crate::run(cli).with_context(|| format!("figures: {}", line.join(" ")))?;
+        if finished.outcome != Outcome::Valid {
+            bail!(
+                "figures: {}: {}",
+                line.join(" "),
+                finished.problem.unwrap_or_default()
+            );
+        }
+    }
+    Ok(())
+}
+
+fn command_line(run: &[&str], fig: &Path, tmp: &Path) -> Vec<String> {
+    let (fig, tmp): (PathBuf, PathBuf) = (fig.into(), tmp.into());
+    run.iter()
+        .map(|a| {
+            a.replace("{fig}", &fig.to_string_lossy())
+                .replace("{tmp}", &tmp.to_string_lossy())
+        })
+        .collect()
+}
