@@ -8,7 +8,11 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 fn run(bin: &str, args: &[&str], dir: &Path) -> Output {
-    Command::new(bin).args(args).current_dir(dir).output().unwrap()
+    Command::new(bin)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
 }
 
 fn text(b: &[u8]) -> String {
@@ -41,14 +45,25 @@ fn help_names_the_command_typed_and_only_existing_subcommands() {
         assert!(!help.contains(other), "{help}");
         assert!(!help.to_lowercase().contains("move"), "{help}");
         for sub in ["mesh", "quality", "bench", "figures"] {
-            assert!(help.contains(&format!("\n  {sub} ")), "{sub} missing:\n{help}");
+            assert!(
+                help.contains(&format!("\n  {sub} ")),
+                "{sub} missing:\n{help}"
+            );
         }
         let sub_help = text(&run(bin, &["mesh", "--help"], &here).stdout);
-        assert!(sub_help.contains(&format!("Usage: {name} mesh ")), "{sub_help}");
+        assert!(
+            sub_help.contains(&format!("Usage: {name} mesh ")),
+            "{sub_help}"
+        );
         // usage errors name the command too, on one line, exit 1
         let bad = run(bin, &["mesh", "--no-such-flag"], &here);
         assert_eq!(bad.status.code(), Some(1));
-        assert_eq!(text(&bad.stderr).lines().count(), 1, "{}", text(&bad.stderr));
+        assert_eq!(
+            text(&bad.stderr).lines().count(),
+            1,
+            "{}",
+            text(&bad.stderr)
+        );
     }
 }
 
@@ -57,7 +72,11 @@ fn default_outputs_go_below_the_folder_the_user_stands_in() {
     let dir = tempfile::tempdir().unwrap();
     let sub = dir.path().join("crates");
     std::fs::create_dir(&sub).unwrap();
-    let out = run(CURVEMESH, &["mesh", "naca0012", "--order", "1", "--quiet"], &sub);
+    let out = run(
+        CURVEMESH,
+        &["mesh", "naca0012", "--order", "1", "--quiet"],
+        &sub,
+    );
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(sub.join("out/naca0012.msh").is_file());
     assert!(sub.join("out/naca0012.json").is_file());

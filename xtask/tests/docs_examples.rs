@@ -11,21 +11,29 @@ use std::process::Command;
 /// Commands (by their start) the docs show but this test does not run, and why.
 const SKIPPED: &[(&str, &str)] = &[
     ("bash tests/run.sh", "the test command itself"),
-    ("bash tests/python/", "installs the checkers (tests/python/test_install.sh tests it)"),
+    (
+        "bash tests/python/",
+        "installs the checkers (tests/python/test_install.sh tests it)",
+    ),
     ("bash fuzz/run.sh", "needs nightly Rust and cargo-fuzz"),
-    ("RANDOM_GEOMETRY_CASES=", "a long test run"),
-    ("cargo test", "the test suite itself"),
+    (
+        "RANDOM_GEOMETRY_CASES=",
+        "a long test run (the normal test run does a short one)",
+    ),
     ("cargo install", "installs into the user's ~/.cargo/bin"),
-    ("cargo xtask figures", "rewrites docs/figures; run by figures_match_the_docs"),
-    ("curvemesh figures", "rewrites docs/figures; run by figures_match_the_docs"),
-    ("git clone", "needs the network"),
-    ("cd curvemesh", "the clone's folder"),
+    (
+        "cargo xtask figures",
+        "rewrites docs/figures; run by figures_match_the_docs",
+    ),
 ];
 
 const DOCS: &[&str] = &["README.md", "docs/user-guide.md"];
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
 }
 
 /// The blocks fenced as ```LANG in `text`, each as its lines.
@@ -167,7 +175,10 @@ fn every_toml_example_is_a_case_that_meshes() {
             std::fs::write(&case, block.join("\n")).unwrap();
             let out = run_in(
                 dir.path(),
-                &format!("\"$XTASK\" mesh {} --order 1 --quiet --out m.msh", case.display()),
+                &format!(
+                    "\"$XTASK\" mesh {} --order 1 --quiet --out m.msh",
+                    case.display()
+                ),
             );
             assert!(
                 out.status.success(),
@@ -199,7 +210,10 @@ fn figures_match_the_docs() {
     shown.dedup();
     let mut made = xtask::figures_cmd::names();
     made.sort();
-    assert_eq!(shown, made, "the docs show exactly the figures `figures` makes");
+    assert_eq!(
+        shown, made,
+        "the docs show exactly the figures `figures` makes"
+    );
     for name in &made {
         assert!(
             root().join("docs/figures").join(name).is_file(),
