@@ -91,10 +91,11 @@ fn scratch_clone(doc: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     copy_dir(&root().join("fixtures"), &dir.path().join("fixtures"));
     for block in blocks(doc, "toml") {
-        if let Some(path) = block.first().and_then(|l| l.strip_prefix("# ")) {
-            if path.ends_with(".toml") && !path.contains(' ') {
-                std::fs::write(dir.path().join(path), block.join("\n")).unwrap();
-            }
+        if let Some(path) = block.first().and_then(|l| l.strip_prefix("# "))
+            && path.ends_with(".toml")
+            && !path.contains(' ')
+        {
+            std::fs::write(dir.path().join(path), block.join("\n")).unwrap();
         }
     }
     dir
