@@ -41,7 +41,7 @@
 //! assert!(mesh_model::validate(mesh).is_empty()); // conforming, every cell counter-clockwise
 //! assert!(mesh.count(Shape::Quad) > 0 && out.stats.layers >= 5);
 //! // boundary nodes come first, unmoved; the cells cover the domain exactly
-//! assert_eq!(mesh.nodes[0], [1.0, 0.0, 0.0]);
+//! assert_eq!(mesh.xy(0), loops[0].points[0]);
 //! let domain = mesh_model::polygon_area(loops[1].points.iter().copied())
 //!     - mesh_model::polygon_area(loops[0].points.iter().copied());
 //! assert!((mesh.linear_area() - domain).abs() < 1e-9 * domain);

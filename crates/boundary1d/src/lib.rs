@@ -50,8 +50,9 @@
 //! let seg: Vec<f64> = (0..n).map(|k| (nodes.points[(k + 1) % n] - nodes.points[k]).norm()).collect();
 //! for k in 0..n {
 //!     assert!(seg[k] <= 0.05 * (1.0 + 1e-9));
+//!     // the law holds on arc lengths; chords follow to within a fraction of a per cent
 //!     let ratio = seg[k].max(seg[(k + 1) % n]) / seg[k].min(seg[(k + 1) % n]);
-//!     assert!(ratio <= 1.2 * (1.0 + 1e-6), "segments {k}, {}: ratio {ratio}", k + 1);
+//!     assert!(ratio <= 1.2 * 1.001, "segments {k}, {}: ratio {ratio}", k + 1);
 //! }
 //! // every node lies on the curve, at its parameter t
 //! for (t, p) in nodes.t.iter().zip(&nodes.points) {
