@@ -11,6 +11,45 @@
 //! left between them (`fill`). It does not place boundary nodes (`boundary1d`), curve
 //! anything (`vector-adding`) or read files; the spring models and solver are `springfield`'s.
 //! The method and every choice the dissertation left open are in `docs/afsf.md`.
+//!
+//! # Example
+//!
+//! A layered mesh around a NACA 0012 section inside a circular far field. The boundary nodes
+//! here are simply the section's cosine-spaced points and points on the circle (in the
+//! pipeline they come from `boundary1d`); lengths are in chords.
+//!
+//! ```
+//! use afsf2d::{AfsfParams, FrontLoop, grow_mesh};
+//! use mesh_model::{Role, Shape};
+//!
+//! let xy = |p: Vec<geom_curve::Point2<f64>>| p.iter().map(|q| [q.x, q.y]).collect::<Vec<_>>();
+//! let section = xy(geom_curve::naca::naca4("0012", 41, true)?);
+//! let circle = xy(geom_curve::circle_points([0.5, 0.0].into(), 5.0, 64)?);
+//! let mut wall = FrontLoop::new(section, Role::Wall, "naca0012");
+//! wall.is_corner[0] = true; // the sharp trailing edge (informational)
+//! let loops = [wall, FrontLoop::new(circle, Role::Farfield, "farfield")];
+//!
+//! let params = AfsfParams {
+//!     first_height: 1e-3, // the wall's first layer, chords
+//!     growth: 1.3,        // each layer 30 % taller than the one below
+//!     max_layers: 20,
+//!     ..AfsfParams::default()
+//! };
+//! let out = grow_mesh(&loops, &params)?;
+//! let mesh = &out.mesh;
+//!
+//! assert!(mesh_model::validate(mesh).is_empty()); // conforming, every cell counter-clockwise
+//! assert!(mesh.count(Shape::Quad) > 0 && out.stats.layers >= 5);
+//! // boundary nodes come first, unmoved; the cells cover the domain exactly
+//! assert_eq!(mesh.xy(0), loops[0].points[0]);
+//! let domain = mesh_model::polygon_area(loops[1].points.iter().copied())
+//!     - mesh_model::polygon_area(loops[0].points.iter().copied());
+//! assert!((mesh.linear_area() - domain).abs() < 1e-9 * domain);
+//! // quads cut along their shorter diagonal: the dissertation's largest-angle figure
+//! let triangles = afsf2d::cut_quads_shorter_diagonal(mesh);
+//! assert!(afsf2d::max_angle_histogram(&triangles).max_angle_deg < 150.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod error;
 mod fill;

@@ -5,8 +5,8 @@
 use mesh_model::measure::split_quad_shorter_diagonal;
 use mesh_model::{CellType, Mesh, Shape};
 
-/// Lower bounds (degrees) of the histogram bins: [95,105), [105,115), [115,125), [125,135),
-/// [135,180].
+/// Lower bounds (degrees) of the histogram bins: `[95, 105)`, `[105, 115)`, `[115, 125)`,
+/// `[125, 135)`, `[135, 180]`.
 pub const ANGLE_BINS_DEG: [f64; 5] = [95.0, 105.0, 115.0, 125.0, 135.0];
 
 /// Largest-angle figures of the triangles of a mesh.

@@ -12,6 +12,41 @@
 //! Conventions used throughout: a loop is a slice of `n` points, closed implicitly (the first
 //! point is not repeated); edge `i` runs from point `i` to point `(i + 1) % n`, so edge `n - 1`
 //! is the closing edge. Counter-clockwise loops have positive signed area.
+//!
+//! # Example
+//!
+//! A NACA 0012 section from its Selig `.dat` file (a title line, then `x y` from the upper
+//! trailing edge over the upper surface and back under the lower one; this one has a blunt
+//! trailing edge, 0.25 % of the chord thick), fitted by a C2 curve whose only corners are the
+//! two ends of the trailing-edge base, and its curvature (1/chord) at the leading edge and at
+//! mid-chord. The caller reads the file; the crate takes the text.
+//!
+//! ```
+//! use geom_curve::{ClosedCurve, CurveParams, loops, selig};
+//!
+//! let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/data/naca0012.dat"))?;
+//! let mut points = selig::parse(&text)?;
+//! let n = points.len(); // 131
+//! loops::validate_loop(&points, &CurveParams::default().loop_checks)?; // simple, closed
+//! loops::make_counter_clockwise(&mut points); // Selig files are; other sources may not be
+//!
+//! let curve = ClosedCurve::new(&points, &CurveParams::default())?;
+//! assert_eq!(curve.corners(), &[0, n - 1]); // the base's ends; the leading edge is smooth
+//! // the curve interpolates its points: parameter t = i is point i
+//! let le = (0..n).min_by(|&a, &b| points[a].x.total_cmp(&points[b].x)).unwrap();
+//! assert_eq!(curve.point(le as f64), points[le]);
+//! // a NACA 0012's leading-edge radius is 1.1019 · 0.12² ≈ 0.0159 chords: κ ≈ 63
+//! let k_le = curve.curvature(le as f64);
+//! assert!((k_le - 63.0).abs() < 10.0, "{k_le}");
+//! assert!(curve.curvature(le as f64 / 2.0).abs() < 1.0); // mid-chord, upper surface
+//! // arc length and its inverse: the upper surface is a little longer than the chord
+//! let upper = curve.arc_length(0.0, le as f64);
+//! assert!(upper > 1.0 && upper < 1.05, "{upper}");
+//! assert!((curve.t_at_arc_length(upper) - le as f64).abs() < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! [`naca::naca4`] makes the same section from its four digits, at any resolution.
 
 pub mod curvature;
 pub mod hermite;

@@ -8,6 +8,44 @@
 //!
 //! Node order everywhere is Gmsh's (the data model's). The crate reads meshes and node
 //! coordinates and reports; it never moves a node, and does no file IO.
+//!
+//! # Example
+//!
+//! Certify a hand-made P3 triangle whose bottom edge bows outward (a cell on a curved wall),
+//! then the same triangle with that edge's two nodes swapped, which folds it back on itself:
+//!
+//! ```
+//! use jacobian_check::{Certificate, CertifyParams, certify_cell};
+//! use mesh_model::{CellType, Shape};
+//!
+//! // Gmsh's node order: the 3 corners, 2 nodes on each edge (0→1, 1→2, 2→0), the interior
+//! let t = 1.0 / 3.0;
+//! let mut nodes = [
+//!     [0.0, 0.0], [1.0, 0.0], [0.0, 1.0],
+//!     [t, -0.08], [2.0 * t, -0.08],   // edge 0→1, bowed down by 0.08
+//!     [2.0 * t, t], [t, 2.0 * t],     // edge 1→2, straight
+//!     [0.0, 2.0 * t], [0.0, t],       // edge 2→0, straight
+//!     [t, t],                         // interior
+//! ];
+//! let p3 = CellType::new(Shape::Tri, 3);
+//! let params = CertifyParams::default();
+//!
+//! let good = certify_cell(p3, &nodes, &params)?;
+//! assert!(good.is_valid()); // proved: det J > 0 everywhere in the cell
+//! // min J / max J, certified from below (1 for a straight-sided triangle)
+//! let sj = good.scaled_jacobian_lower_bound().unwrap();
+//! assert!(sj > 0.3 && sj < 1.0, "{sj}");
+//!
+//! nodes.swap(3, 4); // the bottom edge now doubles back: the cell is folded
+//! let folded = certify_cell(p3, &nodes, &params)?;
+//! let Certificate::Invalid { at } = folded else { panic!("{folded:?}") };
+//! // `at` is a reference point (ξ, η) where det J ≤ 0, here on or near the bottom edge
+//! assert!(at[1] < 0.5, "{at:?}");
+//! # Ok::<(), jacobian_check::JacobianError>(())
+//! ```
+//!
+//! For a whole mesh, [`check_mesh`] certifies every cell (on all cores) and returns the
+//! invalid and undecided cells and each cell's scaled Jacobian.
 
 pub mod area;
 mod bernstein;

@@ -30,6 +30,40 @@
 //! edges are each one path. A 2000 × 1500 px picture of a 100k-cell mesh takes 0.13 s (edges
 //! only) to 0.23 s (filled by layer) as PNG, 0.05 s to 0.12 s as SVG, on the project's 2-core
 //! machine.
+//!
+//! # Example
+//!
+//! A PNG of a small mesh (the unit square as two triangles, its sides a far-field patch),
+//! cells coloured by their largest angle, as bytes for the caller to write:
+//!
+//! ```
+//! use mesh_draw::{ColourBy, DrawParams, render_png, render_svg};
+//! use mesh_model::{CellType, Dim, Mesh, Patch, Role, Shape};
+//!
+//! let mut mesh = Mesh::new(Dim::Two, 1);
+//! mesh.nodes = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+//! mesh.cells.push(CellType::new(Shape::Tri, 1), &[0, 1, 2]);
+//! mesh.cells.push(CellType::new(Shape::Tri, 1), &[0, 2, 3]);
+//! for k in 0..4 {
+//!     mesh.boundary.push(CellType::new(Shape::Line, 1), &[k, (k + 1) % 4]);
+//!     mesh.boundary_patch.push(0);
+//! }
+//! mesh.patches.push(Patch { name: "farfield".into(), role: Role::Farfield });
+//!
+//! let params = DrawParams {
+//!     width_px: 400,
+//!     height_px: 300,
+//!     colour: ColourBy::MaxAngle,
+//!     title: Some("unit square".into()),
+//!     ..DrawParams::default()
+//! };
+//! let png: Vec<u8> = render_png(&mesh, &params)?;
+//! assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+//! let svg: String = render_svg(&mesh, &params)?;
+//! assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"));
+//! // std::fs::write("square.png", &png)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod check;
 mod colour;

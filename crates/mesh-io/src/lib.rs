@@ -12,6 +12,38 @@
 //! [`atomic::Transaction`], and the modules
 //! [`msh`], [`vtu`], [`su2`], [`snapshot`]. Test meshes for this and other crates are in
 //! `testkit`, behind the cargo feature `testkit`.
+//!
+//! # Example
+//!
+//! Write a small mesh (the unit square as two triangles, its sides a far-field patch) as
+//! Gmsh MSH 4.1 in a temporary folder and read it back:
+//!
+//! ```
+//! use mesh_model::{CellType, Dim, Mesh, Patch, Role, Shape};
+//!
+//! let mut mesh = Mesh::new(Dim::Two, 1);
+//! mesh.nodes = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+//! mesh.cells.push(CellType::new(Shape::Tri, 1), &[0, 1, 2]);
+//! mesh.cells.push(CellType::new(Shape::Tri, 1), &[0, 2, 3]);
+//! for k in 0..4 {
+//!     mesh.boundary.push(CellType::new(Shape::Line, 1), &[k, (k + 1) % 4]);
+//!     mesh.boundary_patch.push(0);
+//! }
+//! mesh.patches.push(Patch { name: "farfield".into(), role: Role::Farfield });
+//!
+//! let dir = tempfile::tempdir()?;
+//! let path = dir.path().join("square.msh");
+//! mesh_io::write(&path, &mesh)?; // the extension picks the format: .msh, .vtu or .su2
+//! let text = std::fs::read_to_string(&path)?;
+//! assert!(text.starts_with("$MeshFormat\n4.1 0 8\n"));
+//! assert!(text.contains("farfield")); // a physical group per role
+//!
+//! let back = mesh_io::read_msh(&path)?;
+//! assert_eq!(back.nodes, mesh.nodes);
+//! assert_eq!(back.cells, mesh.cells);
+//! assert_eq!(back.patches[0].role, Role::Farfield);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod atomic;
 mod check;

@@ -4,6 +4,35 @@
 //!
 //! It owns the types and the structural checks ([`validate()`]) and nothing else: no file
 //! formats (that is `mesh-io`), no geometry and no meshing algorithm.
+//!
+//! # Example
+//!
+//! The unit square as two linear triangles, its four sides one far-field patch, checked;
+//! then one triangle turned clockwise, which [`validate()`] reports:
+//!
+//! ```
+//! use mesh_model::{CellType, Dim, Mesh, Patch, Role, Shape, validate};
+//!
+//! let mut mesh = Mesh::new(Dim::Two, 1);
+//! mesh.nodes = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+//! let tri = CellType::new(Shape::Tri, 1);
+//! mesh.cells.push(tri, &[0, 1, 2]); // counter-clockwise
+//! mesh.cells.push(tri, &[0, 2, 3]);
+//! let line = CellType::new(Shape::Line, 1);
+//! for k in 0..4 {
+//!     mesh.boundary.push(line, &[k, (k + 1) % 4]); // the domain on the left
+//!     mesh.boundary_patch.push(0);
+//! }
+//! mesh.patches.push(Patch { name: "farfield".into(), role: Role::Farfield });
+//!
+//! assert!(validate(&mesh).is_empty());
+//! assert_eq!(mesh.linear_area(), 1.0);
+//!
+//! mesh.cells.nodes_mut(1).swap(1, 2); // [0, 3, 2]: clockwise
+//! let problems = validate(&mesh);
+//! assert!(!problems.is_empty());
+//! println!("{}", problems[0]); // each problem names the cell or facet at fault
+//! ```
 
 pub mod cell;
 pub mod cells;

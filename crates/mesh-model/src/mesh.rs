@@ -58,7 +58,7 @@ impl Dim {
 
 /// A mixed, possibly high-order mesh.
 ///
-/// Invariants (checked by [`crate::validate`]): every node index is in range; `boundary_patch`
+/// Invariants (checked by [`crate::validate()`]): every node index is in range; `boundary_patch`
 /// has one entry per boundary facet; `cell_layer` and `cell_pipe` are either empty or have one
 /// entry per cell; 2D nodes have z = 0.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

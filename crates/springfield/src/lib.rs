@@ -11,6 +11,42 @@
 //!
 //! It does not own the mesh topology: which nodes are linked by which springs, which nodes
 //! may move, and what a node's length scale is are decided by the mesher (`afsf2d`).
+//!
+//! # Example
+//!
+//! One layer of three nodes grown from three fixed wall nodes on y = 0: each child is held
+//! at 0.1 from its parent by an extrusion spring, and the middle one is kept halfway between
+//! its neighbours by a neighbour spring. Started out of place, the solver balances them:
+//!
+//! ```
+//! use springfield::{
+//!     ExtrusionSpring, NeighbourSpring, SolverParams, SpringParams, SpringSet2d, assemble_2d,
+//!     solve,
+//! };
+//!
+//! // nodes 0..3: the wall (fixed); nodes 3..6: their children (free), out of place
+//! let mut xy = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 0.3], [1.3, 0.05], [2.0, 0.2]];
+//! let movable = [false, false, false, true, true, true];
+//! let scale = [0.1; 6]; // each node's length scale: moves and convergence are relative to it
+//! let mut set = SpringSet2d::default();
+//! for k in 0..3 {
+//!     set.extrusion.push(ExtrusionSpring { lower: k, upper: k + 3, ideal_length: 0.1, lower_share: 1.0 });
+//! }
+//! set.neighbour.push(NeighbourSpring { left: 3, centre: 4, right: 5, parent: 1, left_share: 0.5 });
+//!
+//! let springs = SpringParams::default(); // the dissertation's coefficients
+//! let solver = SolverParams { max_iterations: 2000, tolerance: 1e-6, ..SolverParams::default() };
+//! let outcome = solve(&mut xy, &scale, &movable, &solver, |p, force, stiffness| {
+//!     assemble_2d(&set, &springs, p, force, stiffness)
+//! })?;
+//! assert!(outcome.converged, "{outcome:?}");
+//! assert_eq!(xy[1], [1.0, 0.0]); // fixed nodes never move
+//! for (k, expected) in [(3, [0.0, 0.1]), (4, [1.0, 0.1]), (5, [2.0, 0.1])] {
+//!     let d = ((xy[k][0] - expected[0]).powi(2) + (xy[k][1] - expected[1]).powi(2)).sqrt();
+//!     assert!(d < 1e-3, "node {k} at {:?}", xy[k]);
+//! }
+//! # Ok::<(), springfield::SpringError>(())
+//! ```
 
 mod error;
 mod params;

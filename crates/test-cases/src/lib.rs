@@ -6,6 +6,10 @@
 //! the front loops and parameters of `afsf2d`, and the grown layered mesh with everything the
 //! curving stage needs. Shared by the tests and benches of `afsf2d` and `vector-adding` so
 //! that they mesh the same cases.
+//!
+//! Dev-only: a `[dev-dependencies]` entry of this workspace's crates, never a normal
+//! dependency, never published, and with no usage example of its own; no crate needs it to
+//! be used (see `examples/standalone/`).
 
 use afsf2d::{AfsfOutput, AfsfParams, FrontLoop};
 use boundary1d::{BoundaryNodes, SpacingParams};
