@@ -16,7 +16,8 @@ cargo test --workspace --quiet
 # path) fails here. It meshes a NACA 0012, curves it to P3, certifies every cell, writes a .msh.
 echo "== examples/standalone: the crates used from outside the workspace"
 mkdir -p target/standalone
-cargo run --locked --quiet --manifest-path examples/standalone/Cargo.toml -- \
+CARGO_TARGET_DIR="$PWD/target" cargo run --locked --quiet \
+    --manifest-path examples/standalone/Cargo.toml -- \
     target/standalone/naca0012.msh
 
 echo "== end-to-end: Gmsh, VTK and PyFR read what we write"

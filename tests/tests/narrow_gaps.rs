@@ -14,7 +14,7 @@ fn assert_meshes(toml: &str, angle_bound: f64) {
     std::fs::write(&case, toml).unwrap();
     for order in [1, 3] {
         match run_and_check(dir.path(), &case, order, angle_bound) {
-            Ok(Verdict::Valid) => {}
+            Ok(Verdict::Valid(_)) => {}
             Ok(Verdict::Refused(msg)) => panic!("P{order} refused: {msg}\n{toml}"),
             Err(why) => panic!("P{order}: {why}\n{toml}"),
         }

@@ -1,5 +1,5 @@
 //! The random-geometry family: geometries of the kinds users bring (stars with corners, smooth
-//! Fourier curves, NACA sections at random angles, two to four bodies with narrow gaps, shapes
+//! Fourier curves, NACA sections at random angles, two to four bodies with gaps of 1e-3 … 0.1 of the size, shapes
 //! meshed inside; scales 1e-3 … 1e3, first heights 1e-7 … 1e-2 of the size, growths 1.1–1.5),
 //! each run through the whole pipeline (`cargo xtask mesh`, in-process) at P1 and P3 and the
 //! result checked independently of the report: the `.msh` read back is structurally valid
@@ -241,6 +241,7 @@ fn random_geometries_mesh_valid_or_refuse_in_one_line() {
     let mut table = String::new();
     for kind in KINDS {
         let (mut valid, mut refused) = (0, Vec::new());
+        let (mut worst, mut over_135) = (0.0f64, 0);
         for seed in first_seed..first_seed + per_kind {
             let mut rng = Rng::new(seed * 31 + kind as u64);
             let toml = random_case(kind, &mut rng);
@@ -248,7 +249,14 @@ fn random_geometries_mesh_valid_or_refuse_in_one_line() {
             std::fs::write(&case, &toml).unwrap();
             for order in [1, 3] {
                 match run_and_check(dir.path(), &case, order, 150.0) {
-                    Ok(Verdict::Valid) => valid += 1,
+                    Ok(Verdict::Valid(angle)) => {
+                        valid += 1;
+                        worst = worst.max(angle);
+                        if angle >= 135.0 {
+                            over_135 += 1;
+                            eprintln!("{kind:?} seed {seed} P{order}: {angle:.1}°");
+                        }
+                    }
                     Ok(Verdict::Refused(msg)) => {
                         refused.push(format!("seed {seed} P{order}: {msg}"))
                     }
@@ -260,7 +268,7 @@ fn random_geometries_mesh_valid_or_refuse_in_one_line() {
         }
         let _ = writeln!(
             table,
-            "{kind:?}: {valid} valid, {} refused{}",
+            "{kind:?}: {valid} valid (worst angle {worst:.1}°, {over_135} at 135° or more), {} refused{}",
             refused.len(),
             refused
                 .iter()

@@ -9,8 +9,8 @@ use xtask::{Outcome, cli::Cli, execute};
 
 /// What one run came to.
 pub enum Verdict {
-    /// Written, and every check passed.
-    Valid,
+    /// Written, and every check passed; the largest angle of its triangles (quads cut).
+    Valid(f64),
     /// Refused with this one-line message, nothing written.
     Refused(String),
 }
@@ -79,5 +79,5 @@ pub fn run_and_check(
     if angle >= angle_bound {
         return Err(format!("a triangle of {angle:.2}° (bound {angle_bound}°)"));
     }
-    Ok(Verdict::Valid)
+    Ok(Verdict::Valid(angle))
 }
