@@ -43,8 +43,12 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
     let mut report = Report::new(&case.name, order);
-    let (mesh, snapshot) = make(args, &case, order, &mut report)?;
+    let (mesh, snapshot, linear) = make(args, &case, order, &mut report)?;
     report.describe(&mesh);
+    if report.quality.is_some() {
+        // the figures of the linear mesh, the same at every order and with --triangles
+        report.linear_angles(&linear);
+    }
     let t = Instant::now();
     let progress = stage(args.quiet, "certified validity");
     let scaled_jacobian = report.certify(&mesh)?;
@@ -58,6 +62,9 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     for (path, output) in &plan.meshes {
         plan.outputs
             .write_with(*output, |w| mesh_io::write_to(w, path, &mesh))?;
+        if let Some(format) = Format::from_path(path) {
+            report.wrote_mesh(path, format, mesh.order);
+        }
     }
     if let (Some(output), Some(stages), Some(path)) = (plan.snapshot, &snapshot, &args.snapshot) {
         plan.outputs
@@ -126,13 +133,13 @@ fn plan(args: &MeshArgs, case: &case::Case) -> Result<Planned> {
 
 /// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
 /// and the curving when `order` > 1. Returns the final mesh and, when `--snapshot` is given,
-/// the stages to save.
+/// the stages to save, and the linear layered mesh (its quads uncut).
 fn make(
     args: &MeshArgs,
     case: &case::Case,
     order: u8,
     report: &mut Report,
-) -> Result<(Mesh, Option<Snapshot>)> {
+) -> Result<(Mesh, Option<Snapshot>, Mesh)> {
     let t = Instant::now();
     let progress = stage(args.quiet, "boundary curves and 1D mesh");
     let curves = pipeline::curves(case)?;
@@ -191,10 +198,10 @@ fn make(
         if args.triangles {
             afsf2d::cut_quads_shorter_diagonal(&grown.mesh)
         } else {
-            grown.mesh
+            grown.mesh.clone()
         }
     };
-    Ok((mesh, snapshot))
+    Ok((mesh, snapshot, grown.mesh))
 }
 
 /// The mesh files and the report to write, by flags or by default (under `out/`, named after

@@ -47,6 +47,10 @@ pub struct Report {
     pub loops: Vec<LoopReport>,
     /// The files written.
     pub files: Vec<String>,
+    /// Each mesh file written, with its format and the order of the cells actually in it
+    /// (`.su2` holds the linear mesh whatever `order` says).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub meshes: Vec<WrittenMesh>,
     /// What a user should know about this run (stages not available, limits reached).
     pub notes: Vec<String>,
     /// What failed validation, if anything (the run then exits with status 2).
@@ -122,13 +126,44 @@ impl Report {
         });
         self.problems = problems.iter().map(ToString::to_string).collect();
         if sound && !mesh.cells.is_empty() {
-            let angles = afsf2d::max_angle_histogram(mesh);
-            self.quality = Some(Quality {
-                max_angle_deg: angles.max_angle_deg,
-                obtuse_hist: angles.histogram,
-                ..Quality::default()
-            });
+            self.linear_angles(mesh);
         }
+    }
+
+    /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut
+    /// along the shorter diagonal), so that they do not depend on the order or on `--triangles`.
+    pub fn linear_angles(&mut self, mesh: &Mesh) {
+        let angles = afsf2d::max_angle_histogram(mesh);
+        let q = self.quality.get_or_insert_with(Quality::default);
+        q.max_angle_deg = angles.max_angle_deg;
+        q.obtuse_hist = angles.histogram;
+        q.angles_of = ANGLES_OF;
+    }
+
+    /// Records a mesh file written at `order`, with a note when the format cannot hold the
+    /// order of the run (SU2 holds linear cells only).
+    pub fn wrote_mesh(&mut self, path: &Path, format: mesh_io::Format, order: u8) {
+        let written = match format {
+            mesh_io::Format::Su2 => 1,
+            _ => order,
+        };
+        if written != order {
+            self.notes.push(format!(
+                "{} holds the linear mesh (order 1, straight edges): SU2 reads linear cells only; \
+                 the order-{order} curved mesh is in the .msh and .vtu outputs",
+                path.display()
+            ));
+        }
+        let format = match format {
+            mesh_io::Format::Msh => "msh",
+            mesh_io::Format::Vtu => "vtu",
+            mesh_io::Format::Su2 => "su2",
+        };
+        self.meshes.push(WrittenMesh {
+            file: path.display().to_string(),
+            format,
+            order: written,
+        });
     }
 
     /// Certifies every cell (Bernstein coefficients of the Jacobian determinant), fills the
@@ -192,6 +227,21 @@ fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
     [sum[0] / n, sum[1] / n]
 }
 
+/// What the angle figures are about.
+pub const ANGLES_OF: &str =
+    "the linear mesh (cell corners), quads cut along the shorter diagonal, at any order";
+
+/// A mesh file written by the run.
+#[derive(Debug, Serialize)]
+pub struct WrittenMesh {
+    /// The path as given.
+    pub file: String,
+    /// `msh`, `vtu` or `su2`.
+    pub format: &'static str,
+    /// The order of the cells in this file.
+    pub order: u8,
+}
+
 /// The quality block of the report.
 #[derive(Debug, Default, Serialize)]
 pub struct Quality {
@@ -199,6 +249,8 @@ pub struct Quality {
     pub max_angle_deg: f64,
     /// Triangles by largest angle in [95,105), [105,115), [115,125), [125,135), [135,180].
     pub obtuse_hist: [usize; 5],
+    /// Which mesh `max_angle_deg` and `obtuse_hist` are about ([`ANGLES_OF`]).
+    pub angles_of: &'static str,
     /// Least scaled Jacobian (min J / max J) over the cells: certified lower bounds for the
     /// cells proved valid.
     #[serde(skip_serializing_if = "Option::is_none")]

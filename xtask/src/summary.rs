@@ -31,6 +31,7 @@ pub fn table(r: &Report) -> String {
         );
     }
     if let Some(q) = &r.quality {
+        let _ = writeln!(s, "  angles of the linear mesh (cell corners, quads cut on the shorter diagonal):");
         let _ = writeln!(s, "  {:<22} {:>12.1}", "max angle (deg)", q.max_angle_deg);
         let h = q.obtuse_hist;
         let _ = writeln!(
@@ -81,7 +82,17 @@ pub fn table(r: &Report) -> String {
         let _ = writeln!(s, "  PROBLEM: {p}");
     }
     for f in &r.files {
-        let _ = writeln!(s, "  wrote {f}");
+        match r.meshes.iter().find(|m| &m.file == f) {
+            Some(m) if m.order == 1 && r.order > 1 => {
+                let _ = writeln!(s, "  wrote {f}  (order 1: linear, not order {})", r.order);
+            }
+            Some(m) => {
+                let _ = writeln!(s, "  wrote {f}  (order {})", m.order);
+            }
+            None => {
+                let _ = writeln!(s, "  wrote {f}");
+            }
+        }
     }
     s
 }
