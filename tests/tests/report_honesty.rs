@@ -82,7 +82,10 @@ fn an_su2_at_order_3_is_reported_as_the_linear_mesh_it_holds() {
     assert_eq!(order_of(".msh"), Some(3));
     assert_eq!(order_of(".su2"), Some(1));
     let notes = r["notes"].to_string();
-    assert!(notes.contains("m.su2") && notes.contains("linear"), "{notes}");
+    assert!(
+        notes.contains("m.su2") && notes.contains("linear"),
+        "{notes}"
+    );
 }
 
 #[test]

@@ -26,6 +26,10 @@ pub struct Report {
     pub cells: BTreeMap<&'static str, usize>,
     /// Boundary facets by patch role (`wall`, `farfield`).
     pub boundary_facets: BTreeMap<&'static str, usize>,
+    /// Boundary facets by boundary group, as named in the `.msh` physical groups and the
+    /// `.su2` markers: each wall body (`slat`, `main`, `flap`, or one `wall` with
+    /// `merge_walls = true`) and `farfield`.
+    pub boundary_groups: BTreeMap<String, usize>,
     /// Most layers grown from any boundary, when the domain was meshed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layers: Option<u32>,
@@ -113,6 +117,16 @@ impl Report {
                 .count();
             if n > 0 {
                 self.boundary_facets.insert(role.name(), n);
+            }
+        }
+        if let Ok((groups, of_patch)) = mesh_io::groups::boundary_groups(mesh) {
+            for (g, group) in groups.iter().enumerate() {
+                let n = mesh
+                    .boundary_patch
+                    .iter()
+                    .filter(|&&p| of_patch.get(p as usize) == Some(&g))
+                    .count();
+                self.boundary_groups.insert(group.name.clone(), n);
             }
         }
         let problems = mesh_model::validate(mesh);

@@ -17,8 +17,8 @@ pub fn table(r: &Report) -> String {
     for (kind, n) in &r.cells {
         let _ = writeln!(s, "  {:<22} {:>12}", format!("cells {kind}"), n);
     }
-    for (role, n) in &r.boundary_facets {
-        let _ = writeln!(s, "  {:<22} {:>12}", format!("boundary facets {role}"), n);
+    for (group, n) in &r.boundary_groups {
+        let _ = writeln!(s, "  {:<22} {:>12}", format!("boundary {group}"), n);
     }
     if let Some(layers) = r.layers {
         let _ = writeln!(s, "  {:<22} {:>12}", "layers", layers);
@@ -31,7 +31,10 @@ pub fn table(r: &Report) -> String {
         );
     }
     if let Some(q) = &r.quality {
-        let _ = writeln!(s, "  angles of the linear mesh (cell corners, quads cut on the shorter diagonal):");
+        let _ = writeln!(
+            s,
+            "  angles of the linear mesh (cell corners, quads cut on the shorter diagonal):"
+        );
         let _ = writeln!(s, "  {:<22} {:>12.1}", "max angle (deg)", q.max_angle_deg);
         let h = q.obtuse_hist;
         let _ = writeln!(
