@@ -321,7 +321,7 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
 /// far field is `farfield`; a wall is named after its loop (`slat`, other characters become
 /// `_`), made unique with `_2`, `_3`... and never `farfield` or `fluid`; with `merge_walls`
 /// every wall is `wall`.
-fn name_groups(loops: &mut [LoopInput], merge_walls: bool) {
+pub(crate) fn name_groups(loops: &mut [LoopInput], merge_walls: bool) {
     let mut taken: Vec<String> = vec!["farfield".into(), "fluid".into()];
     for l in loops.iter_mut() {
         l.group = match l.role {

@@ -16,7 +16,7 @@ use crate::pictures::{self, Colour, Picture};
 use crate::progress::stage;
 use crate::report::{LoopReport, Report};
 use crate::stages::Snapshot;
-use crate::{Finished, builtin, case, estimate, pipeline};
+use crate::{Finished, airfoil, builtin, case, estimate, pipeline};
 
 /// The files a run will write, reserved before any work.
 struct Planned {
@@ -36,8 +36,7 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
         return Ok(Finished::valid());
     }
     let total = Instant::now();
-    let spec = args.case.as_deref().unwrap_or(builtin::DEFAULT);
-    let case = case::load(spec)?;
+    let case = load(args)?;
     let order = args.order.unwrap_or(case.curving.order);
     let mut plan = plan(args, &case)?;
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
@@ -97,6 +96,40 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     plan.outputs.commit()?;
     let report_path = plan.report.as_ref().map(|(p, _)| p.as_path());
     Ok(report.finish(report_path, args.quiet, "the mesh was written but"))
+}
+
+/// The case named on the command line: a case file or built-in case, or airfoil `.dat`
+/// files; the airfoil flags are refused with anything but `.dat` files.
+fn load(args: &MeshArgs) -> Result<case::Case> {
+    let dats = args.case.iter().filter(|c| airfoil::is_dat(c)).count();
+    if dats > 0 {
+        if dats < args.case.len() {
+            bail!(
+                "give either airfoil .dat files or one case, not both: {}",
+                args.case.join(" ")
+            );
+        }
+        return airfoil::case(&args.case, &args.airfoil);
+    }
+    let a = &args.airfoil;
+    let given = [
+        ("--aoa", a.aoa.is_some()),
+        ("--farfield", a.farfield.is_some()),
+        ("--yplus", a.yplus.is_some()),
+        ("--re", a.re.is_some()),
+        ("--merge-walls", a.merge_walls),
+    ];
+    if let Some((flag, _)) = given.into_iter().find(|f| f.1) {
+        bail!("{flag} applies to airfoil .dat files only (a case file sets its own geometry)");
+    }
+    match args.case.as_slice() {
+        [] => case::load(builtin::DEFAULT),
+        [one] => case::load(one),
+        more => bail!(
+            "one case at a time (several files only as airfoil .dat files): {}",
+            more.join(" ")
+        ),
+    }
 }
 
 /// Checks every output flag and reserves every output file (meshes, snapshot, pictures,
