@@ -104,3 +104,49 @@ fn one_case_makes_one_mesh() {
         .collect();
     assert!(bytes.windows(2).all(|w| w[0] == w[1]));
 }
+
+#[test]
+fn the_worst_cells_are_located_and_gmsh_min_sj_is_its_definition() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = report(dir.path(), "p1", &["--order", "1"]);
+    let mesh = mesh_io::read_msh(&dir.path().join("p1.msh")).unwrap();
+    // Gmsh's minSJ of a linear cell: min det J / det J at the centre; for a bilinear quad the
+    // corner determinants are the extremes and the centre's is their mean; 1 for a triangle
+    let mut best = (f64::INFINITY, 0);
+    for (i, c) in mesh.cells.iter().enumerate() {
+        let k: Vec<[f64; 2]> = c.corners().iter().map(|&v| mesh.xy(v)).collect();
+        let v = if k.len() == 4 {
+            let det: Vec<f64> = (0..4)
+                .map(|j| {
+                    let (p, a, b) = (k[j], k[(j + 1) % 4], k[(j + 3) % 4]);
+                    (a[0] - p[0]) * (b[1] - p[1]) - (a[1] - p[1]) * (b[0] - p[0])
+                })
+                .collect();
+            det.iter().copied().fold(f64::INFINITY, f64::min) / (det.iter().sum::<f64>() / 4.0)
+        } else {
+            1.0
+        };
+        if v < best.0 {
+            best = (v, i);
+        }
+    }
+    let g = &r["quality"]["min_sj_gmsh"];
+    assert!(
+        (g["value"].as_f64().unwrap() - best.0).abs() < 1e-9,
+        "{g} {best:?}"
+    );
+    assert_eq!(g["cell"].as_u64().unwrap() as usize, best.1);
+    // the worst cell of our measure is named with its place: the mean of its corners
+    let w = &r["quality"]["worst_cell"];
+    let c = mesh.cells.get(w["cell"].as_u64().unwrap() as usize);
+    let n = c.corners().len() as f64;
+    let x: f64 = c.corners().iter().map(|&v| mesh.xy(v)[0]).sum::<f64>() / n;
+    assert!((w["x"].as_f64().unwrap() - x).abs() < 1e-12, "{w}");
+    assert_eq!(w["value"], r["quality"]["min_scaled_jacobian"]);
+    assert!(
+        r["quality"]["scaled_jacobian_of"]
+            .as_str()
+            .unwrap()
+            .contains("min det J / max det J")
+    );
+}

@@ -204,6 +204,11 @@ impl Report {
         };
         let q = self.quality.get_or_insert_with(Quality::default);
         q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
+        q.scaled_jacobian_of = Some(SCALED_JACOBIAN_OF);
+        q.worst_cell = worst(mesh, &v.per_cell_scaled_jacobian);
+        let gmsh = gmsh_min_sj(mesh);
+        q.min_sj_gmsh = worst(mesh, &gmsh);
+        q.min_sj_gmsh_of = Some(MIN_SJ_GMSH_OF);
         q.invalid_cells = Some(v.invalid_cells.len());
         q.certified = Some(v.undecided.is_empty() && v.uncertified.is_empty());
         for (what, cells) in [("invalid", &v.invalid_cells), ("undecided", &v.undecided)] {
@@ -227,6 +232,62 @@ impl Report {
         }
         Ok(v.per_cell_scaled_jacobian)
     }
+}
+
+/// What `min_scaled_jacobian` is.
+pub const SCALED_JACOBIAN_OF: &str = "the mesh as written (its order): per cell, the certified \
+    lower bound of min det J / max det J over the cell (Bernstein coefficients of det J after \
+    subdivision), then the least over the cells; 1 for a straight-sided triangle or \
+    parallelogram";
+
+/// What `min_sj_gmsh` is.
+pub const MIN_SJ_GMSH_OF: &str = "Gmsh's minSJ (gmsh.model.mesh.getElementQualities(.., \
+    \"minSJ\"), Gmsh 4.15): per cell, min det J over the cell (here its certified lower \
+    bound) / det J of the straight-sided cell through its corners at the reference centre; \
+    1 for a straight-sided triangle or parallelogram, above 1 possible for a curved cell";
+
+/// The cell of least `value` (not NaN), with where it is.
+fn worst(mesh: &Mesh, value: &[f64]) -> Option<WorstCell> {
+    let (cell, &v) = value
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| !v.is_nan())
+        .min_by(|a, b| a.1.total_cmp(b.1))?;
+    let [x, y] = centroid(mesh, cell);
+    Some(WorstCell {
+        value: v,
+        cell,
+        x,
+        y,
+    })
+}
+
+/// Gmsh's `minSJ` of every cell ([`MIN_SJ_GMSH_OF`]); NaN for a cell that is not certified
+/// valid.
+fn gmsh_min_sj(mesh: &Mesh) -> Vec<f64> {
+    use jacobian_check::{Certificate, CertifyParams, certify_cell, jacobian_2d};
+    use mesh_model::CellType;
+    use rayon::prelude::*;
+    let params = CertifyParams::default();
+    (0..mesh.cells.len())
+        .into_par_iter()
+        .map(|i| {
+            let c = mesh.cells.get(i);
+            let nodes: Vec<[f64; 2]> = c.nodes.iter().map(|&v| mesh.xy(v)).collect();
+            let corners: Vec<[f64; 2]> = c.corners().iter().map(|&v| mesh.xy(v)).collect();
+            let centre = match c.ty.shape {
+                Shape::Quad => [0.0, 0.0],
+                _ => [1.0 / 3.0, 1.0 / 3.0],
+            };
+            let linear = jacobian_2d(CellType::new(c.ty.shape, 1), &corners, centre);
+            match (certify_cell(c.ty, &nodes, &params), linear) {
+                (Ok(Certificate::Valid { min_coeff, .. }), Ok(j)) if j.det > 0.0 => {
+                    min_coeff / j.det
+                }
+                _ => f64::NAN,
+            }
+        })
+        .collect()
 }
 
 /// The mean of a cell's corners, to say where a named cell is.
@@ -269,12 +330,37 @@ pub struct Quality {
     /// cells proved valid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_scaled_jacobian: Option<f64>,
+    /// Which mesh and which measure `min_scaled_jacobian` is ([`SCALED_JACOBIAN_OF`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scaled_jacobian_of: Option<&'static str>,
+    /// The cell of least scaled Jacobian (`min_scaled_jacobian`): index and corner mean.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_cell: Option<WorstCell>,
+    /// Gmsh's minSJ of the same mesh, least over the cells, and its cell ([`MIN_SJ_GMSH_OF`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_sj_gmsh: Option<WorstCell>,
+    /// What `min_sj_gmsh` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_sj_gmsh_of: Option<&'static str>,
     /// Cells whose Jacobian determinant is not positive everywhere (certified check).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub invalid_cells: Option<usize>,
     /// False only if some cell could be neither proved valid nor proved invalid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub certified: Option<bool>,
+}
+
+/// A cell named by a quality figure.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct WorstCell {
+    /// The figure's value there.
+    pub value: f64,
+    /// Cell index (0-based, the order of the cells in the files; `.msh` element tag − 1).
+    pub cell: usize,
+    /// Mean of the cell's corners, x.
+    pub x: f64,
+    /// Mean of the cell's corners, y.
+    pub y: f64,
 }
 
 /// One boundary loop in the report.

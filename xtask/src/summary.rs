@@ -46,6 +46,26 @@ pub fn table(r: &Report) -> String {
             (q.min_scaled_jacobian, q.invalid_cells, q.certified)
         {
             let _ = writeln!(s, "  {:<22} {:>12.3}", "min scaled Jacobian", sj);
+            let at = |w: &crate::report::WorstCell| {
+                format!("cell {} at ({:.6}, {:.6})", w.cell, w.x, w.y)
+            };
+            if let Some(w) = &q.worst_cell {
+                let _ = writeln!(
+                    s,
+                    "    (certified min/max of det J per cell, order {}; {})",
+                    r.order,
+                    at(w)
+                );
+            }
+            if let Some(g) = &q.min_sj_gmsh {
+                let _ = writeln!(
+                    s,
+                    "  {:<22} {:>12.3}\n    (min det J / det J of the straight cell at its centre; {})",
+                    "Gmsh's minSJ",
+                    g.value,
+                    at(g)
+                );
+            }
             let verdict = match (bad, certified) {
                 (0, true) => "every cell proved valid".to_string(),
                 (0, false) => "no cell proved invalid, some undecided".to_string(),

@@ -75,7 +75,9 @@ pub fn max_angle_histogram(mesh: &Mesh) -> AngleStats {
         let k = c.corners();
         match c.ty.shape {
             Shape::Tri => count([k[0], k[1], k[2]]),
-            Shape::Quad => split_quad_shorter_diagonal(mesh, k).into_iter().for_each(&mut count),
+            Shape::Quad => split_quad_shorter_diagonal(mesh, k)
+                .into_iter()
+                .for_each(&mut count),
             _ => {}
         }
     }
