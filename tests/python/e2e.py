@@ -165,6 +165,9 @@ def check_vtk(label, v, report, order):
     check(v["cells"] == cells["tri"] + cells["quad"],
           f"{label}: VTK cells {v['cells']} vs report {cells}")
     # The writer shares nodes between cells as the .msh does: one point per mesh node.
+    check(v["boundary_groups"] == report["boundary_groups"],
+          f"{label}: VTK boundary facets by group {v['boundary_groups']} vs "
+          f"{report['boundary_groups']}")
     check(v["points"] == report["nodes"], f"{label}: VTK points {v['points']} vs report nodes "
                                           f"{report['nodes']}")
     want = {str(VTK_TYPES[order][k]): cells[k] for k in ("tri", "quad") if cells[k]}

@@ -100,3 +100,59 @@ fn merge_walls_makes_one_wall_group() {
     );
     assert_eq!(markers(&su2), ["a_b", "naca0012", "farfield"]);
 }
+
+#[test]
+fn the_vtu_carries_the_boundary_facets_with_their_group() {
+    let dir = tempfile::tempdir().unwrap();
+    let (vtu, json) = (dir.path().join("m.vtu"), dir.path().join("m.json"));
+    let args = [
+        "cargo xtask",
+        "mesh",
+        "two-element",
+        "--quiet",
+        "--order",
+        "3",
+        "--out",
+        vtu.to_str().unwrap(),
+        "--report",
+        json.to_str().unwrap(),
+    ];
+    assert_eq!(
+        execute(Cli::try_parse_from(args).unwrap()).unwrap(),
+        Outcome::Valid
+    );
+    let text = std::fs::read_to_string(&vtu).unwrap();
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    // the group names, as VTK's ASCII string array: each string's bytes, then 0
+    let start = text.find(r#"Name="boundary_group_names""#).unwrap();
+    let block = &text[text[start..].find('>').unwrap() + start + 1..];
+    let block = &block[..block.find("</Array>").unwrap()];
+    let bytes: Vec<u8> = block
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    let names: Vec<String> = bytes
+        .split(|&b| b == 0)
+        .filter(|s| !s.is_empty())
+        .map(|s| String::from_utf8(s.to_vec()).unwrap())
+        .collect();
+    assert_eq!(names, ["main", "flap", "farfield"]);
+    let start = text.find(r#"Name="boundary_group""#).unwrap();
+    let block = &text[text[start..].find('>').unwrap() + start + 1..];
+    let block = &block[..block.find("</DataArray>").unwrap()];
+    let group: Vec<i64> = block
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    let cells =
+        report["cells"]["tri"].as_u64().unwrap() + report["cells"]["quad"].as_u64().unwrap();
+    assert_eq!(group.iter().filter(|&&g| g == -1).count() as u64, cells);
+    for (k, name) in names.iter().enumerate() {
+        let n = group.iter().filter(|&&g| g == k as i64).count() as u64;
+        assert_eq!(
+            n,
+            report["boundary_groups"][name].as_u64().unwrap(),
+            "{name}"
+        );
+    }
+}
