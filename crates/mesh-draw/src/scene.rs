@@ -608,7 +608,7 @@ fn first_layer_px(mesh: &Mesh, frame: &Frame, visible: &[u32]) -> Option<f64> {
             }
         }
     }
-    least.is_finite().then(|| least * frame.scale)
+    least.is_finite().then_some(least * frame.scale)
 }
 
 /// The boundary facets, one stroke group per role present (walls black `wall_px` wide, far
