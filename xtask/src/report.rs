@@ -163,8 +163,8 @@ impl Report {
         };
         if written != order {
             self.notes.push(format!(
-                "{} holds the linear mesh (order 1, straight edges): SU2 reads linear cells only; \
-                 the order-{order} curved mesh is in the .msh and .vtu outputs",
+                "{} holds the linear mesh (order 1, straight edges): SU2 reads linear cells only \
+                 (the order-{order} curved mesh goes to .msh and .vtu outputs)",
                 path.display()
             ));
         }
