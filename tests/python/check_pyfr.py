@@ -10,7 +10,8 @@ Prints one JSON line per file: per PyFR element kind ("tri", "quad", ...) the nu
 elements, how many PyFR marks curved (their high-order nodes off the linear element by more
 than its linearisation tolerance) and the nodes per element (6 for a P2 triangle, 16 for a P3
 quadrilateral), and the number of faces on each boundary. Exits 1 if PyFR refuses a file, or
-an imported mesh has no element or lacks a `wall` or `farfield` boundary (see `problems`).
+an imported mesh has no element or lacks a boundary (see `problems`: by default `farfield` and
+at least one other, a wall body; e2e.py names every group of the report).
 """
 import collections
 import json
@@ -49,13 +50,19 @@ def read(path):
     return {"file": path, "elements": elements, "boundaries": boundaries}
 
 
-def problems(summary, boundaries=("wall", "farfield")):
+def problems(summary, boundaries=None):
     """What makes an imported mesh unusable: PyFR refused it, it has no element, or no face on
-    one of `boundaries` (a mesh of the inside of a wall loop has no far field)."""
+    one of `boundaries` (each wall body and `farfield`; a mesh of the inside of a wall loop has
+    no far field). Without `boundaries`: `farfield` and at least one wall boundary."""
     if "error" in summary:
         return [summary["error"]]
     out = [] if summary["elements"] else ["no element"]
-    out += [f"no {b} boundary" for b in boundaries if not summary["boundaries"].get(b)]
+    found = summary["boundaries"]
+    if boundaries is None:
+        out += [] if found.get("farfield") else ["no farfield boundary"]
+        out += [] if any(n for b, n in found.items() if b != "farfield") else ["no wall boundary"]
+    else:
+        out += [f"no {b} boundary" for b in boundaries if not found.get(b)]
     return out
 
 

@@ -16,6 +16,9 @@ counts of the cells of each type, the cell-data arrays, and two areas of a 2D me
   (vtkIntegrateAttributes, vtkCellSizeFilter) cannot integrate Lagrange cells: they cut a
   curved cell into linear pieces through its points, so for P2/P3 cells this is only close to
   the true area (exact for linear cells). 3D meshes give "volume_linearised" only.
+The counts and measures are of the domain cells; the boundary facets the file also holds
+(cell data `boundary_group` ≥ 0, an index into the field-data string array
+`boundary_group_names`) are counted per group under "boundary_groups".
 A file VTK cannot read gives a line with an "error" key; the exit status is then 1.
 """
 import collections
@@ -90,6 +93,27 @@ def lagrange_area(grid):
     return total, min_ratio
 
 
+def split_boundary(grid):
+    """The domain cells of grid (boundary_group −1) as a grid of their own, and the number of
+    boundary facets of each group, by name (VTK's own reading of the string array)."""
+    arr = grid.GetCellData().GetArray("boundary_group")
+    names = grid.GetFieldData().GetAbstractArray("boundary_group_names")
+    if arr is None:
+        return grid, {}
+    group = vtk_to_numpy(arr)
+    counts = collections.Counter(group[group >= 0].tolist())
+    named = {names.GetValue(int(k)) if names is not None else str(k): int(n)
+             for k, n in sorted(counts.items())}
+    ids = vtk.vtkIdList()
+    for i in np.nonzero(group < 0)[0].tolist():
+        ids.InsertNextId(i)
+    extract = vtk.vtkExtractCells()
+    extract.SetInputData(grid)
+    extract.SetCellList(ids)
+    extract.Update()
+    return extract.GetOutput(), named
+
+
 def read(path):
     """The summary of one file, as a dict (see the module doc)."""
     reader = vtk.vtkXMLUnstructuredGridReader()
@@ -100,6 +124,7 @@ def read(path):
     grid = reader.GetOutput()
     if errors or grid is None or grid.GetNumberOfCells() == 0:
         return {"file": path, "error": "VTK could not read the file"}
+    grid, boundary_groups = split_boundary(grid)
     types = vtk_to_numpy(grid.GetCellTypes())
     sizes = np.diff(vtk_to_numpy(grid.GetCells().GetOffsetsArray()))
     points_per_cell = collections.defaultdict(set)
@@ -122,7 +147,7 @@ def read(path):
             "types": {str(k): int(v) for k, v in sorted(collections.Counter(types).items())},
             "points_per_cell": {k: sorted(v) for k, v in sorted(points_per_cell.items())},
             "cell_data": [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())],
-            **measure}
+            "boundary_groups": boundary_groups, **measure}
 
 
 def main(paths):

@@ -110,3 +110,42 @@ fn quality_of_a_missing_file_is_a_clear_error() {
     let err = run(&["quality", "/nonexistent/mesh.msh"]).expect_err("missing file");
     assert!(format!("{err:#}").contains("/nonexistent/mesh.msh"));
 }
+
+/// The wall line is no thicker than the first layer in view, and a view whose first layers
+/// are below a pixel says so.
+#[test]
+fn the_first_layers_show_or_the_picture_says_they_are_below_a_pixel() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (all, close, msh) = (p("all.svg"), p("close.svg"), p("m.msh"));
+    let outcome = run(&[
+        "mesh",
+        "naca0012",
+        "--quiet",
+        "--order",
+        "1",
+        "--out",
+        &msh,
+        "--svg",
+        &all,
+        // 0.01 wide on about 1900 px: the first layer (5e-5) is about 9 px
+        "--svg",
+        &format!("{close}@-0.002,-0.003,0.008,0.003"),
+    ])
+    .unwrap();
+    assert_eq!(outcome, Outcome::Valid);
+    let wall_width = |svg: &str| -> f64 {
+        let at = svg.find(r#"<path id="wall""#).expect("a wall path");
+        let rest = &svg[at..];
+        let w = rest.find("stroke-width=\"").unwrap() + 14;
+        rest[w..w + rest[w..].find('"').unwrap()].parse().unwrap()
+    };
+    let (all, close) = (
+        std::fs::read_to_string(all).unwrap(),
+        std::fs::read_to_string(close).unwrap(),
+    );
+    assert!(all.contains("first layers below a pixel"));
+    assert!(wall_width(&all) < 1.0, "{}", wall_width(&all));
+    assert!(!close.contains("below a pixel"));
+    assert!(wall_width(&close) >= 2.0, "{}", wall_width(&close));
+}

@@ -18,6 +18,9 @@ pub struct Case {
     pub name: String,
     /// Mesh the inside of the single wall loop instead of the region between the loops.
     pub inside: bool,
+    /// `merge_walls = true`: every wall loop in one boundary group `wall` (else one group per
+    /// wall loop, named after it).
+    pub merge_walls: bool,
     /// The loops, points in the order given (orientation is fixed later).
     pub loops: Vec<LoopInput>,
     /// `[boundary]`.
@@ -41,6 +44,8 @@ pub struct LoopInput {
     pub points: Vec<[f64; 2]>,
     /// Where the points came from, for messages.
     pub origin: String,
+    /// The boundary group of the loop in the mesh files ([`name_groups`]).
+    pub group: String,
     /// This loop's largest boundary segment, overriding `[boundary] max_spacing`.
     pub max_spacing: Option<f64>,
 }
@@ -51,6 +56,8 @@ struct CaseFile {
     name: Option<String>,
     #[serde(default)]
     inside: bool,
+    #[serde(default)]
+    merge_walls: bool,
     #[serde(rename = "loop", default)]
     loops: Vec<LoopSpec>,
     #[serde(default)]
@@ -293,18 +300,53 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
         let what = format!("{origin}: loop {}", i + 1);
         loops.push(read_loop(spec, &files, &what)?);
     }
+    name_groups(&mut loops, file.merge_walls);
     Ok(Case {
         name: file
             .name
             .clone()
             .unwrap_or_else(|| default_name.to_string()),
         inside: file.inside,
+        merge_walls: file.merge_walls,
         loops,
         boundary: file.boundary,
         layers: file.layers,
         curving: file.curving,
         views,
     })
+}
+
+/// Names the boundary group of every loop, as solvers will see it (PyFR and SU2 take it as a
+/// boundary name, so it is an identifier: `A-Z a-z 0-9 _`, not starting with a digit): the
+/// far field is `farfield`; a wall is named after its loop (`slat`, other characters become
+/// `_`), made unique with `_2`, `_3`... and never `farfield` or `fluid`; with `merge_walls`
+/// every wall is `wall`.
+pub(crate) fn name_groups(loops: &mut [LoopInput], merge_walls: bool) {
+    let mut taken: Vec<String> = vec!["farfield".into(), "fluid".into()];
+    for l in loops.iter_mut() {
+        l.group = match l.role {
+            Role::Farfield => "farfield".into(),
+            Role::Wall if merge_walls => "wall".into(),
+            Role::Wall => {
+                let mut base: String = l
+                    .name
+                    .chars()
+                    .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+                    .collect();
+                if base.is_empty() || base.starts_with(|c: char| c.is_ascii_digit()) {
+                    base.insert_str(0, "wall_");
+                }
+                let mut name = base.clone();
+                let mut k = 2;
+                while taken.iter().any(|t| t.eq_ignore_ascii_case(&name)) {
+                    name = format!("{base}_{k}");
+                    k += 1;
+                }
+                taken.push(name.clone());
+                name
+            }
+        };
+    }
 }
 
 fn check_params(file: &CaseFile, origin: &str) -> Result<()> {
@@ -478,6 +520,7 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         role,
         points,
         origin,
+        group: String::new(),
         max_spacing: spec.max_spacing,
     })
 }

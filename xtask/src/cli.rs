@@ -31,8 +31,15 @@ pub enum Command {
 /// Flags of `cargo xtask mesh`.
 #[derive(Debug, Args)]
 pub struct MeshArgs {
-    /// A case file (.toml) or the name of a built-in case (see --list). Default: the 30P30N.
-    pub case: Option<String>,
+    /// A case file (.toml), the name of a built-in case (see --list), or airfoil coordinate
+    /// files (.dat, Selig or Lednicer; several for a multi-element airfoil, each a wall named
+    /// after its file, placed by its own coordinates). Default: the 30P30N.
+    #[arg(value_name = "CASE | FILE.dat...")]
+    pub case: Vec<String>,
+
+    /// For .dat inputs: how the airfoil is placed and meshed.
+    #[command(flatten)]
+    pub airfoil: AirfoilArgs,
 
     /// List the built-in cases and exit.
     #[arg(long)]
@@ -74,6 +81,35 @@ pub struct MeshArgs {
     /// No summary table on stdout and no progress on stderr; errors are still printed.
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+/// Flags for airfoil `.dat` inputs (`cargo xtask mesh A.dat [B.dat ...]`).
+#[derive(Debug, Args)]
+pub struct AirfoilArgs {
+    /// Angle of attack in degrees, positive nose up: every element rotates about the quarter
+    /// chord (x_min + c/4, y of the leading edge), c the x-extent of all elements (.dat only;
+    /// default 0).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub aoa: Option<f64>,
+
+    /// Far-field circle radius in chords, about the quarter chord (.dat only; default 30).
+    #[arg(long, value_name = "R")]
+    pub farfield: Option<f64>,
+
+    /// Target y+ of the first layer. First height y = y+ c / (Re sqrt(Cf/2)),
+    /// Cf = 0.026 / Re^(1/7): the flat-plate skin friction (Schlichting, White) at x = c, for
+    /// U = 1 and nu = c / Re (.dat only; default 1).
+    #[arg(long, value_name = "Y")]
+    pub yplus: Option<f64>,
+
+    /// Reynolds number based on the chord, for --yplus (.dat only; default 1e6).
+    #[arg(long, value_name = "RE")]
+    pub re: Option<f64>,
+
+    /// One boundary group `wall` for all the elements instead of one per element (.dat only;
+    /// case files say `merge_walls = true`).
+    #[arg(long)]
+    pub merge_walls: bool,
 }
 
 /// Flags of `cargo xtask bench`.

@@ -14,6 +14,7 @@
 //! reserved before the work starts and replaced together at the end, or not at all
 //! ([`mesh_io::atomic::Transaction`], see [`outputs`]).
 
+mod airfoil;
 mod bench_cmd;
 pub mod builtin;
 mod case;

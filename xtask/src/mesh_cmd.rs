@@ -16,7 +16,7 @@ use crate::pictures::{self, Colour, Picture};
 use crate::progress::stage;
 use crate::report::{LoopReport, Report};
 use crate::stages::Snapshot;
-use crate::{Finished, builtin, case, estimate, pipeline};
+use crate::{Finished, airfoil, builtin, case, estimate, pipeline};
 
 /// The files a run will write, reserved before any work.
 struct Planned {
@@ -36,15 +36,18 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
         return Ok(Finished::valid());
     }
     let total = Instant::now();
-    let spec = args.case.as_deref().unwrap_or(builtin::DEFAULT);
-    let case = case::load(spec)?;
+    let case = load(args)?;
     let order = args.order.unwrap_or(case.curving.order);
     let mut plan = plan(args, &case)?;
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
     let mut report = Report::new(&case.name, order);
-    let (mesh, snapshot) = make(args, &case, order, &mut report)?;
+    let (mesh, snapshot, linear) = make(args, &case, order, &mut report)?;
     report.describe(&mesh);
+    if report.quality.is_some() {
+        // the figures of the linear mesh, the same at every order and with --triangles
+        report.linear_angles(&linear);
+    }
     let t = Instant::now();
     let progress = stage(args.quiet, "certified validity");
     let scaled_jacobian = report.certify(&mesh)?;
@@ -58,6 +61,9 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     for (path, output) in &plan.meshes {
         plan.outputs
             .write_with(*output, |w| mesh_io::write_to(w, path, &mesh))?;
+        if let Some(format) = Format::from_path(path) {
+            report.wrote_mesh(path, format, mesh.order);
+        }
     }
     if let (Some(output), Some(stages), Some(path)) = (plan.snapshot, &snapshot, &args.snapshot) {
         plan.outputs
@@ -90,6 +96,40 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     plan.outputs.commit()?;
     let report_path = plan.report.as_ref().map(|(p, _)| p.as_path());
     Ok(report.finish(report_path, args.quiet, "the mesh was written but"))
+}
+
+/// The case named on the command line: a case file or built-in case, or airfoil `.dat`
+/// files; the airfoil flags are refused with anything but `.dat` files.
+fn load(args: &MeshArgs) -> Result<case::Case> {
+    let dats = args.case.iter().filter(|c| airfoil::is_dat(c)).count();
+    if dats > 0 {
+        if dats < args.case.len() {
+            bail!(
+                "give either airfoil .dat files or one case, not both: {}",
+                args.case.join(" ")
+            );
+        }
+        return airfoil::case(&args.case, &args.airfoil);
+    }
+    let a = &args.airfoil;
+    let given = [
+        ("--aoa", a.aoa.is_some()),
+        ("--farfield", a.farfield.is_some()),
+        ("--yplus", a.yplus.is_some()),
+        ("--re", a.re.is_some()),
+        ("--merge-walls", a.merge_walls),
+    ];
+    if let Some((flag, _)) = given.into_iter().find(|f| f.1) {
+        bail!("{flag} applies to airfoil .dat files only (a case file sets its own geometry)");
+    }
+    match args.case.as_slice() {
+        [] => case::load(builtin::DEFAULT),
+        [one] => case::load(one),
+        more => bail!(
+            "one case at a time (several files only as airfoil .dat files): {}",
+            more.join(" ")
+        ),
+    }
 }
 
 /// Checks every output flag and reserves every output file (meshes, snapshot, pictures,
@@ -126,13 +166,13 @@ fn plan(args: &MeshArgs, case: &case::Case) -> Result<Planned> {
 
 /// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
 /// and the curving when `order` > 1. Returns the final mesh and, when `--snapshot` is given,
-/// the stages to save.
+/// the stages to save, and the linear layered mesh (its quads uncut).
 fn make(
     args: &MeshArgs,
     case: &case::Case,
     order: u8,
     report: &mut Report,
-) -> Result<(Mesh, Option<Snapshot>)> {
+) -> Result<(Mesh, Option<Snapshot>, Mesh)> {
     let t = Instant::now();
     let progress = stage(args.quiet, "boundary curves and 1D mesh");
     let curves = pipeline::curves(case)?;
@@ -191,10 +231,10 @@ fn make(
         if args.triangles {
             afsf2d::cut_quads_shorter_diagonal(&grown.mesh)
         } else {
-            grown.mesh
+            grown.mesh.clone()
         }
     };
-    Ok((mesh, snapshot))
+    Ok((mesh, snapshot, grown.mesh))
 }
 
 /// The mesh files and the report to write, by flags or by default (under `out/`, named after

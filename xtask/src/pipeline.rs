@@ -136,7 +136,8 @@ pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfO
             points: bn.points.iter().map(|p| [p.x, p.y]).collect(),
             is_corner: bn.is_corner.clone(),
             role: input.role,
-            name: input.name.clone(),
+            // the patch name is the loop's boundary group in the mesh files
+            name: input.group.clone(),
         })
         .collect();
     afsf2d::grow_mesh(&loops, &afsf_params(case)).map_err(|e| anyhow::anyhow!("linear mesh: {e}"))

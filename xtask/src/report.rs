@@ -26,6 +26,10 @@ pub struct Report {
     pub cells: BTreeMap<&'static str, usize>,
     /// Boundary facets by patch role (`wall`, `farfield`).
     pub boundary_facets: BTreeMap<&'static str, usize>,
+    /// Boundary facets by boundary group, as named in the `.msh` physical groups and the
+    /// `.su2` markers: each wall body (`slat`, `main`, `flap`, or one `wall` with
+    /// `merge_walls = true`) and `farfield`.
+    pub boundary_groups: BTreeMap<String, usize>,
     /// Most layers grown from any boundary, when the domain was meshed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layers: Option<u32>,
@@ -47,6 +51,10 @@ pub struct Report {
     pub loops: Vec<LoopReport>,
     /// The files written.
     pub files: Vec<String>,
+    /// Each mesh file written, with its format and the order of the cells actually in it
+    /// (`.su2` holds the linear mesh whatever `order` says).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub meshes: Vec<WrittenMesh>,
     /// What a user should know about this run (stages not available, limits reached).
     pub notes: Vec<String>,
     /// What failed validation, if anything (the run then exits with status 2).
@@ -111,6 +119,16 @@ impl Report {
                 self.boundary_facets.insert(role.name(), n);
             }
         }
+        if let Ok((groups, of_patch)) = mesh_io::groups::boundary_groups(mesh) {
+            for (g, group) in groups.iter().enumerate() {
+                let n = mesh
+                    .boundary_patch
+                    .iter()
+                    .filter(|&&p| of_patch.get(p as usize) == Some(&g))
+                    .count();
+                self.boundary_groups.insert(group.name.clone(), n);
+            }
+        }
         let problems = mesh_model::validate(mesh);
         // orientation and conformity problems leave every index and array sound: the angles
         // (and the certified check, see `certify`) still tell what is wrong where
@@ -122,13 +140,44 @@ impl Report {
         });
         self.problems = problems.iter().map(ToString::to_string).collect();
         if sound && !mesh.cells.is_empty() {
-            let angles = afsf2d::max_angle_histogram(mesh);
-            self.quality = Some(Quality {
-                max_angle_deg: angles.max_angle_deg,
-                obtuse_hist: angles.histogram,
-                ..Quality::default()
-            });
+            self.linear_angles(mesh);
         }
+    }
+
+    /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut
+    /// along the shorter diagonal), so that they do not depend on the order or on `--triangles`.
+    pub fn linear_angles(&mut self, mesh: &Mesh) {
+        let angles = afsf2d::max_angle_histogram(mesh);
+        let q = self.quality.get_or_insert_with(Quality::default);
+        q.max_angle_deg = angles.max_angle_deg;
+        q.obtuse_hist = angles.histogram;
+        q.angles_of = ANGLES_OF;
+    }
+
+    /// Records a mesh file written at `order`, with a note when the format cannot hold the
+    /// order of the run (SU2 holds linear cells only).
+    pub fn wrote_mesh(&mut self, path: &Path, format: mesh_io::Format, order: u8) {
+        let written = match format {
+            mesh_io::Format::Su2 => 1,
+            _ => order,
+        };
+        if written != order {
+            self.notes.push(format!(
+                "{} holds the linear mesh (order 1, straight edges): SU2 reads linear cells only \
+                 (the order-{order} curved mesh goes to .msh and .vtu outputs)",
+                path.display()
+            ));
+        }
+        let format = match format {
+            mesh_io::Format::Msh => "msh",
+            mesh_io::Format::Vtu => "vtu",
+            mesh_io::Format::Su2 => "su2",
+        };
+        self.meshes.push(WrittenMesh {
+            file: path.display().to_string(),
+            format,
+            order: written,
+        });
     }
 
     /// Certifies every cell (Bernstein coefficients of the Jacobian determinant), fills the
@@ -155,6 +204,11 @@ impl Report {
         };
         let q = self.quality.get_or_insert_with(Quality::default);
         q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
+        q.scaled_jacobian_of = Some(SCALED_JACOBIAN_OF);
+        q.worst_cell = worst(mesh, &v.per_cell_scaled_jacobian);
+        let gmsh = gmsh_min_sj(mesh);
+        q.min_sj_gmsh = worst(mesh, &gmsh);
+        q.min_sj_gmsh_of = Some(MIN_SJ_GMSH_OF);
         q.invalid_cells = Some(v.invalid_cells.len());
         q.certified = Some(v.undecided.is_empty() && v.uncertified.is_empty());
         for (what, cells) in [("invalid", &v.invalid_cells), ("undecided", &v.undecided)] {
@@ -180,6 +234,62 @@ impl Report {
     }
 }
 
+/// What `min_scaled_jacobian` is.
+pub const SCALED_JACOBIAN_OF: &str = "the mesh as written (its order): per cell, the certified \
+    lower bound of min det J / max det J over the cell (Bernstein coefficients of det J after \
+    subdivision), then the least over the cells; 1 for a straight-sided triangle or \
+    parallelogram";
+
+/// What `min_sj_gmsh` is.
+pub const MIN_SJ_GMSH_OF: &str = "Gmsh's minSJ (gmsh.model.mesh.getElementQualities(.., \
+    \"minSJ\"), Gmsh 4.15): per cell, min det J over the cell (here its certified lower \
+    bound) / det J of the straight-sided cell through its corners at the reference centre; \
+    1 for a straight-sided triangle or parallelogram, above 1 possible for a curved cell";
+
+/// The cell of least `value` (not NaN), with where it is.
+fn worst(mesh: &Mesh, value: &[f64]) -> Option<WorstCell> {
+    let (cell, &v) = value
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| !v.is_nan())
+        .min_by(|a, b| a.1.total_cmp(b.1))?;
+    let [x, y] = centroid(mesh, cell);
+    Some(WorstCell {
+        value: v,
+        cell,
+        x,
+        y,
+    })
+}
+
+/// Gmsh's `minSJ` of every cell ([`MIN_SJ_GMSH_OF`]); NaN for a cell that is not certified
+/// valid.
+fn gmsh_min_sj(mesh: &Mesh) -> Vec<f64> {
+    use jacobian_check::{Certificate, CertifyParams, certify_cell, jacobian_2d};
+    use mesh_model::CellType;
+    use rayon::prelude::*;
+    let params = CertifyParams::default();
+    (0..mesh.cells.len())
+        .into_par_iter()
+        .map(|i| {
+            let c = mesh.cells.get(i);
+            let nodes: Vec<[f64; 2]> = c.nodes.iter().map(|&v| mesh.xy(v)).collect();
+            let corners: Vec<[f64; 2]> = c.corners().iter().map(|&v| mesh.xy(v)).collect();
+            let centre = match c.ty.shape {
+                Shape::Quad => [0.0, 0.0],
+                _ => [1.0 / 3.0, 1.0 / 3.0],
+            };
+            let linear = jacobian_2d(CellType::new(c.ty.shape, 1), &corners, centre);
+            match (certify_cell(c.ty, &nodes, &params), linear) {
+                (Ok(Certificate::Valid { min_coeff, .. }), Ok(j)) if j.det > 0.0 => {
+                    min_coeff / j.det
+                }
+                _ => f64::NAN,
+            }
+        })
+        .collect()
+}
+
 /// The mean of a cell's corners, to say where a named cell is.
 fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
     let c = mesh.cells.get(cell);
@@ -192,6 +302,21 @@ fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
     [sum[0] / n, sum[1] / n]
 }
 
+/// What the angle figures are about.
+pub const ANGLES_OF: &str =
+    "the linear mesh (cell corners), quads cut along the shorter diagonal, at any order";
+
+/// A mesh file written by the run.
+#[derive(Debug, Serialize)]
+pub struct WrittenMesh {
+    /// The path as given.
+    pub file: String,
+    /// `msh`, `vtu` or `su2`.
+    pub format: &'static str,
+    /// The order of the cells in this file.
+    pub order: u8,
+}
+
 /// The quality block of the report.
 #[derive(Debug, Default, Serialize)]
 pub struct Quality {
@@ -199,16 +324,43 @@ pub struct Quality {
     pub max_angle_deg: f64,
     /// Triangles by largest angle in [95,105), [105,115), [115,125), [125,135), [135,180].
     pub obtuse_hist: [usize; 5],
+    /// Which mesh `max_angle_deg` and `obtuse_hist` are about ([`ANGLES_OF`]).
+    pub angles_of: &'static str,
     /// Least scaled Jacobian (min J / max J) over the cells: certified lower bounds for the
     /// cells proved valid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_scaled_jacobian: Option<f64>,
+    /// Which mesh and which measure `min_scaled_jacobian` is ([`SCALED_JACOBIAN_OF`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scaled_jacobian_of: Option<&'static str>,
+    /// The cell of least scaled Jacobian (`min_scaled_jacobian`): index and corner mean.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_cell: Option<WorstCell>,
+    /// Gmsh's minSJ of the same mesh, least over the cells, and its cell ([`MIN_SJ_GMSH_OF`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_sj_gmsh: Option<WorstCell>,
+    /// What `min_sj_gmsh` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_sj_gmsh_of: Option<&'static str>,
     /// Cells whose Jacobian determinant is not positive everywhere (certified check).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub invalid_cells: Option<usize>,
     /// False only if some cell could be neither proved valid nor proved invalid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub certified: Option<bool>,
+}
+
+/// A cell named by a quality figure.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct WorstCell {
+    /// The figure's value there.
+    pub value: f64,
+    /// Cell index (0-based, the order of the cells in the files; `.msh` element tag − 1).
+    pub cell: usize,
+    /// Mean of the cell's corners, x.
+    pub x: f64,
+    /// Mean of the cell's corners, y.
+    pub y: f64,
 }
 
 /// One boundary loop in the report.

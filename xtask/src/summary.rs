@@ -17,8 +17,8 @@ pub fn table(r: &Report) -> String {
     for (kind, n) in &r.cells {
         let _ = writeln!(s, "  {:<22} {:>12}", format!("cells {kind}"), n);
     }
-    for (role, n) in &r.boundary_facets {
-        let _ = writeln!(s, "  {:<22} {:>12}", format!("boundary facets {role}"), n);
+    for (group, n) in &r.boundary_groups {
+        let _ = writeln!(s, "  {:<22} {:>12}", format!("boundary {group}"), n);
     }
     if let Some(layers) = r.layers {
         let _ = writeln!(s, "  {:<22} {:>12}", "layers", layers);
@@ -31,6 +31,10 @@ pub fn table(r: &Report) -> String {
         );
     }
     if let Some(q) = &r.quality {
+        let _ = writeln!(
+            s,
+            "  angles of the linear mesh (cell corners, quads cut on the shorter diagonal):"
+        );
         let _ = writeln!(s, "  {:<22} {:>12.1}", "max angle (deg)", q.max_angle_deg);
         let h = q.obtuse_hist;
         let _ = writeln!(
@@ -42,6 +46,26 @@ pub fn table(r: &Report) -> String {
             (q.min_scaled_jacobian, q.invalid_cells, q.certified)
         {
             let _ = writeln!(s, "  {:<22} {:>12.3}", "min scaled Jacobian", sj);
+            let at = |w: &crate::report::WorstCell| {
+                format!("cell {} at ({:.6}, {:.6})", w.cell, w.x, w.y)
+            };
+            if let Some(w) = &q.worst_cell {
+                let _ = writeln!(
+                    s,
+                    "    (certified min/max of det J per cell, order {}; {})",
+                    r.order,
+                    at(w)
+                );
+            }
+            if let Some(g) = &q.min_sj_gmsh {
+                let _ = writeln!(
+                    s,
+                    "  {:<22} {:>12.3}\n    (min det J / det J of the straight cell at its centre; {})",
+                    "Gmsh's minSJ",
+                    g.value,
+                    at(g)
+                );
+            }
             let verdict = match (bad, certified) {
                 (0, true) => "every cell proved valid".to_string(),
                 (0, false) => "no cell proved invalid, some undecided".to_string(),
@@ -81,7 +105,17 @@ pub fn table(r: &Report) -> String {
         let _ = writeln!(s, "  PROBLEM: {p}");
     }
     for f in &r.files {
-        let _ = writeln!(s, "  wrote {f}");
+        match r.meshes.iter().find(|m| &m.file == f) {
+            Some(m) if m.order == 1 && r.order > 1 => {
+                let _ = writeln!(s, "  wrote {f}  (order 1: linear, not order {})", r.order);
+            }
+            Some(m) => {
+                let _ = writeln!(s, "  wrote {f}  (order {})", m.order);
+            }
+            None => {
+                let _ = writeln!(s, "  wrote {f}");
+            }
+        }
     }
     s
 }

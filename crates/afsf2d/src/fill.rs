@@ -207,7 +207,9 @@ fn flip_min_max_angle(
         }
         let mut touched = vec![false; tris.len()];
         let mut flips = 0;
-        let keys: Vec<(u32, u32)> = owner.keys().copied().filter(|&(a, b)| a < b).collect();
+        // in a fixed order: the same input makes the same mesh (a HashMap's order is random)
+        let mut keys: Vec<(u32, u32)> = owner.keys().copied().filter(|&(a, b)| a < b).collect();
+        keys.sort_unstable();
         for (a, b) in keys {
             if constraints.contains(&(a, b)) {
                 continue;

@@ -58,27 +58,27 @@ pub fn cut_quads_shorter_diagonal(mesh: &Mesh) -> Mesh {
 
 pub use mesh_model::measure::triangle_max_angle_deg as max_triangle_angle_deg;
 
-/// Counts the triangles of `mesh` (its quads cut along the shorter diagonal first) by largest
-/// angle.
+/// Counts the triangles of the linear mesh under `mesh` by largest angle: the corners of every
+/// cell, whatever its order, with quads cut along their shorter diagonal. So the figure of one
+/// linear mesh is the same whether it is read at order 1, 2 or 3, cut or not.
 pub fn max_angle_histogram(mesh: &Mesh) -> AngleStats {
-    let cut;
-    let m = if mesh.count(Shape::Quad) > 0 {
-        cut = cut_quads_shorter_diagonal(mesh);
-        &cut
-    } else {
-        mesh
-    };
     let mut stats = AngleStats::default();
-    for c in m.cells.iter() {
-        if c.ty.shape != Shape::Tri {
-            continue;
-        }
-        let k = c.corners();
-        let a = max_triangle_angle_deg(m.xy(k[0]), m.xy(k[1]), m.xy(k[2]));
+    let mut count = |t: [u32; 3]| {
+        let a = max_triangle_angle_deg(mesh.xy(t[0]), mesh.xy(t[1]), mesh.xy(t[2]));
         stats.triangles += 1;
         stats.max_angle_deg = stats.max_angle_deg.max(a);
         if let Some(bin) = ANGLE_BINS_DEG.iter().rposition(|&lo| a >= lo) {
             stats.histogram[bin] += 1;
+        }
+    };
+    for c in mesh.cells.iter() {
+        let k = c.corners();
+        match c.ty.shape {
+            Shape::Tri => count([k[0], k[1], k[2]]),
+            Shape::Quad => split_quad_shorter_diagonal(mesh, k)
+                .into_iter()
+                .for_each(&mut count),
+            _ => {}
         }
     }
     stats
@@ -127,6 +127,29 @@ mod tests {
         let s = max_angle_histogram(&obtuse);
         assert!((s.max_angle_deg - 120.0).abs() < 1e-9, "{s:?}");
         assert_eq!(s.histogram, [0, 0, 1, 0, 0]);
+    }
+
+    #[test]
+    fn a_curved_quad_counts_by_its_corners_as_its_linear_quad() {
+        let mut lin = Mesh::new(Dim::Two, 1);
+        lin.nodes = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [3.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        lin.cells.push(CellType::new(Shape::Quad, 1), &[0, 1, 2, 3]);
+        let mut p2 = lin.clone();
+        p2.order = 2;
+        p2.cells = mesh_model::Cells::with_capacity(1, 9);
+        // mid-edge and centre nodes anywhere: only the corners count
+        for _ in 0..5 {
+            p2.nodes.push([0.7, 0.3, 0.0]);
+        }
+        p2.cells
+            .push(CellType::new(Shape::Quad, 2), &[0, 1, 2, 3, 4, 5, 6, 7, 8]);
+        assert_eq!(max_angle_histogram(&p2), max_angle_histogram(&lin));
+        assert_eq!(max_angle_histogram(&p2).triangles, 2);
     }
 
     #[test]

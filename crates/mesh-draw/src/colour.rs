@@ -142,16 +142,18 @@ pub(crate) fn cell_colours(mesh: &Mesh, by: &ColourBy) -> Result<CellColours, Dr
             Ok(layer_colours(&mesh.cell_layer))
         }
         ColourBy::MaxAngle => {
+            // the scale fits the data (whole 5° steps within 60–180°), and small angles, the
+            // good ones, take the light end of the map, as a high scaled Jacobian does
             let values = max_angle_deg(mesh);
-            let ticks = [60.0, 95.0, 105.0, 115.0, 125.0, 135.0, 180.0]
-                .iter()
-                .map(|&deg| Tick {
-                    frac: (deg - 60.0) / 120.0,
-                    label: format!("{deg:.0}°"),
-                    major: deg == 60.0 || deg == 180.0,
+            let (lo, hi) = angle_range(&values);
+            let ticks = nice_ticks(lo, hi, 5)
+                .into_iter()
+                .map(|t| Tick {
+                    label: format!("{}°", t.label),
+                    ..t
                 })
                 .collect();
-            Ok(continuous(&values, 60.0, 180.0, "max angle", ticks, None))
+            Ok(continuous(&values, lo, hi, "max angle", ticks, None, true))
         }
         ColourBy::ScaledJacobian(values) => {
             check_len("the scaled-Jacobian values", values.len())?;
@@ -163,15 +165,25 @@ pub(crate) fn cell_colours(mesh: &Mesh, by: &ColourBy) -> Result<CellColours, Dr
                 "scaled jacobian",
                 ticks,
                 Some((INVERTED, "< 0 (inverted)")),
+                false,
             ))
         }
         ColourBy::CellValues { values, label } => {
             check_len("the cell values", values.len())?;
             let (lo, hi) = finite_range(values);
             let ticks = nice_ticks(lo, hi, 5);
-            Ok(continuous(values, lo, hi, label, ticks, None))
+            Ok(continuous(values, lo, hi, label, ticks, None, false))
         }
     }
+}
+
+/// The angle scale of `values` (degrees): their range out to whole 5° steps, within
+/// [60, 180], at least 10° wide.
+fn angle_range(values: &[f64]) -> (f64, f64) {
+    let (lo, hi) = finite_range(values);
+    let lo = ((lo / 5.0).floor() * 5.0).clamp(60.0, 170.0);
+    let hi = ((hi / 5.0).ceil() * 5.0).clamp(lo + 10.0, 180.0);
+    (lo, hi)
 }
 
 /// Range of the finite values, widened when they are all equal; [0, 1] when there is none.
@@ -193,7 +205,8 @@ fn finite_range(values: &[f64]) -> (f64, f64) {
 }
 
 /// Colours values on `[lo, hi]`; NaN in grey, and values below `lo` in `below.0` when given
-/// (otherwise clamped).
+/// (otherwise clamped). The map runs dark to light from `lo` to `hi`, or light to dark when
+/// `high_is_bad`: light is always the good end.
 fn continuous(
     values: &[f64],
     lo: f64,
@@ -201,7 +214,9 @@ fn continuous(
     title: &str,
     ticks: Vec<Tick>,
     below: Option<(Rgb, &str)>,
+    high_is_bad: bool,
 ) -> CellColours {
+    let map = |t: f64| map_colour(if high_is_bad { 1.0 - t } else { t });
     let mut any_nan = false;
     let mut any_below = false;
     let per_cell = values
@@ -214,14 +229,14 @@ fn continuous(
                 any_below = true;
                 c
             } else {
-                map_colour((v - lo) / (hi - lo))
+                map(((v - lo) / (hi - lo)).clamp(0.0, 1.0))
             })
         })
         .collect();
     let stops = (0..=16)
         .map(|i| {
             let t = i as f64 / 16.0;
-            (t, map_colour(t))
+            (t, map(t))
         })
         .collect();
     let mut swatches = Vec::new();

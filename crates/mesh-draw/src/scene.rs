@@ -180,7 +180,10 @@ pub(crate) fn build_scene(
         curves: unique_edges(mesh, &frame, &visible, target),
     };
     let bold = (params.width_px.min(params.height_px) as f64 / 400.0).clamp(2.0, 3.0);
-    let boundaries = boundary_groups(mesh, &frame, bold);
+    // the wall line no thicker than the first layer in view, so that the layers show
+    let first_px = first_layer_px(mesh, &frame, &visible);
+    let wall_px = first_px.map_or(bold, |h| bold.min(h).max(MIN_WALL_PX));
+    let boundaries = boundary_groups(mesh, &frame, bold, wall_px);
 
     let mut marks = vec![Mark::Outline {
         rect: layout.plot,
@@ -189,6 +192,19 @@ pub(crate) fn build_scene(
     }];
     if params.show_scale_bar {
         marks.extend(scale_bar(&frame, layout.cap_px));
+    }
+    if let Some(h) = first_px.filter(|&h| h < 1.0) {
+        marks.push(Mark::Text {
+            text: format!(
+                "first layers below a pixel (first {}): zoom in to see them",
+                px_text(h)
+            ),
+            x: 0.5 * (layout.plot.x0 + layout.plot.x1),
+            y_baseline: layout.plot.y0 + 1.6 * layout.cap_px,
+            cap_px: layout.cap_px,
+            anchor: Anchor::Middle,
+            colour: INK,
+        });
     }
     if let (Some(legend), Some(rect)) = (legend, layout.legend) {
         marks.extend(legend_marks(legend, rect, layout.cap_px));
@@ -247,8 +263,12 @@ impl Layout {
             y1: h - margin,
         };
         let mut legend_rect = None;
-        if let Some(legend) = legend {
-            let width = legend_width(legend, cap_px);
+        // The legend's column has one width whatever it holds (or when there is no legend to
+        // show), so that a view lands on the same pixels in every colouring.
+        if params.show_legend {
+            let width = legend
+                .map_or(0.0, |l| legend_width(l, cap_px))
+                .max(column_width(cap_px));
             if plot.width() - width - margin >= 0.5 * w {
                 legend_rect = Some(PxRect {
                     x0: w - margin - width,
@@ -289,6 +309,15 @@ const BAR_WIDTH: f64 = 1.6;
 const TICK_LENGTH: f64 = 0.5;
 const LABEL_GAP: f64 = 0.45;
 const SWATCH_ROW: f64 = 2.2;
+
+/// Width of the legend column for the legends this crate makes (angles, scaled Jacobian,
+/// layers, values), pixels: the width of the widest of their usual labels.
+fn column_width(cap: f64) -> f64 {
+    let text = |s: &str| text_width(s, cap);
+    let bar = cap * (BAR_WIDTH + TICK_LENGTH + LABEL_GAP) + text("-0.000125");
+    let swatch = cap * (BAR_WIDTH + LABEL_GAP) + text("< 0 (inverted)");
+    bar.max(swatch).max(text("scaled jacobian")).ceil() + 1.0
+}
 
 /// Width of the legend column, pixels.
 fn legend_width(legend: &Legend, cap: f64) -> f64 {
@@ -544,8 +573,47 @@ fn unique_edges(mesh: &Mesh, frame: &Frame, visible: &[u32], target: Target) -> 
     curves
 }
 
-/// The boundary facets, one stroke group per role present (walls black, far field dark blue).
-fn boundary_groups(mesh: &Mesh, frame: &Frame, width_px: f64) -> Vec<StrokeGroup> {
+/// A length in pixels for people: two digits, or a power of ten when very small.
+fn px_text(h: f64) -> String {
+    if h >= 0.01 {
+        format!("{h:.2} px")
+    } else {
+        format!("{h:.0e} px")
+    }
+}
+
+/// The thinnest wall line drawn, pixels.
+const MIN_WALL_PX: f64 = 0.75;
+
+/// The height of the first layer in view, pixels: the shortest edge of a visible cell with one
+/// end on a wall and the other off it. `None` when no such edge is in view.
+fn first_layer_px(mesh: &Mesh, frame: &Frame, visible: &[u32]) -> Option<f64> {
+    let mut on_wall = vec![false; mesh.nodes.len()];
+    for (facet, &patch) in mesh.boundary.iter().zip(&mesh.boundary_patch) {
+        if mesh.patches[patch as usize].role == Role::Wall {
+            for &n in facet.corners() {
+                on_wall[n as usize] = true;
+            }
+        }
+    }
+    let mut least = f64::INFINITY;
+    for &i in visible {
+        let cell = mesh.cells.get(i as usize);
+        let k = cell.corners();
+        for j in 0..k.len() {
+            let (a, b) = (k[j], k[(j + 1) % k.len()]);
+            if on_wall[a as usize] != on_wall[b as usize] {
+                let (p, q) = (mesh.xy(a), mesh.xy(b));
+                least = least.min((p[0] - q[0]).hypot(p[1] - q[1]));
+            }
+        }
+    }
+    least.is_finite().then_some(least * frame.scale)
+}
+
+/// The boundary facets, one stroke group per role present (walls black `wall_px` wide, far
+/// field dark blue `width_px` wide).
+fn boundary_groups(mesh: &Mesh, frame: &Frame, width_px: f64, wall_px: f64) -> Vec<StrokeGroup> {
     let mut groups = Vec::new();
     let mut points = Vec::with_capacity(4);
     for role in [Role::Farfield, Role::Wall] {
@@ -566,7 +634,11 @@ fn boundary_groups(mesh: &Mesh, frame: &Frame, width_px: f64) -> Vec<StrokeGroup
                 name: role.name(),
                 colour: role_colour(role),
                 opacity: 1.0,
-                width_px,
+                width_px: if role == Role::Wall {
+                    wall_px
+                } else {
+                    width_px
+                },
                 curves,
             });
         }

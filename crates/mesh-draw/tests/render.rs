@@ -174,6 +174,8 @@ fn curved_edges_follow_the_circle_and_straight_ones_its_chord() {
         let p = DrawParams {
             view: Some(view_around([R_WALL * a.cos(), R_WALL * a.sin()], 0.02)),
             show_scale_bar: false,
+            // no legend column: the view's centre is the picture's
+            show_legend: false,
             ..params(301, 301)
         };
         let pixmap = decode(&render_png(&mesh, &p).unwrap());
@@ -426,5 +428,103 @@ proptest! {
             Err(e) => prop_assert!(matches!(e, DrawError::InvalidView { .. }) && !valid, "{}", e),
         }
         prop_assert_eq!(render_svg(&mesh, &p).is_ok(), valid);
+    }
+}
+
+/// One convention for "good" in every colouring: the light end of the map. A small largest
+/// angle and a high scaled Jacobian are both light; their opposites both dark.
+#[test]
+fn good_cells_are_light_in_every_colouring() {
+    let mesh = annulus(&Annulus {
+        around: 12,
+        quad_rings: 2,
+        tri_rings: 2,
+        order: 1,
+        jitter: 0.3,
+    });
+    let n = mesh.cells.len();
+    let angles = mesh_draw::max_angle_deg(&mesh);
+    let (good, bad) = (0..n).fold((0, 0), |(g, b), i| {
+        (
+            if angles[i] < angles[g] { i } else { g },
+            if angles[i] > angles[b] { i } else { b },
+        )
+    });
+    let lightness = |colour: ColourBy, cell: usize| {
+        // the fill colour at the cell's centroid, with no edge there: a picture of one cell
+        let k = mesh.cells.get(cell).corners().to_vec();
+        let c = k.iter().fold([0.0, 0.0], |s, &v| {
+            let p = mesh.xy(v);
+            [s[0] + p[0] / k.len() as f64, s[1] + p[1] / k.len() as f64]
+        });
+        let p = DrawParams {
+            colour,
+            view: Some(view_around(c, 1e-4)),
+            show_scale_bar: false,
+            show_legend: false,
+            ..params(41, 41)
+        };
+        let px = decode(&render_png(&mesh, &p).unwrap());
+        let c = px.pixel(20, 20).unwrap();
+        u32::from(c.red()) + u32::from(c.green()) + u32::from(c.blue())
+    };
+    assert!(
+        angles[bad] > angles[good] + 2.0,
+        "{} {}",
+        angles[good],
+        angles[bad]
+    );
+    assert!(lightness(ColourBy::MaxAngle, good) > lightness(ColourBy::MaxAngle, bad));
+    let mut sj = vec![0.5; n];
+    sj[good] = 1.0;
+    sj[bad] = 0.1;
+    assert!(
+        lightness(ColourBy::ScaledJacobian(sj.clone()), good)
+            > lightness(ColourBy::ScaledJacobian(sj), bad)
+    );
+}
+
+/// A view lands on the same pixels whatever colours the cells: the legend's column has one
+/// width.
+#[test]
+fn a_view_does_not_move_with_the_legend() {
+    let mesh = annulus(&Annulus {
+        around: 12,
+        quad_rings: 2,
+        tri_rings: 2,
+        order: 1,
+        jitter: 0.0,
+    });
+    let n = mesh.cells.len();
+    let edges_only = |colour: ColourBy| {
+        let p = DrawParams {
+            colour,
+            view: Some(view_around([0.0, 0.0], 2.0)),
+            ..params(600, 450)
+        };
+        // the box of the black wall pixels (below the note at the top, left of the legend)
+        let px = decode(&render_png(&mesh, &p).unwrap());
+        (60..450)
+            .flat_map(|y| (0..420).map(move |x| (x, y)))
+            .filter(|&(x, y)| {
+                let c = px.pixel(x, y).unwrap();
+                c.red() < 30 && c.green() < 30 && c.blue() < 30
+            })
+            .fold([u32::MAX, u32::MAX, 0, 0], |b, (x, y)| {
+                [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)]
+            })
+    };
+    let values = ColourBy::CellValues {
+        values: (0..n).map(|i| 1e-6 * i as f64 - 0.000_125).collect(),
+        label: "x".into(),
+    };
+    let a = edges_only(ColourBy::None);
+    assert!(a[2] > a[0] + 50, "{a:?}");
+    for c in [
+        ColourBy::MaxAngle,
+        ColourBy::ScaledJacobian(vec![0.5; n]),
+        values,
+    ] {
+        assert_eq!(edges_only(c), a);
     }
 }

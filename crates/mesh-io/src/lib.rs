@@ -48,6 +48,7 @@
 pub mod atomic;
 mod check;
 mod error;
+pub mod groups;
 pub mod msh;
 pub mod node_order;
 pub mod snapshot;

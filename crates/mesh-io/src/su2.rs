@@ -7,14 +7,17 @@
 //!
 //! Layout: `NDIME=`, `NELEM=` with one line per cell (VTK linear type, corner indices, cell
 //! index), `NPOIN=` with one line per point (coordinates, index; z only in 3D), `NMARK=` with
-//! one marker per boundary role present, `MARKER_TAG=` the role's name (`wall`, `farfield`:
-//! patches of one role are merged), `MARKER_ELEMS=` and one line per facet (line 3 in 2D;
+//! one marker per boundary group ([`crate::groups`]: each wall body by its name, `slat`,
+//! `main`, `flap`, and `farfield`), `MARKER_TAG=` the group's name, `MARKER_ELEMS=` and one
+//! line per facet (line 3 in 2D;
 //! triangle 5 or quadrilateral 9 in 3D). Indices are 0-based.
 
 use std::io::{self, Write};
 use std::path::Path;
 
-use mesh_model::{Dim, Mesh, Role, Shape};
+use mesh_model::{Dim, Mesh, Shape};
+
+use crate::groups::{Group, boundary_groups};
 
 use crate::IoError;
 use crate::atomic::write_atomic;
@@ -25,14 +28,25 @@ use crate::check::check_writable;
 /// Errors: [`IoError::NonFiniteNode`] or [`IoError::InvalidMesh`] before anything is
 /// written, [`IoError::Io`] when the file cannot be written.
 pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    let groups = prepare(mesh, path)?;
+    write_atomic(path, |w| {
+        body(w, mesh, &groups).map_err(|e| IoError::io(path, e))
+    })
+}
+
+/// Checks the mesh and returns its boundary groups and the group of each patch.
+fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError> {
     check_writable(mesh, path)?;
-    write_atomic(path, |w| body(w, mesh).map_err(|e| IoError::io(path, e)))
+    boundary_groups(mesh).map_err(|message| IoError::InvalidMesh {
+        path: path.to_path_buf(),
+        message,
+    })
 }
 
 /// Writes the `.su2` to any writer; `path` only names the destination in errors. Not atomic.
 pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
-    check_writable(mesh, path)?;
-    body(out, mesh).map_err(|e| IoError::io(path, e))
+    let groups = prepare(mesh, path)?;
+    body(out, mesh, &groups).map_err(|e| IoError::io(path, e))
 }
 
 /// VTK linear type number of a shape (SU2 uses VTK's).
@@ -48,7 +62,11 @@ fn vtk_linear(shape: Shape) -> u8 {
     }
 }
 
-fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
+fn body(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    (groups, group_of): &(Vec<Group>, Vec<usize>),
+) -> io::Result<()> {
     // Dense renumbering of the corner nodes, in their original order.
     let mut new_index = vec![u32::MAX; mesh.nodes.len()];
     for c in mesh.cells.iter().chain(mesh.boundary.iter()) {
@@ -82,16 +100,12 @@ fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
             Dim::Three => writeln!(w, "{:?} {:?} {:?} {i}", p[0], p[1], p[2])?,
         }
     }
-    let roles: Vec<Role> = [Role::Wall, Role::Farfield]
-        .into_iter()
-        .filter(|r| mesh.patches.iter().any(|p| p.role == *r))
-        .collect();
-    writeln!(w, "NMARK= {}", roles.len())?;
-    for role in roles {
+    writeln!(w, "NMARK= {}", groups.len())?;
+    for (k, group) in groups.iter().enumerate() {
         let facets: Vec<usize> = (0..mesh.boundary.len())
-            .filter(|&j| mesh.patches[mesh.boundary_patch[j] as usize].role == role)
+            .filter(|&j| group_of[mesh.boundary_patch[j] as usize] == k)
             .collect();
-        writeln!(w, "MARKER_TAG= {}", role.name())?;
+        writeln!(w, "MARKER_TAG= {}", group.name)?;
         writeln!(w, "MARKER_ELEMS= {}", facets.len())?;
         for j in facets {
             let f = mesh.boundary.get(j);
@@ -177,7 +191,7 @@ mod tests {
         // Split the outer circle into two far-field patches.
         m.patches.push(mesh_model::Patch {
             name: "outer-b".into(),
-            role: Role::Farfield,
+            role: mesh_model::Role::Farfield,
         });
         let outer: Vec<usize> = m.patch_facets(1).collect();
         for &j in &outer[outer.len() / 2..] {
@@ -189,7 +203,8 @@ mod tests {
         let (n, lines) = block(after("MARKER_TAG= farfield\n"), "MARKER_ELEMS=");
         assert_eq!(n, outer.len());
         assert!(lines.iter().all(|l| l.starts_with("3 ")));
-        let (n, _) = block(after("MARKER_TAG= wall\n"), "MARKER_ELEMS=");
+        let wall = format!("MARKER_TAG= {}\n", m.patches[0].name);
+        let (n, _) = block(after(&wall), "MARKER_ELEMS=");
         assert_eq!(n, m.patch_facets(0).count());
     }
 }

@@ -1,13 +1,18 @@
 //! VTK XML unstructured grid (`.vtu`, ASCII), for looking at meshes in ParaView.
 //!
-//! Only the domain cells are written (no boundary facets). Linear cells use the linear VTK
+//! The domain cells are written first, then the boundary facets (lines in 2D, linear or VTK
+//! Lagrange curves 68, ends first as in Gmsh; faces in 3D). Linear cells use the linear VTK
 //! types (triangle 5, quad 9, tetra 10, hexahedron 12, wedge 13, pyramid 14); orders 2 and 3
 //! use VTK's Lagrange cells (triangle 69, quadrilateral 70, tetra 71, hexahedron 72, wedge 73
 //! at order 2) with the nodes permuted from Gmsh's order by [`crate::node_order`]. High-order
 //! pyramids and order-3 prisms have no verified ordering and give [`IoError::Unsupported`].
 //!
-//! Cell data: `layer` and `pipe` (as `Int64`, −1 for [`mesh_model::NONE`]) when the mesh has
-//! them, and `order` (the polynomial order of each cell). No point data.
+//! Cell data: `layer` and `pipe` (as `Int64`, −1 for [`mesh_model::NONE`] and for facets) when
+//! the mesh has them, `order` (the polynomial order of each cell or facet), and
+//! `boundary_group`: −1 for a domain cell, for a facet the index of its boundary group
+//! ([`crate::groups`]) in the field-data string array `boundary_group_names` (`slat`, `main`,
+//! `flap`, `farfield`). No point data. To look at the domain alone, threshold
+//! `boundary_group` at −1.
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -17,6 +22,7 @@ use mesh_model::{Mesh, NONE};
 use crate::IoError;
 use crate::atomic::write_atomic;
 use crate::check::check_writable;
+use crate::groups::{Group, boundary_groups};
 use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
 
 /// Writes the domain cells of `mesh` to `path` as a VTK XML unstructured grid, atomically.
@@ -25,19 +31,27 @@ use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
 /// data model's invariants, [`IoError::Unsupported`] for a cell type without a VTK ordering,
 /// all before anything is written; [`IoError::Io`] when the file cannot be written.
 pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
-    prepare(mesh, path)?;
-    write_atomic(path, |w| body(w, mesh).map_err(|e| IoError::io(path, e)))
+    let groups = prepare(mesh, path)?;
+    write_atomic(path, |w| {
+        body(w, mesh, &groups).map_err(|e| IoError::io(path, e))
+    })
 }
 
 /// Writes the `.vtu` to any writer; `path` only names the destination in errors. Not atomic.
 pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
-    prepare(mesh, path)?;
-    body(out, mesh).map_err(|e| IoError::io(path, e))
+    let groups = prepare(mesh, path)?;
+    body(out, mesh, &groups).map_err(|e| IoError::io(path, e))
 }
 
-fn prepare(mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError> {
     check_writable(mesh, path)?;
-    for (i, ty) in mesh.cells.types().iter().enumerate() {
+    for (i, ty) in mesh
+        .cells
+        .types()
+        .iter()
+        .chain(mesh.boundary.types())
+        .enumerate()
+    {
         if vtk_cell_type(*ty).is_none() {
             return Err(IoError::Unsupported {
                 path: path.to_path_buf(),
@@ -50,7 +64,10 @@ fn prepare(mesh: &Mesh, path: &Path) -> Result<(), IoError> {
             });
         }
     }
-    Ok(())
+    boundary_groups(mesh).map_err(|message| IoError::InvalidMesh {
+        path: path.to_path_buf(),
+        message,
+    })
 }
 
 fn int_array(w: &mut dyn Write, name: &str, values: impl Iterator<Item = i64>) -> io::Result<()> {
@@ -72,18 +89,44 @@ fn record(v: u32) -> i64 {
     if v == NONE { -1 } else { i64::from(v) }
 }
 
-fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
+/// The group names as a VTK string array: in ASCII, each string's bytes as numbers, then 0.
+fn string_array(w: &mut dyn Write, name: &str, values: &[&str]) -> io::Result<()> {
+    writeln!(
+        w,
+        r#"        <Array type="String" Name="{name}" NumberOfTuples="{}" format="ascii">"#,
+        values.len()
+    )?;
+    for v in values {
+        for b in v.bytes() {
+            write!(w, "{b} ")?;
+        }
+        writeln!(w, "0")?;
+    }
+    writeln!(w, "        </Array>")
+}
+
+fn body(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    (groups, group_of): &(Vec<Group>, Vec<usize>),
+) -> io::Result<()> {
+    let all = || mesh.cells.iter().chain(mesh.boundary.iter());
+    let facets = mesh.boundary.len();
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
         r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
+    writeln!(w, "    <FieldData>")?;
+    let names: Vec<&str> = groups.iter().map(|g| g.name.as_str()).collect();
+    string_array(w, "boundary_group_names", &names)?;
+    writeln!(w, "    </FieldData>")?;
     writeln!(
         w,
         r#"    <Piece NumberOfPoints="{}" NumberOfCells="{}">"#,
         mesh.nodes.len(),
-        mesh.cells.len()
+        mesh.cells.len() + facets
     )?;
     writeln!(w, "      <Points>")?;
     writeln!(
@@ -100,7 +143,7 @@ fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
         w,
         r#"        <DataArray type="Int64" Name="connectivity" format="ascii">"#
     )?;
-    for c in mesh.cells.iter() {
+    for c in all() {
         let perm = vtk_from_gmsh(c.ty).unwrap_or(&[]);
         for (k, &g) in perm.iter().enumerate() {
             let sep = if k + 1 == perm.len() { "\n" } else { " " };
@@ -109,7 +152,7 @@ fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
     }
     writeln!(w, "        </DataArray>")?;
     let mut offset = 0i64;
-    let offsets = mesh.cells.iter().map(|c| {
+    let offsets = all().map(|c| {
         offset += c.nodes.len() as i64;
         offset
     });
@@ -118,24 +161,35 @@ fn body(w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
         w,
         r#"        <DataArray type="UInt8" Name="types" format="ascii">"#
     )?;
-    for (k, ty) in mesh.cells.types().iter().enumerate() {
+    for (k, ty) in mesh
+        .cells
+        .types()
+        .iter()
+        .chain(mesh.boundary.types())
+        .enumerate()
+    {
         let sep = if k % 32 == 31 { "\n" } else { " " };
         write!(w, "{}{sep}", vtk_cell_type(*ty).unwrap_or(0))?;
     }
     writeln!(w, "\n        </DataArray>\n      </Cells>")?;
 
     writeln!(w, "      <CellData>")?;
-    int_array(
-        w,
-        "order",
-        mesh.cells.types().iter().map(|t| i64::from(t.order)),
-    )?;
+    int_array(w, "order", all().map(|c| i64::from(c.ty.order)))?;
+    let none = std::iter::repeat_n(-1, facets);
     if !mesh.cell_layer.is_empty() {
-        int_array(w, "layer", mesh.cell_layer.iter().map(|&v| record(v)))?;
+        let layer = mesh.cell_layer.iter().map(|&v| record(v));
+        int_array(w, "layer", layer.chain(none.clone()))?;
     }
     if !mesh.cell_pipe.is_empty() {
-        int_array(w, "pipe", mesh.cell_pipe.iter().map(|&v| record(v)))?;
+        let pipe = mesh.cell_pipe.iter().map(|&v| record(v));
+        int_array(w, "pipe", pipe.chain(none.clone()))?;
     }
+    let group = mesh
+        .boundary_patch
+        .iter()
+        .map(|&p| group_of[p as usize] as i64);
+    let domain = std::iter::repeat_n(-1, mesh.cells.len());
+    int_array(w, "boundary_group", domain.chain(group))?;
     writeln!(w, "      </CellData>")?;
     writeln!(w, "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>")?;
     w.flush()
@@ -175,7 +229,11 @@ mod tests {
         let offsets = array(&text, "offsets");
         let conn = array(&text, "connectivity");
         let points = array(&text, "Points");
-        assert_eq!(types.len(), m.cells.len());
+        assert_eq!(types.len(), m.cells.len() + m.boundary.len());
+        assert!(
+            types[m.cells.len()..].iter().all(|&t| t == 68.0),
+            "P3 lines"
+        );
         assert_eq!(points.len(), 3 * m.nodes.len());
         assert_eq!(*offsets.last().unwrap() as usize, conn.len());
         let mut start = 0;
@@ -202,8 +260,23 @@ mod tests {
             start = end;
         }
         let layers = array(&text, "layer");
-        assert_eq!(layers.len(), m.cells.len());
+        assert_eq!(layers.len(), m.cells.len() + m.boundary.len());
         assert_eq!(layers[0], f64::from(m.cell_layer[0]));
+        // facets carry their group: an index into the names
+        let group = array(&text, "boundary_group");
+        assert!(group[..m.cells.len()].iter().all(|&g| g == -1.0));
+        for (j, &p) in m.boundary_patch.iter().enumerate() {
+            assert_eq!(group[m.cells.len() + j], p as f64, "facet {j}");
+        }
+        let names = format!(
+            "{} 0\n",
+            "farfield"
+                .bytes()
+                .map(|b| b.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        assert!(text.contains(&names), "{text:.600}");
     }
 
     #[test]
@@ -228,7 +301,13 @@ mod tests {
         assert!(!path.exists());
         let linear = reference_cells_3d(1);
         let text = to_string(&linear).unwrap();
-        assert_eq!(array(&text, "types"), vec![10.0, 14.0, 13.0, 12.0]);
+        let types = array(&text, "types");
+        assert_eq!(types[..4], [10.0, 14.0, 13.0, 12.0]);
+        // then the boundary faces
+        assert!(
+            types[4..].iter().all(|&t| t == 5.0 || t == 9.0),
+            "{types:?}"
+        );
     }
 
     #[test]

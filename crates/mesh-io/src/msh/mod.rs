@@ -2,11 +2,11 @@
 //!
 //! What is written, for a mesh of dimension `d`:
 //! - `$PhysicalNames`: one group `fluid` of dimension `d` holding every domain cell, and one
-//!   group of dimension `d − 1` per boundary role present (`wall`, `farfield`), named by
-//!   [`mesh_model::Role::name`]. Physical tags are unique across dimensions (`fluid` is 1, the
-//!   roles follow), as PyFR requires.
+//!   group of dimension `d − 1` per boundary group ([`crate::groups`]: each wall named after
+//!   its patch, `slat`, `main`, `flap`; one `farfield`). Physical tags are unique across
+//!   dimensions (`fluid` is 1, the boundary groups follow), as PyFR requires.
 //! - `$Entities` (with bounding boxes): one entity of dimension `d − 1` per patch (a curve per
-//!   boundary loop in 2D), tag = patch index + 1, in its role's physical group; one entity of
+//!   boundary loop in 2D), tag = patch index + 1, in its group; one entity of
 //!   dimension `d`, tag 1, in `fluid`, bounded by all the patch entities. No point entities.
 //! - `$Nodes`: one block, every node classified on the domain entity, tag = index + 1, in the
 //!   data model's order; coordinates in shortest round-trip form (never NaN: a non-finite node
@@ -14,8 +14,9 @@
 //! - `$Elements`: one block per (entity, element type). Cell `i` gets element tag `i + 1`,
 //!   boundary facet `j` gets tag `cells + j + 1`, so the reader restores the original order.
 //!   Node order inside each element is the data model's, which is Gmsh's.
-//! - `$MeshIoPatches` (a section of ours, which Gmsh and PyFR skip): the patch name of each
-//!   boundary entity, so that names survive a round trip.
+//! - `$MeshIoPatches` (a section of ours, which Gmsh and PyFR skip): `tag role "name"` for
+//!   each boundary entity, so that names and roles survive a round trip (files written before
+//!   roles were recorded, `tag "name"`, are still read).
 //!
 //! What survives a write → read round trip: dimension, order, nodes (bit for bit), cells with
 //! their types and node order, boundary facets with their order, patches with names and roles.

@@ -19,9 +19,11 @@ use crate::IoError;
 ///   dimensions below the top are ignored.
 /// - Domain cells are all elements of the top dimension, in the order of their element tags.
 /// - Boundary facets are the elements one dimension lower, in the order of their tags. Each
-///   entity holding facets becomes a patch (patches in the order of entity tags); its role is
-///   the physical group of that entity named `wall` or `farfield` (case ignored), and its
-///   name comes from the `$MeshIoPatches` section this crate writes, or else is the role name.
+///   entity holding facets becomes a patch (patches in the order of entity tags), in exactly
+///   one physical group. Its role: `wall` or `farfield` when the group is so named (case
+///   ignored); else the role the `$MeshIoPatches` section this crate writes gives it; else
+///   (a group named after a body, `slat`, in a file without that section) a wall. Its name
+///   comes from that section, or else is the group's name.
 /// - Nodes are all nodes of the file, in the order of their tags. The order of the mesh is
 ///   the highest order of its cells (of its facets for a surface mesh).
 ///
@@ -100,6 +102,8 @@ struct RawFile {
     elements_line: usize,
     /// Entity tag → patch name, from `$MeshIoPatches`.
     patch_names: BTreeMap<i64, String>,
+    /// Entity tag → patch role, from `$MeshIoPatches`.
+    patch_roles: BTreeMap<i64, Role>,
 }
 
 /// One element as read.
@@ -456,8 +460,22 @@ fn read_patch_names(cur: &mut Cursor<'_>, file: &mut RawFile) -> Result<(), IoEr
     for _ in 0..n {
         let tag: i64 = cur.int("a patch entity tag")?;
         let (raw, line) = cur.rest_of_line();
+        // `tag role "name"`, or `tag "name"` in files written before roles were recorded
+        let (role, raw) = match raw.iter().position(|&b| b == b' ') {
+            Some(k) if raw[0] != b'"' => {
+                let word = std::str::from_utf8(&raw[..k]).unwrap_or_default();
+                let role = role_of_name(word).ok_or_else(|| {
+                    cur.malformed(line, format!("unknown patch role '{}'", show(&raw[..k])))
+                })?;
+                (Some(role), raw[k..].trim_ascii())
+            }
+            _ => (None, raw),
+        };
         let name = unquote(cur, raw, line)?;
         file.patch_names.insert(tag, name);
+        if let Some(role) = role {
+            file.patch_roles.insert(tag, role);
+        }
     }
     cur.expect_end(PATCH_SECTION)
 }
@@ -606,13 +624,16 @@ fn assemble(file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
             .collect();
         let role = match roles.len() {
             1 => role_of_name(roles.first().copied().unwrap_or_default()),
+            // a group named after its body (`slat`): the role written beside the patch name,
+            // else (a file without our section) a wall
+            0 if groups.len() == 1 => file.patch_roles.get(&entity).copied().or(Some(Role::Wall)),
             _ => None,
         }
         .ok_or_else(|| {
             cur.malformed(
                 line,
                 format!(
-                    "boundary entity (dimension {fd}, tag {entity}) must be in exactly one physical group named \"wall\" or \"farfield\"; its groups are {groups:?}"
+                    "boundary entity (dimension {fd}, tag {entity}) must be in exactly one physical group (\"farfield\", or a wall's name); its groups are {groups:?}"
                 ),
             )
         })?;
@@ -620,6 +641,7 @@ fn assemble(file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
             .patch_names
             .get(&entity)
             .cloned()
+            .or_else(|| groups.first().map(|g| g.to_string()))
             .unwrap_or_else(|| role.name().to_string());
         patch_of_entity.insert(entity, patches.len() as u32);
         patches.push(Patch { name, role });

@@ -4,7 +4,9 @@ use std::collections::BTreeMap;
 use std::io::{self, Write};
 use std::path::Path;
 
-use mesh_model::{Dim, Mesh, Role};
+use mesh_model::{Dim, Mesh};
+
+use crate::groups::{Group, boundary_groups};
 
 use super::{FLUID_GROUP, PATCH_SECTION, gmsh_type_id};
 use crate::IoError;
@@ -16,21 +18,22 @@ use crate::check::check_writable;
 /// Errors: [`IoError::NonFiniteNode`] or [`IoError::InvalidMesh`] before anything is
 /// written, [`IoError::Io`] when the file cannot be written.
 pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
-    let roles = prepare(mesh, path)?;
+    let groups = prepare(mesh, path)?;
     write_atomic(path, |w| {
-        body(w, mesh, &roles).map_err(|e| IoError::io(path, e))
+        body(w, mesh, &groups).map_err(|e| IoError::io(path, e))
     })
 }
 
 /// Writes `mesh` as MSH 4.1 ASCII to any writer (for example a `Vec<u8>`); `path` only names
 /// the destination in errors. Not atomic: use [`write()`] for files.
 pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
-    let roles = prepare(mesh, path)?;
-    body(out, mesh, &roles).map_err(|e| IoError::io(path, e))
+    let groups = prepare(mesh, path)?;
+    body(out, mesh, &groups).map_err(|e| IoError::io(path, e))
 }
 
-/// Checks the mesh and returns the roles present, in the order of their physical tags.
-fn prepare(mesh: &Mesh, path: &Path) -> Result<Vec<Role>, IoError> {
+/// Checks the mesh and returns its boundary groups (in the order of their physical tags) and
+/// the group of each patch.
+fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError> {
     check_writable(mesh, path)?;
     for (i, p) in mesh.patches.iter().enumerate() {
         if p.name.chars().any(char::is_control) {
@@ -40,17 +43,17 @@ fn prepare(mesh: &Mesh, path: &Path) -> Result<Vec<Role>, IoError> {
             });
         }
     }
-    Ok([Role::Wall, Role::Farfield]
-        .into_iter()
-        .filter(|r| mesh.patches.iter().any(|p| p.role == *r))
-        .collect())
+    boundary_groups(mesh).map_err(|message| IoError::InvalidMesh {
+        path: path.to_path_buf(),
+        message,
+    })
 }
 
 /// Physical tag of the `fluid` group.
 const FLUID_TAG: usize = 1;
 
-/// Physical tag of role number `k` in the list of roles present.
-fn role_tag(k: usize) -> usize {
+/// Physical tag of boundary group number `k`.
+fn group_tag(k: usize) -> usize {
     FLUID_TAG + 1 + k
 }
 
@@ -96,17 +99,20 @@ pub(crate) fn quote(name: &str) -> String {
     s
 }
 
-fn body(w: &mut dyn Write, mesh: &Mesh, roles: &[Role]) -> io::Result<()> {
+fn body(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    (groups, group_of): &(Vec<Group>, Vec<usize>),
+) -> io::Result<()> {
     let d = mesh.dim.as_u8() as usize;
     let n_patches = mesh.patches.len();
-    let role_tag_of = |r: Role| role_tag(roles.iter().position(|x| *x == r).unwrap_or(0));
 
     writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
 
-    writeln!(w, "$PhysicalNames\n{}", 1 + roles.len())?;
+    writeln!(w, "$PhysicalNames\n{}", 1 + groups.len())?;
     writeln!(w, "{d} {FLUID_TAG} {}", quote(FLUID_GROUP))?;
-    for (k, r) in roles.iter().enumerate() {
-        writeln!(w, "{} {} {}", d - 1, role_tag(k), quote(r.name()))?;
+    for (k, g) in groups.iter().enumerate() {
+        writeln!(w, "{} {} {}", d - 1, group_tag(k), quote(&g.name))?;
     }
     writeln!(w, "$EndPhysicalNames")?;
 
@@ -125,14 +131,14 @@ fn body(w: &mut dyn Write, mesh: &Mesh, roles: &[Role]) -> io::Result<()> {
         Dim::Two => writeln!(w, "0 {n_patches} 1 0")?,
         Dim::Three => writeln!(w, "0 0 {n_patches} 1")?,
     }
-    for (i, p) in mesh.patches.iter().enumerate() {
+    for i in 0..n_patches {
         let nodes = patch_blocks[i]
             .values()
             .flatten()
             .flat_map(|&j| mesh.boundary.get(j).nodes.iter().copied());
         write!(w, "{} ", i + 1)?;
         write_box(w, &bounding_box(mesh, nodes))?;
-        writeln!(w, " 1 {} 0", role_tag_of(p.role))?;
+        writeln!(w, " 1 {} 0", group_tag(group_of[i]))?;
     }
     write!(w, "1 ")?;
     write_box(
@@ -202,7 +208,7 @@ fn body(w: &mut dyn Write, mesh: &Mesh, roles: &[Role]) -> io::Result<()> {
 
     writeln!(w, "${PATCH_SECTION}\n{n_patches}")?;
     for (i, p) in mesh.patches.iter().enumerate() {
-        writeln!(w, "{} {}", i + 1, quote(&p.name))?;
+        writeln!(w, "{} {} {}", i + 1, p.role.name(), quote(&p.name))?;
     }
     writeln!(w, "$End{PATCH_SECTION}")?;
     w.flush()

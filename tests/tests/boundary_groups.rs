@@ -1,0 +1,158 @@
+//! One boundary group per body: every wall loop is its own physical group in the `.msh` and
+//! its own marker in the `.su2`, named after the loop, beside `farfield`; `merge_walls = true`
+//! makes them one `wall`.
+
+use std::path::Path;
+
+use clap::Parser;
+use mesh_model::Role;
+use xtask::{Outcome, cli::Cli, execute};
+
+fn mesh(case: &str, dir: &Path) -> (String, String, mesh_model::Mesh) {
+    let (msh, su2) = (dir.join("m.msh"), dir.join("m.su2"));
+    let args = [
+        "cargo xtask",
+        "mesh",
+        case,
+        "--quiet",
+        "--order",
+        "2",
+        "--out",
+        msh.to_str().unwrap(),
+        "--out",
+        su2.to_str().unwrap(),
+    ];
+    let outcome = execute(Cli::try_parse_from(args).unwrap()).unwrap();
+    assert_eq!(outcome, Outcome::Valid);
+    (
+        std::fs::read_to_string(&msh).unwrap(),
+        std::fs::read_to_string(&su2).unwrap(),
+        mesh_io::read_msh(&msh).unwrap(),
+    )
+}
+
+fn physical_names(msh: &str) -> Vec<String> {
+    let start = msh.find("$PhysicalNames\n").unwrap();
+    msh[start..]
+        .lines()
+        .skip(2)
+        .take_while(|l| !l.starts_with('$'))
+        .map(|l| {
+            l.splitn(3, ' ')
+                .nth(2)
+                .unwrap()
+                .trim_matches('"')
+                .to_string()
+        })
+        .collect()
+}
+
+fn markers(su2: &str) -> Vec<&str> {
+    su2.lines()
+        .filter_map(|l| l.strip_prefix("MARKER_TAG= "))
+        .collect()
+}
+
+#[test]
+fn every_body_is_a_group_of_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let (msh, su2, back) = mesh("two-element", dir.path());
+    assert_eq!(physical_names(&msh), ["fluid", "main", "flap", "farfield"]);
+    assert_eq!(markers(&su2), ["main", "flap", "farfield"]);
+    let patches: Vec<(&str, Role)> = back
+        .patches
+        .iter()
+        .map(|p| (p.name.as_str(), p.role))
+        .collect();
+    assert_eq!(
+        patches,
+        [
+            ("main", Role::Wall),
+            ("flap", Role::Wall),
+            ("farfield", Role::Farfield)
+        ]
+    );
+}
+
+#[test]
+fn merge_walls_makes_one_wall_group() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("two.toml");
+    std::fs::write(
+        &case,
+        "merge_walls = true\n\
+         [[loop]]\nrole = \"wall\"\nname = \"a b\"\nnaca = \"0012\"\n\
+         [[loop]]\nrole = \"wall\"\nnaca = \"0012\"\ntranslate = [0.0, 0.5]\n\
+         [[loop]]\nrole = \"farfield\"\ncircle = { center = [0.5, 0.0], radius = 20.0 }\n\
+         [layers]\nfirst_height = 1e-3\nmax_layers = 10\n",
+    )
+    .unwrap();
+    let (msh, su2, _) = mesh(case.to_str().unwrap(), dir.path());
+    assert_eq!(physical_names(&msh), ["fluid", "wall", "farfield"]);
+    assert_eq!(markers(&su2), ["wall", "farfield"]);
+    // without the key: identifiers, made unique
+    let text = std::fs::read_to_string(&case).unwrap();
+    std::fs::write(&case, text.replace("merge_walls = true\n", "")).unwrap();
+    let (msh, su2, _) = mesh(case.to_str().unwrap(), dir.path());
+    assert_eq!(
+        physical_names(&msh),
+        ["fluid", "a_b", "naca0012", "farfield"]
+    );
+    assert_eq!(markers(&su2), ["a_b", "naca0012", "farfield"]);
+}
+
+#[test]
+fn the_vtu_carries_the_boundary_facets_with_their_group() {
+    let dir = tempfile::tempdir().unwrap();
+    let (vtu, json) = (dir.path().join("m.vtu"), dir.path().join("m.json"));
+    let args = [
+        "cargo xtask",
+        "mesh",
+        "two-element",
+        "--quiet",
+        "--order",
+        "3",
+        "--out",
+        vtu.to_str().unwrap(),
+        "--report",
+        json.to_str().unwrap(),
+    ];
+    assert_eq!(
+        execute(Cli::try_parse_from(args).unwrap()).unwrap(),
+        Outcome::Valid
+    );
+    let text = std::fs::read_to_string(&vtu).unwrap();
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    // the group names, as VTK's ASCII string array: each string's bytes, then 0
+    let start = text.find(r#"Name="boundary_group_names""#).unwrap();
+    let block = &text[text[start..].find('>').unwrap() + start + 1..];
+    let block = &block[..block.find("</Array>").unwrap()];
+    let bytes: Vec<u8> = block
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    let names: Vec<String> = bytes
+        .split(|&b| b == 0)
+        .filter(|s| !s.is_empty())
+        .map(|s| String::from_utf8(s.to_vec()).unwrap())
+        .collect();
+    assert_eq!(names, ["main", "flap", "farfield"]);
+    let start = text.find(r#"Name="boundary_group""#).unwrap();
+    let block = &text[text[start..].find('>').unwrap() + start + 1..];
+    let block = &block[..block.find("</DataArray>").unwrap()];
+    let group: Vec<i64> = block
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    let cells =
+        report["cells"]["tri"].as_u64().unwrap() + report["cells"]["quad"].as_u64().unwrap();
+    assert_eq!(group.iter().filter(|&&g| g == -1).count() as u64, cells);
+    for (k, name) in names.iter().enumerate() {
+        let n = group.iter().filter(|&&g| g == k as i64).count() as u64;
+        assert_eq!(
+            n,
+            report["boundary_groups"][name].as_u64().unwrap(),
+            "{name}"
+        );
+    }
+}
