@@ -9,7 +9,7 @@
 //!
 //! It owns this test only; the boundary spacing is `boundary1d`'s.
 
-use crate::geom::{Aabb, P2, dist, orient, overlapping_pairs};
+use crate::geom::{Aabb, P2, closest_on_segment, dist, orient, overlapping_pairs};
 
 /// A gap between two loops that the boundary nodes cannot resolve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,17 +141,6 @@ fn distance_in_front(a: P2, b: P2, c: P2, d: P2) -> Option<f64> {
     let u = |k: f64| uc + k * (ud - uc);
     let m = u(lo).min(u(hi));
     (m > 0.0).then_some(m)
-}
-
-fn closest_on_segment(p: P2, a: P2, b: P2) -> P2 {
-    let ab = [b[0] - a[0], b[1] - a[1]];
-    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
-    let t = if l2 > 0.0 {
-        (((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    [a[0] + t * ab[0], a[1] + t * ab[1]]
 }
 
 #[cfg(test)]

@@ -61,6 +61,11 @@ pub(crate) fn segments_meet(a: P2, b: P2, c: P2, d: P2) -> bool {
 }
 
 fn point_segment_distance(p: P2, a: P2, b: P2) -> f64 {
+    dist(p, closest_on_segment(p, a, b))
+}
+
+/// The point of the closed segment ab nearest to `p`.
+pub(crate) fn closest_on_segment(p: P2, a: P2, b: P2) -> P2 {
     let ab = sub(b, a);
     let l2 = dot(ab, ab);
     let t = if l2 > 0.0 {
@@ -68,7 +73,7 @@ fn point_segment_distance(p: P2, a: P2, b: P2) -> f64 {
     } else {
         0.0
     };
-    dist(p, [a[0] + t * ab[0], a[1] + t * ab[1]])
+    [a[0] + t * ab[0], a[1] + t * ab[1]]
 }
 
 /// Least distance between the closed segments ab and cd.

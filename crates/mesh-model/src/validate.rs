@@ -166,14 +166,14 @@ pub fn validate(mesh: &Mesh) -> Vec<Problem> {
         return problems;
     }
     for cell in 0..mesh.cells.len() {
-        let corners: Vec<[f64; 2]> = mesh
-            .cells
-            .get(cell)
-            .corners()
-            .iter()
-            .map(|&n| mesh.xy(n))
-            .collect();
-        if !crate::mesh::is_positive_polygon(&corners) {
+        // a 2D linear cell has at most four corners: no allocation per cell
+        let c = mesh.cells.get(cell);
+        let k = c.corners();
+        let mut corners = [[0.0; 2]; 4];
+        for (x, &v) in corners.iter_mut().zip(k) {
+            *x = mesh.xy(v);
+        }
+        if !crate::mesh::is_positive_polygon(&corners[..k.len().min(4)]) {
             let area = mesh.linear_cell_area(cell);
             problems.push(Problem::NotPositive { cell, area });
         }

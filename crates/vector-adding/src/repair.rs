@@ -136,7 +136,7 @@ fn mend(
     };
     let (a, b) = (k[local[src][0]], k[local[src][1]]);
     edges.deviation(mesh, ce[src], a, &mut dev);
-    let free: Vec<usize> = (0..n)
+    let mut free: Vec<usize> = (0..n)
         .filter(|&j| {
             let e = ce[j] as usize;
             !edges.curved[e] && edges.cells[e][1] != NONE
@@ -144,7 +144,6 @@ fn mend(
         .collect();
     // the edge that shares no corner with the source (a quadrilateral's top) first: that is
     // how a pipe would carry the deviation
-    let mut free = free;
     free.sort_by_key(|&j| {
         let (u, w) = (k[local[j][0]], k[local[j][1]]);
         u == a || w == a || u == b || w == b
