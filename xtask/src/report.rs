@@ -265,7 +265,7 @@ fn worst(mesh: &Mesh, value: &[f64]) -> Option<WorstCell> {
 /// Gmsh's `minSJ` of every cell ([`MIN_SJ_GMSH_OF`]); NaN for a cell that is not certified
 /// valid.
 fn gmsh_min_sj(mesh: &Mesh) -> Vec<f64> {
-    use jacobian_check::{Certificate, CertifyParams, certify_cell, jacobian_2d};
+    use jacobian_check::{Certificate, CertifyParams, certify_cell, jacobian};
     use mesh_model::CellType;
     use rayon::prelude::*;
     let params = CertifyParams::default();
@@ -279,7 +279,7 @@ fn gmsh_min_sj(mesh: &Mesh) -> Vec<f64> {
                 Shape::Quad => [0.0, 0.0],
                 _ => [1.0 / 3.0, 1.0 / 3.0],
             };
-            let linear = jacobian_2d(CellType::new(c.ty.shape, 1), &corners, centre);
+            let linear = jacobian(CellType::new(c.ty.shape, 1), &corners, centre);
             match (certify_cell(c.ty, &nodes, &params), linear) {
                 (Ok(Certificate::Valid { min_coeff, .. }), Ok(j)) if j.det > 0.0 => {
                     min_coeff / j.det

@@ -10,8 +10,9 @@ use std::sync::OnceLock;
 use mesh_model::{CellType, Mesh, Shape};
 
 use crate::error::JacobianError;
-use crate::jacobian::{check_cell, det2, matrix_from_gradients};
+use crate::jacobian::{check_cell, det, matrix_from_gradients};
 use crate::lagrange::basis;
+use crate::types::{Feature, SLOTS, slot};
 
 /// Gauss–Legendre nodes and weights on [−1, 1] with `m` points (Newton on the Legendre
 /// recurrence, from the Chebyshev guesses).
@@ -51,16 +52,8 @@ struct AreaRule {
 }
 
 fn area_rule(ty: CellType) -> Result<&'static AreaRule, JacobianError> {
-    const TYPES: [(Shape, u8); 6] = [
-        (Shape::Tri, 1),
-        (Shape::Tri, 2),
-        (Shape::Tri, 3),
-        (Shape::Quad, 1),
-        (Shape::Quad, 2),
-        (Shape::Quad, 3),
-    ];
-    static CACHE: [OnceLock<AreaRule>; 6] = [const { OnceLock::new() }; 6];
-    let i = crate::lagrange::table_slot(&TYPES, ty, "area integration")?;
+    static CACHE: [OnceLock<AreaRule>; SLOTS] = [const { OnceLock::new() }; SLOTS];
+    let i = slot(ty, Feature::Area)?;
     let b = basis(ty)?;
     Ok(CACHE[i].get_or_init(|| {
         // Degree of the determinant: 2(p − 1) (triangle), 2p − 1 per direction (quad).
@@ -112,7 +105,7 @@ pub fn cell_area(ty: CellType, nodes: &[[f64; 2]]) -> Result<f64, JacobianError>
         .enumerate()
         .map(|(q, w)| {
             let g = &rule.grads[q * rule.nodes..(q + 1) * rule.nodes];
-            w * det2(&matrix_from_gradients(nodes, g))
+            w * det(&matrix_from_gradients(nodes, g))
         })
         .sum())
 }

@@ -21,9 +21,10 @@ use mesh_model::{CellType, Dim, Mesh, Shape};
 
 use crate::bernstein::{Domain, Region, Space};
 use crate::error::JacobianError;
-use crate::jacobian::{check_cell, det3, matrix_from_gradients};
+use crate::jacobian::{check_cell, det, matrix_from_gradients, ref_point};
 use crate::lagrange::{RefPoint, basis};
 use crate::linalg::mat_vec;
+use crate::types::{Feature, SLOTS, slot};
 
 /// Parameters of the certified and sampled checks.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,19 +124,6 @@ struct CertTable {
     nodes: usize,
 }
 
-const CERTIFIED: [(Shape, u8); 10] = [
-    (Shape::Tri, 1),
-    (Shape::Tri, 2),
-    (Shape::Tri, 3),
-    (Shape::Quad, 1),
-    (Shape::Quad, 2),
-    (Shape::Quad, 3),
-    (Shape::Tet, 1),
-    (Shape::Tet, 2),
-    (Shape::Hex, 1),
-    (Shape::Hex, 2),
-];
-
 /// The domain and degree of the determinant's polynomial space.
 fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
     let p = ty.order as usize;
@@ -148,9 +136,8 @@ fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
 }
 
 fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
-    static CACHE: [OnceLock<CertTable>; CERTIFIED.len()] =
-        [const { OnceLock::new() }; CERTIFIED.len()];
-    let i = crate::lagrange::table_slot(&CERTIFIED, ty, "the certified check")?;
+    static CACHE: [OnceLock<CertTable>; SLOTS] = [const { OnceLock::new() }; SLOTS];
+    let i = slot(ty, Feature::Certified)?;
     let b = basis(ty)?;
     Ok(CACHE[i].get_or_init(|| {
         let (domain, dim, degree) = determinant_space(ty);
@@ -167,16 +154,6 @@ fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
             nodes,
         }
     }))
-}
-
-/// Determinant of a D × D matrix (D = 2 or 3).
-fn det<const D: usize>(m: &[[f64; D]; D]) -> f64 {
-    let mut a = [[0.0; 3]; 3];
-    a[2][2] = 1.0;
-    for i in 0..D {
-        a[i][..D].copy_from_slice(&m[i]);
-    }
-    det3(&a)
 }
 
 fn to_point<const D: usize>(x: RefPoint) -> [f64; D] {
@@ -202,15 +179,16 @@ fn coefficients<const D: usize>(table: &CertTable, nodes: &[[f64; D]]) -> Vec<f6
     coeffs
 }
 
-/// The Bernstein coefficients of the Jacobian determinant of a 2D cell, in the order of the
-/// lattice `(i, j)` with i fastest (simplex: i + j ≤ degree). Their minimum and maximum
-/// bound the determinant over the cell; a straight-sided cell has all of them equal.
+/// The Bernstein coefficients of the Jacobian determinant of a cell of dimension `D`, in the
+/// order of the lattice `(i, j[, k])` with i fastest (simplex: i + j (+ k) ≤ degree). Their
+/// minimum and maximum bound the determinant over the cell; a straight-sided simplex has all
+/// of them equal.
 ///
 /// # Errors
-/// Unsupported type, wrong dimension, wrong node count, non-finite node.
-pub fn determinant_bernstein_coefficients(
+/// Unsupported type (no certificate), wrong dimension, wrong node count, non-finite node.
+pub fn determinant_bernstein_coefficients<const D: usize>(
     ty: CellType,
-    nodes: &[[f64; 2]],
+    nodes: &[[f64; D]],
 ) -> Result<Vec<f64>, JacobianError> {
     check_cell(ty, nodes)?;
     Ok(coefficients(cert_table(ty)?, nodes))
@@ -269,7 +247,15 @@ fn certify_coefficients(
     }
 }
 
-fn certify_any<const D: usize>(
+/// The certified validity of a cell of dimension `D` (triangles and quadrilaterals of order
+/// 1 to 3, tetrahedra and hexahedra of order 1 and 2) with node coordinates `nodes` in Gmsh
+/// order. Valid means the Jacobian determinant is > 0 everywhere in the cell: the cell is
+/// not folded and is positively oriented (counter-clockwise in 2D).
+///
+/// # Errors
+/// Unsupported type (prisms, pyramids: use [`sampled_check`]), wrong dimension, wrong node
+/// count, non-finite node, bad parameter.
+pub fn certify_cell<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
     params: &CertifyParams,
@@ -281,7 +267,7 @@ fn certify_any<const D: usize>(
         // determinant by far less than the margin asked for here (the nodes' shape
         // gradients are O(10) and the cell's extent bounds the other factor).
         let linear = CellType::new(ty.shape, 1);
-        let c = certify_any(linear, &nodes[..ty.shape.corners()], params)?;
+        let c = certify_cell(linear, &nodes[..ty.shape.corners()], params)?;
         let extent = nodes
             .iter()
             .map(|x| {
@@ -313,33 +299,6 @@ fn certify_any<const D: usize>(
             Certificate::Undecided => Certificate::Undecided,
         },
     )
-}
-
-/// The certified validity of a 2D cell (triangle or quadrilateral of order 1 to 3) with
-/// node coordinates `nodes` in Gmsh order. Valid means the Jacobian determinant is > 0
-/// everywhere in the cell, i.e. the cell is not folded and is counter-clockwise.
-///
-/// # Errors
-/// Unsupported type, wrong dimension, wrong node count, non-finite node, bad parameter.
-pub fn certify_cell(
-    ty: CellType,
-    nodes: &[[f64; 2]],
-    params: &CertifyParams,
-) -> Result<Certificate, JacobianError> {
-    certify_any(ty, nodes, params)
-}
-
-/// The certified validity of a 3D cell (tetrahedron or hexahedron of order 1 or 2).
-///
-/// # Errors
-/// Unsupported type (prisms, pyramids: use [`sampled_check_3d`]), wrong dimension, wrong
-/// node count, non-finite node, bad parameter.
-pub fn certify_cell_3d(
-    ty: CellType,
-    nodes: &[[f64; 3]],
-    params: &CertifyParams,
-) -> Result<Certificate<[f64; 3]>, JacobianError> {
-    certify_any(ty, nodes, params)
 }
 
 /// The result of evaluating the determinant on a lattice of points in a cell.
@@ -443,7 +402,16 @@ pub(crate) fn sample_points(shape: Shape, m: usize) -> Vec<RefPoint> {
     out
 }
 
-fn sampled_any<const D: usize>(
+/// The determinant of a cell of dimension `D` sampled on a lattice of `points_per_edge` points
+/// per edge (a triangle gets n(n+1)/2 points, a quadrilateral n²; every type with shape
+/// functions, prisms and the linear pyramid included). The dissertation sampled 900 points
+/// per triangle (41 points per edge give 861). Sampling cannot see a fold between its
+/// points; [`certify_cell`] can.
+///
+/// # Errors
+/// Unsupported type, wrong dimension, wrong node count, non-finite node, fewer than 2
+/// points per edge.
+pub fn sampled_check<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
     points_per_edge: usize,
@@ -469,34 +437,6 @@ fn sampled_any<const D: usize>(
         result.max_det = result.max_det.max(d);
     }
     Ok(result)
-}
-
-/// The determinant of a 2D cell sampled on a lattice of `points_per_edge` points per edge
-/// (a triangle gets n(n+1)/2 points, a quadrilateral n²). The dissertation sampled 900
-/// points per triangle (41 points per edge give 861). Sampling cannot see a fold between
-/// its points; [`certify_cell`] can.
-///
-/// # Errors
-/// Unsupported type, wrong dimension, wrong node count, non-finite node, fewer than 2
-/// points per edge.
-pub fn sampled_check(
-    ty: CellType,
-    nodes: &[[f64; 2]],
-    points_per_edge: usize,
-) -> Result<SampledCheck, JacobianError> {
-    sampled_any(ty, nodes, points_per_edge)
-}
-
-/// [`sampled_check`] for a 3D cell (every type with shape functions, pyramids included).
-///
-/// # Errors
-/// As [`sampled_check`].
-pub fn sampled_check_3d(
-    ty: CellType,
-    nodes: &[[f64; 3]],
-    points_per_edge: usize,
-) -> Result<SampledCheck<[f64; 3]>, JacobianError> {
-    sampled_any(ty, nodes, points_per_edge)
 }
 
 /// The validity of every cell of a mesh.
@@ -584,7 +524,7 @@ fn judge<const D: usize>(
     nodes: &[[f64; D]],
     params: &CertifyParams,
 ) -> Result<(f64, Verdict), JacobianError> {
-    let certificate = match certify_any(ty, nodes, params) {
+    let certificate = match certify_cell(ty, nodes, params) {
         Ok(c) => Some(c),
         Err(JacobianError::Unsupported { .. }) if D == 3 => None,
         Err(e) => return Err(e),
@@ -596,15 +536,12 @@ fn judge<const D: usize>(
     {
         return Ok((min_coeff / max_coeff, Verdict::Valid));
     }
-    let sampled = sampled_any(ty, nodes, params.sample_points_per_edge)?;
+    let sampled = sampled_check(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();
     let verdict = match certificate {
         Some(Certificate::Invalid { at }) => {
             let mut grads = vec![[0.0; 3]; nodes.len()];
-            basis(ty)?.gradients(
-                std::array::from_fn(|k| if k < D { at[k] } else { 0.0 }),
-                &mut grads,
-            );
+            basis(ty)?.gradients(ref_point(at), &mut grads);
             let d = det(&matrix_from_gradients(nodes, &grads));
             let scale = sampled.max_det.abs().max(sampled.min_det.abs());
             if scale > 0.0 {

@@ -38,7 +38,8 @@ pub enum JacobianError {
     },
 
     /// A 2D operation was given a cell of a 3D shape, or the reverse.
-    /// Fix: use the `_3d` functions for tetrahedra, pyramids, prisms and hexahedra.
+    /// Fix: pass node coordinates of the cell's own dimension (`[f64; 2]` for triangles and
+    /// quadrilaterals, `[f64; 3]` for tetrahedra, pyramids, prisms and hexahedra).
     #[error("cell type {shape} has dimension {actual}, the operation needs dimension {needed}", shape = ty.shape.name())]
     WrongDimension {
         /// The cell type.

@@ -9,22 +9,12 @@ use mesh_model::CellType;
 use crate::error::JacobianError;
 use crate::lagrange::{RefPoint, basis};
 
-/// The Jacobian of a 2D cell at a reference point.
+/// The Jacobian of a cell of dimension `D` at a reference point.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Jacobian2 {
-    /// `matrix[i][j] = ∂x_i/∂ξ_j` (row: physical coordinate x or y; column: reference
-    /// coordinate ξ or η).
-    pub matrix: [[f64; 2]; 2],
-    /// Its determinant: the ratio of physical to reference area at the point.
-    pub det: f64,
-}
-
-/// The Jacobian of a 3D cell at a reference point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Jacobian3 {
-    /// `matrix[i][j] = ∂x_i/∂ξ_j`.
-    pub matrix: [[f64; 3]; 3],
-    /// Its determinant: the ratio of physical to reference volume at the point.
+pub struct Jacobian<const D: usize> {
+    /// `matrix[i][j] = ∂x_i/∂ξ_j` (row: physical coordinate; column: reference coordinate).
+    pub matrix: [[f64; D]; D],
+    /// Its determinant: the ratio of physical to reference area (2D) or volume (3D) there.
     pub det: f64,
 }
 
@@ -70,11 +60,6 @@ pub(crate) fn matrix_from_gradients<const D: usize>(
     m
 }
 
-/// Determinant of a 2 × 2 matrix.
-pub(crate) fn det2(m: &[[f64; 2]; 2]) -> f64 {
-    m[0][0] * m[1][1] - m[0][1] * m[1][0]
-}
-
 /// Determinant of a 3 × 3 matrix.
 pub(crate) fn det3(m: &[[f64; 3]; 3]) -> f64 {
     m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
@@ -82,62 +67,63 @@ pub(crate) fn det3(m: &[[f64; 3]; 3]) -> f64 {
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
-/// The Jacobian of the 2D cell `ty` with node coordinates `nodes` (Gmsh order) at the
-/// reference point `xi` (see [`crate::lagrange`] for the reference domains).
+/// Determinant of a D × D matrix (D = 2 or 3).
+pub(crate) fn det<const D: usize>(m: &[[f64; D]; D]) -> f64 {
+    match D {
+        2 => m[0][0] * m[1][1] - m[0][1] * m[1][0],
+        _ => {
+            let mut a = [[0.0; 3]; 3];
+            a[2][2] = 1.0;
+            for i in 0..D.min(3) {
+                a[i][..D.min(3)].copy_from_slice(&m[i][..D.min(3)]);
+            }
+            det3(&a)
+        }
+    }
+}
+
+/// `xi` padded with zeros to a reference point.
+pub(crate) fn ref_point<const D: usize>(xi: [f64; D]) -> RefPoint {
+    std::array::from_fn(|k| if k < D { xi[k] } else { 0.0 })
+}
+
+/// The Jacobian of the cell `ty` (dimension `D`) with node coordinates `nodes` (Gmsh order)
+/// at the reference point `xi` (see [`crate::lagrange`] for the reference domains).
 ///
 /// # Errors
 /// Unsupported type, wrong dimension, wrong node count, non-finite node.
-pub fn jacobian_2d(
+pub fn jacobian<const D: usize>(
     ty: CellType,
-    nodes: &[[f64; 2]],
-    xi: [f64; 2],
-) -> Result<Jacobian2, JacobianError> {
+    nodes: &[[f64; D]],
+    xi: [f64; D],
+) -> Result<Jacobian<D>, JacobianError> {
     check_cell(ty, nodes)?;
     let mut grads = vec![[0.0; 3]; nodes.len()];
-    basis(ty)?.gradients([xi[0], xi[1], 0.0], &mut grads);
+    basis(ty)?.gradients(ref_point(xi), &mut grads);
     let matrix = matrix_from_gradients(nodes, &grads);
-    Ok(Jacobian2 {
-        det: det2(&matrix),
+    Ok(Jacobian {
+        det: det(&matrix),
         matrix,
     })
 }
 
-/// The Jacobian of the 3D cell `ty` with node coordinates `nodes` (Gmsh order) at the
-/// reference point `xi`.
+/// The physical point of the cell `ty` at the reference point `xi`: `Σ_i N_i(ξ) x_i`.
 ///
 /// # Errors
 /// Unsupported type, wrong dimension, wrong node count, non-finite node.
-pub fn jacobian_3d(
+pub fn physical_from_reference<const D: usize>(
     ty: CellType,
-    nodes: &[[f64; 3]],
-    xi: RefPoint,
-) -> Result<Jacobian3, JacobianError> {
-    check_cell(ty, nodes)?;
-    let mut grads = vec![[0.0; 3]; nodes.len()];
-    basis(ty)?.gradients(xi, &mut grads);
-    let matrix = matrix_from_gradients(nodes, &grads);
-    Ok(Jacobian3 {
-        det: det3(&matrix),
-        matrix,
-    })
-}
-
-/// The physical point of the 2D cell `ty` at the reference point `xi`: `Σ_i N_i(ξ) x_i`.
-///
-/// # Errors
-/// Unsupported type, wrong dimension, wrong node count, non-finite node.
-pub fn physical_from_reference_2d(
-    ty: CellType,
-    nodes: &[[f64; 2]],
-    xi: [f64; 2],
-) -> Result<[f64; 2], JacobianError> {
+    nodes: &[[f64; D]],
+    xi: [f64; D],
+) -> Result<[f64; D], JacobianError> {
     check_cell(ty, nodes)?;
     let mut n = vec![0.0; nodes.len()];
-    basis(ty)?.values([xi[0], xi[1], 0.0], &mut n);
-    let mut p = [0.0; 2];
+    basis(ty)?.values(ref_point(xi), &mut n);
+    let mut p = [0.0; D];
     for (x, w) in nodes.iter().zip(&n) {
-        p[0] += w * x[0];
-        p[1] += w * x[1];
+        for d in 0..D {
+            p[d] += w * x[d];
+        }
     }
     Ok(p)
 }

@@ -18,50 +18,14 @@ use mesh_model::{CellType, Shape};
 
 use crate::error::JacobianError;
 use crate::linalg::invert;
+use crate::types::{Feature, SLOTS, slot};
 
 /// A point in reference coordinates (unused coordinates are 0).
 pub type RefPoint = [f64; 3];
 
-/// The supported cell types, in the order of the basis cache.
-const SUPPORTED: [(Shape, u8); 13] = [
-    (Shape::Tri, 1),
-    (Shape::Tri, 2),
-    (Shape::Tri, 3),
-    (Shape::Quad, 1),
-    (Shape::Quad, 2),
-    (Shape::Quad, 3),
-    (Shape::Tet, 1),
-    (Shape::Tet, 2),
-    (Shape::Prism, 1),
-    (Shape::Prism, 2),
-    (Shape::Hex, 1),
-    (Shape::Hex, 2),
-    (Shape::Pyramid, 1),
-];
-
-/// Position of a supported type in [`SUPPORTED`].
+/// Position of a supported type in the table of types ([`crate::types`]).
 fn type_index(ty: CellType) -> Result<usize, JacobianError> {
-    table_slot(&SUPPORTED, ty, "the Lagrange shape functions")
-}
-
-fn unsupported(ty: CellType) -> JacobianError {
-    JacobianError::Unsupported {
-        ty,
-        what: "the Lagrange shape functions",
-    }
-}
-
-/// The position of `ty` in a table of supported types (the slot of its cached data), or
-/// [`JacobianError::Unsupported`] naming `what` is not available for it.
-pub(crate) fn table_slot(
-    types: &[(Shape, u8)],
-    ty: CellType,
-    what: &'static str,
-) -> Result<usize, JacobianError> {
-    types
-        .iter()
-        .position(|&(s, o)| s == ty.shape && o == ty.order)
-        .ok_or(JacobianError::Unsupported { ty, what })
+    slot(ty, Feature::ShapeFunctions)
 }
 
 /// The reference coordinates of the nodes of a cell type, in Gmsh's node order: corners,
@@ -75,7 +39,7 @@ pub(crate) fn table_slot(
 /// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
 pub fn reference_nodes(ty: CellType) -> Result<Vec<RefPoint>, JacobianError> {
     type_index(ty)?;
-    mesh_model::reference::reference_nodes(ty).ok_or_else(|| unsupported(ty))
+    Ok(mesh_model::reference::reference_nodes(ty).expect("every listed type has reference nodes"))
 }
 
 /// The monomial exponents spanning the polynomial space of a (polynomial) cell type.
@@ -231,7 +195,7 @@ fn pyramid_ratio(u: f64, v: f64, w: f64) -> f64 {
 
 /// The cached basis of a supported type.
 pub(crate) fn basis(ty: CellType) -> Result<&'static Basis, JacobianError> {
-    static CACHE: [OnceLock<Basis>; SUPPORTED.len()] = [const { OnceLock::new() }; SUPPORTED.len()];
+    static CACHE: [OnceLock<Basis>; SLOTS] = [const { OnceLock::new() }; SLOTS];
     let i = type_index(ty)?;
     Ok(CACHE[i].get_or_init(|| Basis::build(ty)))
 }
@@ -258,9 +222,4 @@ pub fn shape_gradients(ty: CellType, xi: RefPoint) -> Result<Vec<[f64; 3]>, Jaco
     let mut g = vec![[0.0; 3]; ty.node_count()];
     b.gradients(xi, &mut g);
     Ok(g)
-}
-
-/// Every supported cell type (see the module docs).
-pub fn supported_types() -> impl Iterator<Item = CellType> {
-    SUPPORTED.iter().map(|&(s, o)| CellType::new(s, o))
 }

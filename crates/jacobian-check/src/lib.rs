@@ -46,6 +46,10 @@
 //!
 //! For a whole mesh, [`check_mesh`] certifies every cell (on all cores) and returns the
 //! invalid and undecided cells and each cell's scaled Jacobian.
+//!
+//! One API for 2D and 3D: every per-cell function is generic over the dimension `D` of the
+//! node coordinates (`[f64; 2]` or `[f64; 3]`), and [`types`] is the one table of the cell
+//! types the crate knows and what it offers for each ([`capabilities`]).
 
 pub mod area;
 mod bernstein;
@@ -56,13 +60,15 @@ pub mod jacobian;
 pub mod lagrange;
 mod linalg;
 mod straight;
+pub mod types;
 
 pub use area::{cell_area, enclosed_area, integrate_area};
 pub use certify::{
-    Certificate, CertifyParams, MeshValidity, SampledCheck, certify_cell, certify_cell_3d,
-    check_mesh, determinant_bernstein_coefficients, sampled_check, sampled_check_3d,
+    Certificate, CertifyParams, MeshValidity, SampledCheck, certify_cell, check_mesh,
+    determinant_bernstein_coefficients, sampled_check,
 };
 pub use curved::curved_edge_fraction;
 pub use error::JacobianError;
-pub use jacobian::{Jacobian2, Jacobian3, jacobian_2d, jacobian_3d, physical_from_reference_2d};
-pub use lagrange::{reference_nodes, shape_functions, shape_gradients, supported_types};
+pub use jacobian::{Jacobian, jacobian, physical_from_reference};
+pub use lagrange::{reference_nodes, shape_functions, shape_gradients};
+pub use types::{Capabilities, capabilities, supported_types};

@@ -6,27 +6,19 @@
 
 use std::sync::OnceLock;
 
-use mesh_model::{CellType, Shape};
+use mesh_model::CellType;
 
 use crate::error::JacobianError;
 use crate::lagrange::{basis, reference_nodes};
-
-/// Types with a table: the high-order types the certified check supports.
-const TYPES: [(Shape, u8); 6] = [
-    (Shape::Tri, 2),
-    (Shape::Tri, 3),
-    (Shape::Quad, 2),
-    (Shape::Quad, 3),
-    (Shape::Tet, 2),
-    (Shape::Hex, 2),
-];
+use crate::types::{Feature, SLOTS, capabilities, slot};
 
 /// Per type: the order-1 shape values at each of its reference nodes (row per node).
 fn table(ty: CellType) -> Option<&'static Vec<f64>> {
-    static CACHE: [OnceLock<Vec<f64>>; TYPES.len()] = [const { OnceLock::new() }; TYPES.len()];
-    let i = TYPES
-        .iter()
-        .position(|&(s, o)| s == ty.shape && o == ty.order)?;
+    static CACHE: [OnceLock<Vec<f64>>; SLOTS] = [const { OnceLock::new() }; SLOTS];
+    if !capabilities(ty)?.straight_shortcut {
+        return None;
+    }
+    let i = slot(ty, Feature::ShapeFunctions).ok()?;
     Some(CACHE[i].get_or_init(|| {
         let linear = CellType::new(ty.shape, 1);
         let b = basis(linear).expect("order-1 bases exist for every certified shape");
@@ -75,6 +67,7 @@ pub(crate) fn is_straight<const D: usize>(
 mod tests {
     use super::*;
     use crate::certify::{CertifyParams, certify_cell};
+    use mesh_model::Shape;
 
     fn bilinear_quad(p: u8, bend: f64) -> Vec<[f64; 2]> {
         let c = [[0.0, 0.0], [2.0, 0.1], [2.2, 1.0], [-0.1, 0.9]];

@@ -4,9 +4,8 @@
 //! perturbations agree with dense sampling.
 
 use jacobian_check::{
-    Certificate, CertifyParams, JacobianError, certify_cell, certify_cell_3d, check_mesh,
-    determinant_bernstein_coefficients, jacobian_2d, jacobian_3d, reference_nodes, sampled_check,
-    sampled_check_3d,
+    Certificate, CertifyParams, JacobianError, certify_cell, check_mesh,
+    determinant_bernstein_coefficients, jacobian, reference_nodes, sampled_check,
 };
 use mesh_io::testkit::{AnnulusParams, annulus, reference_cells_3d};
 use mesh_model::{CellType, Shape, polygon_area};
@@ -60,7 +59,7 @@ fn assert_folded_between_samples(ty: CellType, nodes: &[[f64; 2]], coarse_points
     let Certificate::Invalid { at } = cert else {
         panic!("{ty:?}: expected Invalid, got {cert:?}");
     };
-    let det_at = jacobian_2d(ty, nodes, at).unwrap().det;
+    let det_at = jacobian(ty, nodes, at).unwrap().det;
     assert!(
         det_at <= 1e-12,
         "{ty:?}: det at the proved point {at:?} is {det_at}"
@@ -68,7 +67,7 @@ fn assert_folded_between_samples(ty: CellType, nodes: &[[f64; 2]], coarse_points
     let corners = reference_2d(CellType::new(ty.shape, 1));
     for c in &corners {
         assert!(
-            jacobian_2d(ty, nodes, *c).unwrap().det > 0.0,
+            jacobian(ty, nodes, *c).unwrap().det > 0.0,
             "{ty:?} corner {c:?}"
         );
         let d = ((c[0] - at[0]).powi(2) + (c[1] - at[1]).powi(2)).sqrt();
@@ -261,7 +260,7 @@ fn bad_input_is_an_error() {
     ));
     let prism: Vec<[f64; 3]> = reference_nodes(CellType::new(Shape::Prism, 1)).unwrap();
     assert!(matches!(
-        certify_cell_3d(CellType::new(Shape::Prism, 1), &prism, &p),
+        certify_cell(CellType::new(Shape::Prism, 1), &prism, &p),
         Err(JacobianError::Unsupported { .. })
     ));
     let mut mesh = annulus(&AnnulusParams::default());
@@ -319,14 +318,14 @@ fn reference_3d_cells_are_certified_or_sampled() {
         match cell.ty.shape {
             Shape::Tet | Shape::Hex => {
                 assert!(
-                    certify_cell_3d(cell.ty, &xyz, &CertifyParams::default())
+                    certify_cell(cell.ty, &xyz, &CertifyParams::default())
                         .unwrap()
                         .is_valid()
                 )
             }
-            Shape::Prism => assert!(sampled_check_3d(cell.ty, &xyz, 5).unwrap().all_positive()),
+            Shape::Prism => assert!(sampled_check(cell.ty, &xyz, 5).unwrap().all_positive()),
             _ => assert!(matches!(
-                sampled_check_3d(cell.ty, &xyz, 5),
+                sampled_check(cell.ty, &xyz, 5),
                 Err(JacobianError::Unsupported { .. })
             )),
         }
@@ -378,10 +377,10 @@ proptest! {
             let nodes: Vec<[f64; 3]> = reference_nodes(ty).unwrap().iter()
                 .map(|x| [0, 1, 2].map(|i| (0..3).map(|j| a[i][j] * x[j]).sum()))
                 .collect();
-            let c = certify_cell_3d(ty, &nodes, &CertifyParams::default()).unwrap();
+            let c = certify_cell(ty, &nodes, &CertifyParams::default()).unwrap();
             prop_assert_eq!(c.is_valid(), det > 0.0, "{:?} det {} {:?}", ty, det, c);
             if let Certificate::Invalid { at } = c {
-                prop_assert!(jacobian_3d(ty, &nodes, at).unwrap().det <= 0.0);
+                prop_assert!(jacobian(ty, &nodes, at).unwrap().det <= 0.0);
             }
         }
     }
@@ -406,7 +405,7 @@ proptest! {
                     prop_assert!(min_coeff <= dense.min_det + 1e-12 && dense.max_det <= max_coeff + 1e-12);
                 }
                 Certificate::Invalid { at } => {
-                    let d = jacobian_2d(ty, &nodes, at).unwrap().det;
+                    let d = jacobian(ty, &nodes, at).unwrap().det;
                     prop_assert!(d <= 1e-12, "{:?}: invalid at {:?} but det {}", ty, at, d);
                 }
                 Certificate::Undecided => {}

@@ -1,0 +1,124 @@
+//! The one table of the cell types this crate knows and what it can do with each: every
+//! per-type cache (shape-function bases, certification tables, the straight-cell shortcut,
+//! area rules) is an array indexed by a type's slot here, so adding a type is one line.
+//!
+//! It owns the table and the lookups; the data cached per type belongs to the modules that
+//! build it.
+
+use mesh_model::{CellType, Shape};
+
+use crate::error::JacobianError;
+
+/// What this crate offers for one cell type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Capabilities {
+    /// A certified (Bernstein) sign check of the Jacobian determinant ([`crate::certify_cell`]).
+    /// Without it a cell gets the sampled check only ([`crate::sampled_check`]).
+    pub certified: bool,
+    /// Exact area by quadrature ([`crate::cell_area`]): the 2D types.
+    pub area: bool,
+    /// The shortcut that certifies a straight-sided high-order cell through its order-1 map.
+    pub straight_shortcut: bool,
+}
+
+/// Every type with Lagrange shape functions, and whether it has a certificate. The 14-node
+/// pyramid of Gmsh has a rational (Bergot) basis and is not here.
+const TABLE: [(Shape, u8, bool); 13] = [
+    (Shape::Tri, 1, true),
+    (Shape::Tri, 2, true),
+    (Shape::Tri, 3, true),
+    (Shape::Quad, 1, true),
+    (Shape::Quad, 2, true),
+    (Shape::Quad, 3, true),
+    (Shape::Tet, 1, true),
+    (Shape::Tet, 2, true),
+    (Shape::Prism, 1, false),
+    (Shape::Prism, 2, false),
+    (Shape::Hex, 1, true),
+    (Shape::Hex, 2, true),
+    (Shape::Pyramid, 1, false),
+];
+
+/// The number of slots: the length of every per-type cache.
+pub(crate) const SLOTS: usize = TABLE.len();
+
+/// A feature a caller needs for a type; its name goes into [`JacobianError::Unsupported`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Feature {
+    ShapeFunctions,
+    Certified,
+    Area,
+}
+
+impl Feature {
+    fn name(self) -> &'static str {
+        match self {
+            Feature::ShapeFunctions => "the Lagrange shape functions",
+            Feature::Certified => "the certified check",
+            Feature::Area => "area integration",
+        }
+    }
+}
+
+fn position(ty: CellType) -> Option<usize> {
+    TABLE
+        .iter()
+        .position(|&(s, o, _)| s == ty.shape && o == ty.order)
+}
+
+/// What the crate offers for `ty`, or `None` when it has no shape functions for it.
+pub fn capabilities(ty: CellType) -> Option<Capabilities> {
+    let (_, order, certified) = TABLE[position(ty)?];
+    Some(Capabilities {
+        certified,
+        area: ty.shape.dim() == 2,
+        straight_shortcut: certified && order >= 2,
+    })
+}
+
+/// The cache slot of `ty` when it has `feature`, else [`JacobianError::Unsupported`].
+pub(crate) fn slot(ty: CellType, feature: Feature) -> Result<usize, JacobianError> {
+    let unsupported = JacobianError::Unsupported {
+        ty,
+        what: feature.name(),
+    };
+    let i = position(ty).ok_or(unsupported.clone())?;
+    let caps = capabilities(ty).expect("listed type");
+    let has = match feature {
+        Feature::ShapeFunctions => true,
+        Feature::Certified => caps.certified,
+        Feature::Area => caps.area,
+    };
+    if has { Ok(i) } else { Err(unsupported) }
+}
+
+/// Every type with shape functions, in table order.
+pub fn supported_types() -> impl Iterator<Item = CellType> {
+    TABLE.iter().map(|&(s, o, _)| CellType::new(s, o))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn certified_types_are_the_triangles_quads_tets_and_hexes() {
+        let certified: Vec<_> = supported_types()
+            .filter(|&t| capabilities(t).unwrap().certified)
+            .map(|t| (t.shape, t.order))
+            .collect();
+        assert_eq!(certified.len(), 10);
+        assert!(
+            !certified
+                .iter()
+                .any(|(s, _)| matches!(s, Shape::Prism | Shape::Pyramid))
+        );
+        let p2_pyramid = CellType::new(Shape::Pyramid, 2);
+        assert!(capabilities(p2_pyramid).is_none());
+        assert!(slot(p2_pyramid, Feature::ShapeFunctions).is_err());
+        let prism = CellType::new(Shape::Prism, 1);
+        assert!(slot(prism, Feature::ShapeFunctions).is_ok());
+        assert!(slot(prism, Feature::Certified).is_err());
+        assert!(slot(prism, Feature::Area).is_err());
+    }
+}
