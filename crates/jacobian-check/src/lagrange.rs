@@ -10,7 +10,7 @@
 //! monomial space and reference nodes (the inverse of the Vandermonde matrix) and cached.
 //!
 //! This module owns the reference cells only; mapping to physical space is
-//! [`crate::jacobian`].
+//! [`mod@crate::jacobian`].
 
 use std::sync::OnceLock;
 

@@ -1,5 +1,5 @@
 //! Validity of high-order (curved) cells: Lagrange shape functions of Gmsh's reference
-//! cells ([`lagrange`]), the Jacobian of the reference-to-physical map ([`jacobian`]), and a
+//! cells ([`lagrange`]), the Jacobian of the reference-to-physical map ([`mod@jacobian`]), and a
 //! **certified** check of the sign of its determinant from Bernstein coefficients with
 //! adaptive subdivision ([`certify`], after Johnen, Remacle & Geuzaine, "Geometrical
 //! validity of curvilinear finite elements", J. Comput. Phys. 2013), next to the sampled
