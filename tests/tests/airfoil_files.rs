@@ -4,9 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use clap::Parser;
+use end_to_end::{Outcome, s, xtask};
 use serde_json::Value;
-use xtask::{Outcome, cli::Cli, execute};
 
 fn fixture(rel: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -19,15 +18,10 @@ fn fixture(rel: &str) -> String {
 /// Runs `mesh` with `args` at order 1 into `dir`; returns the report and the mesh read back.
 fn run(dir: &Path, args: &[&str]) -> anyhow::Result<(Value, mesh_model::Mesh)> {
     let (msh, json): (PathBuf, PathBuf) = (dir.join("m.msh"), dir.join("m.json"));
-    let mut all = vec!["cargo xtask", "mesh", "--quiet", "--order", "1"];
+    let mut all = vec!["mesh", "--quiet", "--order", "1"];
     all.extend(args);
-    all.extend([
-        "--out",
-        msh.to_str().unwrap(),
-        "--report",
-        json.to_str().unwrap(),
-    ]);
-    let outcome = execute(Cli::try_parse_from(&all)?)?;
+    all.extend(["--out", s(&msh), "--report", s(&json)]);
+    let outcome = xtask(&all)?;
     assert_eq!(outcome, Outcome::Valid);
     let report = serde_json::from_slice(&std::fs::read(json)?)?;
     Ok((report, mesh_io::read_msh(&msh)?))

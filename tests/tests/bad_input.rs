@@ -2,22 +2,26 @@
 
 use std::path::Path;
 
-use clap::Parser;
-use xtask::{cli::Cli, execute};
+use end_to_end::{assert_one_line_naming, s, xtask};
 
 /// Runs `cargo xtask mesh CASE --out DIR/out.msh --report DIR/out.json` and returns the error
 /// message, checking that nothing was written.
 fn mesh_error(dir: &Path, case: &str, extra: &[&str]) -> String {
     let out = dir.join("out.msh");
     let report = dir.join("out.json");
-    let mut args = vec!["cargo xtask", "mesh", case, "--quiet"];
-    let (out_s, report_s) = (out.to_str().unwrap(), report.to_str().unwrap());
-    args.extend(["--out", out_s, "--report", report_s]);
+    let mut args = vec![
+        "mesh",
+        case,
+        "--quiet",
+        "--out",
+        s(&out),
+        "--report",
+        s(&report),
+    ];
     args.extend(extra);
-    let cli = Cli::try_parse_from(&args).expect("flags parse");
-    let err = execute(cli).expect_err("bad input must be an error");
+    let err = xtask(&args).expect_err("bad input must be an error");
     let msg = format!("{err:#}");
-    assert!(!msg.contains('\n'), "message is one line: {msg}");
+    assert_one_line_naming(&msg, &[]);
     assert!(
         !out.exists() && !report.exists(),
         "no output file on bad input ({msg})"

@@ -4,25 +4,23 @@
 
 use std::path::Path;
 
-use clap::Parser;
+use end_to_end::{Outcome, read_json, s, xtask_ok};
 use mesh_model::Role;
-use xtask::{Outcome, cli::Cli, execute};
 
 fn mesh(case: &str, dir: &Path) -> (String, String, mesh_model::Mesh) {
     let (msh, su2) = (dir.join("m.msh"), dir.join("m.su2"));
     let args = [
-        "cargo xtask",
         "mesh",
         case,
         "--quiet",
         "--order",
         "2",
         "--out",
-        msh.to_str().unwrap(),
+        s(&msh),
         "--out",
-        su2.to_str().unwrap(),
+        s(&su2),
     ];
-    let outcome = execute(Cli::try_parse_from(args).unwrap()).unwrap();
+    let outcome = xtask_ok(&args);
     assert_eq!(outcome, Outcome::Valid);
     (
         std::fs::read_to_string(&msh).unwrap(),
@@ -105,24 +103,11 @@ fn merge_walls_makes_one_wall_group() {
 fn the_vtu_carries_the_boundary_facets_with_their_group() {
     let dir = tempfile::tempdir().unwrap();
     let (vtu, json) = (dir.path().join("m.vtu"), dir.path().join("m.json"));
-    let args = [
-        "cargo xtask",
-        "mesh",
-        "two-element",
-        "--quiet",
-        "--order",
-        "3",
-        "--out",
-        vtu.to_str().unwrap(),
-        "--report",
-        json.to_str().unwrap(),
-    ];
-    assert_eq!(
-        execute(Cli::try_parse_from(args).unwrap()).unwrap(),
-        Outcome::Valid
-    );
+    let args = ["mesh", "two-element", "--quiet", "--order", "3"];
+    let outputs = ["--out", s(&vtu), "--report", s(&json)];
+    assert_eq!(xtask_ok(&[&args[..], &outputs].concat()), Outcome::Valid);
     let text = std::fs::read_to_string(&vtu).unwrap();
-    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    let report = read_json(&json);
     // the group names, as VTK's ASCII string array: each string's bytes, then 0
     let start = text.find(r#"Name="boundary_group_names""#).unwrap();
     let block = &text[text[start..].find('>').unwrap() + start + 1..];

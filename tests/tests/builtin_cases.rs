@@ -3,16 +3,9 @@
 
 use std::collections::HashMap;
 
-use clap::Parser;
+use end_to_end::{Outcome, xtask_ok as run};
 use mesh_model::{Role, Shape};
-use xtask::{Outcome, builtin, cli::Cli, execute};
-
-fn run(args: &[&str]) -> Outcome {
-    let mut all = vec!["cargo xtask"];
-    all.extend(args);
-    let cli = Cli::try_parse_from(&all).expect("flags parse");
-    execute(cli).unwrap_or_else(|e| panic!("{args:?}: {e:#}"))
-}
+use xtask::builtin;
 
 #[test]
 fn every_builtin_case_at_every_order_round_trips() {

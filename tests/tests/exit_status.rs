@@ -5,6 +5,7 @@
 //! certified check even when the structural check fails too.
 
 use clap::Parser;
+use end_to_end::{assert_one_line_naming, assert_problem, cli, read_json, s};
 use xtask::cli::{Cli, Command};
 use xtask::exit::{self, Exit};
 use xtask::{Outcome, run};
@@ -20,10 +21,7 @@ fn one_line_error(e: &Exit, code: u8, words: &[&str]) {
     assert_eq!(e.code, code, "{e:?}");
     let line = e.stderr.as_deref().expect("a line on stderr");
     assert!(line.starts_with("error: "), "{line}");
-    assert!(!line.contains('\n'), "one line: {line:?}");
-    for w in words {
-        assert!(line.contains(w), "{line:?} should mention {w:?}");
-    }
+    assert_one_line_naming(line, words);
 }
 
 #[test]
@@ -82,22 +80,20 @@ fn a_negative_view_draws() {
     let png = dir.path().join("a.png");
     let png_arg = format!("{}@-0.1,-0.1,0.1,0.1", png.display());
     let msh = dir.path().join("m.msh");
-    let cli = Cli::try_parse_from([
-        "cargo xtask",
+    let args = [
         "mesh",
         "lshape",
         "--quiet",
         "--order",
         "1",
         "--out",
-        msh.to_str().unwrap(),
-        "--png",
-        &png_arg,
-        "--width",
-        "128",
-    ])
-    .unwrap();
-    let end = exit::of_run(&run(cli));
+        s(&msh),
+    ];
+    let end = exit::of_run(&run(cli(&[
+        &args[..],
+        &["--png", &png_arg, "--width", "128"],
+    ]
+    .concat())));
     assert_eq!(
         end,
         Exit {
@@ -141,16 +137,7 @@ fn an_invalid_mesh_exits_2_with_one_line_and_is_certified_anyway() {
     let dir = tempfile::tempdir().unwrap();
     let msh = mesh_with_a_reversed_cell(dir.path());
     let json = dir.path().join("bad.json");
-    let cli = Cli::try_parse_from([
-        "cargo xtask",
-        "quality",
-        msh.to_str().unwrap(),
-        "--quiet",
-        "--report",
-        json.to_str().unwrap(),
-    ])
-    .unwrap();
-    let result = run(cli);
+    let result = run(cli(&["quality", s(&msh), "--quiet", "--report", s(&json)]));
     assert_eq!(result.as_ref().unwrap().outcome, Outcome::Invalid);
     let e = exit::of_run(&result);
     one_line_error(
@@ -163,20 +150,15 @@ fn an_invalid_mesh_exits_2_with_one_line_and_is_certified_anyway() {
         ],
     );
     // the structural problem no longer hides the certified check
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let report = read_json(&json);
     assert_eq!(
         report["quality"]["invalid_cells"].as_u64(),
         Some(1),
         "{report}"
     );
     assert!(report["quality"]["max_angle_deg"].as_f64().unwrap() > 0.0);
-    let problems = report["problems"].as_array().unwrap();
-    assert!(
-        problems.iter().any(|p| p
-            .as_str()
-            .unwrap()
-            .contains("1 cells invalid by the certified Jacobian check (first: 0;")),
-        "{problems:?}"
+    assert_problem(
+        &report,
+        "1 cells invalid by the certified Jacobian check (first: 0;",
     );
 }

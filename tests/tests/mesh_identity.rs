@@ -7,9 +7,9 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use clap::Parser;
+use end_to_end::{Outcome, s, xtask_ok};
 use mesh_model::Mesh;
-use xtask::{Outcome, builtin, cli::Cli, execute};
+use xtask::builtin;
 
 const GOLDEN: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -41,7 +41,9 @@ fn digest(mesh: &Mesh) -> u64 {
             c.nodes.iter().for_each(|&n| d.word(u64::from(n)));
         }
     }
-    mesh.boundary_patch.iter().for_each(|&p| d.word(u64::from(p)));
+    mesh.boundary_patch
+        .iter()
+        .for_each(|&p| d.word(u64::from(p)));
     for p in &mesh.patches {
         p.name.bytes().for_each(|b| d.word(u64::from(b)));
         d.word(p.role as u64);
@@ -51,12 +53,9 @@ fn digest(mesh: &Mesh) -> u64 {
 
 fn mesh_of(dir: &Path, case: &str, flags: &[&str]) -> Mesh {
     let msh = dir.join(format!("{case}{}.msh", flags.join("")));
-    let mut args = vec!["cargo xtask", "mesh", case, "--quiet", "--out"];
-    args.push(msh.to_str().unwrap());
+    let mut args = vec!["mesh", case, "--quiet", "--out", s(&msh)];
     args.extend(flags);
-    let cli = Cli::try_parse_from(&args).expect("flags parse");
-    let outcome = execute(cli).unwrap_or_else(|e| panic!("{args:?}: {e:#}"));
-    assert_eq!(outcome, Outcome::Valid, "{args:?}");
+    assert_eq!(xtask_ok(&args), Outcome::Valid, "{args:?}");
     mesh_io::read_msh(&msh).unwrap()
 }
 

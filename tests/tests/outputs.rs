@@ -4,39 +4,7 @@
 //! files of killed runs are removed; a case name cannot steer the default outputs out of
 //! `out/`.
 
-use std::path::Path;
-
-use clap::Parser;
-use xtask::{Outcome, cli::Cli, execute};
-
-fn run(args: &[&str]) -> anyhow::Result<Outcome> {
-    let mut all = vec!["cargo xtask"];
-    all.extend(args);
-    execute(Cli::try_parse_from(&all).expect("flags parse"))
-}
-
-/// Every entry below `dir`, relative, sorted (folders end in `/`).
-fn tree(dir: &Path) -> Vec<String> {
-    fn walk(root: &Path, dir: &Path, out: &mut Vec<String>) {
-        for e in std::fs::read_dir(dir).unwrap().flatten() {
-            let rel = e.path().strip_prefix(root).unwrap().display().to_string();
-            if e.file_type().unwrap().is_dir() {
-                out.push(format!("{rel}/"));
-                walk(root, &e.path(), out);
-            } else {
-                out.push(rel);
-            }
-        }
-    }
-    let mut out = Vec::new();
-    walk(dir, dir, &mut out);
-    out.sort();
-    out
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use end_to_end::{Outcome, s, tree, xtask as run};
 
 #[test]
 fn an_unwritable_picture_leaves_the_meshes_as_they_were() {

@@ -1,14 +1,7 @@
 //! Pictures from the command line: `--png FILE@VIEW` and `--svg`, named views of the built-in
 //! cases, and clear errors for bad picture requests.
 
-use clap::Parser;
-use xtask::{Outcome, cli::Cli, execute};
-
-fn run(args: &[&str]) -> anyhow::Result<Outcome> {
-    let mut all = vec!["cargo xtask"];
-    all.extend(args);
-    execute(Cli::try_parse_from(&all).expect("flags parse"))
-}
+use end_to_end::{Outcome, xtask as run};
 
 #[test]
 fn whole_and_zoomed_views_are_drawn_and_differ() {

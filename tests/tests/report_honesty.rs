@@ -4,15 +4,8 @@
 
 use std::path::Path;
 
-use clap::Parser;
+use end_to_end::{Outcome, xtask_ok as run};
 use serde_json::Value;
-use xtask::{Outcome, cli::Cli, execute};
-
-fn run(args: &[&str]) -> Outcome {
-    let mut all = vec!["cargo xtask"];
-    all.extend(args);
-    execute(Cli::try_parse_from(&all).expect("flags parse")).expect("the run succeeds")
-}
 
 fn report(dir: &Path, name: &str, extra: &[&str]) -> Value {
     let json = dir.join(format!("{name}.json"));

@@ -1,13 +1,6 @@
 //! `--snapshot FILE.bin`: the intermediate stages are saved and load back as they were.
 
-use clap::Parser;
-use xtask::{Outcome, cli::Cli, execute};
-
-fn run(args: &[&str]) -> anyhow::Result<Outcome> {
-    let mut all = vec!["cargo xtask"];
-    all.extend(args);
-    execute(Cli::try_parse_from(&all).expect("flags parse"))
-}
+use end_to_end::xtask as run;
 
 #[test]
 fn snapshot_holds_the_stages_and_loads_back() {
