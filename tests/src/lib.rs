@@ -21,6 +21,11 @@ pub fn xtask(args: &[&str]) -> anyhow::Result<Outcome> {
     execute(cli(args))
 }
 
+/// `cargo xtask mesh CASE --quiet --order ORDER REST…`, the usual run of a test.
+pub fn mesh(case: &str, order: &str, rest: &[&str]) -> anyhow::Result<Outcome> {
+    xtask(&[&["mesh", case, "--quiet", "--order", order], rest].concat())
+}
+
 /// [`xtask`] that must succeed; the panic names the arguments and the error.
 pub fn xtask_ok(args: &[&str]) -> Outcome {
     xtask(args).unwrap_or_else(|e| panic!("{args:?}: {e:#}"))

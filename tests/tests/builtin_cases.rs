@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use end_to_end::{Outcome, xtask_ok as run};
+use end_to_end::{Outcome, mesh, xtask_ok as run};
 use mesh_model::{Role, Shape};
 use xtask::builtin;
 
@@ -16,22 +16,21 @@ fn every_builtin_case_at_every_order_round_trips() {
             let vtu = dir.path().join(format!("{name}-p{order}.vtu"));
             let su2 = dir.path().join(format!("{name}-p{order}.su2"));
             let json = dir.path().join(format!("{name}-p{order}.json"));
-            let outcome = run(&[
-                "mesh",
+            let outcome = mesh(
                 name,
-                "--quiet",
-                "--order",
                 order,
-                "--out",
-                msh.to_str().unwrap(),
-                "--out",
-                vtu.to_str().unwrap(),
-                "--out",
-                su2.to_str().unwrap(),
-                "--report",
-                json.to_str().unwrap(),
-            ]);
-            assert_eq!(outcome, Outcome::Valid, "{name} P{order}");
+                &[
+                    "--out",
+                    msh.to_str().unwrap(),
+                    "--out",
+                    vtu.to_str().unwrap(),
+                    "--out",
+                    su2.to_str().unwrap(),
+                    "--report",
+                    json.to_str().unwrap(),
+                ],
+            );
+            assert_eq!(outcome.unwrap(), Outcome::Valid, "{name} P{order}");
             assert!(vtu.exists() && su2.exists());
 
             let report: serde_json::Value =
@@ -122,10 +121,8 @@ fn a_loop_can_have_its_own_max_spacing() {
     let msh = dir.path().join("caps.msh");
     let case_s = case.to_str().unwrap();
     let (msh_s, json_s) = (msh.to_str().unwrap(), json.to_str().unwrap());
-    let outcome = run(&[
-        "mesh", case_s, "--quiet", "--order", "1", "--out", msh_s, "--report", json_s,
-    ]);
-    assert_eq!(outcome, Outcome::Valid);
+    let outcome = mesh(case_s, "1", &["--out", msh_s, "--report", json_s]);
+    assert_eq!(outcome.unwrap(), Outcome::Valid);
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let loops = report["loops"].as_array().unwrap();

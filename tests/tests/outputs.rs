@@ -4,7 +4,7 @@
 //! files of killed runs are removed; a case name cannot steer the default outputs out of
 //! `out/`.
 
-use end_to_end::{Outcome, s, tree, xtask as run};
+use end_to_end::{Outcome, mesh, s, tree, xtask as run};
 
 #[test]
 fn an_unwritable_picture_leaves_the_meshes_as_they_were() {
@@ -16,19 +16,18 @@ fn an_unwritable_picture_leaves_the_meshes_as_they_were() {
     std::fs::write(d.join("ro"), b"not a folder").unwrap();
     let before = tree(d);
     let (msh, vtu) = (d.join("ok/m.msh"), d.join("new/m.vtu"));
-    let err = run(&[
-        "mesh",
+    let err = mesh(
         "lshape",
-        "--quiet",
-        "--order",
         "1",
-        "--out",
-        s(&msh),
-        "--out",
-        s(&vtu),
-        "--png",
-        s(&d.join("ro/p.png")),
-    ])
+        &[
+            "--out",
+            s(&msh),
+            "--out",
+            s(&vtu),
+            "--png",
+            s(&d.join("ro/p.png")),
+        ],
+    )
     .expect_err("the picture cannot be written");
     let msg = format!("{err:#}");
     assert!(!msg.contains('\n'), "{msg}");
@@ -55,17 +54,11 @@ fn a_read_only_folder_leaves_the_meshes_as_they_were() {
         return;
     }
     let msh = d.join("ok/m.msh");
-    let err = run(&[
-        "mesh",
+    let err = mesh(
         "lshape",
-        "--quiet",
-        "--order",
         "1",
-        "--out",
-        s(&msh),
-        "--png",
-        s(&ro.join("p.png")),
-    ])
+        &["--out", s(&msh), "--png", s(&ro.join("p.png"))],
+    )
     .expect_err("read-only folder");
     assert!(format!("{err:#}").contains("ro/p.png"), "{err:#}");
     assert_eq!(tree(d), vec!["ro/"]);
@@ -82,25 +75,24 @@ fn all_outputs_appear_together_on_success() {
         d.join("p/m.png"),
         d.join("r/m.json"),
     ];
-    let outcome = run(&[
-        "mesh",
+    let outcome = mesh(
         "lshape",
-        "--quiet",
-        "--order",
         "1",
-        "--out",
-        s(&outs[0]),
-        "--out",
-        s(&outs[1]),
-        "--snapshot",
-        s(&outs[2]),
-        "--png",
-        s(&outs[3]),
-        "--width",
-        "200",
-        "--report",
-        s(&outs[4]),
-    ])
+        &[
+            "--out",
+            s(&outs[0]),
+            "--out",
+            s(&outs[1]),
+            "--snapshot",
+            s(&outs[2]),
+            "--png",
+            s(&outs[3]),
+            "--width",
+            "200",
+            "--report",
+            s(&outs[4]),
+        ],
+    )
     .unwrap();
     assert_eq!(outcome, Outcome::Valid);
     assert_eq!(
@@ -157,16 +149,7 @@ fn stale_temporaries_of_killed_runs_are_removed() {
     let stale = d.join(".m.msh.tmp-99999999-0");
     std::fs::write(&stale, b"half a mesh").unwrap();
     let msh = d.join("m.msh");
-    run(&[
-        "mesh",
-        "lshape",
-        "--quiet",
-        "--order",
-        "1",
-        "--out",
-        s(&msh),
-    ])
-    .unwrap();
+    mesh("lshape", "1", &["--out", s(&msh)]).unwrap();
     assert_eq!(tree(d), vec!["m.msh"]);
 }
 

@@ -1,30 +1,29 @@
 //! Pictures from the command line: `--png FILE@VIEW` and `--svg`, named views of the built-in
 //! cases, and clear errors for bad picture requests.
 
-use end_to_end::{Outcome, xtask as run};
+use end_to_end::{Outcome, mesh, xtask as run};
 
 #[test]
 fn whole_and_zoomed_views_are_drawn_and_differ() {
     let dir = tempfile::tempdir().unwrap();
     let p = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
     let (whole, le, svg, msh) = (p("whole.png"), p("le.png"), p("te.svg"), p("m.msh"));
-    let outcome = run(&[
-        "mesh",
+    let outcome = mesh(
         "naca0012",
-        "--quiet",
-        "--order",
         "1",
-        "--out",
-        &msh,
-        "--width",
-        "400",
-        "--png",
-        &whole,
-        "--png",
-        &format!("{le}@le"),
-        "--svg",
-        &format!("{svg}@te"),
-    ])
+        &[
+            "--out",
+            &msh,
+            "--width",
+            "400",
+            "--png",
+            &whole,
+            "--png",
+            &format!("{le}@le"),
+            "--svg",
+            &format!("{svg}@te"),
+        ],
+    )
     .unwrap();
     assert_eq!(outcome, Outcome::Valid);
     let a = tiny_skia::Pixmap::load_png(&whole).unwrap();
@@ -55,7 +54,7 @@ fn quality_reads_a_mesh_and_draws_it() {
     let msh = dir.path().join("m.msh").to_str().unwrap().to_string();
     let png = dir.path().join("q.png").to_str().unwrap().to_string();
     let json = dir.path().join("q.json").to_str().unwrap().to_string();
-    run(&["mesh", "lshape", "--quiet", "--order", "1", "--out", &msh]).unwrap();
+    mesh("lshape", "1", &["--out", &msh]).unwrap();
     let outcome = run(&[
         "quality",
         &msh,
@@ -111,20 +110,19 @@ fn the_first_layers_show_or_the_picture_says_they_are_below_a_pixel() {
     let dir = tempfile::tempdir().unwrap();
     let p = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
     let (all, close, msh) = (p("all.svg"), p("close.svg"), p("m.msh"));
-    let outcome = run(&[
-        "mesh",
+    let outcome = mesh(
         "naca0012",
-        "--quiet",
-        "--order",
         "1",
-        "--out",
-        &msh,
-        "--svg",
-        &all,
-        // 0.01 wide on about 1900 px: the first layer (5e-5) is about 9 px
-        "--svg",
-        &format!("{close}@-0.002,-0.003,0.008,0.003"),
-    ])
+        &[
+            "--out",
+            &msh,
+            "--svg",
+            &all,
+            // 0.01 wide on about 1900 px: the first layer (5e-5) is about 9 px
+            "--svg",
+            &format!("{close}@-0.002,-0.003,0.008,0.003"),
+        ],
+    )
     .unwrap();
     assert_eq!(outcome, Outcome::Valid);
     let wall_width = |svg: &str| -> f64 {
