@@ -9,6 +9,7 @@
 //! and its travel is reset. Convergence is judged on relative displacement, not on force.
 
 use crate::error::SpringError;
+use crate::model::ForceModel;
 use crate::params::SolverParams;
 use crate::vec::norm;
 
@@ -158,6 +159,38 @@ where
         });
     }
     solve_core(positions, scale, movable, Some(influence), params, assemble)
+}
+
+/// [`solve()`] with the forces of a [`ForceModel`].
+pub fn solve_model<const D: usize, M: ForceModel<D> + ?Sized>(
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    movable: &[bool],
+    model: &M,
+    params: &SolverParams,
+) -> Result<SolveOutcome, SpringError> {
+    solve(positions, scale, movable, params, |p, f, s| {
+        model.assemble(p, f, s)
+    })
+}
+
+/// [`solve_active()`] with the forces and influence table of a [`ForceModel`].
+pub fn solve_model_active<const D: usize, M: ForceModel<D> + ?Sized>(
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    movable: &[bool],
+    model: &M,
+    params: &SolverParams,
+) -> Result<SolveOutcome, SpringError> {
+    let influence = model.influence(positions.len());
+    solve_active(
+        positions,
+        scale,
+        movable,
+        &influence,
+        params,
+        |p, active, f, s| model.assemble_active(p, active, f, s),
+    )
 }
 
 fn solve_core<const D: usize, A>(

@@ -15,6 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::model::{FiniteDifference, ForceModel, Spring, Triplet, influence_pairs, jacobian_of};
 use crate::params::SpringParams;
 use crate::vec::{axpy, norm, sub};
 
@@ -88,23 +89,11 @@ impl SpringSet2d {
     /// each node pushed by a spring depends on every node of that spring.
     pub fn influence(&self, n: usize) -> crate::Influence {
         let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(
-            2 * self.extrusion.len() + 3 * self.neighbour.len() + 8 * self.angle.len(),
+            4 * self.extrusion.len() + 4 * self.neighbour.len() + 8 * self.angle.len(),
         );
-        for s in &self.extrusion {
-            pairs.push((s.upper, s.lower));
-            pairs.push((s.lower, s.upper));
-        }
-        for s in &self.neighbour {
-            for d in [s.left, s.right, s.parent] {
-                pairs.push((s.centre, d));
-            }
-        }
-        for s in &self.angle {
-            for d in [s.left, s.right, s.centre, s.child] {
-                pairs.push((s.child, d));
-                pairs.push((s.centre, d));
-            }
-        }
+        influence_pairs::<2, _>(&self.extrusion, &mut pairs);
+        influence_pairs(&self.neighbour, &mut pairs);
+        influence_pairs(&self.angle, &mut pairs);
         crate::Influence::from_pairs(n, pairs)
     }
 
@@ -187,8 +176,163 @@ fn extrusion_one<const D: usize>(
     stiffness[lo] += s.lower_share * k;
 }
 
+impl<const D: usize> Spring<D> for ExtrusionSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend([self.lower, self.upper]);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend([self.upper, self.lower]);
+    }
+
+    fn add_force(
+        &self,
+        params: &SpringParams,
+        positions: &[[f64; D]],
+        force: &mut [[f64; D]],
+        stiffness: &mut [f64],
+    ) {
+        extrusion_one(self, params, positions, force, stiffness);
+    }
+
+    /// Closed form: with v = X_upper − X_lower, l = |v| and L the ideal length, the force on
+    /// the upper node is K(1/l − 1/L)·v, so ∂F_upper/∂X_upper = K[(1/l − 1/L)·I − v vᵀ/l³]
+    /// = −∂F_upper/∂X_lower, and the lower node's rows are −C_aniso times the upper's.
+    fn add_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<D>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let positions = fd.positions();
+        let (lo, up) = (self.lower as usize, self.upper as usize);
+        let v = sub(&positions[up], &positions[lo]);
+        let len = norm(&v);
+        if len <= 0.0 || self.ideal_length <= 0.0 {
+            return;
+        }
+        let k = params.k_extrusion;
+        let diagonal = k * (1.0 / len - 1.0 / self.ideal_length);
+        let outer = k / (len * len * len);
+        for (row, row_sign) in [(up, 1.0), (lo, -self.lower_share)] {
+            for (col, col_sign) in [(up, 1.0), (lo, -1.0)] {
+                if !(movable[row] && movable[col]) {
+                    continue;
+                }
+                for a in 0..D {
+                    for b in 0..D {
+                        let d = if a == b { diagonal } else { 0.0 };
+                        out.push(Triplet {
+                            row: (D * row + a) as u32,
+                            col: (D * col + b) as u32,
+                            value: row_sign * col_sign * (d - outer * v[a] * v[b]),
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Spring<2> for NeighbourSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend([self.left, self.centre, self.right, self.parent]);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.push(self.centre);
+    }
+
+    fn add_force(
+        &self,
+        params: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        neighbour_one(self, params, positions, force, stiffness);
+    }
+}
+
+impl Spring<2> for AngleSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend([self.left, self.centre, self.right, self.child]);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend([self.child, self.centre]);
+    }
+
+    fn add_force(
+        &self,
+        params: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        angle_one(self, params, positions, force, stiffness);
+    }
+}
+
+/// The 2D spring set bound to its coefficients and per-node index: the [`ForceModel`] of the
+/// 2D mesher. Its active assembly is [`assemble_2d_active`].
+#[derive(Debug, Clone)]
+pub struct SpringField2d<'a> {
+    set: &'a SpringSet2d,
+    params: &'a SpringParams,
+    index: SpringIndex2d,
+}
+
+impl<'a> SpringField2d<'a> {
+    /// Binds `set` and `params` for a solve over `n` nodes.
+    pub fn new(set: &'a SpringSet2d, params: &'a SpringParams, n: usize) -> Self {
+        SpringField2d {
+            set,
+            params,
+            index: set.index(n),
+        }
+    }
+}
+
+impl ForceModel<2> for SpringField2d<'_> {
+    fn assemble(&self, positions: &[[f64; 2]], force: &mut [[f64; 2]], stiffness: &mut [f64]) {
+        assemble_2d(self.set, self.params, positions, force, stiffness);
+    }
+
+    fn assemble_active(
+        &self,
+        positions: &[[f64; 2]],
+        active: crate::Active<'_>,
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        assemble_2d_active(
+            self.set,
+            &self.index,
+            self.params,
+            positions,
+            active,
+            force,
+            stiffness,
+        );
+    }
+
+    fn influence(&self, n: usize) -> crate::Influence {
+        self.set.influence(n)
+    }
+
+    fn jacobian(&self, positions: &[[f64; 2]], movable: &[bool], out: &mut Vec<Triplet>) {
+        let mut fd = FiniteDifference::new(positions);
+        jacobian_of(&self.set.extrusion, self.params, movable, &mut fd, out);
+        jacobian_of(&self.set.neighbour, self.params, movable, &mut fd, out);
+        jacobian_of(&self.set.angle, self.params, movable, &mut fd, out);
+    }
+}
+
+/// The unit left normal of the segment A → B, or `None` when A = B.
 #[inline]
-fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+pub fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
     let d = [b[0] - a[0], b[1] - a[1]];
     let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
     (l > 0.0).then(|| [-d[1] / l, d[0] / l])
