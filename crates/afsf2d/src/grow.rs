@@ -22,7 +22,10 @@
 //! It does not fill the region left between the fronts (`fill`), nor build the output mesh.
 
 use mesh_model::NONE;
-use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active};
+use springfield::{
+    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active, bisector,
+    left_normal,
+};
 
 use crate::geom::{
     Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance, segments_meet,
@@ -162,12 +165,6 @@ enum Mode {
     NoSolve,
 }
 
-fn left_normal(a: P2, b: P2) -> Option<P2> {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let l = dot(d, d).sqrt();
-    (l > 0.0).then(|| [-d[1] / l, d[0] / l])
-}
-
 fn rotate(v: P2, angle: f64) -> P2 {
     let (s, c) = angle.sin_cos();
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
@@ -292,17 +289,12 @@ impl<'p> Work<'p> {
                             let phi = theta * j as f64 / pieces as f64;
                             dirs_v.push((rotate(a, phi), phi - 0.5 * theta));
                         }
-                    } else {
-                        let s = [a[0] + b[0], a[1] + b[1]];
-                        let l = dot(s, s).sqrt();
-                        if l > 1e-6 {
-                            dirs_v.push(([s[0] / l, s[1] / l], 0.0));
-                        } else if let Some(d) = left_normal(
-                            self.pos[self.left[g] as usize],
-                            self.pos[self.right[g] as usize],
-                        ) {
-                            dirs_v.push((d, 0.0));
-                        }
+                    } else if let Some(d) = bisector(
+                        self.pos[self.left[g] as usize],
+                        p,
+                        self.pos[self.right[g] as usize],
+                    ) {
+                        dirs_v.push((d, 0.0));
                     }
                 }
                 (Some(a), None) | (None, Some(a)) => dirs_v.push((a, 0.0)),
