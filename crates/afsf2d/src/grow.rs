@@ -23,8 +23,8 @@
 
 use mesh_model::NONE;
 use springfield::{
-    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active, bisector,
-    left_normal,
+    AngleSpring, ExtrusionSpring, LocalProblem, NeighbourSpring, SpringField2d, SpringSet2d, Undo,
+    bisector, left_normal,
 };
 
 use crate::geom::{
@@ -139,7 +139,7 @@ pub(crate) struct Work<'p> {
     pub layer_stats: Vec<LayerStats>,
     pub timings: Timings,
     springs: SpringSet2d,
-    local_of: Vec<u32>,
+    problem: LocalProblem<2>,
 }
 
 /// Children planned for one loop.
@@ -199,7 +199,7 @@ impl<'p> Work<'p> {
             layer_stats: Vec::new(),
             timings: Timings::default(),
             springs: SpringSet2d::default(),
-            local_of: Vec::new(),
+            problem: LocalProblem::new(),
         };
         for (items, pipes, law) in fronts {
             let m = items.len();
@@ -375,7 +375,7 @@ impl<'p> Work<'p> {
             let saved = if mode == Mode::NoSolve {
                 stats.iterations = 0;
                 stats.converged = true;
-                Vec::new()
+                Undo::default()
             } else {
                 let (saved, outcome) = self.solve(step, mode)?;
                 stats.iterations = outcome.iterations;
@@ -394,9 +394,7 @@ impl<'p> Work<'p> {
                 break;
             }
             // undo
-            for (node, p) in saved {
-                self.pos[node as usize] = p;
-            }
+            saved.restore(&mut self.pos);
             self.truncate(node_start, cell_start);
             self.node_step.pop();
             self.cell_step.pop();
@@ -842,13 +840,13 @@ impl<'p> Work<'p> {
         chosen.len()
     }
 
-    /// Balances the springs of the top layers; returns the saved positions of the older
-    /// nodes that moved (for undo) and the solver outcome.
+    /// Balances the springs of the top layers; returns the undo of the older nodes that
+    /// moved and the solver outcome.
     fn solve(
         &mut self,
         step: u32,
         mode: Mode,
-    ) -> Result<(Vec<(u32, P2)>, springfield::SolveOutcome), springfield::SpringError> {
+    ) -> Result<(Undo<2>, springfield::SolveOutcome), springfield::SpringError> {
         let new_start = self.node_step[step as usize];
         let depth = match mode {
             Mode::Full => self.params.moving_layers.min(step),
@@ -866,134 +864,79 @@ impl<'p> Work<'p> {
                 }
             }
         }
-        // moving: alive nodes of the top `depth` layers that are ancestors of new nodes
-        let mut moving = vec![false; n - range_start];
-        for g in (range_start..n).rev() {
-            if !self.alive[g] {
-                continue;
-            }
-            let is_new = g >= new_start;
-            if is_new || moving[g - range_start] {
-                if !is_new && fixed_front[g - range_start] {
-                    moving[g - range_start] = false;
-                    continue;
-                }
-                moving[g - range_start] = true;
-                for p in [self.parent[g], self.parent2[g]] {
-                    if p != NONE
-                        && (p as usize) >= range_start
-                        && !fixed_front[p as usize - range_start]
-                    {
-                        moving[p as usize - range_start] = true;
-                    }
-                }
-            }
-        }
-        let is_moving = |g: u32| (g as usize) >= range_start && moving[g as usize - range_start];
-        // local numbering
-        if self.local_of.len() < n {
-            self.local_of.resize(n, NONE);
-        }
-        let mut local_nodes: Vec<u32> = Vec::new();
-        let mut movable: Vec<bool> = Vec::new();
-        for g in range_start..n {
-            if moving[g - range_start] {
-                self.local_of[g] = local_nodes.len() as u32;
-                local_nodes.push(g as u32);
-                movable.push(true);
-            }
-        }
+        let mut problem = std::mem::take(&mut self.problem);
+        problem.select_layered(
+            n,
+            range_start,
+            new_start,
+            &fixed_front,
+            |g| self.alive[g],
+            |g| [self.parent[g], self.parent2[g]],
+        );
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
-        {
-            let local_of = &mut self.local_of;
-            let mut loc = |g: u32| -> u32 {
-                let l = local_of[g as usize];
-                if l != NONE {
-                    return l;
-                }
-                let l = local_nodes.len() as u32;
-                local_of[g as usize] = l;
-                local_nodes.push(g);
-                movable.push(false);
-                l
-            };
-            for g in range_start..n {
-                if !self.alive[g] {
-                    continue;
-                }
-                let gu = g as u32;
-                let me_moving = is_moving(gu);
-                for p in [self.parent[g], self.parent2[g]] {
-                    if p == NONE || !(me_moving || is_moving(p)) {
-                        continue;
-                    }
-                    springs.extrusion.push(ExtrusionSpring {
-                        lower: loc(p),
-                        upper: loc(gu),
-                        ideal_length: self.ideal[g],
-                        lower_share: self.share[g],
-                    });
-                    let (a, b) = (self.left[p as usize], self.right[p as usize]);
-                    if a != NONE && b != NONE {
-                        springs.angle.push(AngleSpring {
-                            left: loc(a),
-                            centre: loc(p),
-                            right: loc(b),
-                            child: loc(gu),
-                            offset_rad: if self.parent2[g] == NONE {
-                                self.offset[g]
-                            } else {
-                                0.0
-                            },
-                            ideal_length: self.ideal[g],
-                        });
-                    }
-                }
-                if me_moving {
-                    let (a, b, p) = (self.left[g], self.right[g], self.parent[g]);
-                    if a != NONE && b != NONE && p != NONE {
-                        let left_share = parent_share(&self.pos, &self.parent, a, p, b);
-                        springs.neighbour.push(NeighbourSpring {
-                            left: loc(a),
-                            centre: loc(gu),
-                            right: loc(b),
-                            parent: loc(p),
-                            left_share,
-                        });
-                    }
-                }
+        for g in range_start..n {
+            if self.alive[g] {
+                self.springs_of(g as u32, &mut problem, &mut springs);
             }
         }
-        let mut x: Vec<P2> = local_nodes.iter().map(|&g| self.pos[g as usize]).collect();
-        let scale: Vec<f64> = local_nodes
-            .iter()
-            .zip(&movable)
-            .map(|(&g, &m)| if m { self.ideal[g as usize] } else { 1.0 })
-            .collect();
-        let params = self.params.springs;
-        let influence = springs.influence(x.len());
-        let index = springs.index(x.len());
-        let outcome = springfield::solve_active(
-            &mut x,
-            &scale,
-            &movable,
-            &influence,
+        let model = SpringField2d::new(&springs, &self.params.springs, problem.len());
+        let result = problem.solve(
+            &mut self.pos,
+            new_start,
+            |g| self.ideal[g as usize],
+            &model,
             &self.params.solver,
-            |p, active, f, s| assemble_2d_active(&springs, &index, &params, p, active, f, s),
-        )?;
-        let mut saved = Vec::new();
-        for (l, &g) in local_nodes.iter().enumerate() {
-            if movable[l] {
-                if (g as usize) < new_start {
-                    saved.push((g, self.pos[g as usize]));
-                }
-                self.pos[g as usize] = x[l];
-            }
-            self.local_of[g as usize] = NONE;
-        }
+        );
         self.springs = springs;
-        Ok((saved, outcome))
+        self.problem = problem;
+        result
+    }
+
+    /// Adds the springs of alive node `g` to the problem: its extrusion and angle springs
+    /// (one per parent) when it or that parent moves, its neighbour spring when it moves.
+    fn springs_of(&self, gu: u32, problem: &mut LocalProblem<2>, springs: &mut SpringSet2d) {
+        let g = gu as usize;
+        let me_moving = problem.is_moving(gu);
+        for p in [self.parent[g], self.parent2[g]] {
+            if p == NONE || !(me_moving || problem.is_moving(p)) {
+                continue;
+            }
+            springs.extrusion.push(ExtrusionSpring {
+                lower: problem.local(p),
+                upper: problem.local(gu),
+                ideal_length: self.ideal[g],
+                lower_share: self.share[g],
+            });
+            let (a, b) = (self.left[p as usize], self.right[p as usize]);
+            if a != NONE && b != NONE {
+                springs.angle.push(AngleSpring {
+                    left: problem.local(a),
+                    centre: problem.local(p),
+                    right: problem.local(b),
+                    child: problem.local(gu),
+                    offset_rad: if self.parent2[g] == NONE {
+                        self.offset[g]
+                    } else {
+                        0.0
+                    },
+                    ideal_length: self.ideal[g],
+                });
+            }
+        }
+        if me_moving {
+            let (a, b, p) = (self.left[g], self.right[g], self.parent[g]);
+            if a != NONE && b != NONE && p != NONE {
+                let left_share = parent_share(&self.pos, &self.parent, a, p, b);
+                springs.neighbour.push(NeighbourSpring {
+                    left: problem.local(a),
+                    centre: problem.local(gu),
+                    right: problem.local(b),
+                    parent: problem.local(p),
+                    left_share,
+                });
+            }
+        }
     }
 
     /// Checks the cells that may have moved and the new front edges. Returns the front edges

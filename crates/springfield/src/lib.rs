@@ -11,7 +11,9 @@
 //! - [`model`]: the interface over the dimension that a solver sees ([`ForceModel`], one
 //!   [`Spring`] per kind), with the forces' sparse Jacobian for a Newton solver, and the
 //!   place where the 3D spring set goes; [`solve_model`] and [`solve_model_active`] take a
-//!   model instead of a callback.
+//!   model instead of a callback;
+//! - [`problem`]: the local spring problem of a layered mesher (which nodes of the top
+//!   layers move, local numbering, solve on copies, undo), shared by every mesher.
 //!
 //! It does not own the mesh topology: which nodes are linked by which springs, which nodes
 //! may move, and what a node's length scale is are decided by the mesher (`afsf2d`).
@@ -55,6 +57,7 @@
 mod error;
 pub mod model;
 mod params;
+pub mod problem;
 mod solver;
 pub mod springs;
 mod vec;
@@ -62,6 +65,7 @@ mod vec;
 pub use error::SpringError;
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 pub use params::{SolverParams, SpringParams};
+pub use problem::{LocalProblem, NO_NODE, Undo};
 pub use solver::{
     Active, Influence, SolveOutcome, solve, solve_active, solve_model, solve_model_active,
 };
