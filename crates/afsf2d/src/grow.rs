@@ -27,10 +27,10 @@ use springfield::{
     bisector, left_normal,
 };
 
-use crate::geom::{
-    Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance, segments_meet,
-};
+use crate::geom::{Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance};
 use crate::input::AfsfParams;
+use crate::nodes::{NewNode, NodeStore};
+use crate::sanity::front_edges_meet;
 
 /// How the ideal extrusion length of a front's layers is chosen.
 #[derive(Debug, Clone, Copy)]
@@ -116,20 +116,7 @@ pub struct Timings {
 /// The growing mesh.
 pub(crate) struct Work<'p> {
     pub params: &'p AfsfParams,
-    pub pos: Vec<P2>,
-    pub layer: Vec<u32>,
-    pub parent: Vec<u32>,
-    pub parent2: Vec<u32>,
-    /// Neighbours on the node's own layer (front order), NONE at a step or a layer's end.
-    pub left: Vec<u32>,
-    pub right: Vec<u32>,
-    /// Ideal length of the extrusion edge ending at the node.
-    pub ideal: Vec<f64>,
-    /// C_aniso of the parent in that extrusion spring.
-    pub share: Vec<f64>,
-    /// Fan offset of the node's ideal direction from its parent's bisector (radians).
-    pub offset: Vec<f64>,
-    pub alive: Vec<bool>,
+    pub nodes: NodeStore,
     pub n_boundary: usize,
     pub cells: Vec<Cell>,
     /// First node and first cell of each step (index = layer of the step's nodes).
@@ -181,17 +168,8 @@ impl<'p> Work<'p> {
         let n = points.len();
         let mut w = Work {
             params,
-            layer: vec![0; n],
-            parent: vec![NONE; n],
-            parent2: vec![NONE; n],
-            left: vec![NONE; n],
-            right: vec![NONE; n],
-            ideal: vec![0.0; n],
-            share: vec![1.0; n],
-            offset: vec![0.0; n],
-            alive: vec![true; n],
+            nodes: NodeStore::boundary(points),
             n_boundary: n,
-            pos: points,
             cells: Vec::new(),
             node_step: vec![0],
             cell_step: vec![0],
@@ -204,8 +182,8 @@ impl<'p> Work<'p> {
         for (items, pipes, law) in fronts {
             let m = items.len();
             for i in 0..m {
-                w.left[items[i] as usize] = items[(i + m - 1) % m];
-                w.right[items[i] as usize] = items[(i + 1) % m];
+                w.nodes.left[items[i] as usize] = items[(i + m - 1) % m];
+                w.nodes.right[items[i] as usize] = items[(i + 1) % m];
             }
             let edges = pipes
                 .iter()
@@ -227,6 +205,11 @@ impl<'p> Work<'p> {
                 break;
             }
             self.step(step)?;
+            #[cfg(debug_assertions)]
+            if let Err(problem) = self.sanity_check() {
+                // an internal invariant broke: debug builds stop here, like a debug_assert
+                panic!("afsf2d: the front state after layer {step} is broken: {problem}");
+            }
         }
         for l in &mut self.loops {
             l.edges.iter_mut().for_each(|e| e.active = false);
@@ -236,14 +219,14 @@ impl<'p> Work<'p> {
 
     fn ideal_length(&self, law: Law, g: usize) -> f64 {
         match law {
-            Law::Geometric { first, growth } => first * growth.powi(self.layer[g] as i32),
+            Law::Geometric { first, growth } => first * growth.powi(self.nodes.layer[g] as i32),
             Law::Isotropic { factor } => {
-                let (l, r) = (self.left[g], self.right[g]);
+                let (l, r) = (self.nodes.left[g], self.nodes.right[g]);
                 let mut sum = 0.0;
                 let mut k = 0.0f64;
                 for o in [l, r] {
                     if o != NONE {
-                        sum += dist(self.pos[g], self.pos[o as usize]);
+                        sum += dist(self.nodes.pos[g], self.nodes.pos[o as usize]);
                         k += 1.0;
                     }
                 }
@@ -266,12 +249,12 @@ impl<'p> Work<'p> {
                 continue;
             }
             let g = lp.items[v] as usize;
-            let p = self.pos[g];
-            let n1 = (self.left[g] != NONE)
-                .then(|| left_normal(self.pos[self.left[g] as usize], p))
+            let p = self.nodes.pos[g];
+            let n1 = (self.nodes.left[g] != NONE)
+                .then(|| left_normal(self.nodes.pos[self.nodes.left[g] as usize], p))
                 .flatten();
-            let n2 = (self.right[g] != NONE)
-                .then(|| left_normal(p, self.pos[self.right[g] as usize]))
+            let n2 = (self.nodes.right[g] != NONE)
+                .then(|| left_normal(p, self.nodes.pos[self.nodes.right[g] as usize]))
                 .flatten();
             match (n1, n2) {
                 (Some(a), Some(b)) => {
@@ -290,9 +273,9 @@ impl<'p> Work<'p> {
                             dirs_v.push((rotate(a, phi), phi - 0.5 * theta));
                         }
                     } else if let Some(d) = bisector(
-                        self.pos[self.left[g] as usize],
+                        self.nodes.pos[self.nodes.left[g] as usize],
                         p,
-                        self.pos[self.right[g] as usize],
+                        self.nodes.pos[self.nodes.right[g] as usize],
                     ) {
                         dirs_v.push((d, 0.0));
                     }
@@ -318,7 +301,7 @@ impl<'p> Work<'p> {
                 continue;
             }
             let g = lp.items[v] as usize;
-            let p = self.pos[g];
+            let p = self.nodes.pos[g];
             let h = self.ideal_length(lp.law, g);
             for &(d, offset) in &dirs[v] {
                 plan.pos.push([p[0] + h * d[0], p[1] + h * d[1]]);
@@ -364,7 +347,7 @@ impl<'p> Work<'p> {
             }
             min_runs(&mut self.loops);
             let t1 = std::time::Instant::now();
-            let node_start = self.pos.len();
+            let node_start = self.nodes.pos.len();
             let cell_start = self.cells.len();
             self.node_step.push(node_start);
             self.cell_step.push(cell_start);
@@ -394,7 +377,7 @@ impl<'p> Work<'p> {
                 break;
             }
             // undo
-            saved.restore(&mut self.pos);
+            saved.restore(&mut self.nodes.pos);
             self.truncate(node_start, cell_start);
             self.node_step.pop();
             self.cell_step.pop();
@@ -413,31 +396,22 @@ impl<'p> Work<'p> {
     /// the direction the springs gave it and gets exactly its ideal extrusion length.
     fn pin_first_layer(&mut self) {
         let start = self.node_step[1];
-        for g in start..self.pos.len() {
-            let p = self.parent[g];
-            if !self.alive[g] || p == NONE || self.parent2[g] != NONE {
+        for g in start..self.nodes.pos.len() {
+            let p = self.nodes.parent[g];
+            if !self.nodes.alive[g] || p == NONE || self.nodes.parent2[g] != NONE {
                 continue;
             }
-            let (a, b) = (self.pos[p as usize], self.pos[g]);
+            let (a, b) = (self.nodes.pos[p as usize], self.nodes.pos[g]);
             let l = dist(a, b);
             if l > 0.0 {
-                let s = self.ideal[g] / l;
-                self.pos[g] = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
+                let s = self.nodes.ideal[g] / l;
+                self.nodes.pos[g] = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
             }
         }
     }
 
     fn truncate(&mut self, nodes: usize, cells: usize) {
-        self.pos.truncate(nodes);
-        self.layer.truncate(nodes);
-        self.parent.truncate(nodes);
-        self.parent2.truncate(nodes);
-        self.left.truncate(nodes);
-        self.right.truncate(nodes);
-        self.ideal.truncate(nodes);
-        self.share.truncate(nodes);
-        self.offset.truncate(nodes);
-        self.alive.truncate(nodes);
+        self.nodes.truncate(nodes);
         self.cells.truncate(cells);
     }
 
@@ -467,13 +441,13 @@ impl<'p> Work<'p> {
             let mut arc = vec![0.0; m + 1];
             for i in 0..m {
                 let (a, b) = (lp.items[i] as usize, lp.items[(i + 1) % m] as usize);
-                arc[i + 1] = arc[i] + dist(self.pos[a], self.pos[b]);
+                arc[i + 1] = arc[i] + dist(self.nodes.pos[a], self.nodes.pos[b]);
             }
             loop_len.push(arc[m]);
             let child_id = |c: usize| ((li as u64 + 1) << 40) | c as u64;
             for i in 0..m {
                 let (a, b) = (lp.items[i], lp.items[(i + 1) % m]);
-                let (pa, pb) = (self.pos[a as usize], self.pos[b as usize]);
+                let (pa, pb) = (self.nodes.pos[a as usize], self.nodes.pos[b as usize]);
                 let mid = 0.5 * (arc[i] + arc[i + 1]);
                 segs.push(Seg {
                     p: pa,
@@ -516,7 +490,7 @@ impl<'p> Work<'p> {
                     for c in r.start..r.end - 1 {
                         let (qa, qb) = (plan.pos[c], plan.pos[c + 1]);
                         let h = plan.ideal[c];
-                        let pv = self.pos[lp.items[i] as usize];
+                        let pv = self.nodes.pos[lp.items[i] as usize];
                         segs.push(Seg {
                             p: qa,
                             q: qb,
@@ -606,20 +580,17 @@ impl<'p> Work<'p> {
             for v in 0..m {
                 let g = lp.items[v];
                 for c in plan.children(v) {
-                    child_ids[c] = self.pos.len() as u32;
-                    self.pos.push(plan.pos[c]);
-                    self.layer.push(step);
-                    self.parent.push(g);
-                    self.parent2.push(NONE);
-                    self.left.push(NONE);
-                    self.right.push(NONE);
-                    self.ideal.push(plan.ideal[c]);
-                    self.share.push(match lp.law {
-                        Law::Geometric { growth, .. } => 1.0 / growth,
-                        Law::Isotropic { .. } => 1.0,
+                    child_ids[c] = self.nodes.push_node(NewNode {
+                        pos: plan.pos[c],
+                        layer: step,
+                        parent: g,
+                        ideal: plan.ideal[c],
+                        share: match lp.law {
+                            Law::Geometric { growth, .. } => 1.0 / growth,
+                            Law::Isotropic { .. } => 1.0,
+                        },
+                        offset: plan.offset[c],
                     });
-                    self.offset.push(plan.offset[c]);
-                    self.alive.push(true);
                 }
             }
             // cells: quads over active edges, fan triangles
@@ -636,7 +607,7 @@ impl<'p> Work<'p> {
                 self.cells.push(Cell {
                     nodes: [a, b, cb, ca],
                     len: 4,
-                    layer: self.layer[a as usize],
+                    layer: self.nodes.layer[a as usize],
                     pipe: lp.edges[i].pipe,
                     origin: [li as u32, i as u32, NONE],
                 });
@@ -664,7 +635,7 @@ impl<'p> Work<'p> {
                     self.cells.push(Cell {
                         nodes: [g, child_ids[c + 1], child_ids[c], NONE],
                         len: 3,
-                        layer: self.layer[g as usize],
+                        layer: self.nodes.layer[g as usize],
                         pipe,
                         origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
                     });
@@ -749,10 +720,10 @@ impl<'p> Work<'p> {
                 }
                 let (prev, next) = (items[(i + k - 1) % k], items[(i + 1) % k]);
                 if prev >= first_new && edges[(i + k - 1) % k].active {
-                    self.left[g as usize] = prev;
+                    self.nodes.left[g as usize] = prev;
                 }
                 if next >= first_new && edges[i].active {
-                    self.right[g as usize] = next;
+                    self.nodes.right[g as usize] = next;
                 }
             }
             new_loops.push(Loop {
@@ -784,8 +755,8 @@ impl<'p> Work<'p> {
                 continue;
             }
             let (xu, yu) = (x as usize, y as usize);
-            let ext = 0.5 * (self.ideal[xu] + self.ideal[yu]);
-            if dist(self.pos[xu], self.pos[yu]) >= coe * ext {
+            let ext = 0.5 * (self.nodes.ideal[xu] + self.nodes.ideal[yu]);
+            if dist(self.nodes.pos[xu], self.nodes.pos[yu]) >= coe * ext {
                 continue;
             }
             let prev = (i + k - 1) % k;
@@ -802,16 +773,16 @@ impl<'p> Work<'p> {
         for &i in &chosen {
             let j = (i + 1) % k;
             let (x, y) = (items[i] as usize, items[j] as usize);
-            self.pos[x] = [
-                0.5 * (self.pos[x][0] + self.pos[y][0]),
-                0.5 * (self.pos[x][1] + self.pos[y][1]),
+            self.nodes.pos[x] = [
+                0.5 * (self.nodes.pos[x][0] + self.nodes.pos[y][0]),
+                0.5 * (self.nodes.pos[x][1] + self.nodes.pos[y][1]),
             ];
-            self.ideal[x] = 0.5 * (self.ideal[x] + self.ideal[y]);
-            if self.parent[y] != self.parent[x] {
-                self.parent2[x] = self.parent[y];
+            self.nodes.ideal[x] = 0.5 * (self.nodes.ideal[x] + self.nodes.ideal[y]);
+            if self.nodes.parent[y] != self.nodes.parent[x] {
+                self.nodes.parent2[x] = self.nodes.parent[y];
             }
-            self.offset[x] = 0.0;
-            self.alive[y] = false;
+            self.nodes.offset[x] = 0.0;
+            self.nodes.alive[y] = false;
             // the cells touching y are those of the two edges at y
             for c in [edges[i].cell, edges[j].cell] {
                 if c == NONE || (c as usize) < cell_start {
@@ -854,7 +825,7 @@ impl<'p> Work<'p> {
         };
         // the first layer is pinned once made (its height must stay the first height)
         let range_start = self.node_step[(step + 1 - depth).max(step.min(2)) as usize];
-        let n = self.pos.len();
+        let n = self.nodes.pos.len();
         // nodes on the fronts that are not new are fixed (they bound frozen parts)
         let mut fixed_front = vec![false; n - range_start];
         for l in &self.loops {
@@ -870,21 +841,21 @@ impl<'p> Work<'p> {
             range_start,
             new_start,
             &fixed_front,
-            |g| self.alive[g],
-            |g| [self.parent[g], self.parent2[g]],
+            |g| self.nodes.alive[g],
+            |g| self.nodes.parents(g),
         );
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
         for g in range_start..n {
-            if self.alive[g] {
+            if self.nodes.alive[g] {
                 self.springs_of(g as u32, &mut problem, &mut springs);
             }
         }
         let model = SpringField2d::new(&springs, &self.params.springs, problem.len());
         let result = problem.solve(
-            &mut self.pos,
+            &mut self.nodes.pos,
             new_start,
-            |g| self.ideal[g as usize],
+            |g| self.nodes.ideal[g as usize],
             &model,
             &self.params.solver,
         );
@@ -898,36 +869,40 @@ impl<'p> Work<'p> {
     fn springs_of(&self, gu: u32, problem: &mut LocalProblem<2>, springs: &mut SpringSet2d) {
         let g = gu as usize;
         let me_moving = problem.is_moving(gu);
-        for p in [self.parent[g], self.parent2[g]] {
+        for p in [self.nodes.parent[g], self.nodes.parent2[g]] {
             if p == NONE || !(me_moving || problem.is_moving(p)) {
                 continue;
             }
             springs.extrusion.push(ExtrusionSpring {
                 lower: problem.local(p),
                 upper: problem.local(gu),
-                ideal_length: self.ideal[g],
-                lower_share: self.share[g],
+                ideal_length: self.nodes.ideal[g],
+                lower_share: self.nodes.share[g],
             });
-            let (a, b) = (self.left[p as usize], self.right[p as usize]);
+            let (a, b) = (self.nodes.left[p as usize], self.nodes.right[p as usize]);
             if a != NONE && b != NONE {
                 springs.angle.push(AngleSpring {
                     left: problem.local(a),
                     centre: problem.local(p),
                     right: problem.local(b),
                     child: problem.local(gu),
-                    offset_rad: if self.parent2[g] == NONE {
-                        self.offset[g]
+                    offset_rad: if self.nodes.parent2[g] == NONE {
+                        self.nodes.offset[g]
                     } else {
                         0.0
                     },
-                    ideal_length: self.ideal[g],
+                    ideal_length: self.nodes.ideal[g],
                 });
             }
         }
         if me_moving {
-            let (a, b, p) = (self.left[g], self.right[g], self.parent[g]);
+            let (a, b, p) = (
+                self.nodes.left[g],
+                self.nodes.right[g],
+                self.nodes.parent[g],
+            );
             if a != NONE && b != NONE && p != NONE {
-                let left_share = parent_share(&self.pos, &self.parent, a, p, b);
+                let left_share = parent_share(&self.nodes.pos, &self.nodes.parent, a, p, b);
                 springs.neighbour.push(NeighbourSpring {
                     left: problem.local(a),
                     centre: problem.local(gu),
@@ -978,20 +953,7 @@ impl<'p> Work<'p> {
         }
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
-        let mut segs: Vec<(u32, u32, u32, u32)> = Vec::new(); // (a, b, loop, edge)
-        let mut boxes = Vec::new();
-        for (li, l) in self.loops.iter().enumerate() {
-            let k = l.items.len();
-            for i in 0..k {
-                let (a, b) = (l.items[i], l.items[(i + 1) % k]);
-                segs.push((a, b, li as u32, i as u32));
-                boxes.push(Aabb::of_segment(
-                    self.pos[a as usize],
-                    self.pos[b as usize],
-                    0.0,
-                ));
-            }
-        }
+        let (segs, boxes) = self.front_segments();
         overlapping_pairs(&boxes, |x, y| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
@@ -999,34 +961,7 @@ impl<'p> Work<'p> {
             if !(x_new || y_new) {
                 return;
             }
-            let shared = [sx.0, sx.1]
-                .iter()
-                .filter(|n| **n == sy.0 || **n == sy.1)
-                .count();
-            let (pa, pb, pc, pd) = (
-                self.pos[sx.0 as usize],
-                self.pos[sx.1 as usize],
-                self.pos[sy.0 as usize],
-                self.pos[sy.1 as usize],
-            );
-            let hit = match shared {
-                0 => segments_meet(pa, pb, pc, pd),
-                1 => {
-                    // consecutive edges: they may only meet at the shared node
-                    let (s, ox, oy) = if sx.0 == sy.0 {
-                        (pa, pb, pd)
-                    } else if sx.0 == sy.1 {
-                        (pa, pb, pc)
-                    } else if sx.1 == sy.0 {
-                        (pb, pa, pd)
-                    } else {
-                        (pb, pa, pc)
-                    };
-                    orient(s, ox, oy) == 0.0
-                        && dot([ox[0] - s[0], ox[1] - s[1]], [oy[0] - s[0], oy[1] - s[1]]) > 0.0
-                }
-                _ => true,
-            };
+            let hit = front_edges_meet(&self.nodes.pos, [sx.0, sx.1], [sy.0, sy.1]);
             if !hit {
                 return;
             }
@@ -1046,7 +981,7 @@ impl<'p> Work<'p> {
     /// The largest angle of the triangles of a cell, a quad being cut along its shorter
     /// diagonal.
     fn cell_cut_angle_deg(&self, c: &Cell) -> f64 {
-        let p = |i: usize| self.pos[c.nodes[i] as usize];
+        let p = |i: usize| self.nodes.pos[c.nodes[i] as usize];
         let tri = crate::quality::max_triangle_angle_deg;
         if c.len == 3 {
             return tri(p(0), p(1), p(2));
@@ -1064,9 +999,9 @@ impl<'p> Work<'p> {
         let k = c.len as usize;
         let nodes = c.corners();
         (0..k).all(|i| {
-            let a = self.pos[nodes[(i + k - 1) % k] as usize];
-            let b = self.pos[nodes[i] as usize];
-            let d = self.pos[nodes[(i + 1) % k] as usize];
+            let a = self.nodes.pos[nodes[(i + k - 1) % k] as usize];
+            let b = self.nodes.pos[nodes[i] as usize];
+            let d = self.nodes.pos[nodes[(i + 1) % k] as usize];
             let o = orient(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })

@@ -57,7 +57,9 @@ mod gaps;
 mod geom;
 mod grow;
 mod input;
+mod nodes;
 mod quality;
+mod sanity;
 
 use mesh_model::{CellType, Dim, Mesh, NONE, Patch, Role, Shape};
 
@@ -108,6 +110,10 @@ pub struct AfsfOutput {
     /// nodes the hole filling added. A node made by merging two children keeps the first
     /// parent.
     pub node_parent: Vec<u32>,
+    /// For every node, both its parents: `node_parents[i][0]` is `node_parent[i]`;
+    /// `node_parents[i][1]` is the parent of the second child merged into node `i` when it
+    /// differs from the first, else [`NONE`].
+    pub node_parents: Vec<[u32; 2]>,
     /// For every node, its layer (0 on the boundary), or [`NONE`] for the nodes the hole
     /// filling added (they have no parent either).
     pub node_layer: Vec<u32>,
@@ -192,7 +198,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let mut work = Work::new(params, points, fronts);
     work.grow()?;
     let tf = std::time::Instant::now();
-    let n_grown = work.pos.len();
+    let n_grown = work.nodes.pos.len();
     let facets: Vec<(u32, u32)> = mesh
         .boundary
         .iter()
@@ -201,44 +207,46 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let (fill, steiner, peeled) = fill::fill_with_peeling(
         &mut work.cells,
         &facets,
-        &work.pos,
+        &work.nodes.pos,
         params.fill_min_angle_deg,
         params.peel_max_angle_deg,
         params.peel_rounds,
     )?;
     for p in steiner {
-        work.pos.push(p);
-        work.layer.push(0);
-        work.parent.push(NONE);
-        work.alive.push(true);
+        work.nodes.push_node(nodes::NewNode::unlayered(p));
     }
     work.timings.fill = tf.elapsed().as_secs_f64();
 
     // compact the nodes: boundary first (unchanged), then the alive layer nodes
-    let n_all = work.pos.len();
+    let n_all = work.nodes.pos.len();
     let mut new_index = vec![NONE; n_all];
     let mut next = 0u32;
     for (g, slot) in new_index.iter_mut().enumerate() {
-        if work.alive[g] {
+        if work.nodes.alive[g] {
             *slot = next;
             next += 1;
         }
     }
-    let mut node_parent = Vec::with_capacity(next as usize);
+    let mut node_parents = Vec::with_capacity(next as usize);
     let mut node_layer = Vec::with_capacity(next as usize);
     for g in 0..n_all {
-        if !work.alive[g] {
+        if !work.nodes.alive[g] {
             continue;
         }
-        let p = work.pos[g];
+        let p = work.nodes.pos[g];
         mesh.nodes.push([p[0], p[1], 0.0]);
-        let parent = work.parent[g];
-        node_parent.push(if parent == NONE {
-            NONE
+        node_parents.push(work.nodes.parents(g).map(|p| {
+            if p == NONE {
+                NONE
+            } else {
+                new_index[p as usize]
+            }
+        }));
+        node_layer.push(if g < n_grown {
+            work.nodes.layer[g]
         } else {
-            new_index[parent as usize]
+            NONE
         });
-        node_layer.push(if g < n_grown { work.layer[g] } else { NONE });
     }
     // every node's pipe, for the fill triangles: boundary nodes take the facet that starts
     // at them, layer nodes the pipe of the first cell they belong to (fill nodes none)
@@ -265,7 +273,13 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     // fill triangles take the layer and pipe of their highest grown corner; triangles whose
     // corners are all fill nodes take them from a neighbour, pass after pass
     let mut node_fill_layer: Vec<u32> = (0..n_all)
-        .map(|g| if g < n_grown { work.layer[g] } else { NONE })
+        .map(|g| {
+            if g < n_grown {
+                work.nodes.layer[g]
+            } else {
+                NONE
+            }
+        })
         .collect();
     let layered_cells = mesh.cells.len();
     let mut fill_tag = vec![(NONE, NONE); fill.len()];
@@ -321,7 +335,11 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let stats = AfsfStats {
         bare_wall_facets,
         unresolved_gap,
-        layers: work.layer[..n_grown].iter().copied().max().unwrap_or(0),
+        layers: work.nodes.layer[..n_grown]
+            .iter()
+            .copied()
+            .max()
+            .unwrap_or(0),
         iterations: work.layer_stats.iter().map(|s| s.iterations).sum(),
         all_converged: work.layer_stats.iter().all(|s| s.converged),
         layer_stats: std::mem::take(&mut work.layer_stats),
@@ -334,7 +352,8 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     };
     Ok(AfsfOutput {
         mesh,
-        node_parent,
+        node_parent: node_parents.iter().map(|p| p[0]).collect(),
+        node_parents,
         node_layer,
         layered_cells,
         stats,
