@@ -157,6 +157,21 @@ fn rotate(v: P2, angle: f64) -> P2 {
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
 }
 
+/// A segment of the closing test: a current front edge, or a planned cell side or top.
+struct Seg {
+    p: P2,
+    q: P2,
+    /// Where the segment came from (itself for current-front segments): a planned
+    /// segment only collides with what it approaches.
+    base: [P2; 2],
+    ids: [u64; 2],
+    lp: u32,
+    arc: f64,
+    /// (edge, second edge) to freeze, or NONE for current-front segments.
+    owner: [u32; 2],
+    clearance: f64,
+}
+
 impl<'p> Work<'p> {
     /// Starts from the oriented boundary loops: `fronts[l]` lists node indices into
     /// `points` with the domain on the left; `pipes[l][i]` is the facet under front edge i.
@@ -419,20 +434,72 @@ impl<'p> Work<'p> {
     /// planned cell comes nearer than its clearance to a part of the fronts that is not its
     /// neighbourhood along its own loop.
     fn closing(&self, plans: &[Plan], frozen: &mut [Vec<bool>]) {
-        // segments: current front edges and planned cell sides and tops
-        struct Seg {
-            p: P2,
-            q: P2,
-            /// Where the segment came from (itself for current-front segments): a planned
-            /// segment only collides with what it approaches.
-            base: [P2; 2],
-            ids: [u64; 2],
-            lp: u32,
-            arc: f64,
-            /// (edge, second edge) to freeze, or NONE for current-front segments.
-            owner: [u32; 2],
-            clearance: f64,
-        }
+        let (segs, loop_len) = self.closing_segments(plans);
+        let boxes: Vec<Aabb> = segs
+            .iter()
+            .map(|s| Aabb::of_segment(s.p, s.q, s.clearance))
+            .collect();
+        let path_ratio = 2.5;
+        let mut freeze = |li: u32, owner: [u32; 2]| {
+            for e in owner {
+                if e != NONE {
+                    frozen[li as usize][e as usize] = true;
+                }
+            }
+        };
+        overlapping_pairs(&boxes, |x, y| {
+            let (sx, sy) = (&segs[x], &segs[y]);
+            if sx.owner[0] == NONE && sy.owner[0] == NONE {
+                return;
+            }
+            if sx.ids.iter().any(|i| sy.ids.contains(i)) {
+                return;
+            }
+            // a segment whose owner is near the other along their loop (path shorter than
+            // path_ratio × its clearance) is never frozen by it, whatever their distance:
+            // when that holds both ways, skip the distance (most candidate pairs)
+            let never_frozen = |a: &Seg, b: &Seg| {
+                a.owner[0] == NONE
+                    || (a.lp == b.lp && {
+                        let total = loop_len[a.lp as usize];
+                        let delta = (a.arc - b.arc).abs();
+                        delta.min(total - delta) < path_ratio * a.clearance
+                    })
+            };
+            if never_frozen(sx, sy) && never_frozen(sy, sx) {
+                return;
+            }
+            let c = sx.clearance.max(sy.clearance);
+            let d = segment_distance(sx.p, sx.q, sy.p, sy.q);
+            if d >= c {
+                return;
+            }
+            // only what comes nearer than it was counts (fronts diverging at a convex corner
+            // are close but do not close)
+            let d_base = segment_distance(sx.base[0], sx.base[1], sy.base[0], sy.base[1]);
+            if d >= d_base {
+                return;
+            }
+            for (a, b) in [(sx, sy), (sy, sx)] {
+                if a.owner[0] == NONE || d >= a.clearance {
+                    continue;
+                }
+                if a.lp == b.lp {
+                    let total = loop_len[a.lp as usize];
+                    let delta = (a.arc - b.arc).abs();
+                    let path = delta.min(total - delta);
+                    if path < path_ratio * (d + a.clearance) {
+                        continue;
+                    }
+                }
+                freeze(a.lp, a.owner);
+            }
+        });
+    }
+
+    /// The segments of the closing test (current front edges, planned cell sides and tops,
+    /// fan edges) and the length of each loop.
+    fn closing_segments(&self, plans: &[Plan]) -> (Vec<Seg>, Vec<f64>) {
         let factor = self.params.closing_factor;
         let mut segs: Vec<Seg> = Vec::new();
         let mut loop_len = Vec::with_capacity(self.loops.len());
@@ -505,66 +572,7 @@ impl<'p> Work<'p> {
                 }
             }
         }
-        let boxes: Vec<Aabb> = segs
-            .iter()
-            .map(|s| Aabb::of_segment(s.p, s.q, s.clearance))
-            .collect();
-        let path_ratio = 2.5;
-        let mut freeze = |li: u32, owner: [u32; 2]| {
-            for e in owner {
-                if e != NONE {
-                    frozen[li as usize][e as usize] = true;
-                }
-            }
-        };
-        overlapping_pairs(&boxes, |x, y| {
-            let (sx, sy) = (&segs[x], &segs[y]);
-            if sx.owner[0] == NONE && sy.owner[0] == NONE {
-                return;
-            }
-            if sx.ids.iter().any(|i| sy.ids.contains(i)) {
-                return;
-            }
-            // a segment whose owner is near the other along their loop (path shorter than
-            // path_ratio × its clearance) is never frozen by it, whatever their distance:
-            // when that holds both ways, skip the distance (most candidate pairs)
-            let never_frozen = |a: &Seg, b: &Seg| {
-                a.owner[0] == NONE
-                    || (a.lp == b.lp && {
-                        let total = loop_len[a.lp as usize];
-                        let delta = (a.arc - b.arc).abs();
-                        delta.min(total - delta) < path_ratio * a.clearance
-                    })
-            };
-            if never_frozen(sx, sy) && never_frozen(sy, sx) {
-                return;
-            }
-            let c = sx.clearance.max(sy.clearance);
-            let d = segment_distance(sx.p, sx.q, sy.p, sy.q);
-            if d >= c {
-                return;
-            }
-            // only what comes nearer than it was counts (fronts diverging at a convex corner
-            // are close but do not close)
-            let d_base = segment_distance(sx.base[0], sx.base[1], sy.base[0], sy.base[1]);
-            if d >= d_base {
-                return;
-            }
-            for (a, b) in [(sx, sy), (sy, sx)] {
-                if a.owner[0] == NONE || d >= a.clearance {
-                    continue;
-                }
-                if a.lp == b.lp {
-                    let total = loop_len[a.lp as usize];
-                    let delta = (a.arc - b.arc).abs();
-                    let path = delta.min(total - delta);
-                    if path < path_ratio * (d + a.clearance) {
-                        continue;
-                    }
-                }
-                freeze(a.lp, a.owner);
-            }
-        });
+        (segs, loop_len)
     }
 
     /// Creates the planned nodes and cells, breaks short neighbour edges, and replaces the
@@ -574,158 +582,13 @@ impl<'p> Work<'p> {
         let old_loops = std::mem::take(&mut self.loops);
         let mut new_loops = Vec::with_capacity(old_loops.len());
         for (li, (lp, plan)) in old_loops.iter().zip(plans).enumerate() {
-            let m = lp.items.len();
-            // global ids of the children
-            let mut child_ids = vec![NONE; plan.pos.len()];
-            for v in 0..m {
-                let g = lp.items[v];
-                for c in plan.children(v) {
-                    child_ids[c] = self.nodes.push_node(NewNode {
-                        pos: plan.pos[c],
-                        layer: step,
-                        parent: g,
-                        ideal: plan.ideal[c],
-                        share: match lp.law {
-                            Law::Geometric { growth, .. } => 1.0 / growth,
-                            Law::Isotropic { .. } => 1.0,
-                        },
-                        offset: plan.offset[c],
-                    });
-                }
-            }
-            // cells: quads over active edges, fan triangles
-            let mut edge_cell = vec![NONE; m];
-            for i in 0..m {
-                let j = (i + 1) % m;
-                if !(lp.edges[i].active && plan.advancing[i] && plan.advancing[j]) {
-                    continue;
-                }
-                let (a, b) = (lp.items[i], lp.items[j]);
-                let ca = child_ids[plan.children(i).end - 1];
-                let cb = child_ids[plan.children(j).start];
-                edge_cell[i] = self.cells.len() as u32;
-                self.cells.push(Cell {
-                    nodes: [a, b, cb, ca],
-                    len: 4,
-                    layer: self.nodes.layer[a as usize],
-                    pipe: lp.edges[i].pipe,
-                    origin: [li as u32, i as u32, NONE],
-                });
-            }
-            let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
-            for v in 0..m {
-                let r = plan.children(v);
-                if r.len() < 2 {
-                    continue;
-                }
-                let ein = lp.edges[(v + m - 1) % m];
-                let eout = lp.edges[v];
-                let pieces = r.len() - 1;
-                for (k, c) in (r.start..r.end - 1).enumerate() {
-                    let mut pipe = if 2 * k < pieces { ein.pipe } else { eout.pipe };
-                    if pipe == NONE {
-                        pipe = if ein.pipe != NONE {
-                            ein.pipe
-                        } else {
-                            eout.pipe
-                        };
-                    }
-                    fan_cells[c] = self.cells.len() as u32;
-                    let g = lp.items[v];
-                    self.cells.push(Cell {
-                        nodes: [g, child_ids[c + 1], child_ids[c], NONE],
-                        len: 3,
-                        layer: self.nodes.layer[g as usize],
-                        pipe,
-                        origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
-                    });
-                }
-            }
-            // the new front
-            let mut items: Vec<u32> = Vec::with_capacity(m + plan.pos.len());
-            let mut edges: Vec<FEdge> = Vec::with_capacity(m + plan.pos.len());
-            for v in 0..m {
-                let g = lp.items[v];
-                let ein = lp.edges[(v + m - 1) % m];
-                let eout = lp.edges[v];
-                if !plan.advancing[v] {
-                    items.push(g);
-                    edges.push(FEdge {
-                        active: false,
-                        ..eout
-                    });
-                    continue;
-                }
-                let r = plan.children(v);
-                let in_cell = edge_cell[(v + m - 1) % m];
-                let out_cell = edge_cell[v];
-                if in_cell == NONE {
-                    // step up from the old node to its first child
-                    items.push(g);
-                    edges.push(FEdge {
-                        active: false,
-                        pipe: NONE,
-                        cell: if out_cell != NONE {
-                            out_cell
-                        } else {
-                            fan_cells[r.start]
-                        },
-                    });
-                }
-                let _ = ein;
-                for c in r.start..r.end {
-                    items.push(child_ids[c]);
-                    if c + 1 < r.end {
-                        let cell = fan_cells[c];
-                        edges.push(FEdge {
-                            active: true,
-                            pipe: self.cells[cell as usize].pipe,
-                            cell,
-                        });
-                    }
-                }
-                if out_cell == NONE {
-                    // step down from the last child back to the old node
-                    edges.push(FEdge {
-                        active: false,
-                        pipe: NONE,
-                        cell: if in_cell != NONE {
-                            in_cell
-                        } else {
-                            fan_cells[r.end - 2]
-                        },
-                    });
-                    items.push(g);
-                    edges.push(FEdge {
-                        active: false,
-                        ..eout
-                    });
-                } else {
-                    edges.push(FEdge {
-                        active: true,
-                        pipe: eout.pipe,
-                        cell: out_cell,
-                    });
-                }
-            }
+            let child_ids = self.create_children(step, lp, plan);
+            let (edge_cell, fan_cells) = self.create_cells(li, lp, plan, &child_ids);
+            let (mut items, mut edges) =
+                self.new_front(lp, plan, &child_ids, &edge_cell, &fan_cells);
             debug_assert_eq!(items.len(), edges.len());
             merges += self.break_short_edges(&mut items, &mut edges);
-            // layer neighbours of the new nodes
-            let k = items.len();
-            let first_new = self.node_step[step as usize] as u32;
-            for i in 0..k {
-                let g = items[i];
-                if g < first_new {
-                    continue;
-                }
-                let (prev, next) = (items[(i + k - 1) % k], items[(i + 1) % k]);
-                if prev >= first_new && edges[(i + k - 1) % k].active {
-                    self.nodes.left[g as usize] = prev;
-                }
-                if next >= first_new && edges[i].active {
-                    self.nodes.right[g as usize] = next;
-                }
-            }
+            self.link_layer(step, &items, &edges);
             new_loops.push(Loop {
                 items,
                 edges,
@@ -734,6 +597,190 @@ impl<'p> Work<'p> {
         }
         self.loops = new_loops;
         merges
+    }
+
+    /// Creates the planned children of one loop; returns their global ids (by plan index).
+    fn create_children(&mut self, step: u32, lp: &Loop, plan: &Plan) -> Vec<u32> {
+        let m = lp.items.len();
+        // global ids of the children
+        let mut child_ids = vec![NONE; plan.pos.len()];
+        for v in 0..m {
+            let g = lp.items[v];
+            for c in plan.children(v) {
+                child_ids[c] = self.nodes.push_node(NewNode {
+                    pos: plan.pos[c],
+                    layer: step,
+                    parent: g,
+                    ideal: plan.ideal[c],
+                    share: match lp.law {
+                        Law::Geometric { growth, .. } => 1.0 / growth,
+                        Law::Isotropic { .. } => 1.0,
+                    },
+                    offset: plan.offset[c],
+                });
+            }
+        }
+        child_ids
+    }
+
+    /// Creates the quads over the loop's advancing active edges and the fan triangles;
+    /// returns the cell of each edge and of each fan child (NONE where there is none).
+    fn create_cells(
+        &mut self,
+        li: usize,
+        lp: &Loop,
+        plan: &Plan,
+        child_ids: &[u32],
+    ) -> (Vec<u32>, Vec<u32>) {
+        let m = lp.items.len();
+        // cells: quads over active edges, fan triangles
+        let mut edge_cell = vec![NONE; m];
+        for i in 0..m {
+            let j = (i + 1) % m;
+            if !(lp.edges[i].active && plan.advancing[i] && plan.advancing[j]) {
+                continue;
+            }
+            let (a, b) = (lp.items[i], lp.items[j]);
+            let ca = child_ids[plan.children(i).end - 1];
+            let cb = child_ids[plan.children(j).start];
+            edge_cell[i] = self.cells.len() as u32;
+            self.cells.push(Cell {
+                nodes: [a, b, cb, ca],
+                len: 4,
+                layer: self.nodes.layer[a as usize],
+                pipe: lp.edges[i].pipe,
+                origin: [li as u32, i as u32, NONE],
+            });
+        }
+        let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
+        for v in 0..m {
+            let r = plan.children(v);
+            if r.len() < 2 {
+                continue;
+            }
+            let ein = lp.edges[(v + m - 1) % m];
+            let eout = lp.edges[v];
+            let pieces = r.len() - 1;
+            for (k, c) in (r.start..r.end - 1).enumerate() {
+                let mut pipe = if 2 * k < pieces { ein.pipe } else { eout.pipe };
+                if pipe == NONE {
+                    pipe = if ein.pipe != NONE {
+                        ein.pipe
+                    } else {
+                        eout.pipe
+                    };
+                }
+                fan_cells[c] = self.cells.len() as u32;
+                let g = lp.items[v];
+                self.cells.push(Cell {
+                    nodes: [g, child_ids[c + 1], child_ids[c], NONE],
+                    len: 3,
+                    layer: self.nodes.layer[g as usize],
+                    pipe,
+                    origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
+                });
+            }
+        }
+        (edge_cell, fan_cells)
+    }
+
+    /// The new front of one loop: the children where the loop advanced (with steps up and
+    /// down at the ends of an advancing run), the old nodes elsewhere.
+    fn new_front(
+        &self,
+        lp: &Loop,
+        plan: &Plan,
+        child_ids: &[u32],
+        edge_cell: &[u32],
+        fan_cells: &[u32],
+    ) -> (Vec<u32>, Vec<FEdge>) {
+        let m = lp.items.len();
+        // the new front
+        let mut items: Vec<u32> = Vec::with_capacity(m + plan.pos.len());
+        let mut edges: Vec<FEdge> = Vec::with_capacity(m + plan.pos.len());
+        for v in 0..m {
+            let g = lp.items[v];
+            let eout = lp.edges[v];
+            if !plan.advancing[v] {
+                items.push(g);
+                edges.push(FEdge {
+                    active: false,
+                    ..eout
+                });
+                continue;
+            }
+            let r = plan.children(v);
+            let in_cell = edge_cell[(v + m - 1) % m];
+            let out_cell = edge_cell[v];
+            if in_cell == NONE {
+                // step up from the old node to its first child
+                items.push(g);
+                edges.push(FEdge {
+                    active: false,
+                    pipe: NONE,
+                    cell: if out_cell != NONE {
+                        out_cell
+                    } else {
+                        fan_cells[r.start]
+                    },
+                });
+            }
+            for c in r.start..r.end {
+                items.push(child_ids[c]);
+                if c + 1 < r.end {
+                    let cell = fan_cells[c];
+                    edges.push(FEdge {
+                        active: true,
+                        pipe: self.cells[cell as usize].pipe,
+                        cell,
+                    });
+                }
+            }
+            if out_cell == NONE {
+                // step down from the last child back to the old node
+                edges.push(FEdge {
+                    active: false,
+                    pipe: NONE,
+                    cell: if in_cell != NONE {
+                        in_cell
+                    } else {
+                        fan_cells[r.end - 2]
+                    },
+                });
+                items.push(g);
+                edges.push(FEdge {
+                    active: false,
+                    ..eout
+                });
+            } else {
+                edges.push(FEdge {
+                    active: true,
+                    pipe: eout.pipe,
+                    cell: out_cell,
+                });
+            }
+        }
+        (items, edges)
+    }
+
+    /// The layer neighbours of the new nodes of a new front.
+    fn link_layer(&mut self, step: u32, items: &[u32], edges: &[FEdge]) {
+        // layer neighbours of the new nodes
+        let k = items.len();
+        let first_new = self.node_step[step as usize] as u32;
+        for i in 0..k {
+            let g = items[i];
+            if g < first_new {
+                continue;
+            }
+            let (prev, next) = (items[(i + k - 1) % k], items[(i + 1) % k]);
+            if prev >= first_new && edges[(i + k - 1) % k].active {
+                self.nodes.left[g as usize] = prev;
+            }
+            if next >= first_new && edges[i].active {
+                self.nodes.right[g as usize] = next;
+            }
+        }
     }
 
     /// Coe_shrink: merges the two nodes of new active edges that are too short for their
