@@ -52,6 +52,9 @@ pub(crate) struct FEdge {
     pub cell: u32,
 }
 
+/// A starting front: its nodes, the boundary facet under each of its edges, its law.
+pub(crate) type StartFront = (Vec<u32>, Vec<u32>, Law);
+
 /// One front loop.
 #[derive(Debug, Clone)]
 pub(crate) struct Loop {
@@ -175,11 +178,7 @@ struct Seg {
 impl<'p> Work<'p> {
     /// Starts from the oriented boundary loops: `fronts[l]` lists node indices into
     /// `points` with the domain on the left; `pipes[l][i]` is the facet under front edge i.
-    pub(crate) fn new(
-        params: &'p AfsfParams,
-        points: Vec<P2>,
-        fronts: Vec<(Vec<u32>, Vec<u32>, Law)>,
-    ) -> Self {
+    pub(crate) fn new(params: &'p AfsfParams, points: Vec<P2>, fronts: Vec<StartFront>) -> Self {
         let n = points.len();
         let mut w = Work {
             params,
