@@ -264,9 +264,8 @@ impl<const D: usize, S: Spring<D>> ForceModel<D> for SpringList<'_, S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::springs::{
-        AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringSet2d,
-    };
+    use crate::springs::tests::two_layers;
+    use crate::springs::{ExtrusionSpring, SpringField2d};
     use proptest::prelude::*;
 
     /// The triplets summed into a dense matrix of `n·D` rows and columns.
@@ -341,46 +340,6 @@ mod tests {
         }
     }
 
-    /// Two layers of four nodes over a fixed base of four, every kind of spring.
-    fn two_layers(jitter: &[f64]) -> (Vec<[f64; 2]>, SpringSet2d) {
-        let mut x: Vec<[f64; 2]> = (0..12)
-            .map(|i| [(i % 4) as f64, (i / 4) as f64 * 0.3])
-            .collect();
-        for i in 4..12 {
-            x[i][0] += jitter[2 * (i - 4)];
-            x[i][1] += 0.5 * jitter[2 * (i - 4) + 1];
-        }
-        let mut set = SpringSet2d::default();
-        for child in 4..12u32 {
-            let parent = child - 4;
-            set.extrusion.push(ExtrusionSpring {
-                lower: parent,
-                upper: child,
-                ideal_length: 0.3,
-                lower_share: 0.8,
-            });
-            let col = child % 4;
-            if col > 0 && col < 3 {
-                set.neighbour.push(NeighbourSpring {
-                    left: child - 1,
-                    centre: child,
-                    right: child + 1,
-                    parent,
-                    left_share: 0.4,
-                });
-                set.angle.push(AngleSpring {
-                    left: parent - 1,
-                    centre: parent,
-                    right: parent + 1,
-                    child,
-                    offset_rad: if col == 1 { 0.0 } else { 0.1 },
-                    ideal_length: 0.25,
-                });
-            }
-        }
-        (x, set)
-    }
-
     proptest! {
         /// The per-spring Jacobian of the 2D set equals the central difference of its whole
         /// assembly, and its pattern lies within the influence table (plus the diagonal).
@@ -388,7 +347,7 @@ mod tests {
         fn the_2d_jacobian_matches_the_whole_model_and_its_influence(
             jitter in proptest::collection::vec(-0.1f64..0.1, 16),
         ) {
-            let (x, set) = two_layers(&jitter);
+            let (x, set) = two_layers(&jitter, 0.4, 0.25);
             let params = SpringParams::default();
             let model = SpringField2d::new(&set, &params, x.len());
             let movable: Vec<bool> = (0..12).map(|i| i >= 4).collect();
@@ -415,7 +374,7 @@ mod tests {
     fn every_influence_pair_of_moving_nodes_has_jacobian_entries() {
         // generic positions: every spring is on, so the pattern is the influence table
         let jitter: Vec<f64> = (0..16).map(|k| 0.03 * ((k * 7 % 5) as f64 - 2.0)).collect();
-        let (x, set) = two_layers(&jitter);
+        let (x, set) = two_layers(&jitter, 0.4, 0.25);
         let params = SpringParams::default();
         let model = SpringField2d::new(&set, &params, x.len());
         let movable = vec![true; 12];
@@ -436,7 +395,7 @@ mod tests {
     #[test]
     fn solving_through_the_model_is_solving_through_the_closure() {
         let jitter: Vec<f64> = (0..16).map(|k| 0.05 * ((k * 3 % 7) as f64 - 3.0)).collect();
-        let (x0, set) = two_layers(&jitter);
+        let (x0, set) = two_layers(&jitter, 0.4, 0.25);
         let params = SpringParams::default();
         let movable: Vec<bool> = (0..12).map(|i| i >= 4).collect();
         let scale = vec![0.3; 12];

@@ -235,45 +235,33 @@ impl<const D: usize> Spring<D> for ExtrusionSpring {
     }
 }
 
-impl Spring<2> for NeighbourSpring {
-    fn reads(&self, out: &mut Vec<u32>) {
-        out.extend([self.left, self.centre, self.right, self.parent]);
-    }
+/// The `Spring<2>` impl of a 2D spring kind: the nodes it reads and pushes, and its force.
+macro_rules! spring_2d {
+    ($kind:ty, $force:ident, reads: [$($r:ident),*], pushes: [$($p:ident),*]) => {
+        impl Spring<2> for $kind {
+            fn reads(&self, out: &mut Vec<u32>) {
+                out.extend([$(self.$r),*]);
+            }
 
-    fn pushes(&self, out: &mut Vec<u32>) {
-        out.push(self.centre);
-    }
+            fn pushes(&self, out: &mut Vec<u32>) {
+                out.extend([$(self.$p),*]);
+            }
 
-    fn add_force(
-        &self,
-        params: &SpringParams,
-        positions: &[[f64; 2]],
-        force: &mut [[f64; 2]],
-        stiffness: &mut [f64],
-    ) {
-        neighbour_one(self, params, positions, force, stiffness);
-    }
+            fn add_force(
+                &self,
+                params: &SpringParams,
+                positions: &[[f64; 2]],
+                force: &mut [[f64; 2]],
+                stiffness: &mut [f64],
+            ) {
+                $force(self, params, positions, force, stiffness);
+            }
+        }
+    };
 }
 
-impl Spring<2> for AngleSpring {
-    fn reads(&self, out: &mut Vec<u32>) {
-        out.extend([self.left, self.centre, self.right, self.child]);
-    }
-
-    fn pushes(&self, out: &mut Vec<u32>) {
-        out.extend([self.child, self.centre]);
-    }
-
-    fn add_force(
-        &self,
-        params: &SpringParams,
-        positions: &[[f64; 2]],
-        force: &mut [[f64; 2]],
-        stiffness: &mut [f64],
-    ) {
-        angle_one(self, params, positions, force, stiffness);
-    }
-}
+spring_2d!(NeighbourSpring, neighbour_one, reads: [left, centre, right, parent], pushes: [centre]);
+spring_2d!(AngleSpring, angle_one, reads: [left, centre, right, child], pushes: [child, centre]);
 
 /// The 2D spring set bound to its coefficients and per-node index: the [`ForceModel`] of the
 /// 2D mesher. Its active assembly is [`assemble_2d_active`].
@@ -590,7 +578,7 @@ fn angle_one(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{SolverParams, solve};
 
@@ -677,6 +665,51 @@ mod tests {
         assert!(f[3][0] > 0.0, "{f:?}");
     }
 
+    /// Two layers of four nodes over a fixed base of four, every kind of spring
+    /// (jitter: 16 offsets of the upper nodes).
+    pub(crate) fn two_layers(
+        jitter: &[f64],
+        left_share: f64,
+        angle_ideal: f64,
+    ) -> (Vec<[f64; 2]>, SpringSet2d) {
+        let mut x: Vec<[f64; 2]> = (0..12)
+            .map(|i| [(i % 4) as f64, (i / 4) as f64 * 0.3])
+            .collect();
+        for i in 4..12 {
+            x[i][0] += jitter[2 * (i - 4)];
+            x[i][1] += 0.5 * jitter[2 * (i - 4) + 1];
+        }
+        let mut set = SpringSet2d::default();
+        for child in 4..12u32 {
+            let parent = child - 4;
+            set.extrusion.push(ExtrusionSpring {
+                lower: parent,
+                upper: child,
+                ideal_length: 0.3,
+                lower_share: 0.8,
+            });
+            let col = child % 4;
+            if col > 0 && col < 3 {
+                set.neighbour.push(NeighbourSpring {
+                    left: child - 1,
+                    centre: child,
+                    right: child + 1,
+                    parent,
+                    left_share,
+                });
+                set.angle.push(AngleSpring {
+                    left: parent - 1,
+                    centre: parent,
+                    right: parent + 1,
+                    child,
+                    offset_rad: if col == 1 { 0.0 } else { 0.1 },
+                    ideal_length: angle_ideal,
+                });
+            }
+        }
+        (x, set)
+    }
+
     proptest::proptest! {
         /// The indexed assembly gives every active node the same force and stiffness as the
         /// full assembly, whichever nodes are active.
@@ -685,22 +718,7 @@ mod tests {
             jitter in proptest::collection::vec(-0.2f64..0.2, 16),
             active_bits in 0u16..,
         ) {
-            // two layers of four nodes over a base of four: 0..4 base, 4..8 and 8..12 above
-            let mut x: Vec<[f64; 2]> = (0..12).map(|i| [(i % 4) as f64, (i / 4) as f64 * 0.3]).collect();
-            for i in 4..12 {
-                x[i][0] += jitter[2 * (i - 4)];
-                x[i][1] += 0.5 * jitter[2 * (i - 4) + 1];
-            }
-            let mut set = SpringSet2d::default();
-            for child in 4..12u32 {
-                let parent = child - 4;
-                set.extrusion.push(ExtrusionSpring { lower: parent, upper: child, ideal_length: 0.3, lower_share: 0.8 });
-                let col = child % 4;
-                if col > 0 && col < 3 {
-                    set.neighbour.push(NeighbourSpring { left: child - 1, centre: child, right: child + 1, parent, left_share: 0.5 });
-                    set.angle.push(AngleSpring { left: parent - 1, centre: parent, right: parent + 1, child, offset_rad: if col == 1 { 0.0 } else { 0.1 }, ideal_length: 0.3 });
-                }
-            }
+            let (x, set) = two_layers(&jitter, 0.5, 0.3);
             let params = SpringParams::default();
             let mut f_full = vec![[0.0; 2]; 12];
             let mut s_full = vec![0.0; 12];
