@@ -22,12 +22,15 @@
 //! It does not fill the region left between the fronts (`fill`), nor build the output mesh.
 
 use mesh_model::NONE;
-use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active};
-
-use crate::geom::{
-    Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance, segments_meet,
+use springfield::{
+    AngleSpring, ExtrusionSpring, LocalProblem, NeighbourSpring, SpringField2d, SpringSet2d, Undo,
+    bisector, left_normal,
 };
+
+use crate::geom::{Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance};
 use crate::input::AfsfParams;
+use crate::nodes::{NewNode, NodeStore};
+use crate::sanity::front_edges_meet;
 
 /// How the ideal extrusion length of a front's layers is chosen.
 #[derive(Debug, Clone, Copy)]
@@ -48,6 +51,9 @@ pub(crate) struct FEdge {
     /// The cell this edge bounds (top or side), or NONE (boundary edges).
     pub cell: u32,
 }
+
+/// A starting front: its nodes, the boundary facet under each of its edges, its law.
+pub(crate) type StartFront = (Vec<u32>, Vec<u32>, Law);
 
 /// One front loop.
 #[derive(Debug, Clone)]
@@ -113,20 +119,7 @@ pub struct Timings {
 /// The growing mesh.
 pub(crate) struct Work<'p> {
     pub params: &'p AfsfParams,
-    pub pos: Vec<P2>,
-    pub layer: Vec<u32>,
-    pub parent: Vec<u32>,
-    pub parent2: Vec<u32>,
-    /// Neighbours on the node's own layer (front order), NONE at a step or a layer's end.
-    pub left: Vec<u32>,
-    pub right: Vec<u32>,
-    /// Ideal length of the extrusion edge ending at the node.
-    pub ideal: Vec<f64>,
-    /// C_aniso of the parent in that extrusion spring.
-    pub share: Vec<f64>,
-    /// Fan offset of the node's ideal direction from its parent's bisector (radians).
-    pub offset: Vec<f64>,
-    pub alive: Vec<bool>,
+    pub nodes: NodeStore,
     pub n_boundary: usize,
     pub cells: Vec<Cell>,
     /// First node and first cell of each step (index = layer of the step's nodes).
@@ -136,7 +129,7 @@ pub(crate) struct Work<'p> {
     pub layer_stats: Vec<LayerStats>,
     pub timings: Timings,
     springs: SpringSet2d,
-    local_of: Vec<u32>,
+    problem: LocalProblem<2>,
 }
 
 /// Children planned for one loop.
@@ -162,39 +155,35 @@ enum Mode {
     NoSolve,
 }
 
-fn left_normal(a: P2, b: P2) -> Option<P2> {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let l = dot(d, d).sqrt();
-    (l > 0.0).then(|| [-d[1] / l, d[0] / l])
-}
-
 fn rotate(v: P2, angle: f64) -> P2 {
     let (s, c) = angle.sin_cos();
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
 }
 
+/// A segment of the closing test: a current front edge, or a planned cell side or top.
+struct Seg {
+    p: P2,
+    q: P2,
+    /// Where the segment came from (itself for current-front segments): a planned
+    /// segment only collides with what it approaches.
+    base: [P2; 2],
+    ids: [u64; 2],
+    lp: u32,
+    arc: f64,
+    /// (edge, second edge) to freeze, or NONE for current-front segments.
+    owner: [u32; 2],
+    clearance: f64,
+}
+
 impl<'p> Work<'p> {
     /// Starts from the oriented boundary loops: `fronts[l]` lists node indices into
     /// `points` with the domain on the left; `pipes[l][i]` is the facet under front edge i.
-    pub(crate) fn new(
-        params: &'p AfsfParams,
-        points: Vec<P2>,
-        fronts: Vec<(Vec<u32>, Vec<u32>, Law)>,
-    ) -> Self {
+    pub(crate) fn new(params: &'p AfsfParams, points: Vec<P2>, fronts: Vec<StartFront>) -> Self {
         let n = points.len();
         let mut w = Work {
             params,
-            layer: vec![0; n],
-            parent: vec![NONE; n],
-            parent2: vec![NONE; n],
-            left: vec![NONE; n],
-            right: vec![NONE; n],
-            ideal: vec![0.0; n],
-            share: vec![1.0; n],
-            offset: vec![0.0; n],
-            alive: vec![true; n],
+            nodes: NodeStore::boundary(points),
             n_boundary: n,
-            pos: points,
             cells: Vec::new(),
             node_step: vec![0],
             cell_step: vec![0],
@@ -202,13 +191,13 @@ impl<'p> Work<'p> {
             layer_stats: Vec::new(),
             timings: Timings::default(),
             springs: SpringSet2d::default(),
-            local_of: Vec::new(),
+            problem: LocalProblem::new(),
         };
         for (items, pipes, law) in fronts {
             let m = items.len();
             for i in 0..m {
-                w.left[items[i] as usize] = items[(i + m - 1) % m];
-                w.right[items[i] as usize] = items[(i + 1) % m];
+                w.nodes.left[items[i] as usize] = items[(i + m - 1) % m];
+                w.nodes.right[items[i] as usize] = items[(i + 1) % m];
             }
             let edges = pipes
                 .iter()
@@ -230,6 +219,11 @@ impl<'p> Work<'p> {
                 break;
             }
             self.step(step)?;
+            #[cfg(debug_assertions)]
+            if let Err(problem) = self.sanity_check() {
+                // an internal invariant broke: debug builds stop here, like a debug_assert
+                panic!("afsf2d: the front state after layer {step} is broken: {problem}");
+            }
         }
         for l in &mut self.loops {
             l.edges.iter_mut().for_each(|e| e.active = false);
@@ -239,14 +233,14 @@ impl<'p> Work<'p> {
 
     fn ideal_length(&self, law: Law, g: usize) -> f64 {
         match law {
-            Law::Geometric { first, growth } => first * growth.powi(self.layer[g] as i32),
+            Law::Geometric { first, growth } => first * growth.powi(self.nodes.layer[g] as i32),
             Law::Isotropic { factor } => {
-                let (l, r) = (self.left[g], self.right[g]);
+                let (l, r) = (self.nodes.left[g], self.nodes.right[g]);
                 let mut sum = 0.0;
                 let mut k = 0.0f64;
                 for o in [l, r] {
                     if o != NONE {
-                        sum += dist(self.pos[g], self.pos[o as usize]);
+                        sum += dist(self.nodes.pos[g], self.nodes.pos[o as usize]);
                         k += 1.0;
                     }
                 }
@@ -269,12 +263,12 @@ impl<'p> Work<'p> {
                 continue;
             }
             let g = lp.items[v] as usize;
-            let p = self.pos[g];
-            let n1 = (self.left[g] != NONE)
-                .then(|| left_normal(self.pos[self.left[g] as usize], p))
+            let p = self.nodes.pos[g];
+            let n1 = (self.nodes.left[g] != NONE)
+                .then(|| left_normal(self.nodes.pos[self.nodes.left[g] as usize], p))
                 .flatten();
-            let n2 = (self.right[g] != NONE)
-                .then(|| left_normal(p, self.pos[self.right[g] as usize]))
+            let n2 = (self.nodes.right[g] != NONE)
+                .then(|| left_normal(p, self.nodes.pos[self.nodes.right[g] as usize]))
                 .flatten();
             match (n1, n2) {
                 (Some(a), Some(b)) => {
@@ -292,17 +286,12 @@ impl<'p> Work<'p> {
                             let phi = theta * j as f64 / pieces as f64;
                             dirs_v.push((rotate(a, phi), phi - 0.5 * theta));
                         }
-                    } else {
-                        let s = [a[0] + b[0], a[1] + b[1]];
-                        let l = dot(s, s).sqrt();
-                        if l > 1e-6 {
-                            dirs_v.push(([s[0] / l, s[1] / l], 0.0));
-                        } else if let Some(d) = left_normal(
-                            self.pos[self.left[g] as usize],
-                            self.pos[self.right[g] as usize],
-                        ) {
-                            dirs_v.push((d, 0.0));
-                        }
+                    } else if let Some(d) = bisector(
+                        self.nodes.pos[self.nodes.left[g] as usize],
+                        p,
+                        self.nodes.pos[self.nodes.right[g] as usize],
+                    ) {
+                        dirs_v.push((d, 0.0));
                     }
                 }
                 (Some(a), None) | (None, Some(a)) => dirs_v.push((a, 0.0)),
@@ -326,7 +315,7 @@ impl<'p> Work<'p> {
                 continue;
             }
             let g = lp.items[v] as usize;
-            let p = self.pos[g];
+            let p = self.nodes.pos[g];
             let h = self.ideal_length(lp.law, g);
             for &(d, offset) in &dirs[v] {
                 plan.pos.push([p[0] + h * d[0], p[1] + h * d[1]]);
@@ -372,7 +361,7 @@ impl<'p> Work<'p> {
             }
             min_runs(&mut self.loops);
             let t1 = std::time::Instant::now();
-            let node_start = self.pos.len();
+            let node_start = self.nodes.pos.len();
             let cell_start = self.cells.len();
             self.node_step.push(node_start);
             self.cell_step.push(cell_start);
@@ -383,7 +372,7 @@ impl<'p> Work<'p> {
             let saved = if mode == Mode::NoSolve {
                 stats.iterations = 0;
                 stats.converged = true;
-                Vec::new()
+                Undo::default()
             } else {
                 let (saved, outcome) = self.solve(step, mode)?;
                 stats.iterations = outcome.iterations;
@@ -402,9 +391,7 @@ impl<'p> Work<'p> {
                 break;
             }
             // undo
-            for (node, p) in saved {
-                self.pos[node as usize] = p;
-            }
+            saved.restore(&mut self.nodes.pos);
             self.truncate(node_start, cell_start);
             self.node_step.pop();
             self.cell_step.pop();
@@ -423,31 +410,22 @@ impl<'p> Work<'p> {
     /// the direction the springs gave it and gets exactly its ideal extrusion length.
     fn pin_first_layer(&mut self) {
         let start = self.node_step[1];
-        for g in start..self.pos.len() {
-            let p = self.parent[g];
-            if !self.alive[g] || p == NONE || self.parent2[g] != NONE {
+        for g in start..self.nodes.pos.len() {
+            let p = self.nodes.parent[g];
+            if !self.nodes.alive[g] || p == NONE || self.nodes.parent2[g] != NONE {
                 continue;
             }
-            let (a, b) = (self.pos[p as usize], self.pos[g]);
+            let (a, b) = (self.nodes.pos[p as usize], self.nodes.pos[g]);
             let l = dist(a, b);
             if l > 0.0 {
-                let s = self.ideal[g] / l;
-                self.pos[g] = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
+                let s = self.nodes.ideal[g] / l;
+                self.nodes.pos[g] = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
             }
         }
     }
 
     fn truncate(&mut self, nodes: usize, cells: usize) {
-        self.pos.truncate(nodes);
-        self.layer.truncate(nodes);
-        self.parent.truncate(nodes);
-        self.parent2.truncate(nodes);
-        self.left.truncate(nodes);
-        self.right.truncate(nodes);
-        self.ideal.truncate(nodes);
-        self.share.truncate(nodes);
-        self.offset.truncate(nodes);
-        self.alive.truncate(nodes);
+        self.nodes.truncate(nodes);
         self.cells.truncate(cells);
     }
 
@@ -455,92 +433,7 @@ impl<'p> Work<'p> {
     /// planned cell comes nearer than its clearance to a part of the fronts that is not its
     /// neighbourhood along its own loop.
     fn closing(&self, plans: &[Plan], frozen: &mut [Vec<bool>]) {
-        // segments: current front edges and planned cell sides and tops
-        struct Seg {
-            p: P2,
-            q: P2,
-            /// Where the segment came from (itself for current-front segments): a planned
-            /// segment only collides with what it approaches.
-            base: [P2; 2],
-            ids: [u64; 2],
-            lp: u32,
-            arc: f64,
-            /// (edge, second edge) to freeze, or NONE for current-front segments.
-            owner: [u32; 2],
-            clearance: f64,
-        }
-        let factor = self.params.closing_factor;
-        let mut segs: Vec<Seg> = Vec::new();
-        let mut loop_len = Vec::with_capacity(self.loops.len());
-        for (li, (lp, plan)) in self.loops.iter().zip(plans).enumerate() {
-            let m = lp.items.len();
-            let mut arc = vec![0.0; m + 1];
-            for i in 0..m {
-                let (a, b) = (lp.items[i] as usize, lp.items[(i + 1) % m] as usize);
-                arc[i + 1] = arc[i] + dist(self.pos[a], self.pos[b]);
-            }
-            loop_len.push(arc[m]);
-            let child_id = |c: usize| ((li as u64 + 1) << 40) | c as u64;
-            for i in 0..m {
-                let (a, b) = (lp.items[i], lp.items[(i + 1) % m]);
-                let (pa, pb) = (self.pos[a as usize], self.pos[b as usize]);
-                let mid = 0.5 * (arc[i] + arc[i + 1]);
-                segs.push(Seg {
-                    p: pa,
-                    q: pb,
-                    base: [pa, pb],
-                    ids: [a as u64, b as u64],
-                    lp: li as u32,
-                    arc: mid,
-                    owner: [NONE, NONE],
-                    clearance: 0.0,
-                });
-                let j = (i + 1) % m;
-                if lp.edges[i].active && plan.advancing[i] && plan.advancing[j] {
-                    let ca = plan.children(i).end - 1;
-                    let cb = plan.children(j).start;
-                    let (qa, qb) = (plan.pos[ca], plan.pos[cb]);
-                    let h = 0.5 * (plan.ideal[ca] + plan.ideal[cb]);
-                    let c = factor * h.max(0.5 * dist(qa, qb));
-                    let owner = [i as u32, NONE];
-                    for (p, q, base, ids) in [
-                        (pa, qa, [pa, pa], [a as u64, child_id(ca)]),
-                        (pb, qb, [pb, pb], [b as u64, child_id(cb)]),
-                        (qa, qb, [pa, pb], [child_id(ca), child_id(cb)]),
-                    ] {
-                        segs.push(Seg {
-                            p,
-                            q,
-                            base,
-                            ids,
-                            lp: li as u32,
-                            arc: mid,
-                            owner,
-                            clearance: c,
-                        });
-                    }
-                }
-                // fan edges of node i
-                let r = plan.children(i);
-                if r.len() > 1 {
-                    for c in r.start..r.end - 1 {
-                        let (qa, qb) = (plan.pos[c], plan.pos[c + 1]);
-                        let h = plan.ideal[c];
-                        let pv = self.pos[lp.items[i] as usize];
-                        segs.push(Seg {
-                            p: qa,
-                            q: qb,
-                            base: [pv, pv],
-                            ids: [child_id(c), child_id(c + 1)],
-                            lp: li as u32,
-                            arc: arc[i],
-                            owner: [((i + m - 1) % m) as u32, i as u32],
-                            clearance: factor * h.max(0.5 * dist(qa, qb)),
-                        });
-                    }
-                }
-            }
-        }
+        let (segs, loop_len) = self.closing_segments(plans);
         let boxes: Vec<Aabb> = segs
             .iter()
             .map(|s| Aabb::of_segment(s.p, s.q, s.clearance))
@@ -603,6 +496,84 @@ impl<'p> Work<'p> {
         });
     }
 
+    /// The segments of the closing test (current front edges, planned cell sides and tops,
+    /// fan edges) and the length of each loop.
+    fn closing_segments(&self, plans: &[Plan]) -> (Vec<Seg>, Vec<f64>) {
+        let factor = self.params.closing_factor;
+        let mut segs: Vec<Seg> = Vec::new();
+        let mut loop_len = Vec::with_capacity(self.loops.len());
+        for (li, (lp, plan)) in self.loops.iter().zip(plans).enumerate() {
+            let m = lp.items.len();
+            let mut arc = vec![0.0; m + 1];
+            for i in 0..m {
+                let (a, b) = (lp.items[i] as usize, lp.items[(i + 1) % m] as usize);
+                arc[i + 1] = arc[i] + dist(self.nodes.pos[a], self.nodes.pos[b]);
+            }
+            loop_len.push(arc[m]);
+            let child_id = |c: usize| ((li as u64 + 1) << 40) | c as u64;
+            for i in 0..m {
+                let (a, b) = (lp.items[i], lp.items[(i + 1) % m]);
+                let (pa, pb) = (self.nodes.pos[a as usize], self.nodes.pos[b as usize]);
+                let mid = 0.5 * (arc[i] + arc[i + 1]);
+                segs.push(Seg {
+                    p: pa,
+                    q: pb,
+                    base: [pa, pb],
+                    ids: [a as u64, b as u64],
+                    lp: li as u32,
+                    arc: mid,
+                    owner: [NONE, NONE],
+                    clearance: 0.0,
+                });
+                let j = (i + 1) % m;
+                if lp.edges[i].active && plan.advancing[i] && plan.advancing[j] {
+                    let ca = plan.children(i).end - 1;
+                    let cb = plan.children(j).start;
+                    let (qa, qb) = (plan.pos[ca], plan.pos[cb]);
+                    let h = 0.5 * (plan.ideal[ca] + plan.ideal[cb]);
+                    let c = factor * h.max(0.5 * dist(qa, qb));
+                    let owner = [i as u32, NONE];
+                    for (p, q, base, ids) in [
+                        (pa, qa, [pa, pa], [a as u64, child_id(ca)]),
+                        (pb, qb, [pb, pb], [b as u64, child_id(cb)]),
+                        (qa, qb, [pa, pb], [child_id(ca), child_id(cb)]),
+                    ] {
+                        segs.push(Seg {
+                            p,
+                            q,
+                            base,
+                            ids,
+                            lp: li as u32,
+                            arc: mid,
+                            owner,
+                            clearance: c,
+                        });
+                    }
+                }
+                // fan edges of node i
+                let r = plan.children(i);
+                if r.len() > 1 {
+                    for c in r.start..r.end - 1 {
+                        let (qa, qb) = (plan.pos[c], plan.pos[c + 1]);
+                        let h = plan.ideal[c];
+                        let pv = self.nodes.pos[lp.items[i] as usize];
+                        segs.push(Seg {
+                            p: qa,
+                            q: qb,
+                            base: [pv, pv],
+                            ids: [child_id(c), child_id(c + 1)],
+                            lp: li as u32,
+                            arc: arc[i],
+                            owner: [((i + m - 1) % m) as u32, i as u32],
+                            clearance: factor * h.max(0.5 * dist(qa, qb)),
+                        });
+                    }
+                }
+            }
+        }
+        (segs, loop_len)
+    }
+
     /// Creates the planned nodes and cells, breaks short neighbour edges, and replaces the
     /// fronts by the new ones. Returns the number of merges.
     fn build(&mut self, step: u32, plans: &[Plan]) -> usize {
@@ -610,161 +581,13 @@ impl<'p> Work<'p> {
         let old_loops = std::mem::take(&mut self.loops);
         let mut new_loops = Vec::with_capacity(old_loops.len());
         for (li, (lp, plan)) in old_loops.iter().zip(plans).enumerate() {
-            let m = lp.items.len();
-            // global ids of the children
-            let mut child_ids = vec![NONE; plan.pos.len()];
-            for v in 0..m {
-                let g = lp.items[v];
-                for c in plan.children(v) {
-                    child_ids[c] = self.pos.len() as u32;
-                    self.pos.push(plan.pos[c]);
-                    self.layer.push(step);
-                    self.parent.push(g);
-                    self.parent2.push(NONE);
-                    self.left.push(NONE);
-                    self.right.push(NONE);
-                    self.ideal.push(plan.ideal[c]);
-                    self.share.push(match lp.law {
-                        Law::Geometric { growth, .. } => 1.0 / growth,
-                        Law::Isotropic { .. } => 1.0,
-                    });
-                    self.offset.push(plan.offset[c]);
-                    self.alive.push(true);
-                }
-            }
-            // cells: quads over active edges, fan triangles
-            let mut edge_cell = vec![NONE; m];
-            for i in 0..m {
-                let j = (i + 1) % m;
-                if !(lp.edges[i].active && plan.advancing[i] && plan.advancing[j]) {
-                    continue;
-                }
-                let (a, b) = (lp.items[i], lp.items[j]);
-                let ca = child_ids[plan.children(i).end - 1];
-                let cb = child_ids[plan.children(j).start];
-                edge_cell[i] = self.cells.len() as u32;
-                self.cells.push(Cell {
-                    nodes: [a, b, cb, ca],
-                    len: 4,
-                    layer: self.layer[a as usize],
-                    pipe: lp.edges[i].pipe,
-                    origin: [li as u32, i as u32, NONE],
-                });
-            }
-            let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
-            for v in 0..m {
-                let r = plan.children(v);
-                if r.len() < 2 {
-                    continue;
-                }
-                let ein = lp.edges[(v + m - 1) % m];
-                let eout = lp.edges[v];
-                let pieces = r.len() - 1;
-                for (k, c) in (r.start..r.end - 1).enumerate() {
-                    let mut pipe = if 2 * k < pieces { ein.pipe } else { eout.pipe };
-                    if pipe == NONE {
-                        pipe = if ein.pipe != NONE {
-                            ein.pipe
-                        } else {
-                            eout.pipe
-                        };
-                    }
-                    fan_cells[c] = self.cells.len() as u32;
-                    let g = lp.items[v];
-                    self.cells.push(Cell {
-                        nodes: [g, child_ids[c + 1], child_ids[c], NONE],
-                        len: 3,
-                        layer: self.layer[g as usize],
-                        pipe,
-                        origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
-                    });
-                }
-            }
-            // the new front
-            let mut items: Vec<u32> = Vec::with_capacity(m + plan.pos.len());
-            let mut edges: Vec<FEdge> = Vec::with_capacity(m + plan.pos.len());
-            for v in 0..m {
-                let g = lp.items[v];
-                let ein = lp.edges[(v + m - 1) % m];
-                let eout = lp.edges[v];
-                if !plan.advancing[v] {
-                    items.push(g);
-                    edges.push(FEdge {
-                        active: false,
-                        ..eout
-                    });
-                    continue;
-                }
-                let r = plan.children(v);
-                let in_cell = edge_cell[(v + m - 1) % m];
-                let out_cell = edge_cell[v];
-                if in_cell == NONE {
-                    // step up from the old node to its first child
-                    items.push(g);
-                    edges.push(FEdge {
-                        active: false,
-                        pipe: NONE,
-                        cell: if out_cell != NONE {
-                            out_cell
-                        } else {
-                            fan_cells[r.start]
-                        },
-                    });
-                }
-                let _ = ein;
-                for c in r.start..r.end {
-                    items.push(child_ids[c]);
-                    if c + 1 < r.end {
-                        let cell = fan_cells[c];
-                        edges.push(FEdge {
-                            active: true,
-                            pipe: self.cells[cell as usize].pipe,
-                            cell,
-                        });
-                    }
-                }
-                if out_cell == NONE {
-                    // step down from the last child back to the old node
-                    edges.push(FEdge {
-                        active: false,
-                        pipe: NONE,
-                        cell: if in_cell != NONE {
-                            in_cell
-                        } else {
-                            fan_cells[r.end - 2]
-                        },
-                    });
-                    items.push(g);
-                    edges.push(FEdge {
-                        active: false,
-                        ..eout
-                    });
-                } else {
-                    edges.push(FEdge {
-                        active: true,
-                        pipe: eout.pipe,
-                        cell: out_cell,
-                    });
-                }
-            }
+            let child_ids = self.create_children(step, lp, plan);
+            let (edge_cell, fan_cells) = self.create_cells(li, lp, plan, &child_ids);
+            let (mut items, mut edges) =
+                self.new_front(lp, plan, &child_ids, &edge_cell, &fan_cells);
             debug_assert_eq!(items.len(), edges.len());
             merges += self.break_short_edges(&mut items, &mut edges);
-            // layer neighbours of the new nodes
-            let k = items.len();
-            let first_new = self.node_step[step as usize] as u32;
-            for i in 0..k {
-                let g = items[i];
-                if g < first_new {
-                    continue;
-                }
-                let (prev, next) = (items[(i + k - 1) % k], items[(i + 1) % k]);
-                if prev >= first_new && edges[(i + k - 1) % k].active {
-                    self.left[g as usize] = prev;
-                }
-                if next >= first_new && edges[i].active {
-                    self.right[g as usize] = next;
-                }
-            }
+            self.link_layer(step, &items, &edges);
             new_loops.push(Loop {
                 items,
                 edges,
@@ -773,6 +596,190 @@ impl<'p> Work<'p> {
         }
         self.loops = new_loops;
         merges
+    }
+
+    /// Creates the planned children of one loop; returns their global ids (by plan index).
+    fn create_children(&mut self, step: u32, lp: &Loop, plan: &Plan) -> Vec<u32> {
+        let m = lp.items.len();
+        // global ids of the children
+        let mut child_ids = vec![NONE; plan.pos.len()];
+        for v in 0..m {
+            let g = lp.items[v];
+            for c in plan.children(v) {
+                child_ids[c] = self.nodes.push_node(NewNode {
+                    pos: plan.pos[c],
+                    layer: step,
+                    parent: g,
+                    ideal: plan.ideal[c],
+                    share: match lp.law {
+                        Law::Geometric { growth, .. } => 1.0 / growth,
+                        Law::Isotropic { .. } => 1.0,
+                    },
+                    offset: plan.offset[c],
+                });
+            }
+        }
+        child_ids
+    }
+
+    /// Creates the quads over the loop's advancing active edges and the fan triangles;
+    /// returns the cell of each edge and of each fan child (NONE where there is none).
+    fn create_cells(
+        &mut self,
+        li: usize,
+        lp: &Loop,
+        plan: &Plan,
+        child_ids: &[u32],
+    ) -> (Vec<u32>, Vec<u32>) {
+        let m = lp.items.len();
+        // cells: quads over active edges, fan triangles
+        let mut edge_cell = vec![NONE; m];
+        for i in 0..m {
+            let j = (i + 1) % m;
+            if !(lp.edges[i].active && plan.advancing[i] && plan.advancing[j]) {
+                continue;
+            }
+            let (a, b) = (lp.items[i], lp.items[j]);
+            let ca = child_ids[plan.children(i).end - 1];
+            let cb = child_ids[plan.children(j).start];
+            edge_cell[i] = self.cells.len() as u32;
+            self.cells.push(Cell {
+                nodes: [a, b, cb, ca],
+                len: 4,
+                layer: self.nodes.layer[a as usize],
+                pipe: lp.edges[i].pipe,
+                origin: [li as u32, i as u32, NONE],
+            });
+        }
+        let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
+        for v in 0..m {
+            let r = plan.children(v);
+            if r.len() < 2 {
+                continue;
+            }
+            let ein = lp.edges[(v + m - 1) % m];
+            let eout = lp.edges[v];
+            let pieces = r.len() - 1;
+            for (k, c) in (r.start..r.end - 1).enumerate() {
+                let mut pipe = if 2 * k < pieces { ein.pipe } else { eout.pipe };
+                if pipe == NONE {
+                    pipe = if ein.pipe != NONE {
+                        ein.pipe
+                    } else {
+                        eout.pipe
+                    };
+                }
+                fan_cells[c] = self.cells.len() as u32;
+                let g = lp.items[v];
+                self.cells.push(Cell {
+                    nodes: [g, child_ids[c + 1], child_ids[c], NONE],
+                    len: 3,
+                    layer: self.nodes.layer[g as usize],
+                    pipe,
+                    origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
+                });
+            }
+        }
+        (edge_cell, fan_cells)
+    }
+
+    /// The new front of one loop: the children where the loop advanced (with steps up and
+    /// down at the ends of an advancing run), the old nodes elsewhere.
+    fn new_front(
+        &self,
+        lp: &Loop,
+        plan: &Plan,
+        child_ids: &[u32],
+        edge_cell: &[u32],
+        fan_cells: &[u32],
+    ) -> (Vec<u32>, Vec<FEdge>) {
+        let m = lp.items.len();
+        // the new front
+        let mut items: Vec<u32> = Vec::with_capacity(m + plan.pos.len());
+        let mut edges: Vec<FEdge> = Vec::with_capacity(m + plan.pos.len());
+        for v in 0..m {
+            let g = lp.items[v];
+            let eout = lp.edges[v];
+            if !plan.advancing[v] {
+                items.push(g);
+                edges.push(FEdge {
+                    active: false,
+                    ..eout
+                });
+                continue;
+            }
+            let r = plan.children(v);
+            let in_cell = edge_cell[(v + m - 1) % m];
+            let out_cell = edge_cell[v];
+            if in_cell == NONE {
+                // step up from the old node to its first child
+                items.push(g);
+                edges.push(FEdge {
+                    active: false,
+                    pipe: NONE,
+                    cell: if out_cell != NONE {
+                        out_cell
+                    } else {
+                        fan_cells[r.start]
+                    },
+                });
+            }
+            for c in r.start..r.end {
+                items.push(child_ids[c]);
+                if c + 1 < r.end {
+                    let cell = fan_cells[c];
+                    edges.push(FEdge {
+                        active: true,
+                        pipe: self.cells[cell as usize].pipe,
+                        cell,
+                    });
+                }
+            }
+            if out_cell == NONE {
+                // step down from the last child back to the old node
+                edges.push(FEdge {
+                    active: false,
+                    pipe: NONE,
+                    cell: if in_cell != NONE {
+                        in_cell
+                    } else {
+                        fan_cells[r.end - 2]
+                    },
+                });
+                items.push(g);
+                edges.push(FEdge {
+                    active: false,
+                    ..eout
+                });
+            } else {
+                edges.push(FEdge {
+                    active: true,
+                    pipe: eout.pipe,
+                    cell: out_cell,
+                });
+            }
+        }
+        (items, edges)
+    }
+
+    /// The layer neighbours of the new nodes of a new front.
+    fn link_layer(&mut self, step: u32, items: &[u32], edges: &[FEdge]) {
+        // layer neighbours of the new nodes
+        let k = items.len();
+        let first_new = self.node_step[step as usize] as u32;
+        for i in 0..k {
+            let g = items[i];
+            if g < first_new {
+                continue;
+            }
+            let (prev, next) = (items[(i + k - 1) % k], items[(i + 1) % k]);
+            if prev >= first_new && edges[(i + k - 1) % k].active {
+                self.nodes.left[g as usize] = prev;
+            }
+            if next >= first_new && edges[i].active {
+                self.nodes.right[g as usize] = next;
+            }
+        }
     }
 
     /// Coe_shrink: merges the two nodes of new active edges that are too short for their
@@ -794,8 +801,8 @@ impl<'p> Work<'p> {
                 continue;
             }
             let (xu, yu) = (x as usize, y as usize);
-            let ext = 0.5 * (self.ideal[xu] + self.ideal[yu]);
-            if dist(self.pos[xu], self.pos[yu]) >= coe * ext {
+            let ext = 0.5 * (self.nodes.ideal[xu] + self.nodes.ideal[yu]);
+            if dist(self.nodes.pos[xu], self.nodes.pos[yu]) >= coe * ext {
                 continue;
             }
             let prev = (i + k - 1) % k;
@@ -812,16 +819,16 @@ impl<'p> Work<'p> {
         for &i in &chosen {
             let j = (i + 1) % k;
             let (x, y) = (items[i] as usize, items[j] as usize);
-            self.pos[x] = [
-                0.5 * (self.pos[x][0] + self.pos[y][0]),
-                0.5 * (self.pos[x][1] + self.pos[y][1]),
+            self.nodes.pos[x] = [
+                0.5 * (self.nodes.pos[x][0] + self.nodes.pos[y][0]),
+                0.5 * (self.nodes.pos[x][1] + self.nodes.pos[y][1]),
             ];
-            self.ideal[x] = 0.5 * (self.ideal[x] + self.ideal[y]);
-            if self.parent[y] != self.parent[x] {
-                self.parent2[x] = self.parent[y];
+            self.nodes.ideal[x] = 0.5 * (self.nodes.ideal[x] + self.nodes.ideal[y]);
+            if self.nodes.parent[y] != self.nodes.parent[x] {
+                self.nodes.parent2[x] = self.nodes.parent[y];
             }
-            self.offset[x] = 0.0;
-            self.alive[y] = false;
+            self.nodes.offset[x] = 0.0;
+            self.nodes.alive[y] = false;
             // the cells touching y are those of the two edges at y
             for c in [edges[i].cell, edges[j].cell] {
                 if c == NONE || (c as usize) < cell_start {
@@ -850,13 +857,13 @@ impl<'p> Work<'p> {
         chosen.len()
     }
 
-    /// Balances the springs of the top layers; returns the saved positions of the older
-    /// nodes that moved (for undo) and the solver outcome.
+    /// Balances the springs of the top layers; returns the undo of the older nodes that
+    /// moved and the solver outcome.
     fn solve(
         &mut self,
         step: u32,
         mode: Mode,
-    ) -> Result<(Vec<(u32, P2)>, springfield::SolveOutcome), springfield::SpringError> {
+    ) -> Result<(Undo<2>, springfield::SolveOutcome), springfield::SpringError> {
         let new_start = self.node_step[step as usize];
         let depth = match mode {
             Mode::Full => self.params.moving_layers.min(step),
@@ -864,7 +871,7 @@ impl<'p> Work<'p> {
         };
         // the first layer is pinned once made (its height must stay the first height)
         let range_start = self.node_step[(step + 1 - depth).max(step.min(2)) as usize];
-        let n = self.pos.len();
+        let n = self.nodes.pos.len();
         // nodes on the fronts that are not new are fixed (they bound frozen parts)
         let mut fixed_front = vec![false; n - range_start];
         for l in &self.loops {
@@ -874,134 +881,83 @@ impl<'p> Work<'p> {
                 }
             }
         }
-        // moving: alive nodes of the top `depth` layers that are ancestors of new nodes
-        let mut moving = vec![false; n - range_start];
-        for g in (range_start..n).rev() {
-            if !self.alive[g] {
-                continue;
-            }
-            let is_new = g >= new_start;
-            if is_new || moving[g - range_start] {
-                if !is_new && fixed_front[g - range_start] {
-                    moving[g - range_start] = false;
-                    continue;
-                }
-                moving[g - range_start] = true;
-                for p in [self.parent[g], self.parent2[g]] {
-                    if p != NONE
-                        && (p as usize) >= range_start
-                        && !fixed_front[p as usize - range_start]
-                    {
-                        moving[p as usize - range_start] = true;
-                    }
-                }
-            }
-        }
-        let is_moving = |g: u32| (g as usize) >= range_start && moving[g as usize - range_start];
-        // local numbering
-        if self.local_of.len() < n {
-            self.local_of.resize(n, NONE);
-        }
-        let mut local_nodes: Vec<u32> = Vec::new();
-        let mut movable: Vec<bool> = Vec::new();
-        for g in range_start..n {
-            if moving[g - range_start] {
-                self.local_of[g] = local_nodes.len() as u32;
-                local_nodes.push(g as u32);
-                movable.push(true);
-            }
-        }
+        let mut problem = std::mem::take(&mut self.problem);
+        problem.select_layered(
+            n,
+            range_start,
+            new_start,
+            &fixed_front,
+            |g| self.nodes.alive[g],
+            |g| self.nodes.parents(g),
+        );
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
-        {
-            let local_of = &mut self.local_of;
-            let mut loc = |g: u32| -> u32 {
-                let l = local_of[g as usize];
-                if l != NONE {
-                    return l;
-                }
-                let l = local_nodes.len() as u32;
-                local_of[g as usize] = l;
-                local_nodes.push(g);
-                movable.push(false);
-                l
-            };
-            for g in range_start..n {
-                if !self.alive[g] {
-                    continue;
-                }
-                let gu = g as u32;
-                let me_moving = is_moving(gu);
-                for p in [self.parent[g], self.parent2[g]] {
-                    if p == NONE || !(me_moving || is_moving(p)) {
-                        continue;
-                    }
-                    springs.extrusion.push(ExtrusionSpring {
-                        lower: loc(p),
-                        upper: loc(gu),
-                        ideal_length: self.ideal[g],
-                        lower_share: self.share[g],
-                    });
-                    let (a, b) = (self.left[p as usize], self.right[p as usize]);
-                    if a != NONE && b != NONE {
-                        springs.angle.push(AngleSpring {
-                            left: loc(a),
-                            centre: loc(p),
-                            right: loc(b),
-                            child: loc(gu),
-                            offset_rad: if self.parent2[g] == NONE {
-                                self.offset[g]
-                            } else {
-                                0.0
-                            },
-                            ideal_length: self.ideal[g],
-                        });
-                    }
-                }
-                if me_moving {
-                    let (a, b, p) = (self.left[g], self.right[g], self.parent[g]);
-                    if a != NONE && b != NONE && p != NONE {
-                        let left_share = parent_share(&self.pos, &self.parent, a, p, b);
-                        springs.neighbour.push(NeighbourSpring {
-                            left: loc(a),
-                            centre: loc(gu),
-                            right: loc(b),
-                            parent: loc(p),
-                            left_share,
-                        });
-                    }
-                }
+        for g in range_start..n {
+            if self.nodes.alive[g] {
+                self.springs_of(g as u32, &mut problem, &mut springs);
             }
         }
-        let mut x: Vec<P2> = local_nodes.iter().map(|&g| self.pos[g as usize]).collect();
-        let scale: Vec<f64> = local_nodes
-            .iter()
-            .zip(&movable)
-            .map(|(&g, &m)| if m { self.ideal[g as usize] } else { 1.0 })
-            .collect();
-        let params = self.params.springs;
-        let influence = springs.influence(x.len());
-        let index = springs.index(x.len());
-        let outcome = springfield::solve_active(
-            &mut x,
-            &scale,
-            &movable,
-            &influence,
+        let model = SpringField2d::new(&springs, &self.params.springs, problem.len());
+        let result = problem.solve(
+            &mut self.nodes.pos,
+            new_start,
+            |g| self.nodes.ideal[g as usize],
+            &model,
             &self.params.solver,
-            |p, active, f, s| assemble_2d_active(&springs, &index, &params, p, active, f, s),
-        )?;
-        let mut saved = Vec::new();
-        for (l, &g) in local_nodes.iter().enumerate() {
-            if movable[l] {
-                if (g as usize) < new_start {
-                    saved.push((g, self.pos[g as usize]));
-                }
-                self.pos[g as usize] = x[l];
-            }
-            self.local_of[g as usize] = NONE;
-        }
+        );
         self.springs = springs;
-        Ok((saved, outcome))
+        self.problem = problem;
+        result
+    }
+
+    /// Adds the springs of alive node `g` to the problem: its extrusion and angle springs
+    /// (one per parent) when it or that parent moves, its neighbour spring when it moves.
+    fn springs_of(&self, gu: u32, problem: &mut LocalProblem<2>, springs: &mut SpringSet2d) {
+        let g = gu as usize;
+        let me_moving = problem.is_moving(gu);
+        for p in [self.nodes.parent[g], self.nodes.parent2[g]] {
+            if p == NONE || !(me_moving || problem.is_moving(p)) {
+                continue;
+            }
+            springs.extrusion.push(ExtrusionSpring {
+                lower: problem.local(p),
+                upper: problem.local(gu),
+                ideal_length: self.nodes.ideal[g],
+                lower_share: self.nodes.share[g],
+            });
+            let (a, b) = (self.nodes.left[p as usize], self.nodes.right[p as usize]);
+            if a != NONE && b != NONE {
+                springs.angle.push(AngleSpring {
+                    left: problem.local(a),
+                    centre: problem.local(p),
+                    right: problem.local(b),
+                    child: problem.local(gu),
+                    offset_rad: if self.nodes.parent2[g] == NONE {
+                        self.nodes.offset[g]
+                    } else {
+                        0.0
+                    },
+                    ideal_length: self.nodes.ideal[g],
+                });
+            }
+        }
+        if me_moving {
+            let (a, b, p) = (
+                self.nodes.left[g],
+                self.nodes.right[g],
+                self.nodes.parent[g],
+            );
+            if a != NONE && b != NONE && p != NONE {
+                let left_share = parent_share(&self.nodes.pos, &self.nodes.parent, a, p, b);
+                springs.neighbour.push(NeighbourSpring {
+                    left: problem.local(a),
+                    centre: problem.local(gu),
+                    right: problem.local(b),
+                    parent: problem.local(p),
+                    left_share,
+                });
+            }
+        }
     }
 
     /// Checks the cells that may have moved and the new front edges. Returns the front edges
@@ -1043,20 +999,7 @@ impl<'p> Work<'p> {
         }
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
-        let mut segs: Vec<(u32, u32, u32, u32)> = Vec::new(); // (a, b, loop, edge)
-        let mut boxes = Vec::new();
-        for (li, l) in self.loops.iter().enumerate() {
-            let k = l.items.len();
-            for i in 0..k {
-                let (a, b) = (l.items[i], l.items[(i + 1) % k]);
-                segs.push((a, b, li as u32, i as u32));
-                boxes.push(Aabb::of_segment(
-                    self.pos[a as usize],
-                    self.pos[b as usize],
-                    0.0,
-                ));
-            }
-        }
+        let (segs, boxes) = self.front_segments();
         overlapping_pairs(&boxes, |x, y| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
@@ -1064,34 +1007,7 @@ impl<'p> Work<'p> {
             if !(x_new || y_new) {
                 return;
             }
-            let shared = [sx.0, sx.1]
-                .iter()
-                .filter(|n| **n == sy.0 || **n == sy.1)
-                .count();
-            let (pa, pb, pc, pd) = (
-                self.pos[sx.0 as usize],
-                self.pos[sx.1 as usize],
-                self.pos[sy.0 as usize],
-                self.pos[sy.1 as usize],
-            );
-            let hit = match shared {
-                0 => segments_meet(pa, pb, pc, pd),
-                1 => {
-                    // consecutive edges: they may only meet at the shared node
-                    let (s, ox, oy) = if sx.0 == sy.0 {
-                        (pa, pb, pd)
-                    } else if sx.0 == sy.1 {
-                        (pa, pb, pc)
-                    } else if sx.1 == sy.0 {
-                        (pb, pa, pd)
-                    } else {
-                        (pb, pa, pc)
-                    };
-                    orient(s, ox, oy) == 0.0
-                        && dot([ox[0] - s[0], ox[1] - s[1]], [oy[0] - s[0], oy[1] - s[1]]) > 0.0
-                }
-                _ => true,
-            };
+            let hit = front_edges_meet(&self.nodes.pos, [sx.0, sx.1], [sy.0, sy.1]);
             if !hit {
                 return;
             }
@@ -1111,7 +1027,7 @@ impl<'p> Work<'p> {
     /// The largest angle of the triangles of a cell, a quad being cut along its shorter
     /// diagonal.
     fn cell_cut_angle_deg(&self, c: &Cell) -> f64 {
-        let p = |i: usize| self.pos[c.nodes[i] as usize];
+        let p = |i: usize| self.nodes.pos[c.nodes[i] as usize];
         let tri = crate::quality::max_triangle_angle_deg;
         if c.len == 3 {
             return tri(p(0), p(1), p(2));
@@ -1129,9 +1045,9 @@ impl<'p> Work<'p> {
         let k = c.len as usize;
         let nodes = c.corners();
         (0..k).all(|i| {
-            let a = self.pos[nodes[(i + k - 1) % k] as usize];
-            let b = self.pos[nodes[i] as usize];
-            let d = self.pos[nodes[(i + 1) % k] as usize];
+            let a = self.nodes.pos[nodes[(i + k - 1) % k] as usize];
+            let b = self.nodes.pos[nodes[i] as usize];
+            let d = self.nodes.pos[nodes[(i + 1) % k] as usize];
             let o = orient(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })

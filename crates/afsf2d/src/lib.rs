@@ -57,7 +57,9 @@ mod gaps;
 mod geom;
 mod grow;
 mod input;
+mod nodes;
 mod quality;
+mod sanity;
 
 use mesh_model::{CellType, Dim, Mesh, NONE, Patch, Role, Shape};
 
@@ -70,7 +72,7 @@ pub use quality::{
     max_triangle_angle_deg,
 };
 
-use grow::{Law, Work};
+use grow::{Law, StartFront, Work};
 
 /// Figures of one run.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -108,6 +110,10 @@ pub struct AfsfOutput {
     /// nodes the hole filling added. A node made by merging two children keeps the first
     /// parent.
     pub node_parent: Vec<u32>,
+    /// For every node, both its parents: `node_parents[i][0]` is `node_parent[i]`;
+    /// `node_parents[i][1]` is the parent of the second child merged into node `i` when it
+    /// differs from the first, else [`NONE`].
+    pub node_parents: Vec<[u32; 2]>,
     /// For every node, its layer (0 on the boundary), or [`NONE`] for the nodes the hole
     /// filling added (they have no parent either).
     pub node_layer: Vec<u32>,
@@ -125,9 +131,80 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let t0 = std::time::Instant::now();
     params.check()?;
     let checked = input::check_loops(loops, params)?;
+    let unresolved_gap = narrow_gap(loops, &checked, params)?;
+    let (mut mesh, points, fronts) = boundary_and_fronts(loops, &checked, params);
+    let mut work = Work::new(params, points, fronts);
+    work.grow()?;
+    let tf = std::time::Instant::now();
+    let n_grown = work.nodes.pos.len();
+    let facets: Vec<(u32, u32)> = mesh
+        .boundary
+        .iter()
+        .map(|f| (f.nodes[0], f.nodes[1]))
+        .collect();
+    let (fill, steiner, peeled) = fill::fill_with_peeling(
+        &mut work.cells,
+        &facets,
+        &work.nodes.pos,
+        params.fill_min_angle_deg,
+        params.peel_max_angle_deg,
+        params.peel_rounds,
+    )?;
+    for p in steiner {
+        work.nodes.push_node(nodes::NewNode::unlayered(p));
+    }
+    work.timings.fill = tf.elapsed().as_secs_f64();
+
+    let (node_parents, node_layer, layered_cells) = output_cells(&mut mesh, &work, &fill, n_grown);
+    let mut layered_on_facet = vec![false; mesh.boundary.len()];
+    for c in &work.cells {
+        if c.len > 0 && c.layer == 0 && (c.pipe as usize) < layered_on_facet.len() {
+            layered_on_facet[c.pipe as usize] = true;
+        }
+    }
+    let bare_wall_facets = (0..mesh.boundary.len())
+        .filter(|&f| {
+            !layered_on_facet[f] && mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall
+        })
+        .count();
+    let stats = AfsfStats {
+        bare_wall_facets,
+        unresolved_gap,
+        layers: work.nodes.layer[..n_grown]
+            .iter()
+            .copied()
+            .max()
+            .unwrap_or(0),
+        iterations: work.layer_stats.iter().map(|s| s.iterations).sum(),
+        all_converged: work.layer_stats.iter().all(|s| s.converged),
+        layer_stats: std::mem::take(&mut work.layer_stats),
+        fill_triangles: fill.len(),
+        peeled_cells: peeled,
+        timings: Timings {
+            total: t0.elapsed().as_secs_f64(),
+            ..work.timings
+        },
+    };
+    Ok(AfsfOutput {
+        mesh,
+        node_parent: node_parents.iter().map(|p| p[0]).collect(),
+        node_parents,
+        node_layer,
+        layered_cells,
+        stats,
+    })
+}
+
+/// The narrowest gap that admits no good triangle across it: an error when the parameters
+/// refuse narrow gaps, else reported in the statistics.
+fn narrow_gap(
+    loops: &[FrontLoop],
+    checked: &[input::CheckedLoop],
+    params: &AfsfParams,
+) -> Result<Option<NarrowGap>, AfsfError> {
     let oriented: Vec<Vec<[f64; 2]>> = loops
         .iter()
-        .zip(&checked)
+        .zip(checked)
         .map(|(l, c)| {
             let mut p = l.points.clone();
             if c.reversed {
@@ -152,11 +229,21 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
             fits_height: 0.25 * g.width,
         });
     }
+    Ok(unresolved_gap)
+}
+
+/// The boundary of the mesh (one facet per loop edge, one patch per loop), the boundary
+/// nodes, and the starting fronts with the domain on their left and their growth law.
+fn boundary_and_fronts(
+    loops: &[FrontLoop],
+    checked: &[input::CheckedLoop],
+    params: &AfsfParams,
+) -> (Mesh, Vec<[f64; 2]>, Vec<StartFront>) {
     let mut points = Vec::new();
     let mut fronts = Vec::new();
     let mut mesh = Mesh::new(Dim::Two, 1);
     let line = CellType::new(Shape::Line, 1);
-    for (li, (l, c)) in loops.iter().zip(&checked).enumerate() {
+    for (li, (l, c)) in loops.iter().zip(checked).enumerate() {
         let off = points.len() as u32;
         let facet_off = mesh.boundary.len() as u32;
         let n = l.points.len() as u32;
@@ -189,56 +276,49 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         };
         fronts.push((items, pipes, law));
     }
-    let mut work = Work::new(params, points, fronts);
-    work.grow()?;
-    let tf = std::time::Instant::now();
-    let n_grown = work.pos.len();
-    let facets: Vec<(u32, u32)> = mesh
-        .boundary
-        .iter()
-        .map(|f| (f.nodes[0], f.nodes[1]))
-        .collect();
-    let (fill, steiner, peeled) = fill::fill_with_peeling(
-        &mut work.cells,
-        &facets,
-        &work.pos,
-        params.fill_min_angle_deg,
-        params.peel_max_angle_deg,
-        params.peel_rounds,
-    )?;
-    for p in steiner {
-        work.pos.push(p);
-        work.layer.push(0);
-        work.parent.push(NONE);
-        work.alive.push(true);
-    }
-    work.timings.fill = tf.elapsed().as_secs_f64();
+    (mesh, points, fronts)
+}
 
+/// Writes the nodes and cells of the grown and filled mesh into `mesh` (alive nodes only,
+/// boundary first; layered cells, then the fill triangles with the layer and pipe of a
+/// neighbour); returns both parents and the layer of every node, and the number of layered
+/// cells.
+fn output_cells(
+    mesh: &mut Mesh,
+    work: &Work<'_>,
+    fill: &[[u32; 3]],
+    n_grown: usize,
+) -> (Vec<[u32; 2]>, Vec<u32>, usize) {
     // compact the nodes: boundary first (unchanged), then the alive layer nodes
-    let n_all = work.pos.len();
+    let n_all = work.nodes.pos.len();
     let mut new_index = vec![NONE; n_all];
     let mut next = 0u32;
     for (g, slot) in new_index.iter_mut().enumerate() {
-        if work.alive[g] {
+        if work.nodes.alive[g] {
             *slot = next;
             next += 1;
         }
     }
-    let mut node_parent = Vec::with_capacity(next as usize);
+    let mut node_parents = Vec::with_capacity(next as usize);
     let mut node_layer = Vec::with_capacity(next as usize);
     for g in 0..n_all {
-        if !work.alive[g] {
+        if !work.nodes.alive[g] {
             continue;
         }
-        let p = work.pos[g];
+        let p = work.nodes.pos[g];
         mesh.nodes.push([p[0], p[1], 0.0]);
-        let parent = work.parent[g];
-        node_parent.push(if parent == NONE {
-            NONE
+        node_parents.push(work.nodes.parents(g).map(|p| {
+            if p == NONE {
+                NONE
+            } else {
+                new_index[p as usize]
+            }
+        }));
+        node_layer.push(if g < n_grown {
+            work.nodes.layer[g]
         } else {
-            new_index[parent as usize]
+            NONE
         });
-        node_layer.push(if g < n_grown { work.layer[g] } else { NONE });
     }
     // every node's pipe, for the fill triangles: boundary nodes take the facet that starts
     // at them, layer nodes the pipe of the first cell they belong to (fill nodes none)
@@ -265,9 +345,37 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     // fill triangles take the layer and pipe of their highest grown corner; triangles whose
     // corners are all fill nodes take them from a neighbour, pass after pass
     let mut node_fill_layer: Vec<u32> = (0..n_all)
-        .map(|g| if g < n_grown { work.layer[g] } else { NONE })
+        .map(|g| {
+            if g < n_grown {
+                work.nodes.layer[g]
+            } else {
+                NONE
+            }
+        })
         .collect();
     let layered_cells = mesh.cells.len();
+    let fill_tag = fill_tags(fill, &mut node_pipe, &mut node_fill_layer);
+    for (t, tag) in fill.iter().zip(&fill_tag) {
+        let k = [
+            new_index[t[0] as usize],
+            new_index[t[1] as usize],
+            new_index[t[2] as usize],
+        ];
+        mesh.cells.push(tri, &k);
+        mesh.cell_layer.push(tag.0);
+        mesh.cell_pipe.push(tag.1);
+    }
+    (node_parents, node_layer, layered_cells)
+}
+
+/// The (layer, pipe) of each fill triangle: those of its highest corner that has a pipe;
+/// corners without one take the triangle's, and triangles with no such corner wait for a
+/// later pass.
+fn fill_tags(
+    fill: &[[u32; 3]],
+    node_pipe: &mut [u32],
+    node_fill_layer: &mut [u32],
+) -> Vec<(u32, u32)> {
     let mut fill_tag = vec![(NONE, NONE); fill.len()];
     loop {
         let mut changed = false;
@@ -297,46 +405,5 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
             break;
         }
     }
-    for (t, tag) in fill.iter().zip(&fill_tag) {
-        let k = [
-            new_index[t[0] as usize],
-            new_index[t[1] as usize],
-            new_index[t[2] as usize],
-        ];
-        mesh.cells.push(tri, &k);
-        mesh.cell_layer.push(tag.0);
-        mesh.cell_pipe.push(tag.1);
-    }
-    let mut layered_on_facet = vec![false; mesh.boundary.len()];
-    for c in &work.cells {
-        if c.len > 0 && c.layer == 0 && (c.pipe as usize) < layered_on_facet.len() {
-            layered_on_facet[c.pipe as usize] = true;
-        }
-    }
-    let bare_wall_facets = (0..mesh.boundary.len())
-        .filter(|&f| {
-            !layered_on_facet[f] && mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall
-        })
-        .count();
-    let stats = AfsfStats {
-        bare_wall_facets,
-        unresolved_gap,
-        layers: work.layer[..n_grown].iter().copied().max().unwrap_or(0),
-        iterations: work.layer_stats.iter().map(|s| s.iterations).sum(),
-        all_converged: work.layer_stats.iter().all(|s| s.converged),
-        layer_stats: std::mem::take(&mut work.layer_stats),
-        fill_triangles: fill.len(),
-        peeled_cells: peeled,
-        timings: Timings {
-            total: t0.elapsed().as_secs_f64(),
-            ..work.timings
-        },
-    };
-    Ok(AfsfOutput {
-        mesh,
-        node_parent,
-        node_layer,
-        layered_cells,
-        stats,
-    })
+    fill_tag
 }

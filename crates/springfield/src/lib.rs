@@ -7,7 +7,13 @@
 //! - [`solve()`]: a solver generic over the node dimension `D` that takes a force-assembly
 //!   callback, so that a 3D mesher reuses it with its own springs;
 //! - [`springs`]: the spring models themselves, written as data (which nodes, which ideal
-//!   length) plus an assembly function that turns them into forces and stiffnesses.
+//!   length) plus an assembly function that turns them into forces and stiffnesses;
+//! - [`model`]: the interface over the dimension that a solver sees ([`ForceModel`], one
+//!   [`Spring`] per kind), with the forces' sparse Jacobian for a Newton solver, and the
+//!   place where the 3D spring set goes; [`solve_model`] and [`solve_model_active`] take a
+//!   model instead of a callback;
+//! - [`problem`]: the local spring problem of a layered mesher (which nodes of the top
+//!   layers move, local numbering, solve on copies, undo), shared by every mesher.
 //!
 //! It does not own the mesh topology: which nodes are linked by which springs, which nodes
 //! may move, and what a node's length scale is are decided by the mesher (`afsf2d`).
@@ -49,15 +55,21 @@
 //! ```
 
 mod error;
+pub mod model;
 mod params;
+pub mod problem;
 mod solver;
 pub mod springs;
 mod vec;
 
 pub use error::SpringError;
+pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 pub use params::{SolverParams, SpringParams};
-pub use solver::{Active, Influence, SolveOutcome, solve, solve_active};
+pub use problem::{LocalProblem, NO_NODE, Undo};
+pub use solver::{
+    Active, Influence, SolveOutcome, solve, solve_active, solve_model, solve_model_active,
+};
 pub use springs::{
-    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringIndex2d, SpringSet2d, assemble_2d,
-    assemble_2d_active,
+    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringIndex2d, SpringSet2d,
+    assemble_2d, assemble_2d_active, bisector, left_normal,
 };

@@ -9,6 +9,7 @@
 //! and its travel is reset. Convergence is judged on relative displacement, not on force.
 
 use crate::error::SpringError;
+use crate::model::ForceModel;
 use crate::params::SolverParams;
 use crate::vec::norm;
 
@@ -160,6 +161,38 @@ where
     solve_core(positions, scale, movable, Some(influence), params, assemble)
 }
 
+/// [`solve()`] with the forces of a [`ForceModel`].
+pub fn solve_model<const D: usize, M: ForceModel<D> + ?Sized>(
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    movable: &[bool],
+    model: &M,
+    params: &SolverParams,
+) -> Result<SolveOutcome, SpringError> {
+    solve(positions, scale, movable, params, |p, f, s| {
+        model.assemble(p, f, s)
+    })
+}
+
+/// [`solve_active()`] with the forces and influence table of a [`ForceModel`].
+pub fn solve_model_active<const D: usize, M: ForceModel<D> + ?Sized>(
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    movable: &[bool],
+    model: &M,
+    params: &SolverParams,
+) -> Result<SolveOutcome, SpringError> {
+    let influence = model.influence(positions.len());
+    solve_active(
+        positions,
+        scale,
+        movable,
+        &influence,
+        params,
+        |p, active, f, s| model.assemble_active(p, active, f, s),
+    )
+}
+
 fn solve_core<const D: usize, A>(
     positions: &mut [[f64; D]],
     scale: &[f64],
@@ -190,9 +223,7 @@ where
     }
     let mut force = vec![[0.0; D]; n];
     let mut stiffness = vec![0.0; n];
-    let mut mass = vec![1.0f64; n];
-    let mut travel = vec![0.0f64; n];
-    let mut anchor: Vec<[f64; D]> = positions.to_vec();
+    let mut masses = MassSchedule::new(positions);
     let all_movable: Vec<u32> = (0..n as u32).filter(|&i| movable[i as usize]).collect();
     let mut active: Vec<bool> = movable.to_vec();
     let mut active_nodes: Vec<u32> = all_movable.clone();
@@ -203,25 +234,15 @@ where
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
         if let Some(influence) = influence {
-            for &i in &active_nodes {
-                active[i as usize] = false;
-            }
-            active_nodes.clear();
-            if full_sweep {
-                active_nodes.extend_from_slice(&all_movable);
-                for &i in &active_nodes {
-                    active[i as usize] = true;
-                }
-            } else {
-                for &j in &moved {
-                    for &i in std::iter::once(&j).chain(influence.dependents(j as usize)) {
-                        if movable[i as usize] && !active[i as usize] {
-                            active[i as usize] = true;
-                            active_nodes.push(i);
-                        }
-                    }
-                }
-            }
+            let woken = if full_sweep { None } else { Some(&moved[..]) };
+            select_active(
+                influence,
+                movable,
+                &all_movable,
+                woken,
+                &mut active,
+                &mut active_nodes,
+            );
         }
         moved.clear();
         for &i in &active_nodes {
@@ -247,15 +268,7 @@ where
             if s <= 0.0 {
                 continue;
             }
-            let mut step: [f64; D] =
-                std::array::from_fn(|k| params.relaxation * f[k] / (s * mass[i]));
-            let len = norm(&step);
-            let limit = params.max_move * scale[i];
-            if len > limit {
-                let c = limit / len;
-                step.iter_mut().for_each(|x| *x *= c);
-            }
-            let len = len.min(limit);
+            let (step, len) = clamped_step(&f, s, masses.mass[i], scale[i], params);
             for k in 0..D {
                 positions[i][k] += step[k];
             }
@@ -264,17 +277,8 @@ where
             if relative >= wake {
                 moved.push(iu);
             }
-            travel[i] += len;
-            if travel[i] > params.judge_travel * scale[i] {
-                let net = norm(&crate::vec::sub(&positions[i], &anchor[i]));
-                if iteration >= params.constant_mass_iterations && net < 0.5 * travel[i] {
-                    if mass[i] == 1.0 {
-                        outcome.heavy_nodes += 1;
-                    }
-                    mass[i] *= params.mass_factor;
-                }
-                travel[i] = 0.0;
-                anchor[i] = positions[i];
+            if masses.record(i, len, positions[i], scale[i], iteration, params) {
+                outcome.heavy_nodes += 1;
             }
         }
         outcome.iterations = iteration + 1;
@@ -290,6 +294,103 @@ where
         }
     }
     Ok(outcome)
+}
+
+/// Updates the active set: after a full sweep's failure or at the start every movable node,
+/// else (`woken` = the nodes that moved) the nodes that moved and their dependents.
+fn select_active(
+    influence: &Influence,
+    movable: &[bool],
+    all_movable: &[u32],
+    woken: Option<&[u32]>,
+    active: &mut [bool],
+    active_nodes: &mut Vec<u32>,
+) {
+    for &i in active_nodes.iter() {
+        active[i as usize] = false;
+    }
+    active_nodes.clear();
+    let Some(moved) = woken else {
+        active_nodes.extend_from_slice(all_movable);
+        for &i in active_nodes.iter() {
+            active[i as usize] = true;
+        }
+        return;
+    };
+    for &j in moved {
+        for &i in std::iter::once(&j).chain(influence.dependents(j as usize)) {
+            if movable[i as usize] && !active[i as usize] {
+                active[i as usize] = true;
+                active_nodes.push(i);
+            }
+        }
+    }
+}
+
+/// The damped Jacobi move ω·F/(S·m) of one node, clamped to `max_move × scale`, and its
+/// length.
+#[inline]
+fn clamped_step<const D: usize>(
+    f: &[f64; D],
+    s: f64,
+    mass: f64,
+    scale: f64,
+    params: &SolverParams,
+) -> ([f64; D], f64) {
+    let mut step: [f64; D] = std::array::from_fn(|k| params.relaxation * f[k] / (s * mass));
+    let len = norm(&step);
+    let limit = params.max_move * scale;
+    if len > limit {
+        let c = limit / len;
+        step.iter_mut().for_each(|x| *x *= c);
+    }
+    (step, len.min(limit))
+}
+
+/// The mass schedule: each node's mass, the distance it travelled since its anchor, and the
+/// anchor (where it was when its travel was last judged).
+struct MassSchedule<const D: usize> {
+    mass: Vec<f64>,
+    travel: Vec<f64>,
+    anchor: Vec<[f64; D]>,
+}
+
+impl<const D: usize> MassSchedule<D> {
+    fn new(positions: &[[f64; D]]) -> Self {
+        MassSchedule {
+            mass: vec![1.0; positions.len()],
+            travel: vec![0.0; positions.len()],
+            anchor: positions.to_vec(),
+        }
+    }
+
+    /// Records a move of node `i` of length `len` to `position`; once its travel exceeds
+    /// `judge_travel × scale`, a node that got less than half as far as it travelled (past
+    /// the constant-mass iterations) gets heavier. Returns true when the node became heavy
+    /// for the first time.
+    #[inline]
+    fn record(
+        &mut self,
+        i: usize,
+        len: f64,
+        position: [f64; D],
+        scale: f64,
+        iteration: usize,
+        params: &SolverParams,
+    ) -> bool {
+        let mut first_heavy = false;
+        self.travel[i] += len;
+        if self.travel[i] > params.judge_travel * scale {
+            let net = norm(&crate::vec::sub(&position, &self.anchor[i]));
+            if iteration >= params.constant_mass_iterations && net < 0.5 * self.travel[i] {
+                first_heavy = self.mass[i] == 1.0;
+                self.mass[i] *= params.mass_factor;
+            }
+            self.travel[i] = 0.0;
+            self.anchor[i] = position;
+        }
+        first_heavy
+    }
 }
 
 #[cfg(test)]

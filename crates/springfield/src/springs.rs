@@ -15,6 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::model::{FiniteDifference, ForceModel, Spring, Triplet, influence_pairs, jacobian_of};
 use crate::params::SpringParams;
 use crate::vec::{axpy, norm, sub};
 
@@ -88,23 +89,11 @@ impl SpringSet2d {
     /// each node pushed by a spring depends on every node of that spring.
     pub fn influence(&self, n: usize) -> crate::Influence {
         let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(
-            2 * self.extrusion.len() + 3 * self.neighbour.len() + 8 * self.angle.len(),
+            4 * self.extrusion.len() + 4 * self.neighbour.len() + 8 * self.angle.len(),
         );
-        for s in &self.extrusion {
-            pairs.push((s.upper, s.lower));
-            pairs.push((s.lower, s.upper));
-        }
-        for s in &self.neighbour {
-            for d in [s.left, s.right, s.parent] {
-                pairs.push((s.centre, d));
-            }
-        }
-        for s in &self.angle {
-            for d in [s.left, s.right, s.centre, s.child] {
-                pairs.push((s.child, d));
-                pairs.push((s.centre, d));
-            }
-        }
+        influence_pairs::<2, _>(&self.extrusion, &mut pairs);
+        influence_pairs(&self.neighbour, &mut pairs);
+        influence_pairs(&self.angle, &mut pairs);
         crate::Influence::from_pairs(n, pairs)
     }
 
@@ -187,8 +176,151 @@ fn extrusion_one<const D: usize>(
     stiffness[lo] += s.lower_share * k;
 }
 
+impl<const D: usize> Spring<D> for ExtrusionSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend([self.lower, self.upper]);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend([self.upper, self.lower]);
+    }
+
+    fn add_force(
+        &self,
+        params: &SpringParams,
+        positions: &[[f64; D]],
+        force: &mut [[f64; D]],
+        stiffness: &mut [f64],
+    ) {
+        extrusion_one(self, params, positions, force, stiffness);
+    }
+
+    /// Closed form: with v = X_upper − X_lower, l = |v| and L the ideal length, the force on
+    /// the upper node is K(1/l − 1/L)·v, so ∂F_upper/∂X_upper = K[(1/l − 1/L)·I − v vᵀ/l³]
+    /// = −∂F_upper/∂X_lower, and the lower node's rows are −C_aniso times the upper's.
+    fn add_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<D>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let positions = fd.positions();
+        let (lo, up) = (self.lower as usize, self.upper as usize);
+        let v = sub(&positions[up], &positions[lo]);
+        let len = norm(&v);
+        if len <= 0.0 || self.ideal_length <= 0.0 {
+            return;
+        }
+        let k = params.k_extrusion;
+        let diagonal = k * (1.0 / len - 1.0 / self.ideal_length);
+        let outer = k / (len * len * len);
+        for (row, row_sign) in [(up, 1.0), (lo, -self.lower_share)] {
+            for (col, col_sign) in [(up, 1.0), (lo, -1.0)] {
+                if !(movable[row] && movable[col]) {
+                    continue;
+                }
+                for a in 0..D {
+                    for b in 0..D {
+                        let d = if a == b { diagonal } else { 0.0 };
+                        out.push(Triplet {
+                            row: (D * row + a) as u32,
+                            col: (D * col + b) as u32,
+                            value: row_sign * col_sign * (d - outer * v[a] * v[b]),
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The `Spring<2>` impl of a 2D spring kind: the nodes it reads and pushes, and its force.
+macro_rules! spring_2d {
+    ($kind:ty, $force:ident, reads: [$($r:ident),*], pushes: [$($p:ident),*]) => {
+        impl Spring<2> for $kind {
+            fn reads(&self, out: &mut Vec<u32>) {
+                out.extend([$(self.$r),*]);
+            }
+
+            fn pushes(&self, out: &mut Vec<u32>) {
+                out.extend([$(self.$p),*]);
+            }
+
+            fn add_force(
+                &self,
+                params: &SpringParams,
+                positions: &[[f64; 2]],
+                force: &mut [[f64; 2]],
+                stiffness: &mut [f64],
+            ) {
+                $force(self, params, positions, force, stiffness);
+            }
+        }
+    };
+}
+
+spring_2d!(NeighbourSpring, neighbour_one, reads: [left, centre, right, parent], pushes: [centre]);
+spring_2d!(AngleSpring, angle_one, reads: [left, centre, right, child], pushes: [child, centre]);
+
+/// The 2D spring set bound to its coefficients and per-node index: the [`ForceModel`] of the
+/// 2D mesher. Its active assembly is [`assemble_2d_active`].
+#[derive(Debug, Clone)]
+pub struct SpringField2d<'a> {
+    set: &'a SpringSet2d,
+    params: &'a SpringParams,
+    index: SpringIndex2d,
+}
+
+impl<'a> SpringField2d<'a> {
+    /// Binds `set` and `params` for a solve over `n` nodes.
+    pub fn new(set: &'a SpringSet2d, params: &'a SpringParams, n: usize) -> Self {
+        SpringField2d {
+            set,
+            params,
+            index: set.index(n),
+        }
+    }
+}
+
+impl ForceModel<2> for SpringField2d<'_> {
+    fn assemble(&self, positions: &[[f64; 2]], force: &mut [[f64; 2]], stiffness: &mut [f64]) {
+        assemble_2d(self.set, self.params, positions, force, stiffness);
+    }
+
+    fn assemble_active(
+        &self,
+        positions: &[[f64; 2]],
+        active: crate::Active<'_>,
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        assemble_2d_active(
+            self.set,
+            &self.index,
+            self.params,
+            positions,
+            active,
+            force,
+            stiffness,
+        );
+    }
+
+    fn influence(&self, n: usize) -> crate::Influence {
+        self.set.influence(n)
+    }
+
+    fn jacobian(&self, positions: &[[f64; 2]], movable: &[bool], out: &mut Vec<Triplet>) {
+        let mut fd = FiniteDifference::new(positions);
+        jacobian_of(&self.set.extrusion, self.params, movable, &mut fd, out);
+        jacobian_of(&self.set.neighbour, self.params, movable, &mut fd, out);
+        jacobian_of(&self.set.angle, self.params, movable, &mut fd, out);
+    }
+}
+
+/// The unit left normal of the segment A → B, or `None` when A = B.
 #[inline]
-fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+pub fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
     let d = [b[0] - a[0], b[1] - a[1]];
     let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
     (l > 0.0).then(|| [-d[1] / l, d[0] / l])
@@ -446,7 +578,7 @@ fn angle_one(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{SolverParams, solve};
 
@@ -533,6 +665,51 @@ mod tests {
         assert!(f[3][0] > 0.0, "{f:?}");
     }
 
+    /// Two layers of four nodes over a fixed base of four, every kind of spring
+    /// (jitter: 16 offsets of the upper nodes).
+    pub(crate) fn two_layers(
+        jitter: &[f64],
+        left_share: f64,
+        angle_ideal: f64,
+    ) -> (Vec<[f64; 2]>, SpringSet2d) {
+        let mut x: Vec<[f64; 2]> = (0..12)
+            .map(|i| [(i % 4) as f64, (i / 4) as f64 * 0.3])
+            .collect();
+        for i in 4..12 {
+            x[i][0] += jitter[2 * (i - 4)];
+            x[i][1] += 0.5 * jitter[2 * (i - 4) + 1];
+        }
+        let mut set = SpringSet2d::default();
+        for child in 4..12u32 {
+            let parent = child - 4;
+            set.extrusion.push(ExtrusionSpring {
+                lower: parent,
+                upper: child,
+                ideal_length: 0.3,
+                lower_share: 0.8,
+            });
+            let col = child % 4;
+            if col > 0 && col < 3 {
+                set.neighbour.push(NeighbourSpring {
+                    left: child - 1,
+                    centre: child,
+                    right: child + 1,
+                    parent,
+                    left_share,
+                });
+                set.angle.push(AngleSpring {
+                    left: parent - 1,
+                    centre: parent,
+                    right: parent + 1,
+                    child,
+                    offset_rad: if col == 1 { 0.0 } else { 0.1 },
+                    ideal_length: angle_ideal,
+                });
+            }
+        }
+        (x, set)
+    }
+
     proptest::proptest! {
         /// The indexed assembly gives every active node the same force and stiffness as the
         /// full assembly, whichever nodes are active.
@@ -541,22 +718,7 @@ mod tests {
             jitter in proptest::collection::vec(-0.2f64..0.2, 16),
             active_bits in 0u16..,
         ) {
-            // two layers of four nodes over a base of four: 0..4 base, 4..8 and 8..12 above
-            let mut x: Vec<[f64; 2]> = (0..12).map(|i| [(i % 4) as f64, (i / 4) as f64 * 0.3]).collect();
-            for i in 4..12 {
-                x[i][0] += jitter[2 * (i - 4)];
-                x[i][1] += 0.5 * jitter[2 * (i - 4) + 1];
-            }
-            let mut set = SpringSet2d::default();
-            for child in 4..12u32 {
-                let parent = child - 4;
-                set.extrusion.push(ExtrusionSpring { lower: parent, upper: child, ideal_length: 0.3, lower_share: 0.8 });
-                let col = child % 4;
-                if col > 0 && col < 3 {
-                    set.neighbour.push(NeighbourSpring { left: child - 1, centre: child, right: child + 1, parent, left_share: 0.5 });
-                    set.angle.push(AngleSpring { left: parent - 1, centre: parent, right: parent + 1, child, offset_rad: if col == 1 { 0.0 } else { 0.1 }, ideal_length: 0.3 });
-                }
-            }
+            let (x, set) = two_layers(&jitter, 0.5, 0.3);
             let params = SpringParams::default();
             let mut f_full = vec![[0.0; 2]; 12];
             let mut s_full = vec![0.0; 12];

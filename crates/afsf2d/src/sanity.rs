@@ -1,0 +1,209 @@
+//! The whole-state check of the growing mesh, and the front-edge contact test it shares with
+//! the step verification.
+//!
+//! [`Work::sanity_check`] checks the invariant that the growth keeps after every step: the
+//! node store is consistent, every cell is alive-cornered and positive, and the fronts are
+//! closed loops whose edges meet only at the nodes they share. It runs after every step in
+//! debug builds (and in the tests); it is never run in release builds, and it reports the
+//! first problem instead of panicking.
+
+use mesh_model::NONE;
+
+use crate::geom::{Aabb, P2, dot, orient, overlapping_pairs, segments_meet, signed_area};
+use crate::grow::Work;
+
+/// True when front edges `x` and `y` (node pairs) meet other than at a node they share:
+/// edges with no common node must not meet at all, edges with one common node may touch
+/// only there (not overlap along a line), and two edges on the same two nodes always meet.
+pub(crate) fn front_edges_meet(pos: &[P2], x: [u32; 2], y: [u32; 2]) -> bool {
+    let shared = x.iter().filter(|n| **n == y[0] || **n == y[1]).count();
+    let (pa, pb, pc, pd) = (
+        pos[x[0] as usize],
+        pos[x[1] as usize],
+        pos[y[0] as usize],
+        pos[y[1] as usize],
+    );
+    match shared {
+        0 => segments_meet(pa, pb, pc, pd),
+        1 => {
+            // consecutive edges: they may only meet at the shared node
+            let (s, ox, oy) = if x[0] == y[0] {
+                (pa, pb, pd)
+            } else if x[0] == y[1] {
+                (pa, pb, pc)
+            } else if x[1] == y[0] {
+                (pb, pa, pd)
+            } else {
+                (pb, pa, pc)
+            };
+            orient(s, ox, oy) == 0.0
+                && dot([ox[0] - s[0], ox[1] - s[1]], [oy[0] - s[0], oy[1] - s[1]]) > 0.0
+        }
+        _ => true,
+    }
+}
+
+/// A front edge: (node a, node b, loop, edge index).
+pub(crate) type FrontSeg = (u32, u32, u32, u32);
+
+impl Work<'_> {
+    /// Every front edge with its bounding box.
+    pub(crate) fn front_segments(&self) -> (Vec<FrontSeg>, Vec<Aabb>) {
+        let mut segs: Vec<FrontSeg> = Vec::new();
+        let mut boxes = Vec::new();
+        for (li, l) in self.loops.iter().enumerate() {
+            let k = l.items.len();
+            for i in 0..k {
+                let (a, b) = (l.items[i], l.items[(i + 1) % k]);
+                segs.push((a, b, li as u32, i as u32));
+                boxes.push(Aabb::of_segment(
+                    self.nodes.pos[a as usize],
+                    self.nodes.pos[b as usize],
+                    0.0,
+                ));
+            }
+        }
+        (segs, boxes)
+    }
+
+    /// The first problem of the whole front state, if any (see the module documentation).
+    pub(crate) fn sanity_check(&self) -> Result<(), String> {
+        self.nodes.check()?;
+        let n = self.nodes.len();
+        let usable = |g: u32| (g as usize) < n && self.nodes.alive[g as usize];
+        for (ci, c) in self.cells.iter().enumerate() {
+            if c.len == 0 {
+                continue;
+            }
+            if !(c.len == 3 || c.len == 4) || !c.corners().iter().all(|&g| usable(g)) {
+                return Err(format!(
+                    "cell {ci}: corners {:?} not alive nodes",
+                    c.corners()
+                ));
+            }
+            let p: Vec<P2> = c
+                .corners()
+                .iter()
+                .map(|&g| self.nodes.pos[g as usize])
+                .collect();
+            let area = signed_area(&p);
+            if area.is_nan() || area <= 0.0 {
+                return Err(format!("cell {ci}: area {area:e} is not positive"));
+            }
+        }
+        for (li, l) in self.loops.iter().enumerate() {
+            if l.items.len() != l.edges.len() || l.items.len() < 3 {
+                return Err(format!(
+                    "front {li}: {} nodes and {} edges",
+                    l.items.len(),
+                    l.edges.len()
+                ));
+            }
+            if let Some(g) = l.items.iter().find(|&&g| !usable(g)) {
+                return Err(format!("front {li}: node {g} is not an alive node"));
+            }
+            if let Some(e) = l
+                .edges
+                .iter()
+                .find(|e| e.cell != NONE && e.cell as usize >= self.cells.len())
+            {
+                return Err(format!("front {li}: edge cell {} out of range", e.cell));
+            }
+        }
+        let (segs, boxes) = self.front_segments();
+        let mut first: Option<String> = None;
+        overlapping_pairs(&boxes, |x, y| {
+            let (sx, sy) = (segs[x], segs[y]);
+            if first.is_none() && front_edges_meet(&self.nodes.pos, [sx.0, sx.1], [sy.0, sy.1]) {
+                first = Some(format!(
+                    "front edges {}:{} ({}-{}) and {}:{} ({}-{}) meet",
+                    sx.2, sx.3, sx.0, sx.1, sy.2, sy.3, sy.0, sy.1
+                ));
+            }
+        });
+        first.map_or(Ok(()), Err)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::grow::{Law, Work};
+    use crate::input::AfsfParams;
+
+    /// A small body (a 16-gon, wall) inside a circle (far field), grown a few layers.
+    fn grown(params: &AfsfParams) -> Work<'_> {
+        let ring = |r: f64, m: usize, ccw: bool| -> Vec<[f64; 2]> {
+            (0..m)
+                .map(|k| {
+                    let t = 2.0 * std::f64::consts::PI * k as f64 / m as f64;
+                    let t = if ccw { t } else { -t };
+                    [r * t.cos(), r * t.sin()]
+                })
+                .collect()
+        };
+        let mut points = ring(1.0, 16, false); // the domain on the left: clockwise body
+        points.extend(ring(6.0, 24, true));
+        let fronts = vec![
+            (
+                (0..16).collect(),
+                (0..16).collect(),
+                Law::Geometric {
+                    first: 0.02,
+                    growth: 1.3,
+                },
+            ),
+            (
+                (16..40).collect(),
+                (16..40).collect(),
+                Law::Isotropic { factor: 1.0 },
+            ),
+        ];
+        let mut w = Work::new(params, points, fronts);
+        w.grow().expect("the springs solve");
+        w
+    }
+
+    #[test]
+    fn a_grown_state_is_sane_and_each_kind_of_damage_is_reported() {
+        let params = AfsfParams {
+            max_layers: 6,
+            ..AfsfParams::default()
+        };
+        let w = grown(&params);
+        assert!(w.nodes.len() > 40 && !w.cells.is_empty());
+        assert_eq!(w.sanity_check(), Ok(()));
+
+        // a cell turned clockwise
+        let mut bad = grown(&params);
+        let c = bad.cells.iter().position(|c| c.len == 4).unwrap();
+        bad.cells[c].nodes[..4].reverse();
+        let e = bad.sanity_check().unwrap_err();
+        assert!(
+            e.contains(&format!("cell {c}")) && e.contains("not positive"),
+            "{e}"
+        );
+
+        // a front node thrown across the domain: its edges cross the other front
+        let mut bad = grown(&params);
+        let g = *bad.loops[0].items.iter().max().unwrap() as usize;
+        bad.nodes.pos[g] = [8.0, 0.1];
+        for c in &mut bad.cells {
+            c.len = 0; // only the fronts are damaged
+        }
+        let e = bad.sanity_check().unwrap_err();
+        assert!(e.contains("meet"), "{e}");
+
+        // a store array out of step, and a parent that is not older
+        let mut bad = grown(&params);
+        bad.nodes.ideal.pop();
+        assert!(bad.sanity_check().unwrap_err().contains("node store"));
+        let mut bad = grown(&params);
+        let last = bad.nodes.len() - 1;
+        bad.nodes.parent2[5] = last as u32;
+        assert!(
+            bad.sanity_check()
+                .unwrap_err()
+                .contains("not an older node")
+        );
+    }
+}
