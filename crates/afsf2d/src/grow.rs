@@ -222,9 +222,9 @@ impl<'p> Work<'p> {
             // debug builds (and so every test) check the whole front state after each layer
             // and stop on a broken invariant, like a debug_assert; release skips the walk
             if cfg!(debug_assertions) {
-                if let Err(problem) = self.sanity_check() {
-                    panic!("afsf2d: the front state after layer {step} is broken: {problem}");
-                }
+                self.sanity_check().unwrap_or_else(|problem| {
+                    panic!("afsf2d: the front state after layer {step} is broken: {problem}")
+                });
             }
         }
         for l in &mut self.loops {
