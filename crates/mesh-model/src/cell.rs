@@ -104,6 +104,72 @@ impl Shape {
             ],
         }
     }
+
+    /// The faces of a 3D shape as lists of local corner indices, in Gmsh's face order, each
+    /// oriented outward (counter-clockwise seen from outside the cell); empty for lines,
+    /// triangles and quadrilaterals. Source: Gmsh's element classes (`faces_tetra`,
+    /// `faces_pyramid`, `faces_prism`, `faces_hexa` in `src/geo/MTetrahedron.h`, `MPyramid.h`,
+    /// `MPrism.h`, `MHexahedron.h`); the outward orientation is checked on the reference cells
+    /// by a unit test.
+    pub fn faces(self) -> &'static [&'static [usize]] {
+        match self {
+            Shape::Line | Shape::Tri | Shape::Quad => &[],
+            Shape::Tet => &[&[0, 2, 1], &[0, 1, 3], &[0, 3, 2], &[3, 1, 2]],
+            Shape::Pyramid => &[
+                &[0, 1, 4],
+                &[3, 0, 4],
+                &[1, 2, 4],
+                &[2, 3, 4],
+                &[0, 3, 2, 1],
+            ],
+            Shape::Prism => &[
+                &[0, 2, 1],
+                &[3, 4, 5],
+                &[0, 1, 4, 3],
+                &[0, 3, 5, 2],
+                &[1, 2, 5, 4],
+            ],
+            Shape::Hex => &[
+                &[0, 3, 2, 1],
+                &[0, 1, 5, 4],
+                &[0, 4, 7, 3],
+                &[1, 2, 6, 5],
+                &[2, 3, 7, 6],
+                &[4, 5, 6, 7],
+            ],
+        }
+    }
+
+    /// For each corner of a linear 3D shape, a tetrahedron of local corners `[c, a, b, d]`:
+    /// the corner `c` and its three neighbours along the reference axes, ordered so that the
+    /// tetrahedron's signed volume has the sign of the cell's Jacobian at `c` (positive on the
+    /// reference cell). A pyramid lists its four base corners only (its apex is singular).
+    /// Empty for 1D and 2D shapes.
+    pub fn corner_tets(self) -> &'static [[usize; 4]] {
+        match self {
+            Shape::Line | Shape::Tri | Shape::Quad => &[],
+            Shape::Tet => &[[0, 1, 2, 3]],
+            Shape::Pyramid => &[[0, 1, 3, 4], [1, 2, 0, 4], [2, 3, 1, 4], [3, 0, 2, 4]],
+            Shape::Prism => &[
+                [0, 1, 2, 3],
+                [1, 2, 0, 4],
+                [2, 0, 1, 5],
+                [3, 5, 4, 0],
+                [4, 3, 5, 1],
+                [5, 4, 3, 2],
+            ],
+            Shape::Hex => &[
+                [0, 1, 3, 4],
+                [1, 2, 0, 5],
+                [2, 3, 1, 6],
+                [3, 0, 2, 7],
+                [4, 7, 5, 0],
+                [5, 4, 6, 1],
+                [6, 5, 7, 2],
+                [7, 6, 4, 3],
+            ],
+        }
+    }
 }
 
 /// A cell type: a shape at a polynomial order (1 = linear). Only complete Lagrange cells
@@ -161,6 +227,71 @@ mod tests {
                 n,
                 "{shape:?} P{order}"
             );
+        }
+    }
+
+    const SOLIDS: [Shape; 4] = [Shape::Tet, Shape::Pyramid, Shape::Prism, Shape::Hex];
+
+    fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+
+    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+
+    fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+
+    #[test]
+    fn faces_point_outward_on_the_reference_cells() {
+        for shape in SOLIDS {
+            let x = crate::reference::corners(shape);
+            let n = x.len() as f64;
+            let centre = (0..3).map(|d| x.iter().map(|p| p[d]).sum::<f64>() / n);
+            let centre: Vec<f64> = centre.collect();
+            let centre = [centre[0], centre[1], centre[2]];
+            for f in shape.faces() {
+                // Newell's normal of the face, against the direction from the cell's centre
+                let mut normal = [0.0; 3];
+                for i in 0..f.len() {
+                    let c = cross(x[f[i]], x[f[(i + 1) % f.len()]]);
+                    normal = [normal[0] + c[0], normal[1] + c[1], normal[2] + c[2]];
+                }
+                assert!(dot(normal, sub(x[f[0]], centre)) > 0.0, "{shape:?} {f:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_edge_of_a_solid_is_on_two_of_its_faces() {
+        for shape in SOLIDS {
+            for e in shape.edges() {
+                let on = |f: &&&[usize]| {
+                    (0..f.len()).any(|i| {
+                        let (a, b) = (f[i], f[(i + 1) % f.len()]);
+                        (a, b) == (e[0], e[1]) || (a, b) == (e[1], e[0])
+                    })
+                };
+                assert_eq!(shape.faces().iter().filter(on).count(), 2, "{shape:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn corner_tets_are_positive_on_the_reference_cells() {
+        for shape in SOLIDS {
+            let x = crate::reference::corners(shape);
+            for t in shape.corner_tets() {
+                let (o, a, b, c) = (x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+                let volume = dot(cross(sub(a, o), sub(b, o)), sub(c, o));
+                assert!(volume > 0.0, "{shape:?} {t:?}");
+            }
         }
     }
 

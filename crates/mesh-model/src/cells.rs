@@ -22,9 +22,9 @@ pub struct CellRef<'a> {
     pub nodes: &'a [u32],
 }
 
-impl CellRef<'_> {
+impl<'a> CellRef<'a> {
     /// The corner nodes (the linear cell underneath).
-    pub fn corners(&self) -> &[u32] {
+    pub fn corners(&self) -> &'a [u32] {
         &self.nodes[..self.ty.shape.corners()]
     }
 }

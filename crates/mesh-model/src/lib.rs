@@ -38,10 +38,13 @@ pub mod cell;
 pub mod cells;
 pub mod measure;
 pub mod mesh;
+pub mod poly;
 pub mod reference;
+pub mod topology;
 pub mod validate;
 
 pub use cell::{CellType, Shape};
 pub use cells::{CellRef, Cells};
 pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon, polygon_area};
-pub use validate::{Problem, validate};
+pub use topology::Topology;
+pub use validate::{Problem, first_problem, first_structural_problem, is_positive_tet, validate};
