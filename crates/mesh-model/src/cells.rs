@@ -103,6 +103,12 @@ impl Cells {
         (0..self.len()).map(move |i| self.get(i))
     }
 
+    /// The shape and the corner nodes of every cell, in order: the input of the
+    /// [`crate::topology`] builders.
+    pub fn shapes_and_corners(&self) -> impl ExactSizeIterator<Item = (Shape, &[u32])> + '_ {
+        self.iter().map(|c| (c.ty.shape, c.corners()))
+    }
+
     /// The types of all cells, in order.
     pub fn types(&self) -> &[CellType] {
         &self.types

@@ -70,7 +70,7 @@ impl Topology {
     /// Never for a mesh without structural problems ([`crate::first_structural_problem`]);
     /// a corner index is only used as a number, so out-of-range nodes do not panic either.
     pub fn new(mesh: &Mesh) -> Self {
-        let cells = || mesh.cells.iter().map(|c| (c.ty.shape, c.corners()));
+        let cells = || mesh.cells.shapes_and_corners();
         let facets = || mesh.boundary.iter().map(|f| f.corners());
         match mesh.dim {
             Dim::Two => Topology {

@@ -370,15 +370,17 @@ pub fn is_positive_tet(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bo
 
 /// Each edge (2D) or face (3D) in two cells, or in one cell and one boundary facet.
 fn conformity(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
-    let cells = || mesh.cells.iter().map(|c| (c.ty.shape, c.corners()));
+    let cells = || mesh.cells.shapes_and_corners();
     let facets = mesh.boundary.iter().map(|f| f.corners());
     match mesh.dim {
         Dim::Two => {
             let edges = crate::topology::Edges::build(cells(), facets);
-            conforming(&edges, sink, |e, cells, on_boundary| Problem::NonConforming {
-                edge: [e[0], e[1]],
-                cells,
-                on_boundary,
+            conforming(&edges, sink, |e, cells, on_boundary| {
+                Problem::NonConforming {
+                    edge: [e[0], e[1]],
+                    cells,
+                    on_boundary,
+                }
             })
         }
         Dim::Three => {
