@@ -2,8 +2,11 @@
 //! node order, boundary facets grouped in patches with a role (wall, far field), and the
 //! per-cell layer index and "pipe" that the curving and movement stages need.
 //!
-//! It owns the types and the structural checks ([`validate()`]) and nothing else: no file
-//! formats (that is `mesh-io`), no geometry and no meshing algorithm.
+//! It owns the types, the topology built once per mesh ([`topology`]: unique edges and faces
+//! with their cells), the checks ([`validate()`], [`first_problem`],
+//! [`first_structural_problem`]: one walk, structural then geometric, 2D and 3D) and the
+//! polyhedral cells between a 3D mesher and the cut into standard cells ([`poly`]), and
+//! nothing else: no file formats (that is `mesh-io`) and no meshing algorithm.
 //!
 //! # Example
 //!

@@ -13,8 +13,6 @@
 
 use std::fmt;
 
-use crate::mesh::NONE;
-
 /// One face of a cell.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CellFace {
@@ -34,9 +32,9 @@ pub struct PolyMesh {
     face_nodes: Vec<u32>,
     cell_start: Vec<u32>,
     cell_faces: Vec<CellFace>,
-    /// For each cell, its layer index (0 = touching the wall it grew from), or [`NONE`].
+    /// For each cell, its layer index (0 = touching the wall it grew from), or [`crate::NONE`].
     pub cell_layer: Vec<u32>,
-    /// For each cell, the boundary facet whose pipe it belongs to, or [`NONE`].
+    /// For each cell, the boundary facet whose pipe it belongs to, or [`crate::NONE`].
     pub cell_pipe: Vec<u32>,
 }
 
@@ -162,7 +160,7 @@ impl PolyMesh {
         self.face_count() as u32 - 1
     }
 
-    /// Appends a cell bounded by `faces`, of layer `layer` in pipe `pipe` ([`NONE`] for
+    /// Appends a cell bounded by `faces`, of layer `layer` in pipe `pipe` ([`crate::NONE`] for
     /// none), and returns its index.
     pub fn push_cell(&mut self, faces: &[CellFace], layer: u32, pipe: u32) -> u32 {
         self.cell_faces.extend_from_slice(faces);
@@ -325,6 +323,7 @@ fn triple(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::NONE;
 
     /// The faces of the unit right prism (Gmsh's corner order), its side quad 0-1-4-3 split
     /// into two triangles, and of a tetrahedron on that side sharing the triangle 0-1-4: the

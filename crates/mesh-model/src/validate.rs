@@ -489,4 +489,28 @@ mod tests {
         }));
         assert!(p.contains(&Problem::PatchOutOfRange { facet: 3, patch: 7 }));
     }
+
+    #[test]
+    fn a_tet_is_positive_by_the_right_hand_rule_and_a_flat_one_is_not() {
+        let (o, x, y, z) = ([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
+        assert!(is_positive_tet(o, x, y, z));
+        assert!(!is_positive_tet(o, y, x, z));
+        assert!(!is_positive_tet(o, x, y, [0.3, 0.3, 0.0]));
+    }
+
+    #[test]
+    fn a_flipped_tet_and_a_tet_in_a_2d_mesh_are_named() {
+        let mut m = Mesh::new(Dim::Three, 1);
+        m.nodes = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let tet = CellType::new(Shape::Tet, 1);
+        m.cells.push(tet, &[0, 2, 1, 3]);
+        let p = validate(&m);
+        assert_eq!(p[0], Problem::NotPositiveCorner { cell: 0, corner: 0 });
+        // no boundary facets: each of its four faces is in one cell and on no facet
+        assert_eq!(p.len(), 5, "{p:?}");
+        m.dim = Dim::Two;
+        let first = first_problem(&m).unwrap();
+        assert!(first.is_structural());
+        assert_eq!(first.to_string(), "cell 0 is a tet in a 2D mesh");
+    }
 }
