@@ -140,35 +140,30 @@ impl Shape {
         }
     }
 
-    /// For each corner of a linear 3D shape, a tetrahedron of local corners `[c, a, b, d]`:
-    /// the corner `c` and its three neighbours along the reference axes, ordered so that the
-    /// tetrahedron's signed volume has the sign of the cell's Jacobian at `c` (positive on the
-    /// reference cell). A pyramid lists its four base corners only (its apex is singular).
-    /// Empty for 1D and 2D shapes.
-    pub fn corner_tets(self) -> &'static [[usize; 4]] {
-        match self {
-            Shape::Line | Shape::Tri | Shape::Quad => &[],
-            Shape::Tet => &[[0, 1, 2, 3]],
-            Shape::Pyramid => &[[0, 1, 3, 4], [1, 2, 0, 4], [2, 3, 1, 4], [3, 0, 2, 4]],
-            Shape::Prism => &[
-                [0, 1, 2, 3],
-                [1, 2, 0, 4],
-                [2, 0, 1, 5],
-                [3, 5, 4, 0],
-                [4, 3, 5, 1],
-                [5, 4, 3, 2],
-            ],
-            Shape::Hex => &[
-                [0, 1, 3, 4],
-                [1, 2, 0, 5],
-                [2, 3, 1, 6],
-                [3, 0, 2, 7],
-                [4, 7, 5, 0],
-                [5, 4, 6, 1],
-                [6, 5, 7, 2],
-                [7, 6, 4, 3],
-            ],
-        }
+    /// For each corner `c` of a linear 3D shape where three edges meet, a tetrahedron of local
+    /// corners `[c, p, n, d]` whose signed volume has the sign of the cell's Jacobian at `c`
+    /// (positive on the reference cell): `p` and `n` come before and after `c` on an outward
+    /// face through it, `d` is `c`'s third neighbour, off that face, inside. Derived from
+    /// [`Shape::faces`] and [`Shape::edges`]; a pyramid's apex (four edges, a singular
+    /// Jacobian) has none, and a tetrahedron, its own corner tetrahedron, gives one. Nothing
+    /// for 1D and 2D shapes.
+    pub fn corner_tets(self) -> impl Iterator<Item = [usize; 4]> {
+        let simplex = self == Shape::Tet;
+        (0..self.corners())
+            .filter_map(move |c| {
+                let face = self.faces().iter().find(|f| f.contains(&c))?;
+                let at = face.iter().position(|&v| v == c)?;
+                let p = face[(at + face.len() - 1) % face.len()];
+                let n = face[(at + 1) % face.len()];
+                let mut others = self.edges().iter().filter_map(|e| match *e {
+                    [a, b] if a == c && !face.contains(&b) => Some(b),
+                    [a, b] if b == c && !face.contains(&a) => Some(a),
+                    _ => None,
+                });
+                let d = others.next()?;
+                others.next().is_none().then_some([c, p, n, d])
+            })
+            .take(if simplex { 1 } else { usize::MAX })
     }
 }
 
@@ -287,7 +282,14 @@ mod tests {
     fn corner_tets_are_positive_on_the_reference_cells() {
         for shape in SOLIDS {
             let x = crate::reference::corners(shape);
-            for t in shape.corner_tets() {
+            let tets: Vec<[usize; 4]> = shape.corner_tets().collect();
+            let expected = match shape {
+                Shape::Tet => 1,
+                Shape::Pyramid => 4,
+                _ => shape.corners(),
+            };
+            assert_eq!(tets.len(), expected, "{shape:?}");
+            for t in tets {
                 let (o, a, b, c) = (x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
                 let volume = dot(cross(sub(a, o), sub(b, o)), sub(c, o));
                 assert!(volume > 0.0, "{shape:?} {t:?}");

@@ -73,6 +73,17 @@ impl Cells {
         self.types.len() - 1
     }
 
+    /// Keeps only the cells for which `keep(index, cell)` is true, in order.
+    pub fn retain(&mut self, mut keep: impl FnMut(usize, CellRef<'_>) -> bool) {
+        let mut kept = Cells::with_capacity(self.len(), 0);
+        for (i, c) in self.iter().enumerate() {
+            if keep(i, c) {
+                kept.push(c.ty, c.nodes);
+            }
+        }
+        *self = kept;
+    }
+
     /// Number of cells.
     pub fn len(&self) -> usize {
         self.types.len()

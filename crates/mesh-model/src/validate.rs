@@ -345,7 +345,7 @@ fn orientation(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
             }
             Dim::Three => {
                 let at = |j: usize| mesh.nodes[k[j] as usize];
-                if let Some(t) = c.ty.shape.corner_tets().iter().find(|t| {
+                if let Some(t) = c.ty.shape.corner_tets().find(|t| {
                     let [o, a, b, d] = t.map(at);
                     !is_positive_tet(o, a, b, d)
                 }) {
