@@ -5,7 +5,7 @@
 
 use mesh_model::topology::Use;
 use mesh_model::{
-    CellType, Cells, Dim, Mesh, Patch, Problem, Role, Shape, Topology, first_problem, validate,
+    CellType, Dim, Mesh, Patch, Problem, Role, Shape, Topology, first_problem, validate,
 };
 use proptest::prelude::*;
 
