@@ -132,12 +132,7 @@ impl Report {
         let problems = mesh_model::validate(mesh);
         // orientation and conformity problems leave every index and array sound: the angles
         // (and the certified check, see `certify`) still tell what is wrong where
-        let sound = problems.iter().all(|p| {
-            matches!(
-                p,
-                mesh_model::Problem::NotPositive { .. } | mesh_model::Problem::NonConforming { .. }
-            )
-        });
+        let sound = !problems.iter().any(mesh_model::Problem::is_structural);
         self.problems = problems.iter().map(ToString::to_string).collect();
         if sound && !mesh.cells.is_empty() {
             self.linear_angles(mesh);

@@ -12,7 +12,8 @@ use std::collections::{HashMap, HashSet};
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use mesh_model::NONE;
+use mesh_model::topology::Edges;
+use mesh_model::{NONE, Shape};
 use spade::{AngleLimit, RefinementParameters};
 
 use crate::error::AfsfError;
@@ -348,32 +349,32 @@ pub(crate) fn fill_with_peeling(
     max_angle_deg: f64,
     rounds: u32,
 ) -> Result<PeeledFill, AfsfError> {
-    let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
-    let facet_set: HashSet<(u32, u32)> = facets.iter().map(|&(a, b)| key(a, b)).collect();
+    let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
     let mut peeled: Vec<u32> = Vec::new();
     let mut round = 0;
     loop {
-        let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+        let live: Vec<&Cell> = cells.iter().filter(|c| c.len > 0).collect();
+        let shape = |c: &Cell| if c.len == 3 { Shape::Tri } else { Shape::Quad };
+        let edges = Edges::build(
+            live.iter().map(|c| (shape(c), c.corners())),
+            facet_nodes.iter().map(|f| &f[..]),
+        );
         let mut used = vec![false; pos.len()];
-        for c in cells.iter().filter(|c| c.len > 0) {
-            let k = c.corners();
-            for i in 0..k.len() {
-                *count.entry(key(k[i], k[(i + 1) % k.len()])).or_insert(0) += 1;
-                used[k[i] as usize] = true;
-            }
-        }
         let mut directed = Vec::new();
-        for c in cells.iter().filter(|c| c.len > 0) {
+        for (i, c) in live.iter().enumerate() {
             let k = c.corners();
-            for i in 0..k.len() {
-                let (a, b) = (k[i], k[(i + 1) % k.len()]);
-                if count[&key(a, b)] == 1 && !facet_set.contains(&key(a, b)) {
-                    directed.push((b, a));
+            for (j, &e) in edges.of_cell(i).iter().enumerate() {
+                used[k[j] as usize] = true;
+                if edges.cells(e).len() == 1 && !edges.is_boundary(e) {
+                    directed.push((k[(j + 1) % k.len()], k[j]));
                 }
             }
         }
         for &(a, b) in facets {
-            if !count.contains_key(&key(a, b)) {
+            if edges
+                .find(&[a, b])
+                .is_none_or(|e| edges.cells(e).is_empty())
+            {
                 directed.push((a, b));
             }
         }

@@ -2,42 +2,36 @@
 //! its inner nodes lies off the straight chord between its ends (beyond rounding).
 
 use mesh_model::Mesh;
+use mesh_model::topology::Edges;
 
 /// Curved edges over all edges, each edge counted once however many cells share it; 0 for a
 /// linear mesh or a mesh without cells. Edges are read in Gmsh's node order: the corners,
 /// then `order − 1` nodes per edge in the shape's edge order.
 pub fn curved_edge_fraction(mesh: &Mesh) -> f64 {
-    let mut edges: Vec<(u64, bool)> = Vec::with_capacity(mesh.cells.len() * 4);
-    for cell in mesh.cells.iter() {
-        let p = cell.ty.order as usize;
-        if p < 2 {
-            continue;
-        }
-        let k = cell.nodes;
-        let corners = cell.ty.shape.corners();
-        for (j, e) in cell.ty.shape.edges().iter().enumerate() {
-            let (a, b) = (k[e[0]], k[e[1]]);
-            let inner = &k[corners + j * (p - 1)..corners + (j + 1) * (p - 1)];
-            let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-            edges.push((key, off_chord(mesh, a, b, inner)));
-        }
-    }
-    if edges.is_empty() {
+    if mesh.cells.types().iter().all(|t| t.order < 2) {
         return 0.0;
     }
-    edges.sort_unstable();
-    let mut total = 0usize;
-    let mut curved = 0usize;
-    let mut i = 0;
-    while i < edges.len() {
-        let key = edges[i].0;
-        let mut any = false;
-        while i < edges.len() && edges[i].0 == key {
-            any |= edges[i].1;
-            i += 1;
+    let edges = Edges::build(mesh.cells.shapes_and_corners(), []);
+    let (mut total, mut curved) = (0usize, 0usize);
+    for e in 0..edges.len() as u32 {
+        let (mut high_order, mut bent) = (false, false);
+        for u in edges.cells(e) {
+            let cell = mesh.cells.get(u.cell as usize);
+            let p = cell.ty.order as usize;
+            if p < 2 {
+                continue;
+            }
+            high_order = true;
+            let (k, j) = (cell.nodes, u.local as usize);
+            let [a, b] = cell.ty.shape.edges()[j];
+            let first = cell.ty.shape.corners() + j * (p - 1);
+            bent = bent || off_chord(mesh, k[a], k[b], &k[first..first + p - 1]);
         }
-        total += 1;
-        curved += any as usize;
+        total += high_order as usize;
+        curved += bent as usize;
+    }
+    if total == 0 {
+        return 0.0;
     }
     curved as f64 / total as f64
 }

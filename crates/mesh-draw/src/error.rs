@@ -40,40 +40,15 @@ pub enum DrawError {
     /// The mesh is 3D; only planar meshes are drawn. Fix: draw a 2D mesh (or a 2D slice of it).
     #[error("the mesh is 3D; mesh-draw draws only 2D meshes")]
     NotPlanar,
-    /// A domain cell is not a triangle or a quadrilateral, or a boundary facet is not a line.
-    /// Fix: the mesh is not a valid 2D mesh; check it with `mesh_model::validate`.
-    #[error("{what} {index} is a {shape}, which a 2D drawing cannot show")]
-    UnsupportedShape {
-        /// `cell` or `boundary facet`.
-        what: &'static str,
-        /// Its index.
-        index: usize,
-        /// Its shape's name.
-        shape: &'static str,
-    },
-    /// A cell or boundary facet names a node that does not exist.
-    /// Fix: the mesh is corrupt; check it with `mesh_model::validate`.
-    #[error("{what} {index} names node {node}, but the mesh has {node_count} nodes")]
-    NodeOutOfRange {
-        /// `cell` or `boundary facet`.
-        what: &'static str,
-        /// Its index.
-        index: usize,
-        /// The bad node index.
-        node: u32,
-        /// How many nodes the mesh has.
-        node_count: usize,
-    },
-    /// A node coordinate is NaN or infinite. Fix: repair the node (or the stage that made it).
-    #[error("node {node} has a non-finite coordinate {coords:?}")]
-    NonFiniteNode {
-        /// Node index.
-        node: usize,
-        /// Its coordinates.
-        coords: [f64; 3],
-    },
-    /// A per-cell or per-facet array has the wrong length: `mesh.cell_layer` when colouring by
-    /// layer, the caller's value array when colouring by values, `mesh.boundary_patch`.
+    /// The mesh breaks a structural invariant of the data model (a cell that is not a
+    /// triangle or a quadrilateral, a facet that is not a line, a node or patch index out of
+    /// range, a non-finite coordinate, an array of the wrong length): the first problem
+    /// `mesh_model::first_structural_problem` finds. Fix: the stage that made the mesh is at
+    /// fault; `mesh_model::validate` lists every problem.
+    #[error("the mesh cannot be drawn: {0}")]
+    InvalidMesh(mesh_model::Problem),
+    /// A per-cell array has the wrong length: `mesh.cell_layer` when colouring by layer, the
+    /// caller's value array when colouring by values.
     /// Fix: supply exactly one entry per cell (per facet).
     #[error("{what} has {len} entries, expected {expected} (one per {per})")]
     LengthMismatch {
@@ -85,17 +60,6 @@ pub enum DrawError {
         expected: usize,
         /// `cell` or `boundary facet`.
         per: &'static str,
-    },
-    /// A boundary facet names a patch that does not exist.
-    /// Fix: the mesh is corrupt; check it with `mesh_model::validate`.
-    #[error("boundary facet {facet} names patch {patch}, but the mesh has {patch_count} patches")]
-    PatchOutOfRange {
-        /// Facet index.
-        facet: usize,
-        /// The bad patch index.
-        patch: u32,
-        /// How many patches the mesh has.
-        patch_count: usize,
     },
     /// A view was asked around boundary patches of a role the mesh does not have.
     /// Fix: ask for a role the mesh has, or give the view yourself.

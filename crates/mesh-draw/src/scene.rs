@@ -5,6 +5,7 @@
 
 use std::collections::HashMap;
 
+use mesh_model::topology::Edges;
 use mesh_model::{CellRef, Mesh, Role};
 
 use crate::check::check_mesh;
@@ -549,20 +550,19 @@ fn fill_groups(
 /// The edges of the visible cells, each drawn once (the first cell that names it gives its
 /// direction and high-order nodes). For the SVG, edges shorter than a pixel are left out.
 fn unique_edges(mesh: &Mesh, frame: &Frame, visible: &[u32], target: Target) -> Vec<Curve> {
-    let mut keys: Vec<(u64, u32, u8)> = Vec::with_capacity(visible.len() * 4);
-    for &i in visible {
-        let cell = mesh.cells.get(i as usize);
-        for (e, [a, b]) in cell.ty.shape.edges().iter().enumerate() {
-            let (p, q) = (cell.nodes[*a], cell.nodes[*b]);
-            let key = ((p.min(q) as u64) << 32) | p.max(q) as u64;
-            keys.push((key, i, e as u8));
-        }
-    }
-    keys.sort_unstable();
-    keys.dedup_by_key(|k| k.0);
-    let mut curves = Vec::with_capacity(keys.len());
+    // `visible` is increasing, so an edge's first use is by its lowest visible cell
+    let cells = visible.iter().map(|&i| {
+        let c = mesh.cells.get(i as usize);
+        (c.ty.shape, c.corners())
+    });
+    let edges = Edges::build(cells, []);
+    let keys = (0..edges.len() as u32).map(|e| {
+        let first = edges.cells(e)[0];
+        (visible[first.cell as usize], first.local)
+    });
+    let mut curves = Vec::with_capacity(edges.len());
     let mut points = Vec::with_capacity(4);
-    for (_, i, e) in keys {
+    for (i, e) in keys {
         edge_points(mesh, mesh.cells.get(i as usize), e as usize, &mut points);
         let before = curves.len();
         frame.push_edge(&points, &mut curves);

@@ -10,7 +10,7 @@ use mesh_draw::{
     ColourBy, DrawError, DrawParams, View, render_png, render_rgba, render_svg, view_around,
     view_of_role,
 };
-use mesh_model::{CellType, Dim, Mesh, Role, Shape};
+use mesh_model::{CellType, Dim, Mesh, Problem, Role, Shape};
 use proptest::prelude::*;
 use tiny_skia::Pixmap;
 
@@ -344,14 +344,20 @@ fn bad_views_sizes_and_inputs_are_refused_with_an_error() {
     broken.cell_layer.push(0);
     let e = render_png(&broken, &params(100, 100)).unwrap_err();
     assert!(
-        matches!(e, DrawError::NodeOutOfRange { node: 999_999, .. }),
+        matches!(
+            e,
+            DrawError::InvalidMesh(Problem::NodeOutOfRange { node: 999_999, .. })
+        ),
         "{e}"
     );
     let mut nan_node = mesh.clone();
     nan_node.nodes[5][1] = f64::NAN;
     assert!(matches!(
         render_png(&nan_node, &params(100, 100)),
-        Err(DrawError::NonFiniteNode { node: 5, .. })
+        Err(DrawError::InvalidMesh(Problem::NonFiniteNode {
+            node: 5,
+            ..
+        }))
     ));
     let mut volume = mesh.clone();
     volume.dim = Dim::Three;

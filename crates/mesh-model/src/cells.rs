@@ -22,9 +22,9 @@ pub struct CellRef<'a> {
     pub nodes: &'a [u32],
 }
 
-impl CellRef<'_> {
+impl<'a> CellRef<'a> {
     /// The corner nodes (the linear cell underneath).
-    pub fn corners(&self) -> &[u32] {
+    pub fn corners(&self) -> &'a [u32] {
         &self.nodes[..self.ty.shape.corners()]
     }
 }
@@ -73,6 +73,17 @@ impl Cells {
         self.types.len() - 1
     }
 
+    /// Keeps only the cells for which `keep(index, cell)` is true, in order.
+    pub fn retain(&mut self, mut keep: impl FnMut(usize, CellRef<'_>) -> bool) {
+        let mut kept = Cells::with_capacity(self.len(), 0);
+        for (i, c) in self.iter().enumerate() {
+            if keep(i, c) {
+                kept.push(c.ty, c.nodes);
+            }
+        }
+        *self = kept;
+    }
+
     /// Number of cells.
     pub fn len(&self) -> usize {
         self.types.len()
@@ -101,6 +112,12 @@ impl Cells {
     /// All cells in order.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = CellRef<'_>> + '_ {
         (0..self.len()).map(move |i| self.get(i))
+    }
+
+    /// The shape and the corner nodes of every cell, in order: the input of the
+    /// [`crate::topology`] builders.
+    pub fn shapes_and_corners(&self) -> impl ExactSizeIterator<Item = (Shape, &[u32])> + '_ {
+        self.iter().map(|c| (c.ty.shape, c.corners()))
     }
 
     /// The types of all cells, in order.

@@ -2,8 +2,11 @@
 //! node order, boundary facets grouped in patches with a role (wall, far field), and the
 //! per-cell layer index and "pipe" that the curving and movement stages need.
 //!
-//! It owns the types and the structural checks ([`validate()`]) and nothing else: no file
-//! formats (that is `mesh-io`), no geometry and no meshing algorithm.
+//! It owns the types, the topology built once per mesh ([`topology`]: unique edges and faces
+//! with their cells), the checks ([`validate()`], [`first_problem`],
+//! [`first_structural_problem`]: one walk, structural then geometric, 2D and 3D) and the
+//! polyhedral cells between a 3D mesher and the cut into standard cells ([`poly`]), and
+//! nothing else: no file formats (that is `mesh-io`) and no meshing algorithm.
 //!
 //! # Example
 //!
@@ -38,10 +41,13 @@ pub mod cell;
 pub mod cells;
 pub mod measure;
 pub mod mesh;
+pub mod poly;
 pub mod reference;
+pub mod topology;
 pub mod validate;
 
 pub use cell::{CellType, Shape};
 pub use cells::{CellRef, Cells};
 pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon, polygon_area};
-pub use validate::{Problem, validate};
+pub use topology::Topology;
+pub use validate::{Problem, first_problem, first_structural_problem, is_positive_tet, validate};

@@ -53,23 +53,6 @@ pub fn corners(shape: Shape) -> &'static [[f64; 3]] {
     }
 }
 
-/// The quadrilateral faces of Gmsh's 3D reference cells, in Gmsh's order of their face nodes.
-fn gmsh_quad_faces(shape: Shape) -> &'static [[usize; 4]] {
-    match shape {
-        Shape::Hex => &[
-            [0, 3, 2, 1],
-            [0, 1, 5, 4],
-            [0, 4, 7, 3],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [4, 5, 6, 7],
-        ],
-        Shape::Prism => &[[0, 1, 4, 3], [0, 3, 5, 2], [1, 2, 5, 4]],
-        Shape::Pyramid => &[[0, 3, 2, 1]],
-        _ => &[],
-    }
-}
-
 fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
     [
         a[0] + (b[0] - a[0]) * t,
@@ -165,7 +148,8 @@ pub fn reference_nodes(ty: CellType) -> Option<Vec<[f64; 3]>> {
             for e in ty.shape.edges() {
                 out.push(lerp(c[e[0]], c[e[1]], 0.5));
             }
-            for f in gmsh_quad_faces(ty.shape) {
+            // the P2 face nodes: one at the centre of each quadrilateral face, in face order
+            for f in ty.shape.faces().iter().filter(|f| f.len() == 4) {
                 out.push(mean(&[c[f[0]], c[f[1]], c[f[2]], c[f[3]]]));
             }
             if ty.shape == Shape::Hex {

@@ -1,11 +1,21 @@
-//! Structural checks of a mesh that every stage's tests call at the end: they return every
-//! problem found, with the values, instead of stopping at the first.
+//! The checks of a mesh, as one walk over it that hands each problem found to a sink: the
+//! sink decides whether to go on ([`validate()`]: every problem, for tests and reports) or to
+//! stop at the first ([`first_problem`]; [`first_structural_problem`] for the writers, the
+//! drawer and the curving, which need sound indices but not sound geometry).
+//!
+//! Structural checks come first (finite coordinates, cell shapes and orders that fit the
+//! dimension, node, patch and pipe indices, array lengths); the geometric ones run only on a
+//! structurally sound mesh: positive linear cells (2D: every corner turns left, exactly; 3D:
+//! the Jacobian at every corner of a tet, pyramid, prism or hex is positive, decided by the
+//! exact `orient3d`) and conformity (2D: each edge in two cells, or in one cell and one
+//! boundary facet; 3D: the same for faces), read from the [`crate::topology`] tables.
 
-use std::collections::HashMap;
 use std::fmt;
+use std::ops::ControlFlow;
 
 use crate::cell::Shape;
 use crate::mesh::{Dim, Mesh, NONE};
+use crate::topology::Entities;
 
 /// One thing wrong with a mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -14,6 +24,29 @@ pub enum Problem {
     NonFiniteNode {
         /// Node index.
         node: usize,
+        /// Its coordinates.
+        coords: [f64; 3],
+    },
+    /// A cell's shape does not fit the mesh's dimension (a tet in a 2D mesh, a line as a
+    /// domain cell), or a facet's does not fit one dimension less.
+    WrongShape {
+        /// Cell index (or facet index when `facet` is true).
+        cell: usize,
+        /// True for a boundary facet.
+        facet: bool,
+        /// Its shape.
+        shape: Shape,
+        /// The mesh's dimension.
+        dim: u8,
+    },
+    /// A cell's polynomial order is not 1, 2 or 3.
+    BadOrder {
+        /// Cell index (or facet index when `facet` is true).
+        cell: usize,
+        /// True for a boundary facet.
+        facet: bool,
+        /// Its order.
+        order: u8,
     },
     /// A cell or facet names a node that does not exist.
     NodeOutOfRange {
@@ -57,6 +90,24 @@ pub enum Problem {
         /// Whether it is a boundary facet.
         on_boundary: bool,
     },
+    /// A linear 3D cell's Jacobian is not positive at one of its corners (decided exactly):
+    /// the cell is inverted or degenerate there.
+    NotPositiveCorner {
+        /// Cell index.
+        cell: usize,
+        /// The local corner (Gmsh order) where the Jacobian is not positive.
+        corner: usize,
+    },
+    /// A face of a 3D mesh is shared by a number of cells other than two (interior) or one
+    /// (on a boundary facet), or lies on several boundary facets.
+    NonConformingFace {
+        /// The face's corner nodes, increasing.
+        face: Vec<u32>,
+        /// How many cells use it.
+        cells: usize,
+        /// Whether a boundary facet lies on it.
+        on_boundary: bool,
+    },
     /// A cell names a pipe (boundary facet) that does not exist.
     PipeOutOfRange {
         /// Cell index.
@@ -66,10 +117,53 @@ pub enum Problem {
     },
 }
 
+impl Problem {
+    /// Whether the problem breaks the mesh's structure (an index, a length, a shape, a
+    /// coordinate) rather than its geometry (orientation, conformity): a mesh with only
+    /// geometric problems can still be measured, drawn and written.
+    pub fn is_structural(&self) -> bool {
+        !matches!(
+            self,
+            Problem::NotPositive { .. }
+                | Problem::NotPositiveCorner { .. }
+                | Problem::NonConforming { .. }
+                | Problem::NonConformingFace { .. }
+        )
+    }
+}
+
 impl fmt::Display for Problem {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Problem::NonFiniteNode { node } => write!(f, "node {node} has a non-finite coordinate"),
+            Problem::NonFiniteNode { node, coords } => {
+                write!(f, "node {node} has a non-finite coordinate {coords:?}")
+            }
+            Problem::WrongShape {
+                cell,
+                facet,
+                shape,
+                dim,
+            } => {
+                let what = if *facet { "boundary facet" } else { "cell" };
+                write!(f, "{what} {cell} is a {} in a {dim}D mesh", shape.name())
+            }
+            Problem::BadOrder { cell, facet, order } => {
+                let what = if *facet { "boundary facet" } else { "cell" };
+                write!(f, "{what} {cell} has order {order} (supported: 1 to 3)")
+            }
+            Problem::NotPositiveCorner { cell, corner } => write!(
+                f,
+                "cell {cell} is inverted or degenerate at its corner {corner} (Jacobian not positive)"
+            ),
+            Problem::NonConformingFace {
+                face,
+                cells,
+                on_boundary,
+            } => write!(
+                f,
+                "face {face:?} ({}) is used by {cells} cells",
+                if *on_boundary { "boundary" } else { "interior" }
+            ),
             Problem::NodeOutOfRange { cell, facet, node } => {
                 let what = if *facet { "boundary facet" } else { "cell" };
                 write!(f, "{what} {cell} names node {node}, which does not exist")
@@ -112,24 +206,91 @@ impl fmt::Display for Problem {
     }
 }
 
-/// Checks indices, lengths and finiteness; in 2D also orientation of the linear cells and
-/// conformity (each interior edge in exactly two cells, each boundary facet in exactly one).
+/// Every problem of `mesh`, structural and geometric, in the order of the walk (structural
+/// problems first; geometric checks run only when there is none).
 pub fn validate(mesh: &Mesh) -> Vec<Problem> {
     let mut problems = Vec::new();
-    let n = mesh.nodes.len() as u32;
+    let _ = walk(mesh, true, &mut |p| {
+        problems.push(p);
+        ControlFlow::Continue(())
+    });
+    problems
+}
+
+/// The first problem of `mesh` that [`validate()`] would report, found without looking
+/// further.
+pub fn first_problem(mesh: &Mesh) -> Option<Problem> {
+    first(mesh, true)
+}
+
+/// The first structural problem of `mesh` (finiteness, shapes and orders, indices, lengths):
+/// what writers and drawers need before they index anything. Orientation and conformity are
+/// not checked, so that a tangled mesh can still be written and looked at.
+pub fn first_structural_problem(mesh: &Mesh) -> Option<Problem> {
+    first(mesh, false)
+}
+
+fn first(mesh: &Mesh, geometry: bool) -> Option<Problem> {
+    match walk(mesh, geometry, &mut ControlFlow::Break) {
+        ControlFlow::Break(p) => Some(p),
+        ControlFlow::Continue(()) => None,
+    }
+}
+
+/// What a sink says after each problem: go on, or stop with this value.
+type Sink<'a> = &'a mut dyn FnMut(Problem) -> ControlFlow<Problem>;
+
+/// The one walk: structural checks, then (when `geometry` and the structure is sound) the
+/// orientation and conformity checks.
+fn walk(mesh: &Mesh, geometry: bool, sink: Sink<'_>) -> ControlFlow<Problem> {
+    let mut sound = true;
+    let mut report = |p| {
+        sound = false;
+        sink(p)
+    };
+    structure(mesh, &mut report)?;
+    if !geometry || !sound {
+        return ControlFlow::Continue(());
+    }
+    orientation(mesh, sink)?;
+    conformity(mesh, sink)
+}
+
+fn structure(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
     for (i, p) in mesh.nodes.iter().enumerate() {
         if !p.iter().all(|c| c.is_finite()) {
-            problems.push(Problem::NonFiniteNode { node: i });
+            sink(Problem::NonFiniteNode {
+                node: i,
+                coords: *p,
+            })?;
         }
     }
-    for (facet, cells) in [(false, &mesh.cells), (true, &mesh.boundary)] {
+    let cell_dim = mesh.dim.as_u8();
+    let n = mesh.nodes.len() as u32;
+    for (facet, cells, dim) in [
+        (false, &mesh.cells, cell_dim),
+        (true, &mesh.boundary, cell_dim - 1),
+    ] {
         for (i, c) in cells.iter().enumerate() {
-            if let Some(&bad) = c.nodes.iter().find(|&&v| v >= n) {
-                problems.push(Problem::NodeOutOfRange {
+            if c.ty.shape.dim() != dim {
+                sink(Problem::WrongShape {
+                    cell: i,
+                    facet,
+                    shape: c.ty.shape,
+                    dim: cell_dim,
+                })?;
+            } else if !(1..=3).contains(&c.ty.order) {
+                sink(Problem::BadOrder {
+                    cell: i,
+                    facet,
+                    order: c.ty.order,
+                })?;
+            } else if let Some(&bad) = c.nodes.iter().find(|&&v| v >= n) {
+                sink(Problem::NodeOutOfRange {
                     cell: i,
                     facet,
                     node: bad,
-                });
+                })?;
             }
         }
     }
@@ -145,89 +306,108 @@ pub fn validate(mesh: &Mesh) -> Vec<Problem> {
     ];
     for (what, len, expected, may_be_empty) in lengths {
         if len != expected && !(may_be_empty && len == 0) {
-            problems.push(Problem::LengthMismatch {
+            sink(Problem::LengthMismatch {
                 what,
                 len,
                 expected,
-            });
+            })?;
         }
     }
     for (facet, &patch) in mesh.boundary_patch.iter().enumerate() {
         if patch as usize >= mesh.patches.len() {
-            problems.push(Problem::PatchOutOfRange { facet, patch });
+            sink(Problem::PatchOutOfRange { facet, patch })?;
         }
     }
     for (cell, &pipe) in mesh.cell_pipe.iter().enumerate() {
         if pipe != NONE && pipe as usize >= mesh.boundary.len() {
-            problems.push(Problem::PipeOutOfRange { cell, pipe });
+            sink(Problem::PipeOutOfRange { cell, pipe })?;
         }
     }
-    if !problems.is_empty() || mesh.dim != Dim::Two {
-        return problems;
-    }
+    ControlFlow::Continue(())
+}
+
+/// Positive linear cells: 2D corners turning left (exactly), 3D corner Jacobians positive.
+fn orientation(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
     for cell in 0..mesh.cells.len() {
-        // a 2D linear cell has at most four corners: no allocation per cell
         let c = mesh.cells.get(cell);
         let k = c.corners();
-        let mut corners = [[0.0; 2]; 4];
-        for (x, &v) in corners.iter_mut().zip(k) {
-            *x = mesh.xy(v);
-        }
-        if !crate::mesh::is_positive_polygon(&corners[..k.len().min(4)]) {
-            let area = mesh.linear_cell_area(cell);
-            problems.push(Problem::NotPositive { cell, area });
+        match mesh.dim {
+            Dim::Two => {
+                // a 2D linear cell has at most four corners: no allocation per cell
+                let mut corners = [[0.0; 2]; 4];
+                for (x, &v) in corners.iter_mut().zip(k) {
+                    *x = mesh.xy(v);
+                }
+                if !crate::mesh::is_positive_polygon(&corners[..k.len().min(4)]) {
+                    let area = mesh.linear_cell_area(cell);
+                    sink(Problem::NotPositive { cell, area })?;
+                }
+            }
+            Dim::Three => {
+                let at = |j: usize| mesh.nodes[k[j] as usize];
+                if let Some(t) = c.ty.shape.corner_tets().find(|t| {
+                    let [o, a, b, d] = t.map(at);
+                    !is_positive_tet(o, a, b, d)
+                }) {
+                    sink(Problem::NotPositiveCorner { cell, corner: t[0] })?;
+                }
+            }
         }
     }
-    problems.extend(edge_conformity_2d(mesh));
-    problems
+    ControlFlow::Continue(())
 }
 
-fn edge_key(a: u32, b: u32) -> [u32; 2] {
-    if a < b { [a, b] } else { [b, a] }
+/// Whether the tetrahedron `o a b c` has a positive signed volume (`(a−o)×(b−o)·(c−o) > 0`),
+/// decided exactly (`robust::orient3d`, which is positive for the opposite orientation).
+pub fn is_positive_tet(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    let p = |x: [f64; 3]| robust::Coord3D {
+        x: x[0],
+        y: x[1],
+        z: x[2],
+    };
+    robust::orient3d(p(o), p(a), p(b), p(c)) < 0.0
 }
 
-fn edge_conformity_2d(mesh: &Mesh) -> Vec<Problem> {
-    let mut uses: HashMap<[u32; 2], usize> = HashMap::with_capacity(mesh.cells.len() * 2);
-    for c in mesh.cells.iter() {
-        let k = c.corners();
-        for e in c.ty.shape.edges() {
-            *uses.entry(edge_key(k[e[0]], k[e[1]])).or_default() += 1;
+/// Each edge (2D) or face (3D) in two cells, or in one cell and one boundary facet.
+fn conformity(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
+    let cells = || mesh.cells.shapes_and_corners();
+    let facets = mesh.boundary.iter().map(|f| f.corners());
+    match mesh.dim {
+        Dim::Two => {
+            let edges = crate::topology::Edges::build(cells(), facets);
+            conforming(&edges, sink, |e, cells, on_boundary| {
+                Problem::NonConforming {
+                    edge: [e[0], e[1]],
+                    cells,
+                    on_boundary,
+                }
+            })
+        }
+        Dim::Three => {
+            let faces = crate::topology::Faces::build(cells(), facets);
+            conforming(&faces, sink, |f, cells, on_boundary| {
+                Problem::NonConformingFace {
+                    face: f.to_vec(),
+                    cells,
+                    on_boundary,
+                }
+            })
         }
     }
-    let mut boundary: HashMap<[u32; 2], usize> = HashMap::with_capacity(mesh.boundary.len());
-    for f in mesh.boundary.iter() {
-        if f.ty.shape == Shape::Line {
-            *boundary
-                .entry(edge_key(f.nodes[0], f.nodes[1]))
-                .or_default() += 1;
+}
+
+fn conforming<const N: usize>(
+    entities: &Entities<N>,
+    sink: Sink<'_>,
+    problem: impl Fn(&[u32], usize, bool) -> Problem,
+) -> ControlFlow<Problem> {
+    for e in 0..entities.len() as u32 {
+        let (cells, facets) = (entities.cells(e).len(), entities.facets(e).len());
+        if !matches!((cells, facets), (2, 0) | (1, 1)) {
+            sink(problem(entities.nodes(e), cells, facets > 0))?;
         }
     }
-    let mut problems = Vec::new();
-    for (&edge, &cells) in &uses {
-        let on_boundary = boundary.contains_key(&edge);
-        let expected = if on_boundary { 1 } else { 2 };
-        if cells != expected {
-            problems.push(Problem::NonConforming {
-                edge,
-                cells,
-                on_boundary,
-            });
-        }
-    }
-    for (&edge, &facets) in &boundary {
-        if !uses.contains_key(&edge) || facets > 1 {
-            problems.push(Problem::NonConforming {
-                edge,
-                cells: uses.get(&edge).copied().unwrap_or(0),
-                on_boundary: true,
-            });
-        }
-    }
-    problems.sort_by_key(|p| match p {
-        Problem::NonConforming { edge, .. } => *edge,
-        _ => [0, 0],
-    });
-    problems
+    ControlFlow::Continue(())
 }
 
 #[cfg(test)]
@@ -308,5 +488,29 @@ mod tests {
             node: 99
         }));
         assert!(p.contains(&Problem::PatchOutOfRange { facet: 3, patch: 7 }));
+    }
+
+    #[test]
+    fn a_tet_is_positive_by_the_right_hand_rule_and_a_flat_one_is_not() {
+        let (o, x, y, z) = ([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
+        assert!(is_positive_tet(o, x, y, z));
+        assert!(!is_positive_tet(o, y, x, z));
+        assert!(!is_positive_tet(o, x, y, [0.3, 0.3, 0.0]));
+    }
+
+    #[test]
+    fn a_flipped_tet_and_a_tet_in_a_2d_mesh_are_named() {
+        let mut m = Mesh::new(Dim::Three, 1);
+        m.nodes = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let tet = CellType::new(Shape::Tet, 1);
+        m.cells.push(tet, &[0, 2, 1, 3]);
+        let p = validate(&m);
+        assert_eq!(p[0], Problem::NotPositiveCorner { cell: 0, corner: 0 });
+        // no boundary facets: each of its four faces is in one cell and on no facet
+        assert_eq!(p.len(), 5, "{p:?}");
+        m.dim = Dim::Two;
+        let first = first_problem(&m).unwrap();
+        assert!(first.is_structural());
+        assert_eq!(first.to_string(), "cell 0 is a tet in a 2D mesh");
     }
 }

@@ -1,7 +1,12 @@
-//! Properties of `validate` on structured grids of mixed cells: a good grid has no problem and
-//! covers its rectangle exactly; flipping any one cell or dropping any one cell is found.
+//! Properties of `validate` and of the topology on structured grids of mixed cells: a good
+//! grid has no problem and covers its rectangle exactly; flipping any one cell or dropping any
+//! one cell is found; its edges are those of a disk (interior edges in two cells, boundary
+//! edges in one cell and on one facet, Euler characteristic 1).
 
-use mesh_model::{CellType, Cells, Dim, Mesh, Patch, Problem, Role, Shape, validate};
+use mesh_model::topology::Use;
+use mesh_model::{
+    CellType, Dim, Mesh, Patch, Problem, Role, Shape, Topology, first_problem, validate,
+};
 use proptest::prelude::*;
 
 /// An nx × ny grid on [0, w] × [0, h], interior nodes jittered by at most 0.15 of a cell (so
@@ -87,15 +92,41 @@ proptest! {
     #[test]
     fn dropping_one_cell_is_found(m in grid_strategy(), pick in any::<prop::sample::Index>()) {
         let drop = pick.index(m.cells.len());
-        let mut cells = Cells::new();
-        for (i, c) in m.cells.iter().enumerate() {
-            if i != drop {
-                cells.push(c.ty, c.nodes);
-            }
-        }
         let mut m = m;
-        m.cells = cells;
+        m.cells.retain(|i, _| i != drop);
         let found = validate(&m).iter().any(|p| matches!(p, Problem::NonConforming { .. }));
         prop_assert!(found);
+    }
+
+    #[test]
+    fn the_edges_of_a_grid_are_those_of_a_disk(m in grid_strategy()) {
+        let edges = Topology::new(&m).edges;
+        let mut boundary = 0;
+        for e in 0..edges.len() as u32 {
+            let (cells, facets) = (edges.cells(e).len(), edges.facets(e).len());
+            prop_assert!((cells, facets) == (2, 0) || (cells, facets) == (1, 1), "{:?}", edges.nodes(e));
+            boundary += facets;
+            // the reverse map agrees with the uses
+            for &Use { cell, local } in edges.cells(e) {
+                prop_assert_eq!(edges.of_cell(cell as usize)[local as usize], e);
+                let k = m.cells.get(cell as usize).corners();
+                let [a, b] = m.cells.get(cell as usize).ty.shape.edges()[local as usize];
+                prop_assert_eq!(edges.nodes(e), &[k[a].min(k[b]), k[a].max(k[b])][..]);
+            }
+            if e > 0 {
+                prop_assert!(edges.key(e - 1) < edges.key(e));
+            }
+        }
+        prop_assert_eq!(boundary, m.boundary.len());
+        let euler = m.nodes.len() as i64 - edges.len() as i64 + m.cells.len() as i64;
+        prop_assert_eq!(euler, 1);
+    }
+
+    #[test]
+    fn the_first_problem_is_the_first_of_all_problems(m in grid_strategy(), pick in any::<prop::sample::Index>()) {
+        let mut m = m;
+        let i = pick.index(m.cells.len());
+        m.cells.nodes_mut(i).reverse();
+        prop_assert_eq!(first_problem(&m), validate(&m).first().cloned());
     }
 }

@@ -2,6 +2,7 @@
 //! marching writes into and the assembly reads from, so that a curved edge is curved the same
 //! way in both cells that share it.
 
+use mesh_model::topology::Edges;
 use mesh_model::{Mesh, NONE};
 
 /// Every edge of the mesh, with the `p − 1` inner points of each, from its lower-numbered end
@@ -26,61 +27,33 @@ pub(crate) struct EdgeTable {
 impl EdgeTable {
     /// The edges of the linear mesh `mesh`, every one straight, for order `p`.
     pub fn new(mesh: &Mesh, p: usize) -> Self {
-        // bucket every cell edge by its lower node (a counting sort), then group each
-        // bucket's few entries by the higher node: edges come out sorted by (lower, higher)
-        let n = mesh.nodes.len();
-        let mut start = vec![0u32; n + 1];
-        for cell in mesh.cells.iter() {
-            let k = cell.corners();
-            for e in cell.ty.shape.edges() {
-                start[k[e[0]].min(k[e[1]]) as usize + 1] += 1;
-            }
-        }
-        for v in 0..n {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut entries = vec![(0u32, 0u32); start[n] as usize];
-        for (i, cell) in mesh.cells.iter().enumerate() {
-            let k = cell.corners();
-            for (j, e) in cell.ty.shape.edges().iter().enumerate() {
-                let (a, b) = (k[e[0]], k[e[1]]);
-                let slot = &mut fill[a.min(b) as usize];
-                entries[*slot as usize] = (a.max(b), (i as u32) << 2 | j as u32);
-                *slot += 1;
-            }
-        }
+        // the mesh's unique edges in the topology's order (sorted by their end nodes), which
+        // the high-order node numbering follows; a 2D cell has at most four edges
+        let topo = Edges::build(mesh.cells.shapes_and_corners(), []);
         let mut table = EdgeTable {
             p,
-            ends: Vec::with_capacity(entries.len() / 2 + 8),
-            cells: Vec::with_capacity(entries.len() / 2 + 8),
-            cell_edges: vec![[NONE; 4]; mesh.cells.len()],
+            ends: (0..topo.len() as u32).map(|e| topo.key(e)).collect(),
+            cells: (0..topo.len() as u32)
+                .map(|e| {
+                    let mut cells = [NONE; 2];
+                    for (slot, u) in cells.iter_mut().zip(topo.cells(e)) {
+                        *slot = u.cell;
+                    }
+                    cells
+                })
+                .collect(),
+            cell_edges: (0..mesh.cells.len())
+                .map(|c| {
+                    let mut local = [NONE; 4];
+                    for (slot, &e) in local.iter_mut().zip(topo.of_cell(c)) {
+                        *slot = e;
+                    }
+                    local
+                })
+                .collect(),
             points: Vec::new(),
             curved: Vec::new(),
         };
-        for lo in 0..n {
-            let bucket = &mut entries[start[lo] as usize..start[lo + 1] as usize];
-            bucket.sort_unstable();
-            let mut at = 0;
-            while at < bucket.len() {
-                let hi = bucket[at].0;
-                let id = table.ends.len() as u32;
-                table.ends.push([lo as u32, hi]);
-                let mut cells = [NONE; 2];
-                let mut count = 0;
-                while at < bucket.len() && bucket[at].0 == hi {
-                    let slot = bucket[at].1;
-                    let (cell, local) = ((slot >> 2) as usize, (slot & 3) as usize);
-                    table.cell_edges[cell][local] = id;
-                    if count < 2 {
-                        cells[count] = cell as u32;
-                    }
-                    count += 1;
-                    at += 1;
-                }
-                table.cells.push(cells);
-            }
-        }
         let nodes: Vec<[f64; 2]> = mesh.nodes.iter().map(|v| [v[0], v[1]]).collect();
         table.points = Vec::with_capacity(table.ends.len() * (p - 1));
         for e in 0..table.ends.len() {

@@ -19,6 +19,11 @@ pub enum CurvingError {
     /// The input mesh is not a linear 2D mesh of triangles and quadrilaterals.
     #[error("curving needs a linear 2D mesh of triangles and quadrilaterals: {0}")]
     NotLinear2d(String),
+    /// The input mesh breaks a structural invariant of the data model (a node index out of
+    /// range, a non-finite coordinate, an array of the wrong length), found by
+    /// `mesh_model::first_structural_problem`.
+    #[error("the mesh to curve is not sound: {0}")]
+    InvalidMesh(mesh_model::Problem),
     /// The per-node or per-cell layer data do not match the mesh.
     #[error("layer data do not match the mesh: {0}")]
     BadLayers(String),

@@ -195,9 +195,13 @@ pub fn curve_mesh(
     Ok(Curved { mesh: out, stats })
 }
 
-/// The mesh is linear 2D with layer data of the right lengths.
+/// The mesh is structurally sound (`mesh_model`'s checks), linear 2D, with layer data of the
+/// right lengths.
 fn check_input(input: &LayeredMesh<'_>) -> Result<(), CurvingError> {
     let mesh = input.mesh;
+    if let Some(problem) = mesh_model::first_structural_problem(mesh) {
+        return Err(CurvingError::InvalidMesh(problem));
+    }
     if mesh.dim != Dim::Two || mesh.order != 1 {
         return Err(CurvingError::NotLinear2d(format!(
             "the mesh is {}D of order {}",

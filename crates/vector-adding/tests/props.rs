@@ -245,3 +245,22 @@ fn orders_one_and_four_are_refused_and_two_and_three_run() {
         assert_eq!(rejected(&params), None, "stop threshold {q}");
     }
 }
+
+#[test]
+fn a_cell_naming_a_missing_node_is_refused_not_panicked_on() {
+    // before the curving used mesh_model's structural checks, the edge table indexed by
+    // the bad node and panicked
+    let g = small();
+    let mut out = g.out.clone();
+    let n = out.mesh.nodes.len() as u32;
+    out.mesh.cells.nodes_mut(0)[1] = n + 7;
+    let e = curve(&out, &g.curves, &g.nodes, &CurvingParams::default()).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            CurvingError::InvalidMesh(mesh_model::Problem::NodeOutOfRange { cell: 0, .. })
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains(&format!("node {}", n + 7)), "{e}");
+}

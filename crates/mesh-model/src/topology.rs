@@ -1,0 +1,294 @@
+//! The topology of a mesh, built once: its unique edges (2D and 3D) and unique faces (3D),
+//! each with the cells that use it (and at which local index, in Gmsh's order), the boundary
+//! facets that lie on it, and the reverse map from a cell to its edges or faces.
+//!
+//! Built by a counting sort, without hashing: every cell's local edges (faces) become keys of
+//! sorted corner nodes, bucketed by their lowest node, then each small bucket sorted; equal
+//! keys are one entity. **Order:** entities are numbered in increasing order of their sorted
+//! corner nodes (lexicographic; a triangle face sorts before a quadrilateral face with the same
+//! three lowest corners), so that [`Entities::find`] is a binary search; the cells of an entity
+//! are listed by increasing cell index. The high-order node numbering of the curving follows
+//! this edge order.
+//!
+//! ```
+//! use mesh_model::{CellType, Shape, topology::Edges};
+//!
+//! // two triangles sharing the diagonal 0–2 of the unit square
+//! let tri = Shape::Tri;
+//! let edges = Edges::build([(tri, &[0, 1, 2][..]), (tri, &[0, 2, 3][..])], []);
+//! assert_eq!(edges.len(), 5);
+//! let diagonal = edges.find(&[2, 0]).unwrap();
+//! assert_eq!(edges.cells(diagonal).len(), 2);
+//! assert_eq!(edges.of_cell(1), &[diagonal, edges.find(&[2, 3]).unwrap(), edges.find(&[3, 0]).unwrap()]);
+//! ```
+
+use crate::cell::Shape;
+use crate::mesh::{Dim, Mesh, NONE};
+
+/// One use of an edge or a face by a cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Use {
+    /// The cell (its index in the list the topology was built from).
+    pub cell: u32,
+    /// The local index of the edge (face) in the cell's shape, Gmsh's order
+    /// ([`Shape::edges`], [`Shape::faces`]).
+    pub local: u8,
+}
+
+/// Unique entities of `N` corners at most (edges: `N = 2`; faces: `N = 4`, a triangle's key
+/// padded with [`NONE`]), in compressed-row layout.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Entities<const N: usize> {
+    keys: Vec<[u32; N]>,
+    use_start: Vec<u32>,
+    uses: Vec<Use>,
+    facet_start: Vec<u32>,
+    facets: Vec<u32>,
+    of_cell_start: Vec<u32>,
+    of_cell: Vec<u32>,
+}
+
+/// The unique edges of a mesh.
+pub type Edges = Entities<2>;
+/// The unique faces of a 3D mesh.
+pub type Faces = Entities<4>;
+
+/// The edges and the faces of a mesh.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Topology {
+    /// Unique edges of the cells; in 2D the boundary facets are listed on theirs.
+    pub edges: Edges,
+    /// Unique faces of the cells (empty in 2D); the boundary facets are listed on theirs.
+    pub faces: Faces,
+}
+
+impl Topology {
+    /// The edges and faces of `mesh`'s cells (corners only), with its boundary facets: lines
+    /// on the edges in 2D, triangles and quadrilaterals on the faces in 3D.
+    ///
+    /// # Panics
+    /// Never for a mesh without structural problems ([`crate::first_structural_problem`]);
+    /// a corner index is only used as a number, so out-of-range nodes do not panic either.
+    pub fn new(mesh: &Mesh) -> Self {
+        let cells = || mesh.cells.shapes_and_corners();
+        let facets = || mesh.boundary.iter().map(|f| f.corners());
+        match mesh.dim {
+            Dim::Two => Topology {
+                edges: Edges::build(cells(), facets()),
+                faces: Faces::default(),
+            },
+            Dim::Three => Topology {
+                edges: Edges::build(cells(), []),
+                faces: Faces::build(cells(), facets()),
+            },
+        }
+    }
+}
+
+/// One local entity of a cell or a facet, before the sort.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Raw<const N: usize> {
+    key: [u32; N],
+    /// Cells (false) before facets (true) within one key.
+    facet: bool,
+    index: u32,
+    local: u8,
+}
+
+impl<const N: usize> Entities<N> {
+    /// The local entities of `shape`: its edges when `N == 2`, its faces otherwise.
+    fn locals(shape: Shape) -> impl ExactSizeIterator<Item = &'static [usize]> {
+        let (edges, faces) = if N == 2 {
+            (shape.edges(), &[][..])
+        } else {
+            (&[][..], shape.faces())
+        };
+        let n = edges.len() + faces.len();
+        (0..n).map(move |j| if N == 2 { &edges[j][..] } else { faces[j] })
+    }
+
+    /// The entities of `cells` (each a shape and at least its corner nodes, in Gmsh order),
+    /// with the facets `facets` (each its corner nodes, at most `N`) listed on theirs; a facet
+    /// that no cell has is an entity of its own, without cells.
+    pub fn build<'a>(
+        cells: impl IntoIterator<Item = (Shape, &'a [u32])>,
+        facets: impl IntoIterator<Item = &'a [u32]>,
+    ) -> Self {
+        let mut raw: Vec<Raw<N>> = Vec::new();
+        let mut of_cell_start = vec![0u32];
+        for (i, (shape, nodes)) in cells.into_iter().enumerate() {
+            let locals = Self::locals(shape);
+            of_cell_start.push(of_cell_start[i] + locals.len() as u32);
+            for (j, local) in locals.enumerate() {
+                raw.push(Raw {
+                    key: key(local.iter().map(|&c| nodes[c])),
+                    facet: false,
+                    index: i as u32,
+                    local: j as u8,
+                });
+            }
+        }
+        for (i, nodes) in facets.into_iter().enumerate() {
+            raw.push(Raw {
+                key: key(nodes.iter().copied()),
+                facet: true,
+                index: i as u32,
+                local: 0,
+            });
+        }
+        let raw = counting_sort(raw);
+        let mut out = Entities {
+            keys: Vec::with_capacity(raw.len() / 2 + 1),
+            use_start: vec![0],
+            uses: Vec::with_capacity(raw.len()),
+            facet_start: vec![0],
+            facets: Vec::new(),
+            of_cell: vec![NONE; *of_cell_start.last().unwrap_or(&0) as usize],
+            of_cell_start,
+        };
+        let mut at = 0;
+        while at < raw.len() {
+            let id = out.keys.len() as u32;
+            let key = raw[at].key;
+            out.keys.push(key);
+            while at < raw.len() && raw[at].key == key {
+                let r = raw[at];
+                if r.facet {
+                    out.facets.push(r.index);
+                } else {
+                    out.uses.push(Use {
+                        cell: r.index,
+                        local: r.local,
+                    });
+                    out.of_cell[(out.of_cell_start[r.index as usize] + r.local as u32) as usize] =
+                        id;
+                }
+                at += 1;
+            }
+            out.use_start.push(out.uses.len() as u32);
+            out.facet_start.push(out.facets.len() as u32);
+        }
+        out
+    }
+
+    /// Number of entities.
+    pub fn len(&self) -> usize {
+        self.keys.len()
+    }
+
+    /// True when there is none.
+    pub fn is_empty(&self) -> bool {
+        self.keys.is_empty()
+    }
+
+    /// The corner nodes of entity `e`, in increasing order.
+    pub fn nodes(&self, e: u32) -> &[u32] {
+        let k = &self.keys[e as usize];
+        let n = k.iter().position(|&v| v == NONE).unwrap_or(N);
+        &k[..n]
+    }
+
+    /// The key of entity `e`: its sorted corner nodes, padded with [`NONE`].
+    pub fn key(&self, e: u32) -> [u32; N] {
+        self.keys[e as usize]
+    }
+
+    /// The cells that use entity `e`, by increasing cell index.
+    pub fn cells(&self, e: u32) -> &[Use] {
+        let e = e as usize;
+        &self.uses[self.use_start[e] as usize..self.use_start[e + 1] as usize]
+    }
+
+    /// The boundary facets that lie on entity `e` (one on a sound boundary, none inside).
+    pub fn facets(&self, e: u32) -> &[u32] {
+        let e = e as usize;
+        &self.facets[self.facet_start[e] as usize..self.facet_start[e + 1] as usize]
+    }
+
+    /// Whether a boundary facet lies on entity `e`.
+    pub fn is_boundary(&self, e: u32) -> bool {
+        !self.facets(e).is_empty()
+    }
+
+    /// The entities of cell `cell`, in its shape's local order.
+    pub fn of_cell(&self, cell: usize) -> &[u32] {
+        &self.of_cell[self.of_cell_start[cell] as usize..self.of_cell_start[cell + 1] as usize]
+    }
+
+    /// The entity with corner nodes `nodes` (in any order), if there is one.
+    pub fn find(&self, nodes: &[u32]) -> Option<u32> {
+        self.keys
+            .binary_search(&key(nodes.iter().copied()))
+            .ok()
+            .map(|e| e as u32)
+    }
+}
+
+/// The sorted key of an entity with the given corners, padded with [`NONE`].
+fn key<const N: usize>(corners: impl Iterator<Item = u32>) -> [u32; N] {
+    let mut k = [NONE; N];
+    for (slot, v) in k.iter_mut().zip(corners) {
+        *slot = v;
+    }
+    k.sort_unstable();
+    k
+}
+
+/// `raw` sorted: a counting sort by the lowest node of each key, then each bucket (a node's
+/// few entities) sorted in full.
+fn counting_sort<const N: usize>(raw: Vec<Raw<N>>) -> Vec<Raw<N>> {
+    let Some(n) = raw.iter().map(|r| r.key[0] as usize + 1).max() else {
+        return raw;
+    };
+    let mut start = vec![0u32; n + 1];
+    for r in &raw {
+        start[r.key[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut sorted = raw.clone();
+    for r in raw {
+        let slot = &mut fill[r.key[0] as usize];
+        sorted[*slot as usize] = r;
+        *slot += 1;
+    }
+    for v in 0..n {
+        sorted[start[v] as usize..start[v + 1] as usize].sort_unstable();
+    }
+    sorted
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_tets_share_one_face_and_its_three_edges() {
+        let t = Shape::Tet;
+        let faces = Faces::build([(t, &[0, 1, 2, 3][..]), (t, &[1, 2, 3, 4][..])], []);
+        assert_eq!(faces.len(), 7);
+        let shared = faces.find(&[3, 2, 1]).unwrap();
+        assert_eq!(
+            faces.cells(shared),
+            &[Use { cell: 0, local: 3 }, Use { cell: 1, local: 0 }]
+        );
+        assert_eq!(faces.nodes(shared), &[1, 2, 3]);
+        let edges = Edges::build([(t, &[0, 1, 2, 3][..]), (t, &[1, 2, 3, 4][..])], []);
+        assert_eq!(edges.len(), 9);
+        assert_eq!((0..9).filter(|&e| edges.cells(e).len() == 2).count(), 3);
+        assert_eq!(edges.of_cell(1).len(), 6);
+    }
+
+    #[test]
+    fn a_facet_without_a_cell_is_an_entity_without_cells() {
+        let edges = Edges::build([(Shape::Tri, &[0, 1, 2][..])], [&[1, 0][..], &[5, 6][..]]);
+        assert_eq!(edges.len(), 4);
+        let e = edges.find(&[0, 1]).unwrap();
+        assert_eq!(edges.facets(e), &[0]);
+        let lone = edges.find(&[6, 5]).unwrap();
+        assert!(edges.cells(lone).is_empty() && edges.is_boundary(lone));
+        assert_eq!(edges.find(&[0, 5]), None);
+    }
+}
