@@ -31,10 +31,8 @@ impl<const D: usize> Aabb<D> {
         };
         for &p in &points[1..] {
             let p: [f64; D] = p.into();
-            for k in 0..D {
-                b.lo[k] = b.lo[k].min(p[k]);
-                b.hi[k] = b.hi[k].max(p[k]);
-            }
+            b.lo = std::array::from_fn(|k| b.lo[k].min(p[k]));
+            b.hi = std::array::from_fn(|k| b.hi[k].max(p[k]));
         }
         Some(b)
     }
@@ -63,10 +61,10 @@ pub fn find_overlapping_pair<const D: usize, T>(
             if bj.lo[0] > bi.hi[0] {
                 break;
             }
-            if (1..D).all(|a| bj.lo[a] <= bi.hi[a] && bj.hi[a] >= bi.lo[a]) {
-                if let Some(found) = visit(i as usize, j as usize) {
-                    return Some(found);
-                }
+            if (1..D).all(|a| bj.lo[a] <= bi.hi[a] && bj.hi[a] >= bi.lo[a])
+                && let Some(found) = visit(i as usize, j as usize)
+            {
+                return Some(found);
             }
         }
     }
