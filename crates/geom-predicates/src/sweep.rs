@@ -61,10 +61,15 @@ pub fn find_overlapping_pair<const D: usize, T>(
             if bj.lo[0] > bi.hi[0] {
                 break;
             }
-            if (1..D).all(|a| bj.lo[a] <= bi.hi[a] && bj.hi[a] >= bi.lo[a])
-                && let Some(found) = visit(i as usize, j as usize)
-            {
-                return Some(found);
+            let overlap = (1..D).all(|a| bj.lo[a] <= bi.hi[a] && bj.hi[a] >= bi.lo[a]);
+            // (no let-chain: the workspace's rust-version is 1.85)
+            let found = if overlap {
+                visit(i as usize, j as usize)
+            } else {
+                None
+            };
+            if found.is_some() {
+                return found;
             }
         }
     }
