@@ -24,9 +24,10 @@
 use mesh_model::NONE;
 use springfield::{AngleSpring, ExtrusionSpring, NeighbourSpring, SpringSet2d, assemble_2d_active};
 
-use crate::geom::{
-    Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance, segments_meet,
-};
+use geom_predicates::vector::{cross2, dist, dot};
+use geom_predicates::{for_each_overlapping_pair, orient2d, segment_distance, segments_meet};
+
+use crate::geom::{Aabb, P2};
 use crate::input::AfsfParams;
 
 /// How the ideal extrusion length of a front's layers is chosen.
@@ -280,9 +281,9 @@ impl<'p> Work<'p> {
                 (Some(a), Some(b)) => {
                     // the turn angle (atan2) is needed only for an outward turn of more
                     // than the fan threshold: cross < 0 and cos(turn) < cos(threshold)
-                    let maybe_fan = cross(a, b) < 0.0 && dot(a, b) < cos_fan_threshold + 1e-9;
+                    let maybe_fan = cross2(a, b) < 0.0 && dot(a, b) < cos_fan_threshold + 1e-9;
                     let theta = if maybe_fan {
-                        cross(a, b).atan2(dot(a, b))
+                        cross2(a, b).atan2(dot(a, b))
                     } else {
                         0.0
                     };
@@ -553,7 +554,7 @@ impl<'p> Work<'p> {
                 }
             }
         };
-        overlapping_pairs(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (&segs[x], &segs[y]);
             if sx.owner[0] == NONE && sy.owner[0] == NONE {
                 return;
@@ -1057,7 +1058,7 @@ impl<'p> Work<'p> {
                 ));
             }
         }
-        overlapping_pairs(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;
@@ -1087,7 +1088,7 @@ impl<'p> Work<'p> {
                     } else {
                         (pb, pa, pc)
                     };
-                    orient(s, ox, oy) == 0.0
+                    orient2d(s, ox, oy) == 0.0
                         && dot([ox[0] - s[0], ox[1] - s[1]], [oy[0] - s[0], oy[1] - s[1]]) > 0.0
                 }
                 _ => true,
@@ -1132,7 +1133,7 @@ impl<'p> Work<'p> {
             let a = self.pos[nodes[(i + k - 1) % k] as usize];
             let b = self.pos[nodes[i] as usize];
             let d = self.pos[nodes[(i + 1) % k] as usize];
-            let o = orient(a, b, d);
+            let o = orient2d(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
     }

@@ -154,15 +154,14 @@ pub fn polygon_area(vertices: impl IntoIterator<Item = [f64; 2]>) -> f64 {
 
 /// Whether the linear polygon `corners` (a triangle or a convex quadrilateral's corners, in
 /// order) is positively oriented with a positive Jacobian everywhere, decided exactly: every
-/// corner turns left by the exact orientation predicate (`robust::orient2d`). A triangle is
+/// corner turns left by the exact orientation predicate (`geom_predicates::orient2d`). A triangle is
 /// positive when its one orientation is; a quadrilateral's bilinear map has a positive
 /// Jacobian everywhere exactly when all four corners turn left.
 pub fn is_positive_polygon(corners: &[[f64; 2]]) -> bool {
     let n = corners.len();
-    let c = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
     (0..n).all(|i| {
         let (a, b, d) = (corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
-        robust::orient2d(c(a), c(b), c(d)) > 0.0
+        geom_predicates::orient2d(a, b, d) > 0.0
     })
 }
 
