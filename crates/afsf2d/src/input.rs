@@ -356,6 +356,28 @@ mod tests {
         )
     }
 
+    /// A wall whose first point lies inside the far field by less than the rounding of the
+    /// edge's x at that height: the old crossing-number test (x interpolated in floating
+    /// point) put it outside and refused a valid domain; the exact winding number does not.
+    #[test]
+    fn a_wall_just_inside_a_slanted_far_field_edge_is_inside() {
+        let p = [9.57496912230954, 1.4167695923015322];
+        // exactly left of the edge (10, 0) -> (7, 10), i.e. inside
+        assert!(geom_predicates::orient2d([10.0, 0.0], [7.0, 10.0], p) > 0.0);
+        let far = FrontLoop::new(
+            vec![[0.0, 0.0], [10.0, 0.0], [7.0, 10.0], [0.0, 10.0]],
+            Role::Farfield,
+            "far",
+        );
+        let wall = FrontLoop::new(
+            vec![p, [p[0] - 1.0, p[1] + 0.5], [p[0] - 1.0, p[1] - 0.5]],
+            Role::Wall,
+            "wall",
+        );
+        let checked = check_loops(&[far, wall], &AfsfParams::default()).unwrap();
+        assert_eq!(checked.len(), 2);
+    }
+
     #[test]
     fn bad_loop_sets_are_named_errors() {
         let p = AfsfParams::default();
