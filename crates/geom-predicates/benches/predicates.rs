@@ -29,36 +29,29 @@ fn points2(n: usize) -> Vec<[f64; 2]> {
     randoms(2 * n).chunks(2).map(|c| [c[0], c[1]]).collect()
 }
 
+/// The sum of `f(i)` over a thousand calls, so that no call is optimised away.
+fn sum1000(f: impl Fn(usize) -> f64) -> f64 {
+    (0..1000).map(f).sum()
+}
+
 fn predicates(c: &mut Criterion) {
     let p = points2(3000);
     c.bench_function("orient2d x1000", |b| {
-        b.iter(|| {
-            (0..1000)
-                .map(|i| orient2d(p[i], p[i + 1], p[i + 2]))
-                .sum::<f64>()
-        })
+        b.iter(|| sum1000(|i| orient2d(p[i], p[i + 1], p[i + 2])))
     });
     // collinear triples force the exact stages
     let line: Vec<[f64; 2]> = (0..1002)
         .map(|i| [0.1 * i as f64, 0.3 * i as f64])
         .collect();
     c.bench_function("orient2d collinear x1000", |b| {
-        b.iter(|| {
-            (0..1000)
-                .map(|i| orient2d(line[i], line[i + 1], line[i + 2]))
-                .sum::<f64>()
-        })
+        b.iter(|| sum1000(|i| orient2d(line[i], line[i + 1], line[i + 2])))
     });
     let q: Vec<[f64; 3]> = randoms(3 * 1004)
         .chunks(3)
         .map(|c| [c[0], c[1], c[2]])
         .collect();
     c.bench_function("orient3d x1000", |b| {
-        b.iter(|| {
-            (0..1000)
-                .map(|i| orient3d(q[i], q[i + 1], q[i + 2], q[i + 3]))
-                .sum::<f64>()
-        })
+        b.iter(|| sum1000(|i| orient3d(q[i], q[i + 1], q[i + 2], q[i + 3])))
     });
     c.bench_function("segment_meet x1000", |b| {
         b.iter(|| {
@@ -70,11 +63,7 @@ fn predicates(c: &mut Criterion) {
         })
     });
     c.bench_function("point_segment_distance x1000", |b| {
-        b.iter(|| {
-            (0..1000)
-                .map(|i| point_segment_distance(p[i], p[i + 1], p[i + 2]))
-                .sum::<f64>()
-        })
+        b.iter(|| sum1000(|i| point_segment_distance(p[i], p[i + 1], p[i + 2])))
     });
     let circle: Vec<[f64; 2]> = (0..1000)
         .map(|i| {
