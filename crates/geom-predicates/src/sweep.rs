@@ -46,14 +46,16 @@ impl<const D: usize> Aabb<D> {
 
 /// Calls `visit(i, j)` for every pair of boxes that overlap (closed: touching counts), each pair
 /// once, until `visit` returns `Some`; returns that value. The order is that of the sweep: `i`
-/// runs over the boxes by increasing low x (ties in an unspecified but deterministic order),
+/// runs over the boxes by increasing low x (ties in input order),
 /// `j` over the boxes after `i` in that order; so `i < j` in input order is not guaranteed.
 pub fn find_overlapping_pair<const D: usize, T>(
     boxes: &[Aabb<D>],
     mut visit: impl FnMut(usize, usize) -> Option<T>,
 ) -> Option<T> {
     let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
-    order.sort_unstable_by(|&a, &b| boxes[a as usize].lo[0].total_cmp(&boxes[b as usize].lo[0]));
+    // stable: ties keep the input order, and boxes listed along a curve come in a few
+    // monotone runs in x, which the stable sort merges in nearly linear time
+    order.sort_by(|&a, &b| boxes[a as usize].lo[0].total_cmp(&boxes[b as usize].lo[0]));
     for (k, &i) in order.iter().enumerate() {
         let bi = boxes[i as usize];
         for &j in &order[k + 1..] {
