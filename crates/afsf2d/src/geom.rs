@@ -1,13 +1,8 @@
 //! Planar names used across afsf2d: a point is `[f64; 2]` and a box is 2D. The predicates
 //! themselves (exact orientation, segment crossing and distance, projection, sort-and-sweep)
-//! are the shared ones of `geom-predicates`; only the polygon area is taken from mesh-model.
+//! and the polygon area are the shared ones of `geom-predicates`.
 
 pub(crate) type P2 = [f64; 2];
 
 /// An axis-aligned 2D box for the sort-and-sweep of `geom-predicates`.
 pub(crate) type Aabb = geom_predicates::Aabb<2>;
-
-/// Signed area of a polygon (positive when counter-clockwise).
-pub(crate) fn signed_area(points: &[P2]) -> f64 {
-    mesh_model::polygon_area(points.iter().copied())
-}

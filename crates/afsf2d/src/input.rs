@@ -2,13 +2,13 @@
 //! orientation. It owns the rule "the domain is inside the far field and outside every wall,
 //! or inside the one wall loop when `inside`"; it does not build any mesh.
 
-use geom_predicates::{find_overlapping_pair, point_in_loop, segments_meet};
+use geom_predicates::{find_overlapping_pair, point_in_loop, polygon_area, segments_meet};
 use mesh_model::Role;
 use serde::{Deserialize, Serialize};
 use springfield::{SolverParams, SpringParams};
 
 use crate::error::AfsfError;
-use crate::geom::{Aabb, signed_area};
+use crate::geom::Aabb;
 
 /// One closed boundary loop whose nodes are already placed (by `boundary1d` or by hand).
 /// Orientation does not matter; the first point is not repeated at the end.
@@ -328,7 +328,7 @@ pub(crate) fn check_loops(
     Ok(loops
         .iter()
         .map(|l| {
-            let ccw = signed_area(&l.points) > 0.0;
+            let ccw = polygon_area(l.points.iter().copied()) > 0.0;
             // domain on the left: far field and `inside` wall run counter-clockwise, walls
             // seen from outside run clockwise
             let want_ccw = l.role == Role::Farfield || params.inside;

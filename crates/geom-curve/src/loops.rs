@@ -290,17 +290,7 @@ pub fn loop_inside_loop(inner: &[Point2<f64>], outer: &[Point2<f64>]) -> bool {
 
 /// Signed area (shoelace formula): positive for a counter-clockwise loop.
 pub fn signed_area(points: &[Point2<f64>]) -> f64 {
-    let n = points.len();
-    if n < 3 {
-        return 0.0;
-    }
-    // Relative to the first point, for accuracy far from the origin.
-    let origin = points[0];
-    let mut twice = 0.0;
-    for i in 1..n - 1 {
-        twice += (points[i] - origin).perp(&(points[i + 1] - origin));
-    }
-    0.5 * twice
+    geom_predicates::polygon_area(points.iter().copied())
 }
 
 /// Whether the loop is counter-clockwise (positive signed area).

@@ -3,7 +3,7 @@
 //! in 2D and 3D (Shewchuk's adaptive predicates from the `robust` crate), segment–segment
 //! intersection (proper or touching) and segment/triangle–triangle intersection in 3D decided
 //! on exact signs, point projection and distances to segments, polylines and loops, point in
-//! loop by an exact winding number, a sort-and-sweep broad phase over boxes, and a k-d tree
+//! loop by an exact winding number, polygon area, a sort-and-sweep broad phase over boxes, and a k-d tree
 //! (over `kiddo`) for nearest-point and within-radius queries.
 //!
 //! Points are plain `[f64; D]`; functions are generic over `const D` where the geometry allows
@@ -42,16 +42,16 @@
 //! assert_eq!(tree.nearest([0.9, 0.2, 0.0]).map(|(i, _)| i), Some(1));
 //! ```
 
-mod inside;
 mod orient;
+mod polygon;
 mod segment;
 mod sweep;
 mod tree;
 mod triangle;
 pub mod vector;
 
-pub use inside::{point_in_loop, winding_number};
 pub use orient::{Sign, orient2d, orient2d_sign, orient3d, orient3d_sign};
+pub use polygon::{point_in_loop, polygon_area, winding_number};
 pub use segment::{
     Endpoint, SegmentMeet, closest_on_segment, distance_to_loop, distance_to_polyline,
     point_segment_distance, project_on_segment, segment_distance, segment_intersection,

@@ -4,7 +4,7 @@
 use geom_predicates::{
     Aabb, PointTree, SegmentMeet, Sign, distance_to_loop, distance_to_polyline, orient2d,
     orient2d_sign, orient3d, orient3d_sign, overlapping_pairs, point_in_loop,
-    point_segment_distance, segment_distance, segment_intersection, segment_meet,
+    point_segment_distance, polygon_area, segment_distance, segment_intersection, segment_meet,
     segment_meets_triangle, segments_meet, triangles_meet, winding_number,
 };
 use proptest::prelude::*;
@@ -162,6 +162,8 @@ proptest! {
         let mut reversed = points.clone();
         reversed.reverse();
         prop_assert_eq!(winding_number(q, &reversed), -w);
+        let area = polygon_area(points.iter().copied());
+        prop_assert!((polygon_area(reversed.iter().copied()) + area).abs() <= 1e-12);
         if origin_inside(&points) {
             prop_assert!(point_in_loop([0.0, 0.0], &points));
         }
@@ -269,4 +271,16 @@ fn segment_and_triangle_cases() {
     assert!(triangles_meet(t, small) && triangles_meet(small, t));
     let wall = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
     assert!(triangles_meet(t, wall));
+}
+
+#[test]
+fn polygon_area_keeps_small_cells_far_from_the_origin() {
+    assert_eq!(
+        polygon_area([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
+        1.0
+    );
+    assert_eq!(polygon_area([[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]), -0.5);
+    assert_eq!(polygon_area::<[f64; 2]>([]), 0.0);
+    let thin = [[1.0, 0.0], [1.0 + 1e-9, 0.0], [1.0, 1e-9]];
+    assert!((polygon_area(thin) / 0.5e-18 - 1.0).abs() < 1e-6);
 }

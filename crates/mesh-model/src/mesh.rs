@@ -1,6 +1,7 @@
 //! The mesh: nodes, domain cells, boundary facets grouped in patches (one per boundary loop in
 //! 2D), and the per-cell records the later stages need (layer index, pipe).
 
+use geom_predicates::polygon_area;
 use serde::{Deserialize, Serialize};
 
 use crate::cell::Shape;
@@ -133,23 +134,6 @@ impl Mesh {
             .filter(move |(_, p)| **p == patch)
             .map(|(i, _)| i)
     }
-}
-
-/// Signed area of a closed polygon given by its vertices in order (shoelace formula).
-pub fn polygon_area(vertices: impl IntoIterator<Item = [f64; 2]>) -> f64 {
-    // Relative to the first vertex: on absolute coordinates the products x_i·y_j of a small
-    // cell far from the origin cancel to nothing (a 1e-9 thin cell at x ~ 1 rounds to 0).
-    let mut it = vertices.into_iter();
-    let Some(origin) = it.next() else { return 0.0 };
-    let Some(second) = it.next() else { return 0.0 };
-    let mut prev = [second[0] - origin[0], second[1] - origin[1]];
-    let mut twice = 0.0;
-    for p in it {
-        let p = [p[0] - origin[0], p[1] - origin[1]];
-        twice += prev[0] * p[1] - p[0] * prev[1];
-        prev = p;
-    }
-    0.5 * twice
 }
 
 /// Whether the linear polygon `corners` (a triangle or a convex quadrilateral's corners, in
