@@ -2,10 +2,11 @@
 //! point_segment_distance, point_in_loop on a 1000-point loop, the sort-and-sweep on 2000
 //! segment boxes and k-d tree nearest queries. Run: `cargo bench -p geom-predicates`.
 //!
-//! Measured (release, `-- --quick`, the 2-core development machine), per 1000 calls:
-//! orient2d 4.0 µs (8.2 µs on near-collinear triples), orient3d 5.8 µs, segment_meet 12.5 µs,
-//! point_segment_distance 4.0 µs; point_in_loop on a 1000-point loop 0.83 µs; sort-and-sweep
-//! over 2000 small boxes 80 µs; 1000 k-d tree nearest queries among 2000 points 108 µs.
+//! Measured (release, `-- --quick`, the 2-core development machine under load), per 1000
+//! calls: orient2d 1.6 µs (5.3 µs on near-collinear triples), orient3d 4.6 µs, segment_meet
+//! 9.4 µs, point_segment_distance 4.0 µs; point_in_loop on a 1000-point loop 0.82 µs;
+//! sort-and-sweep over 2000 small random boxes 90 µs; 1000 k-d tree nearest queries among
+//! 2000 points 108 µs.
 
 // `criterion_group!` generates an undocumented public function.
 #![allow(missing_docs)]
