@@ -12,6 +12,8 @@ use std::collections::{HashMap, HashSet};
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
+use geom_predicates::orient2d;
+use geom_predicates::vector::dist;
 use mesh_model::topology::Edges;
 use mesh_model::{NONE, Shape};
 use spade::{AngleLimit, RefinementParameters};
@@ -193,7 +195,7 @@ fn flip_min_max_angle(
     };
     let worst = |t: [u32; 3]| {
         let (a, b, c) = (at(t[0]), at(t[1]), at(t[2]));
-        if crate::geom::orient(a, b, c) <= 0.0 {
+        if orient2d(a, b, c) <= 0.0 {
             return f64::INFINITY;
         }
         crate::quality::max_triangle_angle_deg(a, b, c)
@@ -273,7 +275,7 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
         let mut w = 0.0f64;
         for &t in &incident[s] {
             let c = tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) });
-            if crate::geom::orient(c[0], c[1], c[2]) <= 0.0 {
+            if orient2d(c[0], c[1], c[2]) <= 0.0 {
                 return f64::INFINITY;
             }
             w = w.max(crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]));
@@ -326,7 +328,7 @@ fn edge_ratio(c: &Cell, pos: &[P2]) -> f64 {
     let k = c.corners();
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for i in 0..k.len() {
-        let l = crate::geom::dist(pos[k[i] as usize], pos[k[(i + 1) % k.len()] as usize]);
+        let l = dist(pos[k[i] as usize], pos[k[(i + 1) % k.len()] as usize]);
         lo = lo.min(l);
         hi = hi.max(l);
     }

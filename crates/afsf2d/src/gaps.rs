@@ -9,7 +9,10 @@
 //!
 //! It owns this test only; the boundary spacing is `boundary1d`'s.
 
-use crate::geom::{Aabb, P2, closest_on_segment, dist, orient, overlapping_pairs};
+use geom_predicates::vector::dist;
+use geom_predicates::{closest_on_segment, for_each_overlapping_pair, orient2d};
+
+use crate::geom::{Aabb, P2};
 
 /// A gap between two loops that the boundary nodes cannot resolve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,7 +50,7 @@ pub(crate) fn unresolved_gap(loops: &[Vec<P2>], max_angle_deg: f64) -> Option<Na
     // per facet: nearest other-loop facet distance, its loop, and candidate third corners
     let mut near: Vec<(f64, usize, Vec<P2>)> =
         vec![(f64::INFINITY, usize::MAX, Vec::new()); facets.len()];
-    overlapping_pairs(&boxes, |x, y| {
+    for_each_overlapping_pair(&boxes, |x, y| {
         let (fx, fy) = (facets[x], facets[y]);
         if fx.0 == fy.0 {
             return;
@@ -78,7 +81,7 @@ pub(crate) fn unresolved_gap(loops: &[Vec<P2>], max_angle_deg: f64) -> Option<Na
         let (li, a, b) = facets[i];
         let best = corners
             .iter()
-            .filter(|&&c| orient(a, b, c) > 0.0)
+            .filter(|&&c| orient2d(a, b, c) > 0.0)
             .map(|&c| crate::quality::max_triangle_angle_deg(a, b, c))
             .fold(180.0f64, f64::min);
         if best < max_angle_deg {

@@ -27,7 +27,10 @@ use springfield::{
     bisector, left_normal,
 };
 
-use crate::geom::{Aabb, P2, cross, dist, dot, orient, overlapping_pairs, segment_distance};
+use geom_predicates::vector::{cross2, dist, dot};
+use geom_predicates::{for_each_overlapping_pair, orient2d, segment_distance};
+
+use crate::geom::{Aabb, P2};
 use crate::input::AfsfParams;
 use crate::nodes::{NewNode, NodeStore};
 use crate::sanity::front_edges_meet;
@@ -276,9 +279,9 @@ impl<'p> Work<'p> {
                 (Some(a), Some(b)) => {
                     // the turn angle (atan2) is needed only for an outward turn of more
                     // than the fan threshold: cross < 0 and cos(turn) < cos(threshold)
-                    let maybe_fan = cross(a, b) < 0.0 && dot(a, b) < cos_fan_threshold + 1e-9;
+                    let maybe_fan = cross2(a, b) < 0.0 && dot(a, b) < cos_fan_threshold + 1e-9;
                     let theta = if maybe_fan {
-                        cross(a, b).atan2(dot(a, b))
+                        cross2(a, b).atan2(dot(a, b))
                     } else {
                         0.0
                     };
@@ -448,7 +451,7 @@ impl<'p> Work<'p> {
                 }
             }
         };
-        overlapping_pairs(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (&segs[x], &segs[y]);
             if sx.owner[0] == NONE && sy.owner[0] == NONE {
                 return;
@@ -1002,7 +1005,7 @@ impl<'p> Work<'p> {
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
-        overlapping_pairs(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;
@@ -1050,7 +1053,7 @@ impl<'p> Work<'p> {
             let a = self.nodes.pos[nodes[(i + k - 1) % k] as usize];
             let b = self.nodes.pos[nodes[i] as usize];
             let d = self.nodes.pos[nodes[(i + 1) % k] as usize];
-            let o = orient(a, b, d);
+            let o = orient2d(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
     }

@@ -2,12 +2,13 @@
 //! orientation. It owns the rule "the domain is inside the far field and outside every wall,
 //! or inside the one wall loop when `inside`"; it does not build any mesh.
 
+use geom_predicates::{find_overlapping_pair, point_in_loop, polygon_area, segments_meet};
 use mesh_model::Role;
 use serde::{Deserialize, Serialize};
 use springfield::{SolverParams, SpringParams};
 
 use crate::error::AfsfError;
-use crate::geom::{Aabb, overlapping_pairs, segments_meet, signed_area};
+use crate::geom::Aabb;
 
 /// One closed boundary loop whose nodes are already placed (by `boundary1d` or by hand).
 /// Orientation does not matter; the first point is not repeated at the end.
@@ -216,21 +217,6 @@ pub(crate) struct CheckedLoop {
     pub reversed: bool,
 }
 
-fn point_in_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
-    let mut inside = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) {
-            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-            if p[0] < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
 /// Checks the loops and decides their orientation.
 pub(crate) fn check_loops(
     loops: &[FrontLoop],
@@ -295,29 +281,22 @@ pub(crate) fn check_loops(
             boxes.push(Aabb::of_segment(l.points[i], l.points[(i + 1) % n], 0.0));
         }
     }
-    let mut crossing = None;
-    overlapping_pairs(&boxes, |x, y| {
-        if crossing.is_some() {
-            return;
-        }
+    let crossing = find_overlapping_pair(&boxes, |x, y| {
         let ((la, ea), (lb, eb)) = (segs[x], segs[y]);
         let (pa, pb) = (&loops[la].points, &loops[lb].points);
         let (na, nb) = (pa.len(), pb.len());
-        if la == lb && (ea + 1) % na == eb {
-            // consecutive: meet only at the shared node unless folded back
-            return;
+        // consecutive edges of one loop meet only at their shared node unless folded back
+        let consecutive = la == lb && ((ea + 1) % na == eb || (eb + 1) % nb == ea);
+        if consecutive {
+            return None;
         }
-        if la == lb && (eb + 1) % nb == ea {
-            return;
-        }
-        if segments_meet(pa[ea], pa[(ea + 1) % na], pb[eb], pb[(eb + 1) % nb]) {
-            crossing = Some(AfsfError::LoopsCross {
-                loop_a: la,
-                edge_a: ea,
-                loop_b: lb,
-                edge_b: eb,
-            });
-        }
+        let meet = segments_meet(pa[ea], pa[(ea + 1) % na], pb[eb], pb[(eb + 1) % nb]);
+        meet.then_some(AfsfError::LoopsCross {
+            loop_a: la,
+            edge_a: ea,
+            loop_b: lb,
+            edge_b: eb,
+        })
     });
     if let Some(e) = crossing {
         return Err(e);
@@ -328,7 +307,7 @@ pub(crate) fn check_loops(
             if index == f {
                 continue;
             }
-            if !point_in_polygon(l.points[0], &loops[f].points) {
+            if !point_in_loop(l.points[0], &loops[f].points) {
                 return Err(AfsfError::Misplaced {
                     index,
                     name: l.name.clone(),
@@ -336,7 +315,7 @@ pub(crate) fn check_loops(
                 });
             }
             for (other, o) in loops.iter().enumerate() {
-                if other != index && other != f && point_in_polygon(l.points[0], &o.points) {
+                if other != index && other != f && point_in_loop(l.points[0], &o.points) {
                     return Err(AfsfError::Misplaced {
                         index,
                         name: l.name.clone(),
@@ -349,7 +328,7 @@ pub(crate) fn check_loops(
     Ok(loops
         .iter()
         .map(|l| {
-            let ccw = signed_area(&l.points) > 0.0;
+            let ccw = polygon_area(l.points.iter().copied()) > 0.0;
             // domain on the left: far field and `inside` wall run counter-clockwise, walls
             // seen from outside run clockwise
             let want_ccw = l.role == Role::Farfield || params.inside;
@@ -375,6 +354,28 @@ mod tests {
             role,
             "sq",
         )
+    }
+
+    /// A wall whose first point lies inside the far field by less than the rounding of the
+    /// edge's x at that height: the old crossing-number test (x interpolated in floating
+    /// point) put it outside and refused a valid domain; the exact winding number does not.
+    #[test]
+    fn a_wall_just_inside_a_slanted_far_field_edge_is_inside() {
+        let p = [9.57496912230954, 1.4167695923015322];
+        // exactly left of the edge (10, 0) -> (7, 10), i.e. inside
+        assert!(geom_predicates::orient2d([10.0, 0.0], [7.0, 10.0], p) > 0.0);
+        let far = FrontLoop::new(
+            vec![[0.0, 0.0], [10.0, 0.0], [7.0, 10.0], [0.0, 10.0]],
+            Role::Farfield,
+            "far",
+        );
+        let wall = FrontLoop::new(
+            vec![p, [p[0] - 1.0, p[1] + 0.5], [p[0] - 1.0, p[1] - 0.5]],
+            Role::Wall,
+            "wall",
+        );
+        let checked = check_loops(&[far, wall], &AfsfParams::default()).unwrap();
+        assert_eq!(checked.len(), 2);
     }
 
     #[test]

@@ -9,7 +9,10 @@
 
 use mesh_model::NONE;
 
-use crate::geom::{Aabb, P2, dot, orient, overlapping_pairs, segments_meet, signed_area};
+use geom_predicates::vector::dot;
+use geom_predicates::{for_each_overlapping_pair, orient2d, polygon_area, segments_meet};
+
+use crate::geom::{Aabb, P2};
 use crate::grow::Work;
 
 /// True when front edges `x` and `y` (node pairs) meet other than at a node they share:
@@ -36,7 +39,7 @@ pub(crate) fn front_edges_meet(pos: &[P2], x: [u32; 2], y: [u32; 2]) -> bool {
             } else {
                 (pb, pa, pc)
             };
-            orient(s, ox, oy) == 0.0
+            orient2d(s, ox, oy) == 0.0
                 && dot([ox[0] - s[0], ox[1] - s[1]], [oy[0] - s[0], oy[1] - s[1]]) > 0.0
         }
         _ => true,
@@ -86,7 +89,7 @@ impl Work<'_> {
                 .iter()
                 .map(|&g| self.nodes.pos[g as usize])
                 .collect();
-            let area = signed_area(&p);
+            let area = polygon_area(p.iter().copied());
             if area.is_nan() || area <= 0.0 {
                 return Err(format!("cell {ci}: area {area:e} is not positive"));
             }
@@ -112,7 +115,7 @@ impl Work<'_> {
         }
         let (segs, boxes) = self.front_segments();
         let mut first: Option<String> = None;
-        overlapping_pairs(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (segs[x], segs[y]);
             if first.is_none() && front_edges_meet(&self.nodes.pos, [sx.0, sx.1], [sy.0, sy.1]) {
                 first = Some(format!(

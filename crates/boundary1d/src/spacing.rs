@@ -6,6 +6,7 @@
 
 use geom_curve::curvature::circumcircle_curvature;
 use geom_curve::{ClosedCurve, Point2};
+use geom_predicates::distance_to_loop;
 
 use crate::{Boundary1dError, NodePlacement, SpacingParams};
 
@@ -264,39 +265,13 @@ fn cap_by_gap_width(curves: &[ClosedCurve], loops: &mut [LoopSpacing]) {
                     continue;
                 }
                 let reach = *cap / GAP_SPACING_RATIO;
-                let d = distance_to_polygon(*p, other, reach);
+                let d = distance_to_loop((*p).into(), other, reach);
                 if d < reach {
                     *cap = GAP_SPACING_RATIO * d;
                 }
             }
         }
     }
-}
-
-/// The distance from `p` to the closed polygon `poly`, or `reach` when it is not less.
-fn distance_to_polygon(p: Point2<f64>, poly: &[Point2<f64>], reach: f64) -> f64 {
-    let n = poly.len();
-    let mut best = reach;
-    for k in 0..n {
-        let (a, b) = (poly[k], poly[(k + 1) % n]);
-        // bounding-box rejection: the segment lies farther than the best so far
-        if p.x < a.x.min(b.x) - best
-            || p.x > a.x.max(b.x) + best
-            || p.y < a.y.min(b.y) - best
-            || p.y > a.y.max(b.y) + best
-        {
-            continue;
-        }
-        let ab = b - a;
-        let len2 = ab.norm_squared();
-        let f = if len2 > 0.0 {
-            ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        best = best.min((p - (a + ab * f)).norm());
-    }
-    best
 }
 
 /// `h_i = min_j cap_j + slope·d(i, j)`, d the arc length along the closed loop.

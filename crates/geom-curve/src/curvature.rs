@@ -13,7 +13,7 @@ use crate::Point2;
 /// Computed as κ = 2·((b − a) × (c − a)) / (|ab|·|bc|·|ca|), the cross product taken from the
 /// exact orientation predicate so that collinear points give exactly 0.
 pub fn circumcircle_curvature(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) -> f64 {
-    let twice_area = robust::orient2d(coord(a), coord(b), coord(c));
+    let twice_area = geom_predicates::orient2d(a.into(), b.into(), c.into());
     if twice_area == 0.0 {
         return 0.0;
     }
@@ -22,11 +22,6 @@ pub fn circumcircle_curvature(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) ->
         return 0.0;
     }
     2.0 * twice_area / product
-}
-
-/// The point as the `robust` crate's coordinate type.
-pub(crate) fn coord(p: Point2<f64>) -> robust::Coord<f64> {
-    robust::Coord { x: p.x, y: p.y }
 }
 
 #[cfg(test)]

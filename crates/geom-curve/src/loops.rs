@@ -3,15 +3,15 @@
 //! several loops are free of crossings so that a caller can then test their nesting.
 //!
 //! Owns polygon-level predicates only: the curve fitted through the points is
-//! [`crate::ClosedCurve`]. Orientation tests use the exact predicates of the `robust` crate,
-//! so "touching" and "collinear" are decided exactly on the given coordinates.
-//! The intersection searches sweep the edges sorted by their lowest x and test only pairs whose
-//! bounding boxes overlap: O(n log n) for airfoil-like loops (a few edges share any vertical
-//! line), O(n²) only in contrived inputs where most edges overlap in x.
+//! [`crate::ClosedCurve`]. Orientation, segment crossing and point in loop are the exact
+//! predicates of `geom-predicates`, so "touching" and "collinear" are decided exactly on the
+//! given coordinates. The intersection searches use its sort-and-sweep over the edges'
+//! bounding boxes: O(n log n) for airfoil-like loops (a few edges share any vertical line),
+//! O(n²) only in contrived inputs where most edges overlap in x.
 
+use geom_predicates::{Aabb, find_overlapping_pair, orient2d, segment_intersection};
 use serde::{Deserialize, Serialize};
 
-use crate::curvature::coord;
 use crate::{CurveError, Point2};
 
 /// Largest coordinate magnitude accepted by [`validate_loop`].
@@ -212,7 +212,7 @@ pub fn find_self_intersection(points: &[Point2<f64>]) -> Option<EdgeCrossing> {
         let prev = points[(i + n - 1) % n];
         let here = points[i];
         let next = points[(i + 1) % n];
-        if robust::orient2d(coord(prev), coord(here), coord(next)) == 0.0
+        if orient2d(prev.into(), here.into(), next.into()) == 0.0
             && (prev - here).dot(&(next - here)) > 0.0
         {
             let point = if (prev - here).norm() <= (next - here).norm() {
@@ -227,14 +227,12 @@ pub fn find_self_intersection(points: &[Point2<f64>]) -> Option<EdgeCrossing> {
             });
         }
     }
-    let edges: Vec<SweepEdge> = (0..n)
-        .map(|i| SweepEdge::new(0, i, points[i], points[(i + 1) % n]))
-        .collect();
+    let edges: Vec<SweepEdge> = (0..n).map(|i| SweepEdge::new(0, i, points)).collect();
     let adjacent = |a: &SweepEdge, b: &SweepEdge| {
         let (i, j) = (a.edge, b.edge);
         i == j || (i + 1) % n == j || (j + 1) % n == i
     };
-    sweep_first_crossing(edges, adjacent).map(|(a, b, point)| {
+    first_crossing(&edges, adjacent).map(|(a, b, point)| {
         let (edge_a, edge_b) = (a.edge.min(b.edge), a.edge.max(b.edge));
         EdgeCrossing {
             edge_a,
@@ -255,17 +253,9 @@ pub fn check_loops_disjoint<L: AsRef<[Point2<f64>]>>(loops: &[L]) -> Result<(), 
     let mut edges = Vec::new();
     for (loop_index, points) in loops.iter().enumerate() {
         let points = points.as_ref();
-        let n = points.len();
-        for i in 0..n {
-            edges.push(SweepEdge::new(
-                loop_index,
-                i,
-                points[i],
-                points[(i + 1) % n],
-            ));
-        }
+        edges.extend((0..points.len()).map(|i| SweepEdge::new(loop_index, i, points)));
     }
-    match sweep_first_crossing(edges, |a, b| a.loop_index == b.loop_index) {
+    match first_crossing(&edges, |a, b| a.loop_index == b.loop_index) {
         None => Ok(()),
         Some((a, b, point)) => {
             let (first, second) = if a.loop_index < b.loop_index {
@@ -289,20 +279,7 @@ pub fn check_loops_disjoint<L: AsRef<[Point2<f64>]>>(loops: &[L]) -> Result<(), 
 /// orientation. Exact for points off the boundary; for a point exactly on an edge the answer
 /// may be either.
 pub fn point_in_loop(point: Point2<f64>, points: &[Point2<f64>]) -> bool {
-    let n = points.len();
-    let mut winding = 0i64;
-    for i in 0..n {
-        let a = points[i];
-        let b = points[(i + 1) % n];
-        if a.y <= point.y {
-            if b.y > point.y && robust::orient2d(coord(a), coord(b), coord(point)) > 0.0 {
-                winding += 1;
-            }
-        } else if b.y <= point.y && robust::orient2d(coord(a), coord(b), coord(point)) < 0.0 {
-            winding -= 1;
-        }
-    }
-    winding != 0
+    geom_predicates::point_in_loop(point.into(), points)
 }
 
 /// Whether loop `inner` lies inside loop `outer`, assuming the two do not cross (check that
@@ -313,17 +290,7 @@ pub fn loop_inside_loop(inner: &[Point2<f64>], outer: &[Point2<f64>]) -> bool {
 
 /// Signed area (shoelace formula): positive for a counter-clockwise loop.
 pub fn signed_area(points: &[Point2<f64>]) -> f64 {
-    let n = points.len();
-    if n < 3 {
-        return 0.0;
-    }
-    // Relative to the first point, for accuracy far from the origin.
-    let origin = points[0];
-    let mut twice = 0.0;
-    for i in 1..n - 1 {
-        twice += (points[i] - origin).perp(&(points[i + 1] - origin));
-    }
-    0.5 * twice
+    geom_predicates::polygon_area(points.iter().copied())
 }
 
 /// Whether the loop is counter-clockwise (positive signed area).
@@ -371,44 +338,37 @@ struct SweepEdge {
     edge: usize,
     a: Point2<f64>,
     b: Point2<f64>,
-    min: Point2<f64>,
-    max: Point2<f64>,
 }
 
 impl SweepEdge {
-    fn new(loop_index: usize, edge: usize, a: Point2<f64>, b: Point2<f64>) -> Self {
+    /// Edge `edge` of the closed loop `points`, from point `edge` to the next.
+    fn new(loop_index: usize, edge: usize, points: &[Point2<f64>]) -> Self {
         Self {
             loop_index,
             edge,
-            a,
-            b,
-            min: a.inf(&b),
-            max: a.sup(&b),
+            a: points[edge],
+            b: points[(edge + 1) % points.len()],
         }
     }
 }
 
-/// Sweeps the edges in order of their lowest x, testing each against the active edges whose x
-/// range reaches it and whose y range overlaps, skipping pairs for which `skip` is true.
-fn sweep_first_crossing(
-    mut edges: Vec<SweepEdge>,
+/// The first pair of edges (in the sweep's order) that share a point, skipping pairs for which
+/// `skip` is true, with a common point.
+fn first_crossing(
+    edges: &[SweepEdge],
     skip: impl Fn(&SweepEdge, &SweepEdge) -> bool,
 ) -> Option<(SweepEdge, SweepEdge, Point2<f64>)> {
-    edges.sort_by(|e, f| e.min.x.total_cmp(&f.min.x));
-    let mut active: Vec<SweepEdge> = Vec::new();
-    for edge in edges {
-        active.retain(|other| other.max.x >= edge.min.x);
-        for other in &active {
-            if other.max.y < edge.min.y || other.min.y > edge.max.y || skip(other, &edge) {
-                continue;
-            }
-            if let Some(point) = segments_meet(other.a, other.b, edge.a, edge.b) {
-                return Some((*other, edge, point));
-            }
+    let boxes: Vec<Aabb<2>> = edges
+        .iter()
+        .map(|e| Aabb::of_segment(e.a.into(), e.b.into(), 0.0))
+        .collect();
+    find_overlapping_pair(&boxes, |i, j| {
+        let (e, f) = (edges[i], edges[j]);
+        if skip(&e, &f) {
+            return None;
         }
-        active.push(edge);
-    }
-    None
+        segments_meet(e.a, e.b, f.a, f.b).map(|point| (e, f, point))
+    })
 }
 
 /// A common point of the closed segments ab and cd, decided exactly; `None` if disjoint.
@@ -418,36 +378,7 @@ fn segments_meet(
     c: Point2<f64>,
     d: Point2<f64>,
 ) -> Option<Point2<f64>> {
-    let orient = |p: Point2<f64>, q: Point2<f64>, r: Point2<f64>| {
-        robust::orient2d(coord(p), coord(q), coord(r))
-    };
-    let d1 = orient(c, d, a);
-    let d2 = orient(c, d, b);
-    let d3 = orient(a, b, c);
-    let d4 = orient(a, b, d);
-    let opposite = |u: f64, v: f64| (u > 0.0 && v < 0.0) || (u < 0.0 && v > 0.0);
-    if opposite(d1, d2) && opposite(d3, d4) {
-        let r = b - a;
-        let s = d - c;
-        let t = (c - a).perp(&s) / r.perp(&s);
-        return Some(a + r * t);
-    }
-    let within = |p: Point2<f64>, q: Point2<f64>, x: Point2<f64>| {
-        x.x >= p.x.min(q.x) && x.x <= p.x.max(q.x) && x.y >= p.y.min(q.y) && x.y <= p.y.max(q.y)
-    };
-    if d3 == 0.0 && within(a, b, c) {
-        return Some(c);
-    }
-    if d4 == 0.0 && within(a, b, d) {
-        return Some(d);
-    }
-    if d1 == 0.0 && within(c, d, a) {
-        return Some(a);
-    }
-    if d2 == 0.0 && within(c, d, b) {
-        return Some(b);
-    }
-    None
+    segment_intersection(a.into(), b.into(), c.into(), d.into()).map(Point2::from)
 }
 
 #[cfg(test)]
@@ -665,7 +596,7 @@ mod tests {
             prop_assume!(!has_duplicate);
             let folds = (0..n).any(|i| {
                 let (p, h, q) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
-                robust::orient2d(coord(p), coord(h), coord(q)) == 0.0 && (p - h).dot(&(q - h)) > 0.0
+                orient2d(p.into(), h.into(), q.into()) == 0.0 && (p - h).dot(&(q - h)) > 0.0
             });
             let found = find_self_intersection(&points).is_some();
             prop_assert_eq!(found, folds || brute_force_has_crossing(&points));

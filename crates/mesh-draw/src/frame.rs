@@ -3,6 +3,8 @@
 //! linear, P2 and P3 cells become, culled outside the plot and clipped where their pixel
 //! coordinates would grow too large to rasterise. It owns no colour and no drawing.
 
+use geom_predicates::point_segment_distance;
+
 use crate::error::DrawError;
 use crate::params::View;
 
@@ -153,18 +155,6 @@ pub(crate) fn bezier_point(control: &[[f64; 2]], t: f64) -> [f64; 2] {
     p[0]
 }
 
-/// Distance from `p` to the segment `a b`.
-fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let len2 = d[0] * d[0] + d[1] * d[1];
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - a[0] - t * d[0]).hypot(p[1] - a[1] - t * d[1])
-}
-
 /// Curves whose control points lie within this distance (pixels) of their chord are drawn as
 /// lines.
 const STRAIGHT_TOLERANCE_PX: f64 = 0.05;
@@ -250,7 +240,7 @@ impl Frame {
         if control.len() > 2
             && control[1..control.len() - 1]
                 .iter()
-                .all(|&c| distance_to_segment(c, a, b) <= STRAIGHT_TOLERANCE_PX)
+                .all(|&c| point_segment_distance(c, a, b) <= STRAIGHT_TOLERANCE_PX)
         {
             vec![a, b]
         } else {

@@ -48,6 +48,8 @@ pub mod validate;
 
 pub use cell::{CellType, Shape};
 pub use cells::{CellRef, Cells};
-pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon, polygon_area};
+/// The signed area of a polygon (shoelace formula), shared with every crate.
+pub use geom_predicates::polygon_area;
+pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon};
 pub use topology::Topology;
 pub use validate::{Problem, first_problem, first_structural_problem, is_positive_tet, validate};

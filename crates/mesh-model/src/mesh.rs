@@ -1,6 +1,7 @@
 //! The mesh: nodes, domain cells, boundary facets grouped in patches (one per boundary loop in
 //! 2D), and the per-cell records the later stages need (layer index, pipe).
 
+use geom_predicates::polygon_area;
 use serde::{Deserialize, Serialize};
 
 use crate::cell::Shape;
@@ -135,34 +136,16 @@ impl Mesh {
     }
 }
 
-/// Signed area of a closed polygon given by its vertices in order (shoelace formula).
-pub fn polygon_area(vertices: impl IntoIterator<Item = [f64; 2]>) -> f64 {
-    // Relative to the first vertex: on absolute coordinates the products x_i·y_j of a small
-    // cell far from the origin cancel to nothing (a 1e-9 thin cell at x ~ 1 rounds to 0).
-    let mut it = vertices.into_iter();
-    let Some(origin) = it.next() else { return 0.0 };
-    let Some(second) = it.next() else { return 0.0 };
-    let mut prev = [second[0] - origin[0], second[1] - origin[1]];
-    let mut twice = 0.0;
-    for p in it {
-        let p = [p[0] - origin[0], p[1] - origin[1]];
-        twice += prev[0] * p[1] - p[0] * prev[1];
-        prev = p;
-    }
-    0.5 * twice
-}
-
 /// Whether the linear polygon `corners` (a triangle or a convex quadrilateral's corners, in
 /// order) is positively oriented with a positive Jacobian everywhere, decided exactly: every
-/// corner turns left by the exact orientation predicate (`robust::orient2d`). A triangle is
+/// corner turns left by the exact orientation predicate (`geom_predicates::orient2d`). A triangle is
 /// positive when its one orientation is; a quadrilateral's bilinear map has a positive
 /// Jacobian everywhere exactly when all four corners turn left.
 pub fn is_positive_polygon(corners: &[[f64; 2]]) -> bool {
     let n = corners.len();
-    let c = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
     (0..n).all(|i| {
         let (a, b, d) = (corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
-        robust::orient2d(c(a), c(b), c(d)) > 0.0
+        geom_predicates::orient2d(a, b, d) > 0.0
     })
 }
 

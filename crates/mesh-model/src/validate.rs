@@ -358,14 +358,10 @@ fn orientation(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
 }
 
 /// Whether the tetrahedron `o a b c` has a positive signed volume (`(a−o)×(b−o)·(c−o) > 0`),
-/// decided exactly (`robust::orient3d`, which is positive for the opposite orientation).
+/// decided exactly (`geom_predicates::orient3d`, which is positive for the opposite
+/// orientation).
 pub fn is_positive_tet(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    let p = |x: [f64; 3]| robust::Coord3D {
-        x: x[0],
-        y: x[1],
-        z: x[2],
-    };
-    robust::orient3d(p(o), p(a), p(b), p(c)) < 0.0
+    geom_predicates::orient3d(o, a, b, c) < 0.0
 }
 
 /// Each edge (2D) or face (3D) in two cells, or in one cell and one boundary facet.
