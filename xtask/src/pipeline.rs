@@ -170,11 +170,10 @@ pub fn curved_mesh(
         .zip(nodes)
         .map(|(curve, bn)| vector_adding::LoopCurve { curve, t: &bn.t })
         .collect();
-    let layered = vector_adding::LayeredMesh {
-        mesh: &grown.mesh,
-        node_layer: &grown.node_layer,
-        layered_cells: grown.layered_cells,
-    };
-    vector_adding::curve_mesh(&layered, &loops, &curving_params(case, order, triangles))
-        .map_err(|e| anyhow::anyhow!("curving: {e}"))
+    vector_adding::curve_mesh(
+        &grown.layered,
+        &loops,
+        &curving_params(case, order, triangles),
+    )
+    .map_err(|e| anyhow::anyhow!("curving: {e}"))
 }

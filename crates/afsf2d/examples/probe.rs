@@ -23,7 +23,7 @@ fn main() {
     let t = std::time::Instant::now();
     let out = grow_mesh(&loops, &params).unwrap();
     let dt = t.elapsed().as_secs_f64();
-    let q = max_angle_histogram(&out.mesh);
+    let q = max_angle_histogram(&out.layered.mesh);
     let s = &out.stats;
     println!(
         "{name} G{growth} h{h:e}: tris {} max {:.1} hist {:?} time {dt:.3}s (solve {:.3} plan {:.3} build {:.3} verify {:.3} fill {:.3}) iters {} layers {} fill {}",
@@ -39,10 +39,10 @@ fn main() {
         s.layers,
         s.fill_triangles
     );
-    let m = &out.mesh;
+    let m = &out.layered.mesh;
     let n_layer_cells = m.cells.len() - s.fill_triangles;
     let nb = m.boundary.len();
-    let lay = |g: u32| out.node_layer[g as usize];
+    let lay = |g: u32| out.layered.layering.node_layer[g as usize];
     let threshold: f64 = std::env::var("PROBE_MIN")
         .ok()
         .and_then(|v| v.parse().ok())

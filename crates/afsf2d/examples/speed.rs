@@ -48,7 +48,7 @@ fn main() {
             let median = times[reps / 2];
             total_median += median;
             let out = last.expect("at least one run");
-            let q = max_angle_histogram(&out.mesh);
+            let q = max_angle_histogram(&out.layered.mesh);
             let s = &out.stats;
             let unconverged = s.layer_stats.iter().filter(|l| !l.converged).count();
             println!(

@@ -1,6 +1,7 @@
 //! The shared mesh data model: node coordinates, mixed linear and high-order cells in Gmsh's
 //! node order, boundary facets grouped in patches with a role (wall, far field), and the
-//! per-cell layer index and "pipe" that the curving and movement stages need.
+//! per-cell layer index and "pipe" that the curving and movement stages need, with the rest of
+//! the layers (node layers and parents, pipe columns) in [`Layering`].
 //!
 //! It owns the types and the structural checks ([`validate()`]) and nothing else: no file
 //! formats (that is `mesh-io`), no geometry and no meshing algorithm.
@@ -36,6 +37,7 @@
 
 pub mod cell;
 pub mod cells;
+pub mod layering;
 pub mod measure;
 pub mod mesh;
 pub mod reference;
@@ -43,5 +45,6 @@ pub mod validate;
 
 pub use cell::{CellType, Shape};
 pub use cells::{CellRef, Cells};
+pub use layering::{LayeredMesh, Layering};
 pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon, polygon_area};
 pub use validate::{Problem, validate};

@@ -10,7 +10,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use jacobian_check::CertifyParams;
 use test_cases::{Grown, real_case};
-use vector_adding::{Curved, CurvingParams, LayeredMesh, LoopCurve};
+use vector_adding::{Curved, CurvingParams, LoopCurve};
 
 fn curve(g: &Grown, order: u8) -> Curved {
     let loops: Vec<LoopCurve<'_>> = g
@@ -19,16 +19,11 @@ fn curve(g: &Grown, order: u8) -> Curved {
         .zip(&g.nodes)
         .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
         .collect();
-    let layered = LayeredMesh {
-        mesh: &g.output.mesh,
-        node_layer: &g.output.node_layer,
-        layered_cells: g.output.layered_cells,
-    };
     let params = CurvingParams {
         order,
         ..CurvingParams::default()
     };
-    vector_adding::curve_mesh(&layered, &loops, &params).expect("the built-in cases curve")
+    vector_adding::curve_mesh(&g.output.layered, &loops, &params).expect("the built-in cases curve")
 }
 
 fn curving(c: &mut Criterion) {

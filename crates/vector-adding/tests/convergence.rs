@@ -68,7 +68,7 @@ fn area_errors(loops: &[Loop], inside: bool, h: f64) -> ([f64; 3], usize) {
         })
         .sum();
     let mut errors = [0.0; 3];
-    errors[0] = (jacobian_check::integrate_area(&out.mesh).unwrap() - exact).abs() / exact;
+    errors[0] = (jacobian_check::integrate_area(&out.layered.mesh).unwrap() - exact).abs() / exact;
     for order in [2, 3] {
         let params = CurvingParams {
             order,

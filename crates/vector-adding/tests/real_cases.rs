@@ -56,8 +56,8 @@ fn case(name: &str, both_strategies: bool) {
     }
     let mut table = vec![format!(
         "{name}: {} linear cells ({} layered)",
-        g.output.mesh.cells.len(),
-        g.output.layered_cells
+        g.output.layered.mesh.cells.len(),
+        g.output.layered.layering.layered_cells
     )];
     table.push(HEADER.to_string());
     for run in runs {

@@ -236,7 +236,7 @@ pub fn domain_area(loops: &[FrontLoop]) -> f64 {
 
 /// The properties every mesh must have; returns the angle figures.
 pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) -> AngleStats {
-    let m = &out.mesh;
+    let m = &out.layered.mesh;
     let problems = validate(m);
     assert!(
         problems.is_empty(),
@@ -256,31 +256,23 @@ pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) ->
     for l in loops {
         for p in &l.points {
             assert_eq!(m.nodes[k], [p[0], p[1], 0.0], "boundary node {k} moved");
-            assert_eq!(out.node_parent[k], NONE);
-            assert_eq!(out.node_layer[k], 0);
+            assert_eq!(out.layered.layering.node_parents[k], [NONE, NONE]);
+            assert_eq!(out.layered.layering.node_layer[k], 0);
             k += 1;
         }
     }
     assert_eq!(m.boundary.len(), k);
-    // layers, pipes, parents
-    assert_eq!(m.cell_layer.len(), m.cells.len());
-    assert_eq!(m.cell_pipe.len(), m.cells.len());
+    // layers, pipes, parents: the record's own invariants, and every layer node has a parent
     assert!(m.cell_layer.iter().all(|&l| l != NONE));
     assert!(m.cell_pipe.iter().all(|&p| (p as usize) < m.boundary.len()));
+    let layering = &out.layered.layering;
+    assert_eq!(layering.check(m), None);
     for i in k..m.nodes.len() {
-        let p = out.node_parent[i];
-        if out.node_layer[i] == NONE {
-            assert_eq!(p, NONE, "fill node {i} has a parent");
-            continue;
-        }
-        assert!(
-            p != NONE && (p as usize) < m.nodes.len(),
-            "node {i} has no parent"
-        );
+        let p = layering.node_parents[i][0];
         assert_eq!(
-            out.node_layer[p as usize] + 1,
-            out.node_layer[i],
-            "node {i}"
+            p == NONE,
+            layering.node_layer[i] == NONE,
+            "node {i}: a layer node has a parent, a fill node none"
         );
     }
     // first layer height, away from the corners (a corner and its two neighbours)
@@ -294,10 +286,11 @@ pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) ->
         );
     }
     for i in k..m.nodes.len() {
-        if out.node_layer[i] != 1 || out.node_parent[i] == NONE {
+        let layering = &out.layered.layering;
+        if layering.node_layer[i] != 1 || layering.node_parents[i][0] == NONE {
             continue;
         }
-        let p = out.node_parent[i] as usize;
+        let p = layering.node_parents[i][0] as usize;
         let wall = m.patches[m.boundary_patch[p] as usize].role == Role::Wall;
         if !wall || near_corner[p] {
             // at a sharp corner the first cells are legitimately compressed or fanned
@@ -319,9 +312,9 @@ pub fn summary(name: &str, out: &AfsfOutput, q: &AngleStats) -> String {
     let s = &out.stats;
     format!(
         "{name}: nodes {} quads {} tris {} (fill {}) layers {} iters {} converged {} | tris-cut {} max angle {:.1} hist {:?} | time {:.3}s (plan {:.3} build {:.3} solve {:.3} verify {:.3} fill {:.3}) retries {}",
-        out.mesh.nodes.len(),
-        out.mesh.count(mesh_model::Shape::Quad),
-        out.mesh.count(mesh_model::Shape::Tri),
+        out.layered.mesh.nodes.len(),
+        out.layered.mesh.count(mesh_model::Shape::Quad),
+        out.layered.mesh.count(mesh_model::Shape::Tri),
         s.fill_triangles,
         s.layers,
         s.iterations,

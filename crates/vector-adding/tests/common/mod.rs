@@ -11,7 +11,7 @@ use boundary1d::BoundaryNodes;
 use geom_curve::{ClosedCurve, Point2};
 use jacobian_check::{CertifyParams, MeshValidity};
 use mesh_model::{Mesh, NONE, Role, Shape};
-use vector_adding::{Curved, CurvingError, CurvingParams, LayeredMesh, LoopCurve};
+use vector_adding::{Curved, CurvingError, CurvingParams, LoopCurve};
 
 /// Curves the grown mesh `out` whose loops are `curves` with boundary nodes `nodes`.
 pub fn curve(
@@ -25,12 +25,7 @@ pub fn curve(
         .zip(nodes)
         .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
         .collect();
-    let layered = LayeredMesh {
-        mesh: &out.mesh,
-        node_layer: &out.node_layer,
-        layered_cells: out.layered_cells,
-    };
-    vector_adding::curve_mesh(&layered, &loops, params)
+    vector_adding::curve_mesh(&out.layered, &loops, params)
 }
 
 /// The area a closed curve encloses (positive counter-clockwise): Green's theorem on each
@@ -136,13 +131,19 @@ pub fn curved_layers_above_walls(
     curved: &Mesh,
     min_curved_layers: u32,
 ) -> LayerReport {
-    let lin = &out.mesh;
+    let lin = &out.layered.mesh;
+    let node_layer = &out.layered.layering.node_layer;
     let edges = edge_curvature(curved);
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     // the layered cells by their bottom edge
     let mut by_bottom: HashMap<(u32, u32), usize> = HashMap::new();
     let mut tops: Vec<Option<(u32, u32)>> = vec![None; lin.cells.len()];
-    for (i, cell) in lin.cells.iter().enumerate().take(out.layered_cells) {
+    for (i, cell) in lin
+        .cells
+        .iter()
+        .enumerate()
+        .take(out.layered.layering.layered_cells)
+    {
         let layer = lin.cell_layer[i];
         if layer == NONE {
             continue;
@@ -152,7 +153,7 @@ pub fn curved_layers_above_walls(
         let mut top = None;
         for (j, e) in cell.ty.shape.edges().iter().enumerate() {
             let (a, b) = (k[e[0]], k[e[1]]);
-            let (la, lb) = (out.node_layer[a as usize], out.node_layer[b as usize]);
+            let (la, lb) = (node_layer[a as usize], node_layer[b as usize]);
             if la == layer && lb == layer {
                 bottom = Some((j, key(a, b)));
             } else if la == layer + 1 && lb == layer + 1 {
