@@ -37,7 +37,7 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     }
     let total = Instant::now();
     let case = load(args)?;
-    let order = args.order.unwrap_or(case.curving.order);
+    let order = args.order.unwrap_or(case.order);
     let mut plan = plan(args, &case)?;
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
 

@@ -40,9 +40,7 @@ fn main() {
         ),
     ];
     for (name, dom) in cases {
-        let case = dom.case();
-        let loops = case.front_loops(dom.first_height);
-        let params = case.params(dom.first_height, dom.growth);
+        let (loops, params) = test_cases::mesher_input(&dom.case());
         match grow_mesh(&loops, &params) {
             Err(e) => println!("{name}: ERROR {e}"),
             Ok(out) => {

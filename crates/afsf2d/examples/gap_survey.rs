@@ -127,15 +127,15 @@ fn main() {
             continue;
         };
         let case = dom.case();
-        let loops = match std::panic::catch_unwind(|| case.front_loops(dom.first_height)) {
-            Ok(l) => l,
+        let (loops, mut params) = match std::panic::catch_unwind(|| test_cases::mesher_input(&case))
+        {
+            Ok(input) => input,
             Err(_) => {
                 println!("skip: boundary mesh failed ({})", dom.label);
                 continue;
             }
         };
         done += 1;
-        let mut params = case.params(dom.first_height, dom.growth);
         // `REFUSE=1` keeps the default refusal of unresolved gaps; else they are meshed and
         // the gap check's verdict is printed next to the angle it predicted
         params.refuse_narrow_gaps = std::env::var("REFUSE").is_ok();

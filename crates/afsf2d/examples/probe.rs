@@ -17,9 +17,8 @@ fn main() {
     let h: f64 = args
         .get(3)
         .map(|s| s.parse().unwrap())
-        .unwrap_or(case.first_height);
-    let loops = case.front_loops(h);
-    let params = case.params(h, growth);
+        .unwrap_or(case.layers.first_height);
+    let (loops, params) = real::mesher_input(&real::with_layers(&case, h, growth));
     let t = std::time::Instant::now();
     let out = grow_mesh(&loops, &params).unwrap();
     let dt = t.elapsed().as_secs_f64();

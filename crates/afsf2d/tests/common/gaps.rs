@@ -5,7 +5,7 @@
 
 use geom_curve::{ClosedCurve, CurveParams, Point2};
 use mesh_model::Role;
-use test_cases::RealCase;
+use test_cases::Case;
 
 /// A small deterministic generator (SplitMix64), so that every case is reproducible from
 /// its seed.
@@ -62,15 +62,9 @@ pub struct Domain {
 
 impl Domain {
     /// The domain as a pipeline case (boundary spacing as `cargo xtask mesh` does it).
-    pub fn case(&self) -> RealCase {
-        RealCase {
-            name: "random",
-            loops: self.loops.clone(),
-            first_height: self.first_height,
-            max_spacing: 1.0,
-            max_layers: 60,
-            inside: false,
-        }
+    pub fn case(&self) -> Case {
+        let case = test_cases::case_of("random", self.loops.clone(), false);
+        test_cases::with_layers(&case, self.first_height, self.growth)
     }
 }
 

@@ -1,5 +1,5 @@
-//! Test kit of the curving: the curving's input from a grown case, and the checks every
-//! curved mesh must pass — certified valid, conforming, boundary nodes on their curves, the
+//! Test kit of the curving: the checks every curved mesh must pass (the grown cases and
+//! their curving come from `test-cases`, through the tool's own stages) — certified valid, conforming, boundary nodes on their curves, the
 //! area of the cells equal to the area the curved boundary encloses, the first layers above
 //! walls curved.
 #![allow(dead_code)]
@@ -7,26 +7,10 @@
 use std::collections::HashMap;
 
 use afsf2d::AfsfOutput;
-use boundary1d::BoundaryNodes;
 use geom_curve::{ClosedCurve, Point2};
 use jacobian_check::{CertifyParams, MeshValidity};
 use mesh_model::{Mesh, NONE, Role, Shape};
-use vector_adding::{Curved, CurvingError, CurvingParams, LoopCurve};
-
-/// Curves the grown mesh `out` whose loops are `curves` with boundary nodes `nodes`.
-pub fn curve(
-    out: &AfsfOutput,
-    curves: &[ClosedCurve],
-    nodes: &[BoundaryNodes],
-    params: &CurvingParams,
-) -> Result<Curved, CurvingError> {
-    let loops: Vec<LoopCurve<'_>> = curves
-        .iter()
-        .zip(nodes)
-        .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
-        .collect();
-    vector_adding::curve_mesh(&out.layered, &loops, params)
-}
+use vector_adding::Curved;
 
 /// The area a closed curve encloses (positive counter-clockwise): Green's theorem on each
 /// quintic segment, by Gauss quadrature exact for its degree-9 integrand.
