@@ -32,8 +32,8 @@ fn main() {
         (
             "squares gap 1e-7",
             gaps::two_bodies(
-                gaps::square([0.0, 0.0], 1.0),
-                gaps::square([1.0 + 1e-7, 0.0], 1.0),
+                testkit::shapes::square([0.0, 0.0], 1.0),
+                testkit::shapes::square([1.0 + 1e-7, 0.0], 1.0),
                 5e-5,
                 1.3,
             ),

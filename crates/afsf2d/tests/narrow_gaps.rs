@@ -50,8 +50,8 @@ fn circles_0_01_apart_meet_in_usable_cells() {
 #[test]
 fn unit_squares_1e_7_apart_meet_in_usable_cells_without_layers_in_the_gap() {
     let dom = gaps::two_bodies(
-        gaps::square([0.0, 0.0], 1.0),
-        gaps::square([1.0 + 1e-7, 0.0], 1.0),
+        testkit::shapes::square([0.0, 0.0], 1.0),
+        testkit::shapes::square([1.0 + 1e-7, 0.0], 1.0),
         5e-5,
         1.3,
     );

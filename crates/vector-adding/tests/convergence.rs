@@ -143,6 +143,6 @@ fn the_circles_are_round() {
             .collect();
         let a = curve_area(&ClosedCurve::new(&pts, &CurveParams::default()).unwrap());
         let exact = std::f64::consts::PI * r * r;
-        assert!((a - exact).abs() <= 1e-12 * exact, "r {r}: {a} vs {exact}");
+        testkit::assert_near!(a, exact, 1e-12 * exact, "r {r}");
     }
 }

@@ -7,26 +7,11 @@ pub mod gaps;
 pub mod real;
 
 use afsf2d::{AfsfOutput, AfsfParams, AngleStats, FrontLoop, max_angle_histogram};
-use mesh_model::{NONE, Role, validate};
+use mesh_model::{NONE, Role};
+use testkit::checks;
 
-/// Reads a Selig `.dat` file of the workspace fixtures.
-pub fn selig(rel: &str) -> Vec<[f64; 2]> {
-    let path = format!(
-        "{}/../../fixtures/geometry/{rel}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    text.lines()
-        .skip(1)
-        .filter_map(|l| {
-            let mut it = l.split_whitespace().map(|v| v.parse::<f64>());
-            match (it.next(), it.next()) {
-                (Some(Ok(x)), Some(Ok(y))) => Some([x, y]),
-                _ => None,
-            }
-        })
-        .collect()
-}
+/// The points of a Selig `.dat` file of the workspace fixtures.
+pub use testkit::fixtures::selig_xy as selig;
 
 fn turn_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let u = [b[0] - a[0], b[1] - a[1]];
@@ -131,13 +116,7 @@ pub fn airfoil(rel: &str, name: &str, h_te: f64, h_max: f64) -> FrontLoop {
 
 /// A circle of `n` points.
 pub fn circle(center: [f64; 2], radius: f64, n: usize, role: Role, name: &str) -> FrontLoop {
-    let points = (0..n)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / n as f64;
-            [center[0] + radius * a.cos(), center[1] + radius * a.sin()]
-        })
-        .collect();
-    FrontLoop::new(points, role, name)
+    FrontLoop::new(testkit::shapes::circle(center, radius, n), role, name)
 }
 
 /// NACA0012 (sharp trailing edge) in a far field of radius 20 chords.
@@ -237,20 +216,8 @@ pub fn domain_area(loops: &[FrontLoop]) -> f64 {
 /// The properties every mesh must have; returns the angle figures.
 pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) -> AngleStats {
     let m = &out.layered.mesh;
-    let problems = validate(m);
-    assert!(
-        problems.is_empty(),
-        "{} problems, first: {}",
-        problems.len(),
-        problems[0]
-    );
-    let area = domain_area(loops);
-    let rel = (m.linear_area() - area).abs() / area;
-    assert!(
-        rel < 1e-9,
-        "area {} vs domain {area}: relative error {rel:e}",
-        m.linear_area()
-    );
+    checks::assert_valid("afsf2d", m);
+    checks::assert_area("afsf2d", m.linear_area(), domain_area(loops), 1e-9);
     // boundary nodes untouched, in input order
     let mut k = 0;
     for l in loops {
