@@ -182,6 +182,10 @@ fn impossible_parameters() {
     let cases = [
         ("[boundary]\ngrowth = 1.0\n", "[boundary] growth"),
         ("[layers]\ngrowth = 0.9\n", "[layers] growth"),
+        // the ranges are the crates' own checks (AfsfParams, SpacingParams), named by key
+        ("[layers]\ngrowth = 1.0\n", "[layers] growth"),
+        ("[layers]\nmax_layers = 0\n", "[layers] max_layers"),
+        ("[boundary]\ngrowth = 50.0\n", "[boundary] growth"),
         ("[layers]\nfirst_height = -1e-5\n", "first_height"),
         ("[boundary]\nmax_spacing = 0.0\n", "max_spacing"),
         ("[boundary]\nrefine_angle_deg = 200.0\n", "refine_angle_deg"),
@@ -323,4 +327,14 @@ fn a_case_expected_above_the_cell_limit_is_refused_with_its_estimate() {
             "--max-cells",
         ],
     );
+}
+
+#[test]
+fn a_circle_of_negative_radius_is_named() {
+    // the radius's range is geom-curve's own check; the message still names the key and loop
+    let dir = tempfile::tempdir().unwrap();
+    let far = "[[loop]]\nrole = \"farfield\"\ncircle = { center = [0.5, 0.5], radius = -2.0 }\n";
+    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
+    let msg = mesh_error(dir.path(), &case, &[]);
+    expect(&msg, &["loop 2", "circle", "radius = -2"]);
 }

@@ -193,6 +193,10 @@ fn circle_points_default() -> usize {
     256
 }
 
+/// The highest polynomial order of a run (`[curving] order` and `--order`: 1 is the linear
+/// mesh).
+pub const MAX_ORDER: u8 = 3;
+
 /// The most points a generated loop (`circle = { points = N }`, `naca_points`) may have:
 /// checked before they are made.
 pub const MAX_GENERATED_POINTS: usize = 1_000_000;
@@ -405,7 +409,7 @@ fn check_params(
         Ok(()) => {}
     }
     ensure!(
-        (1..=3).contains(&order),
+        (1..=MAX_ORDER).contains(&order),
         "{origin}: [curving] order = {order}: must be 1, 2 or 3"
     );
     // checked as the pipeline runs it at order 3 (`--order` may ask for 3 whatever the case)
@@ -507,11 +511,7 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
             .collect::<Result<Vec<_>>>()?;
         (pts, format!("{what} points"), None)
     } else if let Some(c) = &spec.circle {
-        ensure!(
-            c.radius.is_finite() && c.radius > 0.0,
-            "{what}: circle radius = {}: must be positive",
-            c.radius
-        );
+        // the radius's range is geom-curve's (`circle_points`), named in its error
         ensure!(
             (8..=MAX_GENERATED_POINTS).contains(&c.points),
             "{what}: circle points = {}: give 8 to {MAX_GENERATED_POINTS}",
