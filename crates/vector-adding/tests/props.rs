@@ -216,3 +216,29 @@ fn orders_one_and_four_are_refused_and_two_and_three_run() {
         assert_eq!(rejected(&params), None, "stop threshold {q}");
     }
 }
+
+/// The layering is checked as a whole (`Layering::check`) before any curving: a record that
+/// does not fit its mesh is a named error, never a panic.
+#[test]
+fn a_layering_that_does_not_fit_its_mesh_is_named() {
+    let layering_error = |edit: &dyn Fn(&mut mesh_model::Layering)| {
+        let mut g = small().clone();
+        edit(&mut g.output.layered.layering);
+        match g.curve(&CurvingParams::default()) {
+            Err(CurvingError::BadLayers(why)) => why,
+            other => panic!("{other:?}"),
+        }
+    };
+    assert!(
+        layering_error(&|l| {
+            l.node_layer.pop();
+        })
+        .contains("node_layer")
+    );
+    assert!(layering_error(&|l| l.layered_cells = usize::MAX).contains("layered cells"));
+    let wrong_parent = layering_error(&|l| {
+        let child = l.node_layer.iter().position(|&k| k == 2).unwrap();
+        l.node_parents[child][1] = 0; // a wall node two layers below
+    });
+    assert!(wrong_parent.contains("not one below"), "{wrong_parent}");
+}
