@@ -158,12 +158,24 @@ fn body_inside_another_body() {
 }
 
 #[test]
-fn body_outside_the_farfield() {
-    let dir = tempfile::tempdir().unwrap();
-    let far = "[[loop]]\nrole = \"farfield\"\ncircle = { center = [50.0, 0.0], radius = 2.0 }\n";
-    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
-    let msg = mesh_error(dir.path(), &case, &[]);
-    expect(&msg, &["not inside the farfield"]);
+fn bad_farfields() {
+    let cases: [(&str, &[&str]); 2] = [
+        (
+            "center = [50.0, 0.0], radius = 2.0",
+            &["not inside the farfield"],
+        ),
+        // the radius's range is geom-curve's own check; the message names the loop and key
+        (
+            "center = [0.5, 0.5], radius = -2.0",
+            &["loop 2", "circle", "radius = -2"],
+        ),
+    ];
+    for (circle, words) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let far = format!("[[loop]]\nrole = \"farfield\"\ncircle = {{ {circle} }}\n");
+        let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
+        expect(&mesh_error(dir.path(), &case, &[]), words);
+    }
 }
 
 #[test]
@@ -327,14 +339,4 @@ fn a_case_expected_above_the_cell_limit_is_refused_with_its_estimate() {
             "--max-cells",
         ],
     );
-}
-
-#[test]
-fn a_circle_of_negative_radius_is_named() {
-    // the radius's range is geom-curve's own check; the message still names the key and loop
-    let dir = tempfile::tempdir().unwrap();
-    let far = "[[loop]]\nrole = \"farfield\"\ncircle = { center = [0.5, 0.5], radius = -2.0 }\n";
-    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
-    let msg = mesh_error(dir.path(), &case, &[]);
-    expect(&msg, &["loop 2", "circle", "radius = -2"]);
 }
