@@ -162,12 +162,24 @@ fn body_inside_another_body() {
 }
 
 #[test]
-fn body_outside_the_farfield() {
-    let dir = tempfile::tempdir().unwrap();
-    let far = "[[loop]]\nrole = \"farfield\"\ncircle = { center = [50.0, 0.0], radius = 2.0 }\n";
-    let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
-    let msg = mesh_error(dir.path(), &case, &[]);
-    expect(&msg, &["not inside the farfield"]);
+fn bad_farfields() {
+    let cases: [(&str, &[&str]); 2] = [
+        (
+            "center = [50.0, 0.0], radius = 2.0",
+            &["not inside the farfield"],
+        ),
+        // the radius's range is geom-curve's own check; the message names the loop and key
+        (
+            "center = [0.5, 0.5], radius = -2.0",
+            &["loop 2", "circle", "radius = -2"],
+        ),
+    ];
+    for (circle, words) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let far = format!("[[loop]]\nrole = \"farfield\"\ncircle = {{ {circle} }}\n");
+        let case = case_text(dir.path(), &format!("{SQUARE_WALL}{far}"));
+        expect(&mesh_error(dir.path(), &case, &[]), words);
+    }
 }
 
 #[test]
@@ -186,6 +198,10 @@ fn impossible_parameters() {
     let cases = [
         ("[boundary]\ngrowth = 1.0\n", "[boundary] growth"),
         ("[layers]\ngrowth = 0.9\n", "[layers] growth"),
+        // the ranges are the crates' own checks (AfsfParams, SpacingParams), named by key
+        ("[layers]\ngrowth = 1.0\n", "[layers] growth"),
+        ("[layers]\nmax_layers = 0\n", "[layers] max_layers"),
+        ("[boundary]\ngrowth = 50.0\n", "[boundary] growth"),
         ("[layers]\nfirst_height = -1e-5\n", "first_height"),
         ("[boundary]\nmax_spacing = 0.0\n", "max_spacing"),
         ("[boundary]\nrefine_angle_deg = 200.0\n", "refine_angle_deg"),

@@ -23,13 +23,16 @@ fn snapshot_holds_the_stages_and_loads_back() {
         mesh_io::snapshot::load(std::path::Path::new(&bin)).unwrap();
     let written = mesh_io::read_msh(std::path::Path::new(&msh)).unwrap();
     assert_eq!(stages.case, "bat");
-    assert_eq!(stages.mesh.nodes, written.nodes);
-    assert_eq!(stages.mesh.cells, written.cells);
-    assert_eq!(stages.mesh.cell_layer.len(), stages.mesh.cells.len());
-    assert_eq!(stages.node_parent.len(), stages.mesh.nodes.len());
+    assert_eq!(stages.layered.mesh.nodes, written.nodes);
+    assert_eq!(stages.layered.mesh.cells, written.cells);
+    assert_eq!(
+        stages.layered.mesh.cell_layer.len(),
+        stages.layered.mesh.cells.len()
+    );
+    assert_eq!(stages.layered.layering.check(&stages.layered.mesh), None);
     let boundary_nodes: usize = stages.boundary.iter().map(|b| b.points.len()).sum();
     assert_eq!(
-        stages.mesh.boundary.len(),
+        stages.layered.mesh.boundary.len(),
         boundary_nodes,
         "one facet per boundary node"
     );

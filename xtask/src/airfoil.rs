@@ -18,7 +18,7 @@ use std::path::Path;
 use anyhow::{Context, Result, ensure};
 use mesh_model::Role;
 
-use crate::case::{BoundarySpec, Case, CurvingSpec, LayerSpec, LoopInput, name_groups};
+use crate::case::{Case, LoopInput};
 use crate::cli::AirfoilArgs;
 
 /// Points on the far-field circle (its geometry, not its mesh spacing).
@@ -124,7 +124,6 @@ pub fn case(files: &[String], args: &AirfoilArgs) -> Result<Case> {
         group: String::new(),
         max_spacing: None,
     });
-    name_groups(&mut loops, a.merge_walls);
     let name = loops[..files.len()]
         .iter()
         .map(|l| l.name.as_str())
@@ -136,22 +135,11 @@ pub fn case(files: &[String], args: &AirfoilArgs) -> Result<Case> {
         "le".to_string(),
         [x_min - h, y_le - h, x_min + 2.0 * h, y_le + h],
     );
-    Ok(Case {
-        name,
-        inside: false,
-        merge_walls: a.merge_walls,
-        loops,
-        boundary: BoundarySpec {
-            max_spacing: chord,
-            ..BoundarySpec::default()
-        },
-        layers: LayerSpec {
-            first_height: first_height(a.yplus, a.re, chord),
-            ..LayerSpec::default()
-        },
-        curving: CurvingSpec::default(),
-        views,
-    })
+    let mut case = Case::new(&name, loops, false, a.merge_walls);
+    case.boundary.max_spacing = chord;
+    case.layers.first_height = first_height(a.yplus, a.re, chord);
+    case.views = views;
+    Ok(case)
 }
 
 #[cfg(test)]

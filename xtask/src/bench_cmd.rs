@@ -64,7 +64,7 @@ fn bench_cases(names: &[String], runs: usize) -> Result<()> {
             let t = Instant::now();
             let grown = pipeline::linear_mesh(&case, &nodes)?;
             linear_s.push(t.elapsed().as_secs_f64());
-            let m = &grown.mesh;
+            let m = &grown.layered.mesh;
             counts = (m.nodes.len(), m.count(Shape::Quad), m.count(Shape::Tri));
             let t = Instant::now();
             let curved = pipeline::curved_mesh(&case, &curves, &nodes, &grown, 3, false)?;

@@ -5,30 +5,37 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use afsf2d::AfsfParams;
 use anyhow::{Context, Result, bail, ensure};
+use boundary1d::SpacingParams;
 use mesh_model::Role;
 use serde::Deserialize;
+use vector_adding::CurvingParams;
 
-use crate::builtin;
+use crate::{builtin, pipeline};
 
 /// A parsed and checked case.
 #[derive(Debug, Clone)]
 pub struct Case {
     /// The case's name (from the file, else the file stem).
     pub name: String,
-    /// Mesh the inside of the single wall loop instead of the region between the loops.
-    pub inside: bool,
     /// `merge_walls = true`: every wall loop in one boundary group `wall` (else one group per
     /// wall loop, named after it).
     pub merge_walls: bool,
     /// The loops, points in the order given (orientation is fixed later).
     pub loops: Vec<LoopInput>,
-    /// `[boundary]`.
-    pub boundary: BoundarySpec,
-    /// `[layers]`.
-    pub layers: LayerSpec,
-    /// `[curving]`.
-    pub curving: CurvingSpec,
+    /// `[boundary]`: the spacing of the boundary nodes. Its `first_height` and `max_bulge`
+    /// are not the case's: the pipeline sets them from `[layers]`
+    /// ([`crate::pipeline::spacing_params`]).
+    pub boundary: SpacingParams,
+    /// `[layers]`, and `inside` (mesh the inside of the single wall loop instead of the
+    /// region between the loops): the mesher's parameters.
+    pub layers: AfsfParams,
+    /// `[curving] order`: 1 (linear), 2 or 3; `--order` overrides it.
+    pub order: u8,
+    /// `[curving]`: the curving's parameters (its `order` and `triangles` are set per run,
+    /// [`crate::pipeline::curving_params`]).
+    pub curving: CurvingParams,
     /// `[views]`: named rectangles `x0, y0, x1, y1` for pictures (`--png FILE@NAME`).
     pub views: BTreeMap<String, [f64; 4]>,
 }
@@ -50,7 +57,7 @@ pub struct LoopInput {
     pub max_spacing: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CaseFile {
     name: Option<String>,
@@ -61,11 +68,11 @@ struct CaseFile {
     #[serde(rename = "loop", default)]
     loops: Vec<LoopSpec>,
     #[serde(default)]
-    boundary: BoundarySpec,
+    boundary: BoundaryKeys,
     #[serde(default)]
-    layers: LayerSpec,
+    layers: LayerKeys,
     #[serde(default)]
-    curving: CurvingSpec,
+    curving: CurvingKeys,
     #[serde(default)]
     views: BTreeMap<String, Vec<f64>>,
 }
@@ -109,77 +116,72 @@ struct CircleSpec {
     points: usize,
 }
 
-/// `[boundary]`: the 1D boundary mesh (method.md §2).
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct BoundarySpec {
-    /// g_given: largest ratio of neighbouring segment lengths, > 1.
-    pub growth: f64,
-    /// α_refine in degrees: the angle two segments on a circle may make; in (90, 180).
-    pub refine_angle_deg: f64,
-    /// δ: the longest boundary segment, in mesh units.
-    pub max_spacing: f64,
-    /// Cap the spacing by growth from the break points of every loop (refines narrow gaps).
-    pub medial_axis: bool,
+// The sections list the keys a case file gives of each crate's parameters, under the names of
+// `../shared/design/interface.md`. Their defaults and ranges are the crates' own
+// (`SpacingParams`, `AfsfParams`, `CurvingParams`: `Default` and their checks): a key left
+// out keeps the crate's default.
+
+/// `[boundary]`: keys of `boundary1d::SpacingParams` (method.md §2).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoundaryKeys {
+    growth: Option<f64>,
+    refine_angle_deg: Option<f64>,
+    max_spacing: Option<f64>,
+    medial_axis: Option<bool>,
 }
 
-impl Default for BoundarySpec {
-    fn default() -> Self {
-        BoundarySpec {
-            growth: 1.3,
-            refine_angle_deg: 165.0,
-            max_spacing: 1.0,
-            medial_axis: true,
-        }
+/// `[layers]`: keys of `afsf2d::AfsfParams` (method.md §3).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LayerKeys {
+    first_height: Option<f64>,
+    growth: Option<f64>,
+    max_layers: Option<u32>,
+}
+
+/// `[curving]`: the order, and keys of `vector_adding::CurvingParams` (method.md §4).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CurvingKeys {
+    order: Option<u8>,
+    min_curved_layers: Option<u32>,
+    /// `CurvingParams::stop_min_scaled_jacobian`.
+    stop_scaled_jacobian: Option<f64>,
+    strategy: Option<vector_adding::Strategy>,
+}
+
+/// `field` set to `value` when the case gives it.
+fn set<T>(field: &mut T, value: Option<T>) {
+    if let Some(v) = value {
+        *field = v;
     }
 }
 
-/// `[layers]`: the viscous layers (method.md §3).
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct LayerSpec {
-    /// l_extru: height of the first layer, in mesh units.
-    pub first_height: f64,
-    /// G_ratio: growth of the layer height from one layer to the next, > 1.
-    pub growth: f64,
-    /// Most layers grown from any boundary.
-    pub max_layers: u32,
-}
-
-impl Default for LayerSpec {
-    fn default() -> Self {
-        LayerSpec {
-            first_height: 5e-5,
-            growth: 1.3,
-            max_layers: 60,
-        }
-    }
-}
-
-/// `[curving]`: the high-order mesh (method.md §4).
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct CurvingSpec {
-    /// Polynomial order of the cells: 1, 2 or 3.
-    pub order: u8,
-    /// Fewest layers curved above a curved wall.
-    pub min_curved_layers: u32,
-    /// A pipe stops where a straight top leaves its cell a certified scaled Jacobian of at
-    /// least this, in (0, 1]: higher curves more layers for better stop cells.
-    pub stop_scaled_jacobian: f64,
-    /// `two-vector` (default) or `one-vector`: how a cut quadrilateral's diagonal is curved.
-    pub strategy: vector_adding::Strategy,
-}
-
-impl Default for CurvingSpec {
-    fn default() -> Self {
-        let d = vector_adding::CurvingParams::default();
-        CurvingSpec {
-            order: 3,
-            min_curved_layers: d.min_curved_layers,
-            stop_scaled_jacobian: d.stop_min_scaled_jacobian,
-            strategy: d.strategy,
-        }
+impl CaseFile {
+    /// The crates' parameters with the keys the file gives.
+    fn params(&self) -> (SpacingParams, AfsfParams, u8, CurvingParams) {
+        let (b, l, c) = (&self.boundary, &self.layers, &self.curving);
+        let mut boundary = SpacingParams::default();
+        set(&mut boundary.growth, b.growth);
+        set(&mut boundary.refine_angle_deg, b.refine_angle_deg);
+        set(&mut boundary.max_spacing, b.max_spacing);
+        set(&mut boundary.medial_axis, b.medial_axis);
+        let mut layers = AfsfParams {
+            inside: self.inside,
+            ..AfsfParams::default()
+        };
+        set(&mut layers.first_height, l.first_height);
+        set(&mut layers.growth, l.growth);
+        set(&mut layers.max_layers, l.max_layers);
+        let mut curving = CurvingParams::default();
+        set(&mut curving.min_curved_layers, c.min_curved_layers);
+        set(
+            &mut curving.stop_min_scaled_jacobian,
+            c.stop_scaled_jacobian,
+        );
+        set(&mut curving.strategy, c.strategy);
+        (boundary, layers, c.order.unwrap_or(3), curving)
     }
 }
 
@@ -190,6 +192,10 @@ fn one() -> f64 {
 fn circle_points_default() -> usize {
     256
 }
+
+/// The highest polynomial order of a run (`[curving] order` and `--order`: 1 is the linear
+/// mesh).
+pub const MAX_ORDER: u8 = 3;
 
 /// The most points a generated loop (`circle = { points = N }`, `naca_points`) may have:
 /// checked before they are made.
@@ -206,6 +212,27 @@ fn exactly<const N: usize>(values: &[f64], what: &str, form: &str) -> Result<[f6
 }
 
 impl Case {
+    /// A case of `loops` (their boundary groups named here, as for a case file) with every
+    /// parameter at the case file's default, the views none.
+    pub fn new(name: &str, mut loops: Vec<LoopInput>, inside: bool, merge_walls: bool) -> Case {
+        let file = CaseFile {
+            inside,
+            ..CaseFile::default()
+        };
+        let (boundary, layers, order, curving) = file.params();
+        name_groups(&mut loops, merge_walls);
+        Case {
+            name: name.to_string(),
+            merge_walls,
+            loops,
+            boundary,
+            layers,
+            order,
+            curving,
+            views: BTreeMap::new(),
+        }
+    }
+
     /// The case's name made safe for file names ([`crate::outputs::file_stem_of`]): the
     /// default outputs are `out/STEM.msh` and `out/STEM.json`.
     pub fn file_stem(&self) -> String {
@@ -266,7 +293,8 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
             None => anyhow::anyhow!("{origin}: {msg}"),
         }
     })?;
-    check_params(&file, origin)?;
+    let (boundary, layers, order, curving) = file.params();
+    check_params(origin, &boundary, &layers, order, &curving)?;
     ensure!(
         !file.loops.is_empty(),
         "{origin}: no [[loop]]: a case needs at least one boundary loop"
@@ -306,12 +334,12 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
             .name
             .clone()
             .unwrap_or_else(|| default_name.to_string()),
-        inside: file.inside,
         merge_walls: file.merge_walls,
         loops,
-        boundary: file.boundary,
-        layers: file.layers,
-        curving: file.curving,
+        boundary,
+        layers,
+        order,
+        curving,
         views,
     })
 }
@@ -349,56 +377,58 @@ pub(crate) fn name_groups(loops: &mut [LoopInput], merge_walls: bool) {
     }
 }
 
-fn check_params(file: &CaseFile, origin: &str) -> Result<()> {
-    let b = &file.boundary;
-    let l = &file.layers;
-    let positive = |v: f64| v.is_finite() && v > 0.0;
-    let growth = |v: f64| v.is_finite() && v > 1.0;
+/// Checks the parameters by the crates' own checks (what the pipeline will hand them), each
+/// fault named by its section and key; the order's range and `min_curved_layers` against
+/// `max_layers` are the case's own rules.
+fn check_params(
+    origin: &str,
+    boundary: &SpacingParams,
+    layers: &AfsfParams,
+    order: u8,
+    curving: &CurvingParams,
+) -> Result<()> {
+    let fault = |section: &str, name: &str, value: f64, rule: &str| {
+        anyhow::anyhow!("{origin}: [{section}] {name} = {value}: {rule}")
+    };
+    match layers.check() {
+        Err(afsf2d::AfsfError::BadParameter {
+            name,
+            value,
+            expected,
+        }) => return Err(fault("layers", name, value, &format!("must be {expected}"))),
+        Err(e) => bail!("{origin}: [layers]: {e}"),
+        Ok(()) => {}
+    }
+    match pipeline::spacing_of(boundary, layers).validate() {
+        Err(boundary1d::Boundary1dError::InvalidParameter {
+            name,
+            value,
+            reason,
+        }) => return Err(fault("boundary", name, value, reason)),
+        Err(e) => bail!("{origin}: [boundary]: {e}"),
+        Ok(()) => {}
+    }
     ensure!(
-        growth(b.growth),
-        "{origin}: [boundary] growth = {}: must be greater than 1",
-        b.growth
+        (1..=MAX_ORDER).contains(&order),
+        "{origin}: [curving] order = {order}: must be 1, 2 or 3"
     );
+    // checked as the pipeline runs it at order 3 (`--order` may ask for 3 whatever the case)
+    match pipeline::curving_of(curving, 3, false).check() {
+        Err(vector_adding::CurvingError::BadParameter { name, value, rule }) => {
+            let key = match name {
+                "stop_min_scaled_jacobian" => "stop_scaled_jacobian",
+                other => other,
+            };
+            return Err(fault("curving", key, value, rule));
+        }
+        Err(e) => bail!("{origin}: [curving]: {e}"),
+        Ok(()) => {}
+    }
     ensure!(
-        b.refine_angle_deg.is_finite() && b.refine_angle_deg > 90.0 && b.refine_angle_deg < 180.0,
-        "{origin}: [boundary] refine_angle_deg = {}: must lie between 90 and 180 (typical 165)",
-        b.refine_angle_deg
-    );
-    ensure!(
-        positive(b.max_spacing),
-        "{origin}: [boundary] max_spacing = {}: must be positive",
-        b.max_spacing
-    );
-    ensure!(
-        positive(l.first_height),
-        "{origin}: [layers] first_height = {}: must be positive",
-        l.first_height
-    );
-    ensure!(
-        growth(l.growth),
-        "{origin}: [layers] growth = {}: must be greater than 1",
-        l.growth
-    );
-    ensure!(
-        l.max_layers >= 1,
-        "{origin}: [layers] max_layers = 0: must be at least 1"
-    );
-    let c = &file.curving;
-    ensure!(
-        (1..=3).contains(&c.order),
-        "{origin}: [curving] order = {}: must be 1, 2 or 3",
-        c.order
-    );
-    ensure!(
-        c.stop_scaled_jacobian > 0.0 && c.stop_scaled_jacobian <= 1.0,
-        "{origin}: [curving] stop_scaled_jacobian = {}: must lie in (0, 1]",
-        c.stop_scaled_jacobian
-    );
-    ensure!(
-        c.min_curved_layers <= l.max_layers,
+        curving.min_curved_layers <= layers.max_layers,
         "{origin}: [curving] min_curved_layers = {}: must be at most [layers] max_layers = {}",
-        c.min_curved_layers,
-        l.max_layers
+        curving.min_curved_layers,
+        layers.max_layers
     );
     Ok(())
 }
@@ -481,11 +511,7 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
             .collect::<Result<Vec<_>>>()?;
         (pts, format!("{what} points"), None)
     } else if let Some(c) = &spec.circle {
-        ensure!(
-            c.radius.is_finite() && c.radius > 0.0,
-            "{what}: circle radius = {}: must be positive",
-            c.radius
-        );
+        // the radius's range is geom-curve's (`circle_points`), named in its error
         ensure!(
             (8..=MAX_GENERATED_POINTS).contains(&c.points),
             "{what}: circle points = {}: give 8 to {MAX_GENERATED_POINTS}",

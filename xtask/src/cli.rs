@@ -46,7 +46,8 @@ pub struct MeshArgs {
     pub list: bool,
 
     /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
-    #[arg(long, value_name = "P", value_parser = clap::value_parser!(u8).range(1..=3))]
+    #[arg(long, value_name = "P",
+          value_parser = clap::value_parser!(u8).range(1..=i64::from(crate::case::MAX_ORDER)))]
     pub order: Option<u8>,
 
     /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK

@@ -77,7 +77,7 @@ pub fn cells(case: &Case, nodes: &[BoundaryNodes]) -> u64 {
     for (input, bn) in case.loops.iter().zip(nodes) {
         let n = bn.points.len() as f64;
         cells += FILL_PER_NODE * n;
-        cells += if input.role == Role::Wall && case.inside {
+        cells += if input.role == Role::Wall && case.layers.inside {
             // the front shrinks toward the medial axis: half the columns survive on average
             0.5 * layers * n
         } else if input.role == Role::Wall {
@@ -92,7 +92,7 @@ pub fn cells(case: &Case, nodes: &[BoundaryNodes]) -> u64 {
 /// The distance layers may grow over: the diagonal of the bounding box of every loop; for
 /// `inside = true`, twice the loop's area over its length (a circle's radius).
 fn room(case: &Case) -> f64 {
-    if case.inside {
+    if case.layers.inside {
         let p = &case.loops[0].points;
         let n = p.len();
         let (mut area2, mut length) = (0.0, 0.0);

@@ -17,7 +17,7 @@
 mod airfoil;
 mod bench_cmd;
 pub mod builtin;
-mod case;
+pub mod case;
 pub mod cli;
 pub mod entry;
 mod estimate;
@@ -26,7 +26,7 @@ pub mod figures_cmd;
 mod mesh_cmd;
 pub mod outputs;
 mod pictures;
-mod pipeline;
+pub mod pipeline;
 mod progress;
 mod quality_cmd;
 mod report;

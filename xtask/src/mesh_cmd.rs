@@ -37,7 +37,7 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     }
     let total = Instant::now();
     let case = load(args)?;
-    let order = args.order.unwrap_or(case.curving.order);
+    let order = args.order.unwrap_or(case.order);
     let mut plan = plan(args, &case)?;
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
@@ -210,9 +210,7 @@ fn make(
     let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
         case: case.name.clone(),
         boundary: nodes.clone(),
-        mesh: grown.mesh.clone(),
-        node_parent: grown.node_parent.clone(),
-        node_layer: grown.node_layer.clone(),
+        layered: grown.layered.clone(),
     });
     let mesh = if order > 1 {
         let t = Instant::now();
@@ -229,12 +227,12 @@ fn make(
         // a linear mesh has no curved edge
         report.curved_edge_fraction = Some(0.0);
         if args.triangles {
-            afsf2d::cut_quads_shorter_diagonal(&grown.mesh)
+            afsf2d::cut_quads_shorter_diagonal(&grown.layered.mesh)
         } else {
-            grown.mesh.clone()
+            grown.layered.mesh.clone()
         }
     };
-    Ok((mesh, snapshot, grown.mesh))
+    Ok((mesh, snapshot, grown.layered.mesh))
 }
 
 /// The mesh files and the report to write, by flags or by default (under `out/`, named after

@@ -1,10 +1,12 @@
 //! The stages of the pipeline as plain functions, shared by `mesh` and `bench`: checked loops
 //! → curves → boundary nodes → the layered linear mesh. No file is touched here.
 
+use afsf2d::AfsfParams;
 use anyhow::{Result, bail};
 use boundary1d::{BoundaryNodes, SpacingParams};
 use geom_curve::{ClosedCurve, CurveParams, Point2, loops};
 use mesh_model::Role;
+use vector_adding::CurvingParams;
 
 use crate::case::Case;
 
@@ -82,21 +84,24 @@ fn check_nesting(case: &Case, polygons: &[Vec<Point2<f64>>]) -> Result<()> {
 
 /// The spacing parameters of a case.
 pub fn spacing_params(case: &Case) -> SpacingParams {
+    spacing_of(&case.boundary, &case.layers)
+}
+
+/// The spacing of the boundary nodes given by `[boundary]` with what `[layers]` sets: the
+/// spacing at sharp corners is the first layer's height, and a segment's bulge is at most
+/// half the height of a full stack of layers (so that the curving can carry it up).
+pub fn spacing_of(boundary: &SpacingParams, layers: &AfsfParams) -> SpacingParams {
     SpacingParams {
-        growth: case.boundary.growth,
-        refine_angle_deg: case.boundary.refine_angle_deg,
-        max_spacing: case.boundary.max_spacing,
-        first_height: case.layers.first_height,
-        medial_axis: case.boundary.medial_axis,
-        max_bulge: 0.5 * stack_height(case),
-        ..SpacingParams::default()
+        first_height: layers.first_height,
+        max_bulge: 0.5 * stack_height(layers),
+        ..*boundary
     }
 }
 
 /// The height of a full stack of layers: `h₁·(Gⁿ − 1)/(G − 1)`.
-fn stack_height(case: &Case) -> f64 {
-    let (h, g) = (case.layers.first_height, case.layers.growth);
-    let n = f64::from(case.layers.max_layers);
+fn stack_height(layers: &AfsfParams) -> f64 {
+    let (h, g) = (layers.first_height, layers.growth);
+    let n = f64::from(layers.max_layers);
     if g > 1.0 {
         h * (g.powf(n) - 1.0) / (g - 1.0)
     } else {
@@ -116,20 +121,13 @@ pub fn boundary_nodes(case: &Case, curves: &[ClosedCurve]) -> Result<Vec<Boundar
 }
 
 /// The mesher's parameters for a case.
-pub fn afsf_params(case: &Case) -> afsf2d::AfsfParams {
-    afsf2d::AfsfParams {
-        first_height: case.layers.first_height,
-        growth: case.layers.growth,
-        max_layers: case.layers.max_layers,
-        inside: case.inside,
-        ..afsf2d::AfsfParams::default()
-    }
+pub fn afsf_params(case: &Case) -> AfsfParams {
+    case.layers
 }
 
-/// The layered linear mesh grown from the boundary nodes of every loop.
-pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfOutput> {
-    let loops: Vec<afsf2d::FrontLoop> = case
-        .loops
+/// The mesher's loops: the boundary nodes of every loop, with its role and boundary group.
+pub fn front_loops(case: &Case, nodes: &[BoundaryNodes]) -> Vec<afsf2d::FrontLoop> {
+    case.loops
         .iter()
         .zip(nodes)
         .map(|(input, bn)| afsf2d::FrontLoop {
@@ -139,19 +137,26 @@ pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfO
             // the patch name is the loop's boundary group in the mesh files
             name: input.group.clone(),
         })
-        .collect();
-    afsf2d::grow_mesh(&loops, &afsf_params(case)).map_err(|e| anyhow::anyhow!("linear mesh: {e}"))
+        .collect()
+}
+
+/// The layered linear mesh grown from the boundary nodes of every loop.
+pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfOutput> {
+    afsf2d::grow_mesh(&front_loops(case, nodes), &afsf_params(case))
+        .map_err(|e| anyhow::anyhow!("linear mesh: {e}"))
 }
 
 /// The curving parameters of a case at an order.
-pub fn curving_params(case: &Case, order: u8, triangles: bool) -> vector_adding::CurvingParams {
-    vector_adding::CurvingParams {
+pub fn curving_params(case: &Case, order: u8, triangles: bool) -> CurvingParams {
+    curving_of(&case.curving, order, triangles)
+}
+
+/// `[curving]` at an order, quads cut or not.
+pub fn curving_of(curving: &CurvingParams, order: u8, triangles: bool) -> CurvingParams {
+    CurvingParams {
         order,
-        min_curved_layers: case.curving.min_curved_layers,
-        stop_min_scaled_jacobian: case.curving.stop_scaled_jacobian,
-        strategy: case.curving.strategy,
         triangles,
-        ..vector_adding::CurvingParams::default()
+        ..*curving
     }
 }
 
@@ -165,16 +170,22 @@ pub fn curved_mesh(
     order: u8,
     triangles: bool,
 ) -> Result<vector_adding::Curved> {
-    let loops: Vec<vector_adding::LoopCurve<'_>> = curves
+    vector_adding::curve_mesh(
+        &grown.layered,
+        &loop_curves(curves, nodes),
+        &curving_params(case, order, triangles),
+    )
+    .map_err(|e| anyhow::anyhow!("curving: {e}"))
+}
+
+/// Where the boundary nodes of every loop sit on its curve, for the curving.
+pub fn loop_curves<'a>(
+    curves: &'a [ClosedCurve],
+    nodes: &'a [BoundaryNodes],
+) -> Vec<vector_adding::LoopCurve<'a>> {
+    curves
         .iter()
         .zip(nodes)
         .map(|(curve, bn)| vector_adding::LoopCurve { curve, t: &bn.t })
-        .collect();
-    let layered = vector_adding::LayeredMesh {
-        mesh: &grown.mesh,
-        node_layer: &grown.node_layer,
-        layered_cells: grown.layered_cells,
-    };
-    vector_adding::curve_mesh(&layered, &loops, &curving_params(case, order, triangles))
-        .map_err(|e| anyhow::anyhow!("curving: {e}"))
+        .collect()
 }

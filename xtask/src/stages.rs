@@ -3,7 +3,7 @@
 //! The encoding is `mesh_io::snapshot`'s (the one place that knows it).
 
 use boundary1d::BoundaryNodes;
-use mesh_model::Mesh;
+use mesh_model::LayeredMesh;
 use serde::{Deserialize, Serialize};
 
 /// The stages of one run of `cargo xtask mesh`.
@@ -13,11 +13,6 @@ pub struct Snapshot {
     pub case: String,
     /// The 1D boundary mesh of every loop, in the case's loop order (curves counter-clockwise).
     pub boundary: Vec<BoundaryNodes>,
-    /// The layered linear mesh, with `cell_layer` and `cell_pipe`.
-    pub mesh: Mesh,
-    /// For every node, the node it was extruded from (`mesh_model::NONE` for boundary nodes
-    /// and the nodes the hole filling added).
-    pub node_parent: Vec<u32>,
-    /// For every node, its layer (0 on the boundary, `NONE` for filling nodes).
-    pub node_layer: Vec<u32>,
+    /// The layered linear mesh with its layers (node layers and parents, pipe columns).
+    pub layered: LayeredMesh,
 }

@@ -19,7 +19,7 @@ fn naca0012_30k(c: &mut Criterion) {
         ..afsf2d::AfsfParams::default()
     };
     let out = afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes");
-    let q = afsf2d::max_angle_histogram(&out.mesh);
+    let q = afsf2d::max_angle_histogram(&out.layered.mesh);
     eprintln!("{}", common::summary("naca0012 bench case", &out, &q));
     c.bench_function("naca0012_30k_triangles", |b| {
         b.iter(|| afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes"))

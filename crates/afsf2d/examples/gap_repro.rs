@@ -32,21 +32,19 @@ fn main() {
         (
             "squares gap 1e-7",
             gaps::two_bodies(
-                gaps::square([0.0, 0.0], 1.0),
-                gaps::square([1.0 + 1e-7, 0.0], 1.0),
+                testkit::shapes::square([0.0, 0.0], 1.0),
+                testkit::shapes::square([1.0 + 1e-7, 0.0], 1.0),
                 5e-5,
                 1.3,
             ),
         ),
     ];
     for (name, dom) in cases {
-        let case = dom.case();
-        let loops = case.front_loops(dom.first_height);
-        let params = case.params(dom.first_height, dom.growth);
+        let (loops, params) = test_cases::mesher_input(&dom.case());
         match grow_mesh(&loops, &params) {
             Err(e) => println!("{name}: ERROR {e}"),
             Ok(out) => {
-                let q = max_angle_histogram(&out.mesh);
+                let q = max_angle_histogram(&out.layered.mesh);
                 println!(
                     "{name}: max {:.2} hist {:?} tris {} fill {} peeled {}",
                     q.max_angle_deg,
@@ -55,7 +53,7 @@ fn main() {
                     out.stats.fill_triangles,
                     out.stats.peeled_cells
                 );
-                let m = &out.mesh;
+                let m = &out.layered.mesh;
                 let mut rows: Vec<(f64, usize)> = (0..m.cells.len())
                     .map(|i| (mesh_model::measure::cell_max_angle_deg(m, i), i))
                     .collect();
@@ -69,13 +67,13 @@ fn main() {
                                 "({:.7},{:.7})L{}",
                                 m.xy(g)[0],
                                 m.xy(g)[1],
-                                out.node_layer[g as usize] as i64
+                                out.layered.layering.node_layer[g as usize] as i64
                             )
                         })
                         .collect();
                     println!(
                         "   {a:.2} {} {}",
-                        if ci >= out.layered_cells {
+                        if ci >= out.layered.layering.layered_cells {
                             "fill"
                         } else {
                             "layer"

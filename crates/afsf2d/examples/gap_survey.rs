@@ -23,17 +23,17 @@ struct Worst {
 }
 
 fn loop_of(out: &AfsfOutput, loop_start: &[usize], mut g: u32) -> Option<usize> {
-    while out.node_parent[g as usize] != NONE {
-        g = out.node_parent[g as usize];
+    while out.layered.layering.node_parents[g as usize][0] != NONE {
+        g = out.layered.layering.node_parents[g as usize][0];
     }
-    if out.node_layer[g as usize] == NONE {
+    if out.layered.layering.node_layer[g as usize] == NONE {
         return None;
     }
     Some(loop_start.partition_point(|&s| s <= g as usize) - 1)
 }
 
 fn worst_cells(out: &AfsfOutput, loop_start: &[usize], gaps: &[gaps::Gap], k: usize) -> Vec<Worst> {
-    let m = &out.mesh;
+    let m = &out.layered.mesh;
     let mut rows: Vec<(f64, usize)> = (0..m.cells.len())
         .map(|i| (measure::cell_max_angle_deg(m, i), i))
         .collect();
@@ -43,9 +43,9 @@ fn worst_cells(out: &AfsfOutput, loop_start: &[usize], gaps: &[gaps::Gap], k: us
         .map(|(angle, ci)| {
             let c = m.cells.get(ci);
             let nodes = c.corners();
-            let fill = ci >= out.layered_cells;
+            let fill = ci >= out.layered.layering.layered_cells;
             let kind = if fill {
-                if nodes.iter().any(|&g| out.node_layer[g as usize] == NONE) {
+                if nodes.iter().any(|&g| out.layered.layering.node_layer[g as usize] == NONE) {
                     "fill+steiner"
                 } else {
                     "fill"
@@ -65,7 +65,7 @@ fn worst_cells(out: &AfsfOutput, loop_start: &[usize], gaps: &[gaps::Gap], k: us
             fronts.dedup();
             let layers: Vec<String> = nodes
                 .iter()
-                .map(|&g| match out.node_layer[g as usize] {
+                .map(|&g| match out.layered.layering.node_layer[g as usize] {
                     NONE => "F".to_string(),
                     l => l.to_string(),
                 })
@@ -127,15 +127,15 @@ fn main() {
             continue;
         };
         let case = dom.case();
-        let loops = match std::panic::catch_unwind(|| case.front_loops(dom.first_height)) {
-            Ok(l) => l,
+        let (loops, mut params) = match std::panic::catch_unwind(|| test_cases::mesher_input(&case))
+        {
+            Ok(input) => input,
             Err(_) => {
                 println!("skip: boundary mesh failed ({})", dom.label);
                 continue;
             }
         };
         done += 1;
-        let mut params = case.params(dom.first_height, dom.growth);
         // `REFUSE=1` keeps the default refusal of unresolved gaps; else they are meshed and
         // the gap check's verdict is printed next to the angle it predicted
         params.refuse_narrow_gaps = std::env::var("REFUSE").is_ok();
@@ -158,7 +158,7 @@ fn main() {
             }
         };
         let dt = t.elapsed().as_secs_f64();
-        let q = max_angle_histogram(&out.mesh);
+        let q = max_angle_histogram(&out.layered.mesh);
         let mut loop_start = vec![0usize];
         for l in &loops {
             loop_start.push(loop_start.last().unwrap() + l.points.len());
@@ -187,7 +187,7 @@ fn main() {
         );
         if let Some(hw) = draw_here(done) {
             let png = mesh_draw::render_png(
-                &out.mesh,
+                &out.layered.mesh,
                 &mesh_draw::DrawParams {
                     view: Some(mesh_draw::view_around(ws[0].at, hw)),
                     colour: mesh_draw::ColourBy::MaxAngle,

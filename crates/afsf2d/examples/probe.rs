@@ -17,13 +17,12 @@ fn main() {
     let h: f64 = args
         .get(3)
         .map(|s| s.parse().unwrap())
-        .unwrap_or(case.first_height);
-    let loops = case.front_loops(h);
-    let params = case.params(h, growth);
+        .unwrap_or(case.layers.first_height);
+    let (loops, params) = real::mesher_input(&real::with_layers(&case, h, growth));
     let t = std::time::Instant::now();
     let out = grow_mesh(&loops, &params).unwrap();
     let dt = t.elapsed().as_secs_f64();
-    let q = max_angle_histogram(&out.mesh);
+    let q = max_angle_histogram(&out.layered.mesh);
     let s = &out.stats;
     println!(
         "{name} G{growth} h{h:e}: tris {} max {:.1} hist {:?} time {dt:.3}s (solve {:.3} plan {:.3} build {:.3} verify {:.3} fill {:.3}) iters {} layers {} fill {}",
@@ -39,10 +38,10 @@ fn main() {
         s.layers,
         s.fill_triangles
     );
-    let m = &out.mesh;
+    let m = &out.layered.mesh;
     let n_layer_cells = m.cells.len() - s.fill_triangles;
     let nb = m.boundary.len();
-    let lay = |g: u32| out.node_layer[g as usize];
+    let lay = |g: u32| out.layered.layering.node_layer[g as usize];
     let threshold: f64 = std::env::var("PROBE_MIN")
         .ok()
         .and_then(|v| v.parse().ok())

@@ -14,7 +14,7 @@ use afsf2d::{grow_mesh, max_angle_histogram};
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let names: Vec<&str> = if args.is_empty() {
-        real::REAL_CASES.to_vec()
+        real::real_cases()
     } else {
         args.iter().map(String::as_str).collect()
     };
@@ -26,9 +26,9 @@ fn main() {
     let mut total_median = 0.0;
     for name in names {
         let case = real::real_case(name);
-        let loops = case.front_loops(case.first_height);
         for growth in [1.3, 1.4, 1.5] {
-            let mut params = case.params(case.first_height, growth);
+            let h = case.layers.first_height;
+            let (loops, mut params) = real::mesher_input(&real::with_layers(&case, h, growth));
             let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());
             if let Some(v) = env("RELAX") {
                 params.solver.relaxation = v;
@@ -48,7 +48,7 @@ fn main() {
             let median = times[reps / 2];
             total_median += median;
             let out = last.expect("at least one run");
-            let q = max_angle_histogram(&out.mesh);
+            let q = max_angle_histogram(&out.layered.mesh);
             let s = &out.stats;
             let unconverged = s.layer_stats.iter().filter(|l| !l.converged).count();
             println!(

@@ -45,9 +45,10 @@ impl FrontLoop {
 pub struct AfsfParams {
     /// l_extru: height of the first layer on walls (length). Default 5e-5.
     pub first_height: f64,
-    /// G_ratio: growth of the layer height from one layer to the next on walls. Default 1.3.
+    /// G_ratio: growth of the layer height from one layer to the next on walls, > 1.
+    /// Default 1.3.
     pub growth: f64,
-    /// Largest number of layers grown; the region left is filled. Default 60.
+    /// Largest number of layers grown, at least 1; the region left is filled. Default 60.
     pub max_layers: u32,
     /// Coe_shrink: a new neighbour edge shorter than this fraction of its extrusion edges
     /// breaks and its two nodes merge (quad → triangle). Default 0.65.
@@ -156,7 +157,7 @@ impl AfsfParams {
                 self.first_height > 0.0,
                 "> 0",
             ),
-            ("growth", self.growth, self.growth >= 1.0, ">= 1"),
+            ("growth", self.growth, self.growth > 1.0, "> 1"),
             (
                 "coe_shrink",
                 self.coe_shrink,
@@ -196,6 +197,13 @@ impl AfsfParams {
                     expected,
                 });
             }
+        }
+        if self.max_layers == 0 {
+            return Err(AfsfError::BadParameter {
+                name: "max_layers",
+                value: 0.0,
+                expected: ">= 1",
+            });
         }
         if self.moving_layers == 0 {
             return Err(AfsfError::BadParameter {
@@ -406,6 +414,28 @@ mod tests {
             check_loops(&[rep, far], &p).unwrap_err(),
             AfsfError::RepeatedPoint { .. }
         ));
+    }
+
+    #[test]
+    fn layer_growth_and_count_have_one_range() {
+        // the case file refused growth 1 and no layers while this check let them through:
+        // now this check is the one rule, and the case file uses it
+        let named = |p: AfsfParams| match p.check() {
+            Err(AfsfError::BadParameter { name, .. }) => name,
+            other => panic!("{other:?}"),
+        };
+        let d = AfsfParams::default();
+        assert_eq!(named(AfsfParams { growth: 1.0, ..d }), "growth");
+        assert_eq!(named(AfsfParams { max_layers: 0, ..d }), "max_layers");
+        assert!(
+            AfsfParams {
+                growth: 1.01,
+                max_layers: 1,
+                ..d
+            }
+            .check()
+            .is_ok()
+        );
     }
 
     #[test]

@@ -2,9 +2,10 @@
 //! triangles, grown layer by layer from every boundary loop until the fronts close.
 //!
 //! Entry point: [`grow_mesh`] takes closed loops of boundary nodes ([`FrontLoop`]) and
-//! [`AfsfParams`], and returns an [`AfsfOutput`]: a linear [`mesh_model::Mesh`] whose boundary
-//! facets are the input loop edges and whose cells carry their layer and pipe, the parent and
-//! layer of every node, and run statistics. [`cut_quads_shorter_diagonal`] and
+//! [`AfsfParams`], and returns an [`AfsfOutput`]: a [`mesh_model::LayeredMesh`] — the linear
+//! mesh whose boundary facets are the input loop edges and whose cells carry their layer and
+//! pipe, with its [`mesh_model::Layering`] (the parents and layer of every node, the pipe
+//! columns) — and run statistics. [`cut_quads_shorter_diagonal`] and
 //! [`max_angle_histogram`] give triangles and the dissertation's quality figure.
 //!
 //! It owns the layer growth (`grow`), the closing of the fronts, and the filling of the region
@@ -36,7 +37,8 @@
 //!     ..AfsfParams::default()
 //! };
 //! let out = grow_mesh(&loops, &params)?;
-//! let mesh = &out.mesh;
+//! let mesh = &out.layered.mesh;
+//! assert_eq!(out.layered.layering.check(mesh), None); // parents one layer below, columns rising
 //!
 //! assert!(mesh_model::validate(mesh).is_empty()); // conforming, every cell counter-clockwise
 //! assert!(mesh.count(Shape::Quad) > 0 && out.stats.layers >= 5);
@@ -61,7 +63,7 @@ mod nodes;
 mod quality;
 mod sanity;
 
-use mesh_model::{CellType, Dim, Mesh, NONE, Patch, Role, Shape};
+use mesh_model::{CellType, Dim, LayeredMesh, Layering, Mesh, NONE, Patch, Role, Shape};
 
 pub use error::AfsfError;
 pub use gaps::NarrowGap;
@@ -102,25 +104,14 @@ pub struct AfsfStats {
 /// The mesher's result.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AfsfOutput {
-    /// The linear mesh (quads and triangles). Boundary nodes come first, loop after loop in
-    /// input order and at their input coordinates; facet `k` of a loop joins its points `k`
-    /// and `k + 1`, oriented with the domain on the left; one patch per loop.
-    pub mesh: Mesh,
-    /// For every node, the node it was extruded from, or [`NONE`] for boundary nodes and the
-    /// nodes the hole filling added. A node made by merging two children keeps the first
-    /// parent.
-    pub node_parent: Vec<u32>,
-    /// For every node, both its parents: `node_parents[i][0]` is `node_parent[i]`;
-    /// `node_parents[i][1]` is the parent of the second child merged into node `i` when it
-    /// differs from the first, else [`NONE`].
-    pub node_parents: Vec<[u32; 2]>,
-    /// For every node, its layer (0 on the boundary), or [`NONE`] for the nodes the hole
-    /// filling added (they have no parent either).
-    pub node_layer: Vec<u32>,
+    /// The linear mesh (quads and triangles) and its layers. Boundary nodes come first, loop
+    /// after loop in input order and at their input coordinates; facet `k` of a loop joins
+    /// its points `k` and `k + 1`, oriented with the domain on the left; one patch per loop.
     /// Cells `0..layered_cells` are layered cells (quadrilaterals and the triangles of fans
     /// and merges, each above its bottom edge in a pipe); the rest are the filled region's
-    /// triangles, whose `cell_layer` and `cell_pipe` are borrowed from a neighbour.
-    pub layered_cells: usize,
+    /// triangles, whose `cell_layer` and `cell_pipe` are borrowed from a neighbour. Fill nodes
+    /// have no layer and no parent.
+    pub layered: LayeredMesh,
     /// Run figures.
     pub stats: AfsfStats,
 }
@@ -185,12 +176,9 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
             ..work.timings
         },
     };
+    let layering = Layering::new(&mesh, node_layer, node_parents, layered_cells);
     Ok(AfsfOutput {
-        mesh,
-        node_parent: node_parents.iter().map(|p| p[0]).collect(),
-        node_parents,
-        node_layer,
-        layered_cells,
+        layered: LayeredMesh { mesh, layering },
         stats,
     })
 }

@@ -11,9 +11,7 @@ use common::{check_mesh, summary};
 use proptest::prelude::*;
 
 fn mesh(dom: &Domain) -> Result<(afsf2d::AfsfOutput, afsf2d::AngleStats), AfsfError> {
-    let case = dom.case();
-    let loops = case.front_loops(dom.first_height);
-    let params = case.params(dom.first_height, dom.growth);
+    let (loops, params) = test_cases::mesher_input(&dom.case());
     let out = grow_mesh(&loops, &params)?;
     let q = check_mesh(&loops, &params, &out);
     eprintln!("{}", summary(&dom.label, &out, &q));
@@ -52,8 +50,8 @@ fn circles_0_01_apart_meet_in_usable_cells() {
 #[test]
 fn unit_squares_1e_7_apart_meet_in_usable_cells_without_layers_in_the_gap() {
     let dom = gaps::two_bodies(
-        gaps::square([0.0, 0.0], 1.0),
-        gaps::square([1.0 + 1e-7, 0.0], 1.0),
+        testkit::shapes::square([0.0, 0.0], 1.0),
+        testkit::shapes::square([1.0 + 1e-7, 0.0], 1.0),
         5e-5,
         1.3,
     );
@@ -73,10 +71,9 @@ proptest! {
             return Ok(());
         };
         let case = dom.case();
-        let Ok(loops) = std::panic::catch_unwind(|| case.front_loops(dom.first_height)) else {
+        let Ok((loops, params)) = std::panic::catch_unwind(|| test_cases::mesher_input(&case)) else {
             return Ok(());
         };
-        let params = case.params(dom.first_height, dom.growth);
         match grow_mesh(&loops, &params) {
             Ok(out) => {
                 let q = check_mesh(&loops, &params, &out);

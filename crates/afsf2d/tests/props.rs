@@ -84,8 +84,9 @@ proptest! {
         let loops = domain(&bodies);
         let params = AfsfParams { first_height, growth, max_layers: 20, ..AfsfParams::default() };
         let out = grow_mesh(&loops, &params).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let m = &out.mesh;
-        prop_assert!(out.stats.layers >= 3 && out.layered_cells > 0, "{:?}", out.stats);
+        let (m, layering) = (&out.layered.mesh, &out.layered.layering);
+        prop_assert!(out.stats.layers >= 3 && layering.layered_cells > 0, "{:?}", out.stats);
+        prop_assert_eq!(layering.check(m), None);
         let problems = validate(m);
         prop_assert!(problems.is_empty(), "{} problems, first: {}", problems.len(), problems[0]);
         let area = common::domain_area(&loops);
@@ -97,14 +98,13 @@ proptest! {
                 k += 1;
             }
         }
-        prop_assert_eq!(out.node_parents.len(), m.nodes.len());
-        for (i, (&p, pp)) in out.node_parent.iter().zip(&out.node_parents).enumerate() {
-            prop_assert_eq!(p, pp[0]);
+        prop_assert_eq!(layering.node_parents.len(), m.nodes.len());
+        for (i, pp) in layering.node_parents.iter().enumerate() {
             prop_assert!(pp[1] == NONE || (pp[1] != pp[0] && (pp[1] as usize) < m.nodes.len()), "node {}: {:?}", i, pp);
         }
         // every layered cell lies on the domain side of its pipe's facet
         let facets: Vec<[u32; 2]> = m.boundary.iter().map(|f| [f.nodes[0], f.nodes[1]]).collect();
-        for (c, cell) in m.cells.iter().enumerate().take(out.layered_cells) {
+        for (c, cell) in m.cells.iter().enumerate().take(layering.layered_cells) {
             let [a, b] = facets[m.cell_pipe[c] as usize].map(|g| m.xy(g));
             let n = cell.nodes.len() as f64;
             let centroid = cell.nodes.iter().fold([0.0, 0.0], |s, &g| {

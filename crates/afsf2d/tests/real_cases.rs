@@ -8,19 +8,18 @@
 mod common;
 
 use afsf2d::grow_mesh;
-use common::real::{REAL_CASES, real_case};
+use common::real::{mesher_input, real_case, real_cases, with_layers};
 use common::{check_mesh, summary};
 
 fn case_at_three_growths(name: &str) {
     let case = real_case(name);
-    three_growths(name, case.first_height);
+    three_growths(name, case.layers.first_height);
 }
 
 fn three_growths(name: &str, first_height: f64) {
     let case = real_case(name);
-    let loops = case.front_loops(first_height);
     for growth in [1.3, 1.4, 1.5] {
-        let params = case.params(first_height, growth);
+        let (loops, params) = mesher_input(&with_layers(&case, first_height, growth));
         let out = grow_mesh(&loops, &params).unwrap_or_else(|e| panic!("{name} G{growth}: {e}"));
         let q = check_mesh(&loops, &params, &out);
         eprintln!("{}", summary(&format!("{name} G{growth}"), &out, &q));
@@ -36,7 +35,7 @@ fn three_growths(name: &str, first_height: f64) {
 
 #[test]
 fn every_builtin_case_is_listed() {
-    assert_eq!(REAL_CASES.len(), 5);
+    assert_eq!(real_cases().len(), 5);
 }
 
 #[test]

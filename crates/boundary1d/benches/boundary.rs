@@ -7,15 +7,10 @@
 
 use boundary1d::{NodePlacement, SpacingParams, mesh_loops};
 use criterion::{Criterion, criterion_group, criterion_main};
-use geom_curve::{ClosedCurve, CurveParams, Point2, selig};
+use geom_curve::{ClosedCurve, CurveParams};
 use std::hint::black_box;
 
-fn load(name: &str) -> Vec<Point2<f64>> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/geometry")
-        .join(name);
-    selig::parse(&std::fs::read_to_string(path).expect("fixture")).expect("valid fixture")
-}
+use testkit::fixtures::selig as load;
 
 fn thirty_p_thirty_n(c: &mut Criterion) {
     let loops: Vec<_> = ["30p30n/slat.dat", "30p30n/main.dat", "30p30n/flap.dat"]

@@ -7,10 +7,11 @@ mod common;
 use boundary1d::{
     Boundary1dError, NodePlacement, SpacingParams, mesh_loop, mesh_loops, spacing_limits,
 };
-use common::{check_mesh, wavy_loop};
+use common::check_mesh;
 use geom_curve::{ClosedCurve, CurveParams, Point2, circle_points, naca};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
+use testkit::shapes::{wavy, wavy_loop};
 
 fn params_strategy() -> impl Strategy<Value = SpacingParams> {
     (
@@ -54,12 +55,8 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
     #[test]
-    fn smooth_loops(
-        n in 16usize..200, amplitude in 0.0..0.3f64, lobes in 1u32..4, phase in 0.0..TAU,
-        radius in 0.1..3.0f64, params in params_strategy(),
-    ) {
-        prop_assume!(n >= 12 * lobes as usize);
-        let points = wavy_loop(n, Point2::origin(), radius, amplitude, lobes, phase);
+    fn smooth_loops(w in wavy(16..200), radius in 0.1..3.0f64, params in params_strategy()) {
+        let points = w.points(Point2::origin(), radius);
         let curve = ClosedCurve::new(&points, &CurveParams::default()).unwrap();
         assert_valid(&[curve], &params)?;
     }

@@ -11,15 +11,10 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use geom_curve::loops::{check_loops_disjoint, validate_loop};
-use geom_curve::{ClosedCurve, CurveParams, LoopCheckParams, Point2, circle_points, selig};
+use geom_curve::{ClosedCurve, CurveParams, LoopCheckParams, Point2, circle_points};
 use std::hint::black_box;
 
-fn load(name: &str) -> Vec<Point2<f64>> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/geometry")
-        .join(name);
-    selig::parse(&std::fs::read_to_string(path).expect("fixture")).expect("valid fixture")
-}
+use testkit::fixtures::selig as load;
 
 fn curve(c: &mut Criterion) {
     let main = load("30p30n/main.dat");

@@ -3,13 +3,11 @@
 //! stencil's truncation error, corners as C0 breaks, arc length and its inverse, closest
 //! point.
 
-mod common;
-
-use common::wavy_loop;
 use geom_curve::curvature::circumcircle_curvature;
 use geom_curve::{ClosedCurve, CurveError, CurveParams, Point2, circle_points};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
+use testkit::shapes::{wavy, wavy_loop};
 
 /// Checks C1 and C2 continuity (in the chord-length parameter) and G1/G2 at every smooth
 /// input point, and C0 at every point.
@@ -48,12 +46,8 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
-    fn smooth_loops_are_interpolated_and_c2(
-        n in 12usize..300, amplitude in 0.0..0.3f64, lobes in 1u32..4, phase in 0.0..TAU,
-        half_width in 1usize..4,
-    ) {
-        prop_assume!(n >= 12 * lobes as usize);
-        let points = wavy_loop(n, amplitude, lobes, phase);
+    fn smooth_loops_are_interpolated_and_c2(w in wavy(12..300), half_width in 1usize..4) {
+        let points = w.points(Point2::origin(), 1.0);
         let params = CurveParams { lagrange_half_width: half_width, ..CurveParams::default() };
         let curve = ClosedCurve::new(&points, &params).unwrap();
         prop_assert!(curve.corners().is_empty());
@@ -101,7 +95,7 @@ proptest! {
         n in 12usize..200, amplitude in 0.0..0.3f64, phase in 0.0..TAU,
         t in 0.0..1.0f64, scale in 1e-3..1e3f64,
     ) {
-        let points: Vec<_> = wavy_loop(n, amplitude, 2, phase)
+        let points: Vec<_> = wavy_loop(n, Point2::origin(), 1.0, amplitude, 2, phase)
             .iter().map(|p| Point2::from(p.coords * scale)).collect();
         let curve = ClosedCurve::new(&points, &CurveParams::default()).unwrap();
         let t = t * n as f64;
@@ -124,7 +118,7 @@ proptest! {
         n in 12usize..120, amplitude in 0.0..0.4f64, phase in 0.0..TAU,
         px in -4.0..4.0f64, py in -4.0..4.0f64,
     ) {
-        let points = wavy_loop(n, amplitude, 3, phase);
+        let points = wavy_loop(n, Point2::origin(), 1.0, amplitude, 3, phase);
         let curve = ClosedCurve::new(&points, &CurveParams::default()).unwrap();
         let p = Point2::new(px, py);
         let (t, q, distance) = curve.closest_point(p);

@@ -4,11 +4,12 @@
 
 mod common;
 
-use common::{AIRFOILS, load, turning_deg};
+use common::turning_deg;
 use geom_curve::loops::{
     check_loops_disjoint, is_counter_clockwise, loop_inside_loop, validate_loop,
 };
 use geom_curve::{ClosedCurve, CurveParams, LoopCheckParams, Point2, circle_points, naca};
+use testkit::fixtures::{AIRFOILS, selig as load};
 
 #[test]
 fn every_airfoil_is_a_valid_counter_clockwise_loop() {

@@ -1,6 +1,7 @@
 //! The shared mesh data model: node coordinates, mixed linear and high-order cells in Gmsh's
 //! node order, boundary facets grouped in patches with a role (wall, far field), and the
-//! per-cell layer index and "pipe" that the curving and movement stages need.
+//! per-cell layer index and "pipe" that the curving and movement stages need, with the rest of
+//! the layers (node layers and parents, pipe columns) in [`Layering`].
 //!
 //! It owns the types, the topology built once per mesh ([`topology`]: unique edges and faces
 //! with their cells), the checks ([`validate()`], [`first_problem`],
@@ -39,6 +40,7 @@
 
 pub mod cell;
 pub mod cells;
+pub mod layering;
 pub mod measure;
 pub mod mesh;
 pub mod poly;
@@ -50,6 +52,7 @@ pub use cell::{CellType, Shape};
 pub use cells::{CellRef, Cells};
 /// The signed area of a polygon (shoelace formula), shared with every crate.
 pub use geom_predicates::polygon_area;
+pub use layering::{LayeredMesh, Layering};
 pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon};
 pub use topology::Topology;
 pub use validate::{Problem, first_problem, first_structural_problem, is_positive_tet, validate};

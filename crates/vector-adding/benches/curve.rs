@@ -9,34 +9,22 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use jacobian_check::CertifyParams;
-use test_cases::{Grown, real_case};
-use vector_adding::{Curved, CurvingParams, LayeredMesh, LoopCurve};
+use test_cases::{Grown, grow, mesher_input, real_case};
+use vector_adding::{Curved, CurvingParams};
 
 fn curve(g: &Grown, order: u8) -> Curved {
-    let loops: Vec<LoopCurve<'_>> = g
-        .curves
-        .iter()
-        .zip(&g.nodes)
-        .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
-        .collect();
-    let layered = LayeredMesh {
-        mesh: &g.output.mesh,
-        node_layer: &g.output.node_layer,
-        layered_cells: g.output.layered_cells,
-    };
     let params = CurvingParams {
         order,
         ..CurvingParams::default()
     };
-    vector_adding::curve_mesh(&layered, &loops, &params).expect("the built-in cases curve")
+    g.curve(&params).expect("the built-in cases curve")
 }
 
 fn curving(c: &mut Criterion) {
     for name in ["naca0012", "30p30n"] {
         let case = real_case(name);
-        let g = case.grow();
-        let loops = case.front_loops_of(&g.nodes);
-        let afsf = case.afsf_params();
+        let g = grow(&case);
+        let (loops, afsf) = mesher_input(&case);
         for order in [2, 3] {
             let curved = curve(&g, order);
             let phases: Vec<String> = curved

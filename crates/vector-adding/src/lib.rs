@@ -31,7 +31,7 @@
 //! use boundary1d::SpacingParams;
 //! use geom_curve::{ClosedCurve, CurveParams, naca};
 //! use mesh_model::Role;
-//! use vector_adding::{CurvingParams, LayeredMesh, LoopCurve, curve_mesh};
+//! use vector_adding::{CurvingParams, LoopCurve, curve_mesh};
 //!
 //! let fit = |p: &[geom_curve::Point2<f64>]| ClosedCurve::new(p, &CurveParams::default());
 //! let curves = [
@@ -59,15 +59,10 @@
 //!     .zip(&nodes)
 //!     .map(|(curve, n)| LoopCurve { curve, t: &n.t })
 //!     .collect();
-//! let layered = LayeredMesh {
-//!     mesh: &linear.mesh,
-//!     node_layer: &linear.node_layer,
-//!     layered_cells: linear.layered_cells,
-//! };
-//! let p3 = curve_mesh(&layered, &on_curves, &CurvingParams { order: 3, ..Default::default() })?;
+//! let p3 = curve_mesh(&linear.layered, &on_curves, &CurvingParams { order: 3, ..Default::default() })?;
 //!
 //! assert_eq!(p3.mesh.order, 3);
-//! assert_eq!(p3.mesh.cells.len(), linear.mesh.cells.len()); // same cells, same linear nodes
+//! assert_eq!(p3.mesh.cells.len(), linear.layered.mesh.cells.len()); // same cells, same linear nodes
 //! assert!(p3.stats.curved_edges > 0 && p3.stats.curved_edge_fraction < 0.5);
 //! let validity = jacobian_check::check_mesh(&p3.mesh, &Default::default())?;
 //! assert!(validity.invalid_cells.is_empty() && validity.undecided.is_empty());
@@ -88,25 +83,11 @@ mod split;
 pub mod stats;
 
 use geom_curve::ClosedCurve;
-use mesh_model::{Dim, Mesh, Shape};
+use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
 
 pub use error::CurvingError;
 pub use params::{CurvingParams, Strategy};
 pub use stats::{CurvingStats, StopCounts};
-
-/// The layered linear mesh and what the marching needs to know of its layers.
-#[derive(Debug, Clone, Copy)]
-pub struct LayeredMesh<'a> {
-    /// The linear mesh: triangles and quadrilaterals, with `cell_layer` and `cell_pipe`, the
-    /// boundary nodes first, loop after loop in patch order.
-    pub mesh: &'a Mesh,
-    /// The layer of every node (0 on the boundary; `mesh_model::NONE` for nodes not grown
-    /// in layers).
-    pub node_layer: &'a [u32],
-    /// Cells `0..layered_cells` are layered cells; the rest (the filled region) are never
-    /// curved.
-    pub layered_cells: usize,
-}
 
 /// The curve of one boundary loop and the parameters of its nodes, as `boundary1d` placed
 /// them: node `k` of the loop is at `curve.point(t[k])`.
@@ -133,12 +114,12 @@ pub struct Curved {
 /// Bad parameters, a mesh that is not linear 2D or lacks layer data, boundary facets that do
 /// not match the curves, a cell the certified check cannot evaluate.
 pub fn curve_mesh(
-    input: &LayeredMesh<'_>,
+    input: &LayeredMesh,
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
 ) -> Result<Curved, CurvingError> {
     params.check()?;
-    let mesh = input.mesh;
+    let mesh = &input.mesh;
     check_input(input)?;
     let p = params.order as usize;
     let mut clock = Clock::default();
@@ -149,14 +130,18 @@ pub fn curve_mesh(
     boundary::place_on_curves(mesh, loops, &mut edges)?;
     let curved_boundary_edges = edges.curved.iter().filter(|&&c| c).count();
     clock.lap("boundary");
-    let roles = march::classify(mesh, input.node_layer, input.layered_cells);
+    let roles = march::classify(
+        mesh,
+        &input.layering.node_layer,
+        input.layering.layered_cells,
+    );
     let marched = march::march(
         mesh,
         &roles,
         &mut edges,
         &interiors,
         params,
-        input.layered_cells,
+        input.layering.layered_cells,
     )?;
     clock.lap("march");
     let repaired = repair::repair(
@@ -195,10 +180,10 @@ pub fn curve_mesh(
     Ok(Curved { mesh: out, stats })
 }
 
-/// The mesh is structurally sound (`mesh_model`'s checks), linear 2D, with layer data of the
-/// right lengths.
-fn check_input(input: &LayeredMesh<'_>) -> Result<(), CurvingError> {
-    let mesh = input.mesh;
+/// The mesh is structurally sound (`mesh_model`'s checks), linear 2D, with a layering that
+/// passes its checks.
+fn check_input(input: &LayeredMesh) -> Result<(), CurvingError> {
+    let mesh = &input.mesh;
     if let Some(problem) = mesh_model::first_structural_problem(mesh) {
         return Err(CurvingError::InvalidMesh(problem));
     }
@@ -217,29 +202,10 @@ fn check_input(input: &LayeredMesh<'_>) -> Result<(), CurvingError> {
     {
         return Err(CurvingError::NotLinear2d(format!("it has a {ty:?} cell")));
     }
-    if input.node_layer.len() != mesh.nodes.len() {
-        return Err(CurvingError::BadLayers(format!(
-            "{} node layers for {} nodes",
-            input.node_layer.len(),
-            mesh.nodes.len()
-        )));
+    match input.layering.check(mesh) {
+        Some(problem) => Err(CurvingError::BadLayers(problem)),
+        None => Ok(()),
     }
-    if mesh.cell_layer.len() != mesh.cells.len() || mesh.cell_pipe.len() != mesh.cells.len() {
-        return Err(CurvingError::BadLayers(format!(
-            "{} cell layers and {} cell pipes for {} cells",
-            mesh.cell_layer.len(),
-            mesh.cell_pipe.len(),
-            mesh.cells.len()
-        )));
-    }
-    if input.layered_cells > mesh.cells.len() {
-        return Err(CurvingError::BadLayers(format!(
-            "{} layered cells of {}",
-            input.layered_cells,
-            mesh.cells.len()
-        )));
-    }
-    Ok(())
 }
 
 /// Wall-clock seconds of each phase, in order.

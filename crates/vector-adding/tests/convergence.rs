@@ -14,9 +14,7 @@
 
 mod common;
 
-use afsf2d::{AfsfParams, grow_mesh};
-use boundary1d::SpacingParams;
-use common::{check_curved, curve, curve_area};
+use common::{check_curved, curve_area};
 use geom_curve::{ClosedCurve, CurveParams, Point2, circle_points};
 use mesh_model::Role;
 use vector_adding::CurvingParams;
@@ -24,58 +22,50 @@ use vector_adding::CurvingParams;
 /// Spacings of the boundary mesh, each half the one before.
 const SPACINGS: [f64; 4] = [0.4, 0.2, 0.1, 0.05];
 
-/// A circle's curve through 4096 points, counter-clockwise.
-fn circle(c: [f64; 2], r: f64) -> ClosedCurve {
+/// A circle through 4096 points.
+fn circle(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
     let pts = circle_points(Point2::new(c[0], c[1]), r, 4096).unwrap();
-    ClosedCurve::new(&pts, &CurveParams::default()).unwrap()
+    pts.iter().map(|p| [p.x, p.y]).collect()
 }
 
-/// A loop of the domain: its curve, its role, its spacing as a multiple of the wall's.
-type Loop = (ClosedCurve, Role, f64);
+/// A loop of the domain: its points, its role, its spacing as a multiple of the wall's.
+type Loop = (Vec<[f64; 2]>, Role, f64);
 
 /// The relative area errors at P1, P2 and P3 of the domain bounded by `loops` at boundary
 /// spacing `h`, and the number of boundary segments.
 fn area_errors(loops: &[Loop], inside: bool, h: f64) -> ([f64; 3], usize) {
-    let curves: Vec<ClosedCurve> = loops.iter().map(|l| l.0.clone()).collect();
-    // a small refinement angle, so that the spacing is set by `max_spacing` alone
-    let spacing = SpacingParams {
-        refine_angle_deg: 100.0,
-        max_spacing: caps_max(loops) * h,
-        first_height: 0.01,
-        ..SpacingParams::default()
-    };
-    let caps: Vec<f64> = loops.iter().map(|l| l.2 * h).collect();
-    let nodes = boundary1d::mesh_loops_with_caps(&curves, &spacing, &caps).unwrap();
-    let front: Vec<afsf2d::FrontLoop> = loops
+    let named = loops
         .iter()
-        .zip(&nodes)
-        .map(|((_, role, _), bn)| test_cases::front_loop(bn, *role, &format!("{role:?}")))
+        .map(|(points, role, _)| (format!("{role:?}"), *role, points.clone()))
         .collect();
-    let params = AfsfParams {
-        first_height: 0.01,
-        growth: 1.3,
-        max_layers: 20,
-        inside,
-        ..AfsfParams::default()
-    };
-    let out = grow_mesh(&front, &params).unwrap();
+    let mut case = test_cases::case_of("convergence", named, inside);
+    // a small refinement angle, so that the spacing is set by `max_spacing` alone
+    case.boundary.refine_angle_deg = 100.0;
+    case.boundary.max_spacing = caps_max(loops) * h;
+    for (input, l) in case.loops.iter_mut().zip(loops) {
+        input.max_spacing = Some(l.2 * h);
+    }
+    case.layers.max_layers = 20;
+    let g = test_cases::grow(&test_cases::with_layers(&case, 0.01, 1.3));
+    let (out, curves, nodes) = (&g.output, &g.curves, &g.nodes);
     // the exact area of the domain the curves bound: walls are holes unless meshed inside
     let exact: f64 = loops
         .iter()
-        .map(|(c, role, _)| match role {
+        .zip(curves)
+        .map(|((_, role, _), c)| match role {
             Role::Wall if !inside => -curve_area(c),
             _ => curve_area(c),
         })
         .sum();
     let mut errors = [0.0; 3];
-    errors[0] = (jacobian_check::integrate_area(&out.mesh).unwrap() - exact).abs() / exact;
+    errors[0] = (jacobian_check::integrate_area(&out.layered.mesh).unwrap() - exact).abs() / exact;
     for order in [2, 3] {
         let params = CurvingParams {
             order,
             ..CurvingParams::default()
         };
-        let curved = curve(&out, &curves, &nodes, &params).unwrap();
-        let c = check_curved(&format!("h {h} P{order}"), &curved, &curves, order);
+        let curved = g.curve(&params).unwrap();
+        let c = check_curved(&format!("h {h} P{order}"), &curved, curves, order);
         errors[order as usize - 1] = (c.area - exact).abs() / exact;
     }
     (errors, nodes.iter().map(|n| n.len()).sum())
@@ -147,8 +137,12 @@ fn annulus() {
 fn the_circles_are_round() {
     // the reference areas are the curves' own; they must be those of the circles too
     for r in [1.0, 3.0] {
-        let a = curve_area(&circle([0.0, 0.0], r));
+        let pts: Vec<Point2<f64>> = circle([0.0, 0.0], r)
+            .iter()
+            .map(|p| Point2::new(p[0], p[1]))
+            .collect();
+        let a = curve_area(&ClosedCurve::new(&pts, &CurveParams::default()).unwrap());
         let exact = std::f64::consts::PI * r * r;
-        assert!((a - exact).abs() <= 1e-12 * exact, "r {r}: {a} vs {exact}");
+        testkit::assert_near!(a, exact, 1e-12 * exact, "r {r}");
     }
 }

@@ -9,12 +9,11 @@ mod common;
 
 use std::sync::OnceLock;
 
-use afsf2d::{AfsfOutput, AfsfParams, grow_mesh};
-use boundary1d::{BoundaryNodes, SpacingParams};
-use common::{check_curved, curve, curved_layers_above_walls};
-use geom_curve::{ClosedCurve, CurveParams, Point2, circle_points, loops};
+use common::{check_curved, curved_layers_above_walls};
+use geom_curve::{Point2, circle_points};
 use mesh_model::Role;
 use proptest::prelude::*;
+use test_cases::Grown;
 use vector_adding::{CurvingError, CurvingParams, Strategy as VectorStrategy};
 
 /// A random domain: an ellipse, rotated and shifted, inside a far-field circle, or alone and
@@ -31,13 +30,6 @@ struct Domain {
     growth: f64,
 }
 
-/// A grown domain: its curves, boundary nodes and layered mesh.
-struct Grown {
-    curves: Vec<ClosedCurve>,
-    nodes: Vec<BoundaryNodes>,
-    out: AfsfOutput,
-}
-
 fn ellipse(d: &Domain) -> Vec<Point2<f64>> {
     let (s, c) = d.rotate_deg.to_radians().sin_cos();
     (0..256)
@@ -49,39 +41,18 @@ fn ellipse(d: &Domain) -> Vec<Point2<f64>> {
         .collect()
 }
 
+/// The domain grown by the tool's own stages (`test-cases`).
 fn grow(d: &Domain) -> Grown {
-    let mut polygons = vec![(ellipse(d), Role::Wall)];
+    let xy = |p: Vec<Point2<f64>>| p.iter().map(|q| [q.x, q.y]).collect::<Vec<_>>();
+    let mut loops = vec![("wall".to_string(), Role::Wall, xy(ellipse(d)))];
     if let Some(r) = d.farfield {
         let far = circle_points(Point2::new(0.0, 0.0), r, 256).unwrap();
-        polygons.push((far, Role::Farfield));
+        loops.push(("farfield".to_string(), Role::Farfield, xy(far)));
     }
-    let curves: Vec<ClosedCurve> = polygons
-        .iter_mut()
-        .map(|(p, _)| {
-            loops::make_counter_clockwise(p);
-            ClosedCurve::new(p, &CurveParams::default()).unwrap()
-        })
-        .collect();
-    let spacing = SpacingParams {
-        max_spacing: d.max_spacing,
-        first_height: d.first_height,
-        ..SpacingParams::default()
-    };
-    let nodes = boundary1d::mesh_loops(&curves, &spacing).unwrap();
-    let front: Vec<afsf2d::FrontLoop> = polygons
-        .iter()
-        .zip(&nodes)
-        .map(|((_, role), bn)| test_cases::front_loop(bn, *role, &format!("{role:?}")))
-        .collect();
-    let params = AfsfParams {
-        first_height: d.first_height,
-        growth: d.growth,
-        max_layers: 30,
-        inside: d.farfield.is_none(),
-        ..AfsfParams::default()
-    };
-    let out = grow_mesh(&front, &params).unwrap_or_else(|e| panic!("{d:?}: {e}"));
-    Grown { curves, nodes, out }
+    let mut case = test_cases::case_of("ellipse", loops, d.farfield.is_none());
+    case.boundary.max_spacing = d.max_spacing;
+    case.layers.max_layers = 30;
+    test_cases::grow(&test_cases::with_layers(&case, d.first_height, d.growth))
 }
 
 fn domains() -> impl Strategy<Value = Domain> {
@@ -131,11 +102,11 @@ proptest! {
     fn curved_meshes_are_valid_conforming_and_exact(d in domains(), params in curving_params()) {
         let g = grow(&d);
         let what = format!("{d:?} {params:?}");
-        let curved = curve(&g.out, &g.curves, &g.nodes, &params)
+        let curved = g.curve(&params)
             .unwrap_or_else(|e| panic!("{what}: {e}"));
         let c = check_curved(&what, &curved, &g.curves, params.order);
         prop_assert!(c.fraction > 0.0 && c.fraction < 0.5, "{}: {}", what, c.fraction);
-        let layers = curved_layers_above_walls(&g.out, &curved.mesh, params.min_curved_layers);
+        let layers = curved_layers_above_walls(&g.output, &curved.mesh, params.min_curved_layers);
         prop_assert!(layers.curved_walls > 0, "{}", what);
         prop_assert!(layers.early.is_empty(), "{}: {:?}", what, layers.early);
     }
@@ -168,7 +139,7 @@ fn a_thin_first_layer_under_coarse_wall_edges_is_valid() {
         min_curved_layers: 1,
         ..CurvingParams::default()
     };
-    let curved = curve(&g.out, &g.curves, &g.nodes, &params).unwrap();
+    let curved = g.curve(&params).unwrap();
     assert_eq!(curved.stats.unrepaired_cells, 0, "{:?}", curved.stats);
     // most pipes that end in the filled region hand their deviation to the fill triangles
     // rather than end in inverted cells; the repair mends the rest
@@ -195,7 +166,7 @@ fn small() -> &'static Grown {
 /// The name of the parameter a curving run rejected, or None if it ran.
 fn rejected(params: &CurvingParams) -> Option<&'static str> {
     let g = small();
-    match curve(&g.out, &g.curves, &g.nodes, params) {
+    match g.curve(params) {
         Ok(_) => None,
         Err(CurvingError::BadParameter { name, .. }) => Some(name),
         Err(e) => panic!("{params:?}: not a parameter error: {e}"),
@@ -250,11 +221,10 @@ fn orders_one_and_four_are_refused_and_two_and_three_run() {
 fn a_cell_naming_a_missing_node_is_refused_not_panicked_on() {
     // before the curving used mesh_model's structural checks, the edge table indexed by
     // the bad node and panicked
-    let g = small();
-    let mut out = g.out.clone();
-    let n = out.mesh.nodes.len() as u32;
-    out.mesh.cells.nodes_mut(0)[1] = n + 7;
-    let e = curve(&out, &g.curves, &g.nodes, &CurvingParams::default()).unwrap_err();
+    let mut g = small().clone();
+    let n = g.output.layered.mesh.nodes.len() as u32;
+    g.output.layered.mesh.cells.nodes_mut(0)[1] = n + 7;
+    let e = g.curve(&CurvingParams::default()).unwrap_err();
     assert!(
         matches!(
             e,
@@ -263,4 +233,30 @@ fn a_cell_naming_a_missing_node_is_refused_not_panicked_on() {
         "{e}"
     );
     assert!(e.to_string().contains(&format!("node {}", n + 7)), "{e}");
+}
+
+/// The layering is checked as a whole (`Layering::check`) before any curving: a record that
+/// does not fit its mesh is a named error, never a panic.
+#[test]
+fn a_layering_that_does_not_fit_its_mesh_is_named() {
+    let layering_error = |edit: &dyn Fn(&mut mesh_model::Layering)| {
+        let mut g = small().clone();
+        edit(&mut g.output.layered.layering);
+        match g.curve(&CurvingParams::default()) {
+            Err(CurvingError::BadLayers(why)) => why,
+            other => panic!("{other:?}"),
+        }
+    };
+    assert!(
+        layering_error(&|l| {
+            l.node_layer.pop();
+        })
+        .contains("node_layer")
+    );
+    assert!(layering_error(&|l| l.layered_cells = usize::MAX).contains("layered cells"));
+    let wrong_parent = layering_error(&|l| {
+        let child = l.node_layer.iter().position(|&k| k == 2).unwrap();
+        l.node_parents[child][1] = 0; // a wall node two layers below
+    });
+    assert!(wrong_parent.contains("not one below"), "{wrong_parent}");
 }

@@ -9,8 +9,8 @@ mod common;
 
 use std::time::Instant;
 
-use common::{Checked, check_curved, curve, curved_layers_above_walls};
-use test_cases::{REAL_CASES, real_case};
+use common::{Checked, check_curved, curved_layers_above_walls};
+use test_cases::{grow, real_case, real_cases};
 use vector_adding::{Curved, CurvingParams, Strategy};
 
 /// One curving run: order, cut into triangles, strategy.
@@ -44,7 +44,7 @@ const HEADER: &str = "case         P  cut   strategy     cells  curved    jac   
 
 fn case(name: &str, both_strategies: bool) {
     let case = real_case(name);
-    let g = case.grow();
+    let g = grow(&case);
     let mut runs: Vec<Run> = Vec::new();
     for order in [2, 3] {
         for triangles in [false, true] {
@@ -56,8 +56,8 @@ fn case(name: &str, both_strategies: bool) {
     }
     let mut table = vec![format!(
         "{name}: {} linear cells ({} layered)",
-        g.output.mesh.cells.len(),
-        g.output.layered_cells
+        g.output.layered.mesh.cells.len(),
+        g.output.layered.layering.layered_cells
     )];
     table.push(HEADER.to_string());
     for run in runs {
@@ -70,8 +70,7 @@ fn case(name: &str, both_strategies: bool) {
         };
         let what = format!("{name} P{order} triangles={triangles} {strategy:?}");
         let t0 = Instant::now();
-        let curved = curve(&g.output, &g.curves, &g.nodes, &params)
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let curved = g.curve(&params).unwrap_or_else(|e| panic!("{what}: {e}"));
         let seconds = t0.elapsed().as_secs_f64();
         let c = check_curved(&what, &curved, &g.curves, order);
         if name == "lshape" {
@@ -122,7 +121,7 @@ fn case(name: &str, both_strategies: bool) {
 
 #[test]
 fn every_builtin_case_has_a_test() {
-    assert_eq!(REAL_CASES.len(), 5);
+    assert_eq!(real_cases().len(), 5);
 }
 
 #[test]

@@ -15,7 +15,7 @@ use boundary1d::SpacingParams;
 use geom_curve::{ClosedCurve, CurveParams, Point2};
 use jacobian_check::CertifyParams;
 use mesh_model::Role;
-use vector_adding::{CurvingParams, LayeredMesh, LoopCurve};
+use vector_adding::{CurvingParams, LoopCurve};
 
 type Error = Box<dyn std::error::Error>;
 
@@ -73,11 +73,6 @@ fn run(out: &std::path::Path) -> Result<(), Error> {
     let linear = afsf2d::grow_mesh(&loops, &params)?;
 
     // 4. curved to P3: the wall's high-order nodes on its curve, carried up the layers
-    let layered = LayeredMesh {
-        mesh: &linear.mesh,
-        node_layer: &linear.node_layer,
-        layered_cells: linear.layered_cells,
-    };
     let on_curves: Vec<LoopCurve<'_>> = curves
         .iter()
         .zip(&nodes)
@@ -87,7 +82,7 @@ fn run(out: &std::path::Path) -> Result<(), Error> {
         order: 3,
         ..CurvingParams::default()
     };
-    let curved = vector_adding::curve_mesh(&layered, &on_curves, &curving)?;
+    let curved = vector_adding::curve_mesh(&linear.layered, &on_curves, &curving)?;
     let mesh = curved.mesh;
 
     // 5. every cell certified: a proof that the Jacobian determinant is positive everywhere
@@ -118,7 +113,7 @@ fn run(out: &std::path::Path) -> Result<(), Error> {
          edges curved; all {} cells certified (min scaled Jacobian {:.3}), area {:.6}; \
          written to {}",
         nodes.iter().map(|n| n.len()).sum::<usize>(),
-        linear.mesh.cells.len(),
+        linear.layered.mesh.cells.len(),
         linear.stats.layers,
         100.0 * curved.stats.curved_edge_fraction,
         mesh.cells.len(),

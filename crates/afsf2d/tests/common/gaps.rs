@@ -5,7 +5,7 @@
 
 use geom_curve::{ClosedCurve, CurveParams, Point2};
 use mesh_model::Role;
-use test_cases::RealCase;
+use test_cases::Case;
 
 /// A small deterministic generator (SplitMix64), so that every case is reproducible from
 /// its seed.
@@ -62,15 +62,9 @@ pub struct Domain {
 
 impl Domain {
     /// The domain as a pipeline case (boundary spacing as `cargo xtask mesh` does it).
-    pub fn case(&self) -> RealCase {
-        RealCase {
-            name: "random",
-            loops: self.loops.clone(),
-            first_height: self.first_height,
-            max_spacing: 1.0,
-            max_layers: 60,
-            inside: false,
-        }
+    pub fn case(&self) -> Case {
+        let case = test_cases::case_of("random", self.loops.clone(), false);
+        test_cases::with_layers(&case, self.first_height, self.growth)
     }
 }
 
@@ -81,12 +75,7 @@ fn body_points(rng: &mut Rng) -> (String, Vec<[f64; 2]>) {
     match rng.int(0, 2) {
         0 => {
             let r = rng.uniform(0.2, 0.5);
-            let pts = geom_curve::circle_points(Point2::new(0.0, 0.0), r, 256)
-                .expect("a circle")
-                .iter()
-                .map(|p| [p.x, p.y])
-                .collect();
-            (format!("circle r{r:.2}"), pts)
+            (format!("circle r{r:.2}"), circle([0.0, 0.0], r))
         }
         1 => {
             let a = 0.5;
@@ -285,11 +274,7 @@ pub fn random_domain(
         .enumerate()
         .map(|(i, p)| (format!("body{i}"), Role::Wall, p.1))
         .collect();
-    let far = geom_curve::circle_points(Point2::new(c[0], c[1]), 20.0, 256)
-        .expect("a circle")
-        .iter()
-        .map(|p| [p.x, p.y])
-        .collect();
+    let far = circle(c, 20.0);
     loops.push(("farfield".into(), Role::Farfield, far));
     Some(Domain {
         label,
@@ -311,11 +296,7 @@ fn centroid(p: &[[f64; 2]]) -> [f64; 2] {
 /// Two walls (points before boundary meshing) in a far field of radius 20.
 pub fn two_bodies(a: Vec<[f64; 2]>, b: Vec<[f64; 2]>, first_height: f64, growth: f64) -> Domain {
     let c = centroid(&[a.clone(), b.clone()].concat());
-    let far = geom_curve::circle_points(Point2::new(c[0], c[1]), 20.0, 256)
-        .expect("a circle")
-        .iter()
-        .map(|p| [p.x, p.y])
-        .collect();
+    let far = circle(c, 20.0);
     Domain {
         label: "two bodies".into(),
         loops: vec![
@@ -331,19 +312,5 @@ pub fn two_bodies(a: Vec<[f64; 2]>, b: Vec<[f64; 2]>, first_height: f64, growth:
 
 /// Circle points as the case files make them (256 points).
 pub fn circle(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
-    geom_curve::circle_points(Point2::new(c[0], c[1]), r, 256)
-        .expect("a circle")
-        .iter()
-        .map(|p| [p.x, p.y])
-        .collect()
-}
-
-/// An axis-aligned square from its lower-left corner and side.
-pub fn square(lo: [f64; 2], side: f64) -> Vec<[f64; 2]> {
-    vec![
-        lo,
-        [lo[0] + side, lo[1]],
-        [lo[0] + side, lo[1] + side],
-        [lo[0], lo[1] + side],
-    ]
+    testkit::shapes::circle(c, r, 256)
 }

@@ -7,26 +7,11 @@ pub mod gaps;
 pub mod real;
 
 use afsf2d::{AfsfOutput, AfsfParams, AngleStats, FrontLoop, max_angle_histogram};
-use mesh_model::{NONE, Role, validate};
+use mesh_model::{NONE, Role};
+use testkit::checks;
 
-/// Reads a Selig `.dat` file of the workspace fixtures.
-pub fn selig(rel: &str) -> Vec<[f64; 2]> {
-    let path = format!(
-        "{}/../../fixtures/geometry/{rel}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    text.lines()
-        .skip(1)
-        .filter_map(|l| {
-            let mut it = l.split_whitespace().map(|v| v.parse::<f64>());
-            match (it.next(), it.next()) {
-                (Some(Ok(x)), Some(Ok(y))) => Some([x, y]),
-                _ => None,
-            }
-        })
-        .collect()
-}
+/// The points of a Selig `.dat` file of the workspace fixtures.
+pub use testkit::fixtures::selig_xy as selig;
 
 fn turn_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let u = [b[0] - a[0], b[1] - a[1]];
@@ -131,13 +116,7 @@ pub fn airfoil(rel: &str, name: &str, h_te: f64, h_max: f64) -> FrontLoop {
 
 /// A circle of `n` points.
 pub fn circle(center: [f64; 2], radius: f64, n: usize, role: Role, name: &str) -> FrontLoop {
-    let points = (0..n)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / n as f64;
-            [center[0] + radius * a.cos(), center[1] + radius * a.sin()]
-        })
-        .collect();
-    FrontLoop::new(points, role, name)
+    FrontLoop::new(testkit::shapes::circle(center, radius, n), role, name)
 }
 
 /// NACA0012 (sharp trailing edge) in a far field of radius 20 chords.
@@ -236,51 +215,31 @@ pub fn domain_area(loops: &[FrontLoop]) -> f64 {
 
 /// The properties every mesh must have; returns the angle figures.
 pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) -> AngleStats {
-    let m = &out.mesh;
-    let problems = validate(m);
-    assert!(
-        problems.is_empty(),
-        "{} problems, first: {}",
-        problems.len(),
-        problems[0]
-    );
-    let area = domain_area(loops);
-    let rel = (m.linear_area() - area).abs() / area;
-    assert!(
-        rel < 1e-9,
-        "area {} vs domain {area}: relative error {rel:e}",
-        m.linear_area()
-    );
+    let m = &out.layered.mesh;
+    checks::assert_valid("afsf2d", m);
+    checks::assert_area("afsf2d", m.linear_area(), domain_area(loops), 1e-9);
     // boundary nodes untouched, in input order
     let mut k = 0;
     for l in loops {
         for p in &l.points {
             assert_eq!(m.nodes[k], [p[0], p[1], 0.0], "boundary node {k} moved");
-            assert_eq!(out.node_parent[k], NONE);
-            assert_eq!(out.node_layer[k], 0);
+            assert_eq!(out.layered.layering.node_parents[k], [NONE, NONE]);
+            assert_eq!(out.layered.layering.node_layer[k], 0);
             k += 1;
         }
     }
     assert_eq!(m.boundary.len(), k);
-    // layers, pipes, parents
-    assert_eq!(m.cell_layer.len(), m.cells.len());
-    assert_eq!(m.cell_pipe.len(), m.cells.len());
+    // layers, pipes, parents: the record's own invariants, and every layer node has a parent
     assert!(m.cell_layer.iter().all(|&l| l != NONE));
     assert!(m.cell_pipe.iter().all(|&p| (p as usize) < m.boundary.len()));
+    let layering = &out.layered.layering;
+    assert_eq!(layering.check(m), None);
     for i in k..m.nodes.len() {
-        let p = out.node_parent[i];
-        if out.node_layer[i] == NONE {
-            assert_eq!(p, NONE, "fill node {i} has a parent");
-            continue;
-        }
-        assert!(
-            p != NONE && (p as usize) < m.nodes.len(),
-            "node {i} has no parent"
-        );
+        let p = layering.node_parents[i][0];
         assert_eq!(
-            out.node_layer[p as usize] + 1,
-            out.node_layer[i],
-            "node {i}"
+            p == NONE,
+            layering.node_layer[i] == NONE,
+            "node {i}: a layer node has a parent, a fill node none"
         );
     }
     // first layer height, away from the corners (a corner and its two neighbours)
@@ -294,10 +253,11 @@ pub fn check_mesh(loops: &[FrontLoop], params: &AfsfParams, out: &AfsfOutput) ->
         );
     }
     for i in k..m.nodes.len() {
-        if out.node_layer[i] != 1 || out.node_parent[i] == NONE {
+        let layering = &out.layered.layering;
+        if layering.node_layer[i] != 1 || layering.node_parents[i][0] == NONE {
             continue;
         }
-        let p = out.node_parent[i] as usize;
+        let p = layering.node_parents[i][0] as usize;
         let wall = m.patches[m.boundary_patch[p] as usize].role == Role::Wall;
         if !wall || near_corner[p] {
             // at a sharp corner the first cells are legitimately compressed or fanned
@@ -319,9 +279,9 @@ pub fn summary(name: &str, out: &AfsfOutput, q: &AngleStats) -> String {
     let s = &out.stats;
     format!(
         "{name}: nodes {} quads {} tris {} (fill {}) layers {} iters {} converged {} | tris-cut {} max angle {:.1} hist {:?} | time {:.3}s (plan {:.3} build {:.3} solve {:.3} verify {:.3} fill {:.3}) retries {}",
-        out.mesh.nodes.len(),
-        out.mesh.count(mesh_model::Shape::Quad),
-        out.mesh.count(mesh_model::Shape::Tri),
+        out.layered.mesh.nodes.len(),
+        out.layered.mesh.count(mesh_model::Shape::Quad),
+        out.layered.mesh.count(mesh_model::Shape::Tri),
         s.fill_triangles,
         s.layers,
         s.iterations,

@@ -3,4 +3,4 @@
 //! with the other crates' tests and benches.
 #![allow(unused_imports)]
 
-pub use test_cases::{REAL_CASES, RealCase, real_case};
+pub use test_cases::{mesher_input, real_case, real_cases, with_layers};

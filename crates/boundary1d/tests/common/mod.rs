@@ -3,23 +3,15 @@
 #![allow(dead_code)]
 
 use boundary1d::{BoundaryNodes, NodePlacement, SpacingParams};
+use geom_curve::ClosedCurve;
 use geom_curve::curvature::circumcircle_curvature;
-use geom_curve::{ClosedCurve, CurveParams, Point2, selig};
 
 /// Reads, parses and fits a Selig file from `fixtures/geometry`.
-pub fn load_curve(name: &str) -> ClosedCurve {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/geometry")
-        .join(name);
-    let text = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("cannot read fixture {}: {e}", path.display()));
-    let points = selig::parse(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
-    ClosedCurve::new(&points, &CurveParams::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+pub use testkit::fixtures::selig_curve as load_curve;
 
 /// The three 30P30N elements.
 pub fn thirty_p_thirty_n() -> Vec<ClosedCurve> {
-    ["30p30n/slat.dat", "30p30n/main.dat", "30p30n/flap.dat"]
+    testkit::fixtures::THIRTY_P_THIRTY_N
         .iter()
         .map(|name| load_curve(name))
         .collect()
@@ -226,22 +218,4 @@ pub fn check_mesh(
         figures.max_chord_ratio = figures.max_chord_ratio.max((ca / cb).max(cb / ca));
     }
     (problems, figures)
-}
-
-/// Point on a wavy star-shaped loop, as in the geom-curve tests.
-pub fn wavy_loop(
-    n: usize,
-    center: Point2<f64>,
-    radius: f64,
-    amplitude: f64,
-    lobes: u32,
-    phase: f64,
-) -> Vec<Point2<f64>> {
-    (0..n)
-        .map(|i| {
-            let theta = std::f64::consts::TAU * i as f64 / n as f64;
-            let r = radius * (1.0 + amplitude * (f64::from(lobes) * theta + phase).sin());
-            Point2::new(center.x + r * theta.cos(), center.y + r * theta.sin())
-        })
-        .collect()
 }

@@ -146,20 +146,6 @@ fn edge_inner(c0: (usize, usize), c1: (usize, usize), p: usize) -> Vec<(usize, u
         .collect()
 }
 
-/// The points of a Selig `.dat` file (title line, then `x y` lines).
-pub fn read_selig(text: &str) -> Vec<[f64; 2]> {
-    text.lines()
-        .skip(1)
-        .filter_map(|l| {
-            let mut it = l.split_whitespace().map(|w| w.parse::<f64>());
-            match (it.next(), it.next()) {
-                (Some(Ok(x)), Some(Ok(y))) => Some([x, y]),
-                _ => None,
-            }
-        })
-        .collect()
-}
-
 /// An O-mesh of quads around a closed counter-clockwise loop: ring j blends each wall point
 /// towards the point of a circle (radius `radius` about (0.5, 0)) at the same angle, with
 /// geometrically growing steps; layers numbered from the wall.
@@ -211,6 +197,5 @@ pub fn o_mesh(wall: &[[f64; 2]], rings: usize, radius: f64) -> Mesh {
 
 /// The O-mesh around the NACA 0012 of the fixtures.
 pub fn naca0012_o_mesh(rings: usize) -> Mesh {
-    let text = include_str!("../../../../fixtures/geometry/naca0012.dat");
-    o_mesh(&read_selig(text), rings, 6.0)
+    o_mesh(&testkit::fixtures::selig_xy("naca0012.dat"), rings, 6.0)
 }

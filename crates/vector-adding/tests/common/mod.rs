@@ -1,5 +1,5 @@
-//! Test kit of the curving: the curving's input from a grown case, and the checks every
-//! curved mesh must pass — certified valid, conforming, boundary nodes on their curves, the
+//! Test kit of the curving: the checks every curved mesh must pass (the grown cases and
+//! their curving come from `test-cases`, through the tool's own stages) — certified valid, conforming, boundary nodes on their curves, the
 //! area of the cells equal to the area the curved boundary encloses, the first layers above
 //! walls curved.
 #![allow(dead_code)]
@@ -7,31 +7,11 @@
 use std::collections::HashMap;
 
 use afsf2d::AfsfOutput;
-use boundary1d::BoundaryNodes;
 use geom_curve::{ClosedCurve, Point2};
-use jacobian_check::{CertifyParams, MeshValidity};
+use jacobian_check::MeshValidity;
 use mesh_model::{Mesh, NONE, Role, Shape};
-use vector_adding::{Curved, CurvingError, CurvingParams, LayeredMesh, LoopCurve};
-
-/// Curves the grown mesh `out` whose loops are `curves` with boundary nodes `nodes`.
-pub fn curve(
-    out: &AfsfOutput,
-    curves: &[ClosedCurve],
-    nodes: &[BoundaryNodes],
-    params: &CurvingParams,
-) -> Result<Curved, CurvingError> {
-    let loops: Vec<LoopCurve<'_>> = curves
-        .iter()
-        .zip(nodes)
-        .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
-        .collect();
-    let layered = LayeredMesh {
-        mesh: &out.mesh,
-        node_layer: &out.node_layer,
-        layered_cells: out.layered_cells,
-    };
-    vector_adding::curve_mesh(&layered, &loops, params)
-}
+use testkit::checks;
+use vector_adding::Curved;
 
 /// The area a closed curve encloses (positive counter-clockwise): Green's theorem on each
 /// quintic segment, by Gauss quadrature exact for its degree-9 integrand.
@@ -55,19 +35,10 @@ pub fn curve_area(curve: &ClosedCurve) -> f64 {
     total
 }
 
-/// The largest distance of a boundary facet's node (ends and inner nodes) from its patch's
-/// curve, relative to the curve's length.
-pub fn worst_off_curve(mesh: &Mesh, curves: &[ClosedCurve]) -> f64 {
-    let mut worst: f64 = 0.0;
-    for (f, facet) in mesh.boundary.iter().enumerate() {
-        let curve = &curves[mesh.boundary_patch[f] as usize];
-        for &v in facet.nodes {
-            let x = mesh.xy(v);
-            let (_, _, d) = curve.closest_point(Point2::new(x[0], x[1]));
-            worst = worst.max(d / curve.total_length());
-        }
-    }
-    worst
+/// The distance of `x` from `curve`, relative to the curve's length.
+fn off_curve(curve: &ClosedCurve, x: [f64; 2]) -> f64 {
+    let (_, _, d) = curve.closest_point(Point2::new(x[0], x[1]));
+    d / curve.total_length()
 }
 
 /// Whether the inner nodes of edge a → b (listed from a) lie off its chord (beyond 1e-9 of
@@ -136,13 +107,19 @@ pub fn curved_layers_above_walls(
     curved: &Mesh,
     min_curved_layers: u32,
 ) -> LayerReport {
-    let lin = &out.mesh;
+    let lin = &out.layered.mesh;
+    let node_layer = &out.layered.layering.node_layer;
     let edges = edge_curvature(curved);
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     // the layered cells by their bottom edge
     let mut by_bottom: HashMap<(u32, u32), usize> = HashMap::new();
     let mut tops: Vec<Option<(u32, u32)>> = vec![None; lin.cells.len()];
-    for (i, cell) in lin.cells.iter().enumerate().take(out.layered_cells) {
+    for (i, cell) in lin
+        .cells
+        .iter()
+        .enumerate()
+        .take(out.layered.layering.layered_cells)
+    {
         let layer = lin.cell_layer[i];
         if layer == NONE {
             continue;
@@ -152,7 +129,7 @@ pub fn curved_layers_above_walls(
         let mut top = None;
         for (j, e) in cell.ty.shape.edges().iter().enumerate() {
             let (a, b) = (k[e[0]], k[e[1]]);
-            let (la, lb) = (out.node_layer[a as usize], out.node_layer[b as usize]);
+            let (la, lb) = (node_layer[a as usize], node_layer[b as usize]);
             if la == layer && lb == layer {
                 bottom = Some((j, key(a, b)));
             } else if la == layer + 1 && lb == layer + 1 {
@@ -234,32 +211,15 @@ pub fn check_curved(what: &str, curved: &Curved, curves: &[ClosedCurve], order: 
         "{what}: cell types {:?}",
         mesh.cells.types()
     );
-    let problems = mesh_model::validate(mesh);
-    assert!(problems.is_empty(), "{what}: {problems:?}");
-    let validity = jacobian_check::check_mesh(mesh, &CertifyParams::default())
-        .unwrap_or_else(|e| panic!("{what}: check_mesh: {e}"));
-    assert!(
-        validity.invalid_cells.is_empty() && validity.undecided.is_empty(),
-        "{what}: {} invalid cells (first {:?}), {} undecided (first {:?}); stats {:?}",
-        validity.invalid_cells.len(),
-        validity.invalid_cells.first(),
-        validity.undecided.len(),
-        validity.undecided.first(),
-        curved.stats
-    );
+    checks::assert_valid(what, mesh);
+    let validity = checks::assert_certified(&format!("{what} ({:?})", curved.stats), mesh);
     assert!(validity.min_scaled_jacobian > 0.0, "{what}");
-    let off_curve = worst_off_curve(mesh, curves);
-    assert!(
-        off_curve <= 1e-9,
-        "{what}: a boundary node lies {off_curve:e} (relative) off its curve"
-    );
+    // boundary nodes on their patch's curve, relative to the curve's length
+    let off_curve =
+        checks::assert_boundary_on(what, mesh, |patch, x| off_curve(&curves[patch], x), 1e-9);
     let area = jacobian_check::integrate_area(mesh).unwrap_or_else(|e| panic!("{what}: {e}"));
     let enclosed = jacobian_check::enclosed_area(mesh).unwrap_or_else(|e| panic!("{what}: {e}"));
-    let area_error = (area - enclosed).abs() / enclosed.abs();
-    assert!(
-        area_error <= 1e-9,
-        "{what}: cells integrate to {area}, the boundary encloses {enclosed} ({area_error:e})"
-    );
+    let area_error = checks::assert_area(what, area, enclosed, 1e-9);
     let fraction = jacobian_check::curved_edge_fraction(mesh);
     let s = &curved.stats;
     assert_eq!(
