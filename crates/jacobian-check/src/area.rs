@@ -164,18 +164,12 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
         };
         for (s, w) in GAUSS {
             let (mut x, mut dx) = ([0.0; 2], [0.0; 2]);
+            let (l, dl) = crate::lagrange::equispaced_line(p, s);
             for j in 0..=p {
-                let sj = j as f64 / p as f64;
-                let (mut l, mut dl) = (1.0, 0.0);
-                for m in (0..=p).filter(|&m| m != j) {
-                    let sm = m as f64 / p as f64;
-                    dl = dl * (s - sm) / (sj - sm) + l / (sj - sm);
-                    l *= (s - sm) / (sj - sm);
-                }
                 let v = at(j);
                 for d in 0..2 {
-                    x[d] += l * v[d];
-                    dx[d] += dl * v[d];
+                    x[d] += l[j] * v[d];
+                    dx[d] += dl[j] * v[d];
                 }
             }
             total += 0.5 * w * (x[0] * dx[1] - x[1] * dx[0]);

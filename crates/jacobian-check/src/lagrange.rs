@@ -223,3 +223,24 @@ pub fn shape_gradients(ty: CellType, xi: RefPoint) -> Result<Vec<[f64; 3]>, Jaco
     b.gradients(xi, &mut g);
     Ok(g)
 }
+
+/// The Lagrange basis of degree `p` (1 to 3) on [0, 1] through the equally spaced points
+/// `j / p`, `j = 0..=p` (in order along the line, not Gmsh's order), at `s`: the values and
+/// the derivatives d/ds, one per point (entries beyond `p` are 0). The curving, the area
+/// of curved boundary lines and the drawer all evaluate edges through this one basis.
+pub fn equispaced_line(p: usize, s: f64) -> ([f64; 4], [f64; 4]) {
+    assert!((1..=3).contains(&p), "degree {p} outside 1..=3");
+    let (mut value, mut derivative) = ([0.0; 4], [0.0; 4]);
+    for j in 0..=p {
+        let sj = j as f64 / p as f64;
+        let (mut l, mut dl) = (1.0, 0.0);
+        for m in (0..=p).filter(|&m| m != j) {
+            let sm = m as f64 / p as f64;
+            dl = dl * (s - sm) / (sj - sm) + l / (sj - sm);
+            l *= (s - sm) / (sj - sm);
+        }
+        value[j] = l;
+        derivative[j] = dl;
+    }
+    (value, derivative)
+}

@@ -127,3 +127,24 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn the_equispaced_line_basis_interpolates_and_sums_to_one() {
+    use jacobian_check::lagrange::equispaced_line;
+    for p in 1..=3usize {
+        for j in 0..=p {
+            let (l, _) = equispaced_line(p, j as f64 / p as f64);
+            for (k, v) in l.iter().enumerate().take(p + 1) {
+                assert!((v - f64::from(u8::from(k == j))).abs() < 1e-14, "P{p} node {j}: {l:?}");
+            }
+        }
+        for s in [0.1, 0.37, 0.9] {
+            let (l, dl) = equispaced_line(p, s);
+            assert!((l.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+            assert!(dl.iter().sum::<f64>().abs() < 1e-12);
+            // the basis reproduces x(s) = s, so its derivatives weight the nodes to 1
+            let slope: f64 = (0..=p).map(|j| dl[j] * j as f64 / p as f64).sum();
+            assert!((slope - 1.0).abs() < 1e-12, "P{p} at {s}: {slope}");
+        }
+    }
+}

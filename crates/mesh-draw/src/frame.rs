@@ -400,17 +400,9 @@ mod tests {
 
     /// The Lagrange interpolant through equally spaced points, evaluated directly.
     fn lagrange_point(nodes: &[[f64; 2]], t: f64) -> [f64; 2] {
-        let p = nodes.len() - 1;
+        let (weights, _) = jacobian_check::lagrange::equispaced_line(nodes.len() - 1, t);
         let mut out = [0.0; 2];
-        for (i, n) in nodes.iter().enumerate() {
-            let ti = i as f64 / p as f64;
-            let mut w = 1.0;
-            for j in 0..=p {
-                if j != i {
-                    let tj = j as f64 / p as f64;
-                    w *= (t - tj) / (ti - tj);
-                }
-            }
+        for (n, w) in nodes.iter().zip(weights) {
             out[0] += w * n[0];
             out[1] += w * n[1];
         }

@@ -124,15 +124,8 @@ pub(crate) fn lagrange_1d(
     s: f64,
 ) -> [f64; 2] {
     let mut x = [0.0; 2];
-    for j in 0..=p {
-        let sj = j as f64 / p as f64;
-        let mut w = 1.0;
-        for m in 0..=p {
-            if m != j {
-                let sm = m as f64 / p as f64;
-                w *= (s - sm) / (sj - sm);
-            }
-        }
+    let (weights, _) = jacobian_check::lagrange::equispaced_line(p, s);
+    for (j, &w) in weights.iter().enumerate().take(p + 1) {
         let pt = if j == 0 {
             a
         } else if j == p {
