@@ -17,7 +17,8 @@
 //!   diagonal, which makes it global) or the thin-plate spline `φ(r) = r² ln r`. The dense
 //!   system is solved by LU with partial pivoting (`nalgebra`). The affine part of the
 //!   boundary displacement is fitted first by least squares and the system solved for the
-//!   rest, so that affine motions (rigid, scaled) are reproduced to rounding whatever the
+//!   rest (a remainder below 1e-13 of the largest displacement counts as rounding noise and is
+//!   dropped), so that affine motions (rigid, scaled) are reproduced to rounding whatever the
 //!   system's conditioning.
 
 use std::collections::HashMap;
@@ -302,6 +303,10 @@ fn inverse_power(r2: f64, p: f64) -> f64 {
     }
 }
 
+/// Relative size (to the largest boundary displacement) under which what is left after the
+/// affine fit counts as rounding noise and is not interpolated.
+const AFFINE_NOISE: f64 = 1e-13;
+
 /// A fitted RBF interpolant of the boundary displacements, in scaled coordinates
 /// `(x − centre) / scale`.
 struct Rbf {
@@ -357,6 +362,10 @@ impl Rbf {
         let phi = |r: f64| kernel(p.kernel, r);
         let mut a = DMatrix::<f64>::zeros(size, size);
         let mut b = DMatrix::<f64>::zeros(size, 2);
+        // what is left of an affine motion after the fit is rounding noise; the global
+        // kernel's ill-conditioned system would amplify it into visible distortion
+        let largest = s.d.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let noise = AFFINE_NOISE * largest;
         for i in 0..n {
             for j in 0..n {
                 a[(i, j)] = phi(distance(at[i], at[j]));
@@ -367,7 +376,8 @@ impl Rbf {
                 a[(n + k, i)] = v[k];
             }
             for c in 0..2 {
-                b[(i, c)] = s.d[i][c] - affine[c].dot(&v);
+                let rest = s.d[i][c] - affine[c].dot(&v);
+                b[(i, c)] = if rest.abs() <= noise { 0.0 } else { rest };
             }
         }
         let x = a
