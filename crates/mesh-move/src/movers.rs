@@ -93,6 +93,9 @@ pub struct MoveStats {
     pub boundary_nodes: usize,
     /// Other nodes (placed by the mover).
     pub interior_nodes: usize,
+    /// Cells inverted or degenerate after the move ([`crate::quality::inverted_cells`]): a
+    /// move with any is a failure, whatever the mover.
+    pub inverted_cells: usize,
     /// RBF only: the largest difference between the interpolant and the boundary
     /// displacement at a boundary node (the solve's accuracy); 0 for IDW.
     pub interpolation_residual: f64,
@@ -168,6 +171,7 @@ pub fn move_mesh(
         p[1] += d[1];
         stats.largest_displacement = stats.largest_displacement.max(d[0].hypot(d[1]));
     }
+    stats.inverted_cells = crate::quality::inverted_cells(&moved);
     Ok(Moved { mesh: moved, stats })
 }
 

@@ -50,6 +50,14 @@ pub fn cell_scaled_jacobians(mesh: &Mesh) -> Vec<f64> {
         .collect()
 }
 
+/// The cells of the linear 2D mesh `mesh` that are inverted or degenerate: some corner does
+/// not turn left by the exact orientation predicate.
+pub fn inverted_cells(mesh: &Mesh) -> usize {
+    (0..mesh.cells.len())
+        .filter(|&i| !is_positive_polygon(&corners(mesh, i)))
+        .count()
+}
+
 /// How the first layer (the cells that have a wall facet as an edge) changed.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct FirstLayerDrift {
@@ -113,9 +121,7 @@ pub fn compare(before: &Mesh, after: &Mesh) -> Result<Comparison, MoveError> {
             worst = (a / b, i);
         }
     }
-    let inverted = (0..after.cells.len())
-        .filter(|&i| !is_positive_polygon(&corners(after, i)))
-        .count();
+    let inverted = inverted_cells(after);
     let fold_min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
     Ok(Comparison {
         min_before: fold_min(&sb),
