@@ -207,23 +207,28 @@ impl HicksHenne {
 /// The chord of a wall loop and the split of its points into two arcs.
 ///
 /// The rule, independent of the loop's orientation and of the section's attitude: the
-/// trailing edge is the loop's sharpest convex point (largest turn towards the inside; for a
-/// blunt trailing edge, the sharper of the base's two corners, whose other corner then sits at
-/// x ≈ 1 where every bump vanishes); the leading edge is the point farthest from it. Walking
-/// the loop counter-clockwise, the points from the trailing edge to the leading edge form the
-/// upper arc and the rest the lower one (for an airfoil drawn nose left, exactly its upper
-/// and lower surfaces, whatever its camber).
+/// trailing edge is the loop's sharpest convex point (largest turn towards the inside), unless
+/// the sharper of its two neighbours is a corner too (turn over [`BASE_CORNER_TURN_DEG`]):
+/// then the two are the corners of a blunt base and the trailing edge is the base's midpoint.
+/// The leading edge is the point farthest from the trailing edge. Walking the loop
+/// counter-clockwise, the points from the trailing edge to the leading edge form the upper arc
+/// and the rest the lower one (for an airfoil drawn nose left, exactly its upper and lower
+/// surfaces, whatever its camber).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Section {
     /// Index of the leading edge in the loop.
     pub leading_edge: usize,
-    /// Index of the trailing edge in the loop.
-    pub trailing_edge: usize,
+    /// Indices of the trailing edge in the loop: twice the same for a sharp trailing edge,
+    /// the two corners of a blunt base (in counter-clockwise order) otherwise.
+    pub trailing_edge: [usize; 2],
     le: [f64; 2],
     te: [f64; 2],
     n: usize,
     ccw: bool,
 }
+
+/// Turn, degrees, above which the neighbour of the sharpest point makes a blunt base with it.
+pub const BASE_CORNER_TURN_DEG: f64 = 45.0;
 
 impl Section {
     /// The section of the closed loop `points`, or `None` when it has fewer than 3 points or
@@ -233,8 +238,7 @@ impl Section {
         if n < 3 {
             return None;
         }
-        let area = mesh_model::polygon_area(points.iter().copied());
-        let ccw = area >= 0.0;
+        let ccw = mesh_model::polygon_area(points.iter().copied()) >= 0.0;
         let sign = if ccw { 1.0 } else { -1.0 };
         let turn = |i: usize| {
             let (a, b, c) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
@@ -242,17 +246,31 @@ impl Section {
             let v = [c[0] - b[0], c[1] - b[1]];
             sign * (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1])
         };
-        let trailing_edge = (0..n).fold(0, |best, i| if turn(i) > turn(best) { i } else { best });
-        let te = points[trailing_edge];
+        let sharpest = (0..n).fold(0, |best, i| if turn(i) > turn(best) { i } else { best });
+        let (prev, next) = ((sharpest + n - 1) % n, (sharpest + 1) % n);
+        let other = if turn(prev) >= turn(next) { prev } else { next };
+        let trailing_edge = if turn(other) > BASE_CORNER_TURN_DEG.to_radians() {
+            // in counter-clockwise order
+            let forward = other == next;
+            if forward == ccw {
+                [sharpest, other]
+            } else {
+                [other, sharpest]
+            }
+        } else {
+            [sharpest, sharpest]
+        };
+        let (a, b) = (points[trailing_edge[0]], points[trailing_edge[1]]);
+        let te = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
         let d2 = |p: [f64; 2]| (p[0] - te[0]).powi(2) + (p[1] - te[1]).powi(2);
-        let leading_edge = (0..n).fold(trailing_edge, |best, i| {
+        let leading_edge = (0..n).fold(trailing_edge[0], |best, i| {
             if d2(points[i]) > d2(points[best]) {
                 i
             } else {
                 best
             }
         });
-        if leading_edge == trailing_edge {
+        if d2(points[leading_edge]) == 0.0 {
             return None;
         }
         Some(Section {
@@ -288,15 +306,20 @@ impl Section {
 
     /// The arc of point `i`; `None` for the leading and trailing edges themselves.
     pub fn surface(&self, i: usize) -> Option<Surface> {
-        if i == self.leading_edge || i == self.trailing_edge {
+        let [t0, t1] = self.trailing_edge;
+        if i == self.leading_edge || i == t0 || i == t1 {
             return None;
         }
-        let fwd = |a: usize, b: usize| (b + self.n - a) % self.n;
-        let upper = if self.ccw {
-            fwd(self.trailing_edge, i) < fwd(self.trailing_edge, self.leading_edge)
-        } else {
-            fwd(self.leading_edge, i) < fwd(self.leading_edge, self.trailing_edge)
+        // steps from a to b walking counter-clockwise
+        let ccw_steps = |a: usize, b: usize| {
+            let fwd = (b + self.n - a) % self.n;
+            if self.ccw {
+                fwd
+            } else {
+                (self.n - fwd) % self.n
+            }
         };
+        let upper = ccw_steps(t1, i) < ccw_steps(t1, self.leading_edge);
         Some(if upper {
             Surface::Upper
         } else {

@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use mesh_model::Mesh;
 use mesh_move::{
-    BoundaryMotion, Comparison, IdwParams, Kernel, LoopMotion, Method, MoveStats, Motion,
+    BoundaryMotion, Comparison, IdwParams, Kernel, LoopMotion, Method, Motion, MoveStats,
     RbfParams, RigidMotion, Section, boundary_motion, compare, move_mesh,
 };
 
@@ -182,7 +182,10 @@ fn worst_cell_ratio_table_of_the_30p30n_flap_deflection() {
         for (name, method) in METHODS.iter().chain(&LOCAL_WENDLAND) {
             let (_, c, s) = moved_with_stats(&mesh, &motions, method);
             assert_eq!(c.inverted_cells, s.inverted_cells);
-            println!("{}", row(&format!("flap {deg:+}° (down > 0), {name}"), &c, &s));
+            println!(
+                "{}",
+                row(&format!("flap {deg:+}° (down > 0), {name}"), &c, &s)
+            );
         }
     }
 }
