@@ -189,3 +189,61 @@ fn worst_cell_ratio_table_of_the_30p30n_flap_deflection() {
         }
     }
 }
+
+#[test]
+fn hicks_henne_bumps_on_the_naca0012_mesh_move_the_wall_nodes_and_invert_no_cell() {
+    use mesh_move::{HicksHenne, Surface};
+    let mesh = naca();
+    let bumps: Vec<HicksHenne> = [0.1, 0.3, 0.5, 0.7]
+        .iter()
+        .flat_map(|&x| {
+            [
+                HicksHenne::new(x, 0.01, Surface::Upper),
+                HicksHenne::new(x, -0.01, Surface::Lower),
+            ]
+        })
+        .collect();
+    let morph = vec![LoopMotion {
+        loop_name: "naca0012".into(),
+        motion: Motion::bumps(bumps),
+    }];
+    for (name, method) in &METHODS {
+        let (_, c, s) = moved_with_stats(mesh, &morph, method);
+        assert_eq!(c.inverted_cells, 0, "{name}");
+        assert!(s.largest_boundary_displacement > 0.005, "{name}: {s:?}");
+        assert!(s.largest_boundary_displacement <= 0.04, "{name}: {s:?}");
+        assert!(c.worst_cell_ratio > 0.5, "{name}: {c:?}");
+    }
+}
+
+#[test]
+fn the_movers_refuse_what_they_cannot_move_in_one_line() {
+    let mesh = naca();
+    let mut p2 = mesh.clone();
+    p2.order = 2;
+    let fixed = BoundaryMotion::fixed(mesh).unwrap();
+    let idw = Method::Idw(IdwParams::default());
+    let e = move_mesh(&p2, &fixed, &idw).unwrap_err().to_string();
+    assert_eq!(e, "the mesh must be linear and 2D (got order 2, 2D)");
+    let mut short = fixed.clone();
+    let lost = short.nodes.pop().unwrap();
+    short.targets.pop();
+    short.linear.pop();
+    let e = move_mesh(mesh, &short, &idw).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!("boundary node {lost} has no target in the boundary motion")
+    );
+    let mut nan = fixed.clone();
+    nan.targets[3][1] = f64::NAN;
+    let e = move_mesh(mesh, &nan, &idw).unwrap_err().to_string();
+    assert!(e.starts_with("boundary motion: node "), "{e}");
+    let e = move_mesh(mesh, &fixed, &Method::Idw(IdwParams { exponent: -1.0 }))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "IDW exponent must be positive and finite, got -1");
+    let e = move_mesh(mesh, &fixed, &wendland(0.0))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "RBF support radius must be positive and finite, got 0");
+}
