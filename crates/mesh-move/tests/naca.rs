@@ -182,6 +182,12 @@ fn worst_cell_ratio_table_of_the_30p30n_flap_deflection() {
         for (name, method) in METHODS.iter().chain(&LOCAL_WENDLAND) {
             let (_, c, s) = moved_with_stats(&mesh, &motions, method);
             assert_eq!(c.inverted_cells, s.inverted_cells);
+            if deg == 10.0 && name == &"IDW" {
+                println!(
+                    "({} boundary nodes, {} others)",
+                    s.boundary_nodes, s.interior_nodes
+                );
+            }
             println!(
                 "{}",
                 row(&format!("flap {deg:+}° (down > 0), {name}"), &c, &s)
