@@ -198,3 +198,29 @@ fn normal_angle(mesh: &Mesh, w: &[u32; 2], from: u32, to: u32) -> f64 {
     let e = [q[0] - p[0], q[1] - p[1]];
     (n[0] * e[1] - n[1] * e[0]).atan2(n[0] * e[0] + n[1] * e[1])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn squares_rectangles_and_equilateral_triangles_score_one_inverted_corners_below_zero() {
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        assert_eq!(scaled_jacobian(&square), 1.0);
+        let thin = [[0.0, 0.0], [1.0, 0.0], [1.0, 1e-6], [0.0, 1e-6]];
+        assert_eq!(scaled_jacobian(&thin), 1.0);
+        let h = 3f64.sqrt() / 2.0;
+        let equilateral = [[0.0, 0.0], [1.0, 0.0], [0.5, h]];
+        assert!((scaled_jacobian(&equilateral) - 1.0).abs() < 1e-15);
+        let right = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        // the 45° corners: sin 45° · 2/√3
+        let want = (0.5f64).sqrt() * 2.0 / 3f64.sqrt();
+        assert!((scaled_jacobian(&right) - want).abs() < 1e-15);
+        let sheared = [[0.0, 0.0], [1.0, 0.0], [2.0, 1.0], [1.0, 1.0]];
+        assert!((scaled_jacobian(&sheared) - 0.5f64.sqrt()).abs() < 1e-15);
+        let dart = [[0.0, 0.0], [1.0, 0.0], [0.2, 0.2], [0.0, 1.0]];
+        assert!(scaled_jacobian(&dart) < 0.0);
+        let degenerate = [[0.0, 0.0], [0.0, 0.0], [1.0, 1.0]];
+        assert_eq!(scaled_jacobian(&degenerate), 0.0);
+    }
+}
