@@ -135,7 +135,10 @@ fn the_equispaced_line_basis_interpolates_and_sums_to_one() {
         for j in 0..=p {
             let (l, _) = equispaced_line(p, j as f64 / p as f64);
             for (k, v) in l.iter().enumerate().take(p + 1) {
-                assert!((v - f64::from(u8::from(k == j))).abs() < 1e-14, "P{p} node {j}: {l:?}");
+                assert!(
+                    (v - f64::from(u8::from(k == j))).abs() < 1e-14,
+                    "P{p} node {j}: {l:?}"
+                );
             }
         }
         for s in [0.1, 0.37, 0.9] {

@@ -14,7 +14,10 @@ use mesh_move::{
 };
 
 fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Kernel) {
-    let mesh = test_cases::real_case(case).grow().output.mesh;
+    let mesh = test_cases::grow(&test_cases::real_case(case))
+        .output
+        .layered
+        .mesh;
     let boundary = boundary_motion(&mesh, &[motion]).expect("a valid motion");
     let mut group = c.benchmark_group(group);
     group.sample_size(10);
@@ -48,9 +51,9 @@ fn movers(c: &mut Criterion) {
     let flap = test_cases::real_case("30p30n")
         .loops
         .into_iter()
-        .find(|l| l.0 == "flap")
+        .find(|l| l.name == "flap")
         .expect("a flap")
-        .2;
+        .points;
     let hinge = flap[Section::of_loop(&flap).expect("a chord").leading_edge];
     let deflect = LoopMotion {
         loop_name: "flap".into(),

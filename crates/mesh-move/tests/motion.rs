@@ -13,7 +13,11 @@ fn loops(case: &str) -> Vec<BoundaryLoop> {
     test_cases::real_case(case)
         .loops
         .into_iter()
-        .map(|(name, role, points)| BoundaryLoop { name, role, points })
+        .map(|l| BoundaryLoop {
+            name: l.name,
+            role: l.role,
+            points: l.points,
+        })
         .collect()
 }
 

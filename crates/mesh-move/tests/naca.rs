@@ -12,7 +12,12 @@ use mesh_move::{
 
 fn naca() -> &'static Mesh {
     static MESH: OnceLock<Mesh> = OnceLock::new();
-    MESH.get_or_init(|| test_cases::real_case("naca0012").grow().output.mesh)
+    MESH.get_or_init(|| {
+        test_cases::grow(&test_cases::real_case("naca0012"))
+            .output
+            .layered
+            .mesh
+    })
 }
 
 const METHODS: [(&str, Method); 3] = [
@@ -166,8 +171,13 @@ fn worst_cell_ratio_table_of_the_naca0012_pitch() {
 #[test]
 fn worst_cell_ratio_table_of_the_30p30n_flap_deflection() {
     let case = test_cases::real_case("30p30n");
-    let mesh = case.grow().output.mesh;
-    let flap = &case.loops.iter().find(|l| l.0 == "flap").expect("a flap").2;
+    let mesh = test_cases::grow(&case).output.layered.mesh;
+    let flap = &case
+        .loops
+        .iter()
+        .find(|l| l.name == "flap")
+        .expect("a flap")
+        .points;
     let section = Section::of_loop(flap).expect("a chord");
     let hinge = flap[section.leading_edge];
     println!(
