@@ -113,7 +113,10 @@ fn crates_depend_only_on_what_the_architecture_allows() {
     assert_eq!(ours(dependencies("mesh-model")), ["geom-predicates"]);
     let meshers = ["boundary1d", "afsf2d", "afsf3d", "vector-adding"];
     for dep in ours(dependencies("mesh-move")) {
-        assert!(!meshers.contains(&dep.as_str()), "mesh-move depends on {dep}");
+        assert!(
+            !meshers.contains(&dep.as_str()),
+            "mesh-move depends on {dep}"
+        );
     }
     if workspace().join("crates/topo-cut").is_dir() {
         for dep in ours(dependencies("topo-cut")) {
@@ -123,7 +126,10 @@ fn crates_depend_only_on_what_the_architecture_allows() {
             );
         }
     }
-    for krate in std::fs::read_dir(workspace().join("crates")).unwrap().flatten() {
+    for krate in std::fs::read_dir(workspace().join("crates"))
+        .unwrap()
+        .flatten()
+    {
         let name = krate.file_name().to_string_lossy().to_string();
         if !krate.path().join("Cargo.toml").is_file() {
             continue;

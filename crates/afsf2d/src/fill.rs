@@ -44,6 +44,11 @@ impl HasPosition for Vertex {
     }
 }
 
+/// The constrained triangulation of the fill, with its vertex handles.
+type Cdt = ConstrainedDelaunayTriangulation<Vertex>;
+type VertexHandle = spade::handles::FixedVertexHandle;
+type InnerFace = FixedFaceHandle<spade::handles::InnerTag>;
+
 /// Triangles (node indices, counter-clockwise) covering the region on the left of the
 /// directed edges `directed` (the region's whole boundary), with the nodes `free` inserted
 /// inside it, and the positions of the nodes added inside it (numbered from `pos.len()` on).
@@ -55,8 +60,40 @@ pub(crate) fn fill_region(
     pos: &[P2],
     min_angle_deg: f64,
 ) -> Result<(Vec<[u32; 3]>, Vec<P2>), AfsfError> {
-    let mut cdt: ConstrainedDelaunayTriangulation<Vertex> = ConstrainedDelaunayTriangulation::new();
-    let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
+    let mut cdt: Cdt = ConstrainedDelaunayTriangulation::new();
+    let handle_of = insert_nodes(&mut cdt, directed_edges, free, pos)?;
+    let directed = add_front_edges(&mut cdt, directed_edges, &handle_of)?;
+    if min_angle_deg > 0.0 {
+        let extra = 8 * cdt.num_vertices() + 64;
+        cdt.refine(
+            RefinementParameters::<f64>::new()
+                .exclude_outer_faces(true)
+                .keep_constraint_edges()
+                .with_angle_limit(AngleLimit::from_deg(min_angle_deg))
+                .with_max_additional_vertices(extra),
+        );
+    }
+    let faces = faces_inside(&cdt, directed)?;
+    let (mut tris, mut steiner) = triangles_of(&cdt, &faces, pos);
+    let constraints: HashSet<(u32, u32)> = directed_edges
+        .iter()
+        .map(|&(a, b)| if a < b { (a, b) } else { (b, a) })
+        .collect();
+    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
+    smooth_steiner(&tris, pos, &mut steiner);
+    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
+    Ok((tris, steiner))
+}
+
+/// Inserts the ends of the front edges, then the free nodes, once each; two nodes at one
+/// place are an error.
+fn insert_nodes(
+    cdt: &mut Cdt,
+    directed_edges: &[(u32, u32)],
+    free: &[u32],
+    pos: &[P2],
+) -> Result<HashMap<u32, VertexHandle>, AfsfError> {
+    let mut handle_of: HashMap<u32, VertexHandle> = HashMap::new();
     let nodes = directed_edges
         .iter()
         .flat_map(|&(a, b)| [a, b])
@@ -80,6 +117,16 @@ pub(crate) fn fill_region(
         }
         handle_of.insert(g, h);
     }
+    Ok(handle_of)
+}
+
+/// Makes every front edge a constraint edge; a front edge crossing another or passing through
+/// a node is an error. Returns the edges as vertex-handle pairs.
+fn add_front_edges(
+    cdt: &mut Cdt,
+    directed_edges: &[(u32, u32)],
+    handle_of: &HashMap<u32, VertexHandle>,
+) -> Result<Vec<(VertexHandle, VertexHandle)>, AfsfError> {
     let mut directed = Vec::with_capacity(directed_edges.len());
     for &(ga, gb) in directed_edges {
         let (a, b) = (handle_of[&ga], handle_of[&gb]);
@@ -96,18 +143,16 @@ pub(crate) fn fill_region(
         }
         directed.push((a, b));
     }
-    if min_angle_deg > 0.0 {
-        let extra = 8 * cdt.num_vertices() + 64;
-        cdt.refine(
-            RefinementParameters::<f64>::new()
-                .exclude_outer_faces(true)
-                .keep_constraint_edges()
-                .with_angle_limit(AngleLimit::from_deg(min_angle_deg))
-                .with_max_additional_vertices(extra),
-        );
-    }
-    // flood fill from the left of every front edge
-    let mut inside: HashMap<FixedFaceHandle<spade::handles::InnerTag>, ()> = HashMap::new();
+    Ok(directed)
+}
+
+/// The faces on the left of the front edges, by a flood fill that stops at constraint edges;
+/// in the order of their handles (deterministic).
+fn faces_inside(
+    cdt: &Cdt,
+    directed: Vec<(VertexHandle, VertexHandle)>,
+) -> Result<Vec<InnerFace>, AfsfError> {
+    let mut inside: HashMap<InnerFace, ()> = HashMap::new();
     let mut stack = Vec::new();
     for (a, b) in directed {
         let e = cdt.get_edge_from_neighbors(a, b).ok_or_else(|| {
@@ -141,7 +186,13 @@ pub(crate) fn fill_region(
     }
     let mut faces: Vec<_> = inside.keys().copied().collect();
     faces.sort_unstable_by_key(|f| f.index());
-    let mut added: HashMap<spade::handles::FixedVertexHandle, u32> = HashMap::new();
+    Ok(faces)
+}
+
+/// The triangles of `faces` as node indices; the vertices the refinement added become new
+/// nodes, numbered from `pos.len()` in order of first use, with their positions.
+fn triangles_of(cdt: &Cdt, faces: &[InnerFace], pos: &[P2]) -> (Vec<[u32; 3]>, Vec<P2>) {
+    let mut added: HashMap<VertexHandle, u32> = HashMap::new();
     let mut steiner = Vec::new();
     let tris: Vec<[u32; 3]> = faces
         .iter()
@@ -160,15 +211,7 @@ pub(crate) fn fill_region(
             })
         })
         .collect();
-    let mut tris = tris;
-    let constraints: HashSet<(u32, u32)> = directed_edges
-        .iter()
-        .map(|&(a, b)| if a < b { (a, b) } else { (b, a) })
-        .collect();
-    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
-    smooth_steiner(&tris, pos, &mut steiner);
-    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
-    Ok((tris, steiner))
+    (tris, steiner)
 }
 
 /// Sweeps of the largest-angle edge flips.

@@ -234,34 +234,65 @@ pub(crate) fn check_loops(
         return Err(AfsfError::NoLoop);
     }
     for (index, l) in loops.iter().enumerate() {
-        let name = l.name.clone();
-        if l.points.len() < 3 {
-            return Err(AfsfError::TooFewPoints {
-                index,
-                name,
-                points: l.points.len(),
-            });
-        }
-        if l.is_corner.len() != l.points.len() {
-            return Err(AfsfError::CornerFlagsMismatch {
-                index,
-                name,
-                points: l.points.len(),
-                flags: l.is_corner.len(),
-            });
-        }
-        if let Some(point) = l
-            .points
-            .iter()
-            .position(|p| !(p[0].is_finite() && p[1].is_finite()))
-        {
-            return Err(AfsfError::NonFinitePoint { index, name, point });
-        }
-        let n = l.points.len();
-        if let Some(point) = (0..n).find(|&i| l.points[i] == l.points[(i + 1) % n]) {
-            return Err(AfsfError::RepeatedPoint { index, name, point });
-        }
+        check_points(index, l)?;
     }
+    let farfield = check_roles(loops, params)?;
+    if let Some(e) = first_crossing(loops) {
+        return Err(e);
+    }
+    if let Some(f) = farfield {
+        check_placement(loops, f)?;
+    }
+    Ok(loops
+        .iter()
+        .map(|l| {
+            let ccw = polygon_area(l.points.iter().copied()) > 0.0;
+            // domain on the left: far field and `inside` wall run counter-clockwise, walls
+            // seen from outside run clockwise
+            let want_ccw = l.role == Role::Farfield || params.inside;
+            CheckedLoop {
+                reversed: ccw != want_ccw,
+            }
+        })
+        .collect())
+}
+
+/// One loop's points: at least three, a corner flag each, finite, no point repeated next to
+/// itself.
+fn check_points(index: usize, l: &FrontLoop) -> Result<(), AfsfError> {
+    let name = l.name.clone();
+    if l.points.len() < 3 {
+        return Err(AfsfError::TooFewPoints {
+            index,
+            name,
+            points: l.points.len(),
+        });
+    }
+    if l.is_corner.len() != l.points.len() {
+        return Err(AfsfError::CornerFlagsMismatch {
+            index,
+            name,
+            points: l.points.len(),
+            flags: l.is_corner.len(),
+        });
+    }
+    if let Some(point) = l
+        .points
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(AfsfError::NonFinitePoint { index, name, point });
+    }
+    let n = l.points.len();
+    if let Some(point) = (0..n).find(|&i| l.points[i] == l.points[(i + 1) % n]) {
+        return Err(AfsfError::RepeatedPoint { index, name, point });
+    }
+    Ok(())
+}
+
+/// Exactly one far field around the walls, or one wall and no far field with `inside`;
+/// returns the far field's index.
+fn check_roles(loops: &[FrontLoop], params: &AfsfParams) -> Result<Option<usize>, AfsfError> {
     let farfields: Vec<usize> = (0..loops.len())
         .filter(|&i| loops[i].role == Role::Farfield)
         .collect();
@@ -279,7 +310,12 @@ pub(crate) fn check_loops(
             farfields.len()
         )));
     }
-    // no two edges may cross or touch, except consecutive edges of one loop at their node
+    Ok(farfields.first().copied())
+}
+
+/// The first two edges that cross or touch, except consecutive edges of one loop at their
+/// shared node.
+fn first_crossing(loops: &[FrontLoop]) -> Option<AfsfError> {
     let mut segs: Vec<(usize, usize)> = Vec::new();
     let mut boxes = Vec::new();
     for (li, l) in loops.iter().enumerate() {
@@ -289,7 +325,7 @@ pub(crate) fn check_loops(
             boxes.push(Aabb::of_segment(l.points[i], l.points[(i + 1) % n], 0.0));
         }
     }
-    let crossing = find_overlapping_pair(&boxes, |x, y| {
+    find_overlapping_pair(&boxes, |x, y| {
         let ((la, ea), (lb, eb)) = (segs[x], segs[y]);
         let (pa, pb) = (&loops[la].points, &loops[lb].points);
         let (na, nb) = (pa.len(), pb.len());
@@ -305,46 +341,33 @@ pub(crate) fn check_loops(
             loop_b: lb,
             edge_b: eb,
         })
-    });
-    if let Some(e) = crossing {
-        return Err(e);
-    }
-    // placement: walls inside the far field and not inside each other
-    if let Some(&f) = farfields.first() {
-        for (index, l) in loops.iter().enumerate() {
-            if index == f {
-                continue;
-            }
-            if !point_in_loop(l.points[0], &loops[f].points) {
+    })
+}
+
+/// Walls inside the far field `f` and not inside each other.
+fn check_placement(loops: &[FrontLoop], f: usize) -> Result<(), AfsfError> {
+    for (index, l) in loops.iter().enumerate() {
+        if index == f {
+            continue;
+        }
+        if !point_in_loop(l.points[0], &loops[f].points) {
+            return Err(AfsfError::Misplaced {
+                index,
+                name: l.name.clone(),
+                what: "a wall must lie inside the far-field loop",
+            });
+        }
+        for (other, o) in loops.iter().enumerate() {
+            if other != index && other != f && point_in_loop(l.points[0], &o.points) {
                 return Err(AfsfError::Misplaced {
                     index,
                     name: l.name.clone(),
-                    what: "a wall must lie inside the far-field loop",
+                    what: "a wall lies inside another wall",
                 });
-            }
-            for (other, o) in loops.iter().enumerate() {
-                if other != index && other != f && point_in_loop(l.points[0], &o.points) {
-                    return Err(AfsfError::Misplaced {
-                        index,
-                        name: l.name.clone(),
-                        what: "a wall lies inside another wall",
-                    });
-                }
             }
         }
     }
-    Ok(loops
-        .iter()
-        .map(|l| {
-            let ccw = polygon_area(l.points.iter().copied()) > 0.0;
-            // domain on the left: far field and `inside` wall run counter-clockwise, walls
-            // seen from outside run clockwise
-            let want_ccw = l.role == Role::Farfield || params.inside;
-            CheckedLoop {
-                reversed: ccw != want_ccw,
-            }
-        })
-        .collect())
+    Ok(())
 }
 
 #[cfg(test)]
