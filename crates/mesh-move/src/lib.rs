@@ -72,6 +72,7 @@ mod error;
 pub mod motion;
 pub mod movers;
 pub mod quality;
+pub mod springs;
 
 pub use boundary::{BoundaryMotion, boundary_motion, mesh_loops, patch_loop};
 pub use error::MoveError;
@@ -81,3 +82,4 @@ pub use motion::{
 };
 pub use movers::{IdwParams, Kernel, Method, MoveStats, Moved, RbfParams, move_mesh};
 pub use quality::{Comparison, FirstLayerDrift, compare, scaled_jacobian};
+pub use springs::{Fill, SpringMoveParams, SpringStats, Strategy, move_layered};
