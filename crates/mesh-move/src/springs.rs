@@ -32,7 +32,7 @@
 
 use std::collections::HashMap;
 
-use mesh_model::{LayeredMesh, Layering, Mesh, NONE};
+use mesh_model::{LayeredMesh, Layering, Mesh, NONE, Role};
 use rayon::prelude::*;
 use springfield::{
     AngleSpring, ExtrusionSpring, NeighbourSpring, SolverParams, SpringField2d, SpringParams,
@@ -54,13 +54,17 @@ pub enum Strategy {
     LayerByLayer,
 }
 
-/// How the nodes of the filled region (in no layer) move.
+/// How the nodes of the filled region (every node not kept in the layers) move.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Fill {
     /// Rotation-aware IDW from the region's bounding nodes.
     Idw,
-    /// IDW, then as-rigid-as-possible iterations.
+    /// The local rigid motions of the bounding nodes, as screw motions (logarithms in
+    /// se(2)), blended by inverse-distance weights, then exponentiated; the IDW instead when
+    /// that is worse.
     #[default]
+    Screw,
+    /// [`Fill::Screw`], then as-rigid-as-possible iterations; the best of the three.
     Arap,
 }
 
@@ -77,6 +81,8 @@ pub struct SpringMoveParams {
     pub fill: Fill,
     /// The IDW of the filled region.
     pub idw: IdwParams,
+    /// The exponent of the screw fill's inverse-distance weights (> 0). Default 2.
+    pub screw_exponent: f64,
     /// Most as-rigid-as-possible iterations.
     pub arap_iterations: usize,
     /// A layer node keeps its original layer geometry (predictor and springs) while its
@@ -95,8 +101,9 @@ impl Default for SpringMoveParams {
                 ..SolverParams::default()
             },
             strategy: Strategy::AllTogether,
-            fill: Fill::Arap,
+            fill: Fill::Screw,
             idw: IdwParams::default(),
+            screw_exponent: 2.0,
             arap_iterations: 30,
             core_aspect: 4.0,
         }
@@ -162,6 +169,7 @@ fn move_springs(
     p.solver.check().map_err(spring_error)?;
     for (what, value) in [
         ("IDW exponent", p.idw.exponent),
+        ("screw exponent", p.screw_exponent),
         ("core aspect", p.core_aspect),
     ] {
         if !(value > 0.0 && value.is_finite()) {
@@ -181,7 +189,16 @@ fn move_springs(
     };
     if x != old {
         let fronts = Fronts::of(mesh, layering);
-        let layers = layer_nodes(layering, &fixed, &old, &fronts, p.core_aspect);
+        let mut wall = vec![false; old.len()];
+        for (f, facet) in mesh.boundary.iter().enumerate() {
+            if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall {
+                facet
+                    .corners()
+                    .iter()
+                    .for_each(|&k| wall[k as usize] = true);
+            }
+        }
+        let layers = layer_nodes(layering, &fixed, &wall, &old, &fronts, p.core_aspect);
         stats.layer_nodes = layers.iter().map(Vec::len).sum();
         let mut held = fixed.clone();
         layers
@@ -192,7 +209,12 @@ fn move_springs(
         balance(
             &old, &mut x, &fronts, layering, &layers, &held, p, &mut stats,
         )?;
-        fill(mesh, &old, &mut x, &fronts, &held, p, &mut stats);
+        let mut turn = vec![[1.0, 0.0]; old.len()];
+        held_turns(&old, &x, &fronts, layering, &[], &held, &fixed, &mut turn);
+        for layer in layers.iter().filter(|l| !l.is_empty()) {
+            held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
+        }
+        fill(mesh, &old, &mut x, &turn, &held, p, &mut stats);
     }
     Ok(finish(mesh, boundary, &old, &x, stats))
 }
@@ -276,7 +298,13 @@ impl Fronts {
 
     /// The rotation (cos, sin) of node `p`'s front from `old` to `new`: the normalised sum of
     /// the rotations of the unit directions to its placed front neighbours; none without one.
-    fn rotation(&self, old: &[[f64; 2]], new: &[[f64; 2]], placed: &[bool], p: usize) -> [f64; 2] {
+    fn rotation(
+        &self,
+        old: &[[f64; 2]],
+        new: &[[f64; 2]],
+        placed: &[bool],
+        p: usize,
+    ) -> Option<[f64; 2]> {
         let mut z = [0.0, 0.0];
         for q in [self.left[p], self.right[p]] {
             if q == NONE || !placed[q as usize] {
@@ -288,6 +316,29 @@ impl Fronts {
             };
             z[0] += b[0] * a[0] + b[1] * a[1];
             z[1] += b[1] * a[0] - b[0] * a[1];
+        }
+        let l = z[0].hypot(z[1]);
+        (l > 0.0).then(|| [z[0] / l, z[1] / l])
+    }
+
+    /// [`Fronts::rotation`], or without a placed front neighbour the mean of the parents'
+    /// (`turn`), or none.
+    fn turn(
+        &self,
+        old: &[[f64; 2]],
+        new: &[[f64; 2]],
+        placed: &[bool],
+        parents: [u32; 2],
+        turn: &[[f64; 2]],
+        p: usize,
+    ) -> [f64; 2] {
+        if let Some(z) = self.rotation(old, new, placed, p) {
+            return z;
+        }
+        let mut z = [0.0, 0.0];
+        for &q in parents.iter().filter(|&&q| q != NONE) {
+            z[0] += turn[q as usize][0];
+            z[1] += turn[q as usize][1];
         }
         let l = z[0].hypot(z[1]);
         if l > 0.0 {
@@ -313,12 +364,13 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 /// The layer nodes that keep their original layer geometry, grouped by layer (index 0 is
-/// empty): not on the boundary, every parent on the boundary or kept, and the node in the
-/// first layer or the cell below anisotropic (front spacing at least `aspect` times the
-/// extrusion length).
+/// empty): the nodes grown from the walls (every parent on a wall or kept) up to the last
+/// layer whose median cell is still anisotropic (front spacing at least `aspect` times the
+/// extrusion length), so that the kept layers wrap every wall in a band, corners included.
 fn layer_nodes(
     layering: &Layering,
     fixed: &[bool],
+    wall: &[bool],
     old: &[[f64; 2]],
     fronts: &Fronts,
     aspect: f64,
@@ -332,16 +384,17 @@ fn layer_nodes(
             by_layer[l as usize].push(k as u32);
         }
     }
-    let mut kept = fixed.to_vec();
-    for layer in &mut by_layer {
+    // the layers grown from the walls, and each node's aspect
+    let mut kept = wall.to_vec();
+    let mut stop = by_layer.len();
+    for (l, layer) in by_layer.iter_mut().enumerate() {
+        let mut aspects = Vec::with_capacity(layer.len());
         layer.retain(|&n| {
             let n = n as usize;
             let parents = layering.node_parents[n];
             let (mut ok, mut height) = (parents[0] != NONE, f64::INFINITY);
-            let mut on_wall = true;
             for &q in parents.iter().filter(|&&q| q != NONE) {
                 ok &= kept[q as usize];
-                on_wall &= fixed[q as usize];
                 height = height.min(dist(old[q as usize], old[n]));
             }
             let (mut spacing, mut sides) = (0.0, 0.0);
@@ -351,11 +404,21 @@ fn layer_nodes(
                     sides += 1.0;
                 }
             }
-            ok &= on_wall || sides > 0.0 && spacing / sides >= aspect * height;
-            kept[n] = ok;
-            ok
+            if ok && sides > 0.0 {
+                aspects.push(spacing / sides / height);
+            }
+            kept[n] = ok && !fixed[n];
+            kept[n]
         });
+        if l > 1 && !aspects.is_empty() {
+            aspects.sort_unstable_by(f64::total_cmp);
+            if aspects[aspects.len() / 2] < aspect {
+                stop = l;
+                break;
+            }
+        }
     }
+    by_layer.truncate(stop);
     by_layer
 }
 
@@ -371,12 +434,8 @@ fn predict(
 ) {
     let mut placed = fixed.to_vec();
     let mut turn = vec![[1.0, 0.0]; old.len()];
-    for (k, t) in turn.iter_mut().enumerate() {
-        if fixed[k] {
-            *t = fronts.rotation(old, x, &placed, k);
-        }
-    }
-    for layer in layers.iter().skip(1) {
+    held_turns(old, x, fronts, layering, &[], &placed, fixed, &mut turn);
+    for layer in layers.iter().filter(|l| !l.is_empty()) {
         for &n in layer {
             let n = n as usize;
             let (mut sum, mut count) = ([0.0, 0.0], 0.0);
@@ -390,9 +449,31 @@ fn predict(
             x[n] = [sum[0] / count, sum[1] / count];
             placed[n] = true;
         }
-        for &n in layer {
-            turn[n as usize] = fronts.rotation(old, x, &placed, n as usize);
+        held_turns(old, x, fronts, layering, layer, &placed, fixed, &mut turn);
+    }
+}
+
+/// The rotation of the held nodes `layer` (or, `layer` empty, of the boundary nodes `fixed`)
+/// from `old` to `x`: their fronts', or their parents' ([`Fronts::turn`]).
+#[allow(clippy::too_many_arguments)]
+fn held_turns(
+    old: &[[f64; 2]],
+    x: &[[f64; 2]],
+    fronts: &Fronts,
+    layering: &Layering,
+    layer: &[u32],
+    placed: &[bool],
+    fixed: &[bool],
+    turn: &mut [[f64; 2]],
+) {
+    if layer.is_empty() {
+        for k in (0..old.len()).filter(|&k| fixed[k]) {
+            turn[k] = fronts.turn(old, x, placed, [NONE; 2], turn, k);
         }
+    }
+    for &n in layer {
+        let n = n as usize;
+        turn[n] = fronts.turn(old, x, placed, layering.node_parents[n], turn, n);
     }
 }
 
@@ -517,7 +598,7 @@ fn fill(
     mesh: &Mesh,
     old: &[[f64; 2]],
     x: &mut [[f64; 2]],
-    fronts: &Fronts,
+    turns: &[[f64; 2]],
     held: &[bool],
     p: &SpringMoveParams,
     stats: &mut SpringStats,
@@ -534,7 +615,7 @@ fn fill(
         .map(|c| mesh.cells.get(c).corners().to_vec())
         .filter(|k| k.iter().any(|&n| free[n as usize]))
         .collect();
-    let sources = fill_sources(old, x, fronts, &cells, &free);
+    let sources = fill_sources(old, x, turns, &cells, &free);
     let moved: Vec<[f64; 2]> = nodes
         .par_iter()
         .map(|&k| {
@@ -548,14 +629,26 @@ fn fill(
     for (&k, m) in nodes.iter().zip(moved) {
         x[k as usize] = m;
     }
+    if p.fill == Fill::Idw {
+        return;
+    }
+    let graph = Graph::new(old, &cells, &free);
+    let mut best = (worst_ratio(old, x, &cells), x.to_vec(), 0);
+    let mut y = x.to_vec();
+    screw(old, &mut y, &sources, &nodes, p.screw_exponent);
+    let r = worst_ratio(old, &y, &cells);
+    if r >= best.0 {
+        best = (r, y.clone(), 0);
+    }
     if p.fill == Fill::Arap {
-        let mut y = x.to_vec();
-        let done = arap(old, &mut y, &cells, &free, p.arap_iterations);
-        if worst_ratio(old, &y, &cells) >= worst_ratio(old, x, &cells) {
-            x.copy_from_slice(&y);
-            stats.arap_iterations = done;
+        let done = arap(old, &mut y, &graph, p.arap_iterations);
+        let r = worst_ratio(old, &y, &cells);
+        if r >= best.0 {
+            best = (r, y, done);
         }
     }
+    x.copy_from_slice(&best.1);
+    stats.arap_iterations = best.2;
 }
 
 /// The nodes that bound the filled region (on an edge of one fill cell only, or held), as IDW
@@ -563,7 +656,7 @@ fn fill(
 fn fill_sources(
     old: &[[f64; 2]],
     x: &[[f64; 2]],
-    fronts: &Fronts,
+    turns: &[[f64; 2]],
     cells: &[Vec<u32>],
     free: &[bool],
 ) -> Sources {
@@ -585,7 +678,6 @@ fn fill_sources(
     }
     let mut list: Vec<(u32, f64)> = area.into_iter().collect();
     list.sort_unstable_by_key(|e| e.0);
-    let placed: Vec<bool> = free.iter().map(|f| !f).collect();
     let mut s = Sources {
         at: Vec::with_capacity(list.len()),
         d: Vec::with_capacity(list.len()),
@@ -594,7 +686,7 @@ fn fill_sources(
     };
     for (n, a) in list {
         let k = n as usize;
-        let z = fronts.rotation(old, x, &placed, k);
+        let z = turns[k];
         s.at.push(old[k]);
         s.d.push([x[k][0] - old[k][0], x[k][1] - old[k][1]]);
         s.m.push([[z[0] - 1.0, -z[1]], [z[1], z[0] - 1.0]]);
@@ -620,49 +712,145 @@ fn worst_ratio(old: &[[f64; 2]], x: &[[f64; 2]], cells: &[Vec<u32>]) -> f64 {
     worst
 }
 
-/// As-rigid-as-possible iterations on the free nodes of `cells` (others held); returns the
-/// iterations done.
-fn arap(
-    old: &[[f64; 2]],
-    x: &mut [[f64; 2]],
-    cells: &[Vec<u32>],
-    free: &[bool],
-    iterations: usize,
-) -> usize {
-    // free nodes numbered 0..m
-    let mut index = vec![NONE; old.len()];
-    let mut m = 0u32;
-    for (k, &f) in free.iter().enumerate() {
-        if f {
-            index[k] = m;
-            m += 1;
+/// The filled region as a graph: its cells' edges weighted by 1/length² (original), the free
+/// nodes numbered, and the Laplacian over them.
+struct Graph {
+    /// Per cell, its edges (a, b, weight).
+    edges: Vec<Vec<(usize, usize, f64)>>,
+    /// Global → free number, [`NONE`] for held nodes.
+    index: Vec<u32>,
+    /// Free number → global.
+    order: Vec<usize>,
+    /// The 1/length²-weighted Laplacian.
+    laplacian: Laplacian,
+}
+
+impl Graph {
+    fn new(old: &[[f64; 2]], cells: &[Vec<u32>], free: &[bool]) -> Graph {
+        let mut index = vec![NONE; old.len()];
+        let order: Vec<usize> = (0..old.len()).filter(|&k| free[k]).collect();
+        for (i, &k) in order.iter().enumerate() {
+            index[k] = i as u32;
+        }
+        let edges: Vec<Vec<(usize, usize, f64)>> = cells
+            .iter()
+            .map(|k| {
+                (0..k.len())
+                    .map(|j| {
+                        let (a, b) = (k[j] as usize, k[(j + 1) % k.len()] as usize);
+                        let l = dist(old[a], old[b]);
+                        (a, b, if l > 0.0 { 1.0 / (l * l) } else { 0.0 })
+                    })
+                    .collect()
+            })
+            .collect();
+        let laplacian = Laplacian::new(&edges, &index, order.len());
+        Graph {
+            edges,
+            index,
+            order,
+            laplacian,
         }
     }
-    let m = m as usize;
-    // cell edges (i, j, weight), per cell
-    let edges: Vec<Vec<(usize, usize, f64)>> = cells
-        .iter()
-        .map(|k| {
-            (0..k.len())
-                .map(|j| {
-                    let (a, b) = (k[j] as usize, k[(j + 1) % k.len()] as usize);
-                    let l = dist(old[a], old[b]);
-                    (a, b, if l > 0.0 { 1.0 / (l * l) } else { 0.0 })
-                })
-                .collect()
+}
+
+/// Complex product.
+fn mul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
+}
+
+/// `V(θ) = (sin θ + i(1 − cos θ))/θ`, the translation part of the exponential in se(2).
+fn screw_v(theta: f64) -> [f64; 2] {
+    if theta.abs() < 1e-8 {
+        [1.0, 0.5 * theta]
+    } else {
+        [theta.sin() / theta, (1.0 - theta.cos()) / theta]
+    }
+}
+
+/// The logarithm (θ, w) in se(2), about `o`, of the rigid motion that turns by `z` and takes
+/// `from` to `to`.
+fn screw_log(o: [f64; 2], z: [f64; 2], from: [f64; 2], to: [f64; 2]) -> [f64; 3] {
+    let theta = z[1].atan2(z[0]);
+    let r = mul(z, [from[0] - o[0], from[1] - o[1]]);
+    let t = [to[0] - o[0] - r[0], to[1] - o[1] - r[1]];
+    let v = screw_v(theta);
+    let n = v[0] * v[0] + v[1] * v[1];
+    let w = mul(t, [v[0] / n, -v[1] / n]);
+    [theta, w[0], w[1]]
+}
+
+/// The exponential of the logarithm `log` about `o`, applied to `p`.
+fn screw_exp(o: [f64; 2], log: [f64; 3], p: [f64; 2]) -> [f64; 2] {
+    let z = [log[0].cos(), log[0].sin()];
+    let r = mul(z, [p[0] - o[0], p[1] - o[1]]);
+    let t = mul(screw_v(log[0]), [log[1], log[2]]);
+    [o[0] + r[0] + t[0], o[1] + r[1] + t[1]]
+}
+
+/// The screw fill: each source's local rigid motion (its turn, taking its original position
+/// to its current one) as a logarithm (θ, w) in se(2); at each free node the
+/// inverse-distance-weighted mean of the sources' logarithms, exponentiated. Blending
+/// logarithms keeps a rigid motion exact and makes a rotation a twist about its centre,
+/// without the shrinking of blended positions; near a wall its nodes dominate, so a node
+/// there moves with the wall's own motion.
+fn screw(old: &[[f64; 2]], x: &mut [[f64; 2]], sources: &Sources, nodes: &[u32], exponent: f64) {
+    let o = centre(old);
+    let logs: Vec<[f64; 3]> = (0..sources.at.len())
+        .map(|i| {
+            let m = sources.m[i];
+            let z = [m[0][0] + 1.0, m[1][0]];
+            let b = sources.at[i];
+            let to = [b[0] + sources.d[i][0], b[1] + sources.d[i][1]];
+            screw_log(o, z, b, to)
         })
         .collect();
-    let laplacian = Laplacian::new(&edges, &index, m);
+    let moved: Vec<[f64; 2]> = nodes
+        .par_iter()
+        .map(|&k| {
+            let p = old[k as usize];
+            let (mut sum, mut total) = ([0.0; 3], 0.0);
+            for (i, b) in sources.at.iter().enumerate() {
+                let r2 = (p[0] - b[0]).powi(2) + (p[1] - b[1]).powi(2);
+                let w = sources.area[i] * r2.powf(-0.5 * exponent);
+                for c in 0..3 {
+                    sum[c] += w * logs[i][c];
+                }
+                total += w;
+            }
+            screw_exp(o, [sum[0] / total, sum[1] / total, sum[2] / total], p)
+        })
+        .collect();
+    for (&k, m) in nodes.iter().zip(moved) {
+        x[k as usize] = m;
+    }
+}
+
+/// The centre of the bounding box of `points`.
+fn centre(points: &[[f64; 2]]) -> [f64; 2] {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
+}
+
+/// As-rigid-as-possible iterations on the free nodes of `graph` from `x` (held nodes stay):
+/// each cell's best rotation of its original edges onto its current ones, then the global
+/// step; returns the iterations done.
+fn arap(old: &[[f64; 2]], x: &mut [[f64; 2]], graph: &Graph, iterations: usize) -> usize {
     let size = old
         .iter()
         .chain(x.iter())
         .fold(0.0f64, |s, p| s.max(p[0].abs()).max(p[1].abs()));
+    let mut rotations = vec![[1.0, 0.0]; graph.edges.len()];
     let mut done = 0;
-    for _ in 0..iterations {
+    while done < iterations {
         done += 1;
-        let mut rhs = vec![[0.0; 2]; m];
-        for ce in &edges {
-            // best rotation of the original edges onto the current ones
+        for (ce, z) in graph.edges.iter().zip(&mut rotations) {
             let (mut c, mut s) = (0.0, 0.0);
             for &(a, b, w) in ce {
                 let e0 = [old[b][0] - old[a][0], old[b][1] - old[a][1]];
@@ -671,41 +859,64 @@ fn arap(
                 s += w * (e0[0] * e1[1] - e0[1] * e1[0]);
             }
             let l = c.hypot(s);
-            let z = if l > 0.0 { [c / l, s / l] } else { [1.0, 0.0] };
-            for &(a, b, w) in ce {
-                let r = rotate(z, [old[a][0] - old[b][0], old[a][1] - old[b][1]]);
-                for (i, j, sign) in [(a, b, 1.0), (b, a, -1.0)] {
-                    if index[i] == NONE {
-                        continue;
-                    }
-                    let row = &mut rhs[index[i] as usize];
-                    row[0] += sign * w * r[0];
-                    row[1] += sign * w * r[1];
-                    if index[j] == NONE {
-                        row[0] += w * x[j][0];
-                        row[1] += w * x[j][1];
-                    }
-                }
-            }
+            *z = if l > 0.0 { [c / l, s / l] } else { [1.0, 0.0] };
         }
-        let mut change = 0.0f64;
-        for c in 0..2 {
-            let b: Vec<f64> = rhs.iter().map(|r| r[c]).collect();
-            let mut v: Vec<f64> = (0..old.len())
-                .filter(|&k| free[k])
-                .map(|k| x[k][c])
-                .collect();
-            laplacian.solve(&b, &mut v);
-            for (k, val) in (0..old.len()).filter(|&k| free[k]).zip(v) {
-                change = change.max((x[k][c] - val).abs());
-                x[k][c] = val;
-            }
-        }
+        let change = global_step(
+            old,
+            x,
+            &graph.edges,
+            &rotations,
+            &graph.index,
+            &graph.order,
+            &graph.laplacian,
+        );
         if change <= 1e-12 * size {
             break;
         }
     }
     done
+}
+
+/// The free positions that fit the original edges turned by each cell's rotation best;
+/// returns the largest coordinate change.
+fn global_step(
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    edges: &[Vec<(usize, usize, f64)>],
+    rotations: &[[f64; 2]],
+    index: &[u32],
+    order: &[usize],
+    laplacian: &Laplacian,
+) -> f64 {
+    let mut rhs = vec![[0.0; 2]; order.len()];
+    for (ce, &z) in edges.iter().zip(rotations) {
+        for &(a, b, w) in ce {
+            let r = rotate(z, [old[a][0] - old[b][0], old[a][1] - old[b][1]]);
+            for (i, j, sign) in [(a, b, 1.0), (b, a, -1.0)] {
+                if index[i] == NONE {
+                    continue;
+                }
+                let row = &mut rhs[index[i] as usize];
+                row[0] += sign * w * r[0];
+                row[1] += sign * w * r[1];
+                if index[j] == NONE {
+                    row[0] += w * x[j][0];
+                    row[1] += w * x[j][1];
+                }
+            }
+        }
+    }
+    let mut change = 0.0f64;
+    for c in 0..2 {
+        let b: Vec<f64> = rhs.iter().map(|r| r[c]).collect();
+        let mut v: Vec<f64> = order.iter().map(|&k| x[k][c]).collect();
+        laplacian.solve(&b, &mut v);
+        for (&k, val) in order.iter().zip(v) {
+            change = change.max((x[k][c] - val).abs());
+            x[k][c] = val;
+        }
+    }
+    change
 }
 
 /// The weighted graph Laplacian of the free nodes (held neighbours moved to the right-hand
