@@ -87,7 +87,7 @@ pub struct SpringMoveParams {
     pub arap_iterations: usize,
     /// A layer node keeps its original layer geometry (predictor and springs) while its
     /// cell below is at least this anisotropic (front spacing over extrusion length) and
-    /// its parents do; the nodes above join the filled region. Default 4.
+    /// its parents do; the nodes above join the filled region. Default 16.
     pub core_aspect: f64,
 }
 
@@ -105,7 +105,7 @@ impl Default for SpringMoveParams {
             idw: IdwParams::default(),
             screw_exponent: 2.0,
             arap_iterations: 30,
-            core_aspect: 4.0,
+            core_aspect: 16.0,
         }
     }
 }
@@ -214,6 +214,7 @@ fn move_springs(
         for layer in layers.iter().filter(|l| !l.is_empty()) {
             held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
         }
+        pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
         fill(mesh, &old, &mut x, &turn, &held, p, &mut stats);
     }
     Ok(finish(mesh, boundary, &old, &x, stats))
@@ -420,6 +421,60 @@ fn layer_nodes(
     }
     by_layer.truncate(stop);
     by_layer
+}
+
+/// The other corners of the cells on a wall facet that no layer keeps (the filled region's
+/// triangles that reach a wall) move rigidly with the facet's nodes (the mean of their
+/// predictions, each node turning by its `turn`) and are then held, so that every first-layer
+/// cell keeps its shape.
+fn pin_wall_cells(
+    mesh: &Mesh,
+    wall: &[bool],
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    turn: &mut [[f64; 2]],
+    held: &mut [bool],
+) {
+    let facets: std::collections::HashSet<(u32, u32)> = mesh
+        .boundary
+        .iter()
+        .map(|f| (f.corners()[0], f.corners()[1]))
+        .filter(|&(a, b)| wall[a as usize] && wall[b as usize])
+        .collect();
+    for c in 0..mesh.cells.len() {
+        let cell = mesh.cells.get(c);
+        let k = cell.corners();
+        let on_wall: Vec<usize> = (0..k.len())
+            .filter(|&j| facets.contains(&(k[j], k[(j + 1) % k.len()])))
+            .flat_map(|j| [k[j] as usize, k[(j + 1) % k.len()] as usize])
+            .collect();
+        if on_wall.is_empty() {
+            continue;
+        }
+        for &n in k {
+            let n = n as usize;
+            if held[n] {
+                continue;
+            }
+            let (mut sum, mut z) = ([0.0, 0.0], [0.0, 0.0]);
+            for &b in &on_wall {
+                let off = rotate(turn[b], [old[n][0] - old[b][0], old[n][1] - old[b][1]]);
+                sum[0] += x[b][0] + off[0];
+                sum[1] += x[b][1] + off[1];
+                z[0] += turn[b][0];
+                z[1] += turn[b][1];
+            }
+            let count = on_wall.len() as f64;
+            x[n] = [sum[0] / count, sum[1] / count];
+            let l = z[0].hypot(z[1]);
+            turn[n] = if l > 0.0 {
+                [z[0] / l, z[1] / l]
+            } else {
+                [1.0, 0.0]
+            };
+            held[n] = true;
+        }
+    }
 }
 
 /// The predictor: each layer node at its moved parents plus its original offset turned with
