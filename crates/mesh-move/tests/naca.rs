@@ -2,6 +2,8 @@
 //! cells after rotations of the wall, exact identity, exact rigid motion of every loop, the
 //! worst-cell ratio table, and a 30P30N flap deflection.
 
+mod common;
+
 use std::sync::OnceLock;
 
 use mesh_model::Mesh;
@@ -118,22 +120,11 @@ fn a_rigid_motion_of_every_loop_moves_every_node_rigidly() {
         about: [0.25, 0.1],
         translate: [-5.0, 2.0],
     };
-    let motions: Vec<LoopMotion> = ["naca0012", "farfield"]
-        .iter()
-        .map(|n| LoopMotion {
-            loop_name: n.to_string(),
-            motion: Motion::rigid(rigid),
-        })
-        .collect();
+    let motions = common::every_loop(&["naca0012", "farfield"], rigid);
     let size = mesh_move::movers::bounding_box_diagonal(mesh);
     for (name, method) in &METHODS {
         let (after, c) = moved(mesh, &motions, method);
-        let worst = (0..mesh.nodes.len() as u32)
-            .map(|k| {
-                let (want, got) = (rigid.apply(mesh.xy(k)), after.xy(k));
-                (want[0] - got[0]).hypot(want[1] - got[1])
-            })
-            .fold(0.0, f64::max);
+        let worst = common::rigid_error(mesh, &after, &rigid);
         assert!(worst <= 1e-12 * size, "{name}: {worst:e} (size {size})");
         assert_eq!(c.inverted_cells, 0, "{name}");
         assert!((c.worst_cell_ratio - 1.0).abs() < 1e-6, "{name}: {c:?}");

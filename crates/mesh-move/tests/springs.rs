@@ -3,6 +3,8 @@
 //! cell and the first layer kept, beside IDW and RBF; the identity to the bit; a rigid motion
 //! of every loop carried rigidly; and the 30P30N flap deflection.
 
+mod common;
+
 use std::sync::OnceLock;
 use std::time::Instant;
 
@@ -136,13 +138,7 @@ fn a_rigid_motion_of_every_loop_moves_every_node_rigidly_with_springs() {
         about: [0.25, 0.1],
         translate: [-5.0, 2.0],
     };
-    let motions: Vec<LoopMotion> = ["naca0012", "farfield"]
-        .iter()
-        .map(|n| LoopMotion {
-            loop_name: n.to_string(),
-            motion: Motion::rigid(rigid),
-        })
-        .collect();
+    let motions = common::every_loop(&["naca0012", "farfield"], rigid);
     let size = mesh_move::movers::bounding_box_diagonal(&mesh.mesh);
     for (name, method) in methods()
         .into_iter()
@@ -150,12 +146,7 @@ fn a_rigid_motion_of_every_loop_moves_every_node_rigidly_with_springs() {
     {
         let boundary = boundary_motion(&mesh.mesh, &motions).unwrap();
         let after = move_layered(mesh, &boundary, &method).unwrap().mesh;
-        let worst = (0..mesh.mesh.nodes.len() as u32)
-            .map(|k| {
-                let (want, got) = (rigid.apply(mesh.mesh.xy(k)), after.xy(k));
-                (want[0] - got[0]).hypot(want[1] - got[1])
-            })
-            .fold(0.0, f64::max);
+        let worst = common::rigid_error(&mesh.mesh, &after, &rigid);
         assert!(worst <= 1e-9 * size, "{name}: {worst:e} (size {size})");
     }
 }
