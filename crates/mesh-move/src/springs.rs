@@ -1,34 +1,47 @@
 //! The spring mover (dissertation chapter 4): the layered mesh follows its moved boundary with
 //! the geometry of its original layers, so that near the walls a moved mesh looks like the
-//! original one.
+//! original one; the rest of the mesh takes the deformation.
 //!
 //! 1. **Fronts.** Each node's neighbours along its front: the boundary facets (domain on the
 //!    left) and, for every layered cell, its top edge (the corners that have a parent among
 //!    the cell's corners), oriented like the facet below it.
-//! 2. **Predictor**, layer by layer from the boundary up: a layer node goes to its moved
-//!    parent plus its original offset from that parent turned by the rotation of the
-//!    parent's front (the mean rotation, old → new, of the directions to its front
-//!    neighbours); a node with two parents takes the mean of both predictions. A rigid motion
-//!    of the walls carries the layers rigidly; a bump turns each column with the wall.
-//! 3. **Springs** ([`springfield`]) built from the layering with the original geometry as
+//! 2. **Kept layers**: the nodes grown from the walls (every parent on a wall or kept), layer
+//!    by layer, up to the last layer whose median cell is at least
+//!    [`SpringMoveParams::core_aspect`] times wider than high: a band that wraps every wall,
+//!    corners included. Layers grown from the far field are not kept.
+//! 3. **Predictor**, layer by layer from the boundary up: a kept node goes to its moved parent
+//!    plus its original offset from that parent turned by the rotation of the parent's front
+//!    (the mean rotation, old → new, of the directions to its placed front neighbours, or its
+//!    parents' rotation); a node with two parents takes the mean of both predictions. A rigid
+//!    motion of a wall carries its band rigidly; a bump turns each column with the wall.
+//! 4. **Springs** ([`springfield`]) built from the layering with the original geometry as
 //!    the ideal one: an extrusion spring per parent–child edge (ideal length the original
-//!    one), a neighbour spring per layer node between its front neighbours (ideal share of
-//!    the two sides the original one), an angle spring per parent–child edge whose ideal
+//!    one), a neighbour spring per kept node between its front neighbours (ideal share of the
+//!    two sides the original one), an angle spring per parent–child edge whose ideal
 //!    direction is the parent's bisector turned by the original angle. The original mesh is
-//!    an equilibrium, and so is any rigid motion of it. The layer nodes move, the boundary
-//!    and the filled region are held; all together ([`Strategy::AllTogether`]) or one layer
-//!    after the other, then all together ([`Strategy::LayerByLayer`]). springfield's solver
-//!    keeps the mass constant for its first iterations and the angle springs off until an
-//!    edge reaches `angle_activation_ratio` of its ideal length.
-//! 4. **Filled region** (nodes in no layer): the rotation-aware IDW of [`crate::movers`] from
-//!    the nodes that bound the region (each source turns with its front), then, with
-//!    [`Fill::Arap`], as-rigid-as-possible iterations: each fill triangle's best rotation of
-//!    its original edges onto its current ones, then the positions that fit the rotated
-//!    original edges best (edges weighted by 1/length², a sparse symmetric positive definite
-//!    system solved by preconditioned conjugate gradients). ARAP is kept only when its fill
-//!    cells are no worse (worst scaled-Jacobian ratio) than the IDW's.
+//!    an equilibrium, and so is any rigid motion of it. The kept nodes move, everything else
+//!    is held; all together ([`Strategy::AllTogether`]) or one layer after the other, then
+//!    all together ([`Strategy::LayerByLayer`]). springfield's solver keeps the mass constant
+//!    for its first iterations and the angle springs off until an edge reaches
+//!    `angle_activation_ratio` of its ideal length.
+//! 5. **Wall cells outside the band** (fill triangles on a wall facet): their other corners
+//!    move rigidly with the facet's nodes and are held, so every first-layer cell keeps its
+//!    shape.
+//! 6. **The rest** (filled region and upper layers), from the nodes that bound it, each with
+//!    its local rigid motion (its turn, taking its original place to its moved one): with
+//!    [`Fill::Screw`] (default) each motion's logarithm in se(2) (a screw motion), blended at
+//!    each node by inverse-distance weights and exponentiated — a rigid motion stays exact and
+//!    a rotation becomes a twist about its centre instead of the shrinking that blending
+//!    positions gives; with [`Fill::Idw`] the rotation-aware IDW of [`crate::movers`]; with
+//!    [`Fill::Arap`] also as-rigid-as-possible iterations from the screw result (each cell's
+//!    best rotation of its original edges, then the positions that fit the turned edges best:
+//!    a 1/length²-weighted Laplacian solved by Jacobi-preconditioned conjugate gradients).
+//!    The IDW result is always computed and a later one replaces it only when its worst
+//!    scaled-Jacobian ratio over these cells is no lower.
 //!
-//! A motion that moves no boundary node returns the mesh unchanged, to the bit.
+//! A motion that moves no boundary node returns the mesh unchanged, to the bit. Angles are
+//! taken in (−180°, 180°]: a body turned by 180° or more is outside what the screw fill
+//! blends correctly.
 
 use std::collections::HashMap;
 
@@ -71,7 +84,11 @@ pub enum Fill {
 /// Parameters of the spring mover.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpringMoveParams {
-    /// The spring coefficients (the dissertation's by default).
+    /// The spring coefficients: the dissertation's, except a ten times stiffer extrusion
+    /// spring (the layer heights are given, not grown) and no angle reaction on the parent
+    /// (`c_percent` 0: the layers below are already in place). With the dissertation's own
+    /// the angle springs' pull shortens the first-layer edges of a bumped wall by up to 6 %
+    /// before the solve stops.
     pub springs: SpringParams,
     /// The explicit solver (tolerance relative to each node's original extrusion length).
     pub solver: SolverParams,
@@ -94,7 +111,11 @@ pub struct SpringMoveParams {
 impl Default for SpringMoveParams {
     fn default() -> Self {
         SpringMoveParams {
-            springs: SpringParams::default(),
+            springs: SpringParams {
+                k_extrusion: 10.0,
+                c_percent: 0.0,
+                ..SpringParams::default()
+            },
             solver: SolverParams {
                 max_iterations: 500,
                 tolerance: 1e-4,

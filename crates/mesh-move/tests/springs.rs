@@ -206,3 +206,28 @@ fn springs_deflect_the_30p30n_flap() {
         }
     }
 }
+
+#[test]
+fn springs_follow_hicks_henne_bumps_keeping_the_first_layer() {
+    use mesh_move::{HicksHenne, Surface};
+    let bumps: Vec<HicksHenne> = [0.1, 0.3, 0.5, 0.7]
+        .iter()
+        .flat_map(|&x| {
+            [
+                HicksHenne::new(x, 0.01, Surface::Upper),
+                HicksHenne::new(x, -0.01, Surface::Lower),
+            ]
+        })
+        .collect();
+    let morph = vec![LoopMotion {
+        loop_name: "naca0012".into(),
+        motion: Motion::bumps(bumps),
+    }];
+    let (c, s, _) = run(naca(), &morph, &springs(Strategy::AllTogether, Fill::Screw));
+    println!("8 bumps of 1 % chord: {c:?} {s:?}");
+    assert_eq!(c.inverted_cells, 0);
+    let fl = c.first_layer.expect("walls");
+    assert!(fl.height < 0.01 && fl.angle_deg < 5.0, "{fl:?}");
+    assert!(c.worst_cell_ratio > 0.5, "{c:?}");
+    assert!(s.springs.is_some_and(|p| p.converged), "{s:?}");
+}
