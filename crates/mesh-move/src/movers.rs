@@ -319,7 +319,7 @@ const AFFINE_NOISE: f64 = 1e-13;
 
 /// A fitted RBF interpolant of the boundary displacements, in scaled coordinates
 /// `(x − centre) / scale`.
-struct Rbf {
+pub(crate) struct Rbf {
     kernel: Kernel,
     centre: [f64; 2],
     scale: f64,
@@ -334,7 +334,7 @@ struct Rbf {
 }
 
 impl Rbf {
-    fn fit(mesh: &Mesh, s: &Sources, p: &RbfParams) -> Result<Rbf, MoveError> {
+    pub(crate) fn fit(mesh: &Mesh, s: &Sources, p: &RbfParams) -> Result<Rbf, MoveError> {
         let n = s.at.len();
         let diameter = bounding_box_diagonal(mesh);
         let scale = match (p.kernel, p.support_radius) {
@@ -415,7 +415,7 @@ impl Rbf {
     }
 
     /// The interpolated displacement at `x` (unscaled).
-    fn displacement(&self, x: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn displacement(&self, x: [f64; 2]) -> [f64; 2] {
         let q = [
             (x[0] - self.centre[0]) / self.scale,
             (x[1] - self.centre[1]) / self.scale,

@@ -28,16 +28,16 @@
 //!    move rigidly with the facet's nodes and are held, so every first-layer cell keeps its
 //!    shape.
 //! 6. **The rest** (filled region and upper layers), from the nodes that bound it, each with
-//!    its local rigid motion (its turn, taking its original place to its moved one): with
-//!    [`Fill::Screw`] (default) each motion's logarithm in se(2) (a screw motion), blended at
-//!    each node by inverse-distance weights and exponentiated — a rigid motion stays exact and
-//!    a rotation becomes a twist about its centre instead of the shrinking that blending
-//!    positions gives; with [`Fill::Idw`] the rotation-aware IDW of [`crate::movers`]; with
-//!    [`Fill::Arap`] also as-rigid-as-possible iterations from the screw result (each cell's
-//!    best rotation of its original edges, then the positions that fit the turned edges best:
-//!    a 1/length²-weighted Laplacian solved by Jacobi-preconditioned conjugate gradients).
-//!    The IDW result is always computed and a later one replaces it only when its worst
-//!    scaled-Jacobian ratio over these cells is no lower.
+//!    its local rigid motion (its turn, taking its original place to its moved one),
+//!    candidates by [`Fill`]: the rotation-aware IDW of [`crate::movers`]; the screw fill
+//!    (each motion's logarithm in se(2), blended by inverse-distance weights and
+//!    exponentiated: a rigid motion stays exact, a rotation becomes a twist about its
+//!    centre); as-rigid-as-possible iterations from it (each cell's best rotation of its
+//!    original edges, then the positions that fit the turned edges best: a
+//!    1/length²-weighted Laplacian solved by Jacobi-preconditioned conjugate gradients); the
+//!    global Wendland C2 RBF of the displacements. The IDW is always computed, and a later
+//!    candidate replaces it only when its worst scaled-Jacobian ratio over these cells is no
+//!    lower, so an ill-conditioned RBF or a folded ARAP is passed over.
 //!
 //! A motion that moves no boundary node returns the mesh unchanged, to the bit. Angles are
 //! taken in (−180°, 180°]: a body turned by 180° or more is outside what the screw fill
@@ -54,7 +54,9 @@ use springfield::{
 
 use crate::MoveError;
 use crate::boundary::BoundaryMotion;
-use crate::movers::{IdwParams, Method, MoveStats, Moved, Sources, check_boundary, move_mesh};
+use crate::movers::{
+    IdwParams, Method, MoveStats, Moved, Rbf, RbfParams, Sources, check_boundary, move_mesh,
+};
 use crate::quality::scaled_jacobian;
 
 /// In what order the layer nodes are balanced.
@@ -67,18 +69,23 @@ pub enum Strategy {
     LayerByLayer,
 }
 
-/// How the nodes of the filled region (every node not kept in the layers) move.
+/// How the nodes outside the kept layers move. The rotation-aware IDW is always computed; a
+/// later candidate replaces it only when its worst scaled-Jacobian ratio over these nodes'
+/// cells is no lower.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Fill {
     /// Rotation-aware IDW from the region's bounding nodes.
     Idw,
-    /// The local rigid motions of the bounding nodes, as screw motions (logarithms in
-    /// se(2)), blended by inverse-distance weights, then exponentiated; the IDW instead when
-    /// that is worse.
-    #[default]
+    /// Also the screw fill: the bounding nodes' local rigid motions as logarithms in se(2),
+    /// blended by inverse-distance weights, then exponentiated.
     Screw,
-    /// [`Fill::Screw`], then as-rigid-as-possible iterations; the best of the three.
+    /// Also as-rigid-as-possible iterations from the screw fill.
     Arap,
+    /// Also the global Wendland C2 RBF of the bounding nodes' displacements (the default:
+    /// the best on the NACA0012 pitch; its system may be too ill-conditioned on a mesh with
+    /// very fine walls, as on the 30P30N, and is then passed over).
+    #[default]
+    Rbf,
 }
 
 /// Parameters of the spring mover.
@@ -122,7 +129,7 @@ impl Default for SpringMoveParams {
                 ..SolverParams::default()
             },
             strategy: Strategy::AllTogether,
-            fill: Fill::Screw,
+            fill: Fill::Rbf,
             idw: IdwParams::default(),
             screw_exponent: 2.0,
             arap_iterations: 30,
@@ -149,8 +156,10 @@ pub struct SpringStats {
     pub layer_nodes: usize,
     /// Nodes of the filled region.
     pub fill_nodes: usize,
-    /// As-rigid-as-possible iterations done (0 when the IDW fill was kept).
+    /// As-rigid-as-possible iterations done.
     pub arap_iterations: usize,
+    /// The fill kept.
+    pub fill: Fill,
 }
 
 /// `layered` moved by `method` to follow `boundary`: the springs use the layering, IDW and
@@ -705,26 +714,43 @@ fn fill(
     for (&k, m) in nodes.iter().zip(moved) {
         x[k as usize] = m;
     }
+    stats.fill = Fill::Idw;
     if p.fill == Fill::Idw {
         return;
     }
-    let graph = Graph::new(old, &cells, &free);
-    let mut best = (worst_ratio(old, x, &cells), x.to_vec(), 0);
+    let mut best = worst_ratio(old, x, &cells);
+    let mut keep = |y: &[[f64; 2]], used: Fill, x: &mut [[f64; 2]], stats: &mut SpringStats| {
+        let r = worst_ratio(old, y, &cells);
+        if r >= best {
+            best = r;
+            x.copy_from_slice(y);
+            stats.fill = used;
+        }
+    };
     let mut y = x.to_vec();
     screw(old, &mut y, &sources, &nodes, p.screw_exponent);
-    let r = worst_ratio(old, &y, &cells);
-    if r >= best.0 {
-        best = (r, y.clone(), 0);
-    }
+    keep(&y, Fill::Screw, x, stats);
     if p.fill == Fill::Arap {
-        let done = arap(old, &mut y, &graph, p.arap_iterations);
-        let r = worst_ratio(old, &y, &cells);
-        if r >= best.0 {
-            best = (r, y, done);
+        let graph = Graph::new(old, &cells, &free);
+        stats.arap_iterations = arap(old, &mut y, &graph, p.arap_iterations);
+        keep(&y, Fill::Arap, x, stats);
+    }
+    if p.fill == Fill::Rbf {
+        // a singular system leaves the other candidates
+        if let Ok(rbf) = Rbf::fit(mesh, &sources, &RbfParams::default()) {
+            let moved: Vec<[f64; 2]> = nodes
+                .par_iter()
+                .map(|&k| {
+                    let (o, d) = (old[k as usize], rbf.displacement(old[k as usize]));
+                    [o[0] + d[0], o[1] + d[1]]
+                })
+                .collect();
+            for (&k, m) in nodes.iter().zip(moved) {
+                y[k as usize] = m;
+            }
+            keep(&y, Fill::Rbf, x, stats);
         }
     }
-    x.copy_from_slice(&best.1);
-    stats.arap_iterations = best.2;
 }
 
 /// The nodes that bound the filled region (on an edge of one fill cell only, or held), as IDW
