@@ -827,7 +827,7 @@ fn polish(
                 .filter(|&&m| m != n)
                 .map(|&m| dist(x[m as usize], start))
                 .fold(f64::INFINITY, f64::min);
-            for step in [0.1, 0.05, 0.025].map(|f| f * shortest) {
+            for step in [0.3, 0.1, 0.03, 0.01].map(|f| f * shortest) {
                 for d in 0..8 {
                     let a = d as f64 * std::f64::consts::FRAC_PI_4;
                     x[n as usize] = [start[0] + step * a.cos(), start[1] + step * a.sin()];
