@@ -11,8 +11,7 @@ use std::time::Instant;
 use mesh_model::LayeredMesh;
 use mesh_move::{
     BoundaryMotion, Comparison, Fill, IdwParams, Kernel, LoopMotion, Method, Motion, MoveStats,
-    RbfParams, RigidMotion, Section, SpringMoveParams, Strategy, boundary_motion, compare,
-    move_layered,
+    RbfParams, RigidMotion, SpringMoveParams, Strategy, boundary_motion, compare, move_layered,
 };
 
 fn naca() -> &'static LayeredMesh {
@@ -137,12 +136,7 @@ fn the_identity_motion_moves_no_node_with_springs() {
 #[test]
 fn a_rigid_motion_of_every_loop_moves_every_node_rigidly_with_springs() {
     let mesh = naca();
-    let rigid = RigidMotion {
-        scale: 1.0,
-        rotate_deg: 37.0,
-        about: [0.25, 0.1],
-        translate: [-5.0, 2.0],
-    };
+    let rigid = common::turn_and_shift(1.0);
     let motions = common::every_loop(&["naca0012", "farfield"], rigid);
     let size = mesh_move::movers::bounding_box_diagonal(&mesh.mesh);
     for (name, method) in methods()
@@ -183,14 +177,7 @@ fn the_spring_mover_needs_the_layers_and_checks_them() {
 fn springs_deflect_the_30p30n_flap() {
     let case = test_cases::real_case("30p30n");
     let mesh = test_cases::grow(&case).output.layered;
-    let flap = &case
-        .loops
-        .iter()
-        .find(|l| l.name == "flap")
-        .expect("a flap")
-        .points;
-    let section = Section::of_loop(flap).expect("a chord");
-    let hinge = flap[section.leading_edge];
+    let hinge = common::leading_edge(&case, "flap");
     println!(
         "30P30N (first height 5e-6, far field radius 20), flap deflected about its leading edge, one step:\n{HEADER}"
     );
@@ -214,20 +201,7 @@ fn springs_deflect_the_30p30n_flap() {
 
 #[test]
 fn springs_follow_hicks_henne_bumps_keeping_the_first_layer() {
-    use mesh_move::{HicksHenne, Surface};
-    let bumps: Vec<HicksHenne> = [0.1, 0.3, 0.5, 0.7]
-        .iter()
-        .flat_map(|&x| {
-            [
-                HicksHenne::new(x, 0.01, Surface::Upper),
-                HicksHenne::new(x, -0.01, Surface::Lower),
-            ]
-        })
-        .collect();
-    let morph = vec![LoopMotion {
-        loop_name: "naca0012".into(),
-        motion: Motion::bumps(bumps),
-    }];
+    let morph = common::eight_bumps("naca0012");
     let (c, s, _) = run(naca(), &morph, &springs(Strategy::AllTogether, Fill::Rbf));
     println!("8 bumps of 1 % chord: {c:?} {s:?}");
     assert_eq!(c.inverted_cells, 0);
