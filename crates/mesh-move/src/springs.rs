@@ -777,27 +777,26 @@ fn polish(
     free: &[bool],
     passes: usize,
 ) -> usize {
-    let mut node_cells: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut node_cells: Vec<Vec<usize>> = vec![Vec::new(); old.len()];
     for (c, k) in cells.iter().enumerate() {
         for &n in k.iter().filter(|&&n| free[n as usize]) {
-            node_cells.entry(n).or_default().push(c);
+            node_cells[n as usize].push(c);
         }
     }
-    let before: Vec<f64> = cells
-        .iter()
-        .map(|k| scaled_jacobian(&k.iter().map(|&n| old[n as usize]).collect::<Vec<_>>()))
-        .collect();
-    let ratio = |x: &[[f64; 2]], c: usize| {
-        let corners: Vec<[f64; 2]> = cells[c].iter().map(|&n| x[n as usize]).collect();
-        let b = before[c];
-        if b > 0.0 {
-            scaled_jacobian(&corners) / b
-        } else {
-            1.0
+    let corners = |x: &[[f64; 2]], c: usize| {
+        let mut p = [[0.0; 2]; 4];
+        for (q, &n) in p.iter_mut().zip(&cells[c]) {
+            *q = x[n as usize];
         }
+        scaled_jacobian(&p[..cells[c].len().min(4)])
+    };
+    let before: Vec<f64> = (0..cells.len()).map(|c| corners(old, c)).collect();
+    let ratio = |x: &[[f64; 2]], c: usize| {
+        let b = before[c];
+        if b > 0.0 { corners(x, c) / b } else { 1.0 }
     };
     let local = |x: &[[f64; 2]], n: u32| {
-        node_cells[&n]
+        node_cells[n as usize]
             .iter()
             .map(|&c| ratio(x, c))
             .fold(f64::INFINITY, f64::min)
@@ -821,7 +820,7 @@ fn polish(
         for n in targets {
             let start = x[n as usize];
             let mut best = (local(x, n), start);
-            let shortest = node_cells[&n]
+            let shortest = node_cells[n as usize]
                 .iter()
                 .flat_map(|&c| cells[c].iter())
                 .filter(|&&m| m != n)
