@@ -171,6 +171,21 @@ fn the_spring_mover_needs_the_layers_and_checks_them() {
         e.starts_with("the mesh's layering is broken: node_layer has"),
         "{e}"
     );
+    let bad = Method::Springs(SpringMoveParams {
+        core_aspect: 0.0,
+        ..SpringMoveParams::default()
+    });
+    let e = move_layered(mesh, &fixed, &bad).unwrap_err().to_string();
+    assert_eq!(e, "core aspect must be positive and finite, got 0");
+    let mut p = SpringMoveParams::default();
+    p.springs.c_percent = 2.0;
+    let e = move_layered(mesh, &fixed, &Method::Springs(p))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("springs: ") && e.contains("c_percent") && !e.contains('\n'),
+        "{e}"
+    );
 }
 
 #[test]
