@@ -162,6 +162,21 @@ pub enum MoveError {
         /// Its size.
         size: usize,
     },
+    /// A mover that needs the mesh's layers called without them.
+    #[error("the spring mover needs the mesh's layers: call move_layered with a LayeredMesh")]
+    NeedsLayering,
+    /// The mesh's layering does not fit the mesh.
+    #[error("the mesh's layering is broken: {what}")]
+    BadLayering {
+        /// What is wrong.
+        what: String,
+    },
+    /// Bad spring or solver parameters, or a failed spring solve.
+    #[error("springs: {what}")]
+    Springs {
+        /// What went wrong.
+        what: String,
+    },
     /// Two meshes compared that do not share their topology.
     #[error("the meshes differ in topology: {what}")]
     TopologyMismatch {

@@ -4,7 +4,8 @@
 //! movers of the nodes of a linear mesh that follow its moved boundary (rotation-aware
 //! inverse-distance weighting and radial basis functions, Wendland C2 or thin-plate spline),
 //! and the measures that compare movers (scaled Jacobians, worst-cell ratio, inverted cells,
-//! first-layer drift).
+//! first-layer drift). The spring mover ([`springs`], [`move_layered`]) also takes the mesh's
+//! layers and keeps the original layer geometry near the walls.
 //!
 //! It owns no meshing and no IO: it takes a [`mesh_model::Mesh`] of order 1 and returns one
 //! with the same topology and new node positions. The boundary nodes are those of the
@@ -72,6 +73,7 @@ mod error;
 pub mod motion;
 pub mod movers;
 pub mod quality;
+pub mod springs;
 
 pub use boundary::{BoundaryMotion, boundary_motion, mesh_loops, patch_loop};
 pub use error::MoveError;
@@ -81,3 +83,4 @@ pub use motion::{
 };
 pub use movers::{IdwParams, Kernel, Method, MoveStats, Moved, RbfParams, move_mesh};
 pub use quality::{Comparison, FirstLayerDrift, compare, scaled_jacobian};
+pub use springs::{Fill, SpringMoveParams, SpringStats, Strategy, move_layered};

@@ -80,6 +80,9 @@ pub enum Method {
     Idw(IdwParams),
     /// Radial basis functions.
     Rbf(RbfParams),
+    /// The Spring-Field re-balanced on the original layers ([`crate::springs`]); needs the
+    /// layering, so only [`crate::move_layered`] takes it.
+    Springs(crate::springs::SpringMoveParams),
 }
 
 /// What a move did.
@@ -99,6 +102,8 @@ pub struct MoveStats {
     /// RBF only: the largest difference between the interpolant and the boundary
     /// displacement at a boundary node (the solve's accuracy); 0 for IDW.
     pub interpolation_residual: f64,
+    /// Springs only: the spring solve's figures.
+    pub springs: Option<crate::springs::SpringStats>,
 }
 
 /// The moved mesh (same topology, new node positions) and what the move did.
@@ -149,6 +154,7 @@ pub fn move_mesh(
                 .collect::<Vec<_>>();
             (d, rbf.residual(&sources))
         }
+        Method::Springs(_) => return Err(MoveError::NeedsLayering),
     };
     let mut moved = mesh.clone();
     let mut stats = MoveStats {
@@ -175,7 +181,7 @@ pub fn move_mesh(
     Ok(Moved { mesh: moved, stats })
 }
 
-fn check_boundary(mesh: &Mesh, b: &BoundaryMotion) -> Result<(), MoveError> {
+pub(crate) fn check_boundary(mesh: &Mesh, b: &BoundaryMotion) -> Result<(), MoveError> {
     check_linear_2d(mesh)?;
     let bad = |what: String| Err(MoveError::BadBoundaryMotion { what });
     if b.targets.len() != b.nodes.len() || b.linear.len() != b.nodes.len() {
@@ -223,15 +229,15 @@ fn positive(what: &'static str, value: f64) -> Result<(), MoveError> {
 }
 
 /// The boundary nodes as sources of displacement.
-struct Sources {
+pub(crate) struct Sources {
     /// Original positions.
-    at: Vec<[f64; 2]>,
+    pub(crate) at: Vec<[f64; 2]>,
     /// Displacements.
-    d: Vec<[f64; 2]>,
+    pub(crate) d: Vec<[f64; 2]>,
     /// `M − I` of each.
-    m: Vec<Mat2>,
+    pub(crate) m: Vec<Mat2>,
     /// Half the length of the boundary facets at each.
-    area: Vec<f64>,
+    pub(crate) area: Vec<f64>,
 }
 
 impl Sources {
@@ -270,7 +276,7 @@ impl Sources {
     }
 
     /// The inverse-distance-weighted displacement at `x`.
-    fn idw(&self, x: [f64; 2], exponent: f64) -> [f64; 2] {
+    pub(crate) fn idw(&self, x: [f64; 2], exponent: f64) -> [f64; 2] {
         let (mut sum, mut total) = ([0.0, 0.0], 0.0);
         for i in 0..self.at.len() {
             let b = self.at[i];
@@ -313,7 +319,7 @@ const AFFINE_NOISE: f64 = 1e-13;
 
 /// A fitted RBF interpolant of the boundary displacements, in scaled coordinates
 /// `(x − centre) / scale`.
-struct Rbf {
+pub(crate) struct Rbf {
     kernel: Kernel,
     centre: [f64; 2],
     scale: f64,
@@ -328,7 +334,7 @@ struct Rbf {
 }
 
 impl Rbf {
-    fn fit(mesh: &Mesh, s: &Sources, p: &RbfParams) -> Result<Rbf, MoveError> {
+    pub(crate) fn fit(mesh: &Mesh, s: &Sources, p: &RbfParams) -> Result<Rbf, MoveError> {
         let n = s.at.len();
         let diameter = bounding_box_diagonal(mesh);
         let scale = match (p.kernel, p.support_radius) {
@@ -409,7 +415,7 @@ impl Rbf {
     }
 
     /// The interpolated displacement at `x` (unscaled).
-    fn displacement(&self, x: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn displacement(&self, x: [f64; 2]) -> [f64; 2] {
         let q = [
             (x[0] - self.centre[0]) / self.scale,
             (x[1] - self.centre[1]) / self.scale,

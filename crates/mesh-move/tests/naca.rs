@@ -2,12 +2,14 @@
 //! cells after rotations of the wall, exact identity, exact rigid motion of every loop, the
 //! worst-cell ratio table, and a 30P30N flap deflection.
 
+mod common;
+
 use std::sync::OnceLock;
 
 use mesh_model::Mesh;
 use mesh_move::{
     BoundaryMotion, Comparison, IdwParams, Kernel, LoopMotion, Method, Motion, MoveStats,
-    RbfParams, RigidMotion, Section, boundary_motion, compare, move_mesh,
+    RbfParams, RigidMotion, boundary_motion, compare, move_mesh,
 };
 
 fn naca() -> &'static Mesh {
@@ -112,28 +114,12 @@ fn the_identity_motion_moves_no_node_at_all() {
 #[test]
 fn a_rigid_motion_of_every_loop_moves_every_node_rigidly() {
     let mesh = naca();
-    let rigid = RigidMotion {
-        scale: 1.5,
-        rotate_deg: 37.0,
-        about: [0.25, 0.1],
-        translate: [-5.0, 2.0],
-    };
-    let motions: Vec<LoopMotion> = ["naca0012", "farfield"]
-        .iter()
-        .map(|n| LoopMotion {
-            loop_name: n.to_string(),
-            motion: Motion::rigid(rigid),
-        })
-        .collect();
+    let rigid = common::turn_and_shift(1.5);
+    let motions = common::every_loop(&["naca0012", "farfield"], rigid);
     let size = mesh_move::movers::bounding_box_diagonal(mesh);
     for (name, method) in &METHODS {
         let (after, c) = moved(mesh, &motions, method);
-        let worst = (0..mesh.nodes.len() as u32)
-            .map(|k| {
-                let (want, got) = (rigid.apply(mesh.xy(k)), after.xy(k));
-                (want[0] - got[0]).hypot(want[1] - got[1])
-            })
-            .fold(0.0, f64::max);
+        let worst = common::rigid_error(mesh, &after, &rigid);
         assert!(worst <= 1e-12 * size, "{name}: {worst:e} (size {size})");
         assert_eq!(c.inverted_cells, 0, "{name}");
         assert!((c.worst_cell_ratio - 1.0).abs() < 1e-6, "{name}: {c:?}");
@@ -172,14 +158,7 @@ fn worst_cell_ratio_table_of_the_naca0012_pitch() {
 fn worst_cell_ratio_table_of_the_30p30n_flap_deflection() {
     let case = test_cases::real_case("30p30n");
     let mesh = test_cases::grow(&case).output.layered.mesh;
-    let flap = &case
-        .loops
-        .iter()
-        .find(|l| l.name == "flap")
-        .expect("a flap")
-        .points;
-    let section = Section::of_loop(flap).expect("a chord");
-    let hinge = flap[section.leading_edge];
+    let hinge = common::leading_edge(&case, "flap");
     println!(
         "30P30N (first height 5e-6, far field radius 20), flap deflected about its leading edge ({:.4}, {:.4}), one step:\n{HEADER}",
         hinge[0], hinge[1]
@@ -208,21 +187,8 @@ fn worst_cell_ratio_table_of_the_30p30n_flap_deflection() {
 
 #[test]
 fn hicks_henne_bumps_on_the_naca0012_mesh_move_the_wall_nodes_and_invert_no_cell() {
-    use mesh_move::{HicksHenne, Surface};
     let mesh = naca();
-    let bumps: Vec<HicksHenne> = [0.1, 0.3, 0.5, 0.7]
-        .iter()
-        .flat_map(|&x| {
-            [
-                HicksHenne::new(x, 0.01, Surface::Upper),
-                HicksHenne::new(x, -0.01, Surface::Lower),
-            ]
-        })
-        .collect();
-    let morph = vec![LoopMotion {
-        loop_name: "naca0012".into(),
-        motion: Motion::bumps(bumps),
-    }];
+    let morph = common::eight_bumps("naca0012");
     for (name, method) in &METHODS {
         let (_, c, s) = moved_with_stats(mesh, &morph, method);
         assert_eq!(c.inverted_cells, 0, "{name}");

@@ -1,0 +1,1203 @@
+//! The spring mover (dissertation chapter 4): the layered mesh follows its moved boundary with
+//! the geometry of its original layers, so that near the walls a moved mesh looks like the
+//! original one; the rest of the mesh takes the deformation.
+//!
+//! 1. **Fronts.** Each node's neighbours along its front: the boundary facets (domain on the
+//!    left) and, for every layered cell, its top edge (the corners that have a parent among
+//!    the cell's corners), oriented like the facet below it.
+//! 2. **Kept layers**: the nodes grown from the walls (every parent on a wall or kept), layer
+//!    by layer, up to the last layer whose median cell is at least
+//!    [`SpringMoveParams::core_aspect`] times wider than high: a band that wraps every wall,
+//!    corners included. Layers grown from the far field are not kept.
+//! 3. **Predictor**, layer by layer from the boundary up: a kept node goes to its moved parent
+//!    plus its original offset from that parent turned by the rotation of the parent's front
+//!    (the mean rotation, old → new, of the directions to its placed front neighbours, or its
+//!    parents' rotation); a node with two parents takes the mean of both predictions. A rigid
+//!    motion of a wall carries its band rigidly; a bump turns each column with the wall.
+//! 4. **Springs** ([`springfield`]) built from the layering with the original geometry as
+//!    the ideal one: an extrusion spring per parent–child edge (ideal length the original
+//!    one), a neighbour spring per kept node between its front neighbours (ideal share of the
+//!    two sides the original one), an angle spring per parent–child edge whose ideal
+//!    direction is the parent's bisector turned by the original angle. The original mesh is
+//!    an equilibrium, and so is any rigid motion of it. The kept nodes move, everything else
+//!    is held; all together ([`Strategy::AllTogether`]) or one layer after the other, then
+//!    all together ([`Strategy::LayerByLayer`]). springfield's solver keeps the mass constant
+//!    for its first iterations and the angle springs off until an edge reaches
+//!    `angle_activation_ratio` of its ideal length.
+//! 5. **Wall cells outside the band** (fill triangles on a wall facet): their other corners
+//!    move rigidly with the facet's nodes and are held, so every first-layer cell keeps its
+//!    shape.
+//! 6. **The rest** (filled region and upper layers), from the nodes that bound it, each with
+//!    its local rigid motion (its turn, taking its original place to its moved one),
+//!    candidates by [`Fill`]: the rotation-aware IDW of [`crate::movers`]; the screw fill
+//!    (each motion's logarithm in se(2), blended by inverse-distance weights and
+//!    exponentiated: a rigid motion stays exact, a rotation becomes a twist about its
+//!    centre); as-rigid-as-possible iterations from it (each cell's best rotation of its
+//!    original edges, then the positions that fit the turned edges best: a
+//!    1/length²-weighted Laplacian solved by Jacobi-preconditioned conjugate gradients); the
+//!    global Wendland C2 RBF of the displacements. The IDW is always computed, and a later
+//!    candidate replaces it only when its worst scaled-Jacobian ratio over these cells is no
+//!    lower, so an ill-conditioned RBF or a folded ARAP is passed over.
+//!
+//! A motion that moves no boundary node returns the mesh unchanged, to the bit. Angles are
+//! taken in (−180°, 180°]: a body turned by 180° or more is outside what the screw fill
+//! blends correctly.
+
+use std::collections::HashMap;
+
+use mesh_model::{LayeredMesh, Layering, Mesh, NONE, Role};
+use rayon::prelude::*;
+use springfield::{
+    AngleSpring, ExtrusionSpring, NeighbourSpring, SolverParams, SpringField2d, SpringParams,
+    SpringSet2d, bisector, solve_model_active,
+};
+
+use crate::MoveError;
+use crate::boundary::BoundaryMotion;
+use crate::movers::{
+    IdwParams, Method, MoveStats, Moved, Rbf, RbfParams, Sources, check_boundary, move_mesh,
+};
+use crate::quality::scaled_jacobian;
+
+/// In what order the layer nodes are balanced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Strategy {
+    /// Every layer node in one solve.
+    #[default]
+    AllTogether,
+    /// One solve per layer from the wall up (the layers below held), then one solve of all.
+    LayerByLayer,
+}
+
+/// How the nodes outside the kept layers move. The rotation-aware IDW is always computed; a
+/// later candidate replaces it only when its worst scaled-Jacobian ratio over these nodes'
+/// cells is no lower.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Fill {
+    /// Rotation-aware IDW from the region's bounding nodes.
+    Idw,
+    /// Also the screw fill: the bounding nodes' local rigid motions as logarithms in se(2),
+    /// blended by inverse-distance weights, then exponentiated.
+    Screw,
+    /// Also as-rigid-as-possible iterations from the screw fill.
+    Arap,
+    /// Also the global Wendland C2 RBF of the bounding nodes' displacements (the default:
+    /// the best on the NACA0012 pitch; its system may be too ill-conditioned on a mesh with
+    /// very fine walls, as on the 30P30N, and is then passed over).
+    #[default]
+    Rbf,
+}
+
+/// Parameters of the spring mover.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringMoveParams {
+    /// The spring coefficients: the dissertation's, except a ten times stiffer extrusion
+    /// spring (the layer heights are given, not grown) and no angle reaction on the parent
+    /// (`c_percent` 0: the layers below are already in place). With the dissertation's own
+    /// the angle springs' pull shortens the first-layer edges of a bumped wall by up to 6 %
+    /// before the solve stops.
+    pub springs: SpringParams,
+    /// The explicit solver (tolerance relative to each node's original extrusion length).
+    pub solver: SolverParams,
+    /// All layer nodes together, or layer by layer.
+    pub strategy: Strategy,
+    /// How the filled region moves.
+    pub fill: Fill,
+    /// The IDW of the filled region.
+    pub idw: IdwParams,
+    /// The exponent of the screw fill's inverse-distance weights (> 0). Default 2.
+    pub screw_exponent: f64,
+    /// Most as-rigid-as-possible iterations.
+    pub arap_iterations: usize,
+    /// Passes of the worst-cell polish after the fill (0: none). Default 50.
+    pub polish_passes: usize,
+    /// A layer node keeps its original layer geometry (predictor and springs) while its
+    /// cell below is at least this anisotropic (front spacing over extrusion length) and
+    /// its parents do; the nodes above join the filled region. Default 16.
+    pub core_aspect: f64,
+}
+
+impl Default for SpringMoveParams {
+    fn default() -> Self {
+        SpringMoveParams {
+            springs: SpringParams {
+                k_extrusion: 10.0,
+                c_percent: 0.0,
+                ..SpringParams::default()
+            },
+            solver: SolverParams {
+                max_iterations: 500,
+                tolerance: 1e-4,
+                ..SolverParams::default()
+            },
+            strategy: Strategy::AllTogether,
+            fill: Fill::Rbf,
+            idw: IdwParams::default(),
+            screw_exponent: 2.0,
+            arap_iterations: 30,
+            polish_passes: 50,
+            core_aspect: 16.0,
+        }
+    }
+}
+
+/// Figures of a spring move.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpringStats {
+    /// Spring solves done (1, or one per layer plus one).
+    pub solves: usize,
+    /// Solver iterations over all solves.
+    pub iterations: usize,
+    /// True when every solve converged.
+    pub converged: bool,
+    /// Largest move of a node in the last iteration of the last solve, relative to its
+    /// original extrusion length.
+    pub residual: f64,
+    /// Springs (extrusion, neighbour, angle).
+    pub springs: usize,
+    /// Layer nodes (moved by the predictor and the springs).
+    pub layer_nodes: usize,
+    /// Nodes of the filled region.
+    pub fill_nodes: usize,
+    /// As-rigid-as-possible iterations done.
+    pub arap_iterations: usize,
+    /// The fill kept.
+    pub fill: Fill,
+    /// Node moves made by the worst-cell polish.
+    pub polished: usize,
+}
+
+/// `layered` moved by `method` to follow `boundary`: the springs use the layering, IDW and
+/// RBF take the mesh alone ([`move_mesh`]). One entry point for every method.
+///
+/// # Errors
+/// Those of [`move_mesh`]; [`MoveError::BadLayering`] when the layering does not fit the
+/// mesh; [`MoveError::Springs`] for bad spring or solver parameters or a failed solve.
+pub fn move_layered(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    method: &Method,
+) -> Result<Moved, MoveError> {
+    match method {
+        Method::Springs(p) => move_springs(layered, boundary, p),
+        other => move_mesh(&layered.mesh, boundary, other),
+    }
+}
+
+fn spring_error(e: impl std::fmt::Display) -> MoveError {
+    MoveError::Springs {
+        what: e.to_string(),
+    }
+}
+
+fn move_springs(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    p: &SpringMoveParams,
+) -> Result<Moved, MoveError> {
+    let (mesh, layering) = (&layered.mesh, &layered.layering);
+    check_boundary(mesh, boundary)?;
+    if let Some(what) = layering.check(mesh) {
+        return Err(MoveError::BadLayering { what });
+    }
+    p.springs.check().map_err(spring_error)?;
+    p.solver.check().map_err(spring_error)?;
+    for (what, value) in [
+        ("IDW exponent", p.idw.exponent),
+        ("screw exponent", p.screw_exponent),
+        ("core aspect", p.core_aspect),
+    ] {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(MoveError::BadParameter { what, value });
+        }
+    }
+    let old: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
+    let mut x = old.clone();
+    let mut fixed = vec![false; old.len()];
+    for (&k, t) in boundary.nodes.iter().zip(&boundary.targets) {
+        x[k as usize] = *t;
+        fixed[k as usize] = true;
+    }
+    let mut stats = SpringStats {
+        converged: true,
+        ..SpringStats::default()
+    };
+    if x != old {
+        let fronts = Fronts::of(mesh, layering);
+        let mut wall = vec![false; old.len()];
+        for (f, facet) in mesh.boundary.iter().enumerate() {
+            if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall {
+                facet
+                    .corners()
+                    .iter()
+                    .for_each(|&k| wall[k as usize] = true);
+            }
+        }
+        let layers = layer_nodes(layering, &fixed, &wall, &old, &fronts, p.core_aspect);
+        stats.layer_nodes = layers.iter().map(Vec::len).sum();
+        let mut held = fixed.clone();
+        layers
+            .iter()
+            .flatten()
+            .for_each(|&n| held[n as usize] = true);
+        predict(&old, &mut x, &fronts, layering, &layers, &fixed);
+        balance(
+            &old, &mut x, &fronts, layering, &layers, &held, p, &mut stats,
+        )?;
+        let mut turn = vec![[1.0, 0.0]; old.len()];
+        held_turns(&old, &x, &fronts, layering, &[], &held, &fixed, &mut turn);
+        for layer in layers.iter().filter(|l| !l.is_empty()) {
+            held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
+        }
+        pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
+        fill(mesh, &old, &mut x, &turn, &held, p, &mut stats);
+    }
+    Ok(finish(mesh, boundary, &old, &x, stats))
+}
+
+/// The moved mesh and its figures.
+fn finish(
+    mesh: &Mesh,
+    boundary: &BoundaryMotion,
+    old: &[[f64; 2]],
+    x: &[[f64; 2]],
+    springs: SpringStats,
+) -> Moved {
+    let mut moved = mesh.clone();
+    let mut stats = MoveStats {
+        boundary_nodes: boundary.nodes.len(),
+        interior_nodes: mesh.nodes.len() - boundary.nodes.len(),
+        springs: Some(springs),
+        ..MoveStats::default()
+    };
+    for &k in &boundary.nodes {
+        let (a, b) = (old[k as usize], x[k as usize]);
+        let d = (a[0] - b[0]).hypot(a[1] - b[1]);
+        stats.largest_boundary_displacement = stats.largest_boundary_displacement.max(d);
+    }
+    for (k, (a, b)) in old.iter().zip(x).enumerate() {
+        stats.largest_displacement = stats
+            .largest_displacement
+            .max((a[0] - b[0]).hypot(a[1] - b[1]));
+        moved.nodes[k][0] = b[0];
+        moved.nodes[k][1] = b[1];
+    }
+    stats.inverted_cells = crate::quality::inverted_cells(&moved);
+    Moved { mesh: moved, stats }
+}
+
+/// Each node's neighbours along its front ([`NONE`] when absent), the front running with the
+/// region still to mesh on its left.
+struct Fronts {
+    left: Vec<u32>,
+    right: Vec<u32>,
+}
+
+impl Fronts {
+    fn of(mesh: &Mesh, layering: &Layering) -> Fronts {
+        let n = mesh.nodes.len();
+        let mut f = Fronts {
+            left: vec![NONE; n],
+            right: vec![NONE; n],
+        };
+        for facet in mesh.boundary.iter() {
+            let k = facet.corners();
+            f.link(k[0], k[1]);
+        }
+        for c in 0..layering.layered_cells {
+            let cell = mesh.cells.get(c);
+            let k = cell.corners();
+            let top = |u: u32| {
+                layering.node_parents[u as usize]
+                    .iter()
+                    .any(|p| *p != NONE && k.contains(p))
+            };
+            for j in 0..k.len() {
+                let (u, v) = (k[j], k[(j + 1) % k.len()]);
+                // a counter-clockwise cell runs along its top edge against the front
+                if top(u) && top(v) {
+                    f.link(v, u);
+                }
+            }
+        }
+        f
+    }
+
+    fn link(&mut self, a: u32, b: u32) {
+        if self.right[a as usize] == NONE {
+            self.right[a as usize] = b;
+        }
+        if self.left[b as usize] == NONE {
+            self.left[b as usize] = a;
+        }
+    }
+
+    /// The rotation (cos, sin) of node `p`'s front from `old` to `new`: the normalised sum of
+    /// the rotations of the unit directions to its placed front neighbours; none without one.
+    fn rotation(
+        &self,
+        old: &[[f64; 2]],
+        new: &[[f64; 2]],
+        placed: &[bool],
+        p: usize,
+    ) -> Option<[f64; 2]> {
+        let mut z = [0.0, 0.0];
+        for q in [self.left[p], self.right[p]] {
+            if q == NONE || !placed[q as usize] {
+                continue;
+            }
+            let q = q as usize;
+            let (Some(a), Some(b)) = (unit(old[p], old[q]), unit(new[p], new[q])) else {
+                continue;
+            };
+            z[0] += b[0] * a[0] + b[1] * a[1];
+            z[1] += b[1] * a[0] - b[0] * a[1];
+        }
+        let l = z[0].hypot(z[1]);
+        (l > 0.0).then(|| [z[0] / l, z[1] / l])
+    }
+
+    /// [`Fronts::rotation`], or without a placed front neighbour the mean of the parents'
+    /// (`turn`), or none.
+    fn turn(
+        &self,
+        old: &[[f64; 2]],
+        new: &[[f64; 2]],
+        placed: &[bool],
+        parents: [u32; 2],
+        turn: &[[f64; 2]],
+        p: usize,
+    ) -> [f64; 2] {
+        if let Some(z) = self.rotation(old, new, placed, p) {
+            return z;
+        }
+        let mut z = [0.0, 0.0];
+        for &q in parents.iter().filter(|&&q| q != NONE) {
+            z[0] += turn[q as usize][0];
+            z[1] += turn[q as usize][1];
+        }
+        let l = z[0].hypot(z[1]);
+        if l > 0.0 {
+            [z[0] / l, z[1] / l]
+        } else {
+            [1.0, 0.0]
+        }
+    }
+}
+
+fn unit(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l = d[0].hypot(d[1]);
+    (l > 0.0).then(|| [d[0] / l, d[1] / l])
+}
+
+fn rotate(z: [f64; 2], v: [f64; 2]) -> [f64; 2] {
+    [z[0] * v[0] - z[1] * v[1], z[1] * v[0] + z[0] * v[1]]
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// The layer nodes that keep their original layer geometry, grouped by layer (index 0 is
+/// empty): the nodes grown from the walls (every parent on a wall or kept) up to the last
+/// layer whose median cell is still anisotropic (front spacing at least `aspect` times the
+/// extrusion length), so that the kept layers wrap every wall in a band, corners included.
+fn layer_nodes(
+    layering: &Layering,
+    fixed: &[bool],
+    wall: &[bool],
+    old: &[[f64; 2]],
+    fronts: &Fronts,
+    aspect: f64,
+) -> Vec<Vec<u32>> {
+    let mut by_layer: Vec<Vec<u32>> = Vec::new();
+    for (k, &l) in layering.node_layer.iter().enumerate() {
+        if l != NONE && l > 0 && !fixed[k] {
+            if by_layer.len() <= l as usize {
+                by_layer.resize(l as usize + 1, Vec::new());
+            }
+            by_layer[l as usize].push(k as u32);
+        }
+    }
+    // the layers grown from the walls, and each node's aspect
+    let mut kept = wall.to_vec();
+    let mut stop = by_layer.len();
+    for (l, layer) in by_layer.iter_mut().enumerate() {
+        let mut aspects = Vec::with_capacity(layer.len());
+        layer.retain(|&n| {
+            let n = n as usize;
+            let parents = layering.node_parents[n];
+            let (mut ok, mut height) = (parents[0] != NONE, f64::INFINITY);
+            for &q in parents.iter().filter(|&&q| q != NONE) {
+                ok &= kept[q as usize];
+                height = height.min(dist(old[q as usize], old[n]));
+            }
+            let (mut spacing, mut sides) = (0.0, 0.0);
+            for q in [fronts.left[n], fronts.right[n]] {
+                if q != NONE {
+                    spacing += dist(old[q as usize], old[n]);
+                    sides += 1.0;
+                }
+            }
+            if ok && sides > 0.0 {
+                aspects.push(spacing / sides / height);
+            }
+            kept[n] = ok && !fixed[n];
+            kept[n]
+        });
+        if l > 1 && !aspects.is_empty() {
+            aspects.sort_unstable_by(f64::total_cmp);
+            if aspects[aspects.len() / 2] < aspect {
+                stop = l;
+                break;
+            }
+        }
+    }
+    by_layer.truncate(stop);
+    by_layer
+}
+
+/// The other corners of the cells on a wall facet that no layer keeps (the filled region's
+/// triangles that reach a wall) move rigidly with the facet's nodes (the mean of their
+/// predictions, each node turning by its `turn`) and are then held, so that every first-layer
+/// cell keeps its shape.
+fn pin_wall_cells(
+    mesh: &Mesh,
+    wall: &[bool],
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    turn: &mut [[f64; 2]],
+    held: &mut [bool],
+) {
+    let facets: std::collections::HashSet<(u32, u32)> = mesh
+        .boundary
+        .iter()
+        .map(|f| (f.corners()[0], f.corners()[1]))
+        .filter(|&(a, b)| wall[a as usize] && wall[b as usize])
+        .collect();
+    for c in 0..mesh.cells.len() {
+        let cell = mesh.cells.get(c);
+        let k = cell.corners();
+        let on_wall: Vec<usize> = (0..k.len())
+            .filter(|&j| facets.contains(&(k[j], k[(j + 1) % k.len()])))
+            .flat_map(|j| [k[j] as usize, k[(j + 1) % k.len()] as usize])
+            .collect();
+        if on_wall.is_empty() {
+            continue;
+        }
+        for &n in k {
+            let n = n as usize;
+            if held[n] {
+                continue;
+            }
+            let (mut sum, mut z) = ([0.0, 0.0], [0.0, 0.0]);
+            for &b in &on_wall {
+                let off = rotate(turn[b], [old[n][0] - old[b][0], old[n][1] - old[b][1]]);
+                sum[0] += x[b][0] + off[0];
+                sum[1] += x[b][1] + off[1];
+                z[0] += turn[b][0];
+                z[1] += turn[b][1];
+            }
+            let count = on_wall.len() as f64;
+            x[n] = [sum[0] / count, sum[1] / count];
+            let l = z[0].hypot(z[1]);
+            turn[n] = if l > 0.0 {
+                [z[0] / l, z[1] / l]
+            } else {
+                [1.0, 0.0]
+            };
+            held[n] = true;
+        }
+    }
+}
+
+/// The predictor: each layer node at its moved parents plus its original offset turned with
+/// the parent's front, layer by layer.
+fn predict(
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    fronts: &Fronts,
+    layering: &Layering,
+    layers: &[Vec<u32>],
+    fixed: &[bool],
+) {
+    let mut placed = fixed.to_vec();
+    let mut turn = vec![[1.0, 0.0]; old.len()];
+    held_turns(old, x, fronts, layering, &[], &placed, fixed, &mut turn);
+    for layer in layers.iter().filter(|l| !l.is_empty()) {
+        for &n in layer {
+            let n = n as usize;
+            let (mut sum, mut count) = ([0.0, 0.0], 0.0);
+            for &q in layering.node_parents[n].iter().filter(|&&q| q != NONE) {
+                let q = q as usize;
+                let off = rotate(turn[q], [old[n][0] - old[q][0], old[n][1] - old[q][1]]);
+                sum[0] += x[q][0] + off[0];
+                sum[1] += x[q][1] + off[1];
+                count += 1.0;
+            }
+            x[n] = [sum[0] / count, sum[1] / count];
+            placed[n] = true;
+        }
+        held_turns(old, x, fronts, layering, layer, &placed, fixed, &mut turn);
+    }
+}
+
+/// The rotation of the held nodes `layer` (or, `layer` empty, of the boundary nodes `fixed`)
+/// from `old` to `x`: their fronts', or their parents' ([`Fronts::turn`]).
+#[allow(clippy::too_many_arguments)]
+fn held_turns(
+    old: &[[f64; 2]],
+    x: &[[f64; 2]],
+    fronts: &Fronts,
+    layering: &Layering,
+    layer: &[u32],
+    placed: &[bool],
+    fixed: &[bool],
+    turn: &mut [[f64; 2]],
+) {
+    if layer.is_empty() {
+        for k in (0..old.len()).filter(|&k| fixed[k]) {
+            turn[k] = fronts.turn(old, x, placed, [NONE; 2], turn, k);
+        }
+    }
+    for &n in layer {
+        let n = n as usize;
+        turn[n] = fronts.turn(old, x, placed, layering.node_parents[n], turn, n);
+    }
+}
+
+/// The springs of the layers with the original geometry as the ideal one, and each node's
+/// length scale (its shortest original extrusion edge). Neighbour and angle springs are made
+/// only between `held` nodes (boundary and kept layer nodes).
+fn build_springs(
+    old: &[[f64; 2]],
+    fronts: &Fronts,
+    layering: &Layering,
+    layers: &[Vec<u32>],
+    held: &[bool],
+) -> (SpringSet2d, Vec<f64>) {
+    let mut set = SpringSet2d::default();
+    let mut scale = vec![f64::INFINITY; old.len()];
+    for &n in layers.iter().flatten() {
+        let nu = n as usize;
+        let parents = layering.node_parents[nu];
+        for &p in parents.iter().filter(|&&p| p != NONE) {
+            let pu = p as usize;
+            let ideal = dist(old[pu], old[nu]);
+            if ideal <= 0.0 {
+                continue;
+            }
+            scale[nu] = scale[nu].min(ideal);
+            set.extrusion.push(ExtrusionSpring {
+                lower: p,
+                upper: n,
+                ideal_length: ideal,
+                lower_share: 1.0,
+            });
+            let (a, b) = (fronts.left[pu], fronts.right[pu]);
+            if a == NONE || b == NONE || !held[a as usize] || !held[b as usize] {
+                continue;
+            }
+            if let Some(bis) = bisector(old[a as usize], old[pu], old[b as usize]) {
+                let v = [old[nu][0] - old[pu][0], old[nu][1] - old[pu][1]];
+                let offset_rad =
+                    (bis[0] * v[1] - bis[1] * v[0]).atan2(bis[0] * v[0] + bis[1] * v[1]);
+                set.angle.push(AngleSpring {
+                    left: a,
+                    centre: p,
+                    right: b,
+                    child: n,
+                    offset_rad,
+                    ideal_length: ideal,
+                });
+            }
+        }
+        let (a, b, p) = (fronts.left[nu], fronts.right[nu], parents[0]);
+        if a != NONE && b != NONE && p != NONE && held[a as usize] && held[b as usize] {
+            let (la, lb) = (
+                dist(old[a as usize], old[nu]),
+                dist(old[nu], old[b as usize]),
+            );
+            if la + lb > 0.0 {
+                set.neighbour.push(NeighbourSpring {
+                    left: a,
+                    centre: n,
+                    right: b,
+                    parent: p,
+                    left_share: la / (la + lb),
+                });
+            }
+        }
+    }
+    for s in &mut scale {
+        if !s.is_finite() {
+            *s = 1.0;
+        }
+    }
+    (set, scale)
+}
+
+/// Re-balances the springs of the layers (boundary and fill held).
+#[allow(clippy::too_many_arguments)]
+fn balance(
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    fronts: &Fronts,
+    layering: &Layering,
+    layers: &[Vec<u32>],
+    held: &[bool],
+    p: &SpringMoveParams,
+    stats: &mut SpringStats,
+) -> Result<(), MoveError> {
+    let (set, scale) = build_springs(old, fronts, layering, layers, held);
+    stats.springs = set.extrusion.len() + set.neighbour.len() + set.angle.len();
+    let model = SpringField2d::new(&set, &p.springs, old.len());
+    let mut movable = vec![false; old.len()];
+    let mut run = |movable: &[bool], x: &mut [[f64; 2]]| -> Result<(), MoveError> {
+        let out =
+            solve_model_active(x, &scale, movable, &model, &p.solver).map_err(spring_error)?;
+        stats.solves += 1;
+        stats.iterations += out.iterations;
+        stats.converged &= out.converged;
+        stats.residual = out.max_relative_step;
+        Ok(())
+    };
+    if p.strategy == Strategy::LayerByLayer {
+        for layer in layers.iter().filter(|l| !l.is_empty()) {
+            movable.iter_mut().for_each(|m| *m = false);
+            layer.iter().for_each(|&n| movable[n as usize] = true);
+            run(&movable, x)?;
+        }
+    }
+    movable.iter_mut().for_each(|m| *m = false);
+    layers
+        .iter()
+        .flatten()
+        .for_each(|&n| movable[n as usize] = true);
+    if movable.iter().any(|&m| m) {
+        run(&movable, x)?;
+    }
+    Ok(())
+}
+
+/// The filled region (every node not held): IDW from its bounding nodes, then (with [`Fill::Arap`]) ARAP when it
+/// does not make the fill cells worse.
+#[allow(clippy::too_many_arguments)]
+fn fill(
+    mesh: &Mesh,
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    turns: &[[f64; 2]],
+    held: &[bool],
+    p: &SpringMoveParams,
+    stats: &mut SpringStats,
+) {
+    let free: Vec<bool> = held.iter().map(|h| !h).collect();
+    let nodes: Vec<u32> = (0..old.len() as u32)
+        .filter(|&k| free[k as usize])
+        .collect();
+    stats.fill_nodes = nodes.len();
+    if nodes.is_empty() {
+        return;
+    }
+    let cells: Vec<Vec<u32>> = (0..mesh.cells.len())
+        .map(|c| mesh.cells.get(c).corners().to_vec())
+        .filter(|k| k.iter().any(|&n| free[n as usize]))
+        .collect();
+    let sources = fill_sources(old, x, turns, &cells, &free);
+    let moved: Vec<[f64; 2]> = nodes
+        .par_iter()
+        .map(|&k| {
+            let (o, d) = (
+                old[k as usize],
+                sources.idw(old[k as usize], p.idw.exponent),
+            );
+            [o[0] + d[0], o[1] + d[1]]
+        })
+        .collect();
+    for (&k, m) in nodes.iter().zip(moved) {
+        x[k as usize] = m;
+    }
+    stats.fill = Fill::Idw;
+    if p.fill == Fill::Idw {
+        return;
+    }
+    let mut best = worst_ratio(old, x, &cells);
+    let mut keep = |y: &[[f64; 2]], used: Fill, x: &mut [[f64; 2]], stats: &mut SpringStats| {
+        let r = worst_ratio(old, y, &cells);
+        if r >= best {
+            best = r;
+            x.copy_from_slice(y);
+            stats.fill = used;
+        }
+    };
+    let mut y = x.to_vec();
+    screw(old, &mut y, &sources, &nodes, p.screw_exponent);
+    keep(&y, Fill::Screw, x, stats);
+    if p.fill == Fill::Arap {
+        let graph = Graph::new(old, &cells, &free);
+        stats.arap_iterations = arap(old, &mut y, &graph, p.arap_iterations);
+        keep(&y, Fill::Arap, x, stats);
+    }
+    if p.fill == Fill::Rbf {
+        // a singular system leaves the other candidates
+        if let Ok(rbf) = Rbf::fit(mesh, &sources, &RbfParams::default()) {
+            let moved: Vec<[f64; 2]> = nodes
+                .par_iter()
+                .map(|&k| {
+                    let (o, d) = (old[k as usize], rbf.displacement(old[k as usize]));
+                    [o[0] + d[0], o[1] + d[1]]
+                })
+                .collect();
+            for (&k, m) in nodes.iter().zip(moved) {
+                y[k as usize] = m;
+            }
+            keep(&y, Fill::Rbf, x, stats);
+        }
+    }
+    if p.polish_passes > 0 {
+        stats.polished = polish(old, x, &cells, &free, p.polish_passes);
+    }
+}
+
+/// Ratios under this are polished; above it a cell counts as kept.
+const POLISH_BELOW: f64 = 0.99;
+
+/// The worst-cell polish: passes over the free corners of the worst cells (ratio of scaled
+/// Jacobians, moved over original, within 0.05 of the worst), each tried at eight directions
+/// and three step lengths (a tenth of its shortest edge and halves) and moved to the best place
+/// that raises the smallest ratio of its cells. No cell gets worse than its node's worst
+/// before, so nothing inverts; cells at 0.99 or above are left as they are (a rigid motion
+/// stays exact). Returns the node moves made.
+fn polish(
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    cells: &[Vec<u32>],
+    free: &[bool],
+    passes: usize,
+) -> usize {
+    let mut node_cells: Vec<Vec<usize>> = vec![Vec::new(); old.len()];
+    for (c, k) in cells.iter().enumerate() {
+        for &n in k.iter().filter(|&&n| free[n as usize]) {
+            node_cells[n as usize].push(c);
+        }
+    }
+    let corners = |x: &[[f64; 2]], c: usize| {
+        let mut p = [[0.0; 2]; 4];
+        for (q, &n) in p.iter_mut().zip(&cells[c]) {
+            *q = x[n as usize];
+        }
+        scaled_jacobian(&p[..cells[c].len().min(4)])
+    };
+    let before: Vec<f64> = (0..cells.len()).map(|c| corners(old, c)).collect();
+    let ratio = |x: &[[f64; 2]], c: usize| {
+        let b = before[c];
+        if b > 0.0 { corners(x, c) / b } else { 1.0 }
+    };
+    let local = |x: &[[f64; 2]], n: u32| {
+        node_cells[n as usize]
+            .iter()
+            .map(|&c| ratio(x, c))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut moves = 0;
+    for _ in 0..passes {
+        let ratios: Vec<f64> = (0..cells.len()).map(|c| ratio(x, c)).collect();
+        let worst = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+        if worst >= POLISH_BELOW {
+            break;
+        }
+        let limit = (worst + 0.05).min(POLISH_BELOW);
+        let mut targets: Vec<u32> = (0..cells.len())
+            .filter(|&c| ratios[c] < limit)
+            .flat_map(|c| cells[c].iter().copied())
+            .filter(|&n| free[n as usize])
+            .collect();
+        targets.sort_unstable();
+        targets.dedup();
+        let mut moved = false;
+        for n in targets {
+            let start = x[n as usize];
+            let mut best = (local(x, n), start);
+            let shortest = node_cells[n as usize]
+                .iter()
+                .flat_map(|&c| cells[c].iter())
+                .filter(|&&m| m != n)
+                .map(|&m| dist(x[m as usize], start))
+                .fold(f64::INFINITY, f64::min);
+            for step in [0.3, 0.1, 0.03, 0.01].map(|f| f * shortest) {
+                for d in 0..8 {
+                    let a = d as f64 * std::f64::consts::FRAC_PI_4;
+                    x[n as usize] = [start[0] + step * a.cos(), start[1] + step * a.sin()];
+                    let q = local(x, n);
+                    if q > best.0 + 1e-9 {
+                        best = (q, x[n as usize]);
+                    }
+                }
+            }
+            x[n as usize] = best.1;
+            if best.1 != start {
+                moves += 1;
+                moved = true;
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+    moves
+}
+
+/// The nodes that bound the filled region (on an edge of one fill cell only, or held), as IDW
+/// sources turning with their fronts.
+fn fill_sources(
+    old: &[[f64; 2]],
+    x: &[[f64; 2]],
+    turns: &[[f64; 2]],
+    cells: &[Vec<u32>],
+    free: &[bool],
+) -> Sources {
+    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+    for k in cells {
+        for j in 0..k.len() {
+            let (a, b) = (k[j], k[(j + 1) % k.len()]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut area: HashMap<u32, f64> = HashMap::new();
+    for (&(a, b), &c) in &count {
+        if c == 1 || !free[a as usize] && !free[b as usize] {
+            let half = 0.5 * dist(old[a as usize], old[b as usize]);
+            for n in [a, b].into_iter().filter(|&n| !free[n as usize]) {
+                *area.entry(n).or_default() += half;
+            }
+        }
+    }
+    let mut list: Vec<(u32, f64)> = area.into_iter().collect();
+    list.sort_unstable_by_key(|e| e.0);
+    let mut s = Sources {
+        at: Vec::with_capacity(list.len()),
+        d: Vec::with_capacity(list.len()),
+        m: Vec::with_capacity(list.len()),
+        area: Vec::with_capacity(list.len()),
+    };
+    for (n, a) in list {
+        let k = n as usize;
+        let z = turns[k];
+        s.at.push(old[k]);
+        s.d.push([x[k][0] - old[k][0], x[k][1] - old[k][1]]);
+        s.m.push([[z[0] - 1.0, -z[1]], [z[1], z[0] - 1.0]]);
+        s.area.push(a);
+    }
+    s
+}
+
+/// The worst ratio of scaled Jacobians (moved / original) over `cells`.
+fn worst_ratio(old: &[[f64; 2]], x: &[[f64; 2]], cells: &[Vec<u32>]) -> f64 {
+    let mut worst = f64::INFINITY;
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    for k in cells {
+        a.clear();
+        b.clear();
+        a.extend(k.iter().map(|&n| old[n as usize]));
+        b.extend(k.iter().map(|&n| x[n as usize]));
+        let before = scaled_jacobian(&a);
+        if before > 0.0 {
+            worst = worst.min(scaled_jacobian(&b) / before);
+        }
+    }
+    worst
+}
+
+/// The filled region as a graph: its cells' edges weighted by 1/length² (original), the free
+/// nodes numbered, and the Laplacian over them.
+struct Graph {
+    /// Per cell, its edges (a, b, weight).
+    edges: Vec<Vec<(usize, usize, f64)>>,
+    /// Global → free number, [`NONE`] for held nodes.
+    index: Vec<u32>,
+    /// Free number → global.
+    order: Vec<usize>,
+    /// The 1/length²-weighted Laplacian.
+    laplacian: Laplacian,
+}
+
+impl Graph {
+    fn new(old: &[[f64; 2]], cells: &[Vec<u32>], free: &[bool]) -> Graph {
+        let mut index = vec![NONE; old.len()];
+        let order: Vec<usize> = (0..old.len()).filter(|&k| free[k]).collect();
+        for (i, &k) in order.iter().enumerate() {
+            index[k] = i as u32;
+        }
+        let edges: Vec<Vec<(usize, usize, f64)>> = cells
+            .iter()
+            .map(|k| {
+                (0..k.len())
+                    .map(|j| {
+                        let (a, b) = (k[j] as usize, k[(j + 1) % k.len()] as usize);
+                        let l = dist(old[a], old[b]);
+                        (a, b, if l > 0.0 { 1.0 / (l * l) } else { 0.0 })
+                    })
+                    .collect()
+            })
+            .collect();
+        let laplacian = Laplacian::new(&edges, &index, order.len());
+        Graph {
+            edges,
+            index,
+            order,
+            laplacian,
+        }
+    }
+}
+
+/// Complex product.
+fn mul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
+}
+
+/// `V(θ) = (sin θ + i(1 − cos θ))/θ`, the translation part of the exponential in se(2).
+fn screw_v(theta: f64) -> [f64; 2] {
+    if theta.abs() < 1e-8 {
+        [1.0, 0.5 * theta]
+    } else {
+        [theta.sin() / theta, (1.0 - theta.cos()) / theta]
+    }
+}
+
+/// The logarithm (θ, w) in se(2), about `o`, of the rigid motion that turns by `z` and takes
+/// `from` to `to`.
+fn screw_log(o: [f64; 2], z: [f64; 2], from: [f64; 2], to: [f64; 2]) -> [f64; 3] {
+    let theta = z[1].atan2(z[0]);
+    let r = mul(z, [from[0] - o[0], from[1] - o[1]]);
+    let t = [to[0] - o[0] - r[0], to[1] - o[1] - r[1]];
+    let v = screw_v(theta);
+    let n = v[0] * v[0] + v[1] * v[1];
+    let w = mul(t, [v[0] / n, -v[1] / n]);
+    [theta, w[0], w[1]]
+}
+
+/// The exponential of the logarithm `log` about `o`, applied to `p`.
+fn screw_exp(o: [f64; 2], log: [f64; 3], p: [f64; 2]) -> [f64; 2] {
+    let z = [log[0].cos(), log[0].sin()];
+    let r = mul(z, [p[0] - o[0], p[1] - o[1]]);
+    let t = mul(screw_v(log[0]), [log[1], log[2]]);
+    [o[0] + r[0] + t[0], o[1] + r[1] + t[1]]
+}
+
+/// The screw fill: each source's local rigid motion (its turn, taking its original position
+/// to its current one) as a logarithm (θ, w) in se(2); at each free node the
+/// inverse-distance-weighted mean of the sources' logarithms, exponentiated. Blending
+/// logarithms keeps a rigid motion exact and makes a rotation a twist about its centre,
+/// without the shrinking of blended positions; near a wall its nodes dominate, so a node
+/// there moves with the wall's own motion.
+fn screw(old: &[[f64; 2]], x: &mut [[f64; 2]], sources: &Sources, nodes: &[u32], exponent: f64) {
+    let o = centre(old);
+    let logs: Vec<[f64; 3]> = (0..sources.at.len())
+        .map(|i| {
+            let m = sources.m[i];
+            let z = [m[0][0] + 1.0, m[1][0]];
+            let b = sources.at[i];
+            let to = [b[0] + sources.d[i][0], b[1] + sources.d[i][1]];
+            screw_log(o, z, b, to)
+        })
+        .collect();
+    let moved: Vec<[f64; 2]> = nodes
+        .par_iter()
+        .map(|&k| {
+            let p = old[k as usize];
+            let (mut sum, mut total) = ([0.0; 3], 0.0);
+            for (i, b) in sources.at.iter().enumerate() {
+                let r2 = (p[0] - b[0]).powi(2) + (p[1] - b[1]).powi(2);
+                let w = sources.area[i] * r2.powf(-0.5 * exponent);
+                for c in 0..3 {
+                    sum[c] += w * logs[i][c];
+                }
+                total += w;
+            }
+            screw_exp(o, [sum[0] / total, sum[1] / total, sum[2] / total], p)
+        })
+        .collect();
+    for (&k, m) in nodes.iter().zip(moved) {
+        x[k as usize] = m;
+    }
+}
+
+/// The centre of the bounding box of `points`.
+fn centre(points: &[[f64; 2]]) -> [f64; 2] {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
+}
+
+/// As-rigid-as-possible iterations on the free nodes of `graph` from `x` (held nodes stay):
+/// each cell's best rotation of its original edges onto its current ones, then the global
+/// step; returns the iterations done.
+fn arap(old: &[[f64; 2]], x: &mut [[f64; 2]], graph: &Graph, iterations: usize) -> usize {
+    let size = old
+        .iter()
+        .chain(x.iter())
+        .fold(0.0f64, |s, p| s.max(p[0].abs()).max(p[1].abs()));
+    let mut rotations = vec![[1.0, 0.0]; graph.edges.len()];
+    let mut done = 0;
+    while done < iterations {
+        done += 1;
+        for (ce, z) in graph.edges.iter().zip(&mut rotations) {
+            let (mut c, mut s) = (0.0, 0.0);
+            for &(a, b, w) in ce {
+                let e0 = [old[b][0] - old[a][0], old[b][1] - old[a][1]];
+                let e1 = [x[b][0] - x[a][0], x[b][1] - x[a][1]];
+                c += w * (e0[0] * e1[0] + e0[1] * e1[1]);
+                s += w * (e0[0] * e1[1] - e0[1] * e1[0]);
+            }
+            let l = c.hypot(s);
+            *z = if l > 0.0 { [c / l, s / l] } else { [1.0, 0.0] };
+        }
+        let change = global_step(
+            old,
+            x,
+            &graph.edges,
+            &rotations,
+            &graph.index,
+            &graph.order,
+            &graph.laplacian,
+        );
+        if change <= 1e-12 * size {
+            break;
+        }
+    }
+    done
+}
+
+/// The free positions that fit the original edges turned by each cell's rotation best;
+/// returns the largest coordinate change.
+fn global_step(
+    old: &[[f64; 2]],
+    x: &mut [[f64; 2]],
+    edges: &[Vec<(usize, usize, f64)>],
+    rotations: &[[f64; 2]],
+    index: &[u32],
+    order: &[usize],
+    laplacian: &Laplacian,
+) -> f64 {
+    let mut rhs = vec![[0.0; 2]; order.len()];
+    for (ce, &z) in edges.iter().zip(rotations) {
+        for &(a, b, w) in ce {
+            let r = rotate(z, [old[a][0] - old[b][0], old[a][1] - old[b][1]]);
+            for (i, j, sign) in [(a, b, 1.0), (b, a, -1.0)] {
+                if index[i] == NONE {
+                    continue;
+                }
+                let row = &mut rhs[index[i] as usize];
+                row[0] += sign * w * r[0];
+                row[1] += sign * w * r[1];
+                if index[j] == NONE {
+                    row[0] += w * x[j][0];
+                    row[1] += w * x[j][1];
+                }
+            }
+        }
+    }
+    let mut change = 0.0f64;
+    for c in 0..2 {
+        let b: Vec<f64> = rhs.iter().map(|r| r[c]).collect();
+        let mut v: Vec<f64> = order.iter().map(|&k| x[k][c]).collect();
+        laplacian.solve(&b, &mut v);
+        for (&k, val) in order.iter().zip(v) {
+            change = change.max((x[k][c] - val).abs());
+            x[k][c] = val;
+        }
+    }
+    change
+}
+
+/// The weighted graph Laplacian of the free nodes (held neighbours moved to the right-hand
+/// side), in compressed rows, with its conjugate-gradient solve.
+struct Laplacian {
+    diagonal: Vec<f64>,
+    start: Vec<usize>,
+    col: Vec<usize>,
+    value: Vec<f64>,
+}
+
+impl Laplacian {
+    fn new(edges: &[Vec<(usize, usize, f64)>], index: &[u32], m: usize) -> Laplacian {
+        let mut diagonal = vec![0.0; m];
+        let mut off: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m];
+        for &(a, b, w) in edges.iter().flatten() {
+            for (i, j) in [(a, b), (b, a)] {
+                if index[i] == NONE {
+                    continue;
+                }
+                let r = index[i] as usize;
+                diagonal[r] += w;
+                if index[j] != NONE {
+                    off[r].push((index[j] as usize, -w));
+                }
+            }
+        }
+        let mut start = vec![0];
+        let (mut col, mut value) = (Vec::new(), Vec::new());
+        for row in off {
+            for (c, v) in row {
+                col.push(c);
+                value.push(v);
+            }
+            start.push(col.len());
+        }
+        Laplacian {
+            diagonal,
+            start,
+            col,
+            value,
+        }
+    }
+
+    fn apply(&self, v: &[f64], out: &mut [f64]) {
+        for (r, o) in out.iter_mut().enumerate() {
+            let mut s = self.diagonal[r] * v[r];
+            for e in self.start[r]..self.start[r + 1] {
+                s += self.value[e] * v[self.col[e]];
+            }
+            *o = s;
+        }
+    }
+
+    /// Jacobi-preconditioned conjugate gradients from the guess in `v`, to a residual of
+    /// 1e-13 of the right-hand side.
+    fn solve(&self, b: &[f64], v: &mut [f64]) {
+        let n = b.len();
+        let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(p, q)| p * q).sum::<f64>();
+        let mut q = vec![0.0; n];
+        self.apply(v, &mut q);
+        let mut r: Vec<f64> = b.iter().zip(&q).map(|(b, q)| b - q).collect();
+        let goal = 1e-13 * dot(b, b).sqrt();
+        let mut z: Vec<f64> = r.iter().zip(&self.diagonal).map(|(r, d)| r / d).collect();
+        let mut d = z.clone();
+        let mut rz = dot(&r, &z);
+        for _ in 0..10 * n.max(10) {
+            if dot(&r, &r).sqrt() <= goal {
+                break;
+            }
+            self.apply(&d, &mut q);
+            let alpha = rz / dot(&d, &q);
+            for i in 0..n {
+                v[i] += alpha * d[i];
+                r[i] -= alpha * q[i];
+                z[i] = r[i] / self.diagonal[i];
+            }
+            let rz_next = dot(&r, &z);
+            let beta = rz_next / rz;
+            rz = rz_next;
+            for i in 0..n {
+                d[i] = z[i] + beta * d[i];
+            }
+        }
+    }
+}
