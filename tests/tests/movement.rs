@@ -7,9 +7,8 @@ use std::path::Path;
 use end_to_end::{Outcome, assert_one_line_naming, mesh, read_json, s, tree, xtask};
 use serde_json::Value;
 
-/// `cargo xtask move CASE --quiet --out DIR/NAME.msh --report DIR/NAME.json ARGS…`, its
-/// outcome and its report.
-fn moved(dir: &Path, name: &str, case: &str, args: &[&str]) -> (Outcome, Value) {
+/// `cargo xtask move CASE --quiet --out DIR/NAME.msh --report DIR/NAME.json ARGS…`.
+fn run_move(dir: &Path, name: &str, case: &str, args: &[&str]) -> anyhow::Result<Outcome> {
     let out = dir.join(format!("{name}.msh"));
     let report = dir.join(format!("{name}.json"));
     let base = [
@@ -21,9 +20,14 @@ fn moved(dir: &Path, name: &str, case: &str, args: &[&str]) -> (Outcome, Value) 
         "--report",
         s(&report),
     ];
-    let outcome = xtask(&[&base[..], args].concat()).unwrap_or_else(|e| panic!("{args:?}: {e:#}"));
-    assert!(out.exists());
-    (outcome, read_json(&report))
+    xtask(&[&base[..], args].concat())
+}
+
+/// [`run_move`] that must succeed: its outcome and its report.
+fn moved(dir: &Path, name: &str, case: &str, args: &[&str]) -> (Outcome, Value) {
+    let outcome = run_move(dir, name, case, args).unwrap_or_else(|e| panic!("{args:?}: {e:#}"));
+    assert!(dir.join(format!("{name}.msh")).exists());
+    (outcome, read_json(&dir.join(format!("{name}.json"))))
 }
 
 fn assert_certified(r: &Value) {
@@ -177,18 +181,7 @@ fn bad_motions_are_one_line_before_any_file() {
     ];
     for (case, args, words) in cases {
         let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("m.msh");
-        let report = dir.path().join("m.json");
-        let base = [
-            "move",
-            case,
-            "--quiet",
-            "--out",
-            s(&out),
-            "--report",
-            s(&report),
-        ];
-        let err = xtask(&[&base[..], args].concat()).expect_err("a bad motion is an error");
+        let err = run_move(dir.path(), "m", case, args).expect_err("a bad motion is an error");
         assert_one_line_naming(&format!("{err:#}"), words);
         assert!(
             tree(dir.path()).is_empty(),

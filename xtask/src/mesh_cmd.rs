@@ -51,34 +51,14 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
 
     let mut report = Report::new(&case.name, order);
     let (mesh, snapshot, linear) = make(args, &case, order, &mut report)?;
-    report.describe(&mesh);
-    if report.quality.is_some() {
-        // the figures of the linear mesh, the same at every order and with --triangles
-        report.linear_angles(&linear);
-    }
-    let t = Instant::now();
-    let progress = stage(args.quiet, "certified validity");
-    let scaled_jacobian = report.certify(&mesh)?;
-    drop(progress);
-    report
-        .timings_s
-        .insert("validity", t.elapsed().as_secs_f64());
-
     let snapshot = snapshot.as_ref().zip(args.snapshot.as_deref());
-    let report_path = write_outputs(
-        plan,
-        &mesh,
-        snapshot,
-        &Drawing {
-            args: &args.pictures,
-            colour: Colour::Layer,
-            name: &case.name,
-            scaled_jacobian: &scaled_jacobian,
-        },
-        args.quiet,
-        &mut report,
+    let run = Run {
+        pictures: &args.pictures,
+        name: &case.name,
+        quiet: args.quiet,
         total,
-    )?;
+    };
+    let report_path = check_and_write(plan, (&mesh, &linear), snapshot, &run, &mut report)?;
     Ok(report.finish(
         report_path.as_deref(),
         args.quiet,
@@ -86,32 +66,56 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     ))
 }
 
-/// How the pictures of a run are drawn.
-pub(crate) struct Drawing<'a> {
+/// What the last steps of a run need to know of it.
+pub(crate) struct Run<'a> {
     /// The picture flags.
-    pub args: &'a crate::cli::PictureArgs,
-    /// The default colouring.
-    pub colour: Colour,
-    /// The title.
+    pub pictures: &'a crate::cli::PictureArgs,
+    /// The case's name (the pictures' title).
     pub name: &'a str,
-    /// The certified scaled Jacobian of each cell.
-    pub scaled_jacobian: &'a [f64],
+    /// `--quiet`.
+    pub quiet: bool,
+    /// When the run started.
+    pub total: Instant,
+}
+
+/// The last steps of a run: describes `mesh` in the report, with the angle figures of
+/// `linear` (the linear mesh under it, the same at every order and with --triangles),
+/// certifies every cell, then writes everything ([`write_outputs`]). Returns the path of the
+/// report, if one was written.
+pub(crate) fn check_and_write(
+    plan: Planned,
+    (mesh, linear): (&Mesh, &Mesh),
+    snapshot: Option<(&Snapshot, &std::path::Path)>,
+    run: &Run<'_>,
+    report: &mut Report,
+) -> Result<Option<PathBuf>> {
+    report.describe(mesh);
+    if report.quality.is_some() {
+        report.linear_angles(linear);
+    }
+    let t = Instant::now();
+    let progress = stage(run.quiet, "certified validity");
+    let scaled_jacobian = report.certify(mesh)?;
+    drop(progress);
+    report
+        .timings_s
+        .insert("validity", t.elapsed().as_secs_f64());
+    write_outputs(plan, mesh, snapshot, run, &scaled_jacobian, report)
 }
 
 /// Writes the meshes, the snapshot (with its path), the pictures and the report of a run into
 /// the reserved outputs of `plan`, then puts them all in place together. Returns the path of
 /// the report, if one was written.
-pub(crate) fn write_outputs(
+fn write_outputs(
     mut plan: Planned,
     mesh: &Mesh,
     snapshot: Option<(&Snapshot, &std::path::Path)>,
-    drawing: &Drawing<'_>,
-    quiet: bool,
+    run: &Run<'_>,
+    scaled_jacobian: &[f64],
     report: &mut Report,
-    total: Instant,
 ) -> Result<Option<PathBuf>> {
     let t = Instant::now();
-    let progress = stage(quiet, "writing");
+    let progress = stage(run.quiet, "writing");
     for (path, output) in &plan.meshes {
         plan.outputs
             .write_with(*output, |w| mesh_io::write_to(w, path, mesh))?;
@@ -128,10 +132,10 @@ pub(crate) fn write_outputs(
     pictures::draw_all(
         mesh,
         &plan.pictures,
-        drawing.args,
-        drawing.colour,
-        drawing.name,
-        drawing.scaled_jacobian,
+        run.pictures,
+        Colour::Layer,
+        run.name,
+        scaled_jacobian,
         &mut plan.outputs,
     )?;
     drop(progress);
@@ -143,7 +147,7 @@ pub(crate) fn write_outputs(
     report.files = plan.outputs.files();
     report
         .timings_s
-        .insert("total", total.elapsed().as_secs_f64());
+        .insert("total", run.total.elapsed().as_secs_f64());
     if let Some((_, output)) = &plan.report {
         plan.outputs.write_bytes(*output, &report.json()?)?;
     }

@@ -20,8 +20,7 @@ use mesh_move::{
 use serde::{Deserialize, Serialize};
 
 use crate::cli::{MotionArgs, MoveArgs, MoveMethod, RbfKernel};
-use crate::mesh_cmd::{self, Drawing, OutputFlags};
-use crate::pictures::Colour;
+use crate::mesh_cmd::{self, OutputFlags};
 use crate::progress::stage;
 use crate::report::Report;
 use crate::stages::Snapshot;
@@ -77,17 +76,6 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
             &mut report,
         )?
     };
-    report.describe(&mesh);
-    if report.quality.is_some() {
-        report.linear_angles(&moved_layered.mesh);
-    }
-    let t = Instant::now();
-    let progress = stage(args.quiet, "certified validity");
-    let scaled_jacobian = report.certify(&mesh)?;
-    drop(progress);
-    report
-        .timings_s
-        .insert("validity", t.elapsed().as_secs_f64());
     let movement = MovementReport::new(
         &motions,
         args,
@@ -97,21 +85,15 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     );
     let summary = movement.summary();
     report.movement = Some(movement);
-
-    let report_path = mesh_cmd::write_outputs(
-        plan,
-        &mesh,
-        None,
-        &Drawing {
-            args: &args.pictures,
-            colour: Colour::Layer,
-            name: &case.name,
-            scaled_jacobian: &scaled_jacobian,
-        },
-        args.quiet,
-        &mut report,
+    let run = mesh_cmd::Run {
+        pictures: &args.pictures,
+        name: &case.name,
+        quiet: args.quiet,
         total,
-    )?;
+    };
+    let linear_mesh = &moved_layered.mesh;
+    let report_path =
+        mesh_cmd::check_and_write(plan, (&mesh, linear_mesh), None, &run, &mut report)?;
     let finished = report.finish(
         report_path.as_deref(),
         args.quiet,
@@ -282,16 +264,7 @@ fn motions(args: &MotionArgs, case: &case::Case) -> Result<Vec<LoopMotion>> {
         );
         return motion_file(path);
     }
-    let rigid = (args.rotate.is_some()
-        || args.about.is_some()
-        || args.translate.is_some()
-        || args.scale.is_some())
-    .then(|| RigidMotion {
-        scale: args.scale.unwrap_or(1.0),
-        rotate_deg: args.rotate.unwrap_or(0.0),
-        about: args.about.unwrap_or([0.0, 0.0]),
-        translate: args.translate.unwrap_or([0.0, 0.0]),
-    });
+    let rigid = rigid(args.scale, args.rotate, args.about, args.translate);
     let bumps = args
         .bumps
         .iter()
@@ -309,6 +282,22 @@ fn motions(args: &MotionArgs, case: &case::Case) -> Result<Vec<LoopMotion>> {
         loop_name,
         motion: Motion { rigid, bumps },
     }])
+}
+
+/// The rigid motion of the values given (the others at the identity's), `None` when none is.
+fn rigid(
+    scale: Option<f64>,
+    rotate_deg: Option<f64>,
+    about: Option<[f64; 2]>,
+    translate: Option<[f64; 2]>,
+) -> Option<RigidMotion> {
+    let given = scale.is_some() || rotate_deg.is_some() || about.is_some() || translate.is_some();
+    given.then(|| RigidMotion {
+        scale: scale.unwrap_or(1.0),
+        rotate_deg: rotate_deg.unwrap_or(0.0),
+        about: about.unwrap_or([0.0, 0.0]),
+        translate: translate.unwrap_or([0.0, 0.0]),
+    })
 }
 
 /// The wall of a case with one wall.
@@ -407,16 +396,7 @@ fn motion_file(path: &std::path::Path) -> Result<Vec<LoopMotion>> {
         .motion
         .into_iter()
         .map(|m| {
-            let rigid = (m.scale.is_some()
-                || m.rotate_deg.is_some()
-                || m.about.is_some()
-                || m.translate.is_some())
-            .then(|| RigidMotion {
-                scale: m.scale.unwrap_or(1.0),
-                rotate_deg: m.rotate_deg.unwrap_or(0.0),
-                about: m.about.unwrap_or([0.0, 0.0]),
-                translate: m.translate.unwrap_or([0.0, 0.0]),
-            });
+            let rigid = rigid(m.scale, m.rotate_deg, m.about, m.translate);
             let bumps = m
                 .bump
                 .iter()
