@@ -48,30 +48,14 @@ pub struct MeshArgs {
     #[arg(long)]
     pub list: bool,
 
-    /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
-    #[arg(long, value_name = "P",
-          value_parser = clap::value_parser!(u8).range(1..=i64::from(crate::case::MAX_ORDER)))]
-    pub order: Option<u8>,
-
-    /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK
-    /// XML, Lagrange cells for P2/P3) or .su2 (linear). May be given several times.
-    /// Default: out/CASE.msh.
-    #[arg(long = "out", value_name = "FILE")]
-    pub outs: Vec<PathBuf>,
-
-    /// Write the JSON report (cells, layers, timings, quality) to this file.
-    /// Default when no --out is given: out/CASE.json.
-    #[arg(long, value_name = "FILE.json")]
-    pub report: Option<PathBuf>,
+    /// The order, the mesh files and the report.
+    #[command(flatten)]
+    pub output: OutputArgs,
 
     /// Save the intermediate stages (boundary nodes, the layered linear mesh with its layers,
     /// pipes and node parents) to this binary snapshot, for later stages or inspection.
     #[arg(long, value_name = "FILE.bin")]
     pub snapshot: Option<PathBuf>,
-
-    /// Cut every quad along its shorter diagonal into two triangles.
-    #[arg(long)]
-    pub triangles: bool,
 
     /// Pictures of the mesh.
     #[command(flatten)]
@@ -112,24 +96,9 @@ pub struct MoveArgs {
     #[arg(long, value_enum, default_value_t = RbfKernel::WendlandC2)]
     pub kernel: RbfKernel,
 
-    /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
-    #[arg(long, value_name = "P",
-          value_parser = clap::value_parser!(u8).range(1..=i64::from(crate::case::MAX_ORDER)))]
-    pub order: Option<u8>,
-
-    /// Output mesh file (.msh, .vtu or .su2, as for `mesh`); may be given several times.
-    /// Default: out/CASE-moved.msh.
-    #[arg(long = "out", value_name = "FILE")]
-    pub outs: Vec<PathBuf>,
-
-    /// Write the JSON report (the motion, the method, the quality before and after) to this
-    /// file. Default when no --out is given: out/CASE-moved.json.
-    #[arg(long, value_name = "FILE.json")]
-    pub report: Option<PathBuf>,
-
-    /// Cut every quad along its shorter diagonal into two triangles.
-    #[arg(long)]
-    pub triangles: bool,
+    /// The order, the mesh files (default out/CASE-moved.msh) and the report.
+    #[command(flatten)]
+    pub output: OutputArgs,
 
     /// Pictures of the moved mesh.
     #[command(flatten)]
@@ -138,6 +107,30 @@ pub struct MoveArgs {
     /// No summary table on stdout and no progress on stderr; errors are still printed.
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+/// The order and the files of the mesh made by `mesh` or `move`.
+#[derive(Debug, Args)]
+pub struct OutputArgs {
+    /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
+    #[arg(long, value_name = "P",
+          value_parser = clap::value_parser!(u8).range(1..=i64::from(crate::case::MAX_ORDER)))]
+    pub order: Option<u8>,
+
+    /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK
+    /// XML, Lagrange cells for P2/P3) or .su2 (linear). May be given several times.
+    /// Default: out/CASE.msh (`move`: out/CASE-moved.msh).
+    #[arg(long = "out", value_name = "FILE")]
+    pub outs: Vec<PathBuf>,
+
+    /// Write the JSON report (cells, layers, timings, quality; `move`: the movement) to this
+    /// file. Default when no --out is given: out/CASE.json (`move`: out/CASE-moved.json).
+    #[arg(long, value_name = "FILE.json")]
+    pub report: Option<PathBuf>,
+
+    /// Cut every quad along its shorter diagonal into two triangles.
+    #[arg(long)]
+    pub triangles: bool,
 }
 
 /// The motion of `cargo xtask move`: a motion file, or the flags of one loop's motion.

@@ -39,10 +39,10 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     }
     let total = Instant::now();
     let case = load(args)?;
-    let order = args.order.unwrap_or(case.order);
+    let order = args.output.order.unwrap_or(case.order);
     let flags = OutputFlags {
-        outs: &args.outs,
-        report: args.report.as_deref(),
+        outs: &args.output.outs,
+        report: args.output.report.as_deref(),
         snapshot: args.snapshot.as_deref(),
         pictures: &args.pictures,
     };
@@ -257,7 +257,7 @@ fn make(
         case,
         (&curves, &nodes),
         &grown.layered,
-        (order, args.triangles),
+        (order, args.output.triangles),
         args.quiet,
         report,
     )?;

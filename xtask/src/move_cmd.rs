@@ -30,12 +30,12 @@ use crate::{Finished, case, pipeline};
 pub fn run(args: &MoveArgs) -> Result<Finished> {
     let total = Instant::now();
     let case = case::load(&args.case)?;
-    let order = args.order.unwrap_or(case.order);
+    let order = args.output.order.unwrap_or(case.order);
     let motions = motions(&args.motion, &case)?;
     let moved = moved_geometry(&case, &motions)?;
     let flags = OutputFlags {
-        outs: &args.outs,
-        report: args.report.as_deref(),
+        outs: &args.output.outs,
+        report: args.output.report.as_deref(),
         snapshot: None,
         pictures: &args.pictures,
     };
@@ -71,7 +71,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
             &moved.case,
             (&moved.curves, &nodes),
             &moved_layered,
-            (order, args.triangles),
+            (order, args.output.triangles),
             args.quiet,
             &mut report,
         )?
