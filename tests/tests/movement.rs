@@ -175,6 +175,11 @@ fn bad_motions_are_one_line_before_any_file() {
         ),
         (
             "naca0012",
+            &["--rotate", "3", "--method", "rbf", "--radius", "-1"],
+            &["support radius", "-1"],
+        ),
+        (
+            "naca0012",
             &["--rotate", "3", "--motion", "m.toml"],
             &["either --motion", "not both"],
         ),
@@ -251,4 +256,43 @@ fn a_snapshot_of_the_case_is_moved_as_the_case_itself() {
     ];
     let err = xtask(&args).expect_err("a snapshot of another case");
     assert_one_line_naming(&format!("{err:#}"), &["--snapshot", "naca0012", "bat"]);
+}
+
+#[test]
+fn a_mover_that_inverts_cells_writes_the_mesh_and_fails() {
+    // a compact Wendland support (R = 0.5) cannot follow a 30° pitch: mesh-move's README
+    // measures 78 inverted cells on this motion
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "--rotate", "30", "--about", "0.25,0", "--method", "rbf", "--radius", "0.5",
+    ];
+    let (outcome, r) = moved(dir.path(), "inv", "naca0012", &args);
+    assert_eq!(outcome, Outcome::Invalid);
+    let inverted = r["movement"]["inverted_linear_cells"].as_u64().unwrap();
+    assert!(inverted > 0);
+    assert_eq!(r["order"], 1, "an inverted mesh is written linear");
+    assert!(r["quality"]["invalid_cells"].as_u64().unwrap() > 0);
+    assert!(!r["problems"].as_array().unwrap().is_empty());
+    let finished = xtask::run(end_to_end::cli(&[
+        "move",
+        "naca0012",
+        "--quiet",
+        "--out",
+        s(&dir.path().join("again.msh")),
+        "--rotate",
+        "30",
+        "--about",
+        "0.25,0",
+        "--method",
+        "rbf",
+        "--radius",
+        "0.5",
+    ]))
+    .unwrap();
+    let line = xtask::exit::of_run(&Ok(finished));
+    assert_eq!(line.code, 2);
+    assert_one_line_naming(
+        line.stderr.as_deref().unwrap(),
+        &["moved mesh was written but"],
+    );
 }

@@ -96,6 +96,11 @@ pub struct MoveArgs {
     #[arg(long, value_enum, default_value_t = RbfKernel::WendlandC2)]
     pub kernel: RbfKernel,
 
+    /// Support radius of the Wendland C2 kernel of `--method rbf` (default: the mesh's
+    /// bounding-box diagonal, so every boundary node acts everywhere).
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
+    pub radius: Option<f64>,
+
     /// The order, the mesh files (default out/CASE-moved.msh) and the report.
     #[command(flatten)]
     pub output: OutputArgs,

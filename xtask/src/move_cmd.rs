@@ -114,7 +114,7 @@ fn method(args: &MoveArgs) -> Method {
                 RbfKernel::WendlandC2 => Kernel::WendlandC2,
                 RbfKernel::ThinPlate => Kernel::ThinPlateSpline,
             },
-            support_radius: None,
+            support_radius: args.radius,
         }),
     }
 }
