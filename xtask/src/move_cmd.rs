@@ -105,7 +105,9 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     Ok(finished)
 }
 
-/// The mover of `--method` (and `--kernel`).
+/// The mover of `--method` (and `--kernel`, `--radius`). The spring mover, when it lands in
+/// `mesh_move`, is one variant `Springs` of `cli::MoveMethod` and one arm here; the call in
+/// [`run`] then becomes `mesh_move::move_layered`.
 fn method(args: &MoveArgs) -> Method {
     match args.method {
         MoveMethod::Idw => Method::Idw(IdwParams::default()),
@@ -422,11 +424,11 @@ fn motion_file(path: &std::path::Path) -> Result<Vec<LoopMotion>> {
 pub struct MovementReport {
     /// Each loop's motion.
     pub motion: Vec<LoopMotionReport>,
-    /// `idw` or `rbf`.
-    pub method: &'static str,
-    /// The RBF kernel (`rbf` only).
+    /// `--method`: `idw` or `rbf`.
+    pub method: String,
+    /// `--kernel` (`rbf` only).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub kernel: Option<&'static str>,
+    pub kernel: Option<String>,
     /// Largest displacement of any linear node.
     pub largest_displacement: f64,
     /// Largest displacement of a boundary node.
@@ -507,14 +509,8 @@ impl MovementReport {
         let rbf = args.method == MoveMethod::Rbf;
         MovementReport {
             motion: motions.iter().map(loop_motion_report).collect(),
-            method: match args.method {
-                MoveMethod::Idw => "idw",
-                MoveMethod::Rbf => "rbf",
-            },
-            kernel: rbf.then_some(match args.kernel {
-                RbfKernel::WendlandC2 => "wendland-c2",
-                RbfKernel::ThinPlate => "thin-plate",
-            }),
+            method: value_name(args.method),
+            kernel: rbf.then(|| value_name(args.kernel)),
             largest_displacement: stats.largest_displacement,
             largest_boundary_displacement: stats.largest_boundary_displacement,
             rbf_residual: rbf.then_some(stats.interpolation_residual),
@@ -542,6 +538,13 @@ impl MovementReport {
             self.after.max_angle_deg,
         )
     }
+}
+
+/// A flag value as typed on the command line (`idw`, `thin-plate`).
+fn value_name<E: clap::ValueEnum>(value: E) -> String {
+    value
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_string())
 }
 
 fn loop_motion_report(m: &LoopMotion) -> LoopMotionReport {
