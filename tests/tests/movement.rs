@@ -112,11 +112,15 @@ fn bumps_on_both_surfaces_morph_the_wall() {
 }
 
 #[test]
-fn the_motion_file_of_the_readme_moves_two_loops() {
+fn the_motion_file_of_the_readme_moves_two_loops_and_draws_them() {
     let dir = tempfile::tempdir().unwrap();
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/motions/two-element.toml");
-    let (outcome, r) = moved(dir.path(), "two", "two-element", &["--motion", s(&file)]);
+    let png = dir.path().join("gap.png");
+    let png_at = format!("{}@flap-gap", s(&png));
+    let args = ["--motion", s(&file), "--png", &png_at, "--width", "200"];
+    let (outcome, r) = moved(dir.path(), "two", "two-element", &args);
     assert_eq!(outcome, Outcome::Valid);
+    assert!(png.exists(), "the picture of the moved mesh");
     assert_certified(&r);
     let m = &r["movement"]["motion"];
     assert_eq!(m[0]["loop"], "flap");

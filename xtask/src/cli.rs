@@ -190,7 +190,7 @@ pub enum MoveMethod {
 /// The kernels of `--method rbf`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum RbfKernel {
-    /// Wendland C2, global support (the bounding-box diagonal).
+    /// Wendland C2, support --radius (default the bounding-box diagonal: global).
     WendlandC2,
     /// The thin-plate spline r² ln r.
     ThinPlate,
