@@ -300,3 +300,40 @@ fn a_mover_that_inverts_cells_writes_the_mesh_and_fails() {
         &["moved mesh was written but"],
     );
 }
+
+#[test]
+fn a_rigid_motion_of_every_loop_moves_every_node_of_the_p3_mesh_by_it() {
+    // the boundary nodes on the refitted curves at their own parameters, the others moved by
+    // the mover, the high-order nodes by the curving on the moved curves: with the far field
+    // moved too, every node by the same rigid motion
+    let dir = tempfile::tempdir().unwrap();
+    let unmoved = dir.path().join("u.msh");
+    assert_eq!(
+        mesh("naca0012", "3", &["--out", s(&unmoved)]).unwrap(),
+        Outcome::Valid
+    );
+    let motion = dir.path().join("rigid.toml");
+    let rigid = "rotate_deg = 37.0\nabout = [0.25, 0.0]\ntranslate = [0.5, 0.25]";
+    let text = format!(
+        "[[motion]]\nloop = \"naca0012\"\n{rigid}\n[[motion]]\nloop = \"farfield\"\n{rigid}\n"
+    );
+    std::fs::write(&motion, text).unwrap();
+    let (outcome, _) = moved(dir.path(), "r", "naca0012", &["--motion", s(&motion)]);
+    assert_eq!(outcome, Outcome::Valid);
+    let before = mesh_io::read_msh(&unmoved).unwrap();
+    let after = mesh_io::read_msh(&dir.path().join("r.msh")).unwrap();
+    assert_eq!(before.nodes.len(), after.nodes.len());
+    assert_eq!(before.cells, after.cells);
+    let (sin, cos) = 37f64.to_radians().sin_cos();
+    let worst = before
+        .nodes
+        .iter()
+        .zip(&after.nodes)
+        .map(|(b, a)| {
+            let (x, y) = (b[0] - 0.25, b[1]);
+            let expected = [0.25 + cos * x - sin * y + 0.5, sin * x + cos * y + 0.25];
+            (a[0] - expected[0]).abs().max((a[1] - expected[1]).abs())
+        })
+        .fold(0.0f64, f64::max);
+    assert!(worst < 1e-9, "a node misses the rigid motion by {worst:e}");
+}
