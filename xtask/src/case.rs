@@ -282,8 +282,9 @@ pub fn parse_case_str(text: &str) -> Result<Case> {
     parse(text, "case", FileSource::Builtin, "case")
 }
 
-fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) -> Result<Case> {
-    let file: CaseFile = toml::from_str(text).map_err(|e| {
+/// TOML `text` read as a `T`; an error names `origin` and the line at fault, on one line.
+pub(crate) fn from_toml<T: serde::de::DeserializeOwned>(text: &str, origin: &str) -> Result<T> {
+    toml::from_str(text).map_err(|e| {
         let msg = e.message().trim().to_string();
         match e.span() {
             Some(span) => {
@@ -292,7 +293,11 @@ fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) ->
             }
             None => anyhow::anyhow!("{origin}: {msg}"),
         }
-    })?;
+    })
+}
+
+fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) -> Result<Case> {
+    let file: CaseFile = from_toml(text, origin)?;
     let (boundary, layers, order, curving) = file.params();
     check_params(origin, &boundary, &layers, order, &curving)?;
     ensure!(

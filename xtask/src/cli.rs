@@ -22,6 +22,9 @@ pub enum Command {
     Mesh(MeshArgs),
     /// Check a mesh file: structure, orientation, conformity, angles; draw it on request.
     Quality(QualityArgs),
+    /// Move the bodies of a meshed case (rigid motion, Hicks-Henne bumps) and re-curve the
+    /// moved mesh: same topology, every cell certified.
+    Move(MoveArgs),
     /// Time each stage of the pipeline on the built-in cases (release build, one thread).
     Bench(BenchArgs),
     /// Regenerate every figure of the README and the user guide (docs/figures) from real runs.
@@ -45,30 +48,14 @@ pub struct MeshArgs {
     #[arg(long)]
     pub list: bool,
 
-    /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
-    #[arg(long, value_name = "P",
-          value_parser = clap::value_parser!(u8).range(1..=i64::from(crate::case::MAX_ORDER)))]
-    pub order: Option<u8>,
-
-    /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK
-    /// XML, Lagrange cells for P2/P3) or .su2 (linear). May be given several times.
-    /// Default: out/CASE.msh.
-    #[arg(long = "out", value_name = "FILE")]
-    pub outs: Vec<PathBuf>,
-
-    /// Write the JSON report (cells, layers, timings, quality) to this file.
-    /// Default when no --out is given: out/CASE.json.
-    #[arg(long, value_name = "FILE.json")]
-    pub report: Option<PathBuf>,
+    /// The order, the mesh files and the report.
+    #[command(flatten)]
+    pub output: OutputArgs,
 
     /// Save the intermediate stages (boundary nodes, the layered linear mesh with its layers,
     /// pipes and node parents) to this binary snapshot, for later stages or inspection.
     #[arg(long, value_name = "FILE.bin")]
     pub snapshot: Option<PathBuf>,
-
-    /// Cut every quad along its shorter diagonal into two triangles.
-    #[arg(long)]
-    pub triangles: bool,
 
     /// Pictures of the mesh.
     #[command(flatten)]
@@ -82,6 +69,144 @@ pub struct MeshArgs {
     /// No summary table on stdout and no progress on stderr; errors are still printed.
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+/// Flags of `cargo xtask move`.
+#[derive(Debug, Args)]
+pub struct MoveArgs {
+    /// A case file (.toml) or the name of a built-in case: it is meshed first with its own
+    /// parameters, then moved.
+    #[arg(value_name = "CASE")]
+    pub case: String,
+
+    /// Start from this snapshot of the case written by `cargo xtask mesh CASE --snapshot
+    /// FILE.bin` (its boundary nodes and layered linear mesh) instead of meshing the case.
+    #[arg(long, value_name = "FILE.bin")]
+    pub snapshot: Option<PathBuf>,
+
+    /// The motion.
+    #[command(flatten)]
+    pub motion: MotionArgs,
+
+    /// How the nodes inside the domain follow the moved boundary.
+    #[arg(long, value_enum, default_value_t = MoveMethod::Idw)]
+    pub method: MoveMethod,
+
+    /// The radial basis function of `--method rbf`.
+    #[arg(long, value_enum, default_value_t = RbfKernel::WendlandC2)]
+    pub kernel: RbfKernel,
+
+    /// Support radius of the Wendland C2 kernel of `--method rbf` (default: the mesh's
+    /// bounding-box diagonal, so every boundary node acts everywhere).
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
+    pub radius: Option<f64>,
+
+    /// The order, the mesh files (default out/CASE-moved.msh) and the report.
+    #[command(flatten)]
+    pub output: OutputArgs,
+
+    /// Pictures of the moved mesh.
+    #[command(flatten)]
+    pub pictures: PictureArgs,
+
+    /// No summary table on stdout and no progress on stderr; errors are still printed.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// The order and the files of the mesh made by `mesh` or `move`.
+#[derive(Debug, Args)]
+pub struct OutputArgs {
+    /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
+    #[arg(long, value_name = "P",
+          value_parser = clap::value_parser!(u8).range(1..=i64::from(crate::case::MAX_ORDER)))]
+    pub order: Option<u8>,
+
+    /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK
+    /// XML, Lagrange cells for P2/P3) or .su2 (linear). May be given several times.
+    /// Default: out/CASE.msh (`move`: out/CASE-moved.msh).
+    #[arg(long = "out", value_name = "FILE")]
+    pub outs: Vec<PathBuf>,
+
+    /// Write the JSON report (cells, layers, timings, quality; `move`: the movement) to this
+    /// file. Default when no --out is given: out/CASE.json (`move`: out/CASE-moved.json).
+    #[arg(long, value_name = "FILE.json")]
+    pub report: Option<PathBuf>,
+
+    /// Cut every quad along its shorter diagonal into two triangles.
+    #[arg(long)]
+    pub triangles: bool,
+}
+
+/// The motion of `cargo xtask move`: a motion file, or the flags of one loop's motion.
+#[derive(Debug, Args)]
+pub struct MotionArgs {
+    /// The motion of every loop from a TOML file (`[[motion]]` tables, see the README);
+    /// not with the flags below.
+    #[arg(long, value_name = "FILE.toml")]
+    pub motion: Option<PathBuf>,
+
+    /// The loop the flags move (default: the wall, when the case has one).
+    #[arg(long = "loop", value_name = "NAME")]
+    pub loop_name: Option<String>,
+
+    /// Rotation in degrees, counter-clockwise, about --about.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub rotate: Option<f64>,
+
+    /// Centre of the rotation and of the scaling (default 0,0).
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_pair)]
+    pub about: Option<[f64; 2]>,
+
+    /// Translation, applied after the scaling and the rotation.
+    #[arg(long, value_name = "DX,DY", allow_hyphen_values = true, value_parser = parse_pair)]
+    pub translate: Option<[f64; 2]>,
+
+    /// Uniform scale factor about --about (> 0), applied first.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub scale: Option<f64>,
+
+    /// A Hicks-Henne bump of the wall, applied before the rigid motion:
+    /// `POSITION,AMPLITUDE[,WIDTH][,upper|lower]` — peak position along the chord in (0, 1),
+    /// amplitude in chords (positive outward), width exponent (default 3), surface (default
+    /// upper). May be given several times.
+    #[arg(
+        long = "bump",
+        value_name = "P,A[,W][,SIDE]",
+        allow_hyphen_values = true
+    )]
+    pub bumps: Vec<String>,
+}
+
+/// The movers of `cargo xtask move --method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MoveMethod {
+    /// Rotation-aware inverse-distance weighting (Witteveen & Bijl).
+    Idw,
+    /// Radial basis functions with a linear polynomial (de Boer et al.), see --kernel.
+    Rbf,
+}
+
+/// The kernels of `--method rbf`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum RbfKernel {
+    /// Wendland C2, support --radius (default the bounding-box diagonal: global).
+    WendlandC2,
+    /// The thin-plate spline r² ln r.
+    ThinPlate,
+}
+
+/// `X,Y` as two numbers.
+fn parse_pair(text: &str) -> Result<[f64; 2], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let &[x, y] = parts.as_slice() else {
+        return Err(format!("give two numbers X,Y, got {text:?}"));
+    };
+    let num = |v: &str| {
+        v.parse::<f64>()
+            .map_err(|_| format!("{v:?} is not a number (in {text:?})"))
+    };
+    Ok([num(x)?, num(y)?])
 }
 
 /// Flags for airfoil `.dat` inputs (`cargo xtask mesh A.dat [B.dat ...]`).
@@ -156,7 +281,7 @@ pub struct QualityArgs {
     pub quiet: bool,
 }
 
-/// Picture flags, shared by `mesh` and `quality`.
+/// Picture flags, shared by `mesh`, `move` and `quality`.
 #[derive(Debug, Args)]
 pub struct PictureArgs {
     /// Draw the mesh to a PNG picture; `FILE@VIEW` picks the view: `all`, `walls`, a view

@@ -35,7 +35,7 @@ pub fn of_usage_error(e: &clap::Error) -> Option<Exit> {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => return None,
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand | ErrorKind::MissingSubcommand => {
             return Some(bad_input(
-                "no command given: use `mesh`, `quality` or `bench` (see --help)",
+                "no command given: use `mesh`, `move`, `quality` or `bench` (see --help)",
             ));
         }
         _ => {}

@@ -24,6 +24,7 @@ mod estimate;
 pub mod exit;
 pub mod figures_cmd;
 mod mesh_cmd;
+mod move_cmd;
 pub mod outputs;
 mod pictures;
 pub mod pipeline;
@@ -75,6 +76,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<Outcome> {
 pub fn run(cli: cli::Cli) -> anyhow::Result<Finished> {
     match cli.command {
         cli::Command::Mesh(args) => mesh_cmd::run(&args),
+        cli::Command::Move(args) => move_cmd::run(&args),
         cli::Command::Quality(args) => quality_cmd::run(&args),
         cli::Command::Bench(args) => bench_cmd::run(&args).map(|_| Finished::valid()),
         cli::Command::Figures(args) => figures_cmd::run(&args),

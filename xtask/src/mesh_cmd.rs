@@ -7,8 +7,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Result, bail};
+use boundary1d::BoundaryNodes;
+use geom_curve::ClosedCurve;
 use mesh_io::Format;
-use mesh_model::Mesh;
+use mesh_model::{LayeredMesh, Mesh};
 
 use crate::cli::MeshArgs;
 use crate::outputs::{Output, Outputs};
@@ -19,7 +21,7 @@ use crate::stages::Snapshot;
 use crate::{Finished, airfoil, builtin, case, estimate, pipeline};
 
 /// The files a run will write, reserved before any work.
-struct Planned {
+pub(crate) struct Planned {
     outputs: Outputs,
     meshes: Vec<(PathBuf, Output)>,
     snapshot: Option<Output>,
@@ -37,47 +39,103 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     }
     let total = Instant::now();
     let case = load(args)?;
-    let order = args.order.unwrap_or(case.order);
-    let mut plan = plan(args, &case)?;
+    let order = args.output.order.unwrap_or(case.order);
+    let flags = OutputFlags {
+        outs: &args.output.outs,
+        report: args.output.report.as_deref(),
+        snapshot: args.snapshot.as_deref(),
+        pictures: &args.pictures,
+    };
+    let plan = plan(&flags, &case.file_stem(), &case.views)?;
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
     let mut report = Report::new(&case.name, order);
     let (mesh, snapshot, linear) = make(args, &case, order, &mut report)?;
-    report.describe(&mesh);
+    let snapshot = snapshot.as_ref().zip(args.snapshot.as_deref());
+    let run = Run {
+        pictures: &args.pictures,
+        name: &case.name,
+        quiet: args.quiet,
+        total,
+    };
+    let report_path = check_and_write(plan, (&mesh, &linear), snapshot, &run, &mut report)?;
+    Ok(report.finish(
+        report_path.as_deref(),
+        args.quiet,
+        "the mesh was written but",
+    ))
+}
+
+/// What the last steps of a run need to know of it.
+pub(crate) struct Run<'a> {
+    /// The picture flags.
+    pub pictures: &'a crate::cli::PictureArgs,
+    /// The case's name (the pictures' title).
+    pub name: &'a str,
+    /// `--quiet`.
+    pub quiet: bool,
+    /// When the run started.
+    pub total: Instant,
+}
+
+/// The last steps of a run: describes `mesh` in the report, with the angle figures of
+/// `linear` (the linear mesh under it, the same at every order and with --triangles),
+/// certifies every cell, then writes everything ([`write_outputs`]). Returns the path of the
+/// report, if one was written.
+pub(crate) fn check_and_write(
+    plan: Planned,
+    (mesh, linear): (&Mesh, &Mesh),
+    snapshot: Option<(&Snapshot, &std::path::Path)>,
+    run: &Run<'_>,
+    report: &mut Report,
+) -> Result<Option<PathBuf>> {
+    report.describe(mesh);
     if report.quality.is_some() {
-        // the figures of the linear mesh, the same at every order and with --triangles
-        report.linear_angles(&linear);
+        report.linear_angles(linear);
     }
     let t = Instant::now();
-    let progress = stage(args.quiet, "certified validity");
-    let scaled_jacobian = report.certify(&mesh)?;
+    let progress = stage(run.quiet, "certified validity");
+    let scaled_jacobian = report.certify(mesh)?;
     drop(progress);
     report
         .timings_s
         .insert("validity", t.elapsed().as_secs_f64());
+    write_outputs(plan, mesh, snapshot, run, &scaled_jacobian, report)
+}
 
+/// Writes the meshes, the snapshot (with its path), the pictures and the report of a run into
+/// the reserved outputs of `plan`, then puts them all in place together. Returns the path of
+/// the report, if one was written.
+fn write_outputs(
+    mut plan: Planned,
+    mesh: &Mesh,
+    snapshot: Option<(&Snapshot, &std::path::Path)>,
+    run: &Run<'_>,
+    scaled_jacobian: &[f64],
+    report: &mut Report,
+) -> Result<Option<PathBuf>> {
     let t = Instant::now();
-    let progress = stage(args.quiet, "writing");
+    let progress = stage(run.quiet, "writing");
     for (path, output) in &plan.meshes {
         plan.outputs
-            .write_with(*output, |w| mesh_io::write_to(w, path, &mesh))?;
+            .write_with(*output, |w| mesh_io::write_to(w, path, mesh))?;
         if let Some(format) = Format::from_path(path) {
             report.wrote_mesh(path, format, mesh.order);
         }
     }
-    if let (Some(output), Some(stages), Some(path)) = (plan.snapshot, &snapshot, &args.snapshot) {
+    if let (Some(output), Some((stages, path))) = (plan.snapshot, snapshot) {
         plan.outputs
             .write_with(output, |w| mesh_io::snapshot::save_to(w, stages, path))?;
     }
     report.timings_s.insert("write", t.elapsed().as_secs_f64());
     let t = Instant::now();
     pictures::draw_all(
-        &mesh,
+        mesh,
         &plan.pictures,
-        &args.pictures,
+        run.pictures,
         Colour::Layer,
-        &case.name,
-        &scaled_jacobian,
+        run.name,
+        scaled_jacobian,
         &mut plan.outputs,
     )?;
     drop(progress);
@@ -89,13 +147,12 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     report.files = plan.outputs.files();
     report
         .timings_s
-        .insert("total", total.elapsed().as_secs_f64());
+        .insert("total", run.total.elapsed().as_secs_f64());
     if let Some((_, output)) = &plan.report {
         plan.outputs.write_bytes(*output, &report.json()?)?;
     }
     plan.outputs.commit()?;
-    let report_path = plan.report.as_ref().map(|(p, _)| p.as_path());
-    Ok(report.finish(report_path, args.quiet, "the mesh was written but"))
+    Ok(plan.report.map(|(p, _)| p))
 }
 
 /// The case named on the command line: a case file or built-in case, or airfoil `.dat`
@@ -132,18 +189,35 @@ fn load(args: &MeshArgs) -> Result<case::Case> {
     }
 }
 
+/// The flags that name the outputs of a run.
+pub(crate) struct OutputFlags<'a> {
+    /// `--out`, each.
+    pub outs: &'a [PathBuf],
+    /// `--report`.
+    pub report: Option<&'a std::path::Path>,
+    /// `--snapshot` (written).
+    pub snapshot: Option<&'a std::path::Path>,
+    /// `--png`, `--svg` and their options.
+    pub pictures: &'a crate::cli::PictureArgs,
+}
+
 /// Checks every output flag and reserves every output file (meshes, snapshot, pictures,
 /// report), so that a bad flag, an unwritable folder or two outputs on one file are refused
-/// before any work.
-fn plan(args: &MeshArgs, case: &case::Case) -> Result<Planned> {
-    let (outs, report_path) = outputs(args, &case.file_stem())?;
-    let pictures = pictures::parse(&args.pictures, &case.views)?;
+/// before any work. Without `--out`, the mesh and the report go to `out/STEM.msh` and
+/// `out/STEM.json`; `views` are the case's named views.
+pub(crate) fn plan(
+    flags: &OutputFlags<'_>,
+    stem: &str,
+    views: &std::collections::BTreeMap<String, [f64; 4]>,
+) -> Result<Planned> {
+    let (outs, report_path) = outputs(flags, stem)?;
+    let pictures = pictures::parse(flags.pictures, views)?;
     let mut outputs = Outputs::new();
     let meshes = outs
         .into_iter()
         .map(|p| outputs.reserve("--out", &p).map(|o| (p, o)))
         .collect::<Result<Vec<_>>>()?;
-    let snapshot = match &args.snapshot {
+    let snapshot = match flags.snapshot {
         Some(p) => Some(outputs.reserve("--snapshot", p)?),
         None => None,
     };
@@ -173,8 +247,33 @@ fn make(
     order: u8,
     report: &mut Report,
 ) -> Result<(Mesh, Option<Snapshot>, Mesh)> {
+    let (curves, nodes, grown) = grow(case, args.quiet, args.max_cells, report)?;
+    let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
+        case: case.name.clone(),
+        boundary: nodes.clone(),
+        layered: grown.layered.clone(),
+    });
+    let mesh = at_order(
+        case,
+        (&curves, &nodes),
+        &grown.layered,
+        (order, args.output.triangles),
+        args.quiet,
+        report,
+    )?;
+    Ok((mesh, snapshot, grown.layered.mesh))
+}
+
+/// The first stages: curves, boundary mesh (then the cell estimate, refused above
+/// `max_cells`), the layered linear mesh; their timings, loops and notes go to `report`.
+pub(crate) fn grow(
+    case: &case::Case,
+    quiet: bool,
+    max_cells: u64,
+    report: &mut Report,
+) -> Result<(Vec<ClosedCurve>, Vec<BoundaryNodes>, afsf2d::AfsfOutput)> {
     let t = Instant::now();
-    let progress = stage(args.quiet, "boundary curves and 1D mesh");
+    let progress = stage(quiet, "boundary curves and 1D mesh");
     let curves = pipeline::curves(case)?;
     let nodes = pipeline::boundary_nodes(case, &curves)?;
     drop(progress);
@@ -187,10 +286,10 @@ fn make(
     let expected = estimate::cells(case, &nodes);
     report.estimated_cells = Some(expected);
     let boundary_nodes = nodes.iter().map(|n| n.points.len()).sum();
-    estimate::check_cells(expected, boundary_nodes, args.max_cells, args.quiet)?;
+    estimate::check_cells(expected, boundary_nodes, max_cells, quiet)?;
 
     let t = Instant::now();
-    let progress = stage(args.quiet, "linear layered mesh (AFSF)");
+    let progress = stage(quiet, "linear layered mesh (AFSF)");
     let grown = pipeline::linear_mesh(case, &nodes)?;
     drop(progress);
     report.timings_s.insert("linear", t.elapsed().as_secs_f64());
@@ -207,42 +306,49 @@ fn make(
             grown.stats.bare_wall_facets
         ));
     }
-    let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
-        case: case.name.clone(),
-        boundary: nodes.clone(),
-        layered: grown.layered.clone(),
-    });
-    let mesh = if order > 1 {
-        let t = Instant::now();
-        let progress = stage(args.quiet, "curving (Vector-Adding)");
-        let curved = pipeline::curved_mesh(case, &curves, &nodes, &grown, order, args.triangles)?;
-        drop(progress);
-        report
-            .timings_s
-            .insert("curving", t.elapsed().as_secs_f64());
-        report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
-        report.curving = Some(curved.stats);
-        curved.mesh
-    } else {
+    Ok((curves, nodes, grown))
+}
+
+/// The mesh of the run at `order` (quads cut when `triangles`): `layered` curved by
+/// Vector-Adding with its boundary nodes on `curves` at the `t` of `nodes`, or itself at
+/// order 1.
+pub(crate) fn at_order(
+    case: &case::Case,
+    (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
+    layered: &LayeredMesh,
+    (order, triangles): (u8, bool),
+    quiet: bool,
+    report: &mut Report,
+) -> Result<Mesh> {
+    if order == 1 {
         // a linear mesh has no curved edge
         report.curved_edge_fraction = Some(0.0);
-        if args.triangles {
-            afsf2d::cut_quads_shorter_diagonal(&grown.layered.mesh)
+        return Ok(if triangles {
+            afsf2d::cut_quads_shorter_diagonal(&layered.mesh)
         } else {
-            grown.layered.mesh.clone()
-        }
-    };
-    Ok((mesh, snapshot, grown.layered.mesh))
+            layered.mesh.clone()
+        });
+    }
+    let t = Instant::now();
+    let progress = stage(quiet, "curving (Vector-Adding)");
+    let curved = pipeline::curved_mesh(case, curves, nodes, layered, order, triangles)?;
+    drop(progress);
+    report
+        .timings_s
+        .insert("curving", t.elapsed().as_secs_f64());
+    report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
+    report.curving = Some(curved.stats);
+    Ok(curved.mesh)
 }
 
 /// The mesh files and the report to write, by flags or by default (under `out/`, named after
 /// the case's `stem`); checked before any work is done.
-fn outputs(args: &MeshArgs, stem: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>)> {
-    let defaulted = args.outs.is_empty();
+fn outputs(flags: &OutputFlags<'_>, stem: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>)> {
+    let defaulted = flags.outs.is_empty();
     let outs = if defaulted {
         vec![PathBuf::from(format!("out/{stem}.msh"))]
     } else {
-        args.outs.clone()
+        flags.outs.to_vec()
     };
     for out in &outs {
         if Format::from_path(out).is_none() {
@@ -252,14 +358,14 @@ fn outputs(args: &MeshArgs, stem: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>
             );
         }
     }
-    let report = match &args.report {
+    let report = match flags.report {
         Some(r) if r.extension().is_none_or(|e| e != "json") => {
             bail!(
                 "--report {}: the report is JSON: give a .json file name",
                 r.display()
             )
         }
-        Some(r) => Some(r.clone()),
+        Some(r) => Some(r.to_path_buf()),
         None if defaulted => Some(PathBuf::from(format!("out/{stem}.json"))),
         None => None,
     };

@@ -161,17 +161,18 @@ pub fn curving_of(curving: &CurvingParams, order: u8, triangles: bool) -> Curvin
 }
 
 /// The curved mesh of order 2 or 3 made from the layered linear mesh by Vector-Adding, with
-/// the boundary's high-order nodes on the case's curves.
+/// the boundary's high-order nodes on `curves` (the case's, or its moved curves) at the
+/// parameters `t` of the boundary `nodes`.
 pub fn curved_mesh(
     case: &Case,
     curves: &[ClosedCurve],
     nodes: &[BoundaryNodes],
-    grown: &afsf2d::AfsfOutput,
+    layered: &mesh_model::LayeredMesh,
     order: u8,
     triangles: bool,
 ) -> Result<vector_adding::Curved> {
     vector_adding::curve_mesh(
-        &grown.layered,
+        layered,
         &loop_curves(curves, nodes),
         &curving_params(case, order, triangles),
     )

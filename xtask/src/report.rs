@@ -59,6 +59,9 @@ pub struct Report {
     pub notes: Vec<String>,
     /// What failed validation, if anything (the run then exits with status 2).
     pub problems: Vec<String>,
+    /// `move` only: the motion, the mover and the quality before and after the move.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub movement: Option<crate::move_cmd::MovementReport>,
     /// The cells expected before the domain was meshed (`mesh` only), see `--max-cells`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_cells: Option<u64>,

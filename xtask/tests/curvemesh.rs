@@ -43,8 +43,7 @@ fn help_names_the_command_typed_and_only_existing_subcommands() {
         let help = text(&run(bin, &["--help"], &here).stdout);
         assert!(help.contains(&format!("Usage: {name} <COMMAND>")), "{help}");
         assert!(!help.contains(other), "{help}");
-        assert!(!help.to_lowercase().contains("move"), "{help}");
-        for sub in ["mesh", "quality", "bench", "figures"] {
+        for sub in ["mesh", "move", "quality", "bench", "figures"] {
             assert!(
                 help.contains(&format!("\n  {sub} ")),
                 "{sub} missing:\n{help}"

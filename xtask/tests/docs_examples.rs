@@ -1,7 +1,8 @@
 //! Every example of the README and `docs/user-guide.md` runs as written from a fresh clone:
 //! each ```sh block's commands run in order in a scratch copy of `fixtures/` (so `out/` is
 //! made there), `cargo xtask` and `curvemesh` being this build's binaries; each ```toml block
-//! is meshed as a case file placed in `fixtures/cases/`, and the README's case file is
+//! is meshed as a case file placed in `fixtures/cases/` (a motion file, first line
+//! `# fixtures/motions/NAME.toml`, is that fixture word for word), and the README's case file is
 //! `fixtures/cases/example.toml` word for word. Only the commands in [`SKIPPED`] are not run,
 //! each for the reason given. The figures the docs show are exactly those `figures` makes.
 
@@ -161,7 +162,10 @@ fn every_sh_example_runs_as_written() {
 fn every_toml_example_is_a_case_that_meshes() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let example = std::fs::read_to_string(root().join("fixtures/cases/example.toml")).unwrap();
-    let readme_toml = blocks(&readme, "toml");
+    let readme_toml: Vec<Vec<String>> = blocks(&readme, "toml")
+        .into_iter()
+        .filter(|b| motion_file(b).is_none())
+        .collect();
     assert_eq!(readme_toml.len(), 1, "the README shows one case file");
     assert_eq!(
         readme_toml[0].join("\n").trim(),
@@ -172,6 +176,15 @@ fn every_toml_example_is_a_case_that_meshes() {
         let text = std::fs::read_to_string(root().join(doc)).unwrap();
         let dir = scratch_clone(&text);
         for (i, block) in blocks(&text, "toml").iter().enumerate() {
+            if let Some(path) = motion_file(block) {
+                let file = std::fs::read_to_string(root().join(path)).unwrap();
+                assert_eq!(
+                    block.join("\n").trim(),
+                    file.trim(),
+                    "{doc}: the motion file shown is {path} word for word"
+                );
+                continue;
+            }
             let case = dir.path().join(format!("fixtures/cases/docs-{i}.toml"));
             std::fs::write(&case, block.join("\n")).unwrap();
             let out = run_in(
@@ -189,6 +202,15 @@ fn every_toml_example_is_a_case_that_meshes() {
             );
         }
     }
+}
+
+/// The fixture a ```toml block shows when it is a motion file (`cargo xtask move --motion`):
+/// its first line names it, `# fixtures/motions/NAME.toml`.
+fn motion_file(block: &[String]) -> Option<&str> {
+    block
+        .first()
+        .and_then(|l| l.strip_prefix("# "))
+        .filter(|p| p.starts_with("fixtures/motions/") && p.ends_with(".toml"))
 }
 
 /// The `docs/figures/*.png` names `text` shows.

@@ -1,0 +1,593 @@
+//! `cargo xtask move`: mesh a case (or read its snapshot), move its loops by a motion (rigid
+//! motion with uniform scaling, Hicks–Henne bumps; `mesh_move`), refit the moved loops' C2
+//! curves and put each boundary node on its moved curve at its own parameter `t`, move the
+//! other linear nodes with the chosen mover, re-curve the moved layered mesh (Vector-Adding),
+//! certify every cell and write the meshes, pictures and report as `mesh` does (all or
+//! nothing). A bad motion — a non-finite value, an unknown loop, a scale ≤ 0, a body pushed
+//! through another or out of the far field — is refused with one line before any work.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail, ensure};
+use boundary1d::BoundaryNodes;
+use geom_curve::{ClosedCurve, Point2, loops};
+use mesh_model::{LayeredMesh, Role};
+use mesh_move::motion::{IDENTITY, Mat2, resolve_motions};
+use mesh_move::{
+    BoundaryLoop, BoundaryMotion, HicksHenne, IdwParams, Kernel, LoopMotion, Method, Motion,
+    RbfParams, RigidMotion, Surface, move_loops,
+};
+use serde::{Deserialize, Serialize};
+
+use crate::cli::{MotionArgs, MoveArgs, MoveMethod, RbfKernel};
+use crate::mesh_cmd::{self, OutputFlags};
+use crate::progress::stage;
+use crate::report::Report;
+use crate::stages::Snapshot;
+use crate::{Finished, case, pipeline};
+
+/// Runs `cargo xtask move`.
+pub fn run(args: &MoveArgs) -> Result<Finished> {
+    let total = Instant::now();
+    let case = case::load(&args.case)?;
+    let order = args.output.order.unwrap_or(case.order);
+    let motions = motions(&args.motion, &case)?;
+    let moved = moved_geometry(&case, &motions)?;
+    let flags = OutputFlags {
+        outs: &args.output.outs,
+        report: args.output.report.as_deref(),
+        snapshot: None,
+        pictures: &args.pictures,
+    };
+    let plan = mesh_cmd::plan(&flags, &format!("{}-moved", case.file_stem()), &case.views)?;
+
+    let mut report = Report::new(&case.name, order);
+    let (nodes, layered) = start(args, &case, &mut report)?;
+    let boundary = boundary_targets(&moved, &nodes, &layered)?;
+    let t = Instant::now();
+    let progress = stage(args.quiet, "moving the linear nodes");
+    let method = method(args);
+    // with the spring mover: `mesh_move::move_layered(&layered, &boundary, &method)`
+    let linear = mesh_move::move_mesh(&layered.mesh, &boundary, &method)
+        .map_err(|e| anyhow::anyhow!("moving the mesh: {e}"))?;
+    drop(progress);
+    report.timings_s.insert("move", t.elapsed().as_secs_f64());
+    let moved_layered = LayeredMesh {
+        mesh: linear.mesh,
+        layering: layered.layering.clone(),
+    };
+    let comparison = mesh_move::compare(&layered.mesh, &moved_layered.mesh)
+        .map_err(|e| anyhow::anyhow!("comparing the meshes: {e}"))?;
+    let mesh = if linear.stats.inverted_cells > 0 {
+        // an inverted linear mesh cannot be curved: it is written as it is, and fails
+        report.order = 1;
+        report.notes.push(format!(
+            "the mover inverted {} linear cells: the moved linear mesh is written, not curved",
+            linear.stats.inverted_cells
+        ));
+        moved_layered.mesh.clone()
+    } else {
+        mesh_cmd::at_order(
+            &moved.case,
+            (&moved.curves, &nodes),
+            &moved_layered,
+            (order, args.output.triangles),
+            args.quiet,
+            &mut report,
+        )?
+    };
+    let movement = MovementReport::new(
+        &motions,
+        args,
+        &linear.stats,
+        &comparison,
+        (&layered.mesh, &moved_layered.mesh),
+    );
+    let summary = movement.summary();
+    report.movement = Some(movement);
+    let run = mesh_cmd::Run {
+        pictures: &args.pictures,
+        name: &case.name,
+        quiet: args.quiet,
+        total,
+    };
+    let linear_mesh = &moved_layered.mesh;
+    let report_path =
+        mesh_cmd::check_and_write(plan, (&mesh, linear_mesh), None, &run, &mut report)?;
+    let finished = report.finish(
+        report_path.as_deref(),
+        args.quiet,
+        "the moved mesh was written but",
+    );
+    if !args.quiet {
+        print!("{summary}");
+    }
+    Ok(finished)
+}
+
+/// The mover of `--method` (and `--kernel`, `--radius`). The spring mover, when it lands in
+/// `mesh_move`, is one variant `Springs` of `cli::MoveMethod` and one arm here; the call in
+/// [`run`] then becomes `mesh_move::move_layered`.
+fn method(args: &MoveArgs) -> Method {
+    match args.method {
+        MoveMethod::Idw => Method::Idw(IdwParams::default()),
+        MoveMethod::Rbf => Method::Rbf(RbfParams {
+            kernel: match args.kernel {
+                RbfKernel::WendlandC2 => Kernel::WendlandC2,
+                RbfKernel::ThinPlate => Kernel::ThinPlateSpline,
+            },
+            support_radius: args.radius,
+        }),
+    }
+}
+
+/// The boundary nodes and the layered linear mesh of the case: meshed with the case's own
+/// parameters, or read from `--snapshot` (checked to be this case's: every boundary node on
+/// its curve).
+fn start(
+    args: &MoveArgs,
+    case: &case::Case,
+    report: &mut Report,
+) -> Result<(Vec<BoundaryNodes>, LayeredMesh)> {
+    let Some(path) = &args.snapshot else {
+        let (_, nodes, grown) =
+            mesh_cmd::grow(case, args.quiet, crate::estimate::DEFAULT_MAX_CELLS, report)?;
+        return Ok((nodes, grown.layered));
+    };
+    let snapshot: Snapshot =
+        mesh_io::snapshot::load(path).with_context(|| format!("--snapshot {}", path.display()))?;
+    let at = || format!("--snapshot {}", path.display());
+    ensure!(
+        snapshot.case == case.name,
+        "{}: made from case '{}', not '{}'",
+        at(),
+        snapshot.case,
+        case.name
+    );
+    let curves = pipeline::curves(case)?;
+    ensure!(
+        snapshot.boundary.len() == curves.len(),
+        "{}: {} boundary loops, the case has {}",
+        at(),
+        snapshot.boundary.len(),
+        curves.len()
+    );
+    for ((curve, bn), input) in curves.iter().zip(&snapshot.boundary).zip(&case.loops) {
+        let tolerance = 1e-9 * curve.total_length();
+        let off =
+            bn.t.iter()
+                .zip(&bn.points)
+                .any(|(&t, p)| (curve.point(t) - p).norm() > tolerance);
+        ensure!(
+            !off && bn.t.len() == bn.points.len(),
+            "{}: its boundary nodes of loop '{}' are not on the case's curve (made from another \
+             version of the case?)",
+            at(),
+            input.name
+        );
+    }
+    report.layers = (snapshot.layered.layering.node_layer.iter())
+        .filter(|&&l| l != mesh_model::NONE)
+        .max()
+        .copied();
+    Ok((snapshot.boundary, snapshot.layered))
+}
+
+/// The case with its loops moved, their curves refitted, and each loop's linear part (scale ·
+/// rotation; the identity for a loop that stays or is only bumped).
+struct MovedGeometry {
+    case: case::Case,
+    curves: Vec<ClosedCurve>,
+    linear: Vec<Mat2>,
+}
+
+/// The motions checked against the case (values, names) and the moved loops checked (none
+/// crossing itself or another, walls inside the far field), then the moved curves fitted —
+/// all before any meshing.
+fn moved_geometry(case: &case::Case, motions: &[LoopMotion]) -> Result<MovedGeometry> {
+    let bad = |e: mesh_move::MoveError| anyhow::anyhow!("bad motion: {e}");
+    let loops: Vec<BoundaryLoop> = case
+        .loops
+        .iter()
+        .map(|l| BoundaryLoop {
+            name: l.name.clone(),
+            role: l.role,
+            points: l.points.clone(),
+        })
+        .collect();
+    let moved = move_loops(&loops, motions).map_err(bad)?;
+    let names: Vec<(&str, Role)> = loops.iter().map(|l| (l.name.as_str(), l.role)).collect();
+    let linear = resolve_motions(&names, motions)
+        .map_err(bad)?
+        .into_iter()
+        .map(|m| m.map_or(IDENTITY, Motion::linear))
+        .collect();
+    let mut moved_case = case.clone();
+    for (input, l) in moved_case.loops.iter_mut().zip(moved) {
+        let ccw = |p: &[[f64; 2]]| {
+            let pts: Vec<Point2<f64>> = p.iter().map(|q| Point2::new(q[0], q[1])).collect();
+            loops::is_counter_clockwise(&pts)
+        };
+        ensure!(
+            ccw(&input.points) == ccw(&l.points),
+            "bad motion: loop '{}' is turned inside out by its bumps",
+            input.name
+        );
+        input.points = l.points;
+    }
+    let curves = pipeline::curves(&moved_case).map_err(|e| anyhow::anyhow!("bad motion: {e:#}"))?;
+    Ok(MovedGeometry {
+        case: moved_case,
+        curves,
+        linear,
+    })
+}
+
+/// Where every boundary node goes: on its loop's moved curve at its parameter `t` (the
+/// boundary nodes of loop `l` are the mesh nodes after those of loops `0..l`).
+fn boundary_targets(
+    moved: &MovedGeometry,
+    nodes: &[BoundaryNodes],
+    layered: &LayeredMesh,
+) -> Result<BoundaryMotion> {
+    let mut out = BoundaryMotion {
+        nodes: Vec::new(),
+        targets: Vec::new(),
+        linear: Vec::new(),
+    };
+    for ((curve, bn), linear) in moved.curves.iter().zip(nodes).zip(&moved.linear) {
+        for &t in &bn.t {
+            let p = curve.point(t);
+            out.nodes.push(out.nodes.len() as u32);
+            out.targets.push([p.x, p.y]);
+            out.linear.push(*linear);
+        }
+    }
+    ensure!(
+        out.nodes.len() <= layered.mesh.nodes.len(),
+        "the layered mesh has fewer nodes than the boundary"
+    );
+    Ok(out)
+}
+
+/// The motions asked for: the motion file, or the flags' motion of one loop.
+fn motions(args: &MotionArgs, case: &case::Case) -> Result<Vec<LoopMotion>> {
+    let flags = args.rotate.is_some()
+        || args.about.is_some()
+        || args.translate.is_some()
+        || args.scale.is_some()
+        || !args.bumps.is_empty()
+        || args.loop_name.is_some();
+    if let Some(path) = &args.motion {
+        ensure!(
+            !flags,
+            "give either --motion FILE.toml or the motion flags (--loop, --rotate, --about, \
+             --translate, --scale, --bump), not both"
+        );
+        return motion_file(path);
+    }
+    let rigid = rigid(args.scale, args.rotate, args.about, args.translate);
+    let bumps = args
+        .bumps
+        .iter()
+        .map(|b| parse_bump(b).with_context(|| format!("--bump {b}")))
+        .collect::<Result<Vec<_>>>()?;
+    ensure!(
+        rigid.is_some() || !bumps.is_empty(),
+        "no motion given: use --rotate, --translate, --scale, --bump or --motion FILE.toml"
+    );
+    let loop_name = match &args.loop_name {
+        Some(name) => name.clone(),
+        None => default_loop(case)?,
+    };
+    Ok(vec![LoopMotion {
+        loop_name,
+        motion: Motion { rigid, bumps },
+    }])
+}
+
+/// The rigid motion of the values given (the others at the identity's), `None` when none is.
+fn rigid(
+    scale: Option<f64>,
+    rotate_deg: Option<f64>,
+    about: Option<[f64; 2]>,
+    translate: Option<[f64; 2]>,
+) -> Option<RigidMotion> {
+    let given = scale.is_some() || rotate_deg.is_some() || about.is_some() || translate.is_some();
+    given.then(|| RigidMotion {
+        scale: scale.unwrap_or(1.0),
+        rotate_deg: rotate_deg.unwrap_or(0.0),
+        about: about.unwrap_or([0.0, 0.0]),
+        translate: translate.unwrap_or([0.0, 0.0]),
+    })
+}
+
+/// The wall of a case with one wall.
+fn default_loop(case: &case::Case) -> Result<String> {
+    let walls: Vec<&str> = case
+        .loops
+        .iter()
+        .filter(|l| l.role == Role::Wall)
+        .map(|l| l.name.as_str())
+        .collect();
+    match walls.as_slice() {
+        [one] => Ok((*one).to_string()),
+        _ => bail!(
+            "--loop NAME is needed: case '{}' has {} wall loops ({})",
+            case.name,
+            walls.len(),
+            walls.join(", ")
+        ),
+    }
+}
+
+/// `POSITION,AMPLITUDE[,WIDTH][,upper|lower]`.
+fn parse_bump(text: &str) -> Result<HicksHenne> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    ensure!(
+        (2..=4).contains(&parts.len()),
+        "give POSITION,AMPLITUDE[,WIDTH][,upper|lower]"
+    );
+    let num = |v: &str, what: &str| {
+        v.parse::<f64>()
+            .map_err(|_| anyhow::anyhow!("{what} {v:?} is not a number"))
+    };
+    let mut bump = HicksHenne::new(
+        num(parts[0], "position")?,
+        num(parts[1], "amplitude")?,
+        Surface::Upper,
+    );
+    for (i, part) in parts.iter().enumerate().skip(2) {
+        match *part {
+            "upper" => bump.surface = Surface::Upper,
+            "lower" => bump.surface = Surface::Lower,
+            v if i == 2 => bump.width = num(v, "width")?,
+            v => bail!("the surface is upper or lower, got {v:?}"),
+        }
+    }
+    Ok(bump)
+}
+
+/// The motion file: `[[motion]]` tables (see the README).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MotionFile {
+    motion: Vec<LoopMotionSpec>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoopMotionSpec {
+    #[serde(rename = "loop")]
+    loop_name: String,
+    scale: Option<f64>,
+    rotate_deg: Option<f64>,
+    about: Option<[f64; 2]>,
+    translate: Option<[f64; 2]>,
+    #[serde(default)]
+    bump: Vec<BumpSpec>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BumpSpec {
+    position: f64,
+    amplitude: f64,
+    width: Option<f64>,
+    surface: Option<SurfaceSpec>,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum SurfaceSpec {
+    Upper,
+    Lower,
+}
+
+/// The motions of a motion file.
+fn motion_file(path: &std::path::Path) -> Result<Vec<LoopMotion>> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read motion file {}", path.display()))?;
+    let file: MotionFile = case::from_toml(&text, &path.display().to_string())?;
+    ensure!(
+        !file.motion.is_empty(),
+        "{}: no [[motion]] table",
+        path.display()
+    );
+    Ok(file
+        .motion
+        .into_iter()
+        .map(|m| {
+            let rigid = rigid(m.scale, m.rotate_deg, m.about, m.translate);
+            let bumps = m
+                .bump
+                .iter()
+                .map(|b| HicksHenne {
+                    width: b.width.unwrap_or(3.0),
+                    surface: match b.surface {
+                        Some(SurfaceSpec::Lower) => Surface::Lower,
+                        _ => Surface::Upper,
+                    },
+                    ..HicksHenne::new(b.position, b.amplitude, Surface::Upper)
+                })
+                .collect();
+            LoopMotion {
+                loop_name: m.loop_name,
+                motion: Motion { rigid, bumps },
+            }
+        })
+        .collect())
+}
+
+/// The `movement` block of the report of `move`.
+#[derive(Debug, Serialize)]
+pub struct MovementReport {
+    /// Each loop's motion.
+    pub motion: Vec<LoopMotionReport>,
+    /// `--method`: `idw` or `rbf`.
+    pub method: String,
+    /// `--kernel` (`rbf` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kernel: Option<String>,
+    /// Largest displacement of any linear node.
+    pub largest_displacement: f64,
+    /// Largest displacement of a boundary node.
+    pub largest_boundary_displacement: f64,
+    /// RBF only: the interpolant's largest miss at a boundary node.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rbf_residual: Option<f64>,
+    /// Linear cells inverted by the mover.
+    pub inverted_linear_cells: usize,
+    /// The linear mesh before the move.
+    pub before: Side,
+    /// The linear mesh after the move.
+    pub after: Side,
+    /// Min over cells of scaled Jacobian after / before (linear cells).
+    pub worst_cell_ratio: f64,
+    /// The cell where it is reached.
+    pub worst_cell: usize,
+    /// First-layer cells: largest relative height change and wall-normal angle change (°).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_layer: Option<[f64; 2]>,
+    /// What `before`, `after` and `worst_cell_ratio` are about.
+    pub of: &'static str,
+}
+
+/// One loop's motion in the report.
+#[derive(Debug, Serialize)]
+pub struct LoopMotionReport {
+    /// The loop.
+    #[serde(rename = "loop")]
+    pub loop_name: String,
+    /// Scale, rotation (degrees), centre, translation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rigid: Option<RigidReport>,
+    /// Each bump: position, amplitude, width, surface.
+    pub bumps: Vec<(f64, f64, f64, &'static str)>,
+}
+
+/// A rigid motion in the report.
+#[derive(Debug, Serialize)]
+pub struct RigidReport {
+    scale: f64,
+    rotate_deg: f64,
+    about: [f64; 2],
+    translate: [f64; 2],
+}
+
+/// Quality of one linear mesh.
+#[derive(Debug, Serialize)]
+pub struct Side {
+    /// As in `quality`.
+    pub max_angle_deg: f64,
+    /// As in `quality`.
+    pub obtuse_hist: [usize; 5],
+    /// Least scaled Jacobian of the linear cells (corners).
+    pub min_scaled_jacobian: f64,
+}
+
+const MOVEMENT_OF: &str = "the linear meshes before and after the move (cell corners; quads \
+    cut along the shorter diagonal for the angles); the moved mesh's certified figures at its \
+    order are under quality";
+
+impl MovementReport {
+    fn new(
+        motions: &[LoopMotion],
+        args: &MoveArgs,
+        stats: &mesh_move::MoveStats,
+        c: &mesh_move::Comparison,
+        (before, after): (&mesh_model::Mesh, &mesh_model::Mesh),
+    ) -> MovementReport {
+        let side = |m: &mesh_model::Mesh, sj: f64| {
+            let a = afsf2d::max_angle_histogram(m);
+            Side {
+                max_angle_deg: a.max_angle_deg,
+                obtuse_hist: a.histogram,
+                min_scaled_jacobian: sj,
+            }
+        };
+        let rbf = args.method == MoveMethod::Rbf;
+        MovementReport {
+            motion: motions.iter().map(loop_motion_report).collect(),
+            method: value_name(args.method),
+            kernel: rbf.then(|| value_name(args.kernel)),
+            largest_displacement: stats.largest_displacement,
+            largest_boundary_displacement: stats.largest_boundary_displacement,
+            rbf_residual: rbf.then_some(stats.interpolation_residual),
+            inverted_linear_cells: stats.inverted_cells,
+            before: side(before, c.min_before),
+            after: side(after, c.min_after),
+            worst_cell_ratio: c.worst_cell_ratio,
+            worst_cell: c.worst_cell,
+            first_layer: c.first_layer.map(|d| [d.height, d.angle_deg]),
+            of: MOVEMENT_OF,
+        }
+    }
+
+    /// The lines printed after the summary table.
+    fn summary(&self) -> String {
+        format!(
+            "moved by {}: largest displacement {:.4e}, worst-cell ratio {:.3}, min scaled \
+             Jacobian (linear) {:.3} -> {:.3}, max angle {:.1} -> {:.1} deg\n",
+            self.method,
+            self.largest_displacement,
+            self.worst_cell_ratio,
+            self.before.min_scaled_jacobian,
+            self.after.min_scaled_jacobian,
+            self.before.max_angle_deg,
+            self.after.max_angle_deg,
+        )
+    }
+}
+
+/// A flag value as typed on the command line (`idw`, `thin-plate`).
+fn value_name<E: clap::ValueEnum>(value: E) -> String {
+    value
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_string())
+}
+
+fn loop_motion_report(m: &LoopMotion) -> LoopMotionReport {
+    LoopMotionReport {
+        loop_name: m.loop_name.clone(),
+        rigid: m.motion.rigid.map(|r| RigidReport {
+            scale: r.scale,
+            rotate_deg: r.rotate_deg,
+            about: r.about,
+            translate: r.translate,
+        }),
+        bumps: m
+            .motion
+            .bumps
+            .iter()
+            .map(|b| {
+                let side = match b.surface {
+                    Surface::Upper => "upper",
+                    Surface::Lower => "lower",
+                };
+                (b.position, b.amplitude, b.width, side)
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bump_syntax() {
+        let b = parse_bump("0.3,0.01").unwrap();
+        assert_eq!((b.position, b.amplitude, b.width), (0.3, 0.01, 3.0));
+        assert_eq!(b.surface, Surface::Upper);
+        let b = parse_bump("0.3, -0.01, 2, lower").unwrap();
+        assert_eq!((b.width, b.surface), (2.0, Surface::Lower));
+        assert_eq!(
+            parse_bump("0.5,0.01,lower").unwrap().surface,
+            Surface::Lower
+        );
+        assert!(parse_bump("0.5").is_err());
+        assert!(parse_bump("0.5,0.01,side").is_err());
+        assert!(parse_bump("0.5,0.01,2,3").is_err());
+    }
+}
