@@ -61,7 +61,7 @@ fn naca0012_rotated_10_deg_keeps_its_topology_and_every_cell_valid() {
         Outcome::Valid
     );
     let unmoved = read_json(&unmoved);
-    for method in ["idw", "rbf"] {
+    for method in ["springs", "idw", "rbf"] {
         let args = [
             "--rotate", "10", "--about", "0.25,0", "--method", method, "--order", "3",
         ];

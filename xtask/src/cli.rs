@@ -89,7 +89,7 @@ pub struct MoveArgs {
     pub motion: MotionArgs,
 
     /// How the nodes inside the domain follow the moved boundary.
-    #[arg(long, value_enum, default_value_t = MoveMethod::Idw)]
+    #[arg(long, value_enum, default_value_t = MoveMethod::Springs)]
     pub method: MoveMethod,
 
     /// The radial basis function of `--method rbf`.
@@ -181,6 +181,9 @@ pub struct MotionArgs {
 /// The movers of `cargo xtask move --method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum MoveMethod {
+    /// The Spring-Field on the mesh's own layers: the near-wall layers keep their original
+    /// shape, the rest follows (mesh-move's spring mover).
+    Springs,
     /// Rotation-aware inverse-distance weighting (Witteveen & Bijl).
     Idw,
     /// Radial basis functions with a linear polynomial (de Boer et al.), see --kernel.

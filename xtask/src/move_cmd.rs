@@ -15,7 +15,7 @@ use mesh_model::{LayeredMesh, Role};
 use mesh_move::motion::{IDENTITY, Mat2, resolve_motions};
 use mesh_move::{
     BoundaryLoop, BoundaryMotion, HicksHenne, IdwParams, Kernel, LoopMotion, Method, Motion,
-    RbfParams, RigidMotion, Surface, move_loops,
+    RbfParams, RigidMotion, SpringMoveParams, Surface, move_loops,
 };
 use serde::{Deserialize, Serialize};
 
@@ -47,8 +47,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     let t = Instant::now();
     let progress = stage(args.quiet, "moving the linear nodes");
     let method = method(args);
-    // with the spring mover: `mesh_move::move_layered(&layered, &boundary, &method)`
-    let linear = mesh_move::move_mesh(&layered.mesh, &boundary, &method)
+    let linear = mesh_move::move_layered(&layered, &boundary, &method)
         .map_err(|e| anyhow::anyhow!("moving the mesh: {e}"))?;
     drop(progress);
     report.timings_s.insert("move", t.elapsed().as_secs_f64());
@@ -105,11 +104,10 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     Ok(finished)
 }
 
-/// The mover of `--method` (and `--kernel`, `--radius`). The spring mover, when it lands in
-/// `mesh_move`, is one variant `Springs` of `cli::MoveMethod` and one arm here; the call in
-/// [`run`] then becomes `mesh_move::move_layered`.
+/// The mover of `--method` (and `--kernel`, `--radius`).
 fn method(args: &MoveArgs) -> Method {
     match args.method {
+        MoveMethod::Springs => Method::Springs(SpringMoveParams::default()),
         MoveMethod::Idw => Method::Idw(IdwParams::default()),
         MoveMethod::Rbf => Method::Rbf(RbfParams {
             kernel: match args.kernel {
