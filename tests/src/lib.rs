@@ -26,6 +26,31 @@ pub fn mesh(case: &str, order: &str, rest: &[&str]) -> anyhow::Result<Outcome> {
     xtask(&[&["mesh", case, "--quiet", "--order", order], rest].concat())
 }
 
+/// `cargo xtask COMMAND CASE --quiet --out DIR/NAME.msh --report DIR/NAME.json REST…`: a run
+/// whose mesh and report go to a test folder.
+pub fn run_into(
+    dir: &Path,
+    name: &str,
+    command: &str,
+    case: &str,
+    rest: &[&str],
+) -> anyhow::Result<Outcome> {
+    let (out, report) = (
+        dir.join(format!("{name}.msh")),
+        dir.join(format!("{name}.json")),
+    );
+    let base = [
+        command,
+        case,
+        "--quiet",
+        "--out",
+        s(&out),
+        "--report",
+        s(&report),
+    ];
+    xtask(&[&base[..], rest].concat())
+}
+
 /// [`xtask`] that must succeed; the panic names the arguments and the error.
 pub fn xtask_ok(args: &[&str]) -> Outcome {
     xtask(args).unwrap_or_else(|e| panic!("{args:?}: {e:#}"))

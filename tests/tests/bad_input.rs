@@ -2,24 +2,13 @@
 
 use std::path::Path;
 
-use end_to_end::{assert_one_line_naming, s, xtask};
+use end_to_end::{assert_one_line_naming, run_into};
 
 /// Runs `cargo xtask mesh CASE --out DIR/out.msh --report DIR/out.json` and returns the error
 /// message, checking that nothing was written.
 fn mesh_error(dir: &Path, case: &str, extra: &[&str]) -> String {
-    let out = dir.join("out.msh");
-    let report = dir.join("out.json");
-    let mut args = vec![
-        "mesh",
-        case,
-        "--quiet",
-        "--out",
-        s(&out),
-        "--report",
-        s(&report),
-    ];
-    args.extend(extra);
-    let err = xtask(&args).expect_err("bad input must be an error");
+    let (out, report) = (dir.join("out.msh"), dir.join("out.json"));
+    let err = run_into(dir, "out", "mesh", case, extra).expect_err("bad input must be an error");
     let msg = format!("{err:#}");
     assert_one_line_naming(&msg, &[]);
     assert!(

@@ -4,23 +4,12 @@
 
 use std::path::Path;
 
-use end_to_end::{Outcome, assert_one_line_naming, mesh, read_json, s, tree, xtask};
+use end_to_end::{Outcome, assert_one_line_naming, mesh, read_json, run_into, s, tree, xtask};
 use serde_json::Value;
 
 /// `cargo xtask move CASE --quiet --out DIR/NAME.msh --report DIR/NAME.json ARGS…`.
 fn run_move(dir: &Path, name: &str, case: &str, args: &[&str]) -> anyhow::Result<Outcome> {
-    let out = dir.join(format!("{name}.msh"));
-    let report = dir.join(format!("{name}.json"));
-    let base = [
-        "move",
-        case,
-        "--quiet",
-        "--out",
-        s(&out),
-        "--report",
-        s(&report),
-    ];
-    xtask(&[&base[..], args].concat())
+    run_into(dir, name, "move", case, args)
 }
 
 /// [`run_move`] that must succeed: its outcome and its report.
