@@ -400,13 +400,17 @@ fn motion_file(path: &std::path::Path) -> Result<Vec<LoopMotion>> {
             let bumps = m
                 .bump
                 .iter()
-                .map(|b| HicksHenne {
-                    width: b.width.unwrap_or(3.0),
-                    surface: match b.surface {
+                .map(|b| {
+                    let surface = match b.surface {
                         Some(SurfaceSpec::Lower) => Surface::Lower,
                         _ => Surface::Upper,
-                    },
-                    ..HicksHenne::new(b.position, b.amplitude, Surface::Upper)
+                    };
+                    let bump = HicksHenne::new(b.position, b.amplitude, surface);
+                    // the width exponent defaults in one place, `HicksHenne::new`
+                    HicksHenne {
+                        width: b.width.unwrap_or(bump.width),
+                        ..bump
+                    }
                 })
                 .collect();
             LoopMotion {
@@ -422,7 +426,7 @@ fn motion_file(path: &std::path::Path) -> Result<Vec<LoopMotion>> {
 pub struct MovementReport {
     /// Each loop's motion.
     pub motion: Vec<LoopMotionReport>,
-    /// `--method`: `idw` or `rbf`.
+    /// `--method`: `springs`, `idw` or `rbf`.
     pub method: String,
     /// `--kernel` (`rbf` only).
     #[serde(skip_serializing_if = "Option::is_none")]
