@@ -68,6 +68,7 @@
 //! # Ok::<(), mesh_move::MoveError>(())
 //! ```
 
+pub mod balance;
 mod boundary;
 mod error;
 pub mod motion;
@@ -75,6 +76,7 @@ pub mod movers;
 pub mod quality;
 pub mod springs;
 
+pub use balance::{Sensitivity, ShapeField};
 pub use boundary::{BoundaryMotion, boundary_motion, mesh_loops, patch_loop};
 pub use error::MoveError;
 pub use motion::{

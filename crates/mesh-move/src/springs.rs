@@ -48,7 +48,7 @@ use std::collections::HashMap;
 use mesh_model::{LayeredMesh, Layering, Mesh, NONE, Role};
 use rayon::prelude::*;
 use springfield::{
-    AngleSpring, ExtrusionSpring, NeighbourSpring, SolverParams, SpringField2d, SpringParams,
+    AngleSpring, NewtonOutcome, NewtonParams, ShapeLaw, ExtrusionSpring, NeighbourSpring, SolverParams, SpringField2d, SpringParams,
     SpringSet2d, bisector, solve_model_active,
 };
 
@@ -109,12 +109,20 @@ pub struct SpringMoveParams {
     pub screw_exponent: f64,
     /// Most as-rigid-as-possible iterations.
     pub arap_iterations: usize,
-    /// Passes of the worst-cell polish after the fill (0: none). Default 50.
+    /// Passes of the worst-cell polish after the fill (0: none). Default 50; the smooth
+    /// mover ([`SpringMoveParams::smooth`]) has none (the shape balance follows).
     pub polish_passes: usize,
     /// A layer node keeps its original layer geometry (predictor and springs) while its
     /// cell below is at least this anisotropic (front spacing over extrusion length) and
     /// its parents do; the nodes above join the filled region. Default 16.
     pub core_aspect: f64,
+    /// The last phase: the shape balance ([`crate::balance`]) by Newton's method, which
+    /// makes the moved mesh a smooth function of the boundary, the base of the
+    /// sensitivities; `None` (the default) skips it: the mesh is then where the fill and the
+    /// polish leave it, with a better worst cell but not smooth.
+    pub newton: Option<NewtonParams>,
+    /// The energy density of the shape balance.
+    pub shape: ShapeLaw,
 }
 
 impl Default for SpringMoveParams {
@@ -137,6 +145,21 @@ impl Default for SpringMoveParams {
             arap_iterations: 30,
             polish_passes: 50,
             core_aspect: 16.0,
+            newton: None,
+            shape: ShapeLaw::default(),
+        }
+    }
+}
+
+impl SpringMoveParams {
+    /// The smooth mover: no polish, then the shape balance by Newton's method, so that the
+    /// moved mesh is a smooth function of the boundary (for sensitivities and shape
+    /// optimisation).
+    pub fn smooth() -> Self {
+        SpringMoveParams {
+            polish_passes: 0,
+            newton: Some(NewtonParams::default()),
+            ..SpringMoveParams::default()
         }
     }
 }
@@ -165,6 +188,8 @@ pub struct SpringStats {
     pub fill: Fill,
     /// Node moves made by the worst-cell polish.
     pub polished: usize,
+    /// The shape balance's Newton solve, when it ran.
+    pub newton: Option<NewtonOutcome>,
 }
 
 /// `layered` moved by `method` to follow `boundary`: the springs use the layering, IDW and
@@ -251,6 +276,15 @@ fn move_springs(
         }
         pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
         fill(mesh, &old, &mut x, &turn, &held, p, &mut stats);
+        if let Some(newton) = &p.newton {
+            let start = finish(mesh, boundary, &old, &x, stats);
+            if start.stats.inverted_cells > 0 {
+                // the balance needs an uninverted start: the failure is reported as it is
+                return Ok(start);
+            }
+            let field = crate::balance::ShapeField::of(mesh, p.shape)?;
+            stats.newton = Some(field.balance(&mut x, &fixed, newton)?);
+        }
     }
     Ok(finish(mesh, boundary, &old, &x, stats))
 }

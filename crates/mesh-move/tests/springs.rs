@@ -34,22 +34,7 @@ fn springs(strategy: Strategy, fill: Fill) -> Method {
 fn methods() -> Vec<(&'static str, Method)> {
     vec![
         ("springs", springs(Strategy::AllTogether, Fill::Rbf)),
-        (
-            "springs, layer by layer",
-            springs(Strategy::LayerByLayer, Fill::Rbf),
-        ),
-        (
-            "springs, ARAP fill",
-            springs(Strategy::AllTogether, Fill::Arap),
-        ),
-        (
-            "springs, screw fill",
-            springs(Strategy::AllTogether, Fill::Screw),
-        ),
-        (
-            "springs, IDW fill",
-            springs(Strategy::AllTogether, Fill::Idw),
-        ),
+        ("springs, smooth", Method::Springs(SpringMoveParams::smooth())),
         ("IDW", Method::Idw(IdwParams::default())),
         ("RBF Wendland C2", Method::Rbf(RbfParams::default())),
         (
@@ -89,8 +74,16 @@ const HEADER: &str = "| motion, mover | worst-cell ratio | inverted cells | min 
 fn row(label: &str, c: &Comparison, s: &MoveStats, secs: f64) -> String {
     let fl = c.first_layer.unwrap_or_default();
     let sp = s.springs.map_or("–".to_string(), |p| {
+        let newton = p.newton.map_or(String::new(), |n| {
+            format!(
+                ", Newton {} ({}, {:.0e})",
+                n.iterations,
+                if n.converged { "yes" } else { "no" },
+                n.residual
+            )
+        });
         format!(
-            "{} ({}, {:.1e}), fill {:?}",
+            "{} ({}, {:.1e}), fill {:?}{newton}",
             p.iterations,
             if p.converged { "yes" } else { "no" },
             p.residual,

@@ -47,4 +47,9 @@ pub enum SpringError {
         /// The iteration.
         iteration: usize,
     },
+    /// The Newton solve or its linearisation failed (named in the message): a start that is
+    /// inverted, a stiffness that is not positive definite, the sparse factorisation.
+    /// Fix: start from an admissible (uninverted) configuration.
+    #[error("{0}")]
+    Solver(String),
 }

@@ -12,6 +12,9 @@
 //!   [`Spring`] per kind), with the forces' sparse Jacobian for a Newton solver, and the
 //!   place where the 3D spring set goes; [`solve_model`] and [`solve_model_active`] take a
 //!   model instead of a callback;
+//! - [`shape`] and [`newton`]: the shape spring (a cell held to its rest shape, the gradient
+//!   of an energy) and Newton's method with a sparse Cholesky factorisation on such a
+//!   conservative field, with its linearisation for sensitivities (mesh movement);
 //! - [`problem`]: the local spring problem of a layered mesher (which nodes of the top
 //!   layers move, local numbering, solve on copies, undo), shared by every mesher.
 //!
@@ -56,8 +59,10 @@
 
 mod error;
 pub mod model;
+pub mod newton;
 mod params;
 pub mod problem;
+pub mod shape;
 mod solver;
 pub mod springs;
 mod vec;
@@ -65,10 +70,12 @@ mod vec;
 pub use error::SpringError;
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 pub use params::{SolverParams, SpringParams};
+pub use newton::{EnergyModel, Linearised, NewtonOutcome, NewtonParams, solve_newton};
 pub use problem::{LocalProblem, NO_NODE, Undo};
 pub use solver::{
     Active, Influence, SolveOutcome, solve, solve_active, solve_model, solve_model_active,
 };
+pub use shape::{ShapeLaw, ShapeSpring, shape_springs};
 pub use springs::{
     AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringIndex2d, SpringSet2d,
     assemble_2d, assemble_2d_active, bisector, left_normal,

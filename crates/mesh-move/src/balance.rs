@@ -1,0 +1,187 @@
+//! The smooth balance: the last phase of the spring mover, and the mesh sensitivities.
+//!
+//! The large-motion phase (predictor, layer springs, fill) puts every node near where it
+//! should go, but it is made of choices (the best fill, the springs' switches) and stops at a
+//! tolerance, so its result is not a smooth function of the boundary: a 10⁻¹⁰ bump can move
+//! it by 10⁻⁵, which is what broke the dissertation's shape optimisation. This phase then
+//! holds every cell to its original shape with `springfield`'s shape springs (a triangle by
+//! itself, a quadrilateral by its four corner triangles; the energy of each is its
+//! distortion from the original, zero for a rigid motion and infinite for a flat cell) and
+//! balances them by Newton's method to machine precision, boundary nodes held. The balance
+//! is a smooth function of the boundary (the implicit function theorem, wherever its
+//! stiffness is positive definite), does not depend on where the predictor put the nodes as
+//! long as it is in the balance's basin, and never inverts a cell (the energy would be
+//! infinite). Its linearisation gives the sensitivities: for a motion `dB` of the boundary
+//! nodes, `dX = (−∂F/∂X)⁻¹ ∂F/∂B dB` for every other node, one solve per design variable with
+//! one factorisation.
+//!
+//! It owns the shape balance of a moved mesh and its linearisation. It does not move the
+//! boundary (the caller), nor curve (Vector-Adding).
+
+use geom_predicates::{PointTree, point_segment_distance};
+use mesh_model::{Mesh, Role};
+use springfield::{
+    Linearised, NewtonOutcome, ShapeLaw, NewtonParams, ShapeSpring, SpringList, SpringParams,
+    shape_springs, solve_newton,
+};
+
+use crate::MoveError;
+
+/// The shape springs of `original` and each node's length scale (its shortest edge).
+pub struct ShapeField {
+    springs: Vec<ShapeSpring>,
+    scale: Vec<f64>,
+    params: SpringParams,
+}
+
+impl ShapeField {
+    /// The field holding every cell of `original` (a linear 2D mesh) to its shape.
+    ///
+    /// # Errors
+    /// [`MoveError::Springs`] when a cell is not a positive triangle or quadrilateral.
+    pub fn of(original: &Mesh, law: ShapeLaw) -> Result<ShapeField, MoveError> {
+        let rest: Vec<[f64; 2]> = (0..original.nodes.len() as u32)
+            .map(|k| original.xy(k))
+            .collect();
+        let weight = weights(original, &rest);
+
+        let springs = shape_springs(original.cells.iter().map(|c| c.nodes), &rest, law, &weight)
+            .ok_or_else(
+            || MoveError::Springs {
+                what: "a cell of the original mesh is not a positive triangle or quadrilateral"
+                    .into(),
+            },
+        )?;
+        let mut scale = vec![f64::INFINITY; rest.len()];
+        for c in original.cells.iter() {
+            let n = c.nodes.len();
+            for i in 0..n {
+                let (a, b) = (c.nodes[i] as usize, c.nodes[(i + 1) % n] as usize);
+                let l = (rest[a][0] - rest[b][0]).hypot(rest[a][1] - rest[b][1]);
+                scale[a] = scale[a].min(l);
+                scale[b] = scale[b].min(l);
+            }
+        }
+        scale.iter_mut().filter(|s| !s.is_finite()).for_each(|s| *s = 1.0);
+        Ok(ShapeField {
+            springs,
+            scale,
+            params: SpringParams::default(),
+        })
+    }
+
+    fn model(&self) -> SpringList<'_, ShapeSpring> {
+        SpringList {
+            springs: &self.springs,
+            params: &self.params,
+        }
+    }
+
+    /// Balances the nodes not `fixed` of `x` (which must have no inverted cell) by Newton's
+    /// method.
+    ///
+    /// # Errors
+    /// [`MoveError::Springs`] when `x` has an inverted cell or the solve fails.
+    pub fn balance(
+        &self,
+        x: &mut [[f64; 2]],
+        fixed: &[bool],
+        params: &NewtonParams,
+    ) -> Result<NewtonOutcome, MoveError> {
+        let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
+        solve_newton(&self.model(), x, &self.scale, &movable, params).map_err(|e| {
+            MoveError::Springs {
+                what: format!("the shape balance: {e}"),
+            }
+        })
+    }
+
+    /// The linearised balance at `x` (a balance of this field with `fixed` held), for
+    /// [`Sensitivity::respond`].
+    ///
+    /// # Errors
+    /// [`MoveError::Springs`] when the balance is not stable there.
+    pub fn linearise(&self, x: &[[f64; 2]], fixed: &[bool]) -> Result<Sensitivity, MoveError> {
+        let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
+        let lin = Linearised::at(&self.model(), x, &movable).map_err(|e| MoveError::Springs {
+            what: format!("linearising the balance: {e}"),
+        })?;
+        Ok(Sensitivity { lin })
+    }
+}
+
+/// Each cell's weight in the balance: its area over the square of its distance to the
+/// nearest wall node (to the nearest boundary node when there is no wall).
+///
+/// Why: a body turned inside a fixed far field twists the mesh between them, and where the
+/// balance puts the twist depends on the weights. With equal weights it goes where cells are
+/// few (the coarse outer region, sheared hard); weighted by area, where cells are small (the
+/// first layers, crushed). Area over distance² gives every ring about the body the same
+/// weight per unit of log-distance, which for a twist spreads the shear evenly in
+/// log-distance — the smallest largest shear — and makes the thin wall cells stiff (their
+/// weight is about their aspect ratio), so the layers turn with their wall.
+fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
+    let has_wall = mesh.patches.iter().any(|p| p.role == Role::Wall);
+    // the wall facets, and the facets at each of their nodes
+    let facets: Vec<[u32; 2]> = mesh
+        .boundary
+        .iter()
+        .enumerate()
+        .filter(|(f, _)| {
+            !has_wall || mesh.patches[mesh.boundary_patch[*f] as usize].role == Role::Wall
+        })
+        .map(|(_, facet)| [facet.nodes[0], facet.nodes[1]])
+        .collect();
+    let mut at_node: Vec<(u32, u32)> = facets
+        .iter()
+        .enumerate()
+        .flat_map(|(f, e)| e.map(|k| (k, f as u32)))
+        .collect();
+    at_node.sort_unstable();
+    let nodes: Vec<u32> = at_node.iter().map(|&(k, _)| k).collect();
+    let points: Vec<[f64; 2]> = nodes.iter().map(|&k| rest[k as usize]).collect();
+    let tree = PointTree::new(&points);
+    let distance = |p: [f64; 2]| -> f64 {
+        let Some((i, d)) = tree.nearest(p) else {
+            return 1.0;
+        };
+        let k = nodes[i];
+        at_node[at_node.partition_point(|&(n, _)| n < k)..]
+            .iter()
+            .take_while(|&&(n, _)| n == k)
+            .map(|&(_, f)| {
+                let [a, b] = facets[f as usize];
+                point_segment_distance(p, rest[a as usize], rest[b as usize])
+            })
+            .fold(d, f64::min)
+    };
+    mesh.cells
+        .iter()
+        .map(|c| {
+            let n = c.nodes.len();
+            let (mut centre, mut area) = ([0.0; 2], 0.0);
+            for i in 0..n {
+                let (p, q) = (rest[c.nodes[i] as usize], rest[c.nodes[(i + 1) % n] as usize]);
+                centre = [centre[0] + p[0] / n as f64, centre[1] + p[1] / n as f64];
+                area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+            }
+            // a cell is never nearer its wall than a quarter of its own size
+            let d = distance(centre).max(0.25 * area.abs().sqrt());
+            area.abs() / (d * d)
+        })
+        .collect()
+}
+
+/// The balance linearised at a moved mesh: the motion of every node for a motion of the
+/// boundary nodes.
+pub struct Sensitivity {
+    lin: Linearised<2>,
+}
+
+impl Sensitivity {
+    /// `dX` of every node for the boundary motion `d_boundary` (one entry per node; only the
+    /// held nodes' entries are read, and returned as given).
+    pub fn respond(&self, d_boundary: &[[f64; 2]]) -> Vec<[f64; 2]> {
+        self.lin.respond(d_boundary)
+    }
+}

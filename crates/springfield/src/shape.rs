@@ -1,0 +1,384 @@
+//! The shape spring: a triangle of nodes held to the shape it had, whatever its position and
+//! orientation — the conservative, smooth spring that a Newton solve can converge tightly and
+//! differentiate (mesh movement's final balance and its sensitivities).
+//!
+//! The dissertation's springs (extrusion, neighbour, angle) are not the gradient of an energy
+//! and switch on and off (the angle spring's activation, its turn at 90°), so their balance
+//! is not a smooth function of where the boundary is. A shape spring stores its triangle's
+//! rest shape (the inverse of its rest edge matrix `Dm`) and a weight chosen by the caller
+//! (see `mesh-move`'s balance for why not simply the area); with `F = Ds·Dm⁻¹` the deformation gradient
+//! of the triangle (`Ds` its current edge matrix), its energy is the symmetric Dirichlet
+//! energy
+//!
+//! `E = w · (‖F‖² + ‖F⁻¹‖² − 4) = w · (‖F‖² (1 + 1/J²) − 4)`,  `J = det F`,
+//!
+//! zero for a rigid motion of the rest shape, smooth while `J > 0` and infinite as the
+//! triangle flattens, so a descent never inverts a cell. The force is `−∂E/∂x` and the
+//! Jacobian of the force `−∂²E/∂x²`, both in closed form (see [`ShapeSpring::add_jacobian`]):
+//! symmetric, as a Cholesky factorisation wants. A quadrilateral is held by its four corner
+//! triangles at half weight each, which keeps it convex.
+//!
+//! It owns the 2D shape spring. It does not choose which triangles to hold (the mover does)
+//! nor solve ([`crate::newton`]).
+
+use crate::model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
+use crate::newton::EnergyModel;
+use crate::params::SpringParams;
+use crate::solver::Influence;
+
+/// A triangle `(a, b, c)` held to its rest shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeSpring {
+    /// The corners, counter-clockwise at rest.
+    pub corners: [u32; 3],
+    /// `Dm⁻¹`, the inverse of the rest edge matrix `[b − a, c − a]` (columns).
+    pub inverse_rest: [[f64; 2]; 2],
+    /// The weight of its energy (1 for a triangle cell, ½ for a quadrilateral's corner).
+    pub weight: f64,
+    /// Its energy density.
+    pub law: ShapeLaw,
+}
+
+impl ShapeSpring {
+    /// The spring of the triangle `corners` at rest at `rest` with energy weight `share`;
+    /// `None` when the rest triangle is not positive.
+    pub fn at_rest(
+        corners: [u32; 3],
+        rest: &[[f64; 2]],
+        share: f64,
+        law: ShapeLaw,
+    ) -> Option<ShapeSpring> {
+        let [a, b, c] = corners.map(|k| rest[k as usize]);
+        let (e1, e2) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+        let det = e1[0] * e2[1] - e2[0] * e1[1];
+        if !(det > 0.0) || !det.is_finite() {
+            return None;
+        }
+        // Dm = [[e1x, e2x], [e1y, e2y]]
+        let inverse_rest = [[e2[1] / det, -e2[0] / det], [-e1[1] / det, e1[0] / det]];
+        Some(ShapeSpring {
+            corners,
+            inverse_rest,
+            weight: share,
+            law,
+        })
+    }
+
+    /// `∂F_ab/∂x_{k,a} = g_k[b]`: the rest-shape gradients of the three corners.
+    fn gradients(&self) -> [[f64; 2]; 3] {
+        let m = self.inverse_rest;
+        let (g1, g2) = (m[0], m[1]);
+        [[-g1[0] - g2[0], -g1[1] - g2[1]], g1, g2]
+    }
+
+    /// The deformation gradient at `positions`, row-major `[F00, F01, F10, F11]`.
+    fn deformation(&self, positions: &[[f64; 2]]) -> [f64; 4] {
+        let [a, b, c] = self.corners.map(|k| positions[k as usize]);
+        let ds = [[b[0] - a[0], c[0] - a[0]], [b[1] - a[1], c[1] - a[1]]];
+        let m = self.inverse_rest;
+        let f = |r: usize, col: usize| ds[r][0] * m[0][col] + ds[r][1] * m[1][col];
+        [f(0, 0), f(0, 1), f(1, 0), f(1, 1)]
+    }
+
+    /// The energy at `positions`; `None` when the triangle is flat or inverted.
+    pub fn energy(&self, positions: &[[f64; 2]]) -> Option<f64> {
+        let f = self.deformation(positions);
+        let j = f[0] * f[3] - f[1] * f[2];
+        if !(j > 0.0) {
+            return None;
+        }
+        let a: f64 = f.iter().map(|v| v * v).sum();
+        Some(self.weight * self.law.value(a, j))
+    }
+
+    /// `∂E/∂f` and `∂²E/∂f²` at the deformation gradient `f` (`J > 0`), from the law's
+    /// partial derivatives in `a = ‖F‖²` and `J`: with `∂a/∂f = 2f`, `∂J/∂f = c` (the
+    /// cofactor), `∂²a/∂f² = 2I` and `∂²J/∂f² = K` (constant),
+    /// `∇W = W_a 2f + W_J c` and
+    /// `∇²W = 2 W_a I + W_J K + W_aa 4 f⊗f + 2 W_aJ (f⊗c + c⊗f) + W_JJ c⊗c`.
+    fn derivatives(&self, f: &[f64; 4]) -> ([f64; 4], [[f64; 4]; 4]) {
+        let j = f[0] * f[3] - f[1] * f[2];
+        let a: f64 = f.iter().map(|v| v * v).sum();
+        let d = self.law.partials(a, j);
+        let c = [f[3], -f[2], -f[1], f[0]];
+        let da = f.map(|v| 2.0 * v);
+        let w = self.weight;
+        let grad = std::array::from_fn(|i| w * (d.a * da[i] + d.j * c[i]));
+        let mut hess = [[0.0; 4]; 4];
+        for (i, row) in hess.iter_mut().enumerate() {
+            for (k, h) in row.iter_mut().enumerate() {
+                let identity = if i == k { 2.0 * d.a } else { 0.0 };
+                *h = w
+                    * (identity
+                        + d.aa * da[i] * da[k]
+                        + d.aj * (da[i] * c[k] + c[i] * da[k])
+                        + d.jj * c[i] * c[k]);
+            }
+        }
+        // ∂²J/∂f²: J = F00·F11 − F01·F10
+        let wj = w * d.j;
+        hess[0][3] += wj;
+        hess[3][0] += wj;
+        hess[1][2] -= wj;
+        hess[2][1] -= wj;
+        (grad, hess)
+    }
+}
+
+/// The partial derivatives of an energy density `W(a, J)`.
+#[derive(Debug, Clone, Copy)]
+struct Partials {
+    a: f64,
+    j: f64,
+    aa: f64,
+    aj: f64,
+    jj: f64,
+}
+
+/// The energy density of a shape spring as a function of `a = ‖F‖²` and `J = det F`: a
+/// power of the conformal distortion `K = a / 2J` (1 for a similar copy of the rest shape,
+/// growing as its angles change: the scaled Jacobian's ratio is what the mover is judged
+/// by) plus a size term `J + 1/J` (2 at rest size). The exponent stresses the worst cells:
+/// with 1 every cell's distortion counts alike (an even spread is the balance), with larger
+/// ones the balance leans towards the smallest largest distortion. Both terms are infinite
+/// as `J → 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeLaw {
+    /// The exponent `p ≥ 1` of `K`.
+    pub exponent: f64,
+    /// The weight of the size term.
+    pub size: f64,
+}
+
+impl Default for ShapeLaw {
+    fn default() -> Self {
+        ShapeLaw {
+            exponent: 4.0,
+            size: 0.25,
+        }
+    }
+}
+
+impl ShapeLaw {
+    /// `W(a, J) = K^p + s (J + 1/J) − (1 + 2s)`, zero for a rigid motion of the rest shape.
+    fn value(&self, a: f64, j: f64) -> f64 {
+        let k = a / (2.0 * j);
+        k.powf(self.exponent) + self.size * (j + 1.0 / j) - (1.0 + 2.0 * self.size)
+    }
+
+    fn partials(&self, a: f64, j: f64) -> Partials {
+        let (p, s) = (self.exponent, self.size);
+        let k = a / (2.0 * j);
+        // K's own partials
+        let (ka, kj) = (1.0 / (2.0 * j), -k / j);
+        let (kaj, kjj) = (-1.0 / (2.0 * j * j), 2.0 * k / (j * j));
+        let (w1, w2) = (p * k.powf(p - 1.0), p * (p - 1.0) * k.powf(p - 2.0));
+        Partials {
+            a: w1 * ka,
+            j: w1 * kj + s * (1.0 - 1.0 / (j * j)),
+            aa: w2 * ka * ka,
+            aj: w2 * ka * kj + w1 * kaj,
+            jj: w2 * kj * kj + w1 * kjj + 2.0 * s / (j * j * j),
+        }
+    }
+}
+
+impl Spring<2> for ShapeSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend(self.corners);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend(self.corners);
+    }
+
+    /// The force `−∂E/∂x` on each corner; a flat or inverted triangle pushes nothing (its
+    /// energy is infinite: a solver must not go there). The stiffness is the diagonal of the
+    /// rest Hessian.
+    fn add_force(
+        &self,
+        _: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        let f = self.deformation(positions);
+        if !(f[0] * f[3] - f[1] * f[2] > 0.0) {
+            return;
+        }
+        let (grad, _) = self.derivatives(&f);
+        for (k, gk) in self.gradients().iter().enumerate() {
+            let node = self.corners[k] as usize;
+            for (a, fa) in force[node].iter_mut().enumerate() {
+                *fa -= grad[2 * a] * gk[0] + grad[2 * a + 1] * gk[1];
+            }
+            stiffness[node] += 8.0 * self.weight * (gk[0] * gk[0] + gk[1] * gk[1]);
+        }
+    }
+
+    /// `∂F/∂x = −Bᵀ (∂²E/∂f²) B` with `B = ∂f/∂x` (constant: `f` is linear in the corners),
+    /// in closed form.
+    fn add_jacobian(
+        &self,
+        _: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let f = self.deformation(fd.positions());
+        if !(f[0] * f[3] - f[1] * f[2] > 0.0) {
+            return;
+        }
+        let (_, h) = self.derivatives(&f);
+        let g = self.gradients();
+        for (k, &p) in self.corners.iter().enumerate() {
+            if !movable[p as usize] {
+                continue;
+            }
+            for (m, &q) in self.corners.iter().enumerate() {
+                if !movable[q as usize] {
+                    continue;
+                }
+                for a in 0..2 {
+                    for b in 0..2 {
+                        // Σ_{c,d} H[(a,c),(b,d)] g_k[c] g_m[d]
+                        let mut v = 0.0;
+                        for c in 0..2 {
+                            for d in 0..2 {
+                                v += h[2 * a + c][2 * b + d] * g[k][c] * g[m][d];
+                            }
+                        }
+                        out.push(Triplet {
+                            row: (2 * p + a as u32),
+                            col: (2 * q + b as u32),
+                            value: -v,
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl EnergyModel<2> for SpringList<'_, ShapeSpring> {
+    fn energy(&self, positions: &[[f64; 2]]) -> Option<f64> {
+        self.springs.iter().map(|s| s.energy(positions)).sum()
+    }
+}
+
+/// The shape springs holding every cell of a 2D linear mesh given by its cells' corners
+/// (counter-clockwise triangles and quadrilaterals) to its shape at `rest`, cell `c` with
+/// energy weight `weight[c]`: a triangle by itself, a quadrilateral by its four corner
+/// triangles at half weight. `None` when a cell is not positive at rest (or has another
+/// corner count).
+pub fn shape_springs<'c>(
+    cells: impl IntoIterator<Item = &'c [u32]>,
+    rest: &[[f64; 2]],
+    law: ShapeLaw,
+    weight: &[f64],
+) -> Option<Vec<ShapeSpring>> {
+    let mut out = Vec::new();
+    for (c, &w) in cells.into_iter().zip(weight) {
+        match *c {
+            [a, b, d] => out.push(ShapeSpring::at_rest([a, b, d], rest, w, law)?),
+            [_, _, _, _] => {
+                for i in 0..4 {
+                    let corners = [c[i], c[(i + 1) % 4], c[(i + 3) % 4]];
+                    out.push(ShapeSpring::at_rest(corners, rest, 0.5 * w, law)?);
+                }
+            }
+            _ => return None,
+        }
+    }
+    Some(out)
+}
+
+/// The influence table of shape springs over `n` nodes (every corner on every other).
+pub fn shape_influence(springs: &[ShapeSpring], n: usize) -> Influence {
+    SpringList {
+        springs,
+        params: &SpringParams::default(),
+    }
+    .influence(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn rest_area(r: &[[f64; 2]; 3]) -> f64 {
+        0.5 * ((r[1][0] - r[0][0]) * (r[2][1] - r[0][1]) - (r[2][0] - r[0][0]) * (r[1][1] - r[0][1])).abs()
+    }
+
+    fn energy_at(s: &ShapeSpring, x: &[[f64; 2]]) -> f64 {
+        s.energy(x).unwrap()
+    }
+
+    proptest! {
+        /// The force is minus the energy's gradient, and the closed-form Jacobian is the
+        /// central difference of the force.
+        #[test]
+        fn force_and_jacobian_are_the_energy_derivatives(
+            rest in prop::array::uniform3(prop::array::uniform2(-1.0..1.0f64)),
+            moved in prop::array::uniform3(prop::array::uniform2(-0.2..0.2f64)),
+            exponent in 1.0..5.0f64,
+            size in 0.0..1.0f64,
+        ) {
+            let law = ShapeLaw { exponent, size };
+            let s = ShapeSpring::at_rest([0, 1, 2], &rest, 1.0, law);
+            let s = match s { Some(s) => s, None => ShapeSpring::at_rest([0, 2, 1], &rest, 1.0, law).unwrap() };
+            prop_assume!(rest_area(&rest) > 1e-3);
+            let x: Vec<[f64; 2]> = (0..3).map(|k| [rest[k][0] + moved[k][0], rest[k][1] + moved[k][1]]).collect();
+            prop_assume!(s.energy(&x).is_some_and(|e| e < 50.0));
+            let _ = energy_at;
+            let p = SpringParams::default();
+            let (mut f, mut st) = (vec![[0.0; 2]; 3], vec![0.0; 3]);
+            s.add_force(&p, &x, &mut f, &mut st);
+            let h = 1e-6;
+            for k in 0..3 {
+                for a in 0..2 {
+                    let (mut xp, mut xm) = (x.clone(), x.clone());
+                    xp[k][a] += h;
+                    xm[k][a] -= h;
+                    let de = (energy_at(&s, &xp) - energy_at(&s, &xm)) / (2.0 * h);
+                    prop_assert!((f[k][a] + de).abs() <= 1e-5 * (1.0 + de.abs()), "force {k},{a}: {} vs {}", f[k][a], -de);
+                }
+            }
+            let mut fd = FiniteDifference::new(&x);
+            let mut exact = Vec::new();
+            s.add_jacobian(&p, &[true; 3], &mut fd, &mut exact);
+            let mut numeric = Vec::new();
+            fd.add(&s, &p, &[true; 3], &mut numeric);
+            let dense = |t: &[Triplet]| {
+                let mut m = [[0.0; 6]; 6];
+                t.iter().for_each(|e| m[e.row as usize][e.col as usize] += e.value);
+                m
+            };
+            let (e, n) = (dense(&exact), dense(&numeric));
+            let scale = e.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
+            for r in 0..6 {
+                for c in 0..6 {
+                    prop_assert!((e[r][c] - n[r][c]).abs() <= 1e-5 * scale, "J[{r}][{c}] {} vs {}", e[r][c], n[r][c]);
+                    prop_assert!((e[r][c] - e[c][r]).abs() <= 1e-12 * scale, "not symmetric");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_rigid_motion_costs_nothing_and_flattening_is_refused() {
+        let rest = [[0.0, 0.0], [2.0, 0.0], [0.5, 0.1]];
+        let law = ShapeLaw::default();
+        let s = ShapeSpring::at_rest([0, 1, 2], &rest, 1.0, law).unwrap();
+        let (c, sn) = (0.3f64.cos(), 0.3f64.sin());
+        let moved: Vec<[f64; 2]> = rest
+            .iter()
+            .map(|p| [c * p[0] - sn * p[1] + 5.0, sn * p[0] + c * p[1] - 1.0])
+            .collect();
+        assert!(s.energy(&moved).unwrap().abs() < 1e-12);
+        let flat = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]];
+        assert_eq!(s.energy(&flat), None);
+        assert!(ShapeSpring::at_rest([0, 2, 1], &rest, 1.0, law).is_none());
+    }
+}
