@@ -21,7 +21,7 @@
 use geom_predicates::{PointTree, point_segment_distance};
 use mesh_model::{Mesh, Role};
 use springfield::{
-    Linearised, NewtonOutcome, ShapeLaw, NewtonParams, ShapeSpring, SpringList, SpringParams,
+    Linearised, NewtonOutcome, NewtonParams, ShapeLaw, ShapeSpring, SpringList, SpringParams,
     shape_springs, solve_newton,
 };
 
@@ -46,12 +46,10 @@ impl ShapeField {
         let weight = weights(original, &rest);
 
         let springs = shape_springs(original.cells.iter().map(|c| c.nodes), &rest, law, &weight)
-            .ok_or_else(
-            || MoveError::Springs {
+            .ok_or_else(|| MoveError::Springs {
                 what: "a cell of the original mesh is not a positive triangle or quadrilateral"
                     .into(),
-            },
-        )?;
+            })?;
         let mut scale = vec![f64::INFINITY; rest.len()];
         for c in original.cells.iter() {
             let n = c.nodes.len();
@@ -62,7 +60,10 @@ impl ShapeField {
                 scale[b] = scale[b].min(l);
             }
         }
-        scale.iter_mut().filter(|s| !s.is_finite()).for_each(|s| *s = 1.0);
+        scale
+            .iter_mut()
+            .filter(|s| !s.is_finite())
+            .for_each(|s| *s = 1.0);
         Ok(ShapeField {
             springs,
             scale,
@@ -161,7 +162,10 @@ fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
             let n = c.nodes.len();
             let (mut centre, mut area) = ([0.0; 2], 0.0);
             for i in 0..n {
-                let (p, q) = (rest[c.nodes[i] as usize], rest[c.nodes[(i + 1) % n] as usize]);
+                let (p, q) = (
+                    rest[c.nodes[i] as usize],
+                    rest[c.nodes[(i + 1) % n] as usize],
+                );
                 centre = [centre[0] + p[0] / n as f64, centre[1] + p[1] / n as f64];
                 area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
             }

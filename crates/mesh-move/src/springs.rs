@@ -48,8 +48,8 @@ use std::collections::HashMap;
 use mesh_model::{LayeredMesh, Layering, Mesh, NONE, Role};
 use rayon::prelude::*;
 use springfield::{
-    AngleSpring, NewtonOutcome, NewtonParams, ShapeLaw, ExtrusionSpring, NeighbourSpring, SolverParams, SpringField2d, SpringParams,
-    SpringSet2d, bisector, solve_model_active,
+    AngleSpring, ExtrusionSpring, NeighbourSpring, NewtonOutcome, NewtonParams, ShapeLaw,
+    SolverParams, SpringField2d, SpringParams, SpringSet2d, bisector, solve_model_active,
 };
 
 use crate::MoveError;

@@ -34,7 +34,10 @@ fn springs(strategy: Strategy, fill: Fill) -> Method {
 fn methods() -> Vec<(&'static str, Method)> {
     vec![
         ("springs", springs(Strategy::AllTogether, Fill::Rbf)),
-        ("springs, smooth", Method::Springs(SpringMoveParams::smooth())),
+        (
+            "springs, smooth",
+            Method::Springs(SpringMoveParams::smooth()),
+        ),
         ("IDW", Method::Idw(IdwParams::default())),
         ("RBF Wendland C2", Method::Rbf(RbfParams::default())),
         (

@@ -69,13 +69,13 @@ mod vec;
 
 pub use error::SpringError;
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
-pub use params::{SolverParams, SpringParams};
 pub use newton::{EnergyModel, Linearised, NewtonOutcome, NewtonParams, solve_newton};
+pub use params::{SolverParams, SpringParams};
 pub use problem::{LocalProblem, NO_NODE, Undo};
+pub use shape::{ShapeLaw, ShapeSpring, shape_springs};
 pub use solver::{
     Active, Influence, SolveOutcome, solve, solve_active, solve_model, solve_model_active,
 };
-pub use shape::{ShapeLaw, ShapeSpring, shape_springs};
 pub use springs::{
     AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringIndex2d, SpringSet2d,
     assemble_2d, assemble_2d_active, bisector, left_normal,

@@ -136,9 +136,11 @@ fn factorise<const D: usize>(
     for _ in 0..20 {
         let a = stiffness_matrix(jacobian, dofs, shift)?;
         if symbolic.is_none() {
-            *symbolic = Some(SymbolicLlt::try_new(a.symbolic(), Side::Lower).map_err(|e| {
-                SpringError::Solver(format!("ordering the Newton matrix: {e:?}"))
-            })?);
+            *symbolic = Some(
+                SymbolicLlt::try_new(a.symbolic(), Side::Lower).map_err(|e| {
+                    SpringError::Solver(format!("ordering the Newton matrix: {e:?}"))
+                })?,
+            );
         }
         let sym = symbolic.clone().expect("made above");
         if let Ok(llt) = Llt::try_new_with_symbolic(sym, a.as_ref(), Side::Lower) {
@@ -207,7 +209,9 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
         solve_vector(&llt, &mut step);
         let largest = (0..n)
             .filter_map(|i| dofs.of((D * i) as u32).map(|f| (i, f)))
-            .map(|(i, f)| crate::vec::norm(&std::array::from_fn::<f64, D, _>(|a| step[f + a])) / scale[i])
+            .map(|(i, f)| {
+                crate::vec::norm(&std::array::from_fn::<f64, D, _>(|a| step[f + a])) / scale[i]
+            })
             .fold(0.0f64, f64::max);
         let mut length = 1.0;
         let mut accepted = false;
@@ -342,9 +346,18 @@ mod tests {
     #[test]
     fn newton_returns_a_disturbed_grid_to_its_rest_shape_quadratically() {
         let (rest, tris, fixed) = grid(6);
-        let springs = shape_springs(tris.iter().map(|t| &t[..]), &rest, ShapeLaw::default(), &vec![1.0; tris.len()]).unwrap();
+        let springs = shape_springs(
+            tris.iter().map(|t| &t[..]),
+            &rest,
+            ShapeLaw::default(),
+            &vec![1.0; tris.len()],
+        )
+        .unwrap();
         let params = SpringParams::default();
-        let model = SpringList { springs: &springs, params: &params };
+        let model = SpringList {
+            springs: &springs,
+            params: &params,
+        };
         let mut x = rest.clone();
         for (k, p) in x.iter_mut().enumerate() {
             if !fixed[k] {
@@ -357,7 +370,10 @@ mod tests {
         let out = solve_newton(&model, &mut x, &scale, &movable, &NewtonParams::default()).unwrap();
         assert!(out.converged && out.iterations < 15, "{out:?}");
         for (a, b) in x.iter().zip(&rest) {
-            assert!((a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12, "{a:?} {b:?}");
+            assert!(
+                (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12,
+                "{a:?} {b:?}"
+            );
         }
     }
 }
