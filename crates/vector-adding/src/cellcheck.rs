@@ -8,10 +8,10 @@ use jacobian_check::{Certificate, certify_cell};
 use mesh_model::{CellType, Mesh, Shape};
 
 use crate::cellmap::{Interiors, cell_nodes};
+use crate::decisions::Diagonal;
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
-use crate::decisions::Diagonal;
 use crate::split::{TriScratch, best_halves, diagonal_as, judge_halves};
 
 /// A candidate for one local edge of a cell: (local edge, node the points start from, the
@@ -91,7 +91,16 @@ pub(crate) fn check_as_cut(
     let Some(d) = cut else {
         let mut plain = *ctx.params;
         plain.triangles = false;
-        return check(&Ctx { params: &plain, ..*ctx }, edges, ci, &[], s);
+        return check(
+            &Ctx {
+                params: &plain,
+                ..*ctx
+            },
+            edges,
+            ci,
+            &[],
+            s,
+        );
     };
     let p = edges.p;
     gather(ctx.mesh, ci, edges, &[], s);
@@ -104,8 +113,10 @@ pub(crate) fn check_as_cut(
     };
     let (from, on_map) = (d.from as usize, d.curved);
     let (interiors, certify) = (ctx.interiors, &ctx.params.certify);
-    judge_halves(p, x, quad_pts, from, &s.diag, on_map, interiors, certify, &mut t)
-        .map_err(|source| CurvingError::Check { cell: ci, source })
+    judge_halves(
+        p, x, quad_pts, from, &s.diag, on_map, interiors, certify, &mut t,
+    )
+    .map_err(|source| CurvingError::Check { cell: ci, source })
 }
 
 /// The corners and edge points of cell `ci` (edge points in the cell's edge directions).

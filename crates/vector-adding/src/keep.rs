@@ -6,7 +6,7 @@
 //! derivative fields, since with the decisions fixed the curving is a linear homogeneous map
 //! of the linear nodes and the boundary's high-order nodes.
 
-use mesh_model::{Layering, LayeredMesh, Mesh, NONE};
+use mesh_model::{LayeredMesh, Layering, Mesh, NONE};
 
 use crate::assemble::assemble;
 use crate::boundary::{facet_points, place_given, place_on_curves};
@@ -122,13 +122,26 @@ fn replay_on(
     params.check()?;
     fits(mesh, decisions, &params)?;
     let (rules, cuts) = (&decisions.rules, &decisions.diagonals);
-    let laid = lay_out(mesh, layering, Boundary::Points(boundary), rules, cuts, &params)?
-        .map_err(|_| CurvingError::NotTheSameMesh("its carried edges form a loop".into()))?;
+    let laid = lay_out(
+        mesh,
+        layering,
+        Boundary::Points(boundary),
+        rules,
+        cuts,
+        &params,
+    )?
+    .map_err(|_| CurvingError::NotTheSameMesh("its carried edges form a loop".into()))?;
     Ok(assemble_laid(mesh, &laid))
 }
 
 fn assemble_laid(mesh: &Mesh, laid: &Laid) -> Mesh {
-    assemble(mesh, &laid.edges, laid.sorted_edges, &laid.cells, &laid.interiors)
+    assemble(
+        mesh,
+        &laid.edges,
+        laid.sorted_edges,
+        &laid.cells,
+        &laid.interiors,
+    )
 }
 
 /// Whether `decisions` were taken on a mesh of `mesh`'s topology with `params`' order, cut
@@ -144,7 +157,11 @@ fn fits(mesh: &Mesh, decisions: &Decisions, params: &CurvingParams) -> Result<()
     let same_edges = decisions.edges.len() == topo.len()
         && (0..topo.len() as u32).all(|e| topo.key(e) == decisions.edges[e as usize]);
     if !same_edges || decisions.rules.len() != topo.len() {
-        return bad(format!("{} edges, the mesh has {}", decisions.edges.len(), topo.len()));
+        return bad(format!(
+            "{} edges, the mesh has {}",
+            decisions.edges.len(),
+            topo.len()
+        ));
     }
     if decisions.diagonals.len() != mesh.cells.len() {
         let n = decisions.diagonals.len();
@@ -274,7 +291,11 @@ pub fn curve_mesh_keeping(
                 }
                 continue;
             }
-            Err(_) => return Err(CurvingError::NotTheSameMesh("its carried edges form a loop".into())),
+            Err(_) => {
+                return Err(CurvingError::NotTheSameMesh(
+                    "its carried edges form a loop".into(),
+                ));
+            }
         };
         let failing = failing_cells(mesh, &laid, &merged, params)?;
         if failing.is_empty() || own.all {
@@ -317,7 +338,13 @@ impl Fresh {
 
     /// Marks the failing cells, the cells of their pipes, and all their edges; false when
     /// nothing new was marked.
-    fn widen(&mut self, mesh: &Mesh, layering: &Layering, edges: &EdgeTable, failing: &[u32]) -> bool {
+    fn widen(
+        &mut self,
+        mesh: &Mesh,
+        layering: &Layering,
+        edges: &EdgeTable,
+        failing: &[u32],
+    ) -> bool {
         let mut grew = false;
         let mut mark = |c: usize, grew: &mut bool| {
             *grew |= !self.cells[c];

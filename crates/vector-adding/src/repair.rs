@@ -172,7 +172,15 @@ fn mend(
                     (w, u, false)
                 };
                 let mut pts = vec![[0.0; 2]; q];
-                lay(p, mesh.xy(from), mesh.xy(to), &dev, reverse, lambda, &mut pts);
+                lay(
+                    p,
+                    mesh.xy(from),
+                    mesh.xy(to),
+                    &dev,
+                    reverse,
+                    lambda,
+                    &mut pts,
+                );
                 let rule = Carry {
                     source: ce[src],
                     source_from: a,

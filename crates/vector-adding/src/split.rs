@@ -215,7 +215,9 @@ pub(crate) fn best_halves(
         nodes,
     };
     let mut judge = |diag: &[[f64; 2]], on_map: bool| {
-        judge_halves(p, x, quad_pts, from, diag, on_map, interiors, certify, &mut s)
+        judge_halves(
+            p, x, quad_pts, from, diag, on_map, interiors, certify, &mut s,
+        )
     };
     let straight_cut = Diagonal {
         from: from as u8,
