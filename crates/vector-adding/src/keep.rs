@@ -402,11 +402,12 @@ fn changes(before: &Decisions, now: &Decisions) -> Vec<DecisionChange> {
         }
     }
     for (c, (old, new)) in before.diagonals.iter().zip(&now.diagonals).enumerate() {
-        if let (Some(old), Some(new)) = (*old, *new) {
-            if old != new {
-                let cell = c as u32;
+        let cell = c as u32;
+        match (*old, *new) {
+            (Some(old), Some(new)) if old != new => {
                 out.push(DecisionChange::Diagonal { cell, old, new });
             }
+            _ => {}
         }
     }
     out

@@ -16,6 +16,12 @@
 //! quadrilaterals are cut into triangles with a straight diagonal where both halves stay
 //! valid.
 //!
+//! Every decision is recorded ([`Decisions`], in [`Curved::decisions`]). With them fixed the
+//! curving is a linear map of the linear nodes and the boundary's high-order nodes, so a
+//! moved mesh of the same topology is curved the same way by [`curve_mesh_keeping`] (which
+//! certifies every cell and decides afresh only for the pipes of cells that fail, listing
+//! each [`DecisionChange`]), replayed by [`replay`], and differentiated by [`tangent`].
+//!
 //! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
 //! IO, and does not certify the final mesh as a whole (the caller runs
 //! `jacobian_check::check_mesh` on the result).

@@ -172,10 +172,9 @@ fn stops(g: &Grown, curved: &Mesh, d: &Decisions) -> Vec<(usize, [u32; 2], [u32;
         }
         // the bottom's middle high-order node against its chord's middle
         let bulge = bulge_of(curved, b0, b1);
-        let (xb0, xb1, xt0) = (mesh.xy(b0), mesh.xy(b1), mesh.xy(t0));
+        let (xb0, xt0) = (mesh.xy(b0), mesh.xy(t0));
         let up = [xt0[0] - xb0[0], xt0[1] - xb0[1]];
         let height = up[0].hypot(up[1]);
-        let _ = xb1;
         let into = bulge[0] * up[0] + bulge[1] * up[1];
         if into > 0.0 {
             out.push((ci, [b0, b1], [t0, t1], into / height / height));
@@ -250,6 +249,27 @@ fn flat(nodes: impl Iterator<Item = [f64; 2]>) -> Vec<f64> {
     nodes.flat_map(|v| v.into_iter()).collect()
 }
 
+/// The tangent of the curving by `decisions` when every node and boundary point `x` of
+/// `layered` moves by `field(x)`, flattened.
+fn tangent_along(
+    layered: &LayeredMesh,
+    decisions: &Decisions,
+    boundary: &[[f64; 2]],
+    field: impl Fn([f64; 2]) -> [f64; 2],
+) -> (Vec<[f64; 2]>, Vec<[f64; 2]>, Vec<f64>) {
+    let nodes = layered.mesh.nodes.iter();
+    let d_nodes: Vec<[f64; 2]> = nodes.map(|v| field([v[0], v[1]])).collect();
+    let d_boundary: Vec<[f64; 2]> = boundary.iter().map(|&x| field(x)).collect();
+    let analytic = tangent(layered, decisions, &d_nodes, &d_boundary).unwrap();
+    (d_nodes, d_boundary, flat(analytic.into_iter()))
+}
+
+/// The central difference `(plus − minus) / 2 eps`.
+fn central(plus: &[f64], minus: &[f64], eps: f64) -> Vec<f64> {
+    let pairs = plus.iter().zip(minus);
+    pairs.map(|(p, m)| (p - m) / (2.0 * eps)).collect()
+}
+
 fn relative_gap(a: &[f64], b: &[f64]) -> f64 {
     let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let gap: Vec<f64> = a.iter().zip(b).map(|(x, y)| x - y).collect();
@@ -271,18 +291,7 @@ fn the_tangent_matches_central_differences_of_the_replay() {
         let curved = g.curve(&params).unwrap();
         let d = &curved.decisions;
         let boundary = boundary_points(layered, &loops(&g, &g.curves), 3).unwrap();
-        let d_nodes: Vec<[f64; 2]> = layered
-            .mesh
-            .nodes
-            .iter()
-            .map(|v| field([v[0], v[1]]))
-            .collect();
-        let d_boundary: Vec<[f64; 2]> = boundary.iter().map(|&x| field(x)).collect();
-        let analytic = flat(
-            tangent(layered, d, &d_nodes, &d_boundary)
-                .unwrap()
-                .into_iter(),
-        );
+        let (d_nodes, d_boundary, analytic) = tangent_along(layered, d, &boundary, field);
         let at = |eps: f64| {
             let mut moved = layered.clone();
             for (v, dv) in moved.mesh.nodes.iter_mut().zip(&d_nodes) {
@@ -303,12 +312,7 @@ fn the_tangent_matches_central_differences_of_the_replay() {
         };
         let eps = 1e-6;
         let (plus, minus) = (at(eps), at(-eps));
-        let fd: Vec<f64> = plus
-            .iter()
-            .zip(&minus)
-            .map(|(p, m)| (p - m) / (2.0 * eps))
-            .collect();
-        let gap = relative_gap(&fd, &analytic);
+        let gap = relative_gap(&central(&plus, &minus, eps), &analytic);
         eprintln!("replay, triangles={triangles}: relative gap {gap:e}");
         assert!(gap < 1e-7, "triangles={triangles}: {gap:e}");
     }
@@ -326,18 +330,7 @@ fn the_tangent_matches_central_differences_of_keeping_under_a_rotation() {
     let boundary = boundary_points(&at_alpha, &on, 3).unwrap();
     // d/dα of a rotation about the quarter chord: the point turned a quarter turn more
     let spin = |x: [f64; 2]| [-x[1], x[0] - 0.25];
-    let d_nodes: Vec<[f64; 2]> = at_alpha
-        .mesh
-        .nodes
-        .iter()
-        .map(|v| spin([v[0], v[1]]))
-        .collect();
-    let d_boundary: Vec<[f64; 2]> = boundary.iter().map(|&x| spin(x)).collect();
-    let analytic = flat(
-        tangent(&at_alpha, &base.decisions, &d_nodes, &d_boundary)
-            .unwrap()
-            .into_iter(),
-    );
+    let (_, _, analytic) = tangent_along(&at_alpha, &base.decisions, &boundary, spin);
     let at = |angle: f64| {
         let (curves, moved) = rotated(&g, angle, |_| [0.0; 2]);
         let on = loops(&g, &curves);
@@ -347,12 +340,7 @@ fn the_tangent_matches_central_differences_of_keeping_under_a_rotation() {
     };
     let eps = 1e-5;
     let (plus, minus) = (at(alpha + eps), at(alpha - eps));
-    let fd: Vec<f64> = plus
-        .iter()
-        .zip(&minus)
-        .map(|(p, m)| (p - m) / (2.0 * eps))
-        .collect();
-    let gap = relative_gap(&fd, &analytic);
+    let gap = relative_gap(&central(&plus, &minus, eps), &analytic);
     eprintln!("rotation: relative gap {gap:e}");
     assert!(gap < 1e-7, "{gap:e}");
 }
