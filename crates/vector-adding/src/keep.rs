@@ -169,8 +169,10 @@ fn fits(mesh: &Mesh, decisions: &Decisions, params: &CurvingParams) -> Result<()
     }
     for (e, rule) in decisions.rules.iter().enumerate() {
         let EdgeRule::Carried(c) = rule else { continue };
-        let ends = |e: usize| decisions.edges.get(e).copied().unwrap_or([NONE; 2]);
-        if !ends(e).contains(&c.from) || !ends(c.source as usize).contains(&c.source_from) {
+        let source = decisions.edges.get(c.source as usize);
+        if !decisions.edges[e].contains(&c.from)
+            || !source.is_some_and(|s| s.contains(&c.source_from))
+        {
             return bad(format!("edge {e} is carried from a node not its own"));
         }
     }

@@ -8,7 +8,7 @@ use geom_curve::ClosedCurve;
 use mesh_model::{LayeredMesh, Mesh};
 use test_cases::{Grown, grow, real_case};
 use vector_adding::{
-    CurvingParams, DecisionChange, Decisions, EdgeRule, LoopCurve, boundary_points,
+    Carry, CurvingParams, DecisionChange, Decisions, EdgeRule, LoopCurve, boundary_points,
     curve_mesh_keeping, replay, tangent,
 };
 
@@ -78,6 +78,28 @@ fn decisions_of_another_topology_or_order_are_refused() {
     fewer.edges.pop();
     let e = curve_mesh_keeping(&g.output.layered, &on, &params, &fewer).unwrap_err();
     assert!(e.to_string().contains("edges"), "{e}");
+    // a rule naming no edge, or a loop of carried edges: named, never a panic
+    let mut bad = curved.decisions.clone();
+    let [a, b] = bad.edges[0];
+    let carry = |source, source_from| Carry {
+        source,
+        source_from,
+        from: a,
+        reversed: false,
+        fraction: 1.0,
+    };
+    bad.rules[0] = EdgeRule::Carried(carry(u32::MAX, u32::MAX));
+    let e = curve_mesh_keeping(&g.output.layered, &on, &params, &bad).unwrap_err();
+    assert!(e.to_string().contains("carried from"), "{e}");
+    bad.rules[0] = EdgeRule::Carried(carry(0, b));
+    let boundary = boundary_points(&g.output.layered, &on, 3).unwrap();
+    let e = replay(&g.output.layered, &bad, &boundary).unwrap_err();
+    assert!(e.to_string().contains("loop"), "{e}");
+    let e = tangent(&g.output.layered, &curved.decisions, &[], &boundary).unwrap_err();
+    assert!(e.to_string().contains("node derivatives"), "{e}");
+    let short = &boundary[1..];
+    let e = replay(&g.output.layered, &curved.decisions, short).unwrap_err();
+    assert!(e.to_string().contains("boundary high-order points"), "{e}");
 }
 
 /// `g`'s loops rotated by `angle` about the quarter chord, their curves refitted, and the
