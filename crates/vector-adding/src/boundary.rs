@@ -5,6 +5,7 @@ use geom_curve::ClosedCurve;
 use mesh_model::Mesh;
 
 use crate::LoopCurve;
+use crate::decisions::EdgeRule;
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 
@@ -91,6 +92,56 @@ pub(crate) fn place_on_curves(
             (q[0] - l[0]).hypot(q[1] - l[1]) > 1e-9 * chord
         });
         edges.set_points_from(e, a, &pts, curved);
+        edges.rules[e as usize] = EdgeRule::OnCurve;
+    }
+    Ok(())
+}
+
+/// The inner points of every boundary facet, `p − 1` per facet in the mesh's facet order,
+/// each listed from the facet's first node to its second.
+pub(crate) fn facet_points(mesh: &Mesh, edges: &EdgeTable) -> Vec<[f64; 2]> {
+    let q = edges.p - 1;
+    let mut out = vec![[0.0; 2]; mesh.boundary.len() * q];
+    for (f, cell) in mesh.boundary.iter().enumerate() {
+        let [a, b] = [cell.nodes[0], cell.nodes[1]];
+        let e = edge_of(edges, a, b).expect("every boundary facet is an edge of a cell");
+        edges.points_from(e, a, &mut out[f * q..(f + 1) * q]);
+    }
+    out
+}
+
+/// Gives every boundary facet the inner points `pts` (laid out as [`facet_points`] makes
+/// them).
+///
+/// # Errors
+/// [`CurvingError::BoundaryMismatch`] when `pts` has the wrong length or a facet is no edge.
+pub(crate) fn place_given(
+    mesh: &Mesh,
+    pts: &[[f64; 2]],
+    edges: &mut EdgeTable,
+) -> Result<(), CurvingError> {
+    let q = edges.p - 1;
+    if pts.len() != mesh.boundary.len() * q {
+        return Err(CurvingError::BoundaryMismatch {
+            facet: 0,
+            patch: 0,
+            what: format!(
+                "{} boundary high-order points given, {} facets need {}",
+                pts.len(),
+                mesh.boundary.len(),
+                mesh.boundary.len() * q
+            ),
+        });
+    }
+    for (f, cell) in mesh.boundary.iter().enumerate() {
+        let [a, b] = [cell.nodes[0], cell.nodes[1]];
+        let e = edge_of(edges, a, b).ok_or_else(|| CurvingError::BoundaryMismatch {
+            facet: f,
+            patch: mesh.boundary_patch[f],
+            what: format!("no cell has the edge {a}–{b}"),
+        })?;
+        edges.set_points_from(e, a, &pts[f * q..(f + 1) * q], true);
+        edges.rules[e as usize] = EdgeRule::OnCurve;
     }
     Ok(())
 }

@@ -8,10 +8,11 @@ use jacobian_check::{Certificate, certify_cell};
 use mesh_model::{CellType, Mesh, Shape};
 
 use crate::cellmap::{Interiors, cell_nodes};
+use crate::decisions::Diagonal;
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
-use crate::split::best_halves;
+use crate::split::{TriScratch, best_halves, diagonal_as, judge_halves};
 
 /// A candidate for one local edge of a cell: (local edge, node the points start from, the
 /// `p − 1` inner points).
@@ -76,6 +77,46 @@ pub(crate) fn check(
     }
     cell_nodes(p, &s.corners, &s.edge_pts, ctx.interiors, &mut s.nodes);
     certify_cell(CellType::new(shape, p as u8), &s.nodes, &ctx.params.certify).map_err(err)
+}
+
+/// Certifies cell `ci` built from the edge table as it will be written: a quadrilateral cut
+/// by `cut` is judged by its two triangles.
+pub(crate) fn check_as_cut(
+    ctx: &Ctx<'_>,
+    edges: &EdgeTable,
+    ci: usize,
+    cut: Option<Diagonal>,
+    s: &mut Scratch,
+) -> Result<Certificate, CurvingError> {
+    let Some(d) = cut else {
+        let mut plain = *ctx.params;
+        plain.triangles = false;
+        return check(
+            &Ctx {
+                params: &plain,
+                ..*ctx
+            },
+            edges,
+            ci,
+            &[],
+            s,
+        );
+    };
+    let p = edges.p;
+    gather(ctx.mesh, ci, edges, &[], s);
+    let (x, quad_pts, bottom) = (&s.corners, &s.edge_pts, ctx.roles[ci][0]);
+    diagonal_as(p, x, quad_pts, bottom, ctx.params.strategy, d, &mut s.diag);
+    let mut t = TriScratch {
+        corners: &mut s.tri,
+        pts: &mut s.tri_pts,
+        nodes: &mut s.nodes,
+    };
+    let (from, on_map) = (d.from as usize, d.curved);
+    let (interiors, certify) = (ctx.interiors, &ctx.params.certify);
+    judge_halves(
+        p, x, quad_pts, from, &s.diag, on_map, interiors, certify, &mut t,
+    )
+    .map_err(|source| CurvingError::Check { cell: ci, source })
 }
 
 /// The corners and edge points of cell `ci` (edge points in the cell's edge directions).

@@ -5,6 +5,8 @@
 use mesh_model::topology::Edges;
 use mesh_model::{Mesh, NONE};
 
+use crate::decisions::{Carry, EdgeRule, lay};
+
 /// Every edge of the mesh, with the `p − 1` inner points of each, from its lower-numbered end
 /// to its higher-numbered one.
 #[derive(Debug, Clone)]
@@ -22,6 +24,8 @@ pub(crate) struct EdgeTable {
     pub points: Vec<[f64; 2]>,
     /// Whether an edge's points were moved off its chord.
     pub curved: Vec<bool>,
+    /// How each edge got its points (the record of the decisions).
+    pub rules: Vec<EdgeRule>,
 }
 
 impl EdgeTable {
@@ -53,6 +57,7 @@ impl EdgeTable {
                 .collect(),
             points: Vec::new(),
             curved: Vec::new(),
+            rules: Vec::new(),
         };
         let nodes: Vec<[f64; 2]> = mesh.nodes.iter().map(|v| [v[0], v[1]]).collect();
         table.points = Vec::with_capacity(table.ends.len() * (p - 1));
@@ -67,6 +72,7 @@ impl EdgeTable {
             }
         }
         table.curved = vec![false; table.ends.len()];
+        table.rules = vec![EdgeRule::Straight; table.ends.len()];
         table
     }
 
@@ -105,6 +111,25 @@ impl EdgeTable {
         self.curved[e as usize] = curved;
     }
 
+    /// Gives edge `e` the points `pts` (listed from `rule.from`) that `rule` made, and records
+    /// the rule.
+    pub fn carry(&mut self, e: u32, rule: Carry, pts: &[[f64; 2]]) {
+        self.set_points_from(e, rule.from, pts, true);
+        self.rules[e as usize] = EdgeRule::Carried(rule);
+    }
+
+    /// Lays edge `e`'s points by `rule` from the current points of its source (`dev` is
+    /// scratch of `p − 1` slots).
+    pub fn apply(&mut self, mesh: &Mesh, e: u32, rule: Carry, dev: &mut [[f64; 2]]) {
+        self.deviation(mesh, rule.source, rule.source_from, dev);
+        let [u, w] = self.ends[e as usize];
+        let to = if u == rule.from { w } else { u };
+        let mut pts = vec![[0.0; 2]; self.p - 1];
+        let (xf, xt) = (mesh.xy(rule.from), mesh.xy(to));
+        lay(self.p, xf, xt, dev, rule.reversed, rule.fraction, &mut pts);
+        self.carry(e, rule, &pts);
+    }
+
     /// The deviation of edge `e`'s inner points from their places on its chord, listed from
     /// node `from`; returns the largest deviation's length.
     pub fn deviation(&self, mesh: &Mesh, e: u32, from: u32, dev: &mut [[f64; 2]]) -> f64 {
@@ -130,6 +155,7 @@ impl EdgeTable {
         let q = self.p - 1;
         self.points.extend(std::iter::repeat_n([0.0; 2], q));
         self.curved.push(false);
+        self.rules.push(EdgeRule::Straight);
         self.set_points_from(id, a, from_a, curved);
         id
     }

@@ -38,6 +38,10 @@ pub enum CurvingError {
         /// What is wrong.
         what: String,
     },
+    /// The decisions given are not those of a mesh of the same topology and curving
+    /// parameters (other edges, another order, cut or strategy).
+    #[error("the decisions do not fit this mesh: {0}")]
+    NotTheSameMesh(String),
     /// The certified check could not run on a cell (a non-finite node, say).
     #[error("cell {cell}: {source}")]
     Check {

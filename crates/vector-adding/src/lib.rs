@@ -16,6 +16,12 @@
 //! quadrilaterals are cut into triangles with a straight diagonal where both halves stay
 //! valid.
 //!
+//! Every decision is recorded ([`Decisions`], in [`Curved::decisions`]). With them fixed the
+//! curving is a linear map of the linear nodes and the boundary's high-order nodes, so a
+//! moved mesh of the same topology is curved the same way by [`curve_mesh_keeping`] (which
+//! certifies every cell and decides afresh only for the pipes of cells that fail, listing
+//! each [`DecisionChange`]), replayed by [`replay`], and differentiated by [`tangent`].
+//!
 //! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
 //! IO, and does not certify the final mesh as a whole (the caller runs
 //! `jacobian_check::check_mesh` on the result).
@@ -74,8 +80,10 @@ mod assemble;
 mod boundary;
 mod cellcheck;
 mod cellmap;
+mod decisions;
 mod edges;
 pub mod error;
+mod keep;
 mod march;
 pub mod params;
 mod repair;
@@ -85,7 +93,9 @@ pub mod stats;
 use geom_curve::ClosedCurve;
 use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
 
+pub use decisions::{Carry, DecisionChange, Decisions, Diagonal, EdgeRule};
 pub use error::CurvingError;
+pub use keep::{boundary_points, curve_mesh_keeping, replay, tangent};
 pub use params::{CurvingParams, Strategy};
 pub use stats::{CurvingStats, StopCounts};
 
@@ -106,6 +116,9 @@ pub struct Curved {
     pub mesh: Mesh,
     /// What was done.
     pub stats: CurvingStats,
+    /// Every decision taken, to curve a moved mesh the same way
+    /// ([`curve_mesh_keeping`]) or differentiate the curving ([`tangent`]).
+    pub decisions: Decisions,
 }
 
 /// Curves `input` to order `params.order`. `loops[l]` is the curve of patch `l`.
@@ -154,7 +167,7 @@ pub fn curve_mesh(
     )?;
     clock.lap("repair");
     let (cells, cut) = if params.triangles {
-        split::cut(mesh, &roles, &mut edges, &interiors, params)?
+        split::cut(mesh, &roles, &mut edges, &interiors, params, None)?
     } else {
         (split::keep(mesh, &edges), split::CutOutcome::default())
     };
@@ -177,7 +190,34 @@ pub fn curve_mesh(
         invalid_after_cut: cut.invalid,
         timings_s: clock.laps,
     };
-    Ok(Curved { mesh: out, stats })
+    let decisions = decisions_of(&edges, sorted_edges, params, cut.diagonals);
+    Ok(Curved {
+        mesh: out,
+        stats,
+        decisions,
+    })
+}
+
+/// The record of a run's decisions: the rules of the linear mesh's edges (the first
+/// `sorted_edges` of the table) and the cuts.
+fn decisions_of(
+    edges: &edges::EdgeTable,
+    sorted_edges: usize,
+    params: &CurvingParams,
+    diagonals: Vec<Option<Diagonal>>,
+) -> Decisions {
+    Decisions {
+        order: params.order,
+        triangles: params.triangles,
+        strategy: params.strategy,
+        edges: edges.ends[..sorted_edges].to_vec(),
+        rules: edges.rules[..sorted_edges].to_vec(),
+        diagonals: if params.triangles {
+            diagonals
+        } else {
+            vec![None; edges.cell_edges.len()]
+        },
+    }
 }
 
 /// The mesh is structurally sound (`mesh_model`'s checks), linear 2D, with a layering that

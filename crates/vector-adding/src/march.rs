@@ -8,7 +8,8 @@ use mesh_model::{Mesh, NONE, Role, Shape};
 
 use crate::cellcheck::{Ctx, Scratch, check, quality};
 use crate::cellmap::Interiors;
-use crate::edges::{EdgeTable, lerp};
+use crate::decisions::{Carry, lay};
+use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
 use crate::stats::StopCounts;
@@ -129,11 +130,15 @@ pub(crate) fn march(
             && edges.cell_edges[above as usize][roles[above as usize][0] as usize] == te
             && mesh.cell_layer[above as usize] == layer + 1;
         let (xt0, xt1) = (mesh.xy(t0), mesh.xy(t1));
-        let top_with = |lambda: f64, pts: &mut [[f64; 2]]| {
-            for (j, (o, d)) in pts.iter_mut().zip(&dev).enumerate() {
-                let l = lerp(xt0, xt1, (j + 1) as f64 / p as f64);
-                *o = [l[0] + lambda * d[0], l[1] + lambda * d[1]];
-            }
+        let top_with =
+            |lambda: f64, pts: &mut [[f64; 2]]| lay(p, xt0, xt1, &dev, false, lambda, pts);
+        // the record of a top laid with `fraction` of the bottom's deviation
+        let rule = |fraction: f64| Carry {
+            source: be,
+            source_from: b0,
+            from: t0,
+            reversed: false,
+            fraction,
         };
         // the straight top is judged only when it may be used: lazily
         let mut straight_cert: Option<Certificate> = None;
@@ -179,7 +184,7 @@ pub(crate) fn march(
             match best {
                 Some((_, lambda)) => {
                     top_with(lambda, &mut top_pts);
-                    edges.set_points_from(te, t0, &top_pts, true);
+                    edges.carry(te, rule(lambda), &top_pts);
                     out.certified[ci] = true;
                     out.handed_to_fill += 1;
                 }
@@ -220,7 +225,7 @@ pub(crate) fn march(
                 }
                 out.certified[ci] = true;
                 top_with(lambda, &mut top_pts);
-                edges.set_points_from(te, t0, &top_pts, true);
+                edges.carry(te, rule(lambda), &top_pts);
             }
             None if straight(edges, &mut s)?.is_valid() => {
                 out.stops.jacobian += 1;
@@ -231,7 +236,7 @@ pub(crate) fn march(
                 // certification deal with it
                 out.stops.invalid += 1;
                 top_with(1.0, &mut top_pts);
-                edges.set_points_from(te, t0, &top_pts, true);
+                edges.carry(te, rule(1.0), &top_pts);
             }
         }
     }

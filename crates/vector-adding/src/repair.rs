@@ -8,7 +8,8 @@ use mesh_model::{Mesh, NONE};
 
 use crate::cellcheck::{Candidate, Ctx, Scratch, check};
 use crate::cellmap::Interiors;
-use crate::edges::{EdgeTable, lerp};
+use crate::decisions::{Carry, EdgeRule, lay};
+use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
 
@@ -61,7 +62,7 @@ pub(crate) fn repair(
             log.clear();
             let mut budget = MEND_BUDGET;
             if mend(&ctx, ci, edges, &mut s, &mut log, MEND_DEPTH, &mut budget)? {
-                for (e, _, _) in &log {
+                for (e, ..) in &log {
                     for c in edges.cells[*e as usize] {
                         if c != NONE {
                             touched[c as usize] = true;
@@ -94,8 +95,9 @@ const MEND_DEPTH: u32 = 24;
 /// can be mended is usually found at once; the budget bounds the failing searches.
 const MEND_BUDGET: usize = 400;
 
-/// The edges changed by a repair, with their previous points and curved flag, to undo it.
-type ChangeLog = Vec<(u32, Vec<[f64; 2]>, bool)>;
+/// The edges changed by a repair, with their previous points, curved flag and rule, to undo
+/// it.
+type ChangeLog = Vec<(u32, Vec<[f64; 2]>, bool, EdgeRule)>;
 
 /// Tries to make cell `ci` valid by bending its straight interior edges. A choice is kept when
 /// the cell is valid and each neighbour across a bent edge is valid too, or, `depth` allowing,
@@ -152,7 +154,7 @@ fn mend(
     if free.len() > 1 {
         subsets.push(free.clone());
     }
-    let mut cand: Vec<(u8, u32, Vec<[f64; 2]>)> = Vec::new();
+    let mut cand: Vec<(u8, Carry, Vec<[f64; 2]>)> = Vec::new();
     for subset in &subsets {
         for lambda in [1.0, 0.5] {
             cand.clear();
@@ -169,20 +171,28 @@ fn mend(
                 } else {
                     (w, u, false)
                 };
-                let (xf, xt) = (mesh.xy(from), mesh.xy(to));
-                let pts: Vec<[f64; 2]> = (0..q)
-                    .map(|i| {
-                        let f = (i + 1) as f64 / p as f64;
-                        let d = if reverse { dev[q - 1 - i] } else { dev[i] };
-                        let l = lerp(xf, xt, f);
-                        [l[0] + lambda * d[0], l[1] + lambda * d[1]]
-                    })
-                    .collect();
-                cand.push((j as u8, from, pts));
+                let mut pts = vec![[0.0; 2]; q];
+                lay(
+                    p,
+                    mesh.xy(from),
+                    mesh.xy(to),
+                    &dev,
+                    reverse,
+                    lambda,
+                    &mut pts,
+                );
+                let rule = Carry {
+                    source: ce[src],
+                    source_from: a,
+                    from,
+                    reversed: reverse,
+                    fraction: lambda,
+                };
+                cand.push((j as u8, rule, pts));
             }
             let mine: Vec<Candidate<'_>> = cand
                 .iter()
-                .map(|(j, f, pts)| (*j, *f, pts.as_slice()))
+                .map(|(j, rule, pts)| (*j, rule.from, pts.as_slice()))
                 .collect();
             if *budget == 0 {
                 return Ok(false);
@@ -193,12 +203,12 @@ fn mend(
             }
             // apply the choice, then look at the neighbours across the bent edges
             let mark = log.len();
-            for (j, from, pts) in &cand {
+            for (j, rule, pts) in &cand {
                 let e = ce[*j as usize];
                 let q = edges.p - 1;
                 let old = edges.points[e as usize * q..(e as usize + 1) * q].to_vec();
-                log.push((e, old, edges.curved[e as usize]));
-                edges.set_points_from(e, *from, pts, true);
+                log.push((e, old, edges.curved[e as usize], edges.rules[e as usize]));
+                edges.carry(e, *rule, pts);
             }
             let mut neighbours_ok = true;
             for (j, _, _) in &cand {
@@ -226,8 +236,9 @@ fn mend(
 fn undo(edges: &mut EdgeTable, log: &mut ChangeLog, mark: usize) {
     let q = edges.p - 1;
     while log.len() > mark {
-        let (e, old, curved) = log.pop().expect("log longer than mark");
+        let (e, old, curved, rule) = log.pop().expect("log longer than mark");
         edges.points[e as usize * q..(e as usize + 1) * q].copy_from_slice(&old);
         edges.curved[e as usize] = curved;
+        edges.rules[e as usize] = rule;
     }
 }

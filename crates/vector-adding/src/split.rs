@@ -10,6 +10,7 @@ use mesh_model::{CellType, Mesh, Shape};
 
 use crate::cellcheck::{Scratch, quality};
 use crate::cellmap::{Interiors, coons, lagrange_1d};
+use crate::decisions::Diagonal;
 use crate::edges::{EdgeTable, lerp};
 use crate::error::CurvingError;
 use crate::march::NO_EDGE;
@@ -84,6 +85,108 @@ fn triangles_of(from: usize) -> [([usize; 3], [Option<usize>; 3]); 2] {
     }
 }
 
+/// Scratch buffers of one cut triangle's nodes.
+pub(crate) struct TriScratch<'a> {
+    pub corners: &'a mut Vec<[f64; 2]>,
+    pub pts: &'a mut Vec<[f64; 2]>,
+    pub nodes: &'a mut Vec<[f64; 2]>,
+}
+
+/// The centre, on the map of the quadrilateral with corners `x` and edge points `quad_pts`,
+/// of its cut triangle with local corners `tc`.
+fn centre(p: usize, x: &[[f64; 2]], quad_pts: &[[f64; 2]], tc: &[usize; 3]) -> [f64; 2] {
+    // a cut triangle's corners in the quadrilateral's (u, v)
+    const UV: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let u = (UV[tc[0]][0] + UV[tc[1]][0] + UV[tc[2]][0]) / 3.0;
+    let v = (UV[tc[0]][1] + UV[tc[1]][1] + UV[tc[2]][1]) / 3.0;
+    coons(p, x, quad_pts, u, v)
+}
+
+/// The interior nodes of the two triangles of the cut from `from`: on the quadrilateral's
+/// map when they are cubic and the diagonal curved, else from their own edges (None).
+fn cut_interiors(
+    p: usize,
+    x: &[[f64; 2]],
+    quad_pts: &[[f64; 2]],
+    from: usize,
+    curved: bool,
+) -> [Option<[f64; 2]>; 2] {
+    if !curved || p != 3 {
+        return [None; 2];
+    }
+    let tris = triangles_of(from);
+    [
+        Some(centre(p, x, quad_pts, &tris[0].0)),
+        Some(centre(p, x, quad_pts, &tris[1].0)),
+    ]
+}
+
+/// Certifies the two triangles of the quadrilateral (corners `x`, edge points `quad_pts`)
+/// cut from local corner `from` along the diagonal with inner points `diag`, their cubic
+/// centres on the quadrilateral's map when `on_map`: valid with the lower bound of the two,
+/// or the first failing triangle's certificate.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn judge_halves(
+    p: usize,
+    x: &[[f64; 2]],
+    quad_pts: &[[f64; 2]],
+    from: usize,
+    diag: &[[f64; 2]],
+    on_map: bool,
+    interiors: &Interiors,
+    certify: &CertifyParams,
+    s: &mut TriScratch<'_>,
+) -> Result<Certificate, JacobianError> {
+    let q = p - 1;
+    let tri = CellType::new(Shape::Tri, p as u8);
+    let mut worst: Option<Certificate> = None;
+    for (tc, te) in &triangles_of(from) {
+        s.corners.clear();
+        s.corners.extend(tc.iter().map(|&l| x[l]));
+        s.pts.clear();
+        for (m, edge) in te.iter().enumerate() {
+            let a = tc[m];
+            match edge {
+                Some(j) => s.pts.extend_from_slice(&quad_pts[j * q..(j + 1) * q]),
+                None if a == from => s.pts.extend_from_slice(diag),
+                None => s.pts.extend(diag.iter().rev()),
+            }
+        }
+        crate::cellmap::cell_nodes(p, s.corners, s.pts, interiors, s.nodes);
+        if on_map && p == 3 {
+            s.nodes[9] = centre(p, x, quad_pts, tc);
+        }
+        let c = certify_cell(tri, s.nodes, certify)?;
+        if !c.is_valid() {
+            return Ok(c);
+        }
+        if worst.as_ref().is_none_or(|w| quality(&c) < quality(w)) {
+            worst = Some(c);
+        }
+    }
+    Ok(worst.expect("two triangles"))
+}
+
+/// The cut `d` of a quadrilateral replayed: its diagonal's inner points into `diag`, and the
+/// triangles' interior nodes.
+pub(crate) fn diagonal_as(
+    p: usize,
+    x: &[[f64; 2]],
+    quad_pts: &[[f64; 2]],
+    bottom: u8,
+    strategy: Strategy,
+    d: Diagonal,
+    diag: &mut Vec<[f64; 2]>,
+) -> [Option<[f64; 2]>; 2] {
+    let from = d.from as usize;
+    diag.clear();
+    diag.extend((0..p - 1).map(|j| lerp(x[from], x[from + 2], (j + 1) as f64 / p as f64)));
+    if d.curved {
+        curved_diagonal(p, x, quad_pts, from, bottom, strategy, diag);
+    }
+    cut_interiors(p, x, quad_pts, from, d.curved)
+}
+
 /// Cuts the quadrilateral with corners `x` and edge points `quad_pts` (in its edge
 /// directions) along its shorter diagonal: straight if both triangles are valid so with a
 /// scaled Jacobian of at least `good_enough`, else curved by `strategy` if that is better;
@@ -103,50 +206,24 @@ pub(crate) fn best_halves(
     nodes: &mut Vec<[f64; 2]>,
     diag: &mut Vec<[f64; 2]>,
 ) -> Result<Halves, JacobianError> {
-    let q = p - 1;
     let d02 = (x[2][0] - x[0][0]).hypot(x[2][1] - x[0][1]);
     let d13 = (x[3][0] - x[1][0]).hypot(x[3][1] - x[1][1]);
     let from = if d02 <= d13 { 0 } else { 1 };
-    let to = from + 2;
-    let tris = triangles_of(from);
-    let tri = CellType::new(Shape::Tri, p as u8);
-    // a cut triangle's corners in the quadrilateral's (u, v), for its centre on the map
-    const UV: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    let centre = |tc: &[usize; 3]| {
-        let u = (UV[tc[0]][0] + UV[tc[1]][0] + UV[tc[2]][0]) / 3.0;
-        let v = (UV[tc[0]][1] + UV[tc[1]][1] + UV[tc[2]][1]) / 3.0;
-        coons(p, x, quad_pts, u, v)
+    let mut s = TriScratch {
+        corners,
+        pts,
+        nodes,
     };
-    let mut judge = |diag: &[[f64; 2]], on_map: bool| -> Result<Certificate, JacobianError> {
-        let mut worst: Option<Certificate> = None;
-        for (tc, te) in &tris {
-            corners.clear();
-            corners.extend(tc.iter().map(|&l| x[l]));
-            pts.clear();
-            for (m, edge) in te.iter().enumerate() {
-                let a = tc[m];
-                match edge {
-                    Some(j) => pts.extend_from_slice(&quad_pts[j * q..(j + 1) * q]),
-                    None if a == from => pts.extend_from_slice(diag),
-                    None => pts.extend(diag.iter().rev()),
-                }
-            }
-            crate::cellmap::cell_nodes(p, corners, pts, interiors, nodes);
-            if on_map && p == 3 {
-                nodes[9] = centre(tc);
-            }
-            let c = certify_cell(tri, nodes, certify)?;
-            if !c.is_valid() {
-                return Ok(c);
-            }
-            if worst.as_ref().is_none_or(|w| quality(&c) < quality(w)) {
-                worst = Some(c);
-            }
-        }
-        Ok(worst.expect("two triangles"))
+    let mut judge = |diag: &[[f64; 2]], on_map: bool| {
+        judge_halves(
+            p, x, quad_pts, from, diag, on_map, interiors, certify, &mut s,
+        )
     };
-    diag.clear();
-    diag.extend((0..q).map(|j| lerp(x[from], x[to], (j + 1) as f64 / p as f64)));
+    let straight_cut = Diagonal {
+        from: from as u8,
+        curved: false,
+    };
+    diagonal_as(p, x, quad_pts, bottom, strategy, straight_cut, diag);
     let straight = judge(diag, false)?;
     if quality(&straight) >= good_enough {
         return Ok(Halves {
@@ -169,38 +246,41 @@ pub(crate) fn best_halves(
             certificate: straight,
         });
     }
-    let interiors = if p == 3 {
-        [Some(centre(&tris[0].0)), Some(centre(&tris[1].0))]
-    } else {
-        [None; 2]
-    };
     Ok(Halves {
         from,
         curved: true,
-        interiors,
+        interiors: cut_interiors(p, x, quad_pts, from, true),
         certificate,
     })
 }
 
 /// Figures of the cutting.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct CutOutcome {
     pub curved_diagonals: usize,
+    /// Triangles found invalid (none are judged when the cuts are replayed).
     pub invalid: usize,
+    /// The cut of every linear cell (None for a triangle).
+    pub diagonals: Vec<Option<Diagonal>>,
 }
 
-/// Cuts every quadrilateral into two triangles, adding the diagonals to `edges`.
+/// Cuts every quadrilateral into two triangles, adding the diagonals to `edges`: deciding
+/// each cut, or replaying `fixed` (one per linear cell) without judging it.
 pub(crate) fn cut(
     mesh: &Mesh,
     roles: &[[u8; 2]],
     edges: &mut EdgeTable,
     interiors: &Interiors,
     params: &CurvingParams,
+    fixed: Option<&[Option<Diagonal>]>,
 ) -> Result<(Vec<OutCell>, CutOutcome), CurvingError> {
     let p = edges.p;
     let q = p - 1;
     let mut out = Vec::with_capacity(mesh.cells.len() * 2);
-    let mut outcome = CutOutcome::default();
+    let mut outcome = CutOutcome {
+        diagonals: vec![None; mesh.cells.len()],
+        ..CutOutcome::default()
+    };
     let mut s = Scratch::default();
     let mut quad_pts = vec![[0.0; 2]; 4 * q];
     for (i, c) in mesh.cells.iter().enumerate() {
@@ -222,30 +302,46 @@ pub(crate) fn cut(
         for j in 0..4 {
             edges.points_from(ce[j], k[j], &mut quad_pts[j * q..(j + 1) * q]);
         }
-        let halves = best_halves(
-            p,
-            &x,
-            &quad_pts,
-            roles[i][0],
-            params.strategy,
-            interiors,
-            &params.certify,
-            params.stop_min_scaled_jacobian,
-            &mut s.tri,
-            &mut s.tri_pts,
-            &mut s.nodes,
-            &mut s.diag,
-        )
-        .map_err(|source| CurvingError::Check { cell: i, source })?;
-        if halves.curved {
+        let (from, curved, halves_interiors) = match fixed {
+            Some(fixed) => {
+                let d = fixed[i].ok_or_else(|| {
+                    CurvingError::NotTheSameMesh(format!("cell {i} is a quadrilateral now"))
+                })?;
+                let strategy = params.strategy;
+                let inner = diagonal_as(p, &x, &quad_pts, roles[i][0], strategy, d, &mut s.diag);
+                (d.from as usize, d.curved, inner)
+            }
+            None => {
+                let halves = best_halves(
+                    p,
+                    &x,
+                    &quad_pts,
+                    roles[i][0],
+                    params.strategy,
+                    interiors,
+                    &params.certify,
+                    params.stop_min_scaled_jacobian,
+                    &mut s.tri,
+                    &mut s.tri_pts,
+                    &mut s.nodes,
+                    &mut s.diag,
+                )
+                .map_err(|source| CurvingError::Check { cell: i, source })?;
+                if !halves.certificate.is_valid() {
+                    outcome.invalid += 1;
+                }
+                (halves.from, halves.curved, halves.interiors)
+            }
+        };
+        if curved {
             outcome.curved_diagonals += 1;
         }
-        if !halves.certificate.is_valid() {
-            outcome.invalid += 1;
-        }
-        let from = halves.from;
-        let de = edges.push(k[from], k[from + 2], &s.diag, halves.curved);
-        for ((tc, te), interior) in triangles_of(from).iter().zip(halves.interiors) {
+        outcome.diagonals[i] = Some(Diagonal {
+            from: from as u8,
+            curved,
+        });
+        let de = edges.push(k[from], k[from + 2], &s.diag, curved);
+        for ((tc, te), interior) in triangles_of(from).iter().zip(halves_interiors) {
             let mut corners = [0; 4];
             let mut es = [mesh_model::NONE; 4];
             for m in 0..3 {

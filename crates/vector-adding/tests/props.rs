@@ -109,6 +109,40 @@ proptest! {
         let layers = curved_layers_above_walls(&g.output, &curved.mesh, params.min_curved_layers);
         prop_assert!(layers.curved_walls > 0, "{}", what);
         prop_assert!(layers.early.is_empty(), "{}: {:?}", what, layers.early);
+        replayed_and_linear(&g, &curved, params.order, &what);
+    }
+}
+
+/// A replay of the run's own decisions is its mesh to the last bit, and the tangent is
+/// linear in the node and boundary derivatives.
+fn replayed_and_linear(g: &Grown, curved: &vector_adding::Curved, order: u8, what: &str) {
+    let layered = &g.output.layered;
+    let loops: Vec<vector_adding::LoopCurve<'_>> = (g.curves.iter().zip(&g.nodes))
+        .map(|(curve, n)| vector_adding::LoopCurve { curve, t: &n.t })
+        .collect();
+    let boundary = vector_adding::boundary_points(layered, &loops, order).unwrap();
+    let replayed = vector_adding::replay(layered, &curved.decisions, &boundary).unwrap();
+    assert!(replayed == curved.mesh, "{what}: the replay differs");
+    let field = |k: f64| move |x: &[f64]| [(k * x[0]).sin() + x[1], (k * x[1]).cos() * x[0]];
+    let tangent = |f: &dyn Fn(&[f64]) -> [f64; 2]| {
+        let d_nodes: Vec<[f64; 2]> = layered.mesh.nodes.iter().map(|v| f(v)).collect();
+        let d_boundary: Vec<[f64; 2]> = boundary.iter().map(|v| f(v)).collect();
+        vector_adding::tangent(layered, &curved.decisions, &d_nodes, &d_boundary).unwrap()
+    };
+    let (f1, f2) = (field(1.3), field(-2.1));
+    let sum = tangent(&|x| {
+        let (a, b) = (f1(x), f2(x));
+        [a[0] + 2.0 * b[0], a[1] + 2.0 * b[1]]
+    });
+    let (t1, t2) = (tangent(&f1), tangent(&f2));
+    for ((s, a), b) in sum.iter().zip(&t1).zip(&t2) {
+        for d in 0..2 {
+            let want = a[d] + 2.0 * b[d];
+            assert!(
+                (s[d] - want).abs() <= 1e-9 * (1.0 + want.abs()),
+                "{what}: {s:?}"
+            );
+        }
     }
 }
 
