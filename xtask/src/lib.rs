@@ -25,6 +25,7 @@ pub mod exit;
 pub mod figures_cmd;
 mod mesh_cmd;
 mod move_cmd;
+mod move_sens;
 pub mod outputs;
 mod pictures;
 pub mod pipeline;

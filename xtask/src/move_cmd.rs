@@ -31,6 +31,17 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     let total = Instant::now();
     let case = case::load(&args.case)?;
     let order = args.output.order.unwrap_or(case.order);
+    ensure!(
+        args.method == MoveMethod::Springs || (args.sensitivities.is_none() && !args.smooth),
+        "--smooth and --sensitivities need --method springs (the smooth balance)"
+    );
+    if let Some(path) = &args.sensitivities {
+        ensure!(
+            path.extension().is_some_and(|e| e == "csv"),
+            "--sensitivities {}: the sensitivities are CSV: give a .csv file name",
+            path.display()
+        );
+    }
     let motions = motions(&args.motion, &case)?;
     let moved = moved_geometry(&case, &motions)?;
     let flags = OutputFlags {
@@ -57,6 +68,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     };
     let comparison = mesh_move::compare(&layered.mesh, &moved_layered.mesh)
         .map_err(|e| anyhow::anyhow!("comparing the meshes: {e}"))?;
+    let mut decisions = None;
     let mesh = if linear.stats.inverted_cells > 0 {
         // an inverted linear mesh cannot be curved: it is written as it is, and fails
         report.order = 1;
@@ -65,7 +77,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
             linear.stats.inverted_cells
         ));
         moved_layered.mesh.clone()
-    } else {
+    } else if order == 1 {
         mesh_cmd::at_order(
             &moved.case,
             (&moved.curves, &nodes),
@@ -74,6 +86,49 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
             args.quiet,
             &mut report,
         )?
+    } else {
+        let curved = curve_keeping(
+            (&case, &moved),
+            &nodes,
+            (&layered, &moved_layered),
+            (order, args.output.triangles),
+            args.quiet,
+            &mut report,
+        )?;
+        decisions = Some(curved.decisions);
+        curved.mesh
+    };
+    let sensitivities = match &args.sensitivities {
+        Some(_) if linear.stats.inverted_cells == 0 => {
+            let t = Instant::now();
+            let progress = stage(args.quiet, "mesh sensitivities");
+            let field = mesh_move::ShapeField::of(&layered.mesh, SpringMoveParams::smooth().shape)
+                .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
+            let x: Vec<[f64; 2]> = (0..moved_layered.mesh.nodes.len() as u32)
+                .map(|k| moved_layered.mesh.xy(k))
+                .collect();
+            let mut fixed = vec![false; x.len()];
+            boundary.nodes.iter().for_each(|&k| fixed[k as usize] = true);
+            let balance = field
+                .linearise(&x, &fixed)
+                .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
+            let at = crate::move_sens::At {
+                case: &case,
+                motions: &motions,
+                nodes: &nodes,
+                moved: &moved_layered,
+                balance: &balance,
+                curving: decisions.as_ref().map(|d| (d, order)),
+            };
+            let vars = crate::move_sens::variables(&motions);
+            let columns = crate::move_sens::sensitivities(&at, &vars)?;
+            drop(progress);
+            report
+                .timings_s
+                .insert("sensitivities", t.elapsed().as_secs_f64());
+            Some(columns)
+        }
+        _ => None,
     };
     let movement = MovementReport::new(
         &motions,
@@ -93,6 +148,13 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     let linear_mesh = &moved_layered.mesh;
     let report_path =
         mesh_cmd::check_and_write(plan, (&mesh, linear_mesh), None, &run, &mut report)?;
+    if let (Some(path), Some(columns)) = (&args.sensitivities, &sensitivities) {
+        if report.problems.is_empty() {
+            let xy: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
+            mesh_io::sensitivities::write_sensitivities(path, &xy, columns)
+                .map_err(|e| anyhow::anyhow!("--sensitivities {}: {e}", path.display()))?;
+        }
+    }
     let finished = report.finish(
         report_path.as_deref(),
         args.quiet,
@@ -104,9 +166,50 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     Ok(finished)
 }
 
-/// The mover of `--method` (and `--kernel`, `--radius`).
+/// The moved layered mesh curved as the original one is (`vector_adding::curve_mesh_keeping`
+/// with the original curving's decisions): a small motion flips no decision; the decisions
+/// that had to change (a cell the kept decision would leave invalid) are counted in the
+/// report and the first ones named in its notes.
+fn curve_keeping(
+    (case, moved): (&case::Case, &MovedGeometry),
+    nodes: &[BoundaryNodes],
+    (original, layered): (&LayeredMesh, &LayeredMesh),
+    (order, triangles): (u8, bool),
+    quiet: bool,
+    report: &mut Report,
+) -> Result<vector_adding::Curved> {
+    let t = Instant::now();
+    let progress = stage(quiet, "curving (Vector-Adding, the original's decisions kept)");
+    let curves = pipeline::curves(case)?;
+    let before = pipeline::curved_mesh(case, &curves, nodes, original, order, triangles)?;
+    let (curved, changes) = vector_adding::curve_mesh_keeping(
+        layered,
+        &pipeline::loop_curves(&moved.curves, nodes),
+        &pipeline::curving_params(&moved.case, order, triangles),
+        &before.decisions,
+    )
+    .map_err(|e| anyhow::anyhow!("curving: {e}"))?;
+    drop(progress);
+    report
+        .timings_s
+        .insert("curving", t.elapsed().as_secs_f64());
+    report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
+    report.curving = Some(curved.stats.clone());
+    report.curving_decisions_changed = Some(changes.len());
+    for change in changes.iter().take(5) {
+        report
+            .notes
+            .push(format!("curving decision changed by the motion: {change:?}"));
+    }
+    Ok(curved)
+}
+
+/// The mover of `--method` (and `--kernel`, `--radius`, `--smooth`).
 fn method(args: &MoveArgs) -> Method {
     match args.method {
+        MoveMethod::Springs if args.smooth || args.sensitivities.is_some() => {
+            Method::Springs(SpringMoveParams::smooth())
+        }
         MoveMethod::Springs => Method::Springs(SpringMoveParams::default()),
         MoveMethod::Idw => Method::Idw(IdwParams::default()),
         MoveMethod::Rbf => Method::Rbf(RbfParams {
@@ -173,16 +276,16 @@ fn start(
 
 /// The case with its loops moved, their curves refitted, and each loop's linear part (scale ·
 /// rotation; the identity for a loop that stays or is only bumped).
-struct MovedGeometry {
-    case: case::Case,
-    curves: Vec<ClosedCurve>,
+pub(crate) struct MovedGeometry {
+    pub case: case::Case,
+    pub curves: Vec<ClosedCurve>,
     linear: Vec<Mat2>,
 }
 
 /// The motions checked against the case (values, names) and the moved loops checked (none
 /// crossing itself or another, walls inside the far field), then the moved curves fitted —
 /// all before any meshing.
-fn moved_geometry(case: &case::Case, motions: &[LoopMotion]) -> Result<MovedGeometry> {
+pub(crate) fn moved_geometry(case: &case::Case, motions: &[LoopMotion]) -> Result<MovedGeometry> {
     let bad = |e: mesh_move::MoveError| anyhow::anyhow!("bad motion: {e}");
     let loops: Vec<BoundaryLoop> = case
         .loops
@@ -223,7 +326,7 @@ fn moved_geometry(case: &case::Case, motions: &[LoopMotion]) -> Result<MovedGeom
 
 /// Where every boundary node goes: on its loop's moved curve at its parameter `t` (the
 /// boundary nodes of loop `l` are the mesh nodes after those of loops `0..l`).
-fn boundary_targets(
+pub(crate) fn boundary_targets(
     moved: &MovedGeometry,
     nodes: &[BoundaryNodes],
     layered: &LayeredMesh,

@@ -57,6 +57,10 @@ pub struct Report {
     pub meshes: Vec<WrittenMesh>,
     /// What a user should know about this run (stages not available, limits reached).
     pub notes: Vec<String>,
+    /// `move` at order 2 or 3: curving decisions of the original mesh that the motion
+    /// changed (`vector_adding::curve_mesh_keeping`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curving_decisions_changed: Option<usize>,
     /// What failed validation, if anything (the run then exits with status 2).
     pub problems: Vec<String>,
     /// `move` only: the motion, the mover and the quality before and after the move.

@@ -51,6 +51,7 @@ mod error;
 pub mod groups;
 pub mod msh;
 pub mod node_order;
+pub mod sensitivities;
 pub mod snapshot;
 pub mod su2;
 #[cfg(any(test, feature = "testkit"))]
