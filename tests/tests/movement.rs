@@ -326,3 +326,93 @@ fn a_rigid_motion_of_every_loop_moves_every_node_of_the_p3_mesh_by_it() {
         .fold(0.0f64, f64::max);
     assert!(worst < 1e-9, "a node misses the rigid motion by {worst:e}");
 }
+
+/// The written P3 mesh of `--smooth` at bump amplitude `a` (every node, linear and
+/// high-order).
+fn bumped_p3(dir: &Path, name: &str, a: f64, extra: &[&str]) -> Vec<[f64; 3]> {
+    let bump = format!("0.3,{a}");
+    let mut args = vec![
+        "--bump",
+        &bump,
+        "--bump",
+        "0.6,-0.004,3,lower",
+        "--order",
+        "3",
+        "--smooth",
+    ];
+    args.extend_from_slice(extra);
+    let (outcome, _) = moved(dir, name, "naca0012", &args);
+    assert_eq!(outcome, Outcome::Valid);
+    mesh_io::read_msh(&dir.join(format!("{name}.msh")))
+        .unwrap()
+        .nodes
+}
+
+#[test]
+fn the_sensitivities_file_is_the_derivative_of_the_written_p3_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("s.csv");
+    let (a, e) = (0.005, 1e-5);
+    let at = bumped_p3(dir.path(), "at", a, &["--sensitivities", s(&csv)]);
+    let plus = bumped_p3(dir.path(), "plus", a + e, &[]);
+    let minus = bumped_p3(dir.path(), "minus", a - e, &[]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "node,x,y,d_naca0012.bump1_x,d_naca0012.bump1_y,d_naca0012.bump2_x,d_naca0012.bump2_y"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(
+        rows.len(),
+        at.len(),
+        "one line per node of the written mesh"
+    );
+    let (mut diff, mut norm) = (0.0, 0.0);
+    for (k, row) in rows.iter().enumerate() {
+        assert_eq!([row[1], row[2]], [at[k][0], at[k][1]], "node {k}");
+        for c in 0..2 {
+            let fd = (plus[k][c] - minus[k][c]) / (2.0 * e);
+            diff += (row[3 + c] - fd).powi(2);
+            norm += fd * fd;
+        }
+    }
+    let relative = (diff / norm).sqrt();
+    println!(
+        "|dX/da| {:.4e}, sensitivities against central differences: {relative:.2e}",
+        norm.sqrt()
+    );
+    assert!(relative < 1e-6, "{relative:e}");
+    assert!(norm.sqrt() > 1.0, "the bump moves the mesh");
+}
+
+#[test]
+fn sensitivities_need_the_spring_mover_and_a_csv_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = run_move(
+        dir.path(),
+        "x",
+        "naca0012",
+        &[
+            "--rotate",
+            "5",
+            "--method",
+            "idw",
+            "--sensitivities",
+            "s.csv",
+        ],
+    )
+    .unwrap_err();
+    assert_one_line_naming(&format!("{e:#}"), &["--sensitivities", "springs"]);
+    let e = run_move(
+        dir.path(),
+        "x",
+        "naca0012",
+        &["--rotate", "5", "--sensitivities", "s.txt"],
+    )
+    .unwrap_err();
+    assert_one_line_naming(&format!("{e:#}"), &["--sensitivities", "csv"]);
+    assert!(tree(dir.path()).is_empty(), "{:?}", tree(dir.path()));
+}

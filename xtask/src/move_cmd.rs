@@ -108,7 +108,10 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
                 .map(|k| moved_layered.mesh.xy(k))
                 .collect();
             let mut fixed = vec![false; x.len()];
-            boundary.nodes.iter().for_each(|&k| fixed[k as usize] = true);
+            boundary
+                .nodes
+                .iter()
+                .for_each(|&k| fixed[k as usize] = true);
             let balance = field
                 .linearise(&x, &fixed)
                 .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
@@ -179,7 +182,10 @@ fn curve_keeping(
     report: &mut Report,
 ) -> Result<vector_adding::Curved> {
     let t = Instant::now();
-    let progress = stage(quiet, "curving (Vector-Adding, the original's decisions kept)");
+    let progress = stage(
+        quiet,
+        "curving (Vector-Adding, the original's decisions kept)",
+    );
     let curves = pipeline::curves(case)?;
     let before = pipeline::curved_mesh(case, &curves, nodes, original, order, triangles)?;
     let (curved, changes) = vector_adding::curve_mesh_keeping(
@@ -197,9 +203,9 @@ fn curve_keeping(
     report.curving = Some(curved.stats.clone());
     report.curving_decisions_changed = Some(changes.len());
     for change in changes.iter().take(5) {
-        report
-            .notes
-            .push(format!("curving decision changed by the motion: {change:?}"));
+        report.notes.push(format!(
+            "curving decision changed by the motion: {change:?}"
+        ));
     }
     Ok(curved)
 }

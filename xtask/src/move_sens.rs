@@ -134,16 +134,27 @@ pub(crate) fn sensitivities(
             };
             sides.push((targets, points));
         }
-        let central = |p: &[f64; 2], m: &[f64; 2]| [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)];
+        let central =
+            |p: &[f64; 2], m: &[f64; 2]| [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)];
         let mut d_boundary = vec![[0.0; 2]; n];
-        for ((&k, p), m) in sides[0].0.nodes.iter().zip(&sides[0].0.targets).zip(&sides[1].0.targets) {
+        for ((&k, p), m) in sides[0]
+            .0
+            .nodes
+            .iter()
+            .zip(&sides[0].0.targets)
+            .zip(&sides[1].0.targets)
+        {
             d_boundary[k as usize] = central(p, m);
         }
         let d_nodes = at.balance.respond(&d_boundary);
         let column = match at.curving {
             Some((decisions, _)) => {
-                let d_points: Vec<[f64; 2]> =
-                    sides[0].1.iter().zip(&sides[1].1).map(|(p, m)| central(p, m)).collect();
+                let d_points: Vec<[f64; 2]> = sides[0]
+                    .1
+                    .iter()
+                    .zip(&sides[1].1)
+                    .map(|(p, m)| central(p, m))
+                    .collect();
                 vector_adding::tangent(at.moved, decisions, &d_nodes, &d_points)
                     .map_err(|e| anyhow!("sensitivities: {e}"))?
             }
