@@ -151,8 +151,10 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     let linear_mesh = &moved_layered.mesh;
     let report_path =
         mesh_cmd::check_and_write(plan, (&mesh, linear_mesh), None, &run, &mut report)?;
-    if let (Some(path), Some(columns)) = (&args.sensitivities, &sensitivities) {
-        if report.problems.is_empty() {
+    // written only with a valid mesh
+    let valid = report.problems.is_empty();
+    if let (Some(path), Some(columns), true) = (&args.sensitivities, &sensitivities, valid) {
+        {
             let xy: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
             mesh_io::sensitivities::write_sensitivities(path, &xy, columns)
                 .map_err(|e| anyhow::anyhow!("--sensitivities {}: {e}", path.display()))?;

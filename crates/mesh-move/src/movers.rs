@@ -75,6 +75,8 @@ impl Default for RbfParams {
 
 /// A mover.
 #[derive(Debug, Clone, Copy, PartialEq)]
+// one `Method` per move: the spring parameters' size does not matter
+#[allow(clippy::large_enum_variant)]
 pub enum Method {
     /// Rotation-aware inverse-distance weighting.
     Idw(IdwParams),

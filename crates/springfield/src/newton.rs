@@ -227,12 +227,13 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
             // at the balance the energy no longer tells steps apart: a step within its
             // round-off is taken
             // (the energy is a sum of non-negative terms: its round-off is about ε · itself)
-            if let Some(e) = model.energy(&trial) {
-                if e <= energy + 1e-13 * energy.abs() {
-                    energy = e;
-                    accepted = true;
-                    break;
-                }
+            let lower = model
+                .energy(&trial)
+                .filter(|&e| e <= energy + 1e-13 * energy.abs());
+            if let Some(e) = lower {
+                energy = e;
+                accepted = true;
+                break;
             }
             length *= 0.5;
         }

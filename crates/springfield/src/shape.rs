@@ -51,7 +51,7 @@ impl ShapeSpring {
         let [a, b, c] = corners.map(|k| rest[k as usize]);
         let (e1, e2) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
         let det = e1[0] * e2[1] - e2[0] * e1[1];
-        if !(det > 0.0) || !det.is_finite() {
+        if det.is_nan() || det <= 0.0 || !det.is_finite() {
             return None;
         }
         // Dm = [[e1x, e2x], [e1y, e2y]]
@@ -84,7 +84,7 @@ impl ShapeSpring {
     pub fn energy(&self, positions: &[[f64; 2]]) -> Option<f64> {
         let f = self.deformation(positions);
         let j = f[0] * f[3] - f[1] * f[2];
-        if !(j > 0.0) {
+        if j.is_nan() || j <= 0.0 {
             return None;
         }
         let a: f64 = f.iter().map(|v| v * v).sum();
@@ -123,6 +123,11 @@ impl ShapeSpring {
         hess[2][1] -= wj;
         (grad, hess)
     }
+}
+
+/// `det F > 0` (false for NaN).
+fn positive(f: &[f64; 4]) -> bool {
+    f[0] * f[3] - f[1] * f[2] > 0.0
 }
 
 /// The partial derivatives of an energy density `W(a, J)`.
@@ -203,7 +208,7 @@ impl Spring<2> for ShapeSpring {
         stiffness: &mut [f64],
     ) {
         let f = self.deformation(positions);
-        if !(f[0] * f[3] - f[1] * f[2] > 0.0) {
+        if !positive(&f) {
             return;
         }
         let (grad, _) = self.derivatives(&f);
@@ -226,7 +231,7 @@ impl Spring<2> for ShapeSpring {
         out: &mut Vec<Triplet>,
     ) {
         let f = self.deformation(fd.positions());
-        if !(f[0] * f[3] - f[1] * f[2] > 0.0) {
+        if !positive(&f) {
             return;
         }
         let (_, h) = self.derivatives(&f);
