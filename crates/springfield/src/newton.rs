@@ -38,7 +38,9 @@ pub trait EnergyModel<const D: usize>: ForceModel<D> {
 pub struct NewtonParams {
     /// Most Newton steps.
     pub max_iterations: usize,
-    /// Converged when a full step moves no node by more than this times its length scale.
+    /// Converged when a full step moves no node by more than this times its length scale, or
+    /// by less than a thousand times this but no less than half the step before (the
+    /// round-off floor of the solve).
     pub tolerance: f64,
     /// Most halvings of a step.
     pub max_halvings: usize,
@@ -193,6 +195,7 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
     let (mut symbolic, mut jacobian) = (None, Vec::new());
     let (mut force, mut stiffness) = (vec![[0.0; D]; n], vec![0.0; n]);
     let mut trial = positions.to_vec();
+    let mut previous = f64::INFINITY;
     for _ in 0..params.max_iterations {
         force.iter_mut().for_each(|f| *f = [0.0; D]);
         model.assemble(positions, &mut force, &mut stiffness);
@@ -213,6 +216,11 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
                 crate::vec::norm(&std::array::from_fn::<f64, D, _>(|a| step[f + a])) / scale[i]
             })
             .fold(0.0f64, f64::max);
+        // converged: the step is within the tolerance, or it no longer halves while already
+        // small (Newton's quadratic convergence stopped at the round-off of the solve)
+        let done = largest <= params.tolerance
+            || (largest < 1e3 * params.tolerance && largest > 0.5 * previous);
+        previous = largest;
         let mut length = 1.0;
         let mut accepted = false;
         for _ in 0..=params.max_halvings {
@@ -224,12 +232,12 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
                     }
                 }
             }
-            // at the balance the energy no longer tells steps apart: a step within its
-            // round-off is taken
-            // (the energy is a sum of non-negative terms: its round-off is about ε · itself)
+            // at the balance the energy no longer tells steps apart (its round-off is about
+            // ε times the number of terms times itself): a full step within the tolerance is
+            // taken as it is, and a step within the round-off is taken
             let lower = model
                 .energy(&trial)
-                .filter(|&e| e <= energy + 1e-13 * energy.abs());
+                .filter(|&e| (length == 1.0 && done) || e <= energy * (1.0 + 1e-12));
             if let Some(e) = lower {
                 energy = e;
                 accepted = true;
@@ -244,7 +252,7 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
         positions.copy_from_slice(&trial);
         outcome.residual = largest * length;
         outcome.energy = energy;
-        if length == 1.0 && largest <= params.tolerance {
+        if length == 1.0 && done {
             outcome.converged = true;
             break;
         }
