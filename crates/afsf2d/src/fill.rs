@@ -678,7 +678,7 @@ mod tests {
                 seed = seed
                     .wrapping_mul(6364136223846793005)
                     .wrapping_add(1442695040888963407);
-                if c.len > 0 && (seed >> 33) % 5 == 0 {
+                if c.len > 0 && (seed >> 33) % 5 == 1 {
                     c.len = 0;
                     peeled.push(ci as u32);
                 }
