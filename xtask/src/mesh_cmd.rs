@@ -50,6 +50,10 @@ pub fn run(args: &MeshArgs) -> Result<Finished> {
     estimate::check_loops(&case, args.max_cells, args.quiet)?;
 
     let mut report = Report::new(&case.name, order);
+    // reading the case and its geometry, checking every output flag
+    report
+        .timings_s
+        .insert("setup", total.elapsed().as_secs_f64());
     let (mesh, snapshot, linear) = make(args, &case, order, &mut report)?;
     let snapshot = snapshot.as_ref().zip(args.snapshot.as_deref());
     let run = Run {
@@ -89,10 +93,7 @@ pub(crate) fn check_and_write(
     run: &Run<'_>,
     report: &mut Report,
 ) -> Result<Option<PathBuf>> {
-    report.describe(mesh);
-    if report.quality.is_some() {
-        report.linear_angles(linear);
-    }
+    report.describe_over(mesh, linear);
     let t = Instant::now();
     let progress = stage(run.quiet, "certified validity");
     let scaled_jacobian = report.certify(mesh)?;
