@@ -55,6 +55,7 @@ pub mod snapshot;
 pub mod su2;
 #[cfg(any(test, feature = "testkit"))]
 pub mod testkit;
+mod text;
 pub mod vtu;
 
 use std::path::Path;

@@ -506,3 +506,35 @@ proptest! {
         prop_assert_eq!(back, without_records(&m));
     }
 }
+
+#[test]
+fn node_coordinates_are_written_as_debug_prints_them() {
+    // the fast formatting (zmij, laid out as `{:?}`) keeps the bytes of `{:?}` at its edges
+    let mut m = small();
+    let odd = [
+        -0.0,
+        1e-5,
+        1.5e16,
+        1e15,
+        5e-324,
+        f64::from_bits(0x4317_9085_685d_83c9), // 1658206780088562.25, halfway
+        f64::MAX,
+        0.1 + 0.2,
+    ];
+    let n = m.nodes.len();
+    for (k, x) in odd.into_iter().enumerate() {
+        m.nodes[k % n][k % 2] = x;
+    }
+    let text = to_text(&m);
+    let start = line_of(&text, "$Nodes") + 2 + m.nodes.len();
+    let lines: Vec<&str> = text.lines().collect();
+    for (i, p) in m.nodes.iter().enumerate() {
+        assert_eq!(
+            lines[start + i],
+            format!("{:?} {:?} {:?}", p[0], p[1], p[2])
+        );
+    }
+    let back = from_text(&text).unwrap();
+    let bits = |m: &Mesh| -> Vec<u64> { m.nodes.iter().flatten().map(|x| x.to_bits()).collect() };
+    assert_eq!(bits(&back), bits(&m));
+}

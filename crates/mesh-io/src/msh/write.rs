@@ -12,6 +12,7 @@ use super::{FLUID_GROUP, PATCH_SECTION, gmsh_type_id};
 use crate::IoError;
 use crate::atomic::write_atomic;
 use crate::check::check_writable;
+use crate::text::{push_f64, push_int, write_records};
 
 /// Writes `mesh` to `path` as Gmsh MSH 4.1 ASCII, atomically.
 ///
@@ -99,6 +100,24 @@ pub(crate) fn quote(name: &str) -> String {
     s
 }
 
+/// One line per element of a block: its tag (`first_tag` + index + 1), then its nodes' tags.
+fn write_elements<'m>(
+    w: &mut dyn Write,
+    elements: &[usize],
+    first_tag: usize,
+    nodes: impl Fn(usize) -> &'m [u32] + Sync,
+) -> io::Result<()> {
+    write_records(w, elements.len(), |k, b| {
+        let i = elements[k];
+        push_int(b, first_tag + i + 1);
+        for &v in nodes(i) {
+            b.push(b' ');
+            push_int(b, v as usize + 1);
+        }
+        b.push(b'\n');
+    })
+}
+
 fn body(
     w: &mut dyn Write,
     mesh: &Mesh,
@@ -157,12 +176,19 @@ fn body(
         writeln!(w, "0 0 0 0")?;
     } else {
         writeln!(w, "1 {n} 1 {n}\n{d} 1 0 {n}")?;
-        for tag in 1..=n {
-            writeln!(w, "{tag}")?;
-        }
-        for p in &mesh.nodes {
-            writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
-        }
+        write_records(w, n, |i, b| {
+            push_int(b, i + 1);
+            b.push(b'\n');
+        })?;
+        write_records(w, n, |i, b| {
+            let p = mesh.nodes[i];
+            push_f64(b, p[0]);
+            b.push(b' ');
+            push_f64(b, p[1]);
+            b.push(b' ');
+            push_f64(b, p[2]);
+            b.push(b'\n');
+        })?;
     }
     writeln!(w, "$EndNodes")?;
 
@@ -184,24 +210,12 @@ fn body(
     }
     for (ty, cells) in &cell_blocks {
         writeln!(w, "{d} 1 {ty} {}", cells.len())?;
-        for &i in cells {
-            write!(w, "{}", i + 1)?;
-            for &v in mesh.cells.get(i).nodes {
-                write!(w, " {}", v as usize + 1)?;
-            }
-            writeln!(w)?;
-        }
+        write_elements(w, cells, 0, |i| mesh.cells.get(i).nodes)?;
     }
     for (p, blocks) in patch_blocks.iter().enumerate() {
         for (ty, facets) in blocks {
             writeln!(w, "{} {} {ty} {}", d - 1, p + 1, facets.len())?;
-            for &j in facets {
-                write!(w, "{}", n_cells + j + 1)?;
-                for &v in mesh.boundary.get(j).nodes {
-                    write!(w, " {}", v as usize + 1)?;
-                }
-                writeln!(w)?;
-            }
+            write_elements(w, facets, n_cells, |j| mesh.boundary.get(j).nodes)?;
         }
     }
     writeln!(w, "$EndElements")?;
