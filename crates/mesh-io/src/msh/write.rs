@@ -5,6 +5,7 @@ use std::io::{self, Write};
 use std::path::Path;
 
 use mesh_model::{Dim, Mesh};
+use rayon::prelude::*;
 
 use crate::groups::{Group, boundary_groups};
 
@@ -60,22 +61,54 @@ fn group_tag(k: usize) -> usize {
 
 /// Axis-aligned bounding box of some nodes: min then max; zeros when there is none.
 fn bounding_box(mesh: &Mesh, nodes: impl Iterator<Item = u32>) -> [f64; 6] {
-    let mut b = [
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-    ];
-    for n in nodes {
-        let p = mesh.nodes[n as usize];
-        for k in 0..3 {
-            b[k] = b[k].min(p[k]);
-            b[k + 3] = b[k + 3].max(p[k]);
+    let b = nodes.fold(EMPTY_BOX, |b, n| add_node(b, mesh.nodes[n as usize]));
+    if b[0] > b[3] { [0.0; 6] } else { b }
+}
+
+/// The bounding box of the nodes of every cell, by chunks of cells in parallel (min and max
+/// do not depend on the order they are taken in).
+fn cells_bounding_box(mesh: &Mesh) -> [f64; 6] {
+    let b = mesh
+        .cells
+        .flat_nodes()
+        .par_chunks(1 << 16)
+        .map(|nodes| bounding_box(mesh, nodes.iter().copied()))
+        .reduce(|| EMPTY_BOX, merge_boxes);
+    if b[0] > b[3] { [0.0; 6] } else { b }
+}
+
+const EMPTY_BOX: [f64; 6] = [
+    f64::INFINITY,
+    f64::INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+];
+
+/// The box grown to hold `p`; of equal values (0.0 and -0.0) the first one met stays, so
+/// that the box does not depend on how the nodes are split among threads.
+fn add_node(mut b: [f64; 6], p: [f64; 3]) -> [f64; 6] {
+    for k in 0..3 {
+        if p[k] < b[k] {
+            b[k] = p[k];
+        }
+        if p[k] > b[k + 3] {
+            b[k + 3] = p[k];
         }
     }
-    if b[0] > b[3] { [0.0; 6] } else { b }
+    b
+}
+
+fn merge_boxes(a: [f64; 6], b: [f64; 6]) -> [f64; 6] {
+    if a[0] > a[3] {
+        return b;
+    }
+    if b[0] > b[3] {
+        return a;
+    }
+    let lo = add_node(a, [b[0], b[1], b[2]]);
+    add_node(lo, [b[3], b[4], b[5]])
 }
 
 fn write_box(w: &mut dyn Write, b: &[f64; 6]) -> io::Result<()> {
@@ -160,10 +193,7 @@ fn body(
         writeln!(w, " 1 {} 0", group_tag(group_of[i]))?;
     }
     write!(w, "1 ")?;
-    write_box(
-        w,
-        &bounding_box(mesh, mesh.cells.flat_nodes().iter().copied()),
-    )?;
+    write_box(w, &cells_bounding_box(mesh))?;
     write!(w, " 1 {FLUID_TAG} {n_patches}")?;
     for i in 0..n_patches {
         write!(w, " {}", i + 1)?;
@@ -226,4 +256,39 @@ fn body(
     }
     writeln!(w, "$End{PATCH_SECTION}")?;
     w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::{AnnulusParams, annulus};
+
+    #[test]
+    fn the_domain_box_is_the_first_zero_met_whatever_the_threads() {
+        // more nodes than one chunk of the parallel box, the lowest x a zero of each sign
+        let mut m = annulus(&AnnulusParams {
+            order: 2,
+            radial_cells: 40,
+            angular_cells: 400,
+            ..AnnulusParams::default()
+        });
+        let lowest = m.nodes.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+        for p in &mut m.nodes {
+            p[0] -= lowest;
+        }
+        let flat: Vec<u32> = m.cells.flat_nodes().to_vec();
+        let (first, later) = (flat[0] as usize, flat[flat.len() - 1] as usize);
+        m.nodes[first][0] = -0.0;
+        m.nodes[later][0] = 0.0;
+        let sequential = bounding_box(&m, m.cells.flat_nodes().iter().copied());
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let parallel = pool.install(|| cells_bounding_box(&m));
+            assert_eq!(parallel.map(f64::to_bits), sequential.map(f64::to_bits));
+        }
+        assert!(sequential[0] == 0.0 && sequential[0].is_sign_negative());
+    }
 }
