@@ -22,7 +22,7 @@ use crate::text::{push_f64, push_int, write_records};
 pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
     let groups = prepare(mesh, path)?;
     write_atomic(path, |w| {
-        body(w, mesh, &groups).map_err(|e| IoError::io(path, e))
+        body(w, mesh, &groups, Encoding::Ascii).map_err(|e| IoError::io(path, e))
     })
 }
 
@@ -30,7 +30,17 @@ pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
 /// the destination in errors. Not atomic: use [`write()`] for files.
 pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
     let groups = prepare(mesh, path)?;
-    body(out, mesh, &groups).map_err(|e| IoError::io(path, e))
+    body(out, mesh, &groups, Encoding::Ascii).map_err(|e| IoError::io(path, e))
+}
+
+/// Writes `mesh` as MSH 4.1 *binary* (file type 1, little-endian, `size_t` of 8 bytes) to
+/// any writer: the same sections as [`write_to`], with `$Entities`, `$Nodes` and
+/// `$Elements` in binary, as Gmsh writes them with `Mesh.Binary = 1`. Not atomic.
+///
+/// Errors: as [`write_to`].
+pub fn write_binary_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+    let groups = prepare(mesh, path)?;
+    body(out, mesh, &groups, Encoding::Binary).map_err(|e| IoError::io(path, e))
 }
 
 /// Checks the mesh and returns its boundary groups (in the order of their physical tags) and
@@ -151,15 +161,73 @@ fn write_elements<'m>(
     })
 }
 
+/// How the `$Entities`, `$Nodes` and `$Elements` sections are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Encoding {
+    /// Text (file type 0).
+    Ascii,
+    /// Little-endian binary (file type 1): `int` 4 bytes, `size_t` 8, `double` 8.
+    Binary,
+}
+
+/// The element blocks of a mesh: its cells by Gmsh element type, and each patch's facets by
+/// element type (BTreeMap: deterministic block order).
+struct Blocks {
+    cells: BTreeMap<u32, Vec<usize>>,
+    patches: Vec<BTreeMap<u32, Vec<usize>>>,
+}
+
+impl Blocks {
+    fn new(mesh: &Mesh) -> Self {
+        let mut patches: Vec<BTreeMap<u32, Vec<usize>>> = vec![BTreeMap::new(); mesh.patches.len()];
+        for (j, f) in mesh.boundary.iter().enumerate() {
+            let ty = gmsh_type_id(f.ty).unwrap_or(0);
+            patches[mesh.boundary_patch[j] as usize]
+                .entry(ty)
+                .or_default()
+                .push(j);
+        }
+        let mut cells: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
+        for (i, t) in mesh.cells.types().iter().enumerate() {
+            cells
+                .entry(gmsh_type_id(*t).unwrap_or(0))
+                .or_default()
+                .push(i);
+        }
+        Blocks { cells, patches }
+    }
+
+    fn count(&self) -> usize {
+        self.cells.len() + self.patches.iter().map(BTreeMap::len).sum::<usize>()
+    }
+
+    /// The box of the facets of patch `i`.
+    fn patch_box(&self, mesh: &Mesh, i: usize) -> [f64; 6] {
+        let nodes = self.patches[i]
+            .values()
+            .flatten()
+            .flat_map(|&j| mesh.boundary.get(j).nodes.iter().copied());
+        bounding_box(mesh, nodes)
+    }
+}
+
 fn body(
     w: &mut dyn Write,
     mesh: &Mesh,
     (groups, group_of): &(Vec<Group>, Vec<usize>),
+    encoding: Encoding,
 ) -> io::Result<()> {
     let d = mesh.dim.as_u8() as usize;
-    let n_patches = mesh.patches.len();
-
-    writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
+    let blocks = Blocks::new(mesh);
+    match encoding {
+        Encoding::Ascii => writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?,
+        Encoding::Binary => {
+            // the 1 as a binary int tells the reader the byte order
+            w.write_all(b"$MeshFormat\n4.1 1 8\n")?;
+            w.write_all(&1i32.to_le_bytes())?;
+            w.write_all(b"\n$EndMeshFormat\n")?;
+        }
+    }
 
     writeln!(w, "$PhysicalNames\n{}", 1 + groups.len())?;
     writeln!(w, "{d} {FLUID_TAG} {}", quote(FLUID_GROUP))?;
@@ -168,29 +236,37 @@ fn body(
     }
     writeln!(w, "$EndPhysicalNames")?;
 
-    // Facets of each patch, grouped by element type (BTreeMap: deterministic block order).
-    let mut patch_blocks: Vec<BTreeMap<u32, Vec<usize>>> = vec![BTreeMap::new(); n_patches];
-    for (j, f) in mesh.boundary.iter().enumerate() {
-        let ty = gmsh_type_id(f.ty).unwrap_or(0);
-        patch_blocks[mesh.boundary_patch[j] as usize]
-            .entry(ty)
-            .or_default()
-            .push(j);
+    match encoding {
+        Encoding::Ascii => ascii_sections(w, mesh, &blocks, group_of)?,
+        Encoding::Binary => binary_sections(w, mesh, &blocks, group_of)?,
     }
 
+    writeln!(w, "${PATCH_SECTION}\n{}", mesh.patches.len())?;
+    for (i, p) in mesh.patches.iter().enumerate() {
+        writeln!(w, "{} {} {}", i + 1, p.role.name(), quote(&p.name))?;
+    }
+    writeln!(w, "$End{PATCH_SECTION}")?;
+    w.flush()
+}
+
+/// `$Entities`, `$Nodes` and `$Elements` as text.
+fn ascii_sections(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    blocks: &Blocks,
+    group_of: &[usize],
+) -> io::Result<()> {
+    let d = mesh.dim.as_u8() as usize;
+    let n_patches = mesh.patches.len();
     writeln!(w, "$Entities")?;
     match mesh.dim {
         Dim::Two => writeln!(w, "0 {n_patches} 1 0")?,
         Dim::Three => writeln!(w, "0 0 {n_patches} 1")?,
     }
-    for i in 0..n_patches {
-        let nodes = patch_blocks[i]
-            .values()
-            .flatten()
-            .flat_map(|&j| mesh.boundary.get(j).nodes.iter().copied());
+    for (i, &group) in group_of.iter().enumerate().take(n_patches) {
         write!(w, "{} ", i + 1)?;
-        write_box(w, &bounding_box(mesh, nodes))?;
-        writeln!(w, " 1 {} 0", group_tag(group_of[i]))?;
+        write_box(w, &blocks.patch_box(mesh, i))?;
+        writeln!(w, " 1 {} 0", group_tag(group))?;
     }
     write!(w, "1 ")?;
     write_box(w, &cells_bounding_box(mesh))?;
@@ -222,40 +298,147 @@ fn body(
     }
     writeln!(w, "$EndNodes")?;
 
-    let mut cell_blocks: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
-    for (i, t) in mesh.cells.types().iter().enumerate() {
-        cell_blocks
-            .entry(gmsh_type_id(*t).unwrap_or(0))
-            .or_default()
-            .push(i);
-    }
     let n_cells = mesh.cells.len();
     let total = n_cells + mesh.boundary.len();
-    let n_blocks = cell_blocks.len() + patch_blocks.iter().map(BTreeMap::len).sum::<usize>();
     writeln!(w, "$Elements")?;
     if total == 0 {
         writeln!(w, "0 0 0 0")?;
     } else {
-        writeln!(w, "{n_blocks} {total} 1 {total}")?;
+        writeln!(w, "{} {total} 1 {total}", blocks.count())?;
     }
-    for (ty, cells) in &cell_blocks {
+    for (ty, cells) in &blocks.cells {
         writeln!(w, "{d} 1 {ty} {}", cells.len())?;
         write_elements(w, cells, 0, |i| mesh.cells.get(i).nodes)?;
     }
-    for (p, blocks) in patch_blocks.iter().enumerate() {
-        for (ty, facets) in blocks {
+    for (p, patch) in blocks.patches.iter().enumerate() {
+        for (ty, facets) in patch {
             writeln!(w, "{} {} {ty} {}", d - 1, p + 1, facets.len())?;
             write_elements(w, facets, n_cells, |j| mesh.boundary.get(j).nodes)?;
         }
     }
-    writeln!(w, "$EndElements")?;
+    writeln!(w, "$EndElements")
+}
 
-    writeln!(w, "${PATCH_SECTION}\n{n_patches}")?;
-    for (i, p) in mesh.patches.iter().enumerate() {
-        writeln!(w, "{} {} {}", i + 1, p.role.name(), quote(&p.name))?;
+/// Little-endian `int`, `size_t` and `double` values, appended to a buffer.
+trait PushBinary {
+    fn int(&mut self, v: usize);
+    fn size(&mut self, v: usize);
+    fn double(&mut self, v: f64);
+}
+
+impl PushBinary for Vec<u8> {
+    fn int(&mut self, v: usize) {
+        // tags and counts of entities and types: small (checked by `prepare`'s callers)
+        self.extend_from_slice(&(v as i32).to_le_bytes());
     }
-    writeln!(w, "$End{PATCH_SECTION}")?;
-    w.flush()
+    fn size(&mut self, v: usize) {
+        self.extend_from_slice(&(v as u64).to_le_bytes());
+    }
+    fn double(&mut self, v: f64) {
+        self.extend_from_slice(&v.to_le_bytes());
+    }
+}
+
+/// `$Entities`, `$Nodes` and `$Elements` in binary, each followed by a newline before its
+/// end line, as Gmsh writes them.
+fn binary_sections(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    blocks: &Blocks,
+    group_of: &[usize],
+) -> io::Result<()> {
+    let d = mesh.dim.as_u8() as usize;
+    let n_patches = mesh.patches.len();
+    let mut b: Vec<u8> = Vec::new();
+    let counts = match mesh.dim {
+        Dim::Two => [0, n_patches, 1, 0],
+        Dim::Three => [0, 0, n_patches, 1],
+    };
+    counts.into_iter().for_each(|c| b.size(c));
+    for (i, &group) in group_of.iter().enumerate().take(n_patches) {
+        b.int(i + 1);
+        blocks
+            .patch_box(mesh, i)
+            .into_iter()
+            .for_each(|x| b.double(x));
+        b.size(1);
+        b.int(group_tag(group));
+        b.size(0);
+    }
+    b.int(1);
+    cells_bounding_box(mesh)
+        .into_iter()
+        .for_each(|x| b.double(x));
+    b.size(1);
+    b.int(FLUID_TAG);
+    b.size(n_patches);
+    (1..=n_patches).for_each(|i| b.int(i));
+    w.write_all(b"$Entities\n")?;
+    w.write_all(&b)?;
+    w.write_all(b"\n$EndEntities\n")?;
+
+    let n = mesh.nodes.len();
+    b.clear();
+    let header = if n == 0 { [0; 4] } else { [1, n, 1, n] };
+    header.into_iter().for_each(|c| b.size(c));
+    if n > 0 {
+        b.int(d);
+        b.int(1);
+        b.int(0);
+        b.size(n);
+    }
+    w.write_all(b"$Nodes\n")?;
+    w.write_all(&b)?;
+    write_records(w, n, |i, b| b.size(i + 1))?;
+    write_records(w, n, |i, b| {
+        mesh.nodes[i].into_iter().for_each(|x| b.double(x))
+    })?;
+    w.write_all(b"\n$EndNodes\n")?;
+
+    let n_cells = mesh.cells.len();
+    let total = n_cells + mesh.boundary.len();
+    b.clear();
+    let header = if total == 0 {
+        [0; 4]
+    } else {
+        [blocks.count(), total, 1, total]
+    };
+    header.into_iter().for_each(|c| b.size(c));
+    w.write_all(b"$Elements\n")?;
+    w.write_all(&b)?;
+    let block = |w: &mut dyn Write, dim: usize, entity: usize, ty: u32, elements: &[usize]| {
+        let mut b = Vec::new();
+        b.int(dim);
+        b.int(entity);
+        b.int(ty as usize);
+        b.size(elements.len());
+        w.write_all(&b)
+    };
+    for (&ty, cells) in &blocks.cells {
+        block(w, d, 1, ty, cells)?;
+        write_records(w, cells.len(), |k, b| {
+            b.size(cells[k] + 1);
+            mesh.cells
+                .get(cells[k])
+                .nodes
+                .iter()
+                .for_each(|&v| b.size(v as usize + 1));
+        })?;
+    }
+    for (p, patch) in blocks.patches.iter().enumerate() {
+        for (&ty, facets) in patch {
+            block(w, d - 1, p + 1, ty, facets)?;
+            write_records(w, facets.len(), |k, b| {
+                b.size(n_cells + facets[k] + 1);
+                mesh.boundary
+                    .get(facets[k])
+                    .nodes
+                    .iter()
+                    .for_each(|&v| b.size(v as usize + 1));
+            })?;
+        }
+    }
+    w.write_all(b"\n$EndElements\n")
 }
 
 #[cfg(test)]
