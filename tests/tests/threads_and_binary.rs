@@ -25,11 +25,8 @@ fn one_and_two_threads_write_the_same_bytes() {
         }
         files.push([msh, vtu, bin].map(|p| std::fs::read(p).unwrap()));
     }
-    for k in 0..3 {
-        assert!(
-            files[0][k] == files[1][k],
-            "file {k} differs between 1 and 2 threads"
-        );
+    for (k, (one, two)) in files[0].iter().zip(&files[1]).enumerate() {
+        assert!(one == two, "file {k} differs between 1 and 2 threads");
     }
 }
 
