@@ -66,8 +66,8 @@ pub struct MeshArgs {
     #[arg(long, value_name = "N", default_value_t = crate::estimate::DEFAULT_MAX_CELLS)]
     pub max_cells: u64,
 
-    /// Write the .msh outputs as binary MSH 4.1 (Gmsh and PyFR read it): about half the size
-    /// and several times faster to write and read than text, for large meshes.
+    /// Write the .msh outputs as binary MSH 4.1, for large meshes: about 3/4 the size of text
+    /// and faster to write and read. Gmsh reads it; PyFR (3.1) reads text .msh only.
     #[arg(long)]
     pub binary: bool,
 
