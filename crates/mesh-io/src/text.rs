@@ -203,7 +203,7 @@ pub(crate) fn push_int(out: &mut Vec<u8>, n: impl itoa::Integer) {
 /// Records per chunk of [`write_records`].
 const CHUNK: usize = 8192;
 /// Chunks formatted at once (in parallel) before they are written.
-const BATCH: usize = 64;
+const BATCH: usize = 16;
 
 /// Writes records `0..n`, each formatted by `record(i, buffer)`: chunks of records are
 /// formatted in parallel into their own buffers, a batch at a time, and written in order.
