@@ -200,6 +200,19 @@ pub(crate) fn push_int(out: &mut Vec<u8>, n: impl itoa::Integer) {
     out.extend_from_slice(buffer.format(n).as_bytes());
 }
 
+/// Writes every node as a line `x y z` (as `{:?}` prints each coordinate).
+pub(crate) fn write_points(w: &mut dyn Write, nodes: &[[f64; 3]]) -> io::Result<()> {
+    write_records(w, nodes.len(), |i, b| {
+        let p = nodes[i];
+        push_f64(b, p[0]);
+        b.push(b' ');
+        push_f64(b, p[1]);
+        b.push(b' ');
+        push_f64(b, p[2]);
+        b.push(b'\n');
+    })
+}
+
 /// Records per chunk of [`write_records`].
 const CHUNK: usize = 8192;
 /// Chunks formatted at once (in parallel) before they are written.

@@ -24,7 +24,7 @@ use crate::atomic::write_atomic;
 use crate::check::check_writable;
 use crate::groups::{Group, boundary_groups};
 use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
-use crate::text::{push_f64, push_int, write_records};
+use crate::text::{push_int, write_points, write_records};
 
 /// Writes the domain cells of `mesh` to `path` as a VTK XML unstructured grid, atomically.
 ///
@@ -136,15 +136,7 @@ fn body(
         w,
         r#"        <DataArray type="Float64" Name="Points" NumberOfComponents="3" format="ascii">"#
     )?;
-    write_records(w, mesh.nodes.len(), |i, b| {
-        let p = mesh.nodes[i];
-        push_f64(b, p[0]);
-        b.push(b' ');
-        push_f64(b, p[1]);
-        b.push(b' ');
-        push_f64(b, p[2]);
-        b.push(b'\n');
-    })?;
+    write_points(w, &mesh.nodes)?;
     writeln!(w, "        </DataArray>\n      </Points>")?;
 
     writeln!(w, "      <Cells>")?;

@@ -13,7 +13,7 @@ use super::{FLUID_GROUP, PATCH_SECTION, gmsh_type_id};
 use crate::IoError;
 use crate::atomic::write_atomic;
 use crate::check::check_writable;
-use crate::text::{push_f64, push_int, write_records};
+use crate::text::{push_int, write_points, write_records};
 
 /// Writes `mesh` to `path` as Gmsh MSH 4.1 ASCII, atomically.
 ///
@@ -143,21 +143,30 @@ pub(crate) fn quote(name: &str) -> String {
     s
 }
 
-/// One line per element of a block: its tag (`first_tag` + index + 1), then its nodes' tags.
+/// The elements of a block: each one's tag (`first_tag` + index + 1), then its nodes' tags;
+/// a line each in text, `size_t` numbers in binary.
 fn write_elements<'m>(
     w: &mut dyn Write,
-    elements: &[usize],
-    first_tag: usize,
+    encoding: Encoding,
+    (elements, first_tag): (&[usize], usize),
     nodes: impl Fn(usize) -> &'m [u32] + Sync,
 ) -> io::Result<()> {
     write_records(w, elements.len(), |k, b| {
         let i = elements[k];
-        push_int(b, first_tag + i + 1);
-        for &v in nodes(i) {
-            b.push(b' ');
-            push_int(b, v as usize + 1);
+        match encoding {
+            Encoding::Ascii => {
+                push_int(b, first_tag + i + 1);
+                for &v in nodes(i) {
+                    b.push(b' ');
+                    push_int(b, v as usize + 1);
+                }
+                b.push(b'\n');
+            }
+            Encoding::Binary => {
+                b.size(first_tag + i + 1);
+                nodes(i).iter().for_each(|&v| b.size(v as usize + 1));
+            }
         }
-        b.push(b'\n');
     })
 }
 
@@ -172,13 +181,17 @@ enum Encoding {
 
 /// The element blocks of a mesh: its cells by Gmsh element type, and each patch's facets by
 /// element type (BTreeMap: deterministic block order).
-struct Blocks {
+struct Blocks<'g> {
     cells: BTreeMap<u32, Vec<usize>>,
     patches: Vec<BTreeMap<u32, Vec<usize>>>,
+    /// The boundary group of each patch.
+    group_of: &'g [usize],
+    /// The mesh's dimension.
+    d: usize,
 }
 
-impl Blocks {
-    fn new(mesh: &Mesh) -> Self {
+impl<'g> Blocks<'g> {
+    fn new(mesh: &Mesh, group_of: &'g [usize]) -> Self {
         let mut patches: Vec<BTreeMap<u32, Vec<usize>>> = vec![BTreeMap::new(); mesh.patches.len()];
         for (j, f) in mesh.boundary.iter().enumerate() {
             let ty = gmsh_type_id(f.ty).unwrap_or(0);
@@ -194,7 +207,12 @@ impl Blocks {
                 .or_default()
                 .push(i);
         }
-        Blocks { cells, patches }
+        Blocks {
+            cells,
+            patches,
+            group_of,
+            d: mesh.dim.as_u8() as usize,
+        }
     }
 
     fn count(&self) -> usize {
@@ -218,7 +236,7 @@ fn body(
     encoding: Encoding,
 ) -> io::Result<()> {
     let d = mesh.dim.as_u8() as usize;
-    let blocks = Blocks::new(mesh);
+    let blocks = Blocks::new(mesh, group_of);
     match encoding {
         Encoding::Ascii => writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?,
         Encoding::Binary => {
@@ -237,8 +255,8 @@ fn body(
     writeln!(w, "$EndPhysicalNames")?;
 
     match encoding {
-        Encoding::Ascii => ascii_sections(w, mesh, &blocks, group_of)?,
-        Encoding::Binary => binary_sections(w, mesh, &blocks, group_of)?,
+        Encoding::Ascii => ascii_sections(w, mesh, &blocks)?,
+        Encoding::Binary => binary_sections(w, mesh, &blocks)?,
     }
 
     writeln!(w, "${PATCH_SECTION}\n{}", mesh.patches.len())?;
@@ -250,14 +268,8 @@ fn body(
 }
 
 /// `$Entities`, `$Nodes` and `$Elements` as text.
-fn ascii_sections(
-    w: &mut dyn Write,
-    mesh: &Mesh,
-    blocks: &Blocks,
-    group_of: &[usize],
-) -> io::Result<()> {
-    let d = mesh.dim.as_u8() as usize;
-    let n_patches = mesh.patches.len();
+fn ascii_sections(w: &mut dyn Write, mesh: &Mesh, blocks: &Blocks) -> io::Result<()> {
+    let (d, n_patches, group_of) = (blocks.d, mesh.patches.len(), blocks.group_of);
     writeln!(w, "$Entities")?;
     match mesh.dim {
         Dim::Two => writeln!(w, "0 {n_patches} 1 0")?,
@@ -286,15 +298,7 @@ fn ascii_sections(
             push_int(b, i + 1);
             b.push(b'\n');
         })?;
-        write_records(w, n, |i, b| {
-            let p = mesh.nodes[i];
-            push_f64(b, p[0]);
-            b.push(b' ');
-            push_f64(b, p[1]);
-            b.push(b' ');
-            push_f64(b, p[2]);
-            b.push(b'\n');
-        })?;
+        write_points(w, &mesh.nodes)?;
     }
     writeln!(w, "$EndNodes")?;
 
@@ -308,12 +312,13 @@ fn ascii_sections(
     }
     for (ty, cells) in &blocks.cells {
         writeln!(w, "{d} 1 {ty} {}", cells.len())?;
-        write_elements(w, cells, 0, |i| mesh.cells.get(i).nodes)?;
+        write_elements(w, Encoding::Ascii, (cells, 0), |i| mesh.cells.get(i).nodes)?;
     }
     for (p, patch) in blocks.patches.iter().enumerate() {
         for (ty, facets) in patch {
             writeln!(w, "{} {} {ty} {}", d - 1, p + 1, facets.len())?;
-            write_elements(w, facets, n_cells, |j| mesh.boundary.get(j).nodes)?;
+            let nodes = |j| mesh.boundary.get(j).nodes;
+            write_elements(w, Encoding::Ascii, (facets, n_cells), nodes)?;
         }
     }
     writeln!(w, "$EndElements")
@@ -341,21 +346,15 @@ impl PushBinary for Vec<u8> {
 
 /// `$Entities`, `$Nodes` and `$Elements` in binary, each followed by a newline before its
 /// end line, as Gmsh writes them.
-fn binary_sections(
-    w: &mut dyn Write,
-    mesh: &Mesh,
-    blocks: &Blocks,
-    group_of: &[usize],
-) -> io::Result<()> {
-    let d = mesh.dim.as_u8() as usize;
-    let n_patches = mesh.patches.len();
+fn binary_sections(w: &mut dyn Write, mesh: &Mesh, blocks: &Blocks) -> io::Result<()> {
+    let (d, n_patches) = (blocks.d, mesh.patches.len());
     let mut b: Vec<u8> = Vec::new();
     let counts = match mesh.dim {
         Dim::Two => [0, n_patches, 1, 0],
         Dim::Three => [0, 0, n_patches, 1],
     };
     counts.into_iter().for_each(|c| b.size(c));
-    for (i, &group) in group_of.iter().enumerate().take(n_patches) {
+    for (i, &group) in blocks.group_of.iter().enumerate().take(n_patches) {
         b.int(i + 1);
         blocks
             .patch_box(mesh, i)
@@ -414,28 +413,15 @@ fn binary_sections(
         b.size(elements.len());
         w.write_all(&b)
     };
+    let binary = Encoding::Binary;
     for (&ty, cells) in &blocks.cells {
         block(w, d, 1, ty, cells)?;
-        write_records(w, cells.len(), |k, b| {
-            b.size(cells[k] + 1);
-            mesh.cells
-                .get(cells[k])
-                .nodes
-                .iter()
-                .for_each(|&v| b.size(v as usize + 1));
-        })?;
+        write_elements(w, binary, (cells, 0), |i| mesh.cells.get(i).nodes)?;
     }
     for (p, patch) in blocks.patches.iter().enumerate() {
         for (&ty, facets) in patch {
             block(w, d - 1, p + 1, ty, facets)?;
-            write_records(w, facets.len(), |k, b| {
-                b.size(n_cells + facets[k] + 1);
-                mesh.boundary
-                    .get(facets[k])
-                    .nodes
-                    .iter()
-                    .for_each(|&v| b.size(v as usize + 1));
-            })?;
+            write_elements(w, binary, (facets, n_cells), |j| mesh.boundary.get(j).nodes)?;
         }
     }
     w.write_all(b"\n$EndElements\n")
