@@ -143,3 +143,25 @@ fn the_worst_cells_are_located_and_gmsh_min_sj_is_its_definition() {
             .contains("min det J / max det J")
     );
 }
+
+#[test]
+fn every_stage_of_the_run_is_timed() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = report(dir.path(), "p3", &["--order", "3"]);
+    let t = r["timings_s"].as_object().unwrap();
+    for key in [
+        "setup", "boundary", "linear", "curving", "describe", "validity", "write", "total",
+    ] {
+        assert!(t[key].as_f64().unwrap() >= 0.0, "timings_s.{key}");
+    }
+    // the stages add up to the whole run, less what lies between them (the snapshot's copy,
+    // the summary): nothing slow goes untimed
+    let stages: f64 = t
+        .iter()
+        .filter(|(k, _)| k.as_str() != "total")
+        .map(|(_, v)| v.as_f64().unwrap())
+        .sum();
+    let total = t["total"].as_f64().unwrap();
+    assert!(stages <= total, "{stages} s of stages in {total} s");
+    assert!(stages >= 0.9 * total, "only {stages} s of {total} s timed");
+}

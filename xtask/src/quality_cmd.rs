@@ -31,8 +31,10 @@ pub fn run(args: &QualityArgs) -> Result<Finished> {
         Some(r) => Some(outputs.reserve("--report", r)?),
         None => None,
     };
+    let t = Instant::now();
     let mesh = mesh_io::read_msh(&args.mesh)
         .with_context(|| format!("reading {}", args.mesh.display()))?;
+    let read_s = t.elapsed().as_secs_f64();
     if mesh.dim != Dim::Two || mesh.cells.is_empty() {
         bail!(
             "{}: has no 2D cells to check (a surface or boundary-only mesh)",
@@ -45,6 +47,7 @@ pub fn run(args: &QualityArgs) -> Result<Finished> {
         .and_then(|s| s.to_str())
         .unwrap_or("mesh");
     let mut report = Report::new(name, mesh.order);
+    report.timings_s.insert("read", read_s);
     if mesh.order > 1 {
         report
             .notes

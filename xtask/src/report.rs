@@ -112,6 +112,13 @@ impl Report {
     /// Fills what can be read off a finished 2D mesh: counts, angles, and the structural
     /// problems found by `mesh_model::validate`.
     pub fn describe(&mut self, mesh: &Mesh) {
+        self.describe_over(mesh, mesh);
+    }
+
+    /// [`Report::describe`], with the angle figures of `linear`, the linear mesh under `mesh`
+    /// (see [`Report::linear_angles`]); timed as `describe`.
+    pub fn describe_over(&mut self, mesh: &Mesh, linear: &Mesh) {
+        let t = std::time::Instant::now();
         self.nodes = mesh.nodes.len();
         for shape in [Shape::Tri, Shape::Quad] {
             self.cells.insert(shape.name(), mesh.count(shape));
@@ -142,8 +149,9 @@ impl Report {
         let sound = !problems.iter().any(mesh_model::Problem::is_structural);
         self.problems = problems.iter().map(ToString::to_string).collect();
         if sound && !mesh.cells.is_empty() {
-            self.linear_angles(mesh);
+            self.linear_angles(linear);
         }
+        self.timings_s.insert("describe", t.elapsed().as_secs_f64());
     }
 
     /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut

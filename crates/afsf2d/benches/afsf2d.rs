@@ -1,10 +1,13 @@
 //! Criterion benches of the linear mesher: NACA0012 in a 20-chord far field at about 30k
-//! triangles (after cutting quads), first height 5e-5, growth 1.3.
+//! triangles (after cutting quads), first height 5e-5, growth 1.3: the whole mesher, and its
+//! fill stage alone (the fill's own timer, `AfsfStats::timings.fill`).
 //!
 //! Measured (release, one thread, this machine): see docs/afsf.md.
 
 // criterion_group! generates an undocumented public function
 #![allow(missing_docs)]
+
+use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -23,6 +26,17 @@ fn naca0012_30k(c: &mut Criterion) {
     eprintln!("{}", common::summary("naca0012 bench case", &out, &q));
     c.bench_function("naca0012_30k_triangles", |b| {
         b.iter(|| afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes"))
+    });
+    // the fill stage alone (with its peel rounds), as timed by the mesher itself
+    c.bench_function("naca0012_30k_fill", |b| {
+        b.iter_custom(|iters| {
+            (0..iters)
+                .map(|_| {
+                    let out = afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes");
+                    Duration::from_secs_f64(out.stats.timings.fill)
+                })
+                .sum()
+        })
     });
 }
 

@@ -7,7 +7,7 @@
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
@@ -75,10 +75,11 @@ pub(crate) fn fill_region(
     }
     let faces = faces_inside(&cdt, directed)?;
     let (mut tris, mut steiner) = triangles_of(&cdt, &faces, pos);
-    let constraints: HashSet<(u32, u32)> = directed_edges
+    let mut constraints: Vec<(u32, u32)> = directed_edges
         .iter()
         .map(|&(a, b)| if a < b { (a, b) } else { (b, a) })
         .collect();
+    constraints.sort_unstable();
     flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
     smooth_steiner(&tris, pos, &mut steiner);
     flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
@@ -226,7 +227,7 @@ fn flip_min_max_angle(
     tris: &mut [[u32; 3]],
     pos: &[P2],
     steiner: &[P2],
-    constraints: &HashSet<(u32, u32)>,
+    constraints: &[(u32, u32)],
 ) {
     let n0 = pos.len();
     let at = |g: u32| {
@@ -244,24 +245,15 @@ fn flip_min_max_angle(
         crate::quality::max_triangle_angle_deg(a, b, c)
     };
     for _ in 0..FLIP_SWEEPS {
-        let mut owner: HashMap<(u32, u32), (usize, usize)> = HashMap::new();
-        for (t, tri) in tris.iter().enumerate() {
-            for i in 0..3 {
-                // directed edge tri[i] -> tri[i+1], opposite corner i+2
-                owner.insert((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3));
-            }
-        }
+        let owner = Owners::new(tris);
         let mut touched = vec![false; tris.len()];
         let mut flips = 0;
-        // in a fixed order: the same input makes the same mesh (a HashMap's order is random)
-        let mut keys: Vec<(u32, u32)> = owner.keys().copied().filter(|&(a, b)| a < b).collect();
-        keys.sort_unstable();
-        for (a, b) in keys {
-            if constraints.contains(&(a, b)) {
+        // in a fixed order: the same input makes the same mesh
+        for &((a, b), _) in &owner.0 {
+            if a >= b || constraints.binary_search(&(a, b)).is_ok() {
                 continue;
             }
-            let (Some(&(t1, c1)), Some(&(t2, c2))) = (owner.get(&(a, b)), owner.get(&(b, a)))
-            else {
+            let (Some((t1, c1)), Some((t2, c2))) = (owner.get((a, b)), owner.get((b, a))) else {
                 continue;
             };
             if touched[t1] || touched[t2] {
@@ -283,6 +275,37 @@ fn flip_min_max_angle(
         if flips == 0 {
             break;
         }
+    }
+}
+
+/// The triangle and the opposite corner of each directed edge (`tri[i] -> tri[i+1]`,
+/// opposite corner `i+2`), sorted by edge: a directed edge met twice keeps its last triangle.
+struct Owners(Vec<((u32, u32), (usize, usize))>);
+
+impl Owners {
+    fn new(tris: &[[u32; 3]]) -> Self {
+        let mut owner: Vec<((u32, u32), (usize, usize))> = tris
+            .iter()
+            .enumerate()
+            .flat_map(|(t, tri)| {
+                (0..3).map(move |i| ((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3)))
+            })
+            .collect();
+        // stable: among equal edges the last one written stays last, and is the one kept
+        owner.sort_by_key(|&(k, _)| k);
+        let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::with_capacity(owner.len());
+        for o in owner {
+            match kept.last_mut() {
+                Some(last) if last.0 == o.0 => *last = o,
+                _ => kept.push(o),
+            }
+        }
+        Owners(kept)
+    }
+
+    fn get(&self, edge: (u32, u32)) -> Option<(usize, usize)> {
+        let i = self.0.binary_search_by_key(&edge, |&(k, _)| k).ok()?;
+        Some(self.0[i].1)
     }
 }
 
@@ -394,39 +417,15 @@ pub(crate) fn fill_with_peeling(
     max_angle_deg: f64,
     rounds: u32,
 ) -> Result<PeeledFill, AfsfError> {
-    let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
+    let mut region = Region::new(cells, facets, pos.len());
     let mut peeled: Vec<u32> = Vec::new();
     let mut round = 0;
     loop {
-        let live: Vec<&Cell> = cells.iter().filter(|c| c.len > 0).collect();
-        let shape = |c: &Cell| if c.len == 3 { Shape::Tri } else { Shape::Quad };
-        let edges = Edges::build(
-            live.iter().map(|c| (shape(c), c.corners())),
-            facet_nodes.iter().map(|f| &f[..]),
-        );
-        let mut used = vec![false; pos.len()];
-        let mut directed = Vec::new();
-        for (i, c) in live.iter().enumerate() {
-            let k = c.corners();
-            for (j, &e) in edges.of_cell(i).iter().enumerate() {
-                used[k[j] as usize] = true;
-                if edges.cells(e).len() == 1 && !edges.is_boundary(e) {
-                    directed.push((k[(j + 1) % k.len()], k[j]));
-                }
-            }
-        }
-        for &(a, b) in facets {
-            if edges
-                .find(&[a, b])
-                .is_none_or(|e| edges.cells(e).is_empty())
-            {
-                directed.push((a, b));
-            }
-        }
+        let directed = region.directed(cells);
         let free: Vec<u32> = peeled
             .iter()
             .flat_map(|&c| cells[c as usize].nodes)
-            .filter(|&g| g != mesh_model::NONE && !used[g as usize])
+            .filter(|&g| g != mesh_model::NONE && region.node_uses[g as usize] == 0)
             .collect();
         let (tris, steiner) = fill_region(&directed, &free, pos, min_angle_deg)?;
         if round == rounds {
@@ -471,5 +470,232 @@ pub(crate) fn fill_with_peeling(
         if peeled.len() == before {
             return Ok((tris, steiner, peeled.len()));
         }
+        region.peel(cells, &peeled[before..]);
+    }
+}
+
+/// The boundary of the region left to the fill, kept up to date as cells are peeled: the
+/// edges of the cells alive at the start are counted once (by `mesh_model::topology`), then
+/// each peel round only updates the counts of the peeled cells' edges and corners, instead of
+/// counting the edges of every layered cell again.
+struct Region {
+    /// The cells alive at the start, by index; their position in this list is their index in
+    /// `edges`.
+    live: Vec<u32>,
+    /// Position in `live` of each cell (`NONE` for a cell not alive at the start).
+    position: Vec<u32>,
+    /// The edges of the cells in `live`, with the boundary facets on theirs.
+    edges: Edges,
+    /// Whether each cell of `live` is still alive (not peeled).
+    alive: Vec<bool>,
+    /// Cells still alive on each edge.
+    edge_uses: Vec<u32>,
+    /// Cells still alive with each node as a corner.
+    node_uses: Vec<u32>,
+    /// The cell edges on the region's boundary (alive in one cell, no facet on it), as
+    /// (position in `live`, local edge), sorted.
+    open: Vec<(u32, u32)>,
+    /// The edge of each boundary facet (`NONE` when no cell has it).
+    facet_edge: Vec<u32>,
+    /// The boundary facets, domain on their left.
+    facets: Vec<(u32, u32)>,
+}
+
+impl Region {
+    fn new(cells: &[Cell], facets: &[(u32, u32)], n_nodes: usize) -> Self {
+        let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
+        let live: Vec<u32> = (0..cells.len() as u32)
+            .filter(|&c| cells[c as usize].len > 0)
+            .collect();
+        let mut position = vec![NONE; cells.len()];
+        for (i, &c) in live.iter().enumerate() {
+            position[c as usize] = i as u32;
+        }
+        let shape = |c: &Cell| if c.len == 3 { Shape::Tri } else { Shape::Quad };
+        let edges = Edges::build(
+            live.iter().map(|&c| {
+                let c = &cells[c as usize];
+                (shape(c), c.corners())
+            }),
+            facet_nodes.iter().map(|f| &f[..]),
+        );
+        let edge_uses: Vec<u32> = (0..edges.len() as u32)
+            .map(|e| edges.cells(e).len() as u32)
+            .collect();
+        let mut node_uses = vec![0u32; n_nodes];
+        let mut open = Vec::new();
+        for (i, &c) in live.iter().enumerate() {
+            for &g in cells[c as usize].corners() {
+                node_uses[g as usize] += 1;
+            }
+            for (j, &e) in edges.of_cell(i).iter().enumerate() {
+                if edge_uses[e as usize] == 1 && !edges.is_boundary(e) {
+                    open.push((i as u32, j as u32));
+                }
+            }
+        }
+        let facet_edge = facets
+            .iter()
+            .map(|&(a, b)| edges.find(&[a, b]).unwrap_or(NONE))
+            .collect();
+        Region {
+            alive: vec![true; live.len()],
+            live,
+            position,
+            edges,
+            edge_uses,
+            node_uses,
+            open,
+            facet_edge,
+            facets: facets.to_vec(),
+        }
+    }
+
+    /// The region's boundary as directed edges with the region on their left: the open cell
+    /// edges reversed, in cell order, then the facets no alive cell stands on.
+    fn directed(&self, cells: &[Cell]) -> Vec<(u32, u32)> {
+        let mut directed: Vec<(u32, u32)> = self
+            .open
+            .iter()
+            .map(|&(i, j)| {
+                let k = cells[self.live[i as usize] as usize].corners();
+                let j = j as usize;
+                (k[(j + 1) % k.len()], k[j])
+            })
+            .collect();
+        directed.extend(
+            self.facets
+                .iter()
+                .zip(&self.facet_edge)
+                .filter(|&(_, &e)| e == NONE || self.edge_uses[e as usize] == 0)
+                .map(|(&f, _)| f),
+        );
+        directed
+    }
+
+    /// Takes the cells `peeled` (alive until now, their `len` already 0) out of the region's
+    /// walls: the edges they shared with alive cells open.
+    fn peel(&mut self, cells: &[Cell], peeled: &[u32]) {
+        let mut touched = Vec::new();
+        for &c in peeled {
+            let i = self.position[c as usize] as usize;
+            self.alive[i] = false;
+            let of_cell = self.edges.of_cell(i);
+            for &g in &cells[c as usize].nodes[..of_cell.len()] {
+                self.node_uses[g as usize] -= 1;
+            }
+            for &e in of_cell {
+                self.edge_uses[e as usize] -= 1;
+                touched.push(e);
+            }
+        }
+        let alive = &self.alive;
+        self.open.retain(|&(i, _)| alive[i as usize]);
+        for e in touched {
+            if self.edge_uses[e as usize] != 1 || self.edges.is_boundary(e) {
+                continue;
+            }
+            let open = self
+                .edges
+                .cells(e)
+                .iter()
+                .filter(|u| alive[u.cell as usize]);
+            self.open.extend(open.map(|u| (u.cell, u32::from(u.local))));
+        }
+        self.open.sort_unstable();
+        self.open.dedup();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The region's boundary counted from scratch, as every peel round did before `Region`.
+    fn directed_from_scratch(cells: &[Cell], facets: &[(u32, u32)]) -> Vec<(u32, u32)> {
+        let live: Vec<&Cell> = cells.iter().filter(|c| c.len > 0).collect();
+        let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
+        let shape = |c: &Cell| if c.len == 3 { Shape::Tri } else { Shape::Quad };
+        let edges = Edges::build(
+            live.iter().map(|c| (shape(c), c.corners())),
+            facet_nodes.iter().map(|f| &f[..]),
+        );
+        let mut directed = Vec::new();
+        for (i, c) in live.iter().enumerate() {
+            let k = c.corners();
+            for (j, &e) in edges.of_cell(i).iter().enumerate() {
+                if edges.cells(e).len() == 1 && !edges.is_boundary(e) {
+                    directed.push((k[(j + 1) % k.len()], k[j]));
+                }
+            }
+        }
+        for &(a, b) in facets {
+            if edges
+                .find(&[a, b])
+                .is_none_or(|e| edges.cells(e).is_empty())
+            {
+                directed.push((a, b));
+            }
+        }
+        directed
+    }
+
+    #[test]
+    fn the_kept_boundary_equals_the_boundary_counted_from_scratch_after_each_peel() {
+        // an 8 × 8 grid of nodes: quads, every third cut into two triangles; the bottom row's
+        // edges are facets (the domain above them), as a wall under the first layer
+        let n = 8u32;
+        let at = |i: u32, j: u32| j * n + i;
+        let mut cells = Vec::new();
+        for j in 0..n - 1 {
+            for i in 0..n - 1 {
+                let q = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                let cell = |nodes: [u32; 4], len| Cell {
+                    nodes,
+                    len,
+                    layer: j,
+                    pipe: 0,
+                    origin: [0; 3],
+                };
+                if (i + j) % 3 == 0 {
+                    cells.push(cell([q[0], q[1], q[2], NONE], 3));
+                    cells.push(cell([q[0], q[2], q[3], NONE], 3));
+                } else {
+                    cells.push(cell(q, 4));
+                }
+            }
+        }
+        let facets: Vec<(u32, u32)> = (0..n - 1).map(|i| (at(i, 0), at(i + 1, 0))).collect();
+        let mut region = Region::new(&cells, &facets, (n * n) as usize);
+        assert_eq!(
+            region.directed(&cells),
+            directed_from_scratch(&cells, &facets)
+        );
+        let mut seed = 12345u64;
+        for _round in 0..6 {
+            let mut peeled = Vec::new();
+            for (ci, c) in cells.iter_mut().enumerate() {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                if c.len > 0 && (seed >> 33) % 5 == 1 {
+                    c.len = 0;
+                    peeled.push(ci as u32);
+                }
+            }
+            region.peel(&cells, &peeled);
+            assert_eq!(
+                region.directed(&cells),
+                directed_from_scratch(&cells, &facets)
+            );
+            for g in 0..n * n {
+                let used = cells.iter().any(|c| c.corners().contains(&g));
+                assert_eq!(region.node_uses[g as usize] > 0, used, "node {g}");
+            }
+        }
+        assert!(
+            cells.iter().any(|c| c.len > 0),
+            "some cells are left to test"
+        );
     }
 }

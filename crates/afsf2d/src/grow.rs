@@ -983,6 +983,7 @@ impl<'p> Work<'p> {
                 bad.push((l, e2));
             }
         };
+        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
         for ci in first_cell..self.cells.len() {
             let c = &self.cells[ci];
             if c.len == 0 {
@@ -991,8 +992,7 @@ impl<'p> Work<'p> {
             // a cell above the first layer must also cut into triangles with no angle of
             // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill
             // takes over; an old one makes the step retry with fewer moving layers)
-            let shape_ok =
-                c.layer == 0 || self.cell_cut_angle_deg(c) < self.params.cell_max_angle_deg;
+            let shape_ok = c.layer == 0 || self.cell_cut_below(c, limit);
             if self.cell_ok(c) && shape_ok {
                 continue;
             }
@@ -1029,18 +1029,18 @@ impl<'p> Work<'p> {
         (bad, old_bad)
     }
 
-    /// The largest angle of the triangles of a cell, a quad being cut along its shorter
-    /// diagonal.
-    fn cell_cut_angle_deg(&self, c: &Cell) -> f64 {
+    /// Whether the largest angle of the triangles of a cell, a quad being cut along its
+    /// shorter diagonal, is below `limit`.
+    fn cell_cut_below(&self, c: &Cell, limit: crate::quality::AngleLimit) -> bool {
         let p = |i: usize| self.nodes.pos[c.nodes[i] as usize];
-        let tri = crate::quality::max_triangle_angle_deg;
+        let below = |a, b, c| limit.triangle_below(p(a), p(b), p(c));
         if c.len == 3 {
-            return tri(p(0), p(1), p(2));
+            return below(0, 1, 2);
         }
         if dist(p(0), p(2)) <= dist(p(1), p(3)) {
-            tri(p(0), p(1), p(2)).max(tri(p(0), p(2), p(3)))
+            below(0, 1, 2) && below(0, 2, 3)
         } else {
-            tri(p(0), p(1), p(3)).max(tri(p(1), p(2), p(3)))
+            below(0, 1, 3) && below(1, 2, 3)
         }
     }
 

@@ -1,9 +1,12 @@
 //! Triangles on demand and the obtuse-angle quality figure of the dissertation (Tables 1, 3,
 //! 4): cut each quad along its shorter diagonal, then count triangles by their largest angle.
-//! It owns nothing but these two functions on a linear 2D [`Mesh`].
+//! It owns these two functions on a linear 2D [`Mesh`], and the mesher's test of a triangle
+//! against a largest-angle limit by cosines ([`AngleLimit`]).
 
 use mesh_model::measure::split_quad_shorter_diagonal;
 use mesh_model::{CellType, Mesh, Shape};
+
+use crate::geom::P2;
 
 /// Lower bounds (degrees) of the histogram bins: `[95, 105)`, `[105, 115)`, `[115, 125)`,
 /// `[125, 135)`, `[135, 180]`.
@@ -58,6 +61,47 @@ pub fn cut_quads_shorter_diagonal(mesh: &Mesh) -> Mesh {
 
 pub use mesh_model::measure::triangle_max_angle_deg as max_triangle_angle_deg;
 
+/// A largest-angle limit, with its cosine, for [`AngleLimit::triangle_below`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AngleLimit {
+    deg: f64,
+    cos: f64,
+}
+
+/// How far from the limit's cosine a corner's cosine must lie for the comparison of cosines to
+/// decide: far above the rounding of either way of measuring the angle (~1e-15).
+const COS_MARGIN: f64 = 1e-12;
+
+impl AngleLimit {
+    pub(crate) fn new(deg: f64) -> Self {
+        AngleLimit {
+            deg,
+            cos: deg.to_radians().cos(),
+        }
+    }
+
+    /// Exactly `max_triangle_angle_deg(a, b, c) < limit`, decided from the corners' cosines
+    /// (no `atan2`) unless a corner lies within a hair of the limit or a side has no length,
+    /// where the angles themselves decide.
+    pub(crate) fn triangle_below(&self, a: P2, b: P2, c: P2) -> bool {
+        let corners = [a, b, c];
+        let mut all_below = true;
+        for i in 0..3 {
+            let (p, q, r) = (corners[i], corners[(i + 1) % 3], corners[(i + 2) % 3]);
+            let u = [q[0] - p[0], q[1] - p[1]];
+            let v = [r[0] - p[0], r[1] - p[1]];
+            let (uu, vv) = (u[0] * u[0] + u[1] * u[1], v[0] * v[0] + v[1] * v[1]);
+            let cos = (u[0] * v[0] + u[1] * v[1]) / (uu.sqrt() * vv.sqrt());
+            if cos < self.cos - COS_MARGIN {
+                return false; // this corner's angle is above the limit
+            }
+            // NaN (a side without length) is not above the limit's cosine either
+            all_below &= cos > self.cos + COS_MARGIN;
+        }
+        all_below || max_triangle_angle_deg(a, b, c) < self.deg
+    }
+}
+
 /// Counts the triangles of the linear mesh under `mesh` by largest angle: the corners of every
 /// cell, whatever its order, with quads cut along their shorter diagonal. So the figure of one
 /// linear mesh is the same whether it is read at order 1, 2 or 3, cut or not.
@@ -88,6 +132,38 @@ pub fn max_angle_histogram(mesh: &Mesh) -> AngleStats {
 mod tests {
     use super::*;
     use mesh_model::Dim;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn the_cosine_test_answers_as_the_angles_do(
+            a in prop::array::uniform2(-1.0f64..1.0),
+            b in prop::array::uniform2(-1.0f64..1.0),
+            c in prop::array::uniform2(-1.0f64..1.0),
+            limit in 60.0f64..180.0,
+            scale in prop_oneof![Just(1.0), Just(1e-7), Just(1e5)],
+        ) {
+            let [a, b, c] = [a, b, c].map(|p| [p[0] * scale, p[1] * scale]);
+            let want = max_triangle_angle_deg(a, b, c) < limit;
+            prop_assert_eq!(AngleLimit::new(limit).triangle_below(a, b, c), want);
+            // at its own largest angle, a hair above and below: the angles decide
+            let worst = max_triangle_angle_deg(a, b, c);
+            // (neighbouring doubles: `worst` is positive)
+            let (up, down) = (f64::from_bits(worst.to_bits() + 1), f64::from_bits(worst.to_bits() - 1));
+            for l in [worst, up, down] {
+                let want = max_triangle_angle_deg(a, b, c) < l;
+                prop_assert_eq!(AngleLimit::new(l).triangle_below(a, b, c), want);
+            }
+        }
+    }
+
+    #[test]
+    fn degenerate_triangles_are_never_below_a_limit() {
+        let limit = AngleLimit::new(179.0);
+        assert!(!limit.triangle_below([0.0, 0.0], [0.0, 0.0], [1.0, 0.0]));
+        assert!(!limit.triangle_below([0.0, 0.0], [1.0, 0.0], [2.0, 0.0]));
+        assert!(limit.triangle_below([0.0, 0.0], [1.0, 0.0], [0.0, 1.0]));
+    }
 
     #[test]
     fn a_skewed_quad_is_cut_on_its_shorter_diagonal_and_binned() {

@@ -56,10 +56,10 @@ pub fn find_overlapping_pair<const D: usize, T>(
     // stable: ties keep the input order, and boxes listed along a curve come in a few
     // monotone runs in x, which the stable sort merges in nearly linear time
     order.sort_by(|&a, &b| boxes[a as usize].lo[0].total_cmp(&boxes[b as usize].lo[0]));
-    for (k, &i) in order.iter().enumerate() {
-        let bi = boxes[i as usize];
-        for &j in &order[k + 1..] {
-            let bj = boxes[j as usize];
+    // the boxes in sweep order, so that the scan reads memory in order
+    let sorted: Vec<Aabb<D>> = order.iter().map(|&i| boxes[i as usize]).collect();
+    for (k, (&i, bi)) in order.iter().zip(&sorted).enumerate() {
+        for (&j, bj) in order[k + 1..].iter().zip(&sorted[k + 1..]) {
             if bj.lo[0] > bi.hi[0] {
                 break;
             }

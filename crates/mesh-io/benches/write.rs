@@ -1,5 +1,6 @@
 //! Writing a ~100k-cell mesh (a P2 annulus of quadrilaterals and triangles, built in memory)
-//! to `.msh` and `.vtu`, into memory and into a file (atomic write included).
+//! to `.msh`, `.vtu` and `.su2`, into memory and into a file (atomic write included), on
+//! rayon's default pool (all cores; `RAYON_NUM_THREADS=1` for one).
 //!
 //! Run: `cargo bench -p mesh-io --features testkit --bench write`.
 // `criterion_group!` generates an undocumented public function.
@@ -38,6 +39,13 @@ fn writers(c: &mut Criterion) {
         b.iter(|| {
             let mut out = Vec::with_capacity(64 << 20);
             mesh_io::vtu::write_to(&mut out, black_box(&mesh), "m.vtu".as_ref()).unwrap();
+            out.len()
+        })
+    });
+    g.bench_function("su2_to_memory", |b| {
+        b.iter(|| {
+            let mut out = Vec::with_capacity(16 << 20);
+            mesh_io::su2::write_to(&mut out, black_box(&mesh), "m.su2".as_ref()).unwrap();
             out.len()
         })
     });

@@ -84,8 +84,9 @@ pub enum IoError {
         what: String,
     },
 
-    /// The file is a binary MSH file. Fix: save it from Gmsh as ASCII (`Mesh.Binary = 0`).
-    #[error("{path}:{line}: binary MSH is not supported: save as ASCII", path = path.display())]
+    /// The file is a binary MSH file of another machine (big-endian, or `size_t` not of 8
+    /// bytes). Fix: save it from Gmsh as ASCII (`Mesh.Binary = 0`).
+    #[error("{path}:{line}: binary MSH other than little-endian with 8-byte sizes is not supported: save as ASCII", path = path.display())]
     BinaryMsh {
         /// The file read.
         path: PathBuf,

@@ -1,5 +1,5 @@
-//! Mesh files: Gmsh MSH 4.1 ASCII (write and read), VTK XML `.vtu` with Lagrange cells, SU2
-//! native (linear), and binary snapshots of intermediate stages. Every file is written
+//! Mesh files: Gmsh MSH 4.1 ASCII and binary (write and read), VTK XML `.vtu` with Lagrange
+//! cells, SU2 native (linear), and binary snapshots of intermediate stages. Every file is written
 //! atomically ([`atomic`]): a failed write leaves no partial file; a set of files written by
 //! one [`atomic::Transaction`] is replaced together or not at all.
 //!
@@ -56,6 +56,7 @@ pub mod snapshot;
 pub mod su2;
 #[cfg(any(test, feature = "testkit"))]
 pub mod testkit;
+mod text;
 pub mod vtu;
 
 use std::path::Path;
@@ -119,7 +120,7 @@ pub fn write_to(out: &mut dyn std::io::Write, path: &Path, mesh: &Mesh) -> Resul
     }
 }
 
-/// Reads a Gmsh MSH 4.1 ASCII file (see [`msh::read`] for what becomes what).
+/// Reads a Gmsh MSH 4.1 file, ASCII or binary (see [`msh::read`] for what becomes what).
 pub fn read_msh(path: &Path) -> Result<Mesh, IoError> {
     msh::read(path)
 }

@@ -15,13 +15,14 @@
 use std::io::{self, Write};
 use std::path::Path;
 
-use mesh_model::{Dim, Mesh, Shape};
+use mesh_model::{Mesh, Shape};
 
 use crate::groups::{Group, boundary_groups};
 
 use crate::IoError;
 use crate::atomic::write_atomic;
 use crate::check::check_writable;
+use crate::text::{push_f64, push_int, write_records};
 
 /// Writes the linear mesh underneath `mesh` to `path` in SU2 format, atomically.
 ///
@@ -85,21 +86,27 @@ fn body(
     let d = mesh.dim.as_u8();
     writeln!(w, "NDIME= {d}")?;
     writeln!(w, "NELEM= {}", mesh.cells.len())?;
-    for (i, c) in mesh.cells.iter().enumerate() {
-        write!(w, "{}", vtk_linear(c.ty.shape))?;
+    write_records(w, mesh.cells.len(), |i, b| {
+        let c = mesh.cells.get(i);
+        push_int(b, vtk_linear(c.ty.shape));
         for &v in c.corners() {
-            write!(w, " {}", new_index[v as usize])?;
+            b.push(b' ');
+            push_int(b, new_index[v as usize]);
         }
-        writeln!(w, " {i}")?;
-    }
+        b.push(b' ');
+        push_int(b, i);
+        b.push(b'\n');
+    })?;
     writeln!(w, "NPOIN= {}", kept.len())?;
-    for (i, &old) in kept.iter().enumerate() {
-        let p = mesh.nodes[old];
-        match mesh.dim {
-            Dim::Two => writeln!(w, "{:?} {:?} {i}", p[0], p[1])?,
-            Dim::Three => writeln!(w, "{:?} {:?} {:?} {i}", p[0], p[1], p[2])?,
+    let coordinates = usize::from(d);
+    write_records(w, kept.len(), |i, b| {
+        for &x in &mesh.nodes[kept[i]][..coordinates] {
+            push_f64(b, x);
+            b.push(b' ');
         }
-    }
+        push_int(b, i);
+        b.push(b'\n');
+    })?;
     writeln!(w, "NMARK= {}", groups.len())?;
     for (k, group) in groups.iter().enumerate() {
         let facets: Vec<usize> = (0..mesh.boundary.len())
@@ -107,14 +114,15 @@ fn body(
             .collect();
         writeln!(w, "MARKER_TAG= {}", group.name)?;
         writeln!(w, "MARKER_ELEMS= {}", facets.len())?;
-        for j in facets {
-            let f = mesh.boundary.get(j);
-            write!(w, "{}", vtk_linear(f.ty.shape))?;
+        write_records(w, facets.len(), |k, b| {
+            let f = mesh.boundary.get(facets[k]);
+            push_int(b, vtk_linear(f.ty.shape));
             for &v in f.corners() {
-                write!(w, " {}", new_index[v as usize])?;
+                b.push(b' ');
+                push_int(b, new_index[v as usize]);
             }
-            writeln!(w)?;
-        }
+            b.push(b'\n');
+        })?;
     }
     w.flush()
 }

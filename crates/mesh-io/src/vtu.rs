@@ -24,6 +24,7 @@ use crate::atomic::write_atomic;
 use crate::check::check_writable;
 use crate::groups::{Group, boundary_groups};
 use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
+use crate::text::{push_int, write_points, write_records};
 
 /// Writes the domain cells of `mesh` to `path` as a VTK XML unstructured grid, atomically.
 ///
@@ -70,18 +71,20 @@ fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError
     })
 }
 
-fn int_array(w: &mut dyn Write, name: &str, values: impl Iterator<Item = i64>) -> io::Result<()> {
+fn int_array(
+    w: &mut dyn Write,
+    name: &str,
+    n: usize,
+    value: impl Fn(usize) -> i64 + Sync,
+) -> io::Result<()> {
     writeln!(
         w,
         r#"        <DataArray type="Int64" Name="{name}" format="ascii">"#
     )?;
-    for (k, v) in values.enumerate() {
-        if k % 16 == 15 {
-            writeln!(w, "{v}")?;
-        } else {
-            write!(w, "{v} ")?;
-        }
-    }
+    write_records(w, n, |k, b| {
+        push_int(b, value(k));
+        b.push(if k % 16 == 15 { b'\n' } else { b' ' });
+    })?;
     writeln!(w, "\n        </DataArray>")
 }
 
@@ -133,9 +136,7 @@ fn body(
         w,
         r#"        <DataArray type="Float64" Name="Points" NumberOfComponents="3" format="ascii">"#
     )?;
-    for p in &mesh.nodes {
-        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
-    }
+    write_points(w, &mesh.nodes)?;
     writeln!(w, "        </DataArray>\n      </Points>")?;
 
     writeln!(w, "      <Cells>")?;
@@ -143,53 +144,58 @@ fn body(
         w,
         r#"        <DataArray type="Int64" Name="connectivity" format="ascii">"#
     )?;
-    for c in all() {
-        let perm = vtk_from_gmsh(c.ty).unwrap_or(&[]);
-        for (k, &g) in perm.iter().enumerate() {
-            let sep = if k + 1 == perm.len() { "\n" } else { " " };
-            write!(w, "{}{sep}", c.nodes[g])?;
+    let n_cells = mesh.cells.len();
+    let element = |k: usize| {
+        if k < n_cells {
+            mesh.cells.get(k)
+        } else {
+            mesh.boundary.get(k - n_cells)
         }
-    }
+    };
+    let n = n_cells + facets;
+    write_records(w, n, |k, b| {
+        let c = element(k);
+        let perm = vtk_from_gmsh(c.ty).unwrap_or(&[]);
+        for (i, &g) in perm.iter().enumerate() {
+            push_int(b, c.nodes[g]);
+            b.push(if i + 1 == perm.len() { b'\n' } else { b' ' });
+        }
+    })?;
     writeln!(w, "        </DataArray>")?;
     let mut offset = 0i64;
-    let offsets = all().map(|c| {
-        offset += c.nodes.len() as i64;
-        offset
-    });
-    int_array(w, "offsets", offsets)?;
+    let offsets: Vec<i64> = all()
+        .map(|c| {
+            offset += c.nodes.len() as i64;
+            offset
+        })
+        .collect();
+    int_array(w, "offsets", n, |k| offsets[k])?;
     writeln!(
         w,
         r#"        <DataArray type="UInt8" Name="types" format="ascii">"#
     )?;
-    for (k, ty) in mesh
-        .cells
-        .types()
-        .iter()
-        .chain(mesh.boundary.types())
-        .enumerate()
-    {
-        let sep = if k % 32 == 31 { "\n" } else { " " };
-        write!(w, "{}{sep}", vtk_cell_type(*ty).unwrap_or(0))?;
-    }
+    write_records(w, n, |k, b| {
+        push_int(b, vtk_cell_type(element(k).ty).unwrap_or(0));
+        b.push(if k % 32 == 31 { b'\n' } else { b' ' });
+    })?;
     writeln!(w, "\n        </DataArray>\n      </Cells>")?;
 
     writeln!(w, "      <CellData>")?;
-    int_array(w, "order", all().map(|c| i64::from(c.ty.order)))?;
-    let none = std::iter::repeat_n(-1, facets);
+    int_array(w, "order", n, |k| i64::from(element(k).ty.order))?;
+    let per_cell = |values: &[u32], k: usize| values.get(k).map_or(-1, |&v| record(v));
     if !mesh.cell_layer.is_empty() {
-        let layer = mesh.cell_layer.iter().map(|&v| record(v));
-        int_array(w, "layer", layer.chain(none.clone()))?;
+        int_array(w, "layer", n, |k| per_cell(&mesh.cell_layer, k))?;
     }
     if !mesh.cell_pipe.is_empty() {
-        let pipe = mesh.cell_pipe.iter().map(|&v| record(v));
-        int_array(w, "pipe", pipe.chain(none.clone()))?;
+        int_array(w, "pipe", n, |k| per_cell(&mesh.cell_pipe, k))?;
     }
-    let group = mesh
-        .boundary_patch
-        .iter()
-        .map(|&p| group_of[p as usize] as i64);
-    let domain = std::iter::repeat_n(-1, mesh.cells.len());
-    int_array(w, "boundary_group", domain.chain(group))?;
+    int_array(w, "boundary_group", n, |k| {
+        if k < n_cells {
+            -1
+        } else {
+            group_of[mesh.boundary_patch[k - n_cells] as usize] as i64
+        }
+    })?;
     writeln!(w, "      </CellData>")?;
     writeln!(w, "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>")?;
     w.flush()

@@ -1,4 +1,8 @@
-//! Gmsh MSH 4.1 ASCII: the writer ([`write()`]) and the reader ([`read`], [`parse`]).
+//! Gmsh MSH 4.1, ASCII and binary: the writers ([`write()`], [`write_to`], and
+//! [`write_binary_to`] for binary) and the reader ([`read`], [`parse`]), which reads both.
+//! A binary file (file type 1) holds the same sections, with `$Entities`, `$Nodes` and
+//! `$Elements` as little-endian numbers (`int` 4 bytes, `size_t` 8, `double` 8) followed by
+//! a newline, as Gmsh writes them; names and our patch section stay text.
 //!
 //! What is written, for a mesh of dimension `d`:
 //! - `$PhysicalNames`: one group `fluid` of dimension `d` holding every domain cell, and one
@@ -34,7 +38,7 @@ mod write;
 use mesh_model::{CellType, Shape};
 
 pub use read::{parse, read};
-pub use write::{write, write_to};
+pub use write::{write, write_binary_to, write_to};
 
 /// Name of the custom section holding patch names.
 pub(crate) const PATCH_SECTION: &str = "MeshIoPatches";

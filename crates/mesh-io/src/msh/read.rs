@@ -1,5 +1,6 @@
-//! The MSH 4.1 ASCII reader. It reads tokens, not lines (as Gmsh itself does), and remembers
-//! the line of each token for error messages.
+//! The MSH 4.1 reader, ASCII and binary. It reads tokens, not lines (as Gmsh itself does),
+//! and remembers the line of each token for error messages; in a binary file the numbers of
+//! `$Entities`, `$Nodes` and `$Elements` are read as little-endian binary instead.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
@@ -10,7 +11,8 @@ use mesh_model::{CellType, Cells, Dim, Mesh, Patch, Role};
 use super::{GMSH_POINT, PATCH_SECTION, cell_type_of_gmsh};
 use crate::IoError;
 
-/// Reads a Gmsh MSH 4.1 ASCII file into a [`Mesh`].
+/// Reads a Gmsh MSH 4.1 file (ASCII, or binary little-endian with 8-byte sizes) into a
+/// [`Mesh`].
 ///
 /// How the file becomes a mesh:
 /// - The dimension is the highest dimension of its elements: 3 gives a volume mesh; 2 gives
@@ -33,7 +35,7 @@ pub fn read(path: &Path) -> Result<Mesh, IoError> {
     parse(&bytes, path)
 }
 
-/// Parses the bytes of an MSH 4.1 ASCII file (see [`read`]); `path` names the file in errors.
+/// Parses the bytes of an MSH 4.1 file (see [`read`]); `path` names the file in errors.
 ///
 /// Errors: [`IoError::BinaryMsh`], [`IoError::UnsupportedVersion`],
 /// [`IoError::MissingSection`], [`IoError::UnknownElementType`], and [`IoError::Malformed`]
@@ -44,6 +46,8 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh, IoError> {
         pos: 0,
         line: 1,
         path,
+        binary_file: false,
+        binary: false,
     };
     let mut file = RawFile::default();
     let mut seen_format = false;
@@ -69,9 +73,9 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh, IoError> {
                 seen_format = true;
             }
             b"PhysicalNames" => read_physical_names(&mut cur, &mut file)?,
-            b"Entities" => read_entities(&mut cur, &mut file)?,
-            b"Nodes" => read_nodes(&mut cur, &mut file)?,
-            b"Elements" => read_elements(&mut cur, &mut file)?,
+            b"Entities" => cur.in_data(|cur| read_entities(cur, &mut file))?,
+            b"Nodes" => cur.in_data(|cur| read_nodes(cur, &mut file))?,
+            b"Elements" => cur.in_data(|cur| read_elements(cur, &mut file))?,
             n if n == PATCH_SECTION.as_bytes() => read_patch_names(&mut cur, &mut file)?,
             other => skip_section(&mut cur, other, line)?,
         }
@@ -123,6 +127,18 @@ struct Cursor<'a> {
     pos: usize,
     line: usize,
     path: &'a Path,
+    /// The file is binary (file type 1): `$Entities`, `$Nodes` and `$Elements` hold binary
+    /// numbers.
+    binary_file: bool,
+    /// The numbers being read are binary (inside one of those sections of a binary file).
+    binary: bool,
+}
+
+/// The width of a binary number: Gmsh's `int` or `size_t`.
+#[derive(Debug, Clone, Copy)]
+enum Width {
+    Int,
+    Size,
 }
 
 /// Shows a token in an error message (lossy, shortened).
@@ -187,10 +203,79 @@ impl<'a> Cursor<'a> {
         self.number::<T>(what).map(|(v, _)| v)
     }
 
+    /// Runs `read` on a section's data, binary in a binary file: the data starts after the
+    /// newline that ends the header line.
+    fn in_data<T>(
+        &mut self,
+        read: impl FnOnce(&mut Self) -> Result<T, IoError>,
+    ) -> Result<T, IoError> {
+        if self.binary_file {
+            if self.bytes.get(self.pos) != Some(&b'\n') {
+                return Err(
+                    self.malformed(self.line, "expected a newline before binary data".into())
+                );
+            }
+            self.pos += 1;
+            self.line += 1;
+            self.binary = true;
+        }
+        let result = read(self);
+        self.binary = false;
+        result
+    }
+
+    /// The next `N` bytes of binary data.
+    fn take<const N: usize>(&mut self, what: &str) -> Result<[u8; N], IoError> {
+        let bytes = self
+            .bytes
+            .get(self.pos..self.pos + N)
+            .and_then(|b| <[u8; N]>::try_from(b).ok())
+            .ok_or_else(|| {
+                self.malformed(
+                    self.line,
+                    format!("unexpected end of file: expected {what} (binary)"),
+                )
+            })?;
+        self.pos += N;
+        Ok(bytes)
+    }
+
+    /// An integer field of `$Entities`, `$Nodes` or `$Elements`: a token, or in a binary
+    /// file a little-endian `int` or `size_t` (by `width`).
+    fn num<T: FromStr + TryFrom<i64>>(
+        &mut self,
+        what: &str,
+        width: Width,
+    ) -> Result<(T, usize), IoError> {
+        if !self.binary {
+            return self.number::<T>(what);
+        }
+        let line = self.line;
+        let v = match width {
+            Width::Int => i64::from(i32::from_le_bytes(self.take::<4>(what)?)),
+            Width::Size => {
+                let v = u64::from_le_bytes(self.take::<8>(what)?);
+                i64::try_from(v).unwrap_or(i64::MAX)
+            }
+        };
+        T::try_from(v)
+            .map(|v| (v, line))
+            .map_err(|_| self.malformed(line, format!("expected {what}, found {v}")))
+    }
+
+    /// A floating-point field: a token, or in a binary file a little-endian `double`.
+    fn real(&mut self, what: &str) -> Result<(f64, usize), IoError> {
+        if !self.binary {
+            return self.number::<f64>(what);
+        }
+        let line = self.line;
+        Ok((f64::from_le_bytes(self.take::<8>(what)?), line))
+    }
+
     /// A count, checked against the bytes left so that a corrupt count cannot make the
     /// reader reserve absurd amounts of memory.
     fn count(&mut self, what: &str, min_bytes_each: usize) -> Result<usize, IoError> {
-        let (n, line) = self.number::<usize>(what)?;
+        let (n, line) = self.num::<usize>(what, Width::Size)?;
         let left = self.bytes.len() - self.pos;
         if n.saturating_mul(min_bytes_each) > left {
             return Err(self.malformed(
@@ -203,7 +288,7 @@ impl<'a> Cursor<'a> {
 
     /// A finite coordinate.
     fn coordinate(&mut self) -> Result<f64, IoError> {
-        let (v, line) = self.number::<f64>("a coordinate")?;
+        let (v, line) = self.real("a coordinate")?;
         if v.is_finite() {
             Ok(v)
         } else {
@@ -248,20 +333,31 @@ fn read_format(cur: &mut Cursor<'_>) -> Result<(), IoError> {
             version: show(version),
         });
     }
-    let (file_type, line) = cur.number::<i64>("the file type (0 for ASCII)")?;
+    let (file_type, line) = cur.number::<i64>("the file type (0 for ASCII, 1 for binary)")?;
+    let data_size: i64 = cur.int("the data size")?;
     match file_type {
         0 => {}
         1 => {
-            return Err(IoError::BinaryMsh {
-                path: cur.path.to_path_buf(),
-                line,
-            });
+            // the binary int 1 that follows tells the byte order
+            let one = cur
+                .bytes
+                .get(cur.pos + 1..cur.pos + 5)
+                .map(|b| [b[0], b[1], b[2], b[3]]);
+            if data_size != 8 || cur.bytes.get(cur.pos) != Some(&b'\n') || one != Some([1, 0, 0, 0])
+            {
+                return Err(IoError::BinaryMsh {
+                    path: cur.path.to_path_buf(),
+                    line,
+                });
+            }
+            cur.pos += 5;
+            cur.line += 1;
+            cur.binary_file = true;
         }
         other => {
             return Err(cur.malformed(line, format!("file type {other} is neither 0 nor 1")));
         }
     }
-    let _data_size: i64 = cur.int("the data size")?;
     cur.expect_end("MeshFormat")
 }
 
@@ -317,20 +413,20 @@ fn read_entities(cur: &mut Cursor<'_>, file: &mut RawFile) -> Result<(), IoError
     let mut entities = HashMap::new();
     for (d, &count) in counts.iter().enumerate() {
         for _ in 0..count {
-            let tag: i64 = cur.int("an entity tag")?;
+            let (tag, _): (i64, _) = cur.num("an entity tag", Width::Int)?;
             let n_coords = if d == 0 { 3 } else { 6 };
             for _ in 0..n_coords {
-                cur.number::<f64>("an entity coordinate")?;
+                cur.real("an entity coordinate")?;
             }
             let n_phys = cur.count("the number of physical tags", 2)?;
             let mut phys = Vec::with_capacity(n_phys);
             for _ in 0..n_phys {
-                phys.push(cur.int::<i64>("a physical tag")?.abs());
+                phys.push(cur.num::<i64>("a physical tag", Width::Int)?.0.abs());
             }
             if d > 0 {
                 let n_bound = cur.count("the number of bounding entities", 2)?;
                 for _ in 0..n_bound {
-                    cur.int::<i64>("a bounding entity tag")?;
+                    cur.num::<i64>("a bounding entity tag", Width::Int)?;
                 }
             }
             entities.insert((d as u8, tag), phys);
@@ -344,17 +440,18 @@ fn read_nodes(cur: &mut Cursor<'_>, file: &mut RawFile) -> Result<(), IoError> {
     let n_blocks = cur.count("the number of node blocks", 8)?;
     let header_line = cur.line;
     let n_nodes = cur.count("the number of nodes", 8)?;
-    let _min_tag: u64 = cur.int("the smallest node tag")?;
-    let _max_tag: u64 = cur.int("the largest node tag")?;
+    let _min_tag: (u64, _) = cur.num("the smallest node tag", Width::Size)?;
+    let _max_tag: (u64, _) = cur.num("the largest node tag", Width::Size)?;
     let mut nodes = Vec::with_capacity(n_nodes);
     let mut tags = Vec::new();
     for _ in 0..n_blocks {
-        let (dim, line) = cur.number::<usize>("a node block's entity dimension")?;
+        let (dim, line) = cur.num::<usize>("a node block's entity dimension", Width::Int)?;
         if dim > 3 {
             return Err(cur.malformed(line, format!("entity dimension {dim} is above 3")));
         }
-        let _entity: i64 = cur.int("a node block's entity tag")?;
-        let (parametric, line) = cur.number::<u8>("a node block's parametric flag (0 or 1)")?;
+        let _entity: (i64, _) = cur.num("a node block's entity tag", Width::Int)?;
+        let (parametric, line) =
+            cur.num::<u8>("a node block's parametric flag (0 or 1)", Width::Int)?;
         let extra = match parametric {
             0 => 0,
             1 => dim,
@@ -367,12 +464,12 @@ fn read_nodes(cur: &mut Cursor<'_>, file: &mut RawFile) -> Result<(), IoError> {
         let count = cur.count("the number of nodes in a block", 8)?;
         tags.clear();
         for _ in 0..count {
-            tags.push(cur.int::<u64>("a node tag")?);
+            tags.push(cur.num::<u64>("a node tag", Width::Size)?.0);
         }
         for &tag in &tags {
             let p = [cur.coordinate()?, cur.coordinate()?, cur.coordinate()?];
             for _ in 0..extra {
-                cur.number::<f64>("a parametric coordinate")?;
+                cur.real("a parametric coordinate")?;
             }
             nodes.push((tag, p));
         }
@@ -394,14 +491,14 @@ fn read_elements(cur: &mut Cursor<'_>, file: &mut RawFile) -> Result<(), IoError
     let n_blocks = cur.count("the number of element blocks", 8)?;
     let header_line = cur.line;
     let n_elements = cur.count("the number of elements", 4)?;
-    let _min_tag: u64 = cur.int("the smallest element tag")?;
-    let _max_tag: u64 = cur.int("the largest element tag")?;
+    let _min_tag: (u64, _) = cur.num("the smallest element tag", Width::Size)?;
+    let _max_tag: (u64, _) = cur.num("the largest element tag", Width::Size)?;
     let mut elements = Vec::with_capacity(n_elements);
     let mut total = 0usize;
     for _ in 0..n_blocks {
-        let (dim, line) = cur.number::<u8>("an element block's entity dimension")?;
-        let entity: i64 = cur.int("an element block's entity tag")?;
-        let (type_id, type_line) = cur.number::<i64>("an element type")?;
+        let (dim, line) = cur.num::<u8>("an element block's entity dimension", Width::Int)?;
+        let (entity, _): (i64, _) = cur.num("an element block's entity tag", Width::Int)?;
+        let (type_id, type_line) = cur.num::<i64>("an element type", Width::Int)?;
         let count = cur.count("the number of elements in a block", 4)?;
         total += count;
         let (ty, n_nodes) = if type_id == i64::from(GMSH_POINT) {
@@ -425,11 +522,15 @@ fn read_elements(cur: &mut Cursor<'_>, file: &mut RawFile) -> Result<(), IoError
             ));
         }
         for _ in 0..count {
-            let (tag, line) = cur.number::<u64>("an element tag")?;
+            let (tag, line) = cur.num::<u64>("an element tag", Width::Size)?;
             let start = file.element_nodes.len();
             for _ in 0..n_nodes {
-                let v =
-                    cur.int::<u64>(&format!("one of the {n_nodes} node tags of element {tag}"))?;
+                let what = if cur.binary {
+                    "a node tag of an element"
+                } else {
+                    &format!("one of the {n_nodes} node tags of element {tag}")
+                };
+                let v = cur.num::<u64>(what, Width::Size)?.0;
                 file.element_nodes.push(v);
             }
             match ty {

@@ -331,16 +331,56 @@ fn a_structurally_broken_mesh_is_refused_with_the_fault_named() {
 }
 
 #[test]
-fn binary_files_are_refused_with_advice() {
-    let mut bytes = b"$MeshFormat\n4.1 1 8\n".to_vec();
-    bytes.extend_from_slice(&1i32.to_le_bytes());
-    bytes.extend_from_slice(b"\n$EndMeshFormat\n\x00\xff\x13");
-    let err = parse(&bytes, Path::new("b.msh")).unwrap_err();
-    assert!(matches!(err, IoError::BinaryMsh { line: 2, .. }), "{err}");
-    assert!(
-        err.to_string()
-            .contains("binary MSH is not supported: save as ASCII")
-    );
+fn binary_files_of_other_machines_are_refused_with_advice() {
+    for (size, one) in [(8, 1i32.to_be_bytes()), (4, 1i32.to_le_bytes())] {
+        let mut bytes = format!("$MeshFormat\n4.1 1 {size}\n").into_bytes();
+        bytes.extend_from_slice(&one);
+        bytes.extend_from_slice(b"\n$EndMeshFormat\n\x00\xff\x13");
+        let err = parse(&bytes, Path::new("b.msh")).unwrap_err();
+        assert!(matches!(err, IoError::BinaryMsh { line: 2, .. }), "{err}");
+        assert!(err.to_string().contains("save as ASCII"), "{err}");
+    }
+}
+
+fn to_binary(mesh: &Mesh) -> Vec<u8> {
+    let mut out = Vec::new();
+    write_binary_to(&mut out, mesh, Path::new("mem.msh")).unwrap();
+    out
+}
+
+#[test]
+fn binary_files_round_trip_bit_for_bit() {
+    for order in 1..=3 {
+        let m = annulus(&AnnulusParams {
+            order,
+            radial_cells: 3,
+            angular_cells: 17,
+            triangle_mask: vec![true, false],
+            ..AnnulusParams::default()
+        });
+        let bytes = to_binary(&m);
+        assert!(bytes.starts_with(b"$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00\n$EndMeshFormat\n"));
+        let back = parse(&bytes, Path::new("b.msh")).unwrap();
+        assert_eq!(back, without_records(&m), "order {order}");
+        // the same mesh as the ASCII file gives
+        assert_eq!(back, from_text(&to_text(&m)).unwrap());
+    }
+    for order in [1, 2] {
+        let m = reference_cells_3d(order);
+        let back = parse(&to_binary(&m), Path::new("b.msh")).unwrap();
+        assert_eq!(back, without_records(&m));
+    }
+}
+
+#[test]
+fn a_cut_binary_file_is_an_error_not_a_panic() {
+    let bytes = to_binary(&small());
+    for cut in (40..bytes.len()).step_by(7) {
+        assert!(
+            parse(&bytes[..cut], Path::new("b.msh")).is_err(),
+            "cut at {cut}"
+        );
+    }
 }
 
 #[test]
@@ -505,4 +545,36 @@ proptest! {
         let back = from_text(&to_text(&m)).unwrap();
         prop_assert_eq!(back, without_records(&m));
     }
+}
+
+#[test]
+fn node_coordinates_are_written_as_debug_prints_them() {
+    // the fast formatting (zmij, laid out as `{:?}`) keeps the bytes of `{:?}` at its edges
+    let mut m = small();
+    let odd = [
+        -0.0,
+        1e-5,
+        1.5e16,
+        1e15,
+        5e-324,
+        f64::from_bits(0x4317_9085_685d_83c9), // 1658206780088562.25, halfway
+        f64::MAX,
+        0.1 + 0.2,
+    ];
+    let n = m.nodes.len();
+    for (k, x) in odd.into_iter().enumerate() {
+        m.nodes[k % n][k % 2] = x;
+    }
+    let text = to_text(&m);
+    let start = line_of(&text, "$Nodes") + 2 + m.nodes.len();
+    let lines: Vec<&str> = text.lines().collect();
+    for (i, p) in m.nodes.iter().enumerate() {
+        assert_eq!(
+            lines[start + i],
+            format!("{:?} {:?} {:?}", p[0], p[1], p[2])
+        );
+    }
+    let back = from_text(&text).unwrap();
+    let bits = |m: &Mesh| -> Vec<u64> { m.nodes.iter().flatten().map(|x| x.to_bits()).collect() };
+    assert_eq!(bits(&back), bits(&m));
 }
