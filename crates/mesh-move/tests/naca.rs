@@ -4,8 +4,6 @@
 
 mod common;
 
-use std::sync::OnceLock;
-
 use mesh_model::Mesh;
 use mesh_move::{
     BoundaryMotion, Comparison, IdwParams, Kernel, LoopMotion, Method, Motion, MoveStats,
@@ -13,13 +11,7 @@ use mesh_move::{
 };
 
 fn naca() -> &'static Mesh {
-    static MESH: OnceLock<Mesh> = OnceLock::new();
-    MESH.get_or_init(|| {
-        test_cases::grow(&test_cases::real_case("naca0012"))
-            .output
-            .layered
-            .mesh
-    })
+    &common::naca_layered().mesh
 }
 
 const METHODS: [(&str, Method); 3] = [

@@ -4,7 +4,8 @@
 //! agree across ε = 1e-3, 1e-5, 1e-7 to 1e-5 relative, and with the sensitivities from the
 //! linearised balance (the implicit function theorem, no finite difference) to 1e-6.
 
-use std::sync::OnceLock;
+#[allow(dead_code)] // shared by the test files; this one uses the mesh only
+mod common;
 
 use mesh_model::LayeredMesh;
 use mesh_move::{
@@ -13,12 +14,7 @@ use mesh_move::{
 };
 
 fn naca() -> &'static LayeredMesh {
-    static MESH: OnceLock<LayeredMesh> = OnceLock::new();
-    MESH.get_or_init(|| {
-        test_cases::grow(&test_cases::real_case("naca0012"))
-            .output
-            .layered
-    })
+    common::naca_layered()
 }
 
 /// Every node of the mesh moved by the smooth mover for `motions`.

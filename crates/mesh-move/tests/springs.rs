@@ -5,7 +5,6 @@
 
 mod common;
 
-use std::sync::OnceLock;
 use std::time::Instant;
 
 use mesh_model::LayeredMesh;
@@ -15,12 +14,7 @@ use mesh_move::{
 };
 
 fn naca() -> &'static LayeredMesh {
-    static MESH: OnceLock<LayeredMesh> = OnceLock::new();
-    MESH.get_or_init(|| {
-        test_cases::grow(&test_cases::real_case("naca0012"))
-            .output
-            .layered
-    })
+    common::naca_layered()
 }
 
 fn springs(strategy: Strategy, fill: Fill) -> Method {

@@ -1,7 +1,9 @@
 //! What the movers' integration tests share: one rigid motion applied to every loop, how far a
 //! moved mesh is from that rigid motion of the original, and a morph by eight bumps.
 
-use mesh_model::Mesh;
+use std::sync::OnceLock;
+
+use mesh_model::{LayeredMesh, Mesh};
 use mesh_move::{HicksHenne, LoopMotion, Motion, RigidMotion, Section, Surface};
 
 /// Scaled by `scale`, turned by 37° about (0.25, 0.1), moved by (−5, 2).
@@ -64,4 +66,15 @@ pub fn leading_edge(case: &test_cases::Case, name: &str) -> [f64; 2] {
         .expect("the loop")
         .points;
     points[Section::of_loop(points).expect("a chord").leading_edge]
+}
+
+/// The layered mesh of the built-in NACA0012 case (far field of radius 20), grown once.
+#[allow(dead_code)] // not every test file uses it
+pub fn naca_layered() -> &'static LayeredMesh {
+    static MESH: OnceLock<LayeredMesh> = OnceLock::new();
+    MESH.get_or_init(|| {
+        test_cases::grow(&test_cases::real_case("naca0012"))
+            .output
+            .layered
+    })
 }
