@@ -551,6 +551,9 @@ pub struct MovementReport {
     pub rbf_residual: Option<f64>,
     /// Linear cells inverted by the mover.
     pub inverted_linear_cells: usize,
+    /// Springs only: the solves (iterations, convergence, the Newton balance of `--smooth`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub springs: Option<SpringsReport>,
     /// The linear mesh before the move.
     pub before: Side,
     /// The linear mesh after the move.
@@ -564,6 +567,59 @@ pub struct MovementReport {
     pub first_layer: Option<[f64; 2]>,
     /// What `before`, `after` and `worst_cell_ratio` are about.
     pub of: &'static str,
+}
+
+/// The spring mover's solves in the report.
+#[derive(Debug, Serialize)]
+pub struct SpringsReport {
+    /// Explicit spring solves (1, or one per layer plus one).
+    pub solves: usize,
+    /// Their iterations, summed.
+    pub iterations: usize,
+    /// True when every explicit solve reached its tolerance.
+    pub converged: bool,
+    /// The last solve's largest node move over the node's extrusion length.
+    pub residual: f64,
+    /// Node moves made by the worst-cell polish.
+    pub polished: usize,
+    /// `--smooth`: the shape balance by Newton's method.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub newton: Option<NewtonReport>,
+}
+
+/// The Newton solve of the shape balance in the report.
+#[derive(Debug, Serialize)]
+pub struct NewtonReport {
+    /// Newton steps.
+    pub iterations: usize,
+    /// True when the last full step was within the tolerance (10⁻¹⁰ of a node's scale).
+    pub converged: bool,
+    /// The last step over the node's length scale.
+    pub residual: f64,
+    /// Steps whose matrix needed a diagonal shift (not positive definite).
+    pub shifted: usize,
+    /// Cholesky factorisations (failed ones of the shifts included).
+    pub factorisations: usize,
+    /// Energy evaluations of the line search.
+    pub energy_evaluations: usize,
+}
+
+fn springs_report(s: &mesh_move::SpringStats) -> SpringsReport {
+    SpringsReport {
+        solves: s.solves,
+        iterations: s.iterations,
+        converged: s.converged,
+        residual: s.residual,
+        polished: s.polished,
+        newton: s.newton.map(|n| NewtonReport {
+            iterations: n.iterations,
+            converged: n.converged,
+            residual: n.residual,
+            shifted: n.shifted,
+            factorisations: n.factorisations,
+            energy_evaluations: n.energy_evaluations,
+        }),
+    }
 }
 
 /// One loop's motion in the report.
@@ -628,6 +684,7 @@ impl MovementReport {
             largest_boundary_displacement: stats.largest_boundary_displacement,
             rbf_residual: rbf.then_some(stats.interpolation_residual),
             inverted_linear_cells: stats.inverted_cells,
+            springs: stats.springs.as_ref().map(springs_report),
             before: side(before, c.min_before),
             after: side(after, c.min_after),
             worst_cell_ratio: c.worst_cell_ratio,

@@ -20,7 +20,7 @@
 
 use faer::Side;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::sparse::{SparseColMat, Triplet as FaerTriplet};
+use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, MatMut};
 
 use crate::SpringError;
@@ -69,6 +69,10 @@ pub struct NewtonOutcome {
     pub energy: f64,
     /// Steps that needed a diagonal shift (the matrix was not positive definite).
     pub shifted: usize,
+    /// Cholesky factorisations, the failed ones of the shifts included.
+    pub factorisations: usize,
+    /// Energy evaluations of the line search.
+    pub energy_evaluations: usize,
 }
 
 /// The numbering of the movable nodes' coordinates.
@@ -103,56 +107,143 @@ impl<const D: usize> Dofs<D> {
     }
 }
 
-/// `−∂F/∂X` over the movable nodes (plus `shift` × its diagonal) as a sparse matrix.
-fn stiffness_matrix<const D: usize>(
-    jacobian: &[Triplet],
-    dofs: &Dofs<D>,
-    shift: f64,
-) -> Result<SparseColMat<u32, f64>, SpringError> {
-    let mut entries: Vec<FaerTriplet<u32, u32, f64>> = Vec::with_capacity(jacobian.len());
-    let mut diagonal = vec![0.0; dofs.count];
-    for t in jacobian {
-        if let (Some(r), Some(c)) = (dofs.of(t.row), dofs.of(t.col)) {
-            entries.push(FaerTriplet::new(r as u32, c as u32, -t.value));
-            if r == c {
-                diagonal[r] -= t.value;
+/// The assembly of `−∂F/∂X` over the movable nodes into a sparse matrix, its pattern found
+/// once. A model emits its Jacobian triplets in the same order at every step while no cell
+/// inverts, so the sort that merges duplicates and orders columns (most of the time of a
+/// Newton step when redone: profiled on the 30P30N) is done once, and each step only scatters
+/// the values; when the triplets' positions change the pattern is found again. Only the lower
+/// triangle is kept: the matrix is symmetric and the Cholesky factorisation reads no more.
+struct Assembly<const D: usize> {
+    dofs: Dofs<D>,
+    /// The (row, column) of every triplet the pattern was found for, to tell a change.
+    keys: Vec<(u32, u32)>,
+    /// The value slot of every triplet, or `u32::MAX` when dropped (held or upper).
+    slot: Vec<u32>,
+    /// Kept triplets; the shifted diagonal's entries follow them.
+    kept: usize,
+    symbolic: Option<(SymbolicSparseColMat<u32>, Argsort<u32>, SymbolicLlt<u32>)>,
+    values: Vec<f64>,
+    diagonal: Vec<f64>,
+    /// The diagonal shift the last factorisation needed (0: none).
+    last_shift: f64,
+    /// Factorisations attempted, failed ones included.
+    pub(crate) factorisations: usize,
+}
+
+impl<const D: usize> Assembly<D> {
+    fn new(movable: &[bool]) -> Self {
+        Assembly {
+            dofs: Dofs::new(movable),
+            keys: Vec::new(),
+            slot: Vec::new(),
+            kept: 0,
+            symbolic: None,
+            values: Vec::new(),
+            diagonal: Vec::new(),
+            last_shift: 0.0,
+            factorisations: 0,
+        }
+    }
+
+    /// Finds the pattern of `jacobian` and its fill-reducing ordering, unless known.
+    fn pattern(&mut self, jacobian: &[Triplet]) -> Result<(), SpringError> {
+        let same = self.symbolic.is_some()
+            && self.keys.len() == jacobian.len()
+            && self
+                .keys
+                .iter()
+                .zip(jacobian)
+                .all(|(k, t)| *k == (t.row, t.col));
+        if same {
+            return Ok(());
+        }
+        self.keys = jacobian.iter().map(|t| (t.row, t.col)).collect();
+        let mut pairs = Vec::with_capacity(jacobian.len() + self.dofs.count);
+        self.slot = jacobian
+            .iter()
+            .map(|t| match (self.dofs.of(t.row), self.dofs.of(t.col)) {
+                (Some(r), Some(c)) if r >= c => {
+                    pairs.push(Pair::new(r as u32, c as u32));
+                    (pairs.len() - 1) as u32
+                }
+                _ => u32::MAX,
+            })
+            .collect();
+        self.kept = pairs.len();
+        // the diagonal is always present, so a shift never changes the pattern
+        pairs.extend((0..self.dofs.count as u32).map(|i| Pair::new(i, i)));
+        let n = self.dofs.count;
+        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
+            .map_err(|e| SpringError::Solver(format!("assembling the Newton matrix: {e:?}")))?;
+        let llt = SymbolicLlt::try_new(symbolic.as_ref(), Side::Lower)
+            .map_err(|e| SpringError::Solver(format!("ordering the Newton matrix: {e:?}")))?;
+        self.symbolic = Some((symbolic, argsort, llt));
+        Ok(())
+    }
+
+    /// Scatters the values of `jacobian` (whose pattern [`Assembly::pattern`] found).
+    fn scatter(&mut self, jacobian: &[Triplet]) {
+        self.values.clear();
+        self.values.resize(self.kept + self.dofs.count, 0.0);
+        self.diagonal.clear();
+        self.diagonal.resize(self.dofs.count, 0.0);
+        for (t, &s) in jacobian.iter().zip(&self.slot) {
+            if s != u32::MAX {
+                self.values[s as usize] = -t.value;
+                let (r, c) = (self.dofs.of(t.row), self.dofs.of(t.col));
+                if r == c {
+                    self.diagonal[r.expect("kept")] -= t.value;
+                }
             }
         }
     }
-    for (i, d) in diagonal.iter().enumerate() {
-        // the diagonal is always present, so the pattern (and its ordering) never changes
-        entries.push(FaerTriplet::new(i as u32, i as u32, shift * d.abs()));
-    }
-    SparseColMat::try_new_from_triplets(dofs.count, dofs.count, &entries)
-        .map_err(|e| SpringError::Solver(format!("assembling the Newton matrix: {e:?}")))
-}
 
-/// A Cholesky factorisation of `−∂F/∂X` that shifts its diagonal until it is positive
-/// definite; returns it and whether it had to.
-fn factorise<const D: usize>(
-    jacobian: &[Triplet],
-    dofs: &Dofs<D>,
-    symbolic: &mut Option<SymbolicLlt<u32>>,
-) -> Result<(Llt<u32, f64>, bool), SpringError> {
-    let mut shift = 0.0;
-    for _ in 0..20 {
-        let a = stiffness_matrix(jacobian, dofs, shift)?;
-        if symbolic.is_none() {
-            *symbolic = Some(
-                SymbolicLlt::try_new(a.symbolic(), Side::Lower).map_err(|e| {
-                    SpringError::Solver(format!("ordering the Newton matrix: {e:?}"))
-                })?,
-            );
+    /// The matrix with `shift` × |its diagonal| added to the diagonal.
+    fn matrix(&mut self, shift: f64) -> Result<SparseColMat<u32, f64>, SpringError> {
+        let (symbolic, argsort, _) = self.symbolic.as_ref().expect("pattern found first");
+        for (i, d) in self.diagonal.iter().enumerate() {
+            self.values[self.kept + i] = shift * d.abs();
         }
-        let sym = symbolic.clone().expect("made above");
-        if let Ok(llt) = Llt::try_new_with_symbolic(sym, a.as_ref(), Side::Lower) {
-            return Ok((llt, shift > 0.0));
-        }
-        shift = if shift == 0.0 { 1e-8 } else { shift * 10.0 };
+        SparseColMat::new_from_argsort(symbolic.clone(), argsort, &self.values)
+            .map_err(|e| SpringError::Solver(format!("assembling the Newton matrix: {e:?}")))
     }
-    Err(SpringError::Solver(
-        "the Newton matrix stays indefinite after shifting its diagonal".into(),
-    ))
+
+    /// A Cholesky factorisation of `−∂F/∂X` that shifts its diagonal until it is positive
+    /// definite; returns it and whether it had to. `shift_allowed` false: no shift, an
+    /// indefinite matrix is an error.
+    fn factorise(
+        &mut self,
+        jacobian: &[Triplet],
+        shift_allowed: bool,
+    ) -> Result<(Llt<u32, f64>, bool), SpringError> {
+        self.pattern(jacobian)?;
+        self.scatter(jacobian);
+        // consecutive steps tend to need similar shifts: start a decade below the last one
+        // instead of climbing from 10⁻⁸ again (a factorisation each)
+        let mut shift = if self.last_shift > 1e-8 {
+            self.last_shift / 10.0
+        } else {
+            0.0
+        };
+        for _ in 0..24 {
+            let a = self.matrix(shift)?;
+            let llt = self.symbolic.as_ref().expect("found").2.clone();
+            self.factorisations += 1;
+            if let Ok(llt) = Llt::try_new_with_symbolic(llt, a.as_ref(), Side::Lower) {
+                self.last_shift = shift;
+                return Ok((llt, shift > 0.0));
+            }
+            if !shift_allowed {
+                return Err(SpringError::Solver(
+                    "the balance is not stable (indefinite stiffness)".into(),
+                ));
+            }
+            shift = if shift == 0.0 { 1e-8 } else { shift * 10.0 };
+        }
+        Err(SpringError::Solver(
+            "the Newton matrix stays indefinite after shifting its diagonal".into(),
+        ))
+    }
 }
 
 /// Solves `llt · x = rhs` in place on a vector.
@@ -180,7 +271,7 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
     params: &NewtonParams,
 ) -> Result<NewtonOutcome, SpringError> {
     let n = positions.len();
-    let dofs = Dofs::<D>::new(movable);
+    let mut assembly = Assembly::<D>::new(movable);
     let mut energy = model
         .energy(positions)
         .ok_or_else(|| SpringError::Solver("the start of the Newton solve is inverted".into()))?;
@@ -188,11 +279,11 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
         energy,
         ..NewtonOutcome::default()
     };
-    if dofs.count == 0 {
+    if assembly.dofs.count == 0 {
         outcome.converged = true;
         return Ok(outcome);
     }
-    let (mut symbolic, mut jacobian) = (None, Vec::new());
+    let mut jacobian = Vec::new();
     let (mut force, mut stiffness) = (vec![[0.0; D]; n], vec![0.0; n]);
     let mut trial = positions.to_vec();
     let mut previous = f64::INFINITY;
@@ -201,8 +292,10 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
         model.assemble(positions, &mut force, &mut stiffness);
         jacobian.clear();
         model.jacobian(positions, movable, &mut jacobian);
-        let (llt, shifted) = factorise(&jacobian, &dofs, &mut symbolic)?;
+        let (llt, shifted) = assembly.factorise(&jacobian, true)?;
+        let dofs = &assembly.dofs;
         outcome.shifted += usize::from(shifted);
+        outcome.factorisations = assembly.factorisations;
         let mut step = vec![0.0; dofs.count];
         for (node, f) in force.iter().enumerate() {
             if let Some(first) = dofs.of((D * node) as u32) {
@@ -235,6 +328,7 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
             // at the balance the energy no longer tells steps apart (its round-off is about
             // ε times the number of terms times itself): a full step within the tolerance is
             // taken as it is, and a step within the round-off is taken
+            outcome.energy_evaluations += 1;
             let lower = model
                 .energy(&trial)
                 .filter(|&e| (length == 1.0 && done) || e <= energy * (1.0 + 1e-12));
@@ -280,19 +374,11 @@ impl<const D: usize> Linearised<D> {
         positions: &[[f64; D]],
         movable: &[bool],
     ) -> Result<Self, SpringError> {
-        let dofs = Dofs::<D>::new(movable);
+        let mut assembly = Assembly::<D>::new(movable);
         let mut all = Vec::new();
         model.jacobian(positions, &vec![true; positions.len()], &mut all);
-        let mut symbolic = None;
-        let a = stiffness_matrix(&all, &dofs, 0.0)?;
-        symbolic.get_or_insert(
-            SymbolicLlt::try_new(a.symbolic(), Side::Lower)
-                .map_err(|e| SpringError::Solver(format!("ordering the matrix: {e:?}")))?,
-        );
-        let llt = Llt::try_new_with_symbolic(symbolic.expect("set"), a.as_ref(), Side::Lower)
-            .map_err(|_| {
-                SpringError::Solver("the balance is not stable (indefinite stiffness)".into())
-            })?;
+        let (llt, _) = assembly.factorise(&all, false)?;
+        let dofs = assembly.dofs;
         let coupling = all
             .into_iter()
             .filter(|t| dofs.of(t.row).is_some() && dofs.of(t.col).is_none())
