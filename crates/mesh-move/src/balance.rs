@@ -113,7 +113,7 @@ impl ShapeField {
 
 /// How much stiffer a skewed cell is: its weight is divided by its original scaled Jacobian
 /// to this power (at most [`MAX_STIFFENING`] times).
-const SKEW_STIFFENING: f64 = 20.0;
+const SKEW_STIFFENING: f64 = 30.0;
 /// The most a cell is stiffened for its skewness (the Newton matrix stays well conditioned).
 const MAX_STIFFENING: f64 = 1e3;
 
@@ -131,11 +131,12 @@ const MAX_STIFFENING: f64 = 1e3;
 /// The skewness: a balance minimises a sum, and any smooth energy is quadratic in a small
 /// strain, so a few cells may take a few per cent of it; a skewed cell's scaled Jacobian
 /// moves with its angles about cot θ times faster than a square's, so the worst-cell ratio
-/// is made there. Dividing the weight by sj^20 (sj = 0.8: ×87; at most ×1000, reached at
-/// sj = 0.71) leaves the strain to the well-shaped cells: on the NACA0012 pitched by 10° the
-/// worst-cell ratio goes from 0.915 to 0.984 (by 90°: 0.522 to 0.733). Powers 4, 12 and 16
-/// gave less; 30 without a cap broke the solve; caps of 10⁴ and 10⁶ gave the same quality
-/// but a noisier balance (the smoothness test failed at 10⁶).
+/// is made there. Dividing the weight by sj^30 (sj = 0.9: ×24; at most ×1000, reached at
+/// sj = 0.79) leaves the strain to the well-shaped cells: on the NACA0012 pitched by 10° the
+/// worst-cell ratio goes from 0.915 to 0.990. With the default [`ShapeLaw`] (p = 8), powers
+/// 10, 20, 30 and 40 gave at 30° 0.890, 0.944, 0.954, 0.948 and at 90° 0.687, 0.770, 0.774,
+/// 0.771; caps of 10⁴ and 10⁶ gave the same quality but a noisier balance (the smoothness
+/// test failed at 10⁶).
 fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
     let has_wall = mesh.patches.iter().any(|p| p.role == Role::Wall);
     // the wall facets, and the facets at each of their nodes

@@ -1,8 +1,10 @@
 //! The smooth mover is a smooth function of the boundary, and its sensitivities are its
 //! derivatives: on the NACA0012 mesh of the built-in case, for a bump amplitude and for a
 //! rotation angle about 30°, central finite differences of the moved mesh (all nodes, 2-norm)
-//! agree across ε = 1e-3, 1e-5, 1e-7 to 1e-5 relative, and with the sensitivities from the
-//! linearised balance (the implicit function theorem, no finite difference) to 1e-6.
+//! agree across ε = 1e-4, 1e-5, 1e-7 to 1e-5 relative, and with the sensitivities from the
+//! linearised balance (the implicit function theorem, no finite difference) to 1e-6. (At
+//! ε = 1e-3, a fifth of the bump's amplitude, the central difference's own O(ε²) error is
+//! 2e-5: curvature of the map, not noise; the dissertation's mover failed at ε = 1e-10.)
 
 #[allow(dead_code)] // shared by the test files; this one uses the mesh only
 mod common;
@@ -77,7 +79,7 @@ fn sensitivity(motion: &dyn Fn(f64) -> Vec<LoopMotion>, alpha: f64) -> Vec<[f64;
 }
 
 fn check(label: &str, motion: &dyn Fn(f64) -> Vec<LoopMotion>, alpha: f64) {
-    let fd: Vec<Vec<[f64; 2]>> = [1e-3, 1e-5, 1e-7]
+    let fd: Vec<Vec<[f64; 2]>> = [1e-4, 1e-5, 1e-7]
         .iter()
         .map(|&e| {
             difference(

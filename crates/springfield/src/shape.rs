@@ -146,7 +146,10 @@ struct Partials {
 /// by) plus a size term `J + 1/J` (2 at rest size). The exponent stresses the worst cells:
 /// with 1 every cell's distortion counts alike (an even spread is the balance), with larger
 /// ones the balance leans towards the smallest largest distortion. Both terms are infinite
-/// as `J → 0`.
+/// as `J → 0`. The default, `p = 8` and `s = 0.05`, was measured on the moved NACA0012 and
+/// 30P30N meshes (worst-cell ratio of the moved mesh): against `p = 4, s = 0.25` it gives
+/// 0.770 for 0.733 at a 90° pitch and 0.856/0.867 for 0.820/0.816 on the 30P30N flap turned
+/// ±10°, the same at 10° and 30° (`p = 12` or `16`: within 0.02 either way).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShapeLaw {
     /// The exponent `p ≥ 1` of `K`.
@@ -158,8 +161,8 @@ pub struct ShapeLaw {
 impl Default for ShapeLaw {
     fn default() -> Self {
         ShapeLaw {
-            exponent: 4.0,
-            size: 0.25,
+            exponent: 8.0,
+            size: 0.05,
         }
     }
 }
