@@ -1,24 +1,27 @@
-//! Criterion benches of the baseline movers on two built-in cases (their linear meshes grown
+//! Criterion benches of the movers on two built-in cases (their layered linear meshes grown
 //! once, outside the timed loops): the NACA0012 wall pitched by 30° about the quarter chord,
-//! and the 30P30N flap turned by 10° about its leading edge, each moved by inverse-distance
-//! weighting and by radial basis functions (Wendland C2 on the NACA0012, the thin-plate spline
-//! on the 30P30N, where the global Wendland system is singular).
+//! and the 30P30N flap turned by 10° about its leading edge, each moved by the spring mover
+//! (default, with its polish), the smooth spring mover (the shape balance by Newton), and the
+//! baselines: inverse-distance weighting and radial basis functions (Wendland C2 on the
+//! NACA0012, the thin-plate spline on the 30P30N, where the global Wendland system is
+//! singular). Then the sensitivities at the smooth mover's result: the linearised balance
+//! (one factorisation) and one design variable's response.
 
 // criterion_group! generates an undocumented public function
 #![allow(missing_docs)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use mesh_move::{
-    IdwParams, Kernel, LoopMotion, Method, Motion, RbfParams, RigidMotion, Section,
-    boundary_motion, move_mesh,
+    IdwParams, Kernel, LoopMotion, Method, Motion, RbfParams, RigidMotion, Section, ShapeField,
+    SpringMoveParams, boundary_motion, move_layered,
 };
 
 fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Kernel) {
-    let mesh = test_cases::grow(&test_cases::real_case(case))
+    let layered = test_cases::grow(&test_cases::real_case(case))
         .output
-        .layered
-        .mesh;
-    let boundary = boundary_motion(&mesh, &[motion]).expect("a valid motion");
+        .layered;
+    let mesh = &layered.mesh;
+    let boundary = boundary_motion(mesh, &[motion]).expect("a valid motion");
     let mut group = c.benchmark_group(group);
     group.sample_size(10);
     let rbf = RbfParams {
@@ -26,13 +29,38 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
         ..RbfParams::default()
     };
     for (name, method) in [
+        ("springs", Method::Springs(SpringMoveParams::default())),
+        (
+            "springs smooth",
+            Method::Springs(SpringMoveParams::smooth()),
+        ),
         ("idw", Method::Idw(IdwParams::default())),
         ("rbf", Method::Rbf(rbf)),
     ] {
         group.bench_function(name, |b| {
-            b.iter(|| move_mesh(&mesh, &boundary, &method).expect("moves"))
+            b.iter(|| move_layered(&layered, &boundary, &method).expect("moves"))
         });
     }
+    // the sensitivities at the smooth balance: the boundary nodes held, the others respond
+    let smooth = Method::Springs(SpringMoveParams::smooth());
+    let x = move_layered(&layered, &boundary, &smooth)
+        .expect("moves")
+        .mesh;
+    let x: Vec<[f64; 2]> = (0..x.nodes.len()).map(|i| x.xy(i as u32)).collect();
+    let mut fixed = vec![false; x.len()];
+    boundary
+        .nodes
+        .iter()
+        .for_each(|&k| fixed[k as usize] = true);
+    let field = ShapeField::of(mesh, SpringMoveParams::smooth().shape).expect("a field");
+    group.bench_function("sensitivities: linearise", |b| {
+        b.iter(|| field.linearise(&x, &fixed).expect("stable"))
+    });
+    let lin = field.linearise(&x, &fixed).expect("stable");
+    let d_boundary: Vec<[f64; 2]> = x.iter().map(|p| [-p[1], p[0]]).collect();
+    group.bench_function("sensitivities: one variable", |b| {
+        b.iter(|| lin.respond(&d_boundary))
+    });
     group.finish();
 }
 

@@ -430,7 +430,7 @@ fn rotate(z: [f64; 2], v: [f64; 2]) -> [f64; 2] {
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    ((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1])).sqrt()
 }
 
 /// The layer nodes that keep their original layer geometry, grouped by layer (index 0 is
