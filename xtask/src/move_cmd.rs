@@ -102,7 +102,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
         Some(_) if linear.stats.inverted_cells == 0 => {
             let t = Instant::now();
             let progress = stage(args.quiet, "mesh sensitivities");
-            let field = mesh_move::ShapeField::of(&layered.mesh, SpringMoveParams::smooth().shape)
+            let field = mesh_move::ShapeField::of(&layered, SpringMoveParams::smooth().shape)
                 .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
             let x: Vec<[f64; 2]> = (0..moved_layered.mesh.nodes.len() as u32)
                 .map(|k| moved_layered.mesh.xy(k))

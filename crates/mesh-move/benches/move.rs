@@ -52,7 +52,7 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
         .nodes
         .iter()
         .for_each(|&k| fixed[k as usize] = true);
-    let field = ShapeField::of(mesh, SpringMoveParams::smooth().shape).expect("a field");
+    let field = ShapeField::of(&layered, SpringMoveParams::smooth().shape).expect("a field");
     group.bench_function("sensitivities: linearise", |b| {
         b.iter(|| field.linearise(&x, &fixed).expect("stable"))
     });

@@ -282,7 +282,7 @@ fn move_springs(
                 // the balance needs an uninverted start: the failure is reported as it is
                 return Ok(start);
             }
-            let field = crate::balance::ShapeField::of(mesh, p.shape)?;
+            let field = crate::balance::ShapeField::of(layered, p.shape)?;
             stats.newton = Some(field.balance(&mut x, &fixed, newton)?);
         }
     }

@@ -58,6 +58,7 @@
 //! ```
 
 mod error;
+pub mod length;
 pub mod model;
 pub mod newton;
 mod params;
@@ -68,6 +69,7 @@ pub mod springs;
 mod vec;
 
 pub use error::SpringError;
+pub use length::{BalanceSpring, LengthSpring};
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 pub use newton::{EnergyModel, Linearised, NewtonOutcome, NewtonParams, solve_newton};
 pub use params::{SolverParams, SpringParams};

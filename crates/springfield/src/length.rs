@@ -1,0 +1,262 @@
+//! The length spring of the shape balance, and the one spring type the balance solves.
+//!
+//! A shape spring ([`crate::shape`]) holds a cell to its shape, not its size in one direction:
+//! when a wall stretches under it (a bump near a leading edge stretches its facets by 15 %), a
+//! thin wall cell stays similar to itself and its height grows with its width, which moves
+//! the first cell height a solver's wall treatment (y⁺) was set for. A [`LengthSpring`] on an
+//! extrusion edge (a layer node and its parent) holds that edge's length with the energy
+//! `w (l/l₀ − 1)²`, in closed form with its exact Hessian, so the balance stays a smooth,
+//! differentiable function of the boundary. [`BalanceSpring`] is either kind, so one
+//! [`SpringList`] (one energy, one Newton matrix) holds both.
+//!
+//! It owns these two springs. It does not choose the edges nor the weights (the mover does).
+
+use crate::model::{FiniteDifference, Spring, SpringList, Triplet};
+use crate::newton::EnergyModel;
+use crate::params::SpringParams;
+use crate::shape::ShapeSpring;
+
+/// An edge `ends[0] → ends[1]` held to its rest length `rest` with energy `w (l/rest − 1)²`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LengthSpring {
+    /// The edge's nodes.
+    pub ends: [u32; 2],
+    /// Its rest length (> 0).
+    pub rest: f64,
+    /// The weight `w` of its energy.
+    pub weight: f64,
+}
+
+impl LengthSpring {
+    /// The unit vector from the first end to the second and the length; `None` when the
+    /// ends coincide or are not finite.
+    fn direction(&self, x: &[[f64; 2]]) -> Option<([f64; 2], f64)> {
+        let (a, b) = (x[self.ends[0] as usize], x[self.ends[1] as usize]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        (l > 0.0 && l.is_finite()).then(|| ([d[0] / l, d[1] / l], l))
+    }
+
+    /// Its energy; `None` when the edge has collapsed.
+    pub fn energy(&self, x: &[[f64; 2]]) -> Option<f64> {
+        let (_, l) = self.direction(x)?;
+        let s = l / self.rest - 1.0;
+        Some(self.weight * s * s)
+    }
+
+    /// `∂E/∂x_b` (the first end's is its opposite) and the Hessian block `∂²E/∂x_b²`
+    /// (`∂²E/∂x_a∂x_b` is its opposite): `H = 2w/l₀ [u uᵀ/l₀ + (l/l₀ − 1)(I − u uᵀ)/l]`.
+    fn derivatives(&self, x: &[[f64; 2]]) -> Option<([f64; 2], [[f64; 2]; 2])> {
+        let (u, l) = self.direction(x)?;
+        let (w, r) = (self.weight, self.rest);
+        let s = l / r - 1.0;
+        let g = [2.0 * w * s / r * u[0], 2.0 * w * s / r * u[1]];
+        let mut h = [[0.0; 2]; 2];
+        for (i, row) in h.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                let uu = u[i] * u[j];
+                let eye = if i == j { 1.0 } else { 0.0 };
+                *v = 2.0 * w / r * (uu / r + s * (eye - uu) / l);
+            }
+        }
+        Some((g, h))
+    }
+}
+
+impl Spring<2> for LengthSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend(self.ends);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend(self.ends);
+    }
+
+    /// The force `−∂E/∂x` on both ends; the stiffness is the rest Hessian's `2w/l₀²`.
+    fn add_force(
+        &self,
+        _: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        let Some((g, _)) = self.derivatives(positions) else {
+            return;
+        };
+        let (a, b) = (self.ends[0] as usize, self.ends[1] as usize);
+        for c in 0..2 {
+            force[a][c] += g[c];
+            force[b][c] -= g[c];
+        }
+        let k = 2.0 * self.weight / (self.rest * self.rest);
+        stiffness[a] += k;
+        stiffness[b] += k;
+    }
+
+    fn add_jacobian(
+        &self,
+        _: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let Some((_, h)) = self.derivatives(fd.positions()) else {
+            return;
+        };
+        for (i, &p) in self.ends.iter().enumerate() {
+            if !movable[p as usize] {
+                continue;
+            }
+            for (j, &q) in self.ends.iter().enumerate() {
+                if !movable[q as usize] {
+                    continue;
+                }
+                // ∂F_p/∂x_q = −∂²E/∂x_p∂x_q: −H on the diagonal blocks, +H off them
+                let sign = if i == j { -1.0 } else { 1.0 };
+                for (a, row) in h.iter().enumerate() {
+                    for (b, v) in row.iter().enumerate() {
+                        out.push(Triplet {
+                            row: 2 * p + a as u32,
+                            col: 2 * q + b as u32,
+                            value: sign * v,
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A spring of the shape balance: a cell's shape or an edge's length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BalanceSpring {
+    /// A triangle held to its shape.
+    Shape(ShapeSpring),
+    /// An edge held to its length.
+    Length(LengthSpring),
+}
+
+impl BalanceSpring {
+    /// Its energy; `None` when its cell is flat or inverted or its edge collapsed.
+    pub fn energy(&self, x: &[[f64; 2]]) -> Option<f64> {
+        match self {
+            BalanceSpring::Shape(s) => s.energy(x),
+            BalanceSpring::Length(s) => s.energy(x),
+        }
+    }
+}
+
+impl Spring<2> for BalanceSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        match self {
+            BalanceSpring::Shape(s) => s.reads(out),
+            BalanceSpring::Length(s) => s.reads(out),
+        }
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        match self {
+            BalanceSpring::Shape(s) => s.pushes(out),
+            BalanceSpring::Length(s) => s.pushes(out),
+        }
+    }
+
+    fn add_force(
+        &self,
+        params: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        match self {
+            BalanceSpring::Shape(s) => s.add_force(params, positions, force, stiffness),
+            BalanceSpring::Length(s) => s.add_force(params, positions, force, stiffness),
+        }
+    }
+
+    fn add_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        match self {
+            BalanceSpring::Shape(s) => s.add_jacobian(params, movable, fd, out),
+            BalanceSpring::Length(s) => s.add_jacobian(params, movable, fd, out),
+        }
+    }
+}
+
+impl EnergyModel<2> for SpringList<'_, BalanceSpring> {
+    fn energy(&self, positions: &[[f64; 2]]) -> Option<f64> {
+        self.springs.iter().map(|s| s.energy(positions)).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ForceModel;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The force is minus the energy's gradient and the Jacobian the force's derivative
+        /// (central differences), symmetric.
+        #[test]
+        fn force_and_jacobian_are_the_energy_derivatives(
+            a in prop::array::uniform2(-1.0f64..1.0),
+            b in prop::array::uniform2(-1.0f64..1.0),
+            rest in 0.1f64..2.0,
+            weight in 0.1f64..10.0,
+        ) {
+            let x = vec![a, b];
+            prop_assume!(((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt() > 0.05);
+            let spring = [BalanceSpring::Length(LengthSpring { ends: [0, 1], rest, weight })];
+            let params = SpringParams::default();
+            let model = SpringList { springs: &spring, params: &params };
+            let (mut f, mut k) = (vec![[0.0; 2]; 2], vec![0.0; 2]);
+            model.assemble(&x, &mut f, &mut k);
+            let h = 1e-6;
+            let mut jac = Vec::new();
+            model.jacobian(&x, &[true, true], &mut jac);
+            let mut dense = [[0.0; 4]; 4];
+            for t in &jac {
+                dense[t.row as usize][t.col as usize] += t.value;
+            }
+            for n in 0..2 {
+                for c in 0..2 {
+                    let mut xp = x.clone();
+                    xp[n][c] += h;
+                    let mut xm = x.clone();
+                    xm[n][c] -= h;
+                    let de = (model.energy(&xp).unwrap() - model.energy(&xm).unwrap()) / (2.0 * h);
+                    prop_assert!((f[n][c] + de).abs() < 1e-5 * (1.0 + de.abs()));
+                    let (mut fp, mut fm) = (vec![[0.0; 2]; 2], vec![[0.0; 2]; 2]);
+                    model.assemble(&xp, &mut fp, &mut k);
+                    model.assemble(&xm, &mut fm, &mut k);
+                    for m in 0..2 {
+                        for d in 0..2 {
+                            let df = (fp[m][d] - fm[m][d]) / (2.0 * h);
+                            let v = dense[2 * m + d][2 * n + c];
+                            prop_assert!((v - df).abs() < 1e-4 * (1.0 + df.abs()), "{v} {df}");
+                            prop_assert!((v - dense[2 * n + c][2 * m + d]).abs() < 1e-12 * (1.0 + v.abs()));
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_rest_length_edge_costs_nothing_and_pushes_nothing() {
+        let s = LengthSpring {
+            ends: [0, 1],
+            rest: 2.0,
+            weight: 3.0,
+        };
+        let x = [[1.0, 1.0], [1.0 + 2.0f64.sqrt(), 1.0 + 2.0f64.sqrt()]];
+        assert!(s.energy(&x).unwrap() < 1e-24);
+        assert_eq!(s.energy(&[[0.0, 0.0], [0.0, 0.0]]), None);
+    }
+}
