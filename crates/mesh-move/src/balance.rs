@@ -19,6 +19,7 @@
 //! boundary (the caller), nor curve (Vector-Adding).
 
 use geom_predicates::{PointTree, point_segment_distance};
+use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
     BalanceSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams, ShapeLaw, SpringList,
@@ -236,20 +237,15 @@ fn extrusion_springs(
                 .get(child as usize)
                 .is_some_and(|p| p.contains(&parent))
     };
-    let is_extrusion = |a: u32, b: u32| extrudes(a, b) || extrudes(b, a);
-    let mut edges: std::collections::HashMap<(u32, u32), f64> = std::collections::HashMap::new();
-    for (c, cell) in layered.mesh.cells.iter().enumerate() {
-        let k = cell.corners();
-        for i in 0..k.len() {
-            let (a, b) = (k[i], k[(i + 1) % k.len()]);
-            if is_extrusion(a, b) {
-                *edges.entry((a.min(b), a.max(b))).or_default() += weight[c];
+    // the mesh's unique edges (sorted by their nodes, so the springs come in a fixed order)
+    let edges = Edges::build(layered.mesh.cells.shapes_and_corners(), []);
+    (0..edges.len() as u32)
+        .filter_map(|e| {
+            let [a, b] = edges.key(e);
+            if !(extrudes(a, b) || extrudes(b, a)) {
+                return None;
             }
-        }
-    }
-    let mut out: Vec<LengthSpring> = edges
-        .into_iter()
-        .filter_map(|((a, b), w)| {
+            let w: f64 = edges.cells(e).iter().map(|u| weight[u.cell as usize]).sum();
             let (p, q) = (rest[a as usize], rest[b as usize]);
             let l = ((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1])).sqrt();
             (l > 0.0).then_some(LengthSpring {
@@ -258,10 +254,7 @@ fn extrusion_springs(
                 weight: LENGTH_STIFFNESS * w,
             })
         })
-        .collect();
-    // the map's order is random; the springs' order sets the Newton matrix's summation order
-    out.sort_by_key(|s| s.ends);
-    out
+        .collect()
 }
 
 /// The balance linearised at a moved mesh: the motion of every node for a motion of the
