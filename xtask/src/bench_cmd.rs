@@ -15,6 +15,10 @@ use crate::{Outcome, builtin, case, pipeline};
 
 /// Runs `cargo xtask bench`.
 pub fn run(args: &BenchArgs) -> Result<Outcome> {
+    if args.vs_gmsh || args.scaling {
+        crate::bench_vs::run(args)?;
+        return Ok(Outcome::Valid);
+    }
     let names: Vec<String> = if args.cases.is_empty() {
         builtin::names().into_iter().map(String::from).collect()
     } else {
@@ -97,7 +101,11 @@ fn bench_cases(names: &[String], runs: usize) -> Result<()> {
     Ok(())
 }
 
-fn median(v: &mut [f64]) -> f64 {
+/// The median of `v` (NaN when empty).
+pub(crate) fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
 }

@@ -274,6 +274,32 @@ pub struct BenchArgs {
     /// Only these built-in cases (default: all).
     #[arg(long = "case", value_name = "NAME")]
     pub cases: Vec<String>,
+
+    /// Whole runs side by side with Gmsh (its Python package in the checkers' venv,
+    /// CHECKERS_VENV; skipped with a message when missing): NACA0012 and 30P30N at P3, first
+    /// heights 5e-5 and 5e-6, alternating, medians of --runs; writes the table into --doc.
+    #[arg(long)]
+    pub vs_gmsh: bool,
+
+    /// Whole runs of our P3 pipeline at about 10k, 100k, 1M and 4M cells (the 1M point at most
+    /// 3 times, the 4M point once): wall and CPU time, peak memory, the fitted exponent and a
+    /// plot; writes them into --doc.
+    #[arg(long)]
+    pub scaling: bool,
+
+    /// Runs of each process for --vs-gmsh and --scaling (default 3).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub runs: Option<u16>,
+
+    /// --vs-gmsh and --scaling on a tiny configuration (one coarse row, two small points, one
+    /// run): checks that the commands work; the times mean nothing.
+    #[arg(long)]
+    pub tiny: bool,
+
+    /// The document --vs-gmsh and --scaling write their parts into (between marker comments;
+    /// the rest is kept), its plot in figures/ beside it.
+    #[arg(long, value_name = "FILE.md", default_value = "docs/performance.md")]
+    pub doc: PathBuf,
 }
 
 /// Flags of `cargo xtask figures`.

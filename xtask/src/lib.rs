@@ -16,6 +16,7 @@
 
 mod airfoil;
 mod bench_cmd;
+mod bench_vs;
 pub mod builtin;
 pub mod case;
 pub mod cli;
@@ -27,11 +28,13 @@ mod mesh_cmd;
 mod move_cmd;
 mod move_sens;
 pub mod outputs;
+mod perf_doc;
 mod pictures;
 pub mod pipeline;
 mod progress;
 mod quality_cmd;
 mod report;
+mod resources;
 pub mod stages;
 mod summary;
 

@@ -178,6 +178,7 @@ fn write_outputs(
     report
         .timings_s
         .insert("total", run.total.elapsed().as_secs_f64());
+    report.peak_memory_bytes = crate::resources::peak_memory_bytes();
     if let Some((_, output)) = &plan.report {
         plan.outputs.write_bytes(*output, &report.json()?)?;
     }

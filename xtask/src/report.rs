@@ -35,6 +35,9 @@ pub struct Report {
     pub layers: Option<u32>,
     /// Seconds spent in each stage, and in all.
     pub timings_s: BTreeMap<&'static str, f64>,
+    /// The process's peak resident memory when the outputs were written, in bytes (Linux).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_memory_bytes: Option<u64>,
     /// Quality figures, when the domain was meshed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub quality: Option<Quality>,

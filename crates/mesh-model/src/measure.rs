@@ -7,23 +7,54 @@ use crate::mesh::Mesh;
 
 /// Largest interior angle of triangle `a b c`, degrees; 180 for a triangle with a zero-length
 /// side (the worst value, so that degenerate cells stand out).
+///
+/// The largest angle lies opposite the longest side, so only the corners whose opposite side
+/// is within [`SIDE_MARGIN`] of the longest are measured (one `atan2` instead of three, nearly
+/// always): each measured the same way as every corner would be, so the value is the largest
+/// of the three to the last bit. Sides too short or too long to square, or not finite, measure
+/// every corner.
 pub fn triangle_max_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let corners = [a, b, c];
+    if corners
+        .iter()
+        .enumerate()
+        .any(|(i, p)| *p == corners[(i + 1) % 3])
+    {
+        return 180.0;
+    }
+    // the squared side opposite each corner
+    let opposite = [0, 1, 2].map(|i| {
+        let (q, r) = (corners[(i + 1) % 3], corners[(i + 2) % 3]);
+        (r[0] - q[0]).powi(2) + (r[1] - q[1]).powi(2)
+    });
+    let longest = opposite[0].max(opposite[1]).max(opposite[2]);
+    let sound = longest.is_normal() && longest > 1e-200 && longest < 1e200;
     let mut largest: f64 = 0.0;
     for i in 0..3 {
-        let p = corners[i];
-        let q = corners[(i + 1) % 3];
-        let r = corners[(i + 2) % 3];
-        let u = [q[0] - p[0], q[1] - p[1]];
-        let v = [r[0] - p[0], r[1] - p[1]];
-        if (u[0] == 0.0 && u[1] == 0.0) || (v[0] == 0.0 && v[1] == 0.0) {
-            return 180.0;
+        if sound && opposite[i] < longest * (1.0 - SIDE_MARGIN) {
+            continue;
         }
-        let cross = u[0] * v[1] - u[1] * v[0];
-        let dot = u[0] * v[0] + u[1] * v[1];
-        largest = largest.max(cross.abs().atan2(dot).to_degrees());
+        largest = largest.max(corner_angle_deg(corners, i));
     }
     largest
+}
+
+/// How much shorter (relatively, squared) than the longest side a side must be for its
+/// opposite corner to be surely not the largest: its angle is then smaller by about 1e-6 rad
+/// at least, far above the rounding of the measure (~1e-15, or ~1e-10 for a cell 1e-5 across
+/// at coordinates near 20).
+const SIDE_MARGIN: f64 = 1e-6;
+
+/// The interior angle at corner `i` of `corners`, degrees (its sides of nonzero length).
+fn corner_angle_deg(corners: [[f64; 2]; 3], i: usize) -> f64 {
+    let p = corners[i];
+    let q = corners[(i + 1) % 3];
+    let r = corners[(i + 2) % 3];
+    let u = [q[0] - p[0], q[1] - p[1]];
+    let v = [r[0] - p[0], r[1] - p[1]];
+    let cross = u[0] * v[1] - u[1] * v[0];
+    let dot = u[0] * v[0] + u[1] * v[1];
+    cross.abs().atan2(dot).to_degrees()
 }
 
 /// The two triangles of quad `k` (four corner nodes, counter-clockwise) cut along its shorter
@@ -52,5 +83,80 @@ pub fn cell_max_angle_deg(mesh: &Mesh, i: usize) -> f64 {
             tri(a).max(tri(b))
         }
         _ => tri([k[0], k[1], k[2]]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The measure as it was: every corner's angle, the largest kept.
+    fn every_corner(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+        let corners = [a, b, c];
+        let mut largest: f64 = 0.0;
+        for i in 0..3 {
+            let p = corners[i];
+            let q = corners[(i + 1) % 3];
+            let r = corners[(i + 2) % 3];
+            let u = [q[0] - p[0], q[1] - p[1]];
+            let v = [r[0] - p[0], r[1] - p[1]];
+            if (u[0] == 0.0 && u[1] == 0.0) || (v[0] == 0.0 && v[1] == 0.0) {
+                return 180.0;
+            }
+            largest = largest.max(corner_angle_deg(corners, i));
+        }
+        largest
+    }
+
+    fn same(a: [f64; 2], b: [f64; 2], c: [f64; 2]) {
+        for (p, q, r) in [(a, b, c), (b, c, a), (c, a, b), (a, c, b)] {
+            let (new, old) = (triangle_max_angle_deg(p, q, r), every_corner(p, q, r));
+            assert_eq!(
+                new.to_bits(),
+                old.to_bits(),
+                "{p:?} {q:?} {r:?}: {new} vs {old}"
+            );
+        }
+    }
+
+    #[test]
+    fn special_triangles_measure_as_before() {
+        let s3 = 3f64.sqrt() / 2.0;
+        same([0.0, 0.0], [1.0, 0.0], [0.5, s3]); // equilateral: every corner measured
+        same([0.0, 0.0], [1.0, 0.0], [0.0, 1.0]); // right isosceles
+        same([0.0, 0.0], [1.0, 0.0], [1.0, 0.0]); // a side without length
+        same([0.0, 0.0], [1.0, 0.0], [2.0, 0.0]); // flat
+        same([0.0, 0.0], [1e-170, 0.0], [0.0, 1e-170]); // too small to square
+        same([0.0, 0.0], [f64::NAN, 0.0], [0.0, 1.0]);
+        same([0.0, 0.0], [f64::INFINITY, 0.0], [0.0, 1.0]);
+        // thin near-isosceles cells of a wall layer, far from the origin
+        same([20.0, 0.0], [20.0 + 1e-5, 0.0], [20.0 + 5e-6, 5e-6 + 1e-17]);
+    }
+
+    proptest! {
+        #[test]
+        fn the_largest_angle_is_the_one_measured_before(
+            a in prop::array::uniform2(-20.0f64..20.0),
+            d in prop::array::uniform2(-1.0f64..1.0),
+            e in prop::array::uniform2(-1.0f64..1.0),
+            scale in -7i32..1,
+            isosceles in any::<bool>(),
+            nudge in -4i64..4,
+        ) {
+            let h = 10f64.powi(scale);
+            let b = [a[0] + h * d[0], a[1] + h * d[1]];
+            let c = if isosceles {
+                // c on the bisector of a b, a few ulps off: two sides within rounding
+                let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+                let n = [-(b[1] - a[1]), b[0] - a[0]];
+                let t = e[0];
+                let x = m[0] + t * n[0];
+                [f64::from_bits((x.to_bits() as i64 + nudge) as u64), m[1] + t * n[1]]
+            } else {
+                [a[0] + h * e[0], a[1] + h * e[1]]
+            };
+            same(a, b, c);
+        }
     }
 }

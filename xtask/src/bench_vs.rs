@@ -1,0 +1,364 @@
+//! `cargo xtask bench --vs-gmsh` and `--scaling`: whole processes timed from outside (wall
+//! clock, and CPU time of the finished child from `getrusage`), medians of several runs.
+//!
+//! `--vs-gmsh` meshes the NACA0012 and the 30P30N at P3 with first heights 5e-5 and 5e-6,
+//! ours (this binary's `mesh`) and Gmsh's (`tests/python/gmsh_bench.py`, embedded here and
+//! run by the checkers' Python, `CHECKERS_VENV`), the two alternating run by run. Gmsh's mesh
+//! size is first calibrated, untimed, to our cell count. `--scaling` times our P3 pipeline on
+//! the NACA0012 made finer by `[boundary] max_spacing`, from about 10k to about 4M cells.
+//! Both write their part of `docs/performance.md` (see [`crate::perf_doc`]). The case files
+//! and meshes go to a temporary folder, removed at the end; the runs are deterministic (same
+//! cases, same meshes, whatever the order).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use serde_json::Value;
+
+use crate::bench_cmd::median;
+use crate::cli::BenchArgs;
+use crate::perf_doc::{GmshSide, ScalingRow, VsRow};
+use crate::{builtin, perf_doc, resources};
+
+/// Gmsh's side, embedded so that the command works from any folder.
+const GMSH_SCRIPT: &str = include_str!("../../tests/python/gmsh_bench.py");
+
+/// The rows of the comparison: (built-in case, first height).
+const VS_ROWS: [(&str, f64); 4] = [
+    ("naca0012", 5e-5),
+    ("naca0012", 5e-6),
+    ("30p30n", 5e-5),
+    ("30p30n", 5e-6),
+];
+/// `--tiny`: one coarse row, to check that the command works.
+const TINY_VS_ROWS: [(&str, f64); 1] = [("naca0012", 1e-3)];
+
+/// The scaling points: `[boundary] max_spacing` of the NACA0012 (about 10k, 100k, 1M and 4M
+/// P3 cells) and the most runs of each (the 4M point once).
+const SCALING: [(f64, usize); 4] = [(1.0, usize::MAX), (0.1, usize::MAX), (0.01, 3), (0.0025, 1)];
+/// `--tiny`: two small points.
+const TINY_SCALING: [(f64, usize); 2] = [(1.0, 1), (0.5, 1)];
+
+/// One timed process.
+#[derive(Debug, Clone, Copy)]
+struct Timed {
+    wall_s: f64,
+    cpu_s: f64,
+}
+
+/// Runs `--vs-gmsh` and/or `--scaling` and writes their parts of the performance document.
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let runs = args.runs.map_or(if args.tiny { 1 } else { 3 }, usize::from);
+    let work = Work::new()?;
+    let result = run_in(args, runs, &work);
+    let _ = std::fs::remove_dir_all(&work.dir);
+    result
+}
+
+fn run_in(args: &BenchArgs, runs: usize, work: &Work) -> Result<()> {
+    if args.vs_gmsh {
+        let rows: &[(&str, f64)] = if args.tiny { &TINY_VS_ROWS } else { &VS_ROWS };
+        let gmsh = work.gmsh()?;
+        if let Err(why) = &gmsh {
+            println!("Gmsh's side skipped: {why}");
+        }
+        let mut table = Vec::new();
+        for &(name, first_height) in rows {
+            let row = vs_row(work, gmsh.as_ref().ok(), name, first_height, runs)?;
+            println!("{}", perf_doc::vs_line(&row));
+            table.push(row);
+        }
+        let skipped = gmsh.err();
+        perf_doc::write_vs(&args.doc, &table, runs, skipped.as_deref())?;
+    }
+    if args.scaling {
+        let points: &[(f64, usize)] = if args.tiny { &TINY_SCALING } else { &SCALING };
+        let mut rows = Vec::new();
+        for &(spacing, most) in points {
+            let case = work.case(
+                "naca0012",
+                &[("max_spacing = 1.0", &format!("max_spacing = {spacing}"))],
+            )?;
+            let row = scaling_row(work, &case, spacing, runs.min(most))?;
+            println!("{}", perf_doc::scaling_line(&row));
+            rows.push(row);
+        }
+        perf_doc::write_scaling(&args.doc, &rows)?;
+    }
+    println!("wrote {}", args.doc.display());
+    Ok(())
+}
+
+/// The temporary folder of the cases and meshes, and this binary.
+struct Work {
+    dir: PathBuf,
+    exe: PathBuf,
+}
+
+impl Work {
+    fn new() -> Result<Work> {
+        let dir = std::env::temp_dir().join(format!("curvemesh-bench-{}", std::process::id()));
+        for path in ["cases", "geometry/30p30n"] {
+            std::fs::create_dir_all(dir.join(path))
+                .with_context(|| format!("cannot make {}", dir.display()))?;
+        }
+        Ok(Work {
+            dir,
+            exe: std::env::current_exe().context("cannot find this program's path")?,
+        })
+    }
+
+    /// Writes built-in case `name` with each `(from, to)` line replaced (its data files
+    /// beside it) and returns its path.
+    fn case(&self, name: &str, edits: &[(&str, &str)]) -> Result<PathBuf> {
+        let mut text = builtin::case_text(name)
+            .with_context(|| format!("no built-in case {name}"))?
+            .to_string();
+        for (from, to) in edits {
+            if !text.contains(from) {
+                bail!("built-in case {name} has no line {from:?} to change");
+            }
+            text = text.replacen(from, to, 1);
+        }
+        for line in text.lines() {
+            let Some(file) = line
+                .strip_prefix("file = \"")
+                .and_then(|l| l.strip_suffix('"'))
+            else {
+                continue;
+            };
+            let data = builtin::data_file(file).with_context(|| format!("no data file {file}"))?;
+            let path = self.dir.join("cases").join(file);
+            std::fs::write(&path, data)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        let stem: String = edits
+            .iter()
+            .map(|(_, to)| to.replace([' ', '='], ""))
+            .collect();
+        let path = self.dir.join("cases").join(format!("{name}{stem}.toml"));
+        std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+        Ok(path)
+    }
+
+    /// The checkers' Python with Gmsh and the script's path, or why Gmsh's side is skipped.
+    fn gmsh(&self) -> Result<std::result::Result<(PathBuf, PathBuf), String>> {
+        let venv = std::env::var_os("CHECKERS_VENV").map_or_else(
+            || Path::new(env!("CARGO_MANIFEST_DIR")).join("../.venv-checkers"),
+            PathBuf::from,
+        );
+        let python = venv.join("bin/python");
+        let found = Command::new(&python)
+            .args(["-c", "import gmsh"])
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if !found {
+            return Ok(Err(format!(
+                "no Python with Gmsh at {} (bash tests/python/install.sh, or set CHECKERS_VENV)",
+                python.display()
+            )));
+        }
+        let script = self.dir.join("gmsh_bench.py");
+        std::fs::write(&script, GMSH_SCRIPT)
+            .with_context(|| format!("cannot write {}", script.display()))?;
+        Ok(Ok((python, script)))
+    }
+}
+
+/// Runs `command` to its end: its wall and CPU time, its stdout.
+fn timed(command: &mut Command) -> Result<(Timed, std::process::Output)> {
+    let cpu = resources::children_cpu_s();
+    let t = Instant::now();
+    let out = command
+        .output()
+        .with_context(|| format!("cannot run {command:?}"))?;
+    let wall_s = t.elapsed().as_secs_f64();
+    let cpu_s = resources::children_cpu_s()
+        .zip(cpu)
+        .map_or(f64::NAN, |(after, before)| after - before);
+    Ok((Timed { wall_s, cpu_s }, out))
+}
+
+/// One run of our `mesh` on `case` at P3: its times and its report.
+fn ours(work: &Work, case: &Path) -> Result<(Timed, Value)> {
+    let msh = work.dir.join("ours.msh");
+    let report = work.dir.join("ours.json");
+    let (time, out) = timed(
+        Command::new(&work.exe)
+            .args(["mesh", "--order", "3", "-q", "--out"])
+            .arg(&msh)
+            .arg("--report")
+            .arg(&report)
+            .arg(case),
+    )?;
+    if !out.status.success() {
+        bail!(
+            "{} failed: {}",
+            case.display(),
+            String::from_utf8_lossy(&out.stderr).trim()
+        );
+    }
+    let text = std::fs::read_to_string(&report)?;
+    Ok((time, serde_json::from_str(&text)?))
+}
+
+/// Cells of a report (quads and triangles).
+fn cells_of(report: &Value) -> u64 {
+    ["quad", "tri"]
+        .iter()
+        .filter_map(|k| report["cells"][k].as_u64())
+        .sum()
+}
+
+/// One row of the comparison: ours and Gmsh's, alternating, `runs` times each.
+fn vs_row(
+    work: &Work,
+    gmsh: Option<&(PathBuf, PathBuf)>,
+    name: &str,
+    first_height: f64,
+    runs: usize,
+) -> Result<VsRow> {
+    let h = format!("first_height = {first_height:e}");
+    let builtin_line = builtin::case_text(name)
+        .and_then(|t| t.lines().find(|l| l.starts_with("first_height = ")))
+        .context("no first_height in the built-in case")?;
+    let case = work.case(name, &[(builtin_line, &h)])?;
+    // the warm-up run: our cell count, which Gmsh's size is calibrated to
+    let (_, report) = ours(work, &case)?;
+    let cells = cells_of(&report);
+    let gmsh_run = gmsh
+        .map(|g| GmshRun::calibrated(g, work, name, first_height, cells))
+        .transpose()?;
+    let (mut us, mut them) = (Vec::new(), Vec::new());
+    let mut side = None;
+    for _ in 0..runs {
+        us.push(ours(work, &case)?.0);
+        if let Some(g) = &gmsh_run {
+            let (time, result) = g.run()?;
+            them.push(time);
+            side = Some(result);
+        }
+    }
+    Ok(VsRow {
+        case: name.to_string(),
+        first_height,
+        cells,
+        ours: medians(&us),
+        gmsh: side.map(|s| (s, medians(&them))),
+    })
+}
+
+/// Gmsh's side of one row, its size calibrated.
+struct GmshRun {
+    command: Vec<std::ffi::OsString>,
+    python: PathBuf,
+}
+
+impl GmshRun {
+    fn calibrated(
+        (python, script): &(PathBuf, PathBuf),
+        work: &Work,
+        name: &str,
+        first_height: f64,
+        cells: u64,
+    ) -> Result<GmshRun> {
+        let mut command: Vec<std::ffi::OsString> = vec![script.into()];
+        let geometry = work.dir.join("geometry");
+        let dats: &[&str] = match name {
+            "30p30n" => &["30p30n/slat.dat", "30p30n/main.dat", "30p30n/flap.dat"],
+            _ => &["naca0012.dat"],
+        };
+        for dat in dats {
+            command.push("--dat".into());
+            command.push(geometry.join(dat).into());
+        }
+        command.push("--first-height".into());
+        command.push(format!("{first_height:e}").into());
+        let out = Command::new(python)
+            .args(&command)
+            .arg("--calibrate")
+            .arg(cells.to_string())
+            .output()?;
+        let line: Value = serde_json::from_slice(&out.stdout).unwrap_or(Value::Null);
+        // a geometry Gmsh cannot mesh keeps size 1: the timed runs then report its failure
+        let size = line["size"].as_f64().unwrap_or(1.0);
+        command.push("--size".into());
+        command.push(size.to_string().into());
+        command.push("--out".into());
+        command.push(work.dir.join("gmsh.msh").into());
+        Ok(GmshRun {
+            command,
+            python: python.clone(),
+        })
+    }
+
+    /// One timed run: its times and what it printed (or how it ended).
+    fn run(&self) -> Result<(Timed, GmshSide)> {
+        let (time, out) = timed(Command::new(&self.python).args(&self.command))?;
+        let line: Value = serde_json::from_slice(&out.stdout).unwrap_or(Value::Null);
+        let side = match (line["cells"].as_u64(), out.status.code()) {
+            (Some(cells), _) => GmshSide::Meshed {
+                cells,
+                invalid: line["invalid"].as_u64().unwrap_or(0),
+                steps: line["done"].to_string(),
+            },
+            (None, _) if line["failed"].is_string() => {
+                GmshSide::Failed(line["failed"].as_str().unwrap_or_default().to_string())
+            }
+            (None, code) => GmshSide::Failed(match code {
+                Some(c) => format!("exit status {c}: {}", last_line(&out.stderr)),
+                None => format!("aborted: {}", last_line(&out.stderr)),
+            }),
+        };
+        Ok((time, side))
+    }
+}
+
+fn last_line(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes)
+        .lines()
+        .last()
+        .unwrap_or_default()
+        .trim()
+        .to_string()
+}
+
+/// One scaling point: our run on `case`, `runs` times.
+fn scaling_row(work: &Work, case: &Path, spacing: f64, runs: usize) -> Result<ScalingRow> {
+    let mut times = Vec::new();
+    let mut reports = Vec::new();
+    for _ in 0..runs.max(1) {
+        let (time, report) = ours(work, case)?;
+        times.push(time);
+        reports.push(report);
+    }
+    let report = &reports[0];
+    let mut peaks: Vec<f64> = reports
+        .iter()
+        .filter_map(|r| r["peak_memory_bytes"].as_f64())
+        .collect();
+    Ok(ScalingRow {
+        max_spacing: spacing,
+        runs: times.len(),
+        cells: cells_of(report),
+        nodes: report["nodes"].as_u64().unwrap_or(0),
+        time: medians(&times),
+        peak_bytes: if peaks.is_empty() {
+            f64::NAN
+        } else {
+            median(&mut peaks)
+        },
+    })
+}
+
+/// The medians of the wall and CPU times.
+fn medians(runs: &[Timed]) -> perf_doc::Times {
+    let mut wall: Vec<f64> = runs.iter().map(|t| t.wall_s).collect();
+    let mut cpu: Vec<f64> = runs.iter().map(|t| t.cpu_s).collect();
+    perf_doc::Times {
+        wall_s: median(&mut wall),
+        cpu_s: median(&mut cpu),
+    }
+}
