@@ -76,13 +76,52 @@ impl Topo {
     }
 }
 
-/// Each front node's ideal direction (the angle-weighted normal of its facets) and ideal
-/// length: `height`, divided at a concave node (its neighbours on average above its tangent
-/// plane) by the smallest cosine between the direction and its facets' normals (at most 2),
-/// so that the child stands `height` off each facet there.
-pub(crate) fn ideal_steps(front: &Surface, topo: &Topo, height: f64) -> (Vec<[f64; 3]>, Vec<f64>) {
-    let dir = front.node_normals();
+/// Each front node's ideal direction and ideal length.
+///
+/// The direction is the angle-weighted normal of the node's facets; near concave nodes (a
+/// node whose neighbours lie on average above its tangent plane, and the nodes next to it)
+/// it is then `smoothing` times replaced by the normalised sum of its own and its
+/// neighbours' directions, which fans the directions out of concave edges so the front
+/// spreads there instead of folding; elsewhere (convex edges and corners) it stays the
+/// normal. The length is `height`, divided at a concave node by the smallest cosine between
+/// its direction and its facets' normals (at most 2), so that the child stands `height` off
+/// each facet there.
+pub(crate) fn ideal_steps(
+    front: &Surface,
+    topo: &Topo,
+    height: f64,
+    smoothing: usize,
+) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let mut dir = front.node_normals();
     let n = front.nodes.len();
+    let mut rise = vec![0.0f64; n];
+    for e in &topo.edges {
+        let [a, b] = e.nodes.map(|v| v as usize);
+        let d = geom_predicates::vector::sub(front.nodes[b], front.nodes[a]);
+        rise[a] += geom_predicates::vector::dot(d, dir[a]);
+        rise[b] -= geom_predicates::vector::dot(d, dir[b]);
+    }
+    let mut near = vec![false; n];
+    for e in &topo.edges {
+        let [a, b] = e.nodes.map(|v| v as usize);
+        if rise[a] > 0.0 || rise[b] > 0.0 {
+            near[a] = true;
+            near[b] = true;
+        }
+    }
+    for _ in 0..smoothing {
+        let mut sum = dir.clone();
+        for e in &topo.edges {
+            let [a, b] = e.nodes.map(|v| v as usize);
+            (0..3).for_each(|d| {
+                sum[a][d] += dir[b][d];
+                sum[b][d] += dir[a][d];
+            });
+        }
+        for i in (0..n).filter(|&i| near[i]) {
+            dir[i] = unit(sum[i]);
+        }
+    }
     let mut min_cos = vec![1.0f64; n];
     for f in &front.facets {
         let normal = unit(fan_normal(&front.nodes, f.nodes()));
@@ -90,13 +129,6 @@ pub(crate) fn ideal_steps(front: &Surface, topo: &Topo, height: f64) -> (Vec<[f6
             let c = geom_predicates::vector::dot(normal, dir[v as usize]);
             min_cos[v as usize] = min_cos[v as usize].min(c);
         }
-    }
-    let mut rise = vec![0.0f64; n];
-    for e in &topo.edges {
-        let [a, b] = e.nodes.map(|v| v as usize);
-        let d = geom_predicates::vector::sub(front.nodes[b], front.nodes[a]);
-        rise[a] += geom_predicates::vector::dot(d, dir[a]);
-        rise[b] -= geom_predicates::vector::dot(d, dir[b]);
     }
     let len = (0..n)
         .map(|i| {

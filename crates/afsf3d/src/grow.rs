@@ -35,9 +35,23 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         converged: true,
         ..GrowStats::default()
     };
+    let spacing = topo
+        .edges
+        .iter()
+        .map(|e| {
+            geom_predicates::vector::dist(
+                surface.nodes[e.nodes[0] as usize],
+                surface.nodes[e.nodes[1] as usize],
+            )
+        })
+        .sum::<f64>()
+        / topo.edges.len() as f64;
+    let mut thickness = 0.0;
     for layer in 0..params.layers {
         let height = params.first_height * params.growth.powi(layer as i32);
-        let (dir, len) = ideal_steps(&front, &topo, height);
+        thickness += height;
+        let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
+        let (dir, len) = ideal_steps(&front, &topo, height, rounds);
         let mut children = balance(&front.nodes, &topo, &dir, &len, params, layer, &mut stats)?;
         shrink_until_valid(
             &front.nodes,
@@ -70,6 +84,15 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         front,
         stats,
     })
+}
+
+/// The rounds of direction smoothing of a layer whose top is `thickness` off the wall:
+/// `smoothing × 2·thickness / spacing`, rounded up, at most `smoothing` — none near the
+/// wall, where the layers are thin and must stay normal to it, all of them once the layers
+/// are half as thick as the wall's mean edge `spacing`, where a concave front would fold.
+fn smoothing_rounds(smoothing: usize, thickness: f64, spacing: f64) -> usize {
+    let ramp = (2.0 * thickness / spacing).min(1.0);
+    (smoothing as f64 * ramp).ceil() as usize
 }
 
 fn check_params(p: &LayerParams) -> Result<(), GrowError> {

@@ -66,6 +66,10 @@ pub struct LayerParams {
     /// How many times the children of a failing cell are moved halfway back before the growth
     /// fails.
     pub max_shrinks: usize,
+    /// Rounds of smoothing of the ideal directions over the front (each direction replaced
+    /// by the normalised sum of its own and its neighbours'): fans the directions out of
+    /// concave edges, so the front there spreads instead of folding. Default 8.
+    pub smoothing: usize,
 }
 
 impl Default for LayerParams {
@@ -81,6 +85,7 @@ impl Default for LayerParams {
                 ..SolverParams::default()
             },
             max_shrinks: 8,
+            smoothing: 8,
         }
     }
 }
