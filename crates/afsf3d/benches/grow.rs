@@ -1,5 +1,8 @@
 //! Growth of 30 layers from a sphere (1 280 triangles) and a cube (6×8×8 quads).
 
+// criterion_group! generates an undocumented public function
+#![allow(missing_docs)]
+
 use afsf3d::{LayerParams, grow_layers};
 use criterion::{Criterion, criterion_group, criterion_main};
 use geom_surface::Surface;

@@ -218,12 +218,10 @@ fn push_cells(
             face: top_faces[f],
             reversed: false,
         });
-        let k = facet.nodes();
-        for i in 0..k.len() {
-            let e = topo.facet_edges[f][i] as usize;
+        for (&v, &e) in facet.nodes().iter().zip(&topo.facet_edges[f]) {
             faces.push(CellFace {
-                face: side_faces[e],
-                reversed: topo.edges[e].nodes[0] != k[i],
+                face: side_faces[e as usize],
+                reversed: topo.edges[e as usize].nodes[0] != v,
             });
         }
         mesh.push_cell(&faces, layer as u32, f as u32);

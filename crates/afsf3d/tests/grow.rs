@@ -14,6 +14,11 @@ struct Measures {
     /// Largest angle between a first-layer cell's axis (bottom centroid to top centroid) and
     /// its wall facet's normal (deg).
     cell_axis_deg: f64,
+    /// Largest angle, over every layer, between an extrusion edge and the angle-weighted
+    /// normal of the front it grew from (deg).
+    worst_deviation_deg: f64,
+    /// Largest corner angle of the final front's facets (deg).
+    front_max_angle_deg: f64,
 }
 
 fn grow_and_check(name: &str, surface: &Surface, params: &LayerParams) -> Grown3d {
@@ -59,20 +64,34 @@ fn grow_and_check(name: &str, surface: &Surface, params: &LayerParams) -> Grown3
     );
     eprintln!(
         "{name}: {} nodes, {} cells, {:.3} s, min volume {:.3e}, first-layer extrusion edge \
-         deviation {:.2}°, cell axis {:.2}°, shrinks {} ({} nodes), converged {}, \
-         thickness {:.4}",
+         deviation {:.2}° (all layers {:.2}°), cell axis {:.2}°, front max angle {:.1}°, shrinks {} ({} nodes), converged {}, \
+         mean thickness {:.4}",
         mesh.nodes.len(),
         mesh.cell_count(),
         seconds,
         m.min_volume,
         m.edge_deviation_deg,
+        m.worst_deviation_deg,
         m.cell_axis_deg,
+        m.front_max_angle_deg,
         grown.stats.shrinks,
         grown.stats.shrunk_nodes,
         grown.stats.converged,
-        between / surface.area(),
+        mean_thickness(surface, &grown),
     );
     grown
+}
+
+/// The mean distance from a wall node to the top of its column.
+fn mean_thickness(surface: &Surface, grown: &Grown3d) -> f64 {
+    let top = |c: &Vec<u32>| grown.mesh.nodes[*c.last().expect("a node") as usize];
+    grown
+        .columns
+        .iter()
+        .enumerate()
+        .map(|(i, c)| geom_predicates::vector::dist(surface.nodes[i], top(c)))
+        .sum::<f64>()
+        / surface.nodes.len() as f64
 }
 
 fn measures(surface: &Surface, grown: &Grown3d) -> Measures {
@@ -108,7 +127,43 @@ fn measures(surface: &Surface, grown: &Grown3d) -> Measures {
             angle_between(axis, fan_normal(&surface.nodes, f.nodes())) * deg
         })
         .fold(0.0, f64::max);
+    let levels = grown.columns[0].len();
+    let level = |k: usize| -> Vec<[f64; 3]> {
+        grown
+            .columns
+            .iter()
+            .map(|c| mesh.nodes[c[k] as usize])
+            .collect()
+    };
+    let mut worst_deviation_deg = 0.0f64;
+    for k in 0..levels - 1 {
+        let front = Surface {
+            nodes: level(k),
+            ..surface.clone()
+        };
+        let (below, above) = (front.nodes.clone(), level(k + 1));
+        for (i, n) in front.node_normals().iter().enumerate() {
+            let step = geom_predicates::vector::sub(above[i], below[i]);
+            worst_deviation_deg = worst_deviation_deg.max(angle_between(step, *n) * deg);
+        }
+    }
+    let top = &grown.front;
+    let front_max_angle_deg = top
+        .facets
+        .iter()
+        .flat_map(|f| {
+            let k = f.nodes();
+            (0..k.len()).map(move |i| {
+                let p = |j: usize| top.nodes[k[(i + j) % k.len()] as usize];
+                let a = geom_predicates::vector::sub(p(k.len() - 1), p(0));
+                let b = geom_predicates::vector::sub(p(1), p(0));
+                angle_between(a, b) * deg
+            })
+        })
+        .fold(0.0, f64::max);
     Measures {
+        worst_deviation_deg,
+        front_max_angle_deg,
         min_volume,
         edge_deviation_deg,
         cell_axis_deg,
@@ -157,4 +212,41 @@ fn bad_input_is_an_error() {
         ..LayerParams::default()
     };
     assert!(grow_layers(&Surface::sphere(1.0, 1), &bad).is_err());
+}
+
+#[test]
+fn each_cell_follows_the_face_contract_with_topo_cut() {
+    let surface = Surface::cube(1.0, 2, false);
+    let params = LayerParams {
+        layers: 3,
+        ..LayerParams::default()
+    };
+    let grown = grow_layers(&surface, &params).unwrap();
+    let mesh = &grown.mesh;
+    for c in 0..mesh.cell_count() {
+        let (layer, pipe) = (mesh.cell_layer[c] as usize, mesh.cell_pipe[c] as usize);
+        assert_eq!(c, layer * surface.facets.len() + pipe);
+        let wall = surface.facets[pipe].nodes();
+        let at =
+            |k: usize| -> Vec<u32> { wall.iter().map(|&v| grown.columns[v as usize][k]).collect() };
+        let faces = mesh.cell(c);
+        assert_eq!(faces.len(), 2 + wall.len());
+        // face 0: the bottom, stored as the front sees it, turned towards the wall
+        assert_eq!(mesh.face(faces[0].face as usize), at(layer).as_slice());
+        assert!(faces[0].reversed);
+        assert_eq!(mesh.face(faces[1].face as usize), at(layer + 1).as_slice());
+        assert!(!faces[1].reversed);
+        // the sides, along the bottom's edges a → b, outward as (a, b, b', a')
+        let (lo, hi) = (at(layer), at(layer + 1));
+        for i in 0..wall.len() {
+            let j = (i + 1) % wall.len();
+            let mut side = mesh.face(faces[2 + i].face as usize).to_vec();
+            if faces[2 + i].reversed {
+                side.reverse();
+            }
+            let start = side.iter().position(|&v| v == lo[i]).unwrap();
+            side.rotate_left(start);
+            assert_eq!(side, vec![lo[i], lo[j], hi[j], hi[i]]);
+        }
+    }
 }
