@@ -154,122 +154,133 @@ fn altitude(q: [f64; 3], p: [f64; 3], m: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|d| w[d] - t * e[d])
 }
 
-impl Spring<3> for NeighbourSpring3d {
-    fn reads(&self, out: &mut Vec<u32>) {
-        out.extend(self.edge);
-        out.extend(self.far1);
-        out.extend(self.far2);
+fn neighbour_force(
+    s: &NeighbourSpring3d,
+    params: &SpringParams,
+    x: &[[f64; 3]],
+    force: &mut [[f64; 3]],
+    stiffness: &mut [f64],
+) {
+    let [q, p] = s.edge.map(|v| x[v as usize]);
+    let mid = |f: [u32; 2]| -> [f64; 3] {
+        let (a, b) = (x[f[0] as usize], x[f[1] as usize]);
+        std::array::from_fn(|d| (a[d] + b[d]) / 2.0)
+    };
+    let (u1, u2) = (altitude(q, p, mid(s.far1)), altitude(q, p, mid(s.far2)));
+    let (h1, h2) = (dot(u1, u1).sqrt(), dot(u2, u2).sqrt());
+    if !(h1 > 0.0 && h2 > 0.0) {
+        return;
     }
-
-    fn pushes(&self, out: &mut Vec<u32>) {
-        out.extend(self.edge);
-    }
-
-    fn add_force(
-        &self,
-        params: &SpringParams,
-        x: &[[f64; 3]],
-        force: &mut [[f64; 3]],
-        stiffness: &mut [f64],
-    ) {
-        let [q, p] = self.edge.map(|v| x[v as usize]);
-        let mid = |f: [u32; 2]| -> [f64; 3] {
-            let (a, b) = (x[f[0] as usize], x[f[1] as usize]);
-            std::array::from_fn(|d| (a[d] + b[d]) / 2.0)
-        };
-        let (u1, u2) = (
-            altitude(q, p, mid(self.far1)),
-            altitude(q, p, mid(self.far2)),
-        );
-        let (h1, h2) = (dot(u1, u1).sqrt(), dot(u2, u2).sqrt());
-        if !(h1 > 0.0 && h2 > 0.0) {
-            return;
-        }
-        let c_aniso = (2.0 * self.extrusion_length / (h1 + h2)).min(1.0);
-        let k = params.k_neighbour * c_aniso;
-        // (h₁û₁ + h₂û₂)/(h₁ + h₂) = (u₁ + u₂)/(h₁ + h₂)
-        let f: [f64; 3] = std::array::from_fn(|d| k * (u1[d] + u2[d]) / (h1 + h2));
-        for v in self.edge {
-            add_scaled(&mut force[v as usize], 1.0, f);
-            stiffness[v as usize] += k * 2.0 / (h1 + h2);
-        }
+    let c_aniso = (2.0 * s.extrusion_length / (h1 + h2)).min(1.0);
+    let k = params.k_neighbour * c_aniso;
+    // (h₁û₁ + h₂û₂)/(h₁ + h₂) = (u₁ + u₂)/(h₁ + h₂)
+    let f: [f64; 3] = std::array::from_fn(|d| k * (u1[d] + u2[d]) / (h1 + h2));
+    for v in s.edge {
+        add_scaled(&mut force[v as usize], 1.0, f);
+        stiffness[v as usize] += k * 2.0 / (h1 + h2);
     }
 }
 
-impl Spring<3> for AngleSpring3d {
-    fn reads(&self, out: &mut Vec<u32>) {
-        out.extend([self.parent, self.child]);
+fn angle_force(
+    s: &AngleSpring3d,
+    params: &SpringParams,
+    x: &[[f64; 3]],
+    force: &mut [[f64; 3]],
+    stiffness: &mut [f64],
+) {
+    let v = sub(x[s.child as usize], x[s.parent as usize]);
+    let len = dot(v, v).sqrt();
+    if len <= 0.0 {
+        return;
     }
-
-    fn pushes(&self, out: &mut Vec<u32>) {
-        out.extend([self.child, self.parent]);
+    let u = v.map(|c| c / len);
+    let d = s.direction;
+    // towards the ideal direction, at right angles to PA
+    let w: [f64; 3] = std::array::from_fn(|k| d[k] - dot(d, u) * u[k]);
+    let wl = dot(w, w).sqrt();
+    if wl <= 0.0 {
+        return;
     }
+    let sin = if dot(d, u) >= 0.0 {
+        dot(cross(d, u), cross(d, u)).sqrt().min(1.0)
+    } else {
+        1.0
+    };
+    let f = params.k_angle * (8.0 * sin * sin * sin + 0.2 * sin);
+    // F/S = len·sin α, the move that turns PA onto the ideal direction
+    let k = params.k_angle * (8.0 * sin * sin + 0.2) / len;
+    let share = params.c_percent;
+    add_scaled(&mut force[s.child as usize], share * f / wl, w);
+    stiffness[s.child as usize] += share * k;
+    add_scaled(&mut force[s.parent as usize], -(1.0 - share) * f / wl, w);
+    stiffness[s.parent as usize] += (1.0 - share) * k;
+}
 
-    fn add_force(
-        &self,
-        params: &SpringParams,
-        x: &[[f64; 3]],
-        force: &mut [[f64; 3]],
-        stiffness: &mut [f64],
-    ) {
-        let v = sub(x[self.child as usize], x[self.parent as usize]);
-        let len = dot(v, v).sqrt();
-        if len <= 0.0 {
-            return;
-        }
-        let u = v.map(|c| c / len);
-        let d = self.direction;
-        // towards the ideal direction, at right angles to PA
-        let w: [f64; 3] = std::array::from_fn(|k| d[k] - dot(d, u) * u[k]);
-        let wl = dot(w, w).sqrt();
-        if wl <= 0.0 {
-            return;
-        }
-        let sin = if dot(d, u) >= 0.0 {
-            dot(cross(d, u), cross(d, u)).sqrt().min(1.0)
-        } else {
-            1.0
-        };
-        let f = params.k_angle * (8.0 * sin * sin * sin + 0.2 * sin);
-        // F/S = len·sin α, the move that turns PA onto the ideal direction
-        let s = params.k_angle * (8.0 * sin * sin + 0.2) / len;
-        let share = params.c_percent;
-        add_scaled(&mut force[self.child as usize], share * f / wl, w);
-        stiffness[self.child as usize] += share * s;
-        add_scaled(&mut force[self.parent as usize], -(1.0 - share) * f / wl, w);
-        stiffness[self.parent as usize] += (1.0 - share) * s;
+fn tension_force(
+    s: &TensionSpring,
+    _params: &SpringParams,
+    x: &[[f64; 3]],
+    force: &mut [[f64; 3]],
+    stiffness: &mut [f64],
+) {
+    let [q, p] = s.edge;
+    let e = sub(x[p as usize], x[q as usize]);
+    let len = dot(e, e).sqrt();
+    if len <= 0.0 {
+        return;
+    }
+    let f = s.strength * (s.ideal_length - len) / len;
+    add_scaled(&mut force[p as usize], f, e);
+    add_scaled(&mut force[q as usize], -f, e);
+    stiffness[p as usize] += s.strength;
+    stiffness[q as usize] += s.strength;
+}
+
+/// A spring's node field: one node or several.
+trait Nodes {
+    fn push_to(&self, out: &mut Vec<u32>);
+}
+
+impl Nodes for u32 {
+    fn push_to(&self, out: &mut Vec<u32>) {
+        out.push(*self);
     }
 }
 
-impl Spring<3> for TensionSpring {
-    fn reads(&self, out: &mut Vec<u32>) {
-        out.extend(self.edge);
-    }
-
-    fn pushes(&self, out: &mut Vec<u32>) {
-        out.extend(self.edge);
-    }
-
-    fn add_force(
-        &self,
-        _params: &SpringParams,
-        x: &[[f64; 3]],
-        force: &mut [[f64; 3]],
-        stiffness: &mut [f64],
-    ) {
-        let [q, p] = self.edge;
-        let e = sub(x[p as usize], x[q as usize]);
-        let len = dot(e, e).sqrt();
-        if len <= 0.0 {
-            return;
-        }
-        let f = self.strength * (self.ideal_length - len) / len;
-        add_scaled(&mut force[p as usize], f, e);
-        add_scaled(&mut force[q as usize], -f, e);
-        stiffness[p as usize] += self.strength;
-        stiffness[q as usize] += self.strength;
+impl<const N: usize> Nodes for [u32; N] {
+    fn push_to(&self, out: &mut Vec<u32>) {
+        out.extend_from_slice(self);
     }
 }
+
+/// The `Spring<3>` impl of a 3D spring kind: the nodes it reads and pushes, and its force.
+macro_rules! spring_3d {
+    ($kind:ty, $force:ident, reads: [$($r:ident),*], pushes: [$($p:ident),*]) => {
+        impl Spring<3> for $kind {
+            fn reads(&self, out: &mut Vec<u32>) {
+                $(Nodes::push_to(&self.$r, out);)*
+            }
+
+            fn pushes(&self, out: &mut Vec<u32>) {
+                $(Nodes::push_to(&self.$p, out);)*
+            }
+
+            fn add_force(
+                &self,
+                params: &SpringParams,
+                x: &[[f64; 3]],
+                force: &mut [[f64; 3]],
+                stiffness: &mut [f64],
+            ) {
+                $force(self, params, x, force, stiffness);
+            }
+        }
+    };
+}
+
+spring_3d!(NeighbourSpring3d, neighbour_force, reads: [edge, far1, far2], pushes: [edge]);
+spring_3d!(AngleSpring3d, angle_force, reads: [parent, child], pushes: [child, parent]);
+spring_3d!(TensionSpring, tension_force, reads: [edge], pushes: [edge]);
 
 /// All springs of one 3D solve, indexed into the solver's position array.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -378,30 +389,20 @@ mod tests {
         }
         // the four interior edges from the centre, each between two quads
         let c = child(1, 1);
-        set.neighbour.push(NeighbourSpring3d {
-            edge: [c, child(2, 1)],
-            far1: [child(1, 0), child(2, 0)],
-            far2: [child(1, 2), child(2, 2)],
-            extrusion_length: l,
-        });
-        set.neighbour.push(NeighbourSpring3d {
-            edge: [c, child(0, 1)],
-            far1: [child(0, 0), child(1, 0)],
-            far2: [child(0, 2), child(1, 2)],
-            extrusion_length: l,
-        });
-        set.neighbour.push(NeighbourSpring3d {
-            edge: [c, child(1, 2)],
-            far1: [child(0, 1), child(0, 2)],
-            far2: [child(2, 1), child(2, 2)],
-            extrusion_length: l,
-        });
-        set.neighbour.push(NeighbourSpring3d {
-            edge: [c, child(1, 0)],
-            far1: [child(0, 0), child(0, 1)],
-            far2: [child(2, 0), child(2, 1)],
-            extrusion_length: l,
-        });
+        let quads = [
+            ([c, child(2, 1)], [(1, 0), (2, 0)], [(1, 2), (2, 2)]),
+            ([c, child(0, 1)], [(0, 0), (1, 0)], [(0, 2), (1, 2)]),
+            ([c, child(1, 2)], [(0, 1), (0, 2)], [(2, 1), (2, 2)]),
+            ([c, child(1, 0)], [(0, 0), (0, 1)], [(2, 0), (2, 1)]),
+        ];
+        for (edge, f1, f2) in quads {
+            set.neighbour.push(NeighbourSpring3d {
+                edge,
+                far1: f1.map(|(i, j)| child(i, j)),
+                far2: f2.map(|(i, j)| child(i, j)),
+                extrusion_length: l,
+            });
+        }
         for [a, b] in [
             [c, child(2, 1)],
             [c, child(0, 1)],
