@@ -1,9 +1,9 @@
 //! The checks a surface must pass before it is meshed, each failure a one-line error naming
 //! the first bad node, facet or edge.
 
-use geom_predicates::{
-    Aabb, find_overlapping_pair, orient3d, segment_meets_triangle, triangles_meet,
-};
+use geom_predicates::{Aabb, orient3d, overlapping_pairs, segment_meets_triangle, triangles_meet};
+
+use rayon::prelude::*;
 
 use crate::{Facet, Surface, cross, dot, norm, sub};
 
@@ -180,11 +180,13 @@ pub fn first_self_intersection(nodes: &[[f64; 3]], facets: &[Facet]) -> Option<(
         .iter()
         .map(|&(_, t)| Aabb::of_points(&corners(t)).expect("three corners"))
         .collect();
-    find_overlapping_pair(&boxes, |i, j| {
-        let ((fa, a), (fb, b)) = (tris[i], tris[j]);
-        (fa != fb && triangles_cross(nodes, a, b)).then_some((fa as usize, fb as usize))
-    })
-    .map(|(a, b)| (a.min(b), a.max(b)))
+    // the broad phase in order, the exact tests of its pairs on all cores (the first in
+    // the sweep's order wins, whatever the threads)
+    overlapping_pairs(&boxes)
+        .par_iter()
+        .map(|&(i, j)| (tris[i], tris[j]))
+        .find_first(|&((fa, a), (fb, b))| fa != fb && triangles_cross(nodes, a, b))
+        .map(|((fa, _), (fb, _))| (fa.min(fb) as usize, fa.max(fb) as usize))
 }
 
 /// Whether triangles `a` and `b` (node indices) meet away from the nodes they share.
