@@ -66,6 +66,7 @@ pub mod problem;
 pub mod shape;
 mod solver;
 pub mod springs;
+pub mod springs3d;
 mod vec;
 
 pub use error::SpringError;
@@ -81,4 +82,7 @@ pub use solver::{
 pub use springs::{
     AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringIndex2d, SpringSet2d,
     assemble_2d, assemble_2d_active, bisector, left_normal,
+};
+pub use springs3d::{
+    AngleSpring3d, NeighbourSpring3d, SpringField3d, SpringParams3d, SpringSet3d, TensionSpring,
 };

@@ -1,0 +1,228 @@
+//! The checks a surface must pass before it is meshed, each failure a one-line error naming
+//! the first bad node, facet or edge.
+
+use geom_predicates::{Aabb, orient3d, overlapping_pairs, segment_meets_triangle, triangles_meet};
+
+use rayon::prelude::*;
+
+use crate::{Facet, Surface, cross, dot, norm, sub};
+
+/// What is wrong with a surface (the first problem found).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SurfaceError {
+    /// No facets.
+    #[error("the surface has no facets")]
+    Empty,
+    /// A node coordinate is NaN or infinite.
+    #[error("surface node {node} has a non-finite coordinate")]
+    NonFinite {
+        /// Node index.
+        node: usize,
+    },
+    /// A facet names a node that does not exist, or a node twice, or a patch that does not
+    /// exist.
+    #[error("facet {facet} names a missing node or patch, or a node twice")]
+    BadFacet {
+        /// Facet index.
+        facet: usize,
+    },
+    /// A facet (or a triangle of a quad) has no area.
+    #[error("facet {facet} is degenerate (no area)")]
+    Degenerate {
+        /// Facet index.
+        facet: usize,
+    },
+    /// An edge is in one facet only: the surface has a hole.
+    #[error("the surface is not closed: edge {edge:?} of facet {facet} is in no other facet")]
+    Open {
+        /// The edge's nodes, increasing.
+        edge: [u32; 2],
+        /// A facet with it.
+        facet: usize,
+    },
+    /// An edge is in more than two facets.
+    #[error("the surface is not manifold: edge {edge:?} (facet {facet}) is in {count} facets")]
+    NonManifold {
+        /// The edge's nodes, increasing.
+        edge: [u32; 2],
+        /// A facet with it.
+        facet: usize,
+        /// In how many facets.
+        count: usize,
+    },
+    /// Two facets run along their shared edge in the same direction.
+    #[error(
+        "the surface is inconsistently oriented: facets {facet} and {other} run along edge {edge:?} the same way"
+    )]
+    Misoriented {
+        /// The edge's nodes, increasing.
+        edge: [u32; 2],
+        /// One facet.
+        facet: usize,
+        /// The other.
+        other: usize,
+    },
+    /// The enclosed volume is not positive: the facets face into the body.
+    #[error(
+        "the surface is inverted: it encloses a volume of {volume:e} (facets must be counter-clockwise seen from the fluid)"
+    )]
+    Inverted {
+        /// The signed enclosed volume.
+        volume: f64,
+    },
+    /// Two facets cross or touch away from their shared nodes.
+    #[error("the surface intersects itself: facets {facet} and {other} meet")]
+    SelfIntersecting {
+        /// One facet.
+        facet: usize,
+        /// The other.
+        other: usize,
+    },
+}
+
+impl Surface {
+    /// Checks that the surface can be meshed: finite nodes, valid facets, closed, manifold
+    /// (each edge in exactly two facets), consistently oriented, positive enclosed volume,
+    /// not self-intersecting. Returns the first problem.
+    pub fn check(&self) -> Result<(), SurfaceError> {
+        if self.facets.is_empty() {
+            return Err(SurfaceError::Empty);
+        }
+        if let Some(node) = self
+            .nodes
+            .iter()
+            .position(|p| !p.iter().all(|x| x.is_finite()))
+        {
+            return Err(SurfaceError::NonFinite { node });
+        }
+        self.check_facets()?;
+        self.check_edges()?;
+        let volume = self.enclosed_volume();
+        if volume.is_nan() || volume <= 0.0 {
+            return Err(SurfaceError::Inverted { volume });
+        }
+        match first_self_intersection(&self.nodes, &self.facets) {
+            Some((facet, other)) => Err(SurfaceError::SelfIntersecting { facet, other }),
+            None => Ok(()),
+        }
+    }
+
+    fn check_facets(&self) -> Result<(), SurfaceError> {
+        let n = self.nodes.len() as u32;
+        for (facet, f) in self.facets.iter().enumerate() {
+            let k = f.nodes();
+            let repeated = (0..k.len()).any(|i| k[i + 1..].contains(&k[i]));
+            let patch_ok = self
+                .facet_patch
+                .get(facet)
+                .is_some_and(|&p| (p as usize) < self.patches.len());
+            if repeated || k.iter().any(|&v| v >= n) || !patch_ok {
+                return Err(SurfaceError::BadFacet { facet });
+            }
+            let flat = f.triangles().any(|[a, b, c]| {
+                let (a, b, c) = (
+                    self.nodes[a as usize],
+                    self.nodes[b as usize],
+                    self.nodes[c as usize],
+                );
+                norm(cross(sub(b, a), sub(c, a))) == 0.0
+            });
+            if flat {
+                return Err(SurfaceError::Degenerate { facet });
+            }
+        }
+        Ok(())
+    }
+
+    fn check_edges(&self) -> Result<(), SurfaceError> {
+        // (low node, high node, runs low → high, facet)
+        let mut edges: Vec<(u32, u32, bool, u32)> = Vec::with_capacity(4 * self.facets.len());
+        for (facet, f) in self.facets.iter().enumerate() {
+            let k = f.nodes();
+            for i in 0..k.len() {
+                let (a, b) = (k[i], k[(i + 1) % k.len()]);
+                edges.push((a.min(b), a.max(b), a < b, facet as u32));
+            }
+        }
+        edges.sort_unstable_by_key(|e| (e.0, e.1, e.3));
+        for group in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            let (edge, facet) = ([group[0].0, group[0].1], group[0].3 as usize);
+            match group.len() {
+                1 => return Err(SurfaceError::Open { edge, facet }),
+                2 if group[0].2 == group[1].2 => {
+                    let other = group[1].3 as usize;
+                    return Err(SurfaceError::Misoriented { edge, facet, other });
+                }
+                2 => {}
+                count => return Err(SurfaceError::NonManifold { edge, facet, count }),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The first pair of facets (by the sweep's order) that meet anywhere but at the nodes and
+/// edges they share: quads are split into two triangles, candidate pairs come from a
+/// sort-and-sweep over the triangles' boxes, and each pair is decided exactly
+/// ([`triangles_meet`]; for triangles sharing one node, whether the edge opposite it in
+/// either meets the other; for triangles sharing an edge, whether they fold onto each other
+/// in one plane). Limit: two triangles sharing one node and crossing along a line from it
+/// without either opposite edge meeting the other are not seen (the corner-tet checks of a
+/// mesher see such folds).
+pub fn first_self_intersection(nodes: &[[f64; 3]], facets: &[Facet]) -> Option<(usize, usize)> {
+    let tris: Vec<(u32, [u32; 3])> = facets
+        .iter()
+        .enumerate()
+        .flat_map(|(f, facet)| facet.triangles().map(move |t| (f as u32, t)))
+        .collect();
+    let corners = |t: [u32; 3]| t.map(|v| nodes[v as usize]);
+    let boxes: Vec<Aabb<3>> = tris
+        .iter()
+        .map(|&(_, t)| Aabb::of_points(&corners(t)).expect("three corners"))
+        .collect();
+    // the broad phase in order, the exact tests of its pairs on all cores (the first in
+    // the sweep's order wins, whatever the threads)
+    overlapping_pairs(&boxes)
+        .par_iter()
+        .map(|&(i, j)| (tris[i], tris[j]))
+        .find_first(|&((fa, a), (fb, b))| fa != fb && triangles_cross(nodes, a, b))
+        .map(|((fa, _), (fb, _))| (fa.min(fb) as usize, fa.max(fb) as usize))
+}
+
+/// Whether triangles `a` and `b` (node indices) meet away from the nodes they share.
+fn triangles_cross(nodes: &[[f64; 3]], a: [u32; 3], b: [u32; 3]) -> bool {
+    let p = |v: u32| nodes[v as usize];
+    let shared: Vec<u32> = a.iter().copied().filter(|v| b.contains(v)).collect();
+    let opposite = |t: [u32; 3], v: u32| {
+        let i = t.iter().position(|&x| x == v).expect("shared node");
+        (t[(i + 1) % 3], t[(i + 2) % 3])
+    };
+    match shared.len() {
+        0 => triangles_meet(a.map(p), b.map(p)),
+        1 => {
+            let v = shared[0];
+            let ((a1, a2), (b1, b2)) = (opposite(a, v), opposite(b, v));
+            segment_meets_triangle(p(a1), p(a2), p(b[0]), p(b[1]), p(b[2]))
+                || segment_meets_triangle(p(b1), p(b2), p(a[0]), p(a[1]), p(a[2]))
+        }
+        2 => {
+            let (v, w) = (shared[0], shared[1]);
+            let x = a
+                .iter()
+                .copied()
+                .find(|u| !shared.contains(u))
+                .expect("third node");
+            let y = b
+                .iter()
+                .copied()
+                .find(|u| !shared.contains(u))
+                .expect("third node");
+            if orient3d(p(v), p(w), p(x), p(y)) != 0.0 {
+                return false;
+            }
+            let e = sub(p(w), p(v));
+            dot(cross(e, sub(p(x), p(v))), cross(e, sub(p(y), p(v)))) > 0.0
+        }
+        _ => true,
+    }
+}
