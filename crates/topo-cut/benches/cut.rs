@@ -1,5 +1,8 @@
 //! Criterion bench of the two cuts on a layered cube-sphere with merged children.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{Criterion, criterion_group, criterion_main};
 
 #[path = "../tests/fixture/mod.rs"]

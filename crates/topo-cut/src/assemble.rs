@@ -77,7 +77,11 @@ fn boundary(poly: &PolyMesh, rank: &[u32], mesh: &mut Mesh) {
     }
     order_by_pipe(&mut facets);
     for (_, role, k) in facets {
-        let shape = if k.len() == 3 { Shape::Tri } else { Shape::Quad };
+        let shape = if k.len() == 3 {
+            Shape::Tri
+        } else {
+            Shape::Quad
+        };
         mesh.boundary.push(CellType::new(shape, 1), &k);
         mesh.boundary_patch.push(match role {
             Role::Wall => 0,
@@ -95,11 +99,7 @@ fn boundary(poly: &PolyMesh, rank: &[u32], mesh: &mut Mesh) {
 /// Puts the wall facet of pipe `p` at index `p` when the pipes of the wall facets are
 /// exactly `0..n`; otherwise leaves the order (wall facets first, stable).
 fn order_by_pipe(facets: &mut [(u32, Role, Vec<u32>)]) {
-    let piped: Vec<u32> = facets
-        .iter()
-        .map(|f| f.0)
-        .filter(|&p| p != NONE)
-        .collect();
+    let piped: Vec<u32> = facets.iter().map(|f| f.0).filter(|&p| p != NONE).collect();
     let n = piped.len();
     let mut seen = vec![false; n];
     let dense = piped.iter().all(|&p| {

@@ -22,9 +22,13 @@
 //! point. A hexahedron's first node is a bottom node whose child is the first top node, so
 //! every tetrahedron keeps an extrusion edge (no flat slivers in thin layers).
 //!
+//! Where a cell is cut worse than [`TARGET_DIHEDRAL_DEG`], ranks of its nodes are swapped as
+//! the dissertation switches extrusion edges ([`improve`]).
+//!
 //! - [`cut_to_tets`]: every node is cut around — pure tetrahedra (§5.2.3).
 //! - [`cut_to_mixed`]: only a few nodes are cut around — round-cutting (§5.2.5): for each
-//!   non-standard cell not yet touched, the node whose cut disturbs the fewest standard cells.
+//!   non-standard cell not yet touched, the node whose cut keeps the cells around it under
+//!   the target dihedral angle and disturbs the fewest standard cells.
 //!   Standard cells without such a node (prisms, hexahedra, pyramids, tetrahedra) are kept,
 //!   and a quadrilateral they share stays a quadrilateral on the other side (a pyramid's base).
 //!
@@ -34,6 +38,7 @@
 //! `0..n`, facet `p` is (the first part of) the wall facet of pipe `p`.
 
 pub mod cone;
+pub mod improve;
 pub mod order;
 pub mod quality;
 
@@ -51,7 +56,9 @@ pub enum CutError {
     #[error("the polyhedral mesh is invalid: {0}")]
     Invalid(PolyProblem),
     /// A face with more than four nodes: only triangles and quadrilaterals are cut.
-    #[error("cell {cell}: face {face} has {nodes} nodes, only triangles and quadrilaterals can be cut")]
+    #[error(
+        "cell {cell}: face {face} has {nodes} nodes, only triangles and quadrilaterals can be cut"
+    )]
     LongFace {
         /// Cell index.
         cell: usize,
@@ -74,9 +81,13 @@ pub enum CutError {
 /// `farfield` boundary facets, each tetrahedron with its cell's layer and pipe.
 pub fn cut_to_tets(poly: &PolyMesh) -> Result<Mesh, CutError> {
     check(poly)?;
-    let rank = order::sweep_ranks(poly);
+    let mut rank = order::sweep_ranks(poly);
+    improve::improve(poly, &mut rank, TARGET_DIHEDRAL_DEG, 4);
     assemble::cut(poly, &rank)
 }
+
+/// The largest tetrahedron dihedral angle the sweep tries to stay under, in degrees.
+pub const TARGET_DIHEDRAL_DEG: f64 = 150.0;
 
 /// Keeps the standard cells and round-cuts the others into tetrahedra and pyramids
 /// (dissertation §5.2.5), conforming: a quadrilateral face of a kept cell stays a
@@ -84,7 +95,8 @@ pub fn cut_to_tets(poly: &PolyMesh) -> Result<Mesh, CutError> {
 pub fn cut_to_mixed(poly: &PolyMesh) -> Result<Mesh, CutError> {
     check(poly)?;
     let rank = order::sweep_ranks(poly);
-    let rank = order::round_cut_ranks(poly, &rank)?;
+    let mut rank = order::round_cut_ranks(poly, &rank)?;
+    improve::improve(poly, &mut rank, TARGET_DIHEDRAL_DEG, 4);
     assemble::cut(poly, &rank)
 }
 

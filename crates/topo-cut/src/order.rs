@@ -12,8 +12,9 @@
 use mesh_model::NONE;
 use mesh_model::poly::PolyMesh;
 
-use crate::CutError;
 use crate::cone::{CellFaces, UNRANKED};
+use crate::improve::{Around, Scratch};
+use crate::{CutError, TARGET_DIHEDRAL_DEG};
 
 /// The cells in the order of their layers (cells without a layer last), then by index.
 pub fn cells_by_layer(poly: &PolyMesh) -> Vec<u32> {
@@ -115,17 +116,14 @@ pub fn sweep_ranks(poly: &PolyMesh) -> Vec<u32> {
 
 /// The ranks restricted to the nodes round-cut for the mixed mesh (the others
 /// [`UNRANKED`]): for each non-standard cell, in layer order, that has no such node yet, the
-/// node of it that touches the fewest standard cells still untouched (ties: first in the
+/// node of it whose cut keeps the cells around it under the target dihedral angle, then
+/// touches the fewest standard cells still untouched, then cuts best (ties: first in the
 /// sweep).
 pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutError> {
-    let n = poly.nodes.len();
     let cc = poly.cell_count();
     let mut faces = CellFaces::default();
-    let mut nodes = Vec::new();
-    // node -> cells (compressed rows) and which cells are standard
     let mut cell_nodes: Vec<Vec<u32>> = Vec::with_capacity(cc);
     let mut standard = vec![false; cc];
-    let mut count = vec![0u32; n + 1];
     for (c, is_standard) in standard.iter_mut().enumerate() {
         faces.load(poly, c);
         if let Some(face) = faces.long_face() {
@@ -136,45 +134,49 @@ pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutEr
             });
         }
         *is_standard = faces.standard().is_some();
+        let mut nodes = Vec::new();
         faces.distinct_nodes(&mut nodes);
-        nodes.iter().for_each(|&v| count[v as usize + 1] += 1);
-        cell_nodes.push(nodes.clone());
+        cell_nodes.push(nodes);
     }
-    for v in 0..n {
-        count[v + 1] += count[v];
-    }
-    let mut around = vec![0u32; count[n] as usize];
-    let mut fill = count.clone();
-    for (c, k) in cell_nodes.iter().enumerate() {
-        for &v in k {
-            around[fill[v as usize] as usize] = c as u32;
-            fill[v as usize] += 1;
-        }
-    }
-    let cells_at = |v: u32| &around[count[v as usize] as usize..count[v as usize + 1] as usize];
-    let mut cut = vec![false; n];
+    let around = Around::new(poly);
+    let mut scratch = Scratch::default();
+    let mut rank = vec![UNRANKED; poly.nodes.len()];
     let mut touched = vec![false; cc];
     for c in cells_by_layer(poly) {
         let c = c as usize;
         if standard[c] || touched[c] {
             continue;
         }
-        let cost = |v: u32| {
-            cells_at(v)
+        let mut best: Option<((bool, usize, f64, u32), u32)> = None;
+        for &v in &cell_nodes[c] {
+            let cells = around.of(v);
+            let disturbed = cells
                 .iter()
                 .filter(|&&d| standard[d as usize] && !touched[d as usize])
-                .count()
-        };
-        let Some(&v) = cell_nodes[c]
-            .iter()
-            .min_by_key(|&&v| (cost(v), sweep[v as usize]))
-        else {
-            continue;
-        };
-        cut[v as usize] = true;
-        cells_at(v).iter().for_each(|&d| touched[d as usize] = true);
+                .count();
+            rank[v as usize] = sweep[v as usize];
+            let worst = cells
+                .iter()
+                .map(|&d| scratch.quality(poly, d, &rank))
+                .fold(0.0, f64::max);
+            rank[v as usize] = UNRANKED;
+            let key = (
+                worst > TARGET_DIHEDRAL_DEG,
+                disturbed,
+                worst,
+                sweep[v as usize],
+            );
+            if best.is_none_or(|b| key < b.0) {
+                best = Some((key, v));
+            }
+        }
+        if let Some((_, v)) = best {
+            rank[v as usize] = sweep[v as usize];
+            around
+                .of(v)
+                .iter()
+                .for_each(|&d| touched[d as usize] = true);
+        }
     }
-    Ok((0..n)
-        .map(|v| if cut[v] { sweep[v] } else { UNRANKED })
-        .collect())
+    Ok(rank)
 }

@@ -75,6 +75,9 @@ mod tests {
             [0.0, 0.0, 1.0],
         ];
         let a = tet_dihedral_angles_deg(q);
-        assert!((a[0] - 90.0).abs() < 1e-12 && (a[3] - 90.0).abs() < 1e-12, "{a:?}");
+        assert!(
+            (a[0] - 90.0).abs() < 1e-12 && (a[3] - 90.0).abs() < 1e-12,
+            "{a:?}"
+        );
     }
 }

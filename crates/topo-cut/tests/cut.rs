@@ -24,7 +24,13 @@ fn flux6(nodes: &[[f64; 3]], k: &[u32]) -> f64 {
         (0..3).for_each(|d| c[d] += nodes[v as usize][d] / k.len() as f64);
     }
     (0..k.len())
-        .map(|i| triple(c, nodes[k[i] as usize], nodes[k[(i + 1) % k.len()] as usize]))
+        .map(|i| {
+            triple(
+                c,
+                nodes[k[i] as usize],
+                nodes[k[(i + 1) % k.len()] as usize],
+            )
+        })
         .sum()
 }
 
@@ -34,19 +40,18 @@ fn mesh_volume(mesh: &Mesh) -> f64 {
     p.nodes = mesh.nodes.clone();
     for c in mesh.cells.iter() {
         let k = c.corners();
-        let faces: Vec<CellFace> = c
-            .ty
-            .shape
-            .faces()
-            .iter()
-            .map(|f| {
-                let nodes: Vec<u32> = f.iter().map(|&j| k[j]).collect();
-                CellFace {
-                    face: p.push_face(&nodes),
-                    reversed: false,
-                }
-            })
-            .collect();
+        let faces: Vec<CellFace> =
+            c.ty.shape
+                .faces()
+                .iter()
+                .map(|f| {
+                    let nodes: Vec<u32> = f.iter().map(|&j| k[j]).collect();
+                    CellFace {
+                        face: p.push_face(&nodes),
+                        reversed: false,
+                    }
+                })
+                .collect();
         p.push_cell(&faces, 0, 0);
     }
     (0..p.cell_count()).map(|c| p.cell_volume(c)).sum()
@@ -97,9 +102,17 @@ impl std::fmt::Display for Stats {
 /// of its layer and pipe, wall facets on the wall.
 fn check(poly: &PolyMesh, mesh: &Mesh) -> Stats {
     let problems = validate(mesh);
-    assert!(problems.is_empty(), "{} problems, first: {}", problems.len(), problems[0]);
+    assert!(
+        problems.is_empty(),
+        "{} problems, first: {}",
+        problems.len(),
+        problems[0]
+    );
     let v_poly: f64 = (0..poly.cell_count()).map(|c| poly.cell_volume(c)).sum();
-    let f_poly: f64 = poly_boundary(poly).iter().map(|k| flux6(&poly.nodes, k)).sum();
+    let f_poly: f64 = poly_boundary(poly)
+        .iter()
+        .map(|k| flux6(&poly.nodes, k))
+        .sum();
     let f_mesh: f64 = mesh
         .boundary
         .iter()
@@ -111,7 +124,10 @@ fn check(poly: &PolyMesh, mesh: &Mesh) -> Stats {
         (v_mesh - want).abs() <= 1e-12 * v_poly,
         "volume {v_mesh} want {want} (poly {v_poly})"
     );
-    assert!((f_mesh / 6.0 - v_mesh).abs() <= 1e-12 * v_poly, "boundary turned inward");
+    assert!(
+        (f_mesh / 6.0 - v_mesh).abs() <= 1e-12 * v_poly,
+        "boundary turned inward"
+    );
     // each piece inside its parent, found by (layer, pipe)
     let mut parent: HashMap<(u32, u32), HashSet<u32>> = HashMap::new();
     let mut wall: HashSet<u32> = HashSet::new();
@@ -129,11 +145,18 @@ fn check(poly: &PolyMesh, mesh: &Mesh) -> Stats {
     assert_eq!(mesh.cell_layer.len(), mesh.cells.len());
     for (i, c) in mesh.cells.iter().enumerate() {
         let set = &parent[&(mesh.cell_layer[i], mesh.cell_pipe[i])];
-        assert!(c.corners().iter().all(|v| set.contains(v)), "cell {i} outside its parent");
+        assert!(
+            c.corners().iter().all(|v| set.contains(v)),
+            "cell {i} outside its parent"
+        );
     }
     for (i, f) in mesh.boundary.iter().enumerate() {
         let on_wall = f.corners().iter().all(|v| wall.contains(v));
-        assert_eq!(mesh.boundary_patch[i] == 0, on_wall, "facet {i} in the wrong patch");
+        assert_eq!(
+            mesh.boundary_patch[i] == 0,
+            on_wall,
+            "facet {i} in the wrong patch"
+        );
     }
     Stats {
         tets: mesh.count(Shape::Tet),
@@ -161,11 +184,14 @@ fn plain_prisms_and_hexes_are_kept_or_cut_in_three_and_six() {
         let (t, m) = both(&spec);
         let cells = poly.cell_count();
         assert_eq!(t.tets, cells * if quads { 6 } else { 3 });
-        assert_eq!((m.prisms, m.hexes, m.tets, m.pyramids), if quads {
-            (0, cells, 0, 0)
-        } else {
-            (cells, 0, 0, 0)
-        });
+        assert_eq!(
+            (m.prisms, m.hexes, m.tets, m.pyramids),
+            if quads {
+                (0, cells, 0, 0)
+            } else {
+                (cells, 0, 0, 0)
+            }
+        );
         println!("quads {quads}: tets: {t}; mixed: {m}");
     }
 }
@@ -184,15 +210,22 @@ fn merged_children_are_cut_conforming() {
     }
 }
 
+/// Grown until the outer layers are tall enough for Coe_shrink to merge children (0.65, the
+/// dissertation's value), and twice as eager; printed with `--nocapture`.
 #[test]
 fn quality_on_radial_extrusions() {
     for quads in [false, true] {
-        for (coe, layers) in [(0.0, 12), (0.65, 20), (1.3, 20)] {
+        for (coe, h0, growth, layers) in [
+            (0.0, 0.02, 1.25, 12),
+            (0.65, 0.05, 1.3, 16),
+            (1.3, 0.02, 1.25, 20),
+        ] {
             let mut spec = Spec::new(8, quads, layers);
+            (spec.h0, spec.growth) = (h0, growth);
             spec.merge = Merge::Shrink(coe);
             let (t, m) = both(&spec);
             println!("quads {quads} Coe_shrink {coe}: tets: {t}; mixed: {m}");
-            assert!(t.max_dihedral < 160.0, "{t}");
+            assert!(t.max_dihedral < 160.0 && m.max_dihedral < 160.0, "{t}; {m}");
         }
     }
 }
@@ -207,8 +240,14 @@ fn a_long_face_is_a_clear_error() {
             p.nodes.push([a.cos(), a.sin(), z]);
         }
     }
-    let out = |face| CellFace { face, reversed: false };
-    let mut faces = vec![out(p.push_face(&[4, 3, 2, 1, 0])), out(p.push_face(&[5, 6, 7, 8, 9]))];
+    let out = |face| CellFace {
+        face,
+        reversed: false,
+    };
+    let mut faces = vec![
+        out(p.push_face(&[4, 3, 2, 1, 0])),
+        out(p.push_face(&[5, 6, 7, 8, 9])),
+    ];
     for i in 0..5u32 {
         let j = (i + 1) % 5;
         faces.push(out(p.push_face(&[i, j, j + 5, i + 5])));
@@ -216,7 +255,10 @@ fn a_long_face_is_a_clear_error() {
     p.push_cell(&faces, 0, 0);
     assert!(p.validate().is_empty());
     let e = topo_cut::cut_to_tets(&p).unwrap_err().to_string();
-    assert_eq!(e, "cell 0: face 0 has 5 nodes, only triangles and quadrilaterals can be cut");
+    assert_eq!(
+        e,
+        "cell 0: face 0 has 5 nodes, only triangles and quadrilaterals can be cut"
+    );
     assert!(topo_cut::cut_to_mixed(&p).is_err());
 }
 
