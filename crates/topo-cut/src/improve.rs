@@ -129,13 +129,18 @@ pub fn improve(poly: &PolyMesh, rank: &mut [u32], target: f64, passes: usize) {
                     affected.sort_unstable();
                     affected.dedup();
                     let before = affected.iter().map(|&d| q[d as usize]).fold(0.0, f64::max);
+                    let bound = best.map_or(before, |b| b.0.min(before));
                     rank.swap(v as usize, w as usize);
-                    let after = affected
-                        .iter()
-                        .map(|&d| s.quality(poly, d, rank))
-                        .fold(0.0, f64::max);
+                    // the bad cell first, then its neighbours, stopping once no better
+                    let mut after = s.quality(poly, c, rank);
+                    for &d in affected.iter().filter(|&&d| d != c) {
+                        if after >= bound - 1e-9 {
+                            break;
+                        }
+                        after = after.max(s.quality(poly, d, rank));
+                    }
                     rank.swap(v as usize, w as usize);
-                    if after < before - 1e-9 && best.is_none_or(|b| after < b.0) {
+                    if after < bound - 1e-9 {
                         best = Some((after, v, w));
                     }
                 }
