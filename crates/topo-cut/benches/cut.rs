@@ -5,8 +5,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 
-#[path = "../tests/fixture/mod.rs"]
-mod fixture;
+use testkit::layered as fixture;
 
 fn bench(c: &mut Criterion) {
     for quads in [false, true] {

@@ -1,7 +1,7 @@
 //! The cuts on layered cube-spheres: conforming, positive, the volume kept, every piece in
 //! its parent's layer and pipe; with every kind of merged cell and adversarial numberings.
 
-mod fixture;
+use testkit::layered as fixture;
 
 use std::collections::{HashMap, HashSet};
 
