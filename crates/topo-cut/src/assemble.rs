@@ -14,14 +14,7 @@ pub fn cut(poly: &PolyMesh, rank: &[u32]) -> Result<Mesh, CutError> {
     let mut faces = CellFaces::default();
     let mut pieces: Vec<Piece> = Vec::new();
     for c in 0..poly.cell_count() {
-        faces.load(poly, c);
-        if let Some(face) = faces.long_face() {
-            return Err(CutError::LongFace {
-                cell: c,
-                face: poly.cell(c)[face].face as usize,
-                nodes: faces.face(face).len(),
-            });
-        }
+        crate::load_checked(&mut faces, poly, c)?;
         pieces.clear();
         match faces.first_ranked(rank) {
             Some(apex) => faces.cone(apex, rank, &mut pieces),

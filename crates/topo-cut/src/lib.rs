@@ -100,6 +100,19 @@ pub fn cut_to_mixed(poly: &PolyMesh) -> Result<Mesh, CutError> {
     assemble::cut(poly, &rank)
 }
 
+/// Loads cell `c` into `faces`; an error when it has a face of more than four nodes.
+fn load_checked(faces: &mut cone::CellFaces, poly: &PolyMesh, c: usize) -> Result<(), CutError> {
+    faces.load(poly, c);
+    match faces.long_face() {
+        Some(face) => Err(CutError::LongFace {
+            cell: c,
+            face: poly.cell(c)[face].face as usize,
+            nodes: faces.face(face).len(),
+        }),
+        None => Ok(()),
+    }
+}
+
 fn check(poly: &PolyMesh) -> Result<(), CutError> {
     match poly.validate().into_iter().next() {
         Some(p) => Err(CutError::Invalid(p)),

@@ -125,14 +125,7 @@ pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutEr
     let mut cell_nodes: Vec<Vec<u32>> = Vec::with_capacity(cc);
     let mut standard = vec![false; cc];
     for (c, is_standard) in standard.iter_mut().enumerate() {
-        faces.load(poly, c);
-        if let Some(face) = faces.long_face() {
-            return Err(CutError::LongFace {
-                cell: c,
-                face: poly.cell(c)[face].face as usize,
-                nodes: faces.face(face).len(),
-            });
-        }
+        crate::load_checked(&mut faces, poly, c)?;
         *is_standard = faces.standard().is_some();
         let mut nodes = Vec::new();
         faces.distinct_nodes(&mut nodes);
