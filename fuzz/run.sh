@@ -21,6 +21,7 @@ export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target/fuzz}"
 targets=(
   "crates/geom-curve airfoil_dat fixtures/geometry/*.dat fixtures/geometry/30p30n/*.dat crates/geom-curve/tests/data/*.dat"
   "crates/mesh-io msh crates/mesh-io/tests/data/*.msh"
+  "crates/mesh-io stl crates/mesh-io/tests/data/*.stl"
   "xtask case_toml fixtures/cases/*.toml"
 )
 failed=()

@@ -17,7 +17,13 @@ orders 1, 2 and 3, mixed and `--triangles`, writing .msh, .vtu and the JSON repo
   none at order 1.
 Also checks that bad input exits with status 1, one line on stderr, and no file.
 
-Usage: python3 tests/python/e2e.py XTASK_BINARY
+3D (with CUT3D_BINARY, the example `cut3d` of the end-to-end crate): a layered cube-sphere with
+merged children, cut by `topo-cut` to tetrahedra and to mixed cells (tetrahedra, pyramids,
+prisms, hexahedra), linear and straight-sided P2. Gmsh reads every .msh: the counts of each
+element type of the right order, the physical groups `fluid`, `wall` and `farfield`, no warning,
+minSJ > 0 on every element, a positive volume; VTK reads every .vtu with the same counts.
+
+Usage: python3 tests/python/e2e.py XTASK_BINARY [CUT3D_BINARY]
 Ends with the line "N passed, M failed"; exit status 1 if any check failed.
 """
 import json
@@ -216,7 +222,60 @@ def check_pyfr(label, p, report, order):
     return curved
 
 
-def main(xtask):
+GMSH_3D = {"Tetrahedron": ("tet", {1: 4, 2: 10}), "Pyramid": ("pyramid", {1: 5, 2: 14}),
+           "Prism": ("prism", {1: 6, 2: 18}), "Hexahedron": ("hex", {1: 8, 2: 27}),
+           "Triangle": (None, {1: 3, 2: 6}), "Quadrilateral": (None, {1: 4, 2: 9})}
+# VTK cell type ids: linear tetra, pyramid, wedge, hexahedron; Lagrange tetra, wedge, hexahedron.
+VTK_3D = {1: {"tet": 10, "pyramid": 14, "prism": 13, "hex": 12},
+          2: {"tet": 71, "prism": 73, "hex": 72}}
+
+
+def check_cut3d(cut3d, tmp):
+    """The 3D meshes cut by topo-cut (the example cut3d) read by Gmsh and VTK."""
+    r = subprocess.run([cut3d, os.path.join(tmp, "cut3d")], capture_output=True, text=True)
+    if not check(r.returncode == 0, f"cut3d exit {r.returncode}: {r.stderr.strip()[-500:]}"):
+        return
+    meshes = [json.loads(l) for l in r.stdout.splitlines() if l.startswith("{")]
+    check(len(meshes) == 8, f"cut3d wrote {len(meshes)} meshes, expected 8")
+    found = run_checkers([m["msh"] for m in meshes], [m["vtu"] for m in meshes if m["vtu"]], [])
+    for m in meshes:
+        label, order, cells = os.path.basename(m["msh"]), m["order"], m["cells"]
+        before = failed
+        g = found.get(("check_msh.py", m["msh"]))
+        if check(g is not None and "error" not in g, f"{label}: gmsh reads it: {g}"):
+            check(not g["warnings"], f"{label}: gmsh warnings {g['warnings'][:3]}")
+            check(g["nodes"] == m["nodes"], f"{label}: gmsh nodes {g['nodes']} vs {m['nodes']}")
+            count = {k: 0 for k in cells}
+            for t in g["element_types"]:
+                kind, nodes = GMSH_3D.get(t["name"].split()[0], (None, {}))
+                check(t["order"] == order and t["nodes"] == nodes.get(order),
+                      f"{label}: gmsh element type {t['name']} of order {t['order']}")
+                if kind:
+                    count[kind] += t["count"]
+            check(count == cells, f"{label}: gmsh counts {count} vs {cells}")
+            groups = {p["name"]: p["elements"] for p in g["physical_groups"]}
+            check(groups.get("fluid") == sum(cells.values()), f"{label}: fluid group {groups}")
+            for name, n in m["boundary_groups"].items():
+                check(groups.get(name) == n, f"{label}: group {name} has {n} facets ({groups})")
+            sj = g["min_scaled_jacobian"]
+            check(sj is not None and sj > 0, f"{label}: gmsh minSJ {sj} > 0")
+            check(g.get("volume", 0) > 0, f"{label}: gmsh volume {g.get('volume')}")
+        if m["vtu"]:
+            v = found.get(("check_vtu.py", m["vtu"]))
+            if check(v is not None and "error" not in v, f"{label}: VTK reads the .vtu: {v}"):
+                check(v["cells"] == sum(cells.values()) and v["points"] == m["nodes"],
+                      f"{label}: VTK cells {v['cells']} points {v['points']}")
+                want = {str(VTK_3D[order][k]): n for k, n in cells.items() if n}
+                check(v["types"] == want, f"{label}: VTK types {v['types']} vs {want}")
+                check(v["boundary_groups"] == m["boundary_groups"],
+                      f"{label}: VTK boundary groups {v['boundary_groups']}")
+        print(f"{'ok  ' if failed == before else 'bad '} 3D {label:<22} nodes {m['nodes']:>6}  "
+              + "  ".join(f"{k} {n}" for k, n in cells.items())
+              + f"  gmsh minSJ {g.get('min_scaled_jacobian') if g else '-'}"
+              + f"  vtu {'yes' if m['vtu'] else 'no (P2 pyramids)'}")
+
+
+def main(xtask, cut3d=None):
     start = time.monotonic()
     names = [l.split()[0] for l in
              subprocess.run([xtask, "mesh", "--list"], capture_output=True, text=True,
@@ -283,6 +342,8 @@ def main(xtask):
               f"bad input: one line naming the fault: {r.stderr!r}")
         check(not os.path.exists(out), "bad input writes no file")
         check("panicked" not in r.stderr, "no panic")
+        if cut3d:
+            check_cut3d(cut3d, tmp)
     end = time.monotonic()
     print(f"time: meshing {meshed - start:.1f} s, reading (Gmsh, VTK, PyFR side by side) "
           f"{read - meshed:.1f} s, total {end - start:.1f} s")
@@ -291,6 +352,6 @@ def main(xtask):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
+    if len(sys.argv) not in (2, 3):
         sys.exit(__doc__)
-    sys.exit(main(sys.argv[1]))
+    sys.exit(main(*sys.argv[1:]))

@@ -141,6 +141,18 @@ pub enum IoError {
         message: String,
     },
 
+    /// A binary file does not follow its format (a truncated binary STL, a count that does
+    /// not match the size). Fix: the message names the byte offset and what was expected.
+    #[error("{path}: byte {offset}: {message}", path = path.display())]
+    MalformedBinary {
+        /// The file read.
+        path: PathBuf,
+        /// Byte offset of the fault.
+        offset: usize,
+        /// What was expected and what was found.
+        message: String,
+    },
+
     /// The file is not a snapshot of this program (wrong magic bytes), or of an older or newer
     /// snapshot format version, or its contents do not decode as the expected type.
     /// Fix: regenerate the snapshot with this version of the program.

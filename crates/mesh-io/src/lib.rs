@@ -1,5 +1,6 @@
 //! Mesh files: Gmsh MSH 4.1 ASCII and binary (write and read), VTK XML `.vtu` with Lagrange
-//! cells, SU2 native (linear), and binary snapshots of intermediate stages. Every file is written
+//! cells, SU2 native (linear), binary snapshots of intermediate stages, and STL surfaces
+//! (read). Every file is written
 //! atomically ([`atomic`]): a failed write leaves no partial file; a set of files written by
 //! one [`atomic::Transaction`] is replaced together or not at all.
 //!
@@ -10,7 +11,8 @@
 //!
 //! Entry points: [`write()`] and [`write_to`] (format chosen by the extension), [`read_msh`],
 //! [`atomic::Transaction`], and the modules
-//! [`msh`], [`vtu`], [`su2`], [`snapshot`]. Test meshes for this and other crates are in
+//! [`msh`], [`vtu`], [`su2`], [`snapshot`], and [`stl`] (closed surfaces in: STL and
+//! triangulated `.msh`). Test meshes for this and other crates are in
 //! `testkit`, behind the cargo feature `testkit`.
 //!
 //! # Example
@@ -53,6 +55,7 @@ pub mod msh;
 pub mod node_order;
 pub mod sensitivities;
 pub mod snapshot;
+pub mod stl;
 pub mod su2;
 #[cfg(any(test, feature = "testkit"))]
 pub mod testkit;

@@ -1,0 +1,121 @@
+//! Cuts the raw cells of a 3D layered mesh into standard cells, conforming between neighbours
+//! and without Steiner points (dissertation §5.2.3 and §5.2.5, `method.md` §7).
+//!
+//! A 3D advancing-front mesher hands over a [`PolyMesh`]: in each cell face 0 is the bottom (on
+//! the previous front), face 1 the top (the children of the bottom's nodes; left out when the
+//! merged children leave fewer than three distinct nodes), then the side faces, triangles or
+//! quadrilaterals. Merged children make cells no solver knows (a quadrilateral bottom under a
+//! triangle top, a triangle under an edge, …).
+//!
+//! Both cuts rest on one rule. The nodes to cut around are put in one global order, the
+//! *sweep* ([`order`]): lower fronts first, and within a front by the deviation of the pipe's
+//! first extrusion edge from the wall normal (straightest first, the dissertation's order),
+//! which every child inherits from its parent (a merged child from the first of its parents).
+//! A quadrilateral face with a node to cut around is split by the diagonal through its first
+//! such node, and a cell with such a node is replaced by the cone from its first one over its
+//! faces that do not contain it: a triangle gives a tetrahedron, a kept quadrilateral a
+//! pyramid, a split one two tetrahedra ([`cone`]). Both cells of a face see the same first
+//! node, so they agree on the face; a face through the apex is fanned from it on both sides.
+//! This is the dissertation's sweep: going over the nodes in order and cutting around each
+//! the cells (or the pieces of cells) that contain it, the first node of a prism's three side
+//! faces never makes a cyclic pattern of diagonals, and every cell is cut without a Steiner
+//! point. A hexahedron's first node is a bottom node whose child is the first top node, so
+//! every tetrahedron keeps an extrusion edge (no flat slivers in thin layers).
+//!
+//! Where a cell is cut worse than [`TARGET_DIHEDRAL_DEG`], ranks of its nodes are swapped as
+//! the dissertation switches extrusion edges ([`improve`]).
+//!
+//! - [`cut_to_tets`]: every node is cut around — pure tetrahedra (§5.2.3).
+//! - [`cut_to_mixed`]: only a few nodes are cut around — round-cutting (§5.2.5): for each
+//!   non-standard cell not yet touched, the node whose cut keeps the cells around it under
+//!   the target dihedral angle and disturbs the fewest standard cells.
+//!   Standard cells without such a node (prisms, hexahedra, pyramids, tetrahedra) are kept,
+//!   and a quadrilateral they share stays a quadrilateral on the other side (a pyramid's base).
+//!
+//! Every output cell keeps the layer and pipe of the cell it comes from. The boundary facets
+//! are the bottoms of layer-0 cells (patch `wall`) and the other faces of one cell (the outer
+//! front, patch `farfield`), turned out of the domain; when the pipes number the wall facets
+//! `0..n`, facet `p` is (the first part of) the wall facet of pipe `p`.
+
+pub mod cone;
+pub mod improve;
+pub mod order;
+pub mod quality;
+
+mod assemble;
+
+use mesh_model::Mesh;
+use mesh_model::poly::{PolyMesh, PolyProblem};
+
+pub use quality::{max_dihedral_deg, tet_dihedral_angles_deg};
+
+/// Why a polyhedral mesh could not be cut.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CutError {
+    /// The polyhedral mesh fails its own check (first problem).
+    #[error("the polyhedral mesh is invalid: {0}")]
+    Invalid(PolyProblem),
+    /// A face with more than four nodes: only triangles and quadrilaterals are cut.
+    #[error(
+        "cell {cell}: face {face} has {nodes} nodes, only triangles and quadrilaterals can be cut"
+    )]
+    LongFace {
+        /// Cell index.
+        cell: usize,
+        /// Face index.
+        face: usize,
+        /// Its number of nodes.
+        nodes: usize,
+    },
+    /// A cell none of whose nodes was cut around is not one of the standard shapes (a bug).
+    #[error("cell {cell} is not a standard cell and was not cut")]
+    NotStandard {
+        /// Cell index.
+        cell: usize,
+    },
+}
+
+/// Cuts every cell into tetrahedra by the ordered extrusion-edge sweep (dissertation §5.2.3).
+///
+/// The result is a linear 3D [`Mesh`] on the same nodes, conforming, with the `wall` and
+/// `farfield` boundary facets, each tetrahedron with its cell's layer and pipe.
+pub fn cut_to_tets(poly: &PolyMesh) -> Result<Mesh, CutError> {
+    check(poly)?;
+    let mut rank = order::sweep_ranks(poly);
+    improve::improve(poly, &mut rank, TARGET_DIHEDRAL_DEG, 4);
+    assemble::cut(poly, &rank)
+}
+
+/// The largest tetrahedron dihedral angle the sweep tries to stay under, in degrees.
+pub const TARGET_DIHEDRAL_DEG: f64 = 150.0;
+
+/// Keeps the standard cells and round-cuts the others into tetrahedra and pyramids
+/// (dissertation §5.2.5), conforming: a quadrilateral face of a kept cell stays a
+/// quadrilateral (a pyramid's base) on the other side.
+pub fn cut_to_mixed(poly: &PolyMesh) -> Result<Mesh, CutError> {
+    check(poly)?;
+    let rank = order::sweep_ranks(poly);
+    let mut rank = order::round_cut_ranks(poly, &rank)?;
+    improve::improve(poly, &mut rank, TARGET_DIHEDRAL_DEG, 4);
+    assemble::cut(poly, &rank)
+}
+
+/// Loads cell `c` into `faces`; an error when it has a face of more than four nodes.
+fn load_checked(faces: &mut cone::CellFaces, poly: &PolyMesh, c: usize) -> Result<(), CutError> {
+    faces.load(poly, c);
+    match faces.long_face() {
+        Some(face) => Err(CutError::LongFace {
+            cell: c,
+            face: poly.cell(c)[face].face as usize,
+            nodes: faces.face(face).len(),
+        }),
+        None => Ok(()),
+    }
+}
+
+fn check(poly: &PolyMesh) -> Result<(), CutError> {
+    match poly.validate().into_iter().next() {
+        Some(p) => Err(CutError::Invalid(p)),
+        None => Ok(()),
+    }
+}

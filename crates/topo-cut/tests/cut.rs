@@ -1,0 +1,304 @@
+//! The cuts on layered cube-spheres: conforming, positive, the volume kept, every piece in
+//! its parent's layer and pipe; with every kind of merged cell and adversarial numberings.
+
+use testkit::layered as fixture;
+
+use std::collections::{HashMap, HashSet};
+
+use fixture::{Merge, Spec};
+use mesh_model::poly::{CellFace, PolyMesh};
+use mesh_model::{Mesh, Shape, validate};
+use proptest::prelude::*;
+
+fn triple(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    a[0] * (b[1] * c[2] - b[2] * c[1])
+        + a[1] * (b[2] * c[0] - b[0] * c[2])
+        + a[2] * (b[0] * c[1] - b[1] * c[0])
+}
+
+/// Six times the flux of `x / 3` through the polygon `k`, fanned from its centroid (the
+/// fanning `PolyMesh::cell_volume` uses).
+fn flux6(nodes: &[[f64; 3]], k: &[u32]) -> f64 {
+    let mut c = [0.0; 3];
+    for &v in k {
+        (0..3).for_each(|d| c[d] += nodes[v as usize][d] / k.len() as f64);
+    }
+    (0..k.len())
+        .map(|i| {
+            triple(
+                c,
+                nodes[k[i] as usize],
+                nodes[k[(i + 1) % k.len()] as usize],
+            )
+        })
+        .sum()
+}
+
+/// The volume of the mesh's linear cells, each face fanned from its centroid.
+fn mesh_volume(mesh: &Mesh) -> f64 {
+    let mut p = PolyMesh::new();
+    p.nodes = mesh.nodes.clone();
+    for c in mesh.cells.iter() {
+        let k = c.corners();
+        let faces: Vec<CellFace> =
+            c.ty.shape
+                .faces()
+                .iter()
+                .map(|f| {
+                    let nodes: Vec<u32> = f.iter().map(|&j| k[j]).collect();
+                    CellFace {
+                        face: p.push_face(&nodes),
+                        reversed: false,
+                    }
+                })
+                .collect();
+        p.push_cell(&faces, 0, 0);
+    }
+    (0..p.cell_count()).map(|c| p.cell_volume(c)).sum()
+}
+
+/// The faces of `poly` in one cell, turned out of it.
+fn poly_boundary(poly: &PolyMesh) -> Vec<Vec<u32>> {
+    let mut uses = vec![0; poly.face_count()];
+    for c in 0..poly.cell_count() {
+        poly.cell(c).iter().for_each(|f| uses[f.face as usize] += 1);
+    }
+    let mut out = Vec::new();
+    for c in 0..poly.cell_count() {
+        for f in poly.cell(c) {
+            if uses[f.face as usize] == 1 {
+                let mut k = poly.face(f.face as usize).to_vec();
+                if f.reversed {
+                    k.reverse();
+                }
+                out.push(k);
+            }
+        }
+    }
+    out
+}
+
+/// Cell counts by shape and the largest tetrahedron dihedral angle.
+struct Stats {
+    tets: usize,
+    pyramids: usize,
+    prisms: usize,
+    hexes: usize,
+    max_dihedral: f64,
+}
+
+impl std::fmt::Display for Stats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "tet {} pyramid {} prism {} hex {} max dihedral {:.1}°",
+            self.tets, self.pyramids, self.prisms, self.hexes, self.max_dihedral
+        )
+    }
+}
+
+/// Every property of a cut: no problem for `validate`, the volume kept (up to the splitting
+/// of boundary quadrilaterals, accounted for exactly), each cell inside the polyhedral cell
+/// of its layer and pipe, wall facets on the wall.
+fn check(poly: &PolyMesh, mesh: &Mesh) -> Stats {
+    let problems = validate(mesh);
+    assert!(
+        problems.is_empty(),
+        "{} problems, first: {}",
+        problems.len(),
+        problems[0]
+    );
+    let v_poly: f64 = (0..poly.cell_count()).map(|c| poly.cell_volume(c)).sum();
+    let f_poly: f64 = poly_boundary(poly)
+        .iter()
+        .map(|k| flux6(&poly.nodes, k))
+        .sum();
+    let f_mesh: f64 = mesh
+        .boundary
+        .iter()
+        .map(|f| flux6(&mesh.nodes, f.corners()))
+        .sum();
+    let v_mesh = mesh_volume(mesh);
+    let want = v_poly + (f_mesh - f_poly) / 6.0;
+    assert!(
+        (v_mesh - want).abs() <= 1e-12 * v_poly,
+        "volume {v_mesh} want {want} (poly {v_poly})"
+    );
+    assert!(
+        (f_mesh / 6.0 - v_mesh).abs() <= 1e-12 * v_poly,
+        "boundary turned inward"
+    );
+    // each piece inside its parent, found by (layer, pipe)
+    let mut parent: HashMap<(u32, u32), HashSet<u32>> = HashMap::new();
+    let mut wall: HashSet<u32> = HashSet::new();
+    for c in 0..poly.cell_count() {
+        let key = (poly.cell_layer[c], poly.cell_pipe[c]);
+        let set = parent.entry(key).or_default();
+        assert!(set.is_empty(), "two cells in layer and pipe {key:?}");
+        for (i, f) in poly.cell(c).iter().enumerate() {
+            set.extend(poly.face(f.face as usize));
+            if i == 0 && key.0 == 0 {
+                wall.extend(poly.face(f.face as usize));
+            }
+        }
+    }
+    assert_eq!(mesh.cell_layer.len(), mesh.cells.len());
+    for (i, c) in mesh.cells.iter().enumerate() {
+        let set = &parent[&(mesh.cell_layer[i], mesh.cell_pipe[i])];
+        assert!(
+            c.corners().iter().all(|v| set.contains(v)),
+            "cell {i} outside its parent"
+        );
+    }
+    for (i, f) in mesh.boundary.iter().enumerate() {
+        let on_wall = f.corners().iter().all(|v| wall.contains(v));
+        assert_eq!(
+            mesh.boundary_patch[i] == 0,
+            on_wall,
+            "facet {i} in the wrong patch"
+        );
+    }
+    Stats {
+        tets: mesh.count(Shape::Tet),
+        pyramids: mesh.count(Shape::Pyramid),
+        prisms: mesh.count(Shape::Prism),
+        hexes: mesh.count(Shape::Hex),
+        max_dihedral: topo_cut::max_dihedral_deg(mesh),
+    }
+}
+
+fn both(spec: &Spec) -> (Stats, Stats) {
+    let poly = fixture::poly(spec);
+    let tets = topo_cut::cut_to_tets(&poly).expect("tets");
+    let mixed = topo_cut::cut_to_mixed(&poly).expect("mixed");
+    let (t, m) = (check(&poly, &tets), check(&poly, &mixed));
+    assert_eq!(t.pyramids + t.prisms + t.hexes, 0);
+    (t, m)
+}
+
+#[test]
+fn plain_prisms_and_hexes_are_kept_or_cut_in_three_and_six() {
+    for quads in [false, true] {
+        let spec = Spec::new(3, quads, 4);
+        let poly = fixture::poly(&spec);
+        let (t, m) = both(&spec);
+        let cells = poly.cell_count();
+        assert_eq!(t.tets, cells * if quads { 6 } else { 3 });
+        assert_eq!(
+            (m.prisms, m.hexes, m.tets, m.pyramids),
+            if quads {
+                (0, cells, 0, 0)
+            } else {
+                (cells, 0, 0, 0)
+            }
+        );
+        println!("quads {quads}: tets: {t}; mixed: {m}");
+    }
+}
+
+#[test]
+fn merged_children_are_cut_conforming() {
+    for quads in [false, true] {
+        for p in [0.1, 0.3, 0.6] {
+            let mut spec = Spec::new(4, quads, 6);
+            (spec.h0, spec.growth) = (0.15, 1.2);
+            spec.merge = Merge::Random(p);
+            let (t, m) = both(&spec);
+            println!("quads {quads} merge {p}: tets: {t}; mixed: {m}");
+            assert!(m.pyramids > 0 || m.tets > 0);
+        }
+    }
+}
+
+/// Grown until the outer layers are tall enough for Coe_shrink to merge children (0.65, the
+/// dissertation's value), and twice as eager; printed with `--nocapture`.
+#[test]
+fn quality_on_radial_extrusions() {
+    for quads in [false, true] {
+        for (coe, h0, growth, layers) in [
+            (0.0, 0.02, 1.25, 12),
+            (0.65, 0.05, 1.3, 16),
+            (1.3, 0.02, 1.25, 20),
+        ] {
+            let mut spec = Spec::new(8, quads, layers);
+            (spec.h0, spec.growth) = (h0, growth);
+            spec.merge = Merge::Shrink(coe);
+            let (t, m) = both(&spec);
+            println!("quads {quads} Coe_shrink {coe}: tets: {t}; mixed: {m}");
+            assert!(t.max_dihedral < 160.0 && m.max_dihedral < 160.0, "{t}; {m}");
+        }
+    }
+}
+
+#[test]
+fn a_long_face_is_a_clear_error() {
+    let mut p = PolyMesh::new();
+    // a pentagonal prism
+    for z in [0.0, 1.0] {
+        for i in 0..5 {
+            let a = i as f64 * std::f64::consts::TAU / 5.0;
+            p.nodes.push([a.cos(), a.sin(), z]);
+        }
+    }
+    let out = |face| CellFace {
+        face,
+        reversed: false,
+    };
+    let mut faces = vec![
+        out(p.push_face(&[4, 3, 2, 1, 0])),
+        out(p.push_face(&[5, 6, 7, 8, 9])),
+    ];
+    for i in 0..5u32 {
+        let j = (i + 1) % 5;
+        faces.push(out(p.push_face(&[i, j, j + 5, i + 5])));
+    }
+    p.push_cell(&faces, 0, 0);
+    assert!(p.validate().is_empty());
+    let e = topo_cut::cut_to_tets(&p).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "cell 0: face 0 has 5 nodes, only triangles and quadrilaterals can be cut"
+    );
+    assert!(topo_cut::cut_to_mixed(&p).is_err());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    #[test]
+    fn any_numbering_and_merge_set_cuts_conforming(
+        seed in any::<u64>(), quads in any::<bool>(), p in 0.0f64..0.7, n in 2usize..4,
+        layers in 2usize..6,
+    ) {
+        let mut spec = Spec::new(n, quads, layers);
+        (spec.h0, spec.growth) = (0.15, 1.2);
+        spec.seed = seed;
+        spec.merge = Merge::Random(p);
+        both(&spec);
+    }
+}
+
+/// Where the time goes (run with `--release --ignored --nocapture`).
+#[test]
+#[ignore]
+fn timing() {
+    let mut spec = Spec::new(16, false, 20);
+    spec.merge = Merge::Shrink(1.3);
+    let poly = fixture::poly(&spec);
+    let t = std::time::Instant::now();
+    assert!(poly.validate().is_empty());
+    println!("validate {:?}", t.elapsed());
+    let t = std::time::Instant::now();
+    let mut rank = topo_cut::order::sweep_ranks(&poly);
+    println!("sweep {:?}", t.elapsed());
+    let t = std::time::Instant::now();
+    topo_cut::improve::improve(&poly, &mut rank, 150.0, 4);
+    println!("improve {:?}", t.elapsed());
+    let t = std::time::Instant::now();
+    let m = topo_cut::cut_to_tets(&poly).unwrap();
+    println!(
+        "cut_to_tets {:?}: {} cells -> {} tets",
+        t.elapsed(),
+        poly.cell_count(),
+        m.cells.len()
+    );
+}
