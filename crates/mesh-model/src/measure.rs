@@ -30,8 +30,8 @@ pub fn triangle_max_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let longest = opposite[0].max(opposite[1]).max(opposite[2]);
     let sound = longest.is_normal() && longest > 1e-200 && longest < 1e200;
     let mut largest: f64 = 0.0;
-    for i in 0..3 {
-        if sound && opposite[i] < longest * (1.0 - SIDE_MARGIN) {
+    for (i, &side) in opposite.iter().enumerate() {
+        if sound && side < longest * (1.0 - SIDE_MARGIN) {
             continue;
         }
         largest = largest.max(corner_angle_deg(corners, i));
