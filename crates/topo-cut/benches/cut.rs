@@ -20,6 +20,22 @@ fn bench(c: &mut Criterion) {
             b.iter(|| topo_cut::cut_to_mixed(&poly).expect("cut"))
         });
     }
+    // the stages of cut_to_tets, to see where its time goes
+    let mut spec = fixture::Spec::new(16, false, 20);
+    spec.merge = fixture::Merge::Shrink(1.3);
+    let poly = fixture::poly(&spec);
+    c.bench_function("stage/validate", |b| b.iter(|| poly.validate()));
+    c.bench_function("stage/sweep_ranks", |b| {
+        b.iter(|| topo_cut::order::sweep_ranks(&poly))
+    });
+    let ranks = topo_cut::order::sweep_ranks(&poly);
+    c.bench_function("stage/improve", |b| {
+        b.iter(|| {
+            let mut rank = ranks.clone();
+            topo_cut::improve::improve(&poly, &mut rank, 150.0, 4);
+            rank
+        })
+    });
 }
 
 criterion_group!(benches, bench);

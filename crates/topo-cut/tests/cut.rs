@@ -276,29 +276,3 @@ proptest! {
         both(&spec);
     }
 }
-
-/// Where the time goes (run with `--release --ignored --nocapture`).
-#[test]
-#[ignore]
-fn timing() {
-    let mut spec = Spec::new(16, false, 20);
-    spec.merge = Merge::Shrink(1.3);
-    let poly = fixture::poly(&spec);
-    let t = std::time::Instant::now();
-    assert!(poly.validate().is_empty());
-    println!("validate {:?}", t.elapsed());
-    let t = std::time::Instant::now();
-    let mut rank = topo_cut::order::sweep_ranks(&poly);
-    println!("sweep {:?}", t.elapsed());
-    let t = std::time::Instant::now();
-    topo_cut::improve::improve(&poly, &mut rank, 150.0, 4);
-    println!("improve {:?}", t.elapsed());
-    let t = std::time::Instant::now();
-    let m = topo_cut::cut_to_tets(&poly).unwrap();
-    println!(
-        "cut_to_tets {:?}: {} cells -> {} tets",
-        t.elapsed(),
-        poly.cell_count(),
-        m.cells.len()
-    );
-}
