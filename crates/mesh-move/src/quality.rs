@@ -180,15 +180,22 @@ pub fn first_layer_drift(before: &Mesh, after: &Mesh) -> Option<FirstLayerDrift>
     Some(drift)
 }
 
-/// A first-layer cell's height over its wall facet `w`.
+/// A first-layer cell's height over its wall facet `w`: the mean distance of its other
+/// corners from the facet's line (area over length would count a trapezoid at a convex
+/// corner, whose top edge is longer, as higher when the wall stretches under it).
 fn height(mesh: &Mesh, cell: usize, w: &[u32; 2]) -> f64 {
     let (a, b) = (mesh.xy(w[0]), mesh.xy(w[1]));
-    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-    let area = mesh.linear_cell_area(cell);
-    match mesh.cells.get(cell).ty.shape {
-        Shape::Tri => 2.0 * area / len,
-        _ => area / len,
+    let t = [b[0] - a[0], b[1] - a[1]];
+    let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    let (mut sum, mut count) = (0.0, 0.0);
+    for &k in mesh.cells.get(cell).corners() {
+        if k != w[0] && k != w[1] {
+            let p = mesh.xy(k);
+            sum += (t[0] * (p[1] - a[1]) - t[1] * (p[0] - a[0])).abs() / len;
+            count += 1.0;
+        }
     }
+    sum / count
 }
 
 /// Signed angle, radians, from the inward normal of wall facet `w` to edge `from → to`.

@@ -14,12 +14,15 @@
 //!    (the mean rotation, old → new, of the directions to its placed front neighbours, or its
 //!    parents' rotation); a node with two parents takes the mean of both predictions. A rigid
 //!    motion of a wall carries its band rigidly; a bump turns each column with the wall.
-//! 4. **Springs** ([`springfield`]) built from the layering with the original geometry as
-//!    the ideal one: an extrusion spring per parent–child edge (ideal length the original
-//!    one), a neighbour spring per kept node between its front neighbours (ideal share of the
-//!    two sides the original one), an angle spring per parent–child edge whose ideal
-//!    direction is the parent's bisector turned by the original angle. The original mesh is
-//!    an equilibrium, and so is any rigid motion of it. The kept nodes move, everything else
+//! 4. **Springs** ([`springfield`]) built from the layering with the original layers carried
+//!    by the moved wall as the ideal: an extrusion spring per parent–child edge (ideal length
+//!    the original one), a neighbour spring per kept node between its front neighbours (ideal
+//!    share of the two sides the predicted one), an angle spring per parent–child edge whose
+//!    ideal direction is the parent's bisector turned by the predicted angle. Along a wall
+//!    that stretches (a scaled body, a bump) the spacing between columns stretches while the
+//!    heights stay, so the original shares and angles would pull a corner's fan sideways; a
+//!    rigid motion predicts the original ones. The original mesh is an equilibrium, and so is
+//!    any rigid motion of it. The kept nodes move, everything else
 //!    is held; all together ([`Strategy::AllTogether`]) or one layer after the other, then
 //!    all together ([`Strategy::LayerByLayer`]). springfield's solver keeps the mass constant
 //!    for its first iterations and the angle springs off until an edge reaches
@@ -603,9 +606,13 @@ fn held_turns(
 
 /// The springs of the layers with the original geometry as the ideal one, and each node's
 /// length scale (its shortest original extrusion edge). Neighbour and angle springs are made
-/// only between `held` nodes (boundary and kept layer nodes).
+/// only between `held` nodes (boundary and kept layer nodes). The neighbour springs' shares
+/// and the angle springs' angles are those of the `predicted` layers (module docs, step 4:
+/// with the original ones a corner's fan turned 13° at the NACA0012's blunt trailing edge
+/// under ×1.5).
 fn build_springs(
     old: &[[f64; 2]],
+    predicted: &[[f64; 2]],
     fronts: &Fronts,
     layering: &Layering,
     layers: &[Vec<u32>],
@@ -633,8 +640,9 @@ fn build_springs(
             if a == NONE || b == NONE || !held[a as usize] || !held[b as usize] {
                 continue;
             }
-            if let Some(bis) = bisector(old[a as usize], old[pu], old[b as usize]) {
-                let v = [old[nu][0] - old[pu][0], old[nu][1] - old[pu][1]];
+            let q = predicted;
+            if let Some(bis) = bisector(q[a as usize], q[pu], q[b as usize]) {
+                let v = [q[nu][0] - q[pu][0], q[nu][1] - q[pu][1]];
                 let offset_rad =
                     (bis[0] * v[1] - bis[1] * v[0]).atan2(bis[0] * v[0] + bis[1] * v[1]);
                 set.angle.push(AngleSpring {
@@ -650,8 +658,8 @@ fn build_springs(
         let (a, b, p) = (fronts.left[nu], fronts.right[nu], parents[0]);
         if a != NONE && b != NONE && p != NONE && held[a as usize] && held[b as usize] {
             let (la, lb) = (
-                dist(old[a as usize], old[nu]),
-                dist(old[nu], old[b as usize]),
+                dist(predicted[a as usize], predicted[nu]),
+                dist(predicted[nu], predicted[b as usize]),
             );
             if la + lb > 0.0 {
                 set.neighbour.push(NeighbourSpring {
@@ -684,7 +692,7 @@ fn balance(
     p: &SpringMoveParams,
     stats: &mut SpringStats,
 ) -> Result<(), MoveError> {
-    let (set, scale) = build_springs(old, fronts, layering, layers, held);
+    let (set, scale) = build_springs(old, x, fronts, layering, layers, held);
     stats.springs = set.extrusion.len() + set.neighbour.len() + set.angle.len();
     let model = SpringField2d::new(&set, &p.springs, old.len());
     let mut movable = vec![false; old.len()];

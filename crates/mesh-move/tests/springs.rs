@@ -215,3 +215,25 @@ fn springs_follow_hicks_henne_bumps_keeping_the_first_layer() {
     assert!(c.worst_cell_ratio > 0.5, "{c:?}");
     assert!(s.springs.is_some_and(|p| p.converged), "{s:?}");
 }
+
+#[test]
+fn springs_keep_the_first_layer_of_a_scaled_body() {
+    // NACA0012 ×1.5 about its quarter chord and carried five chords upstream: the walls
+    // stretch under the layers, whose heights stay (at the blunt trailing edge's corners the
+    // fans' children were pulled 13° sideways when the springs kept the original spacing)
+    let grow = vec![LoopMotion {
+        loop_name: "naca0012".into(),
+        motion: Motion::rigid(RigidMotion {
+            scale: 1.5,
+            rotate_deg: 0.0,
+            about: [0.25, 0.0],
+            translate: [-5.0, 0.0],
+        }),
+    }];
+    let (c, s, _) = run(naca(), &grow, &springs(Strategy::AllTogether, Fill::Rbf));
+    println!("×1.5 and 5 chords left: {c:?} {s:?}");
+    assert_eq!(c.inverted_cells, 0);
+    let fl = c.first_layer.expect("walls");
+    assert!(fl.height < 0.01 && fl.angle_deg < 5.0, "{fl:?}");
+    assert!(c.worst_cell_ratio > 0.8, "{c:?}");
+}
