@@ -2,7 +2,6 @@
 //! interior angle of a triangle, and the cut of a quad along its shorter diagonal (the
 //! convention of the report's obtuse-angle histogram). No meshing decision is made here.
 
-use crate::cell::Shape;
 use crate::mesh::Mesh;
 
 /// Largest interior angle of triangle `a b c`, degrees; 180 for a triangle with a zero-length
@@ -74,15 +73,27 @@ pub fn split_quad_shorter_diagonal(mesh: &Mesh, k: &[u32]) -> [[u32; 3]; 2] {
 /// Largest interior angle of cell `i`, degrees, from its corners: a triangle's own; for a quad
 /// the larger of its two triangles' values once cut along the shorter diagonal.
 pub fn cell_max_angle_deg(mesh: &Mesh, i: usize) -> f64 {
-    let cell = mesh.cells.get(i);
-    let k = cell.corners();
-    let tri = |t: [u32; 3]| triangle_max_angle_deg(mesh.xy(t[0]), mesh.xy(t[1]), mesh.xy(t[2]));
-    match cell.ty.shape {
-        Shape::Quad => {
-            let [a, b] = split_quad_shorter_diagonal(mesh, k);
-            tri(a).max(tri(b))
+    let k = mesh.cells.get(i).corners();
+    let mut p = [[0.0; 2]; 4];
+    for (q, &n) in p.iter_mut().zip(k) {
+        *q = mesh.xy(n);
+    }
+    corners_max_angle_deg(&p[..k.len().min(4)])
+}
+
+/// Largest interior angle, degrees, of a triangle or a quad (four corners,
+/// counter-clockwise) cut along its shorter diagonal (0–2 on a tie), as
+/// [`cell_max_angle_deg`] measures a cell.
+pub fn corners_max_angle_deg(p: &[[f64; 2]]) -> f64 {
+    if p.len() == 4 {
+        let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
+        if d(p[0], p[2]) <= d(p[1], p[3]) {
+            triangle_max_angle_deg(p[0], p[1], p[2]).max(triangle_max_angle_deg(p[0], p[2], p[3]))
+        } else {
+            triangle_max_angle_deg(p[0], p[1], p[3]).max(triangle_max_angle_deg(p[1], p[2], p[3]))
         }
-        _ => tri([k[0], k[1], k[2]]),
+    } else {
+        triangle_max_angle_deg(p[0], p[1], p[2])
     }
 }
 

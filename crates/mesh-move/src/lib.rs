@@ -73,6 +73,7 @@ mod boundary;
 mod error;
 pub mod motion;
 pub mod movers;
+mod polish;
 pub mod quality;
 pub mod springs;
 

@@ -112,7 +112,8 @@ pub struct SpringMoveParams {
     pub screw_exponent: f64,
     /// Most as-rigid-as-possible iterations.
     pub arap_iterations: usize,
-    /// Passes of the worst-cell polish after the fill (0: none). Default 50; the smooth
+    /// Passes of each kind of the polish after the fill (worst cells, then open angles:
+    /// the module `polish`; 0: none). Default 50; the smooth
     /// mover ([`SpringMoveParams::smooth`]) has none (the shape balance follows).
     pub polish_passes: usize,
     /// A layer node keeps its original layer geometry (predictor and springs) while its
@@ -799,96 +800,8 @@ fn fill(
         }
     }
     if p.polish_passes > 0 {
-        stats.polished = polish(old, x, &cells, &free, p.polish_passes);
+        stats.polished = crate::polish::polish(old, x, &cells, &free, p.polish_passes);
     }
-}
-
-/// Ratios under this are polished; above it a cell counts as kept.
-const POLISH_BELOW: f64 = 0.99;
-
-/// The worst-cell polish: passes over the free corners of the worst cells (ratio of scaled
-/// Jacobians, moved over original, within 0.05 of the worst), each tried at eight directions
-/// and three step lengths (a tenth of its shortest edge and halves) and moved to the best place
-/// that raises the smallest ratio of its cells. No cell gets worse than its node's worst
-/// before, so nothing inverts; cells at 0.99 or above are left as they are (a rigid motion
-/// stays exact). Returns the node moves made.
-fn polish(
-    old: &[[f64; 2]],
-    x: &mut [[f64; 2]],
-    cells: &[Vec<u32>],
-    free: &[bool],
-    passes: usize,
-) -> usize {
-    let mut node_cells: Vec<Vec<usize>> = vec![Vec::new(); old.len()];
-    for (c, k) in cells.iter().enumerate() {
-        for &n in k.iter().filter(|&&n| free[n as usize]) {
-            node_cells[n as usize].push(c);
-        }
-    }
-    let corners = |x: &[[f64; 2]], c: usize| {
-        let mut p = [[0.0; 2]; 4];
-        for (q, &n) in p.iter_mut().zip(&cells[c]) {
-            *q = x[n as usize];
-        }
-        scaled_jacobian(&p[..cells[c].len().min(4)])
-    };
-    let before: Vec<f64> = (0..cells.len()).map(|c| corners(old, c)).collect();
-    let ratio = |x: &[[f64; 2]], c: usize| {
-        let b = before[c];
-        if b > 0.0 { corners(x, c) / b } else { 1.0 }
-    };
-    let local = |x: &[[f64; 2]], n: u32| {
-        node_cells[n as usize]
-            .iter()
-            .map(|&c| ratio(x, c))
-            .fold(f64::INFINITY, f64::min)
-    };
-    let mut moves = 0;
-    for _ in 0..passes {
-        let ratios: Vec<f64> = (0..cells.len()).map(|c| ratio(x, c)).collect();
-        let worst = ratios.iter().copied().fold(f64::INFINITY, f64::min);
-        if worst >= POLISH_BELOW {
-            break;
-        }
-        let limit = (worst + 0.05).min(POLISH_BELOW);
-        let mut targets: Vec<u32> = (0..cells.len())
-            .filter(|&c| ratios[c] < limit)
-            .flat_map(|c| cells[c].iter().copied())
-            .filter(|&n| free[n as usize])
-            .collect();
-        targets.sort_unstable();
-        targets.dedup();
-        let mut moved = false;
-        for n in targets {
-            let start = x[n as usize];
-            let mut best = (local(x, n), start);
-            let shortest = node_cells[n as usize]
-                .iter()
-                .flat_map(|&c| cells[c].iter())
-                .filter(|&&m| m != n)
-                .map(|&m| dist(x[m as usize], start))
-                .fold(f64::INFINITY, f64::min);
-            for step in [0.3, 0.1, 0.03, 0.01].map(|f| f * shortest) {
-                for d in 0..8 {
-                    let a = d as f64 * std::f64::consts::FRAC_PI_4;
-                    x[n as usize] = [start[0] + step * a.cos(), start[1] + step * a.sin()];
-                    let q = local(x, n);
-                    if q > best.0 + 1e-9 {
-                        best = (q, x[n as usize]);
-                    }
-                }
-            }
-            x[n as usize] = best.1;
-            if best.1 != start {
-                moves += 1;
-                moved = true;
-            }
-        }
-        if !moved {
-            break;
-        }
-    }
-    moves
 }
 
 /// The nodes that bound the filled region (on an edge of one fill cell only, or held), as IDW
