@@ -7,10 +7,11 @@
 //! trailing edge, at the tips and everywhere.
 //!
 //! Usage: cargo run --release -p end-to-end --example wing3d -- [--surface-h H] [--h H]
-//! [--growth G] [--layers N] [--span S] [--chord-refine R] [--quads]
+//! [--growth G] [--layers N] [--span S] [--chord-refine R] [--quads] [--case CASE]
 //! (defaults: the dissertation's case 1: 1e-3, 1e-3, 1.3, 45 layers, span 2; `--surface-h`
 //! is the first height of the 2D section and of the span grading, `--h` the volume's;
-//! `--chord-refine R` divides the section's largest boundary segment by R).
+//! `--chord-refine R` caps the section's boundary segments at 0.03 / R; `--case` a 2D case
+//! with one wall loop, built-in or a file, instead of the built-in `naca0012`).
 
 use std::time::Instant;
 
@@ -27,6 +28,7 @@ struct Args {
     span: f64,
     chord_refine: f64,
     quads: bool,
+    case: String,
 }
 
 fn args() -> anyhow::Result<Args> {
@@ -38,11 +40,16 @@ fn args() -> anyhow::Result<Args> {
         span: 2.0,
         chord_refine: 1.0,
         quads: false,
+        case: "naca0012".to_string(),
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
         if flag == "--quads" {
             a.quads = true;
+            continue;
+        }
+        if flag == "--case" {
+            a.case = it.next().ok_or_else(|| anyhow::anyhow!("--case needs a value"))?;
             continue;
         }
         let v: f64 = it
@@ -284,7 +291,7 @@ fn tet_dihedrals(mesh: &mesh_model::Mesh) -> Vec<f64> {
 
 fn main() -> anyhow::Result<()> {
     let a = args()?;
-    let mut case = xtask::case::load("naca0012")?;
+    let mut case = xtask::case::load(&a.case)?;
     case.layers.first_height = a.surface_h;
     case.layers.growth = a.growth;
     case.boundary.growth = a.growth;
