@@ -120,7 +120,6 @@ fn cap_mesh(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geom_surface::wing::polygon_area;
 
     #[test]
     fn the_naca0012_wing_is_closed_exact_in_volume_and_on_the_section() {
@@ -129,7 +128,7 @@ mod tests {
         for triangles in [false, true] {
             let (s, shape) = wing_surface(&case, 2.0, triangles).unwrap();
             s.check().unwrap();
-            let exact = polygon_area(&shape.section) * 2.0;
+            let exact = mesh_model::polygon_area(shape.section.iter().copied()) * 2.0;
             let volume = s.enclosed_volume();
             assert!((volume - exact).abs() < 1e-9 * exact, "{volume} vs {exact}");
             let n = shape.section.len();

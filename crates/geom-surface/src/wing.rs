@@ -226,7 +226,7 @@ fn check_input(
             params: t.len(),
         });
     }
-    let area = polygon_area(section);
+    let area = geom_predicates::polygon_area(section.iter().copied());
     if !(area > 0.0) {
         return Err(WingError::Clockwise { area });
     }
@@ -273,17 +273,6 @@ fn split_quad(nodes: &[[f64; 3]], f: Facet, out: &mut Vec<Facet>) {
     } else {
         out.extend([Facet::tri(a, b, d), Facet::tri(b, c, d)]);
     }
-}
-
-/// The signed area of a polygon (positive counter-clockwise), by the shoelace formula.
-pub fn polygon_area(p: &[[f64; 2]]) -> f64 {
-    (0..p.len())
-        .map(|i| {
-            let (a, b) = (p[i], p[(i + 1) % p.len()]);
-            a[0] * b[1] - a[1] * b[0]
-        })
-        .sum::<f64>()
-        / 2.0
 }
 
 /// Stations (z values) from 0 to `span`, graded from each tip: steps `first`,
@@ -387,7 +376,7 @@ mod tests {
         for triangles in [false, true] {
             let (s, shape) = circle_wing(24, triangles);
             s.check().unwrap();
-            let exact = polygon_area(&shape.section) * 2.0;
+            let exact = geom_predicates::polygon_area(shape.section.iter().copied()) * 2.0;
             assert!((s.enclosed_volume() - exact).abs() < 1e-12 * exact);
             let tips = s.facet_patch.iter().filter(|&&p| p > 0).count();
             assert_eq!(tips, 48);
