@@ -49,7 +49,9 @@ fn args() -> anyhow::Result<Args> {
             continue;
         }
         if flag == "--case" {
-            a.case = it.next().ok_or_else(|| anyhow::anyhow!("--case needs a value"))?;
+            a.case = it
+                .next()
+                .ok_or_else(|| anyhow::anyhow!("--case needs a value"))?;
             continue;
         }
         let v: f64 = it
@@ -165,7 +167,11 @@ fn corner_dets(shape: Shape, p: &[[f64; 3]], normalised: bool) -> Vec<f64> {
     let sj = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
         let d = geom_predicates::vector::dot(geom_predicates::vector::cross3(a, b), c);
         let l = |v: [f64; 3]| geom_predicates::vector::dot(v, v).sqrt();
-        if normalised { d / (l(a) * l(b) * l(c)) } else { d }
+        if normalised {
+            d / (l(a) * l(b) * l(c))
+        } else {
+            d
+        }
     };
     let mut out = Vec::with_capacity(2 * m);
     for top in [0, m] {
@@ -212,7 +218,10 @@ fn wall_angles(wall: &Surface) -> serde_json::Value {
             .filter(|&f| wall.facet_patch[f] as usize == p)
             .flat_map(|f| wall.facets[f].triangles().collect::<Vec<_>>())
             .map(|t| triangle_max_angle(t.map(|v| wall.nodes[v as usize])));
-        per.insert(patch.name.clone(), histogram(angles, &[90.0, 125.0, 140.0]).into());
+        per.insert(
+            patch.name.clone(),
+            histogram(angles, &[90.0, 125.0, 140.0]).into(),
+        );
     }
     per.into()
 }
@@ -224,12 +233,21 @@ fn worst_cell(mesh: &mesh_model::Mesh) -> serde_json::Value {
     let mut ratio = f64::INFINITY;
     let mut low = std::collections::BTreeMap::new();
     for (i, c) in mesh.cells.iter().enumerate() {
-        let p: Vec<[f64; 3]> = c.corners().iter().map(|&v| mesh.nodes[v as usize]).collect();
-        let Some(q) = corner_scaled_jacobians(c.ty.shape, &p).into_iter().reduce(f64::min) else {
+        let p: Vec<[f64; 3]> = c
+            .corners()
+            .iter()
+            .map(|&v| mesh.nodes[v as usize])
+            .collect();
+        let Some(q) = corner_scaled_jacobians(c.ty.shape, &p)
+            .into_iter()
+            .reduce(f64::min)
+        else {
             continue;
         };
         let d = corner_dets(c.ty.shape, &p, false);
-        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x.abs())));
+        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| {
+            (a.min(x), b.max(x.abs()))
+        });
         ratio = ratio.min(lo / hi);
         if q < 0.2 {
             *low.entry(mesh.cell_layer[i]).or_insert(0usize) += 1;
@@ -261,7 +279,11 @@ fn bad_tets(mesh: &mesh_model::Mesh, dihedral: &[f64], x_te: f64, span: f64) -> 
         if dihedral[i] <= 160.0 {
             continue;
         }
-        let p: Vec<[f64; 3]> = c.corners().iter().map(|&v| mesh.nodes[v as usize]).collect();
+        let p: Vec<[f64; 3]> = c
+            .corners()
+            .iter()
+            .map(|&v| mesh.nodes[v as usize])
+            .collect();
         let r = if p.iter().any(|x| x[0] > x_te - 0.01) {
             0
         } else if p.iter().any(|x| x[2] < 0.02 || x[2] > span - 0.02) {
@@ -341,7 +363,11 @@ fn main() -> anyhow::Result<()> {
     let t3 = Instant::now();
     let mixed = topo_cut::cut_to_mixed(&grown.mesh)?;
     let t_mixed = t3.elapsed().as_secs_f64();
-    let full = grown.columns.iter().filter(|c| c.len() == a.layers + 1).count();
+    let full = grown
+        .columns
+        .iter()
+        .filter(|c| c.len() == a.layers + 1)
+        .count();
     let x_te = wall.nodes.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
     let dihedral = tet_dihedrals(&tets);
     let json = serde_json::json!({

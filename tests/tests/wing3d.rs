@@ -31,17 +31,27 @@ fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
         ..LayerParams::default()
     };
     let grown = grow_layers(&wall, &params).unwrap();
-    assert!(grown.columns.iter().all(|c| c.len() == 5), "a column was cut off");
+    assert!(
+        grown.columns.iter().all(|c| c.len() == 5),
+        "a column was cut off"
+    );
     assert!(grown.mesh.validate().is_empty());
     let between = grown.front.enclosed_volume() - wall.enclosed_volume();
     let cells: f64 = (0..grown.mesh.cell_count())
         .map(|c| grown.mesh.cell_volume(c))
         .sum();
-    assert!((cells - between).abs() < 1e-9 * between, "{cells} vs {between}");
+    assert!(
+        (cells - between).abs() < 1e-9 * between,
+        "{cells} vs {between}"
+    );
     let tets = topo_cut::cut_to_tets(&grown.mesh).unwrap();
     assert!(validate(&tets).is_empty(), "{:?}", validate(&tets).first());
     assert!((tet_volume(&tets) - cells).abs() < 1e-9 * cells);
     let mixed = topo_cut::cut_to_mixed(&grown.mesh).unwrap();
-    assert!(validate(&mixed).is_empty(), "{:?}", validate(&mixed).first());
+    assert!(
+        validate(&mixed).is_empty(),
+        "{:?}",
+        validate(&mixed).first()
+    );
     assert_eq!(mixed.count(mesh_model::Shape::Prism), 4 * wall.facets.len());
 }

@@ -45,7 +45,9 @@ pub struct Cap<'a> {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum WingError {
     /// Fewer than three section nodes, or not one curve parameter per node.
-    #[error("the section has {nodes} nodes and {params} curve parameters: need at least 3, one each")]
+    #[error(
+        "the section has {nodes} nodes and {params} curve parameters: need at least 3, one each"
+    )]
     Section {
         /// Section nodes.
         nodes: usize,
@@ -65,7 +67,9 @@ pub enum WingError {
         station: usize,
     },
     /// The cap does not start with the section's nodes.
-    #[error("cap node {node} is not section node {node}: the cap must start with the section's nodes")]
+    #[error(
+        "cap node {node} is not section node {node}: the cap must start with the section's nodes"
+    )]
     CapNodes {
         /// The first differing node.
         node: usize,
@@ -227,7 +231,7 @@ fn check_input(
         });
     }
     let area = geom_predicates::polygon_area(section.iter().copied());
-    if !(area > 0.0) {
+    if area.is_nan() || area <= 0.0 {
         return Err(WingError::Clockwise { area });
     }
     if stations.len() < 2 {
@@ -235,9 +239,9 @@ fn check_input(
             station: stations.len(),
         });
     }
-    if let Some(k) = (0..stations.len()).find(|&k| {
-        !stations[k].is_finite() || (k > 0 && !(stations[k] > stations[k - 1]))
-    }) {
+    if let Some(k) = (0..stations.len())
+        .find(|&k| !stations[k].is_finite() || (k > 0 && stations[k] <= stations[k - 1]))
+    {
         return Err(WingError::Stations { station: k });
     }
     if let Some(node) = (0..n).find(|&i| cap.nodes.get(i) != Some(&section[i])) {
@@ -332,8 +336,9 @@ fn stations_of(span: f64, graded: &[f64], j: usize, step: f64) -> Vec<f64> {
     for k in 0..=total / 2 {
         z[total - k] = span - z[k];
     }
-    if total % 2 == 0 {
-        z[total / 2] = span / 2.0;
+    let mid = total / 2;
+    if total - mid == mid {
+        z[mid] = span / 2.0;
     }
     z
 }
