@@ -297,16 +297,15 @@ fn bad_tets(mesh: &mesh_model::Mesh, dihedral: &[f64], x_te: f64, span: f64) -> 
     serde_json::json!({"te_tips_other": region, "by_layer": by_layer})
 }
 
+/// The largest dihedral angle of every cell (all tetrahedra after `cut_to_tets`).
 fn tet_dihedrals(mesh: &mesh_model::Mesh) -> Vec<f64> {
+    let at = |v: u32| mesh.nodes[v as usize];
     mesh.cells
-        .iter()
-        .filter(|c| c.ty.shape == Shape::Tet)
-        .map(|c| {
-            let k = c.corners();
-            let p = [0, 1, 2, 3].map(|j| mesh.nodes[k[j] as usize]);
-            topo_cut::tet_dihedral_angles_deg(p)
-                .into_iter()
-                .fold(0.0, f64::max)
+        .shapes_and_corners()
+        .map(|(_, k)| {
+            let angles =
+                topo_cut::tet_dihedral_angles_deg([at(k[0]), at(k[1]), at(k[2]), at(k[3])]);
+            angles.iter().copied().fold(0.0, f64::max)
         })
         .collect()
 }
