@@ -37,6 +37,7 @@ mod report;
 mod resources;
 pub mod stages;
 mod summary;
+pub mod wing;
 
 /// The case loader from TOML text, for the fuzz target (`xtask/fuzz`).
 pub use case::parse_case_str;

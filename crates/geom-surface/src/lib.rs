@@ -10,6 +10,9 @@
 //! found by sort-and-sweep, decided by the exact triangle–triangle test of
 //! `geom-predicates`); the first problem found is a one-line [`SurfaceError`].
 //!
+//! [`wing::build_wing`] makes a finite wing from a 2D section (its boundary nodes extruded
+//! over the span, caps at the tips) with its true surface ([`wing::WingShape`]).
+//!
 //! No IO here: files are read by `mesh-io`.
 //!
 //! ```
@@ -24,6 +27,7 @@
 
 mod build;
 mod check;
+pub mod wing;
 
 pub use check::{SurfaceError, first_self_intersection};
 use mesh_model::{Patch, Role};

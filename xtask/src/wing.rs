@@ -1,0 +1,161 @@
+//! The finite wing of a 2D case (dissertation §5.1, issue 13): the case's wall section,
+//! meshed on its C2 curve as the 2D pipeline does, extruded over the span with stations
+//! graded from each tip, and closed at both tips by caps meshed by the 2D mesher inside the
+//! section (`inside = true`). The surface and its true shape come from
+//! [`geom_surface::wing::build_wing`].
+
+use anyhow::{Result, bail};
+use geom_curve::ClosedCurve;
+use geom_surface::wing::{Cap, SectionCurve, WingShape, build_wing, span_stations};
+use geom_surface::{Facet, Surface};
+use mesh_model::Role;
+
+use crate::case::Case;
+use crate::pipeline;
+
+/// A section's C2 curve as the wing's true shape sees it.
+#[derive(Debug, Clone)]
+pub struct Section(pub ClosedCurve);
+
+impl SectionCurve for Section {
+    fn between(&self, t0: f64, t1: f64, s: f64) -> [f64; 2] {
+        let c = &self.0;
+        let t1 = if t1 <= t0 {
+            t1 + c.segment_count() as f64
+        } else {
+            t1
+        };
+        let at = c.arc_length(0.0, t0) + s * c.arc_length(t0, t1);
+        let p = c.point(c.t_at_arc_length(at));
+        [p.x, p.y]
+    }
+}
+
+/// The wing made from `case`'s one wall loop: chord and position as in the case, span `span`
+/// along z from 0. The section's boundary nodes are the 2D pipeline's; the span stations are
+/// graded from each tip by the case's first layer height (`[layers] first_height`) and the
+/// boundary's growth ratio (`[boundary] growth`), capped at the section's largest boundary
+/// segment; the caps are the 2D mesher's mesh of the section's inside (its cells kept as
+/// they are, quads and triangles, unless `triangles`: every quad split along its shorter
+/// diagonal, the side's quads too).
+pub fn wing_surface(
+    case: &Case,
+    span: f64,
+    triangles: bool,
+) -> Result<(Surface, WingShape<Section>)> {
+    let walls: Vec<usize> = (0..case.loops.len())
+        .filter(|&i| case.loops[i].role == Role::Wall)
+        .collect();
+    let [w] = walls[..] else {
+        bail!(
+            "a wing is made from a case with one wall loop; '{}' has {}",
+            case.name,
+            walls.len()
+        );
+    };
+    if !(span.is_finite() && span > 0.0) {
+        bail!("the wing's span must be a positive number, got {span}");
+    }
+    let mut curves = pipeline::curves(case)?;
+    let mut nodes = pipeline::boundary_nodes(case, &curves)?;
+    let (curve, section) = (curves.swap_remove(w), nodes.swap_remove(w));
+    let points: Vec<[f64; 2]> = section.points.iter().map(|p| [p.x, p.y]).collect();
+    let (cap_nodes, cap_facets) = cap_mesh(case, w, &section)?;
+    let longest = (0..points.len())
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % points.len()]);
+            (a[0] - b[0]).hypot(a[1] - b[1])
+        })
+        .fold(0.0, f64::max);
+    let stations = span_stations(
+        span,
+        case.layers.first_height,
+        case.boundary.growth,
+        longest,
+    );
+    let cap = Cap {
+        nodes: &cap_nodes,
+        facets: &cap_facets,
+    };
+    build_wing(
+        Section(curve),
+        &section.t,
+        &points,
+        &stations,
+        cap,
+        triangles,
+    )
+    .map_err(|e| anyhow::anyhow!("wing of '{}': {e}", case.name))
+}
+
+/// The 2D mesh of the inside of wall loop `w` from its boundary nodes: the nodes (the
+/// boundary nodes first) and the cells, counter-clockwise.
+fn cap_mesh(
+    case: &Case,
+    w: usize,
+    section: &boundary1d::BoundaryNodes,
+) -> Result<(Vec<[f64; 2]>, Vec<Facet>)> {
+    let mut inside = case.clone();
+    inside.loops = vec![case.loops[w].clone()];
+    inside.layers.inside = true;
+    let cap = pipeline::linear_mesh(&inside, std::slice::from_ref(section))
+        .map_err(|e| anyhow::anyhow!("the wing's tip cap: {e}"))?;
+    let mesh = &cap.layered.mesh;
+    let nodes = mesh.nodes.iter().map(|p| [p[0], p[1]]).collect();
+    let facets = mesh
+        .cells
+        .shapes_and_corners()
+        .map(|(_, k)| match *k {
+            [a, b, c] => Ok(Facet::tri(a, b, c)),
+            [a, b, c, d] => Ok(Facet::quad(a, b, c, d)),
+            _ => Err(anyhow::anyhow!(
+                "the tip cap has a cell of {} corners",
+                k.len()
+            )),
+        })
+        .collect::<Result<_>>()?;
+    Ok((nodes, facets))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_naca0012_wing_is_closed_exact_in_volume_and_on_the_section() {
+        let mut case = crate::case::load("naca0012").unwrap();
+        case.layers.first_height = 1e-3;
+        for triangles in [false, true] {
+            let (s, shape) = wing_surface(&case, 2.0, triangles).unwrap();
+            s.check().unwrap();
+            let exact = mesh_model::polygon_area(shape.section.iter().copied()) * 2.0;
+            let volume = s.enclosed_volume();
+            assert!((volume - exact).abs() < 1e-9 * exact, "{volume} vs {exact}");
+            let n = shape.section.len();
+            for (v, p) in s.nodes.iter().enumerate().take(n * shape.stations.len()) {
+                let (i, k) = shape.side_node(v as u32).unwrap();
+                let c = shape.curve.0.point(shape.t[i]);
+                assert!((p[0] - c.x).abs() < 1e-12 && (p[1] - c.y).abs() < 1e-12);
+                assert_eq!(p[2], shape.stations[k]);
+                // the mid-edge point of the chordwise edge lies on the curve
+                let m = shape.side_point(i, 0.5, p[2]);
+                let (_, _, d) = shape.curve.0.closest_point(nalgebra_point(m));
+                assert!(d < 1e-9, "mid-edge point off the curve by {d}");
+            }
+        }
+    }
+
+    fn nalgebra_point(p: [f64; 3]) -> geom_curve::Point2<f64> {
+        geom_curve::Point2::new(p[0], p[1])
+    }
+
+    #[test]
+    fn a_case_with_two_walls_is_refused() {
+        let case = crate::case::load("two-element").unwrap();
+        let err = wing_surface(&case, 2.0, false).unwrap_err().to_string();
+        assert!(err.contains("one wall loop"), "{err}");
+        let case = crate::case::load("naca0012").unwrap();
+        let err = wing_surface(&case, -1.0, false).unwrap_err().to_string();
+        assert!(err.contains("span"), "{err}");
+    }
+}
