@@ -127,6 +127,10 @@ pub struct SpringMoveParams {
     pub newton: Option<NewtonParams>,
     /// The energy density of the shape balance.
     pub shape: ShapeLaw,
+    /// Without `newton`: when the polished mesh's worst-cell ratio is below this, the shape
+    /// balance is also run from the unpolished fill and polished, and the better of the two
+    /// kept (`stats.newton` says the balanced one was). Default 0.8; `None`: never.
+    pub balance_below: Option<f64>,
 }
 
 impl Default for SpringMoveParams {
@@ -151,6 +155,7 @@ impl Default for SpringMoveParams {
             core_aspect: 16.0,
             newton: None,
             shape: ShapeLaw::default(),
+            balance_below: Some(0.8),
         }
     }
 }
@@ -192,7 +197,9 @@ pub struct SpringStats {
     pub fill: Fill,
     /// Node moves made by the worst-cell polish.
     pub polished: usize,
-    /// The shape balance's Newton solve, when it ran.
+    /// The shape balance's Newton solve, when its result was kept (always with
+    /// [`SpringMoveParams::newton`], by the worst cell with
+    /// [`SpringMoveParams::balance_below`]).
     pub newton: Option<NewtonOutcome>,
 }
 
@@ -235,6 +242,7 @@ fn move_springs(
         ("IDW exponent", p.idw.exponent),
         ("screw exponent", p.screw_exponent),
         ("core aspect", p.core_aspect),
+        ("balance-below ratio", p.balance_below.unwrap_or(1.0)),
     ] {
         if !(value > 0.0 && value.is_finite()) {
             return Err(MoveError::BadParameter { what, value });
@@ -281,16 +289,77 @@ fn move_springs(
         pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
         fill(mesh, &old, &mut x, &turn, &held, p, &mut stats);
         if let Some(newton) = &p.newton {
-            let start = finish(mesh, boundary, &old, &x, stats);
-            if start.stats.inverted_cells > 0 {
+            if crate::quality::inverted_cells(&with_nodes(mesh, &x)) > 0 {
                 // the balance needs an uninverted start: the failure is reported as it is
-                return Ok(start);
+                return Ok(finish(mesh, boundary, &old, &x, stats));
             }
             let field = crate::balance::ShapeField::of(layered, p.shape)?;
             stats.newton = Some(field.balance(&mut x, &fixed, newton)?);
+        } else if p.polish_passes > 0 {
+            let free: Vec<bool> = held.iter().map(|h| !h).collect();
+            let cells = fill_cells(mesh, &free);
+            let filled = x.clone();
+            stats.polished = crate::polish::polish(&old, &mut x, &cells, &free, p.polish_passes);
+            if let Some(below) = p.balance_below {
+                let all = fill_cells(mesh, &vec![true; old.len()]);
+                let worst = worst_ratio(&old, &x, &all);
+                if worst < below {
+                    balanced_fallback(
+                        layered,
+                        (&old, &mut x),
+                        filled,
+                        (&fixed, &free),
+                        &cells,
+                        p,
+                        &mut stats,
+                    )?;
+                }
+            }
         }
     }
     Ok(finish(mesh, boundary, &old, &x, stats))
+}
+
+/// The large-motion fallback of the default mover: the shape balance ([`crate::balance`])
+/// from the unpolished fill `filled`, then the polish; kept in `x` when its worst-cell ratio
+/// is higher than the polished fill's (on the NACA0012 pitched 90° and the 30P30N turned
+/// ±90°, the balance spreads the turn over the whole fill, where the polish alone stalls on
+/// a plateau of equally bad cells).
+fn balanced_fallback(
+    layered: &LayeredMesh,
+    (old, x): (&[[f64; 2]], &mut [[f64; 2]]),
+    mut y: Vec<[f64; 2]>,
+    (fixed, free): (&[bool], &[bool]),
+    cells: &[Vec<u32>],
+    p: &SpringMoveParams,
+    stats: &mut SpringStats,
+) -> Result<(), MoveError> {
+    let mesh = &layered.mesh;
+    if crate::quality::inverted_cells(&with_nodes(mesh, &y)) > 0 {
+        return Ok(());
+    }
+    let field = crate::balance::ShapeField::of(layered, p.shape)?;
+    let Ok(outcome) = field.balance(&mut y, fixed, &NewtonParams::default()) else {
+        return Ok(());
+    };
+    let polished = crate::polish::polish(old, &mut y, cells, free, p.polish_passes);
+    let all = fill_cells(mesh, &vec![true; old.len()]);
+    if worst_ratio(old, &y, &all) > worst_ratio(old, x, &all) {
+        x.copy_from_slice(&y);
+        stats.polished = polished;
+        stats.newton = Some(outcome);
+    }
+    Ok(())
+}
+
+/// `mesh` with its nodes at `x`.
+fn with_nodes(mesh: &Mesh, x: &[[f64; 2]]) -> Mesh {
+    let mut moved = mesh.clone();
+    for (n, p) in moved.nodes.iter_mut().zip(x) {
+        n[0] = p[0];
+        n[1] = p[1];
+    }
+    moved
 }
 
 /// The moved mesh and its figures.
@@ -301,7 +370,7 @@ fn finish(
     x: &[[f64; 2]],
     springs: SpringStats,
 ) -> Moved {
-    let mut moved = mesh.clone();
+    let moved = with_nodes(mesh, x);
     let mut stats = MoveStats {
         boundary_nodes: boundary.nodes.len(),
         interior_nodes: mesh.nodes.len() - boundary.nodes.len(),
@@ -313,12 +382,10 @@ fn finish(
         let d = (a[0] - b[0]).hypot(a[1] - b[1]);
         stats.largest_boundary_displacement = stats.largest_boundary_displacement.max(d);
     }
-    for (k, (a, b)) in old.iter().zip(x).enumerate() {
+    for (a, b) in old.iter().zip(x) {
         stats.largest_displacement = stats
             .largest_displacement
             .max((a[0] - b[0]).hypot(a[1] - b[1]));
-        moved.nodes[k][0] = b[0];
-        moved.nodes[k][1] = b[1];
     }
     stats.inverted_cells = crate::quality::inverted_cells(&moved);
     Moved { mesh: moved, stats }
@@ -744,10 +811,7 @@ fn fill(
     if nodes.is_empty() {
         return;
     }
-    let cells: Vec<Vec<u32>> = (0..mesh.cells.len())
-        .map(|c| mesh.cells.get(c).corners().to_vec())
-        .filter(|k| k.iter().any(|&n| free[n as usize]))
-        .collect();
+    let cells = fill_cells(mesh, &free);
     let sources = fill_sources(old, x, turns, &cells, &free);
     let moved: Vec<[f64; 2]> = nodes
         .par_iter()
@@ -799,9 +863,14 @@ fn fill(
             keep(&y, Fill::Rbf, x, stats);
         }
     }
-    if p.polish_passes > 0 {
-        stats.polished = crate::polish::polish(old, x, &cells, &free, p.polish_passes);
-    }
+}
+
+/// The cells with a corner in the filled region (`free`), as corner lists.
+fn fill_cells(mesh: &Mesh, free: &[bool]) -> Vec<Vec<u32>> {
+    (0..mesh.cells.len())
+        .map(|c| mesh.cells.get(c).corners().to_vec())
+        .filter(|k| k.iter().any(|&n| free[n as usize]))
+        .collect()
 }
 
 /// The nodes that bound the filled region (on an edge of one fill cell only, or held), as IDW

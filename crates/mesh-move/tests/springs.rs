@@ -98,10 +98,15 @@ fn springs_pitch_the_naca0012_up_to_90_degrees_keeping_the_first_layer() {
     println!(
         "NACA0012 (far field radius 20), wall pitched nose up about the quarter chord, one step:\n{HEADER}"
     );
-    for deg in [10.0, 30.0, 60.0, 90.0] {
+    // the bar for the worst-cell ratio (the best generic method measured on such a
+    // mesh, a global thin-plate RBF, keeps 0.95 / 0.85 / 0.70 / 0.51)
+    for (deg, bar) in [(10.0, 0.9), (30.0, 0.85), (60.0, 0.8), (90.0, 0.8)] {
         for (name, method) in methods() {
             let (c, s, secs) = run(naca(), &pitch(deg), &method);
             println!("{}", row(&format!("{deg}°, {name}"), &c, &s, secs));
+            if name == "springs" {
+                assert!(c.worst_cell_ratio >= bar, "{deg}°: {c:?}");
+            }
             if name.starts_with("springs") && !name.ends_with("IDW fill") {
                 assert_eq!(c.inverted_cells, 0, "{name} {deg}°: {c:?}");
                 let fl = c.first_layer.expect("walls");
