@@ -54,11 +54,7 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             params,
             layer,
         };
-        let identity: Vec<u32> = (0..front.nodes.len() as u32).collect();
-        let start: Vec<[f64; 3]> = (0..front.nodes.len())
-            .map(|i| std::array::from_fn(|d| front.nodes[i][d] + len[i] * dir[i][d]))
-            .collect();
-        let balanced = balance(&step, &identity, &topo, &start, &mut state.stats)?;
+        let balanced = balance(&step, &topo, &mut state.stats)?;
         // the first layer stays whole: its height is what the wall resolution needs
         let merges = if layer > 0 && params.coe_shrink > 0.0 {
             choose_merges(&topo, &balanced, &len, params.coe_shrink)
@@ -291,7 +287,8 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
         .map_err(|e| GrowError::Params(e.to_string()))
 }
 
-/// One layer's step: the front's nodes `x`, their ideal directions and lengths.
+/// One layer's step: the front's nodes `x`, their ideal directions and lengths, the
+/// parameters and the layer.
 #[derive(Clone, Copy)]
 struct Step<'a> {
     x: &'a [[f64; 3]],
@@ -301,16 +298,13 @@ struct Step<'a> {
     layer: usize,
 }
 
-/// The children `start` of the front nodes `x` balanced: by the extrusion, neighbour and
-/// angle springs, then again with the tension springs (ideal length `tension_ratio` × the
-/// length after the first balance). Each front node `k` pulls its child `child[k]` by an
-/// extrusion and an angle spring (a merged child has two of each); the neighbour and
-/// tension springs are on the edges `topo` of the children's front. Only the children move.
+/// The children of the front nodes, balanced: placed at their ideal steps, balanced by the
+/// extrusion, neighbour and angle springs (the neighbour springs on the front's edges
+/// `topo`), then again with the tension springs (ideal length `tension_ratio` × the length
+/// after the first balance). Only the children move.
 fn balance(
     step: &Step<'_>,
-    child: &[u32],
     topo: &Topo,
-    start: &[[f64; 3]],
     stats: &mut GrowStats,
 ) -> Result<Vec<[f64; 3]>, GrowError> {
     let Step {
@@ -320,37 +314,28 @@ fn balance(
         params,
         layer,
     } = *step;
-    let (n, up) = (x.len(), x.len() as u32);
-    // each child's ideal length: its parent's, the mean of its two parents' when merged
-    let mut clen = vec![0.0f64; start.len()];
-    let mut count = vec![0u32; start.len()];
-    for k in 0..n {
-        clen[child[k] as usize] += len[k];
-        count[child[k] as usize] += 1;
-    }
-    for (l, &c) in clen.iter_mut().zip(&count) {
-        *l /= f64::from(c);
-    }
+    let n = x.len();
     let mut p: Vec<[f64; 3]> = x.to_vec();
-    p.extend_from_slice(start);
-    let movable: Vec<bool> = (0..p.len()).map(|i| i >= n).collect();
-    let scale: Vec<f64> = len.iter().chain(&clen).copied().collect();
+    p.extend((0..n).map(|i| std::array::from_fn(|d| x[i][d] + len[i] * dir[i][d])));
+    let movable: Vec<bool> = (0..2 * n).map(|i| i >= n).collect();
+    let scale: Vec<f64> = (0..2 * n).map(|i| len[i % n]).collect();
+    let up = n as u32;
     let mut set = SpringSet3d::default();
-    for k in 0..n {
-        let c = child[k] + up;
+    for i in 0..n {
+        let k = i as u32;
         set.extrusion.push(ExtrusionSpring {
-            lower: k as u32,
-            upper: c,
-            ideal_length: len[k],
+            lower: k,
+            upper: k + up,
+            ideal_length: len[i],
             lower_share: 0.0,
         });
         set.angle.push(AngleSpring3d {
-            parent: k as u32,
-            child: c,
-            direction: dir[k],
+            parent: k,
+            child: k + up,
+            direction: dir[i],
         });
     }
-    let edge_length = |e: [u32; 2]| (clen[e[0] as usize] + clen[e[1] as usize]) / 2.0;
+    let edge_length = |e: [u32; 2]| (len[e[0] as usize] + len[e[1] as usize]) / 2.0;
     for e in &topo.edges {
         set.neighbour.push(NeighbourSpring3d {
             edge: e.nodes.map(|v| v + up),

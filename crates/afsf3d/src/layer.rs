@@ -106,7 +106,7 @@ impl Layer {
             if t.len() < 3 {
                 continue;
             }
-            // (a node repeated apart from itself is caught by `bad_children`)
+            // (a node repeated apart from itself is caught by `tangled_children`)
             let fourth = t.get(3).copied().unwrap_or(geom_surface::NO_NODE);
             top.push(Facet([t[0], t[1], t[2], fourth]));
             top_of.push(f as u32);
@@ -315,7 +315,7 @@ fn place_merged(
         }
     }
     let mut bad = Vec::new();
-    for c in 0..layer.children.len() {
+    for (c, around) in around.iter().enumerate() {
         let [a, b] = layer.parents[c].map(|v| v as usize);
         if b == NONE as usize {
             continue;
@@ -331,7 +331,7 @@ fn place_merged(
         let fits = |layer: &Layer| {
             let mut ok = 0;
             let mut needed_ok = true;
-            for &f in &around[c] {
+            for &f in around {
                 let facet = &facets[f as usize];
                 let pass = layer_cell_ok(front.nodes, layer, facet);
                 ok += usize::from(pass);
@@ -385,5 +385,85 @@ pub(crate) fn merged_layer(
             }
         }
         merges.retain(|&[a, _]| bad.binary_search(&layer.child[a as usize]).is_err());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_merged_edge_makes_its_quad_a_triangle_and_its_triangle_an_edge() {
+        // a unit quad 0 1 2 3 and a triangle 1 4 2 on its edge 1-2, grown by 1 along z
+        let nodes = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.5, 0.0],
+        ];
+        let balanced: Vec<[f64; 3]> = nodes.iter().map(|p| [p[0], p[1], 1.0]).collect();
+        let facets = [Facet::quad(0, 1, 2, 3), Facet::tri(1, 4, 2)];
+        let ideal = Ideal {
+            nodes: &nodes,
+            dir: &[[0.0, 0.0, 1.0]; 5],
+            len: &[1.0; 5],
+            balanced: &balanced,
+        };
+        let mut layer = Layer::new(&ideal, &facets, &[[1, 2]]);
+        assert_eq!(layer.child, vec![0, 1, 1, 2, 3]);
+        assert_eq!(layer.parents[1], [1, 2]);
+        assert_eq!(layer.children[1], [1.0, 0.5, 1.0]);
+        // the triangle's top collapsed to an edge and left the front
+        assert_eq!(layer.top, vec![Facet::tri(0, 1, 2)]);
+        assert_eq!(layer.top_of, vec![0]);
+        assert!(facets.iter().all(|f| layer.is_merged(f)));
+        // the cell under the triangle: its bottom and three sides, one a triangle
+        let faces = layer.cell_faces(&facets[1]);
+        assert_eq!(faces.len(), 4);
+        assert_eq!(faces[3], vec![2, 1, 6]);
+        let convex = |layer: &Layer, f: &Facet| {
+            let pos = |v: u32| {
+                if v < 5 {
+                    nodes[v as usize]
+                } else {
+                    layer.children[v as usize - 5]
+                }
+            };
+            strictly_convex(&layer.cell_faces(f), pos)
+        };
+        assert!(convex(&layer, &facets[0]));
+        // the merged child pushed below the front folds the cells
+        layer.children[1] = [1.0, 0.5, -0.5];
+        assert!(!convex(&layer, &facets[0]));
+    }
+
+    #[test]
+    fn a_merge_that_joins_two_facets_into_one_is_refused() {
+        // a tetrahedron's surface: merging any edge leaves two triangles on the same nodes
+        let nodes = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let facets = [
+            Facet::tri(0, 2, 1),
+            Facet::tri(0, 1, 3),
+            Facet::tri(1, 2, 3),
+            Facet::tri(0, 3, 2),
+        ];
+        let ideal = Ideal {
+            nodes: &nodes,
+            dir: &[[0.0, 0.0, 1.0]; 4],
+            len: &[1.0; 4],
+            balanced: &nodes,
+        };
+        let layer = Layer::new(&ideal, &facets, &[[0, 1]]);
+        assert_eq!(tangled_children(&layer), vec![0]);
+        assert_eq!(
+            merged_layer(&ideal, &facets, vec![[0, 1]]).children.len(),
+            4
+        );
     }
 }
