@@ -308,12 +308,54 @@ fn cell_volume(mesh: &Mesh, shape: Shape, k: &[u32]) -> f64 {
     six / 6.0
 }
 
+/// Every cell, merged or not, in the contract's order: face 0 the bottom, face 1 the top
+/// when it has three nodes or more (fewer than the bottom where children merged), then one
+/// side per bottom edge a → b, turned outward as (a, b, b', a') or (a, b, m) where the two
+/// children merged; every top node a child (by `node_parents`) of a bottom node.
+fn merged_cells_follow_the_contract(name: &str, grown: &Grown3d) {
+    let mesh = &grown.mesh;
+    let (mut merged, mut topless) = (0, 0);
+    for c in 0..mesh.cell_count() {
+        let faces = mesh.cell(c);
+        let bottom = mesh.face(faces[0].face as usize);
+        assert!(faces[0].reversed, "{name}: cell {c}");
+        let m = bottom.len();
+        let has_top = faces.len() == m + 2;
+        assert!(has_top || faces.len() == m + 1, "{name}: cell {c}");
+        let child_of = |v: u32, p: u32| grown.node_parents[v as usize].contains(&p);
+        if has_top {
+            let top = mesh.face(faces[1].face as usize);
+            assert!(top.iter().all(|&t| bottom.iter().any(|&b| child_of(t, b))));
+            merged += usize::from(top.len() < m);
+        } else {
+            topless += 1;
+        }
+        for i in 0..m {
+            let f = &faces[1 + usize::from(has_top) + i];
+            let mut side = mesh.face(f.face as usize).to_vec();
+            if f.reversed {
+                side.reverse();
+            }
+            let at = side
+                .iter()
+                .position(|&v| v == bottom[i])
+                .expect("the edge's start");
+            side.rotate_left(at);
+            assert_eq!(side[1], bottom[(i + 1) % m], "{name}: cell {c} side {i}");
+            assert!(side.len() == 4 || (side.len() == 3 && child_of(side[2], side[0])));
+        }
+    }
+    eprintln!("{name}: {merged} cells under a smaller top, {topless} under an edge");
+    assert!(merged + topless > 0, "{name}: no merged cell");
+}
+
 /// The layers cut by `topo-cut` into tetrahedra and into mixed cells: each cut valid
 /// (conforming, every corner Jacobian positive), every cell's volume positive, the volumes
 /// summing to the volume inside the cut mesh's boundary (the wall and the final front) to
 /// 1e-9, and the layering record (the grown nodes' layers and parents with the cut cells'
 /// layers and pipes) passing its check.
 fn cut_and_check(name: &str, grown: &Grown3d) {
+    merged_cells_follow_the_contract(name, grown);
     let cuts = [
         ("tets", topo_cut::cut_to_tets(&grown.mesh)),
         ("mixed", topo_cut::cut_to_mixed(&grown.mesh)),
