@@ -70,7 +70,10 @@ pub(crate) fn shrink_until_valid(
 ) -> Result<(), GrowError> {
     let mut round = 0;
     loop {
-        let mut bad = bad_cells(front, layer, facets);
+        let mut bad = match layer.failing.take() {
+            Some(bad) => bad,
+            None => bad_cells(front, layer, facets),
+        };
         let mut what = "an inverted cell";
         if bad.is_empty() {
             match first_self_intersection(&layer.children, &layer.top) {

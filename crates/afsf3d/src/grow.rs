@@ -11,14 +11,14 @@ use springfield::{
 };
 
 use crate::check::{bad_cells, shrink_until_valid};
+use crate::front::{Topo, ideal_steps};
+use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
+use crate::{GrowError, GrowStats, Grown3d, LayerParams};
 
 /// A cell that fails its check merges the children of its shortest edge when that edge is
 /// shorter than this fraction of the mean ideal extrusion length (the second trigger of
 /// §5.2.1: "a mesh cell twisted to a negative volume").
 const TWISTED_RATIO: f64 = 1.0;
-use crate::front::{Topo, ideal_steps};
-use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
-use crate::{GrowError, GrowStats, Grown3d, LayerParams};
 
 /// Grows `params.layers` layers from the wall surface `surface` (see the crate's doc).
 pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, GrowError> {
@@ -71,10 +71,13 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         if layer > 0 && params.coe_shrink > 0.0 {
             // cells that fail merge their shortest edge rather than shrink, if it is short
             let bad = bad_cells(&front.nodes, &next, &front.facets);
-            if !bad.is_empty() {
-                let mut more = merges;
-                add_twisted(&topo, &balanced, &len, &bad, TWISTED_RATIO, &mut more);
+            let mut more = merges.clone();
+            add_twisted(&topo, &balanced, &len, &bad, TWISTED_RATIO, &mut more);
+            if more.len() > merges.len() {
                 next = merged_layer(&ideal, &front.facets, more);
+            } else {
+                // checked already: the shrinking starts from these
+                next.failing = Some(bad);
             }
         }
         shrink_until_valid(

@@ -50,6 +50,9 @@ pub(crate) struct Layer {
     pub top: Vec<Facet>,
     /// For each new facet, the front facet below it (its cell).
     pub top_of: Vec<u32>,
+    /// The front facets whose cells fail their check, when checked since the children last
+    /// moved.
+    pub failing: Option<Vec<usize>>,
 }
 
 /// The cyclic sequence `k` without a node repeated next to itself.
@@ -117,6 +120,7 @@ impl Layer {
             parents,
             top,
             top_of,
+            failing: None,
         }
     }
 
