@@ -104,15 +104,21 @@ impl Layer {
         }
         let mut top = Vec::with_capacity(facets.len());
         let mut top_of = Vec::with_capacity(facets.len());
-        for (f, facet) in facets.iter().enumerate() {
-            let t = dedup_cyclic(facet.nodes().iter().map(|&v| child[v as usize]));
-            if t.len() < 3 {
-                continue;
+        if merges.is_empty() {
+            // every child keeps its parent's index: the front's facets over the children
+            top.extend_from_slice(facets);
+            top_of.extend(0..facets.len() as u32);
+        } else {
+            for (f, facet) in facets.iter().enumerate() {
+                let t = dedup_cyclic(facet.nodes().iter().map(|&v| child[v as usize]));
+                if t.len() < 3 {
+                    continue;
+                }
+                // (a node repeated apart from itself is caught by `tangled_children`)
+                let fourth = t.get(3).copied().unwrap_or(geom_surface::NO_NODE);
+                top.push(Facet([t[0], t[1], t[2], fourth]));
+                top_of.push(f as u32);
             }
-            // (a node repeated apart from itself is caught by `tangled_children`)
-            let fourth = t.get(3).copied().unwrap_or(geom_surface::NO_NODE);
-            top.push(Facet([t[0], t[1], t[2], fourth]));
-            top_of.push(f as u32);
         }
         Layer {
             child,
