@@ -19,9 +19,13 @@
 //! collapses to an edge and leaves the front, and the cells below become the non-standard
 //! cells `topo-cut` cuts (a quad under a triangle, a triangle under an edge, …). A merge is
 //! kept only if the new front stays a closed manifold (no facet repeating a node or another
-//! facet, every edge in two facets running opposite ways) and each cell it changes is
-//! strictly convex (every cone from a node of the cell over its other faces positive, so
-//! every cut of `topo-cut` is).
+//! facet, every edge in two facets running opposite ways) and its child has a place (the
+//! middle of the two children, either child, or over the middle of the edge) where every
+//! merged cell around it is strictly convex (every cone from a node of the cell over its
+//! other faces positive, so every cut of `topo-cut` is) and every cell around it that was
+//! valid without merges stays valid. A cell still failing then merges the children of its
+//! shortest edge if that edge is shorter than its ideal extrusion (the dissertation's second
+//! trigger, "a cell twisted to a negative volume").
 //!
 //! Then every cell is checked: each corner tetrahedron of a cell that keeps all its top
 //! nodes (a corner, its two neighbours on the bottom or top face and the node above or
