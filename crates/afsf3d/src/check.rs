@@ -5,75 +5,102 @@ use geom_surface::{Facet, first_self_intersection};
 use mesh_model::is_positive_tet;
 use rayon::prelude::*;
 
+use crate::layer::{Layer, strictly_convex};
 use crate::{GrowError, GrowStats};
 
-/// Whether every corner tetrahedron of the cell over `facet` is positive: at each bottom
-/// corner the corner, its next and previous neighbours and the child; at each top corner the
-/// child, its previous and next neighbours and the parent.
-pub(crate) fn cell_ok(parents: &[[f64; 3]], children: &[[f64; 3]], facet: &Facet) -> bool {
-    let k = facet.nodes();
-    let m = k.len();
+/// Whether every corner tetrahedron of a cell with the `m` bottom corners `bottom(i)`
+/// (counter-clockwise seen from the fluid) and their children `top(i)` is positive: at each
+/// bottom corner the corner, its next and previous neighbours and the child; at each top
+/// corner the child, its previous and next neighbours and the parent.
+fn corners_ok(
+    bottom: impl Fn(usize) -> [f64; 3],
+    top: impl Fn(usize) -> [f64; 3],
+    m: usize,
+) -> bool {
     (0..m).all(|i| {
-        let (p, a, c) = (
-            k[(i + m - 1) % m] as usize,
-            k[i] as usize,
-            k[(i + 1) % m] as usize,
-        );
-        is_positive_tet(parents[a], parents[c], parents[p], children[a])
-            && is_positive_tet(children[a], children[p], children[c], parents[a])
+        let (p, a, c) = ((i + m - 1) % m, i, (i + 1) % m);
+        is_positive_tet(bottom(a), bottom(c), bottom(p), top(a))
+            && is_positive_tet(top(a), top(p), top(c), bottom(a))
     })
 }
 
-/// The facets whose cells fail [`cell_ok`] (in parallel).
-fn bad_cells(parents: &[[f64; 3]], children: &[[f64; 3]], facets: &[Facet]) -> Vec<usize> {
+/// Whether the cell of `layer` over the front facet `facet` is valid: [`corners_ok`] when its
+/// top keeps every node, strictly convex (every cut of `topo-cut` positive) when children
+/// of it merged.
+pub(crate) fn layer_cell_ok(front: &[[f64; 3]], layer: &Layer, facet: &Facet) -> bool {
+    let k = facet.nodes();
+    if layer.is_merged(facet) {
+        let n = front.len() as u32;
+        let pos = |v: u32| {
+            if v < n {
+                front[v as usize]
+            } else {
+                layer.children[(v - n) as usize]
+            }
+        };
+        strictly_convex(&layer.cell_faces(facet), pos)
+    } else {
+        let up = |i: usize| layer.children[layer.child[k[i] as usize] as usize];
+        corners_ok(|i| front[k[i] as usize], up, k.len())
+    }
+}
+
+/// The facets whose cells fail [`layer_cell_ok`] (in parallel).
+pub(crate) fn bad_cells(front: &[[f64; 3]], layer: &Layer, facets: &[Facet]) -> Vec<usize> {
     facets
         .par_iter()
         .enumerate()
-        .filter(|(_, f)| !cell_ok(parents, children, f))
+        .filter(|(_, f)| !layer_cell_ok(front, layer, f))
         .map(|(i, _)| i)
         .collect()
 }
 
-/// Checks the layer `children` over `parents`; while a cell is inverted or the new front
-/// intersects itself, moves the children of the failing facets halfway back to their
-/// parents. Fails after `max_shrinks` rounds.
+/// Checks `layer` over the front (nodes `front`, facets `facets`, the wall facet of each in
+/// `pipes`); while a cell is invalid or the new front intersects itself, moves the children
+/// of the failing facets halfway back to their parents (a merged child to the midpoint of
+/// its two). Fails after `max_shrinks` rounds.
 pub(crate) fn shrink_until_valid(
-    parents: &[[f64; 3]],
-    children: &mut [[f64; 3]],
+    front: &[[f64; 3]],
     facets: &[Facet],
+    pipes: &[u32],
+    layer: &mut Layer,
     max_shrinks: usize,
-    layer: usize,
+    layer_index: usize,
     stats: &mut GrowStats,
 ) -> Result<(), GrowError> {
     let mut round = 0;
     loop {
-        let mut bad = bad_cells(parents, children, facets);
+        let mut bad = match layer.failing.take() {
+            Some(bad) => bad,
+            None => bad_cells(front, layer, facets),
+        };
         let mut what = "an inverted cell";
         if bad.is_empty() {
-            match first_self_intersection(children, facets) {
+            match first_self_intersection(&layer.children, &layer.top) {
                 None => return Ok(()),
                 Some((f, g)) => {
-                    bad = vec![f, g];
+                    bad = vec![layer.top_of[f] as usize, layer.top_of[g] as usize];
                     what = "the front intersects itself";
                 }
             }
         }
         if round == max_shrinks {
             return Err(GrowError::LayerFailed {
-                layer,
-                facet: bad[0],
+                layer: layer_index,
+                facet: pipes[bad[0]] as usize,
                 what,
             });
         }
         round += 1;
-        let mut moved = vec![false; children.len()];
+        let mut moved = vec![false; layer.children.len()];
         for &f in &bad {
             for &v in facets[f].nodes() {
-                moved[v as usize] = true;
+                moved[layer.child[v as usize] as usize] = true;
             }
         }
-        for (i, _) in moved.iter().enumerate().filter(|(_, m)| **m) {
-            children[i] = std::array::from_fn(|d| (parents[i][d] + children[i][d]) / 2.0);
+        for c in (0..moved.len()).filter(|&c| moved[c]) {
+            let (base, x) = (layer.base(front, c), layer.children[c]);
+            layer.children[c] = std::array::from_fn(|d| (base[d] + x[d]) / 2.0);
             stats.shrunk_nodes += 1;
         }
         stats.shrinks += 1;
@@ -83,6 +110,7 @@ pub(crate) fn shrink_until_valid(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::layer::Ideal;
 
     #[test]
     fn a_prism_over_a_counter_clockwise_triangle_is_valid_and_upside_down_is_not() {
@@ -90,11 +118,20 @@ mod tests {
         let up = bottom.map(|p| [p[0], p[1], 0.2]);
         let down = bottom.map(|p| [p[0], p[1], -0.2]);
         let f = Facet::tri(0, 1, 2);
-        assert!(cell_ok(&bottom, &up, &f));
-        assert!(!cell_ok(&bottom, &down, &f));
+        let ok = |top: &[[f64; 3]]| {
+            let ideal = Ideal {
+                nodes: &bottom,
+                dir: &[],
+                len: &[],
+                balanced: top,
+            };
+            layer_cell_ok(&bottom, &Layer::new(&ideal, &[f], &[]), &f)
+        };
+        assert!(ok(&up));
+        assert!(!ok(&down));
         // a child pushed across its neighbour's extrusion edge twists the cell
         let mut twisted = up;
         twisted[0] = [1.5, 0.8, 0.2];
-        assert!(!cell_ok(&bottom, &twisted, &f));
+        assert!(!ok(&twisted));
     }
 }

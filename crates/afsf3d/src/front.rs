@@ -34,9 +34,14 @@ fn far_side(f: &Facet, i: usize) -> [u32; 2] {
 impl Topo {
     /// The topology of a checked (closed, manifold) surface.
     pub fn new(surface: &Surface) -> Topo {
+        Topo::from_facets(&surface.facets)
+    }
+
+    /// The topology of the facets of a closed, manifold surface.
+    pub fn from_facets(facets: &[Facet]) -> Topo {
         // (low, high, facet, side)
         let mut sides: Vec<(u32, u32, u32, u8)> = Vec::new();
-        for (f, facet) in surface.facets.iter().enumerate() {
+        for (f, facet) in facets.iter().enumerate() {
             let k = facet.nodes();
             for i in 0..k.len() {
                 let (a, b) = (k[i], k[(i + 1) % k.len()]);
@@ -45,14 +50,14 @@ impl Topo {
         }
         sides.sort_unstable();
         let mut edges = Vec::with_capacity(sides.len() / 2);
-        let mut facet_edges = vec![[u32::MAX; 4]; surface.facets.len()];
+        let mut facet_edges = vec![[u32::MAX; 4]; facets.len()];
         for pair in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
             let id = edges.len() as u32;
             let (f, i) = (pair[0].2 as usize, pair[0].3 as usize);
-            let k = surface.facets[f].nodes();
+            let k = facets[f].nodes();
             let mut far = [[0; 2]; 2];
             for (slot, s) in pair.iter().take(2).enumerate() {
-                far[slot] = far_side(&surface.facets[s.2 as usize], s.3 as usize);
+                far[slot] = far_side(&facets[s.2 as usize], s.3 as usize);
                 facet_edges[s.2 as usize][s.3 as usize] = id;
             }
             edges.push(Edge {

@@ -1,17 +1,24 @@
 //! The layer loop: ideal steps, two spring balances, checks, and the cells appended to the
 //! polyhedral mesh.
 
+use geom_predicates::vector::dist;
 use geom_surface::Surface;
-use mesh_model::Role;
 use mesh_model::poly::{CellFace, PolyMesh};
+use mesh_model::{NONE, Role};
 use springfield::{
     AngleSpring3d, ExtrusionSpring, NeighbourSpring3d, SpringField3d, SpringSet3d, TensionSpring,
     solve_model,
 };
 
-use crate::check::shrink_until_valid;
+use crate::check::{bad_cells, shrink_until_valid};
 use crate::front::{Topo, ideal_steps};
+use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
 use crate::{GrowError, GrowStats, Grown3d, LayerParams};
+
+/// A cell that fails its check merges the children of its shortest edge when that edge is
+/// shorter than this fraction of the mean ideal extrusion length (the second trigger of
+/// §5.2.1: "a mesh cell twisted to a negative volume").
+const TWISTED_RATIO: f64 = 1.0;
 
 /// Grows `params.layers` layers from the wall surface `surface` (see the crate's doc).
 pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, GrowError> {
@@ -20,70 +27,239 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
     if let Some(facet) = (0..surface.facets.len()).find(|&f| surface.role(f) != Role::Wall) {
         return Err(GrowError::NotWall { facet });
     }
-    let topo = Topo::new(surface);
-    let n = surface.nodes.len();
-    let mut mesh = PolyMesh::new();
-    mesh.nodes = surface.nodes.clone();
-    let mut bottom_faces: Vec<u32> = surface
-        .facets
-        .iter()
-        .map(|f| mesh.push_face(f.nodes()))
-        .collect();
-    let mut columns: Vec<Vec<u32>> = (0..n as u32).map(|i| vec![i]).collect();
-    let mut front = surface.clone();
-    let mut stats = GrowStats {
-        converged: true,
-        ..GrowStats::default()
-    };
+    let mut topo = Topo::new(surface);
     let spacing = topo
         .edges
         .iter()
         .map(|e| {
-            geom_predicates::vector::dist(
+            dist(
                 surface.nodes[e.nodes[0] as usize],
                 surface.nodes[e.nodes[1] as usize],
             )
         })
         .sum::<f64>()
         / topo.edges.len() as f64;
+    let mut state = State::new(surface);
     let mut thickness = 0.0;
     for layer in 0..params.layers {
         let height = params.first_height * params.growth.powi(layer as i32);
         thickness += height;
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
-        let (dir, len) = ideal_steps(&front, &topo, height, rounds);
-        let mut children = balance(&front.nodes, &topo, &dir, &len, params, layer, &mut stats)?;
+        let front = &state.front;
+        let (dir, len) = ideal_steps(front, &topo, height, rounds);
+        let step = Step {
+            x: &front.nodes,
+            dir: &dir,
+            len: &len,
+            params,
+            layer,
+        };
+        let balanced = balance(&step, &topo, &mut state.stats)?;
+        // the first layer stays whole: its height is what the wall resolution needs
+        let merges = if layer > 0 && params.coe_shrink > 0.0 {
+            choose_merges(&topo, &balanced, &len, params.coe_shrink)
+        } else {
+            Vec::new()
+        };
+        let ideal = Ideal {
+            nodes: &front.nodes,
+            dir: &dir,
+            len: &len,
+            balanced: &balanced,
+        };
+        let mut next = merged_layer(&ideal, &front.facets, merges.clone());
+        if layer > 0 && params.coe_shrink > 0.0 {
+            // cells that fail merge their shortest edge rather than shrink, if it is short
+            let bad = bad_cells(&front.nodes, &next, &front.facets);
+            let mut more = merges.clone();
+            add_twisted(&topo, &balanced, &len, &bad, TWISTED_RATIO, &mut more);
+            if more.len() > merges.len() {
+                next = merged_layer(&ideal, &front.facets, more);
+            } else {
+                // checked already: the shrinking starts from these
+                next.failing = Some(bad);
+            }
+        }
         shrink_until_valid(
             &front.nodes,
-            &mut children,
             &front.facets,
+            &state.pipes,
+            &mut next,
             params.max_shrinks,
             layer,
-            &mut stats,
+            &mut state.stats,
         )?;
-        let base = mesh.nodes.len() as u32;
-        mesh.nodes.extend_from_slice(&children);
-        let level: Vec<u32> = columns.iter().map(|c| *c.last().expect("a node")).collect();
-        bottom_faces = push_cells(
-            &mut mesh,
-            surface,
-            &topo,
-            &level,
-            base,
-            &bottom_faces,
-            layer,
-        );
-        for (i, c) in columns.iter_mut().enumerate() {
-            c.push(base + i as u32);
+        let merged = next.children.len() < front.nodes.len();
+        state.push_layer(&topo, next, layer);
+        if merged {
+            topo = Topo::new(&state.front);
         }
-        front.nodes = children;
     }
-    Ok(Grown3d {
-        mesh,
-        columns,
-        front,
-        stats,
-    })
+    Ok(state.finish())
+}
+
+/// What the layer loop carries from one layer to the next.
+struct State {
+    mesh: PolyMesh,
+    /// The current front: nodes, facets (each over the cell of the layer below) and patches.
+    front: Surface,
+    /// For each front node, its mesh node.
+    front_mesh: Vec<u32>,
+    /// For each front facet, its mesh face (the bottom of the next cell) and its pipe.
+    front_faces: Vec<u32>,
+    pipes: Vec<u32>,
+    /// For each wall node, its column so far, and the front node at its top.
+    columns: Vec<Vec<u32>>,
+    column_top: Vec<u32>,
+    node_layer: Vec<u32>,
+    node_parents: Vec<[u32; 2]>,
+    layer_merges: Vec<usize>,
+    stats: GrowStats,
+}
+
+impl State {
+    fn new(surface: &Surface) -> State {
+        let n = surface.nodes.len();
+        let mut mesh = PolyMesh::new();
+        mesh.nodes = surface.nodes.clone();
+        let front_faces = surface
+            .facets
+            .iter()
+            .map(|f| mesh.push_face(f.nodes()))
+            .collect();
+        State {
+            mesh,
+            front: surface.clone(),
+            front_mesh: (0..n as u32).collect(),
+            front_faces,
+            pipes: (0..surface.facets.len() as u32).collect(),
+            columns: (0..n as u32).map(|i| vec![i]).collect(),
+            column_top: (0..n as u32).collect(),
+            node_layer: vec![0; n],
+            node_parents: vec![[NONE; 2]; n],
+            layer_merges: Vec::new(),
+            stats: GrowStats {
+                converged: true,
+                ..GrowStats::default()
+            },
+        }
+    }
+
+    /// Appends the layer `next` grown over the current front (its edges `topo`): its nodes,
+    /// its cells, the records; then `next`'s top is the front.
+    fn push_layer(&mut self, topo: &Topo, next: Layer, layer: usize) {
+        let base = self.mesh.nodes.len() as u32;
+        self.mesh.nodes.extend_from_slice(&next.children);
+        let merges = next.parents.iter().filter(|p| p[1] != NONE).count();
+        self.stats.merges += merges;
+        self.layer_merges.push(merges);
+        for p in &next.parents {
+            self.node_layer.push(layer as u32 + 1);
+            self.node_parents.push(p.map(|v| {
+                if v == NONE {
+                    NONE
+                } else {
+                    self.front_mesh[v as usize]
+                }
+            }));
+        }
+        let top_faces = self.push_cells(topo, &next, base, layer);
+        for (column, top) in self.columns.iter_mut().zip(&mut self.column_top) {
+            *top = next.child[*top as usize];
+            column.push(base + *top);
+        }
+        self.pipes = next
+            .top_of
+            .iter()
+            .map(|&f| self.pipes[f as usize])
+            .collect();
+        self.front.facet_patch = next
+            .top_of
+            .iter()
+            .map(|&f| self.front.facet_patch[f as usize])
+            .collect();
+        self.front_faces = top_faces;
+        self.front_mesh = (base..base + next.children.len() as u32).collect();
+        self.front.nodes = next.children;
+        self.front.facets = next.top;
+    }
+
+    /// Appends the cells of one layer: the children of `layer` (mesh nodes `base + c`) over the
+    /// front (its edges `topo`), one cell per front facet with its faces in the contract's order (bottom, top
+    /// when it keeps three nodes, sides along the bottom's edges); each side face is stored
+    /// once, as (a, b, b', a') for the edge a → b of its first facet, a triangle (a, b, b')
+    /// where the two children merged. Returns the mesh faces of the new front's facets.
+    fn push_cells(
+        &mut self,
+        topo: &Topo,
+        layer: &Layer,
+        base: u32,
+        layer_index: usize,
+    ) -> Vec<u32> {
+        let (mesh, front, level) = (&mut self.mesh, &self.front, &self.front_mesh);
+        let (bottom_faces, pipes) = (&self.front_faces, &self.pipes);
+        let up = |v: u32| base + layer.child[v as usize];
+        let top_faces: Vec<u32> = layer
+            .top
+            .iter()
+            .map(|f| {
+                let k: Vec<u32> = f.nodes().iter().map(|&c| base + c).collect();
+                mesh.push_face(&k)
+            })
+            .collect();
+        let mut top_of_facet = vec![NONE; front.facets.len()];
+        for (t, &f) in layer.top_of.iter().enumerate() {
+            top_of_facet[f as usize] = top_faces[t];
+        }
+        let side_faces: Vec<u32> = topo
+            .edges
+            .iter()
+            .map(|e| {
+                let [a, b] = e.nodes;
+                let (la, lb) = (level[a as usize], level[b as usize]);
+                if up(a) == up(b) {
+                    mesh.push_face(&[la, lb, up(b)])
+                } else {
+                    mesh.push_face(&[la, lb, up(b), up(a)])
+                }
+            })
+            .collect();
+        let mut faces = Vec::with_capacity(6);
+        for (f, facet) in front.facets.iter().enumerate() {
+            faces.clear();
+            faces.push(CellFace {
+                face: bottom_faces[f],
+                reversed: true,
+            });
+            if top_of_facet[f] != NONE {
+                faces.push(CellFace {
+                    face: top_of_facet[f],
+                    reversed: false,
+                });
+            }
+            for (&v, &e) in facet.nodes().iter().zip(&topo.facet_edges[f]) {
+                faces.push(CellFace {
+                    face: side_faces[e as usize],
+                    reversed: topo.edges[e as usize].nodes[0] != v,
+                });
+            }
+            mesh.push_cell(&faces, layer_index as u32, pipes[f]);
+        }
+        top_faces
+    }
+
+    fn finish(self) -> Grown3d {
+        Grown3d {
+            mesh: self.mesh,
+            columns: self.columns,
+            front: self.front,
+            front_nodes: self.front_mesh,
+            node_layer: self.node_layer,
+            node_parents: self.node_parents,
+            layer_merges: self.layer_merges,
+            stats: self.stats,
+        }
+    }
 }
 
 /// The rounds of direction smoothing of a layer whose top is `thickness` off the wall:
@@ -103,6 +279,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     if !(p.growth.is_finite() && p.growth >= 1.0) {
         return bad("growth must be at least 1");
     }
+    if !(p.coe_shrink >= 0.0 && p.coe_shrink < 1.0) {
+        return bad("coe_shrink must be in [0, 1)");
+    }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
         return bad("tension_ratio must be in (0, 1]");
     }
@@ -111,18 +290,33 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
         .map_err(|e| GrowError::Params(e.to_string()))
 }
 
-/// The children of the front nodes `x`, balanced: placed at their ideal steps, balanced by
-/// the extrusion, neighbour and angle springs, then again with the tension springs (ideal
-/// length `tension_ratio` × the length after the first balance). Only the children move.
-fn balance(
-    x: &[[f64; 3]],
-    topo: &Topo,
-    dir: &[[f64; 3]],
-    len: &[f64],
-    params: &LayerParams,
+/// One layer's step: the front's nodes `x`, their ideal directions and lengths, the
+/// parameters and the layer.
+#[derive(Clone, Copy)]
+struct Step<'a> {
+    x: &'a [[f64; 3]],
+    dir: &'a [[f64; 3]],
+    len: &'a [f64],
+    params: &'a LayerParams,
     layer: usize,
+}
+
+/// The children of the front nodes, balanced: placed at their ideal steps, balanced by the
+/// extrusion, neighbour and angle springs (the neighbour springs on the front's edges
+/// `topo`), then again with the tension springs (ideal length `tension_ratio` × the length
+/// after the first balance). Only the children move.
+fn balance(
+    step: &Step<'_>,
+    topo: &Topo,
     stats: &mut GrowStats,
 ) -> Result<Vec<[f64; 3]>, GrowError> {
+    let Step {
+        x,
+        dir,
+        len,
+        params,
+        layer,
+    } = *step;
     let n = x.len();
     let mut p: Vec<[f64; 3]> = x.to_vec();
     p.extend((0..n).map(|i| std::array::from_fn(|d| x[i][d] + len[i] * dir[i][d])));
@@ -164,7 +358,7 @@ fn balance(
     let longest = topo.longest_edge(&p[n..]);
     for e in &topo.edges {
         let [a, b] = e.nodes.map(|v| v as usize);
-        let length = geom_predicates::vector::dist(p[n + a], p[n + b]);
+        let length = dist(p[n + a], p[n + b]);
         let l_charac = longest[a].max(longest[b]);
         set.tension.push(TensionSpring::new(
             e.nodes.map(|v| v + up),
@@ -176,55 +370,4 @@ fn balance(
     }
     solve(&mut p, &set, stats)?;
     Ok(p.split_off(n))
-}
-
-/// Appends the cells of one layer: the children (mesh nodes `base + i`) over the front nodes
-/// `level` (mesh nodes), one cell per facet with its faces in the contract's order (bottom,
-/// top, sides along the bottom's edges); each side face is stored once, as
-/// (a, b, b', a') for the edge a → b of its first facet. Returns the top faces.
-fn push_cells(
-    mesh: &mut PolyMesh,
-    surface: &Surface,
-    topo: &Topo,
-    level: &[u32],
-    base: u32,
-    bottom_faces: &[u32],
-    layer: usize,
-) -> Vec<u32> {
-    let top_faces: Vec<u32> = surface
-        .facets
-        .iter()
-        .map(|f| {
-            let k: Vec<u32> = f.nodes().iter().map(|&v| base + v).collect();
-            mesh.push_face(&k)
-        })
-        .collect();
-    let side_faces: Vec<u32> = topo
-        .edges
-        .iter()
-        .map(|e| {
-            let [a, b] = e.nodes;
-            mesh.push_face(&[level[a as usize], level[b as usize], base + b, base + a])
-        })
-        .collect();
-    let mut faces = Vec::with_capacity(6);
-    for (f, facet) in surface.facets.iter().enumerate() {
-        faces.clear();
-        faces.push(CellFace {
-            face: bottom_faces[f],
-            reversed: true,
-        });
-        faces.push(CellFace {
-            face: top_faces[f],
-            reversed: false,
-        });
-        for (&v, &e) in facet.nodes().iter().zip(&topo.facet_edges[f]) {
-            faces.push(CellFace {
-                face: side_faces[e as usize],
-                reversed: topo.edges[e as usize].nodes[0] != v,
-            });
-        }
-        mesh.push_cell(&faces, layer as u32, f as u32);
-    }
-    top_faces
 }

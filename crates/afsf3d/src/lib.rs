@@ -1,7 +1,8 @@
 //! The advancing-front spring-field mesher in 3D (dissertation §5.2.1–5.2.2): layers grown
-//! from the wall facets of a closed [`Surface`], one child per node per layer, balanced by
-//! the 3D springs of `springfield` ([`springfield::SpringField3d`]), every layer checked and
-//! shrunk where it fails.
+//! from the wall facets of a closed [`Surface`], one child per front node per layer,
+//! balanced by the 3D springs of `springfield` ([`springfield::SpringField3d`]), neighbouring
+//! children merged where the front shrinks (Coe_shrink), every layer checked and shrunk where
+//! it fails.
 //!
 //! Layer k (from 0) has the height `first_height × growth^k`. Each front node's ideal
 //! direction is the angle-weighted normal of the front facets around it; its ideal length is
@@ -9,23 +10,44 @@
 //! and the normals of its facets (so that the child stands the layer height off every facet
 //! there; see `docs/afsf3d.md`). The children start at their ideal places and are balanced
 //! twice: by the extrusion, neighbour and angle springs, then with the tension springs added
-//! (ideal length 0.9 × the length after the first balance). Then every cell is checked: each
-//! corner tetrahedron of the cell (a corner, its two neighbours on the bottom or top face and
-//! the node above or below) must be positive by the exact `orient3d`, and the new front must
-//! not intersect itself (facet pairs by sort-and-sweep, the exact triangle test). The children
-//! of a failing cell or facet pair are moved halfway back to their parents, and the check
-//! repeated, at most [`LayerParams::max_shrinks`] times; then the growth fails with the
-//! layer and facet.
+//! (ideal length 0.9 × the length after the first balance).
+//!
+//! Then, from the second layer on, the children of a front edge closer than
+//! [`LayerParams::coe_shrink`] (0.65) times the mean of their two ideal extrusion lengths
+//! merge at their midpoint (the shortest edges first, each node in one merge per layer): a
+//! quad of the new front that loses a node becomes a triangle, a triangle that loses one
+//! collapses to an edge and leaves the front, and the cells below become the non-standard
+//! cells `topo-cut` cuts (a quad under a triangle, a triangle under an edge, …). A merge is
+//! kept only if the new front stays a closed manifold (no facet repeating a node or another
+//! facet, every edge in two facets running opposite ways) and its child has a place (the
+//! middle of the two children, either child, or over the middle of the edge) where every
+//! merged cell around it is strictly convex (every cone from a node of the cell over its
+//! other faces positive, so every cut of `topo-cut` is) and every cell around it that was
+//! valid without merges stays valid. A cell still failing then merges the children of its
+//! shortest edge if that edge is shorter than its ideal extrusion (the dissertation's second
+//! trigger, "a cell twisted to a negative volume").
+//!
+//! Then every cell is checked: each corner tetrahedron of a cell that keeps all its top
+//! nodes (a corner, its two neighbours on the bottom or top face and the node above or
+//! below) must be positive by the exact `orient3d`, a merged cell must stay strictly convex,
+//! and the new front must not intersect itself anywhere (facet pairs by sort-and-sweep over
+//! the whole front, the exact triangle test). The children of a failing cell or facet pair
+//! are moved halfway back to their parents (a merged child to the midpoint of its two), and
+//! the check repeated, at most [`LayerParams::max_shrinks`] times; then the growth fails
+//! with the layer and wall facet.
 //!
 //! The result ([`Grown3d`]) is a [`PolyMesh`] of the raw layer cells with `cell_layer` and
 //! `cell_pipe` (the wall facet each cell descends from), the column of every wall node (its
-//! node and its children, bottom-up: the layering record), and the final front, the outer
+//! node and its children, bottom-up; a merged child is in the columns of both its parents),
+//! each node's layer and parents (the layering record), and the final front, the outer
 //! boundary of the near-body mesh the layers make. Each cell's faces follow the contract with
 //! `topo-cut`: face 0 the bottom (on the previous front, outward of the cell: towards the
-//! wall), face 1 the top, then the side faces in the order of the bottom's edges.
+//! wall), face 1 the top (left out when merged children leave fewer than three nodes), then
+//! the side faces in the order of the bottom's edges (a triangle where the edge's two
+//! children merged).
 //!
-//! Not yet: neighbour merging (Coe_shrink) — every wall node keeps its full column, so the
-//! cells are hexahedra over quads and prisms over triangles; front closing between bodies.
+//! Not yet: front closing between bodies or between parts of one front growing into each
+//! other (such a layer fails as "the front intersects itself").
 //!
 //! ```
 //! use afsf3d::{LayerParams, grow_layers};
@@ -37,12 +59,14 @@
 //! assert_eq!(grown.mesh.cell_count(), 5 * sphere.facets.len());
 //! assert!(grown.mesh.validate().is_empty());
 //! assert!(grown.columns.iter().all(|c| c.len() == 6)); // every node keeps its five children
+//! assert_eq!(grown.stats.merges, 0); // a sphere's front grows: no edge shrinks
 //! # Ok::<(), afsf3d::GrowError>(())
 //! ```
 
 mod check;
 mod front;
 mod grow;
+mod layer;
 
 pub use grow::grow_layers;
 
@@ -70,6 +94,10 @@ pub struct LayerParams {
     /// by the normalised sum of its own and its neighbours'): fans the directions out of
     /// concave edges, so the front there spreads instead of folding. Default 8.
     pub smoothing: usize,
+    /// Coe_shrink: the children of a front edge closer than this fraction of the mean of
+    /// their ideal extrusion lengths merge into one node (not in the first layer). Default
+    /// 0.65; 0 never merges.
+    pub coe_shrink: f64,
 }
 
 impl Default for LayerParams {
@@ -86,6 +114,7 @@ impl Default for LayerParams {
             },
             max_shrinks: 8,
             smoothing: 8,
+            coe_shrink: 0.65,
         }
     }
 }
@@ -134,19 +163,34 @@ pub struct GrowStats {
     pub shrunk_nodes: usize,
     /// Whether every balance converged.
     pub converged: bool,
+    /// Merged children (each merging two front nodes).
+    pub merges: usize,
 }
 
 /// Grown layers.
 #[derive(Debug, Clone)]
 pub struct Grown3d {
     /// The layer cells (see the crate's doc for the order of their faces); node `i` of the
-    /// surface is node `i` here, the children of layer k follow, `n` per layer.
+    /// surface is node `i` here, the children of each layer follow (one per front node, two
+    /// merged front nodes sharing one).
     pub mesh: PolyMesh,
-    /// For each surface node, its node and its children, bottom-up (`layers + 1` nodes).
+    /// For each surface node, its node and its children, bottom-up (`layers + 1` nodes); a
+    /// merged child is in the columns of both its parents' wall nodes, and every column
+    /// above it.
     pub columns: Vec<Vec<u32>>,
-    /// The final front: the surface's facets over the top children (node `i` of the front is
-    /// the top of column `i`), the outer boundary of the layers.
+    /// The final front, the outer boundary of the layers: the wall's facets over the top
+    /// children, less those that collapsed to an edge (node `i` of the front is mesh node
+    /// `front_nodes[i]`).
     pub front: Surface,
+    /// The mesh node of each node of the final front.
+    pub front_nodes: Vec<u32>,
+    /// For each mesh node, its layer (0 on the wall).
+    pub node_layer: Vec<u32>,
+    /// For each mesh node, the nodes it grew from ([`mesh_model::NONE`] when absent): none on
+    /// the wall, the second parent of a merged child.
+    pub node_parents: Vec<[u32; 2]>,
+    /// Merged children in each layer.
+    pub layer_merges: Vec<usize>,
     /// Measures of the growth.
     pub stats: GrowStats,
 }

@@ -95,6 +95,19 @@ impl Surface {
             "step",
         )
     }
+
+    /// The boundary of the filled voxels of a `cells[0]`×`cells[1]`×`cells[2]` grid of
+    /// spacing `h` (corner at the origin): one quad per face between a filled voxel and an
+    /// empty one or the outside. `filled` must leave no two voxels meeting only along an
+    /// edge or at a corner. One wall patch `name`. For shapes made in tests (slots, towers).
+    pub fn voxels(
+        cells: [usize; 3],
+        h: f64,
+        filled: impl Fn([usize; 3]) -> bool,
+        name: &str,
+    ) -> Surface {
+        voxel_surface(cells, h, filled, false, name)
+    }
 }
 
 /// The boundary of the filled voxels of a `cells[0]`×`cells[1]`×`cells[2]` grid of spacing

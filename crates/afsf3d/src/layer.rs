@@ -1,0 +1,479 @@
+//! One layer's children and neighbour merging (Coe_shrink, dissertation §5.2.1 step 7 and
+//! §5.2.3): which children of front edges merge, the layer they make (each front node's
+//! child, the children's parents, the new front's facets), and the checks a merge must pass
+//! (the new front stays a closed manifold, every merged cell strictly convex).
+
+use geom_predicates::vector::dist;
+use geom_surface::Facet;
+use mesh_model::{NONE, is_positive_tet};
+
+use crate::check::layer_cell_ok;
+use crate::front::Topo;
+
+/// A front with its ideal steps and its balanced children.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ideal<'a> {
+    /// The front's nodes.
+    pub nodes: &'a [[f64; 3]],
+    /// Each node's ideal direction and length.
+    pub dir: &'a [[f64; 3]],
+    pub len: &'a [f64],
+    /// Each node's child after the balance.
+    pub balanced: &'a [[f64; 3]],
+}
+
+impl Ideal<'_> {
+    /// The child of front nodes `a` and `b` merged: over the middle of their edge by the
+    /// mean of their ideal lengths, along the mean of their ideal directions. (Not the
+    /// middle of their two children: children merge where the front shrinks, and there
+    /// the balance drives them towards each other along the front, so their middle can lie
+    /// almost on the front.)
+    fn merged_child(&self, a: usize, b: usize) -> [f64; 3] {
+        let (p, q) = (self.nodes[a], self.nodes[b]);
+        let dir = geom_surface::unit(std::array::from_fn(|d| self.dir[a][d] + self.dir[b][d]));
+        let len = (self.len[a] + self.len[b]) / 2.0;
+        std::array::from_fn(|d| (p[d] + q[d]) / 2.0 + len * dir[d])
+    }
+}
+
+/// One grown layer over a front: the children (some merged) and the new front.
+#[derive(Debug, Clone)]
+pub(crate) struct Layer {
+    /// For each front node, its child (an index into `children`).
+    pub child: Vec<u32>,
+    /// The children's positions.
+    pub children: Vec<[f64; 3]>,
+    /// For each child, the front nodes it grew from (the second [`NONE`] unless merged).
+    pub parents: Vec<[u32; 2]>,
+    /// The new front's facets, over the children (a facet whose top collapsed to an edge
+    /// is left out).
+    pub top: Vec<Facet>,
+    /// For each new facet, the front facet below it (its cell).
+    pub top_of: Vec<u32>,
+    /// The front facets whose cells fail their check, when checked since the children last
+    /// moved.
+    pub failing: Option<Vec<usize>>,
+}
+
+/// The cyclic sequence `k` without a node repeated next to itself.
+fn dedup_cyclic(k: impl IntoIterator<Item = u32>) -> Vec<u32> {
+    let mut out: Vec<u32> = Vec::with_capacity(4);
+    for v in k {
+        if out.last() != Some(&v) {
+            out.push(v);
+        }
+    }
+    while out.len() > 1 && out.first() == out.last() {
+        out.pop();
+    }
+    out
+}
+
+impl Layer {
+    /// The layer of the balanced children `balanced` (one per front node) over the front
+    /// (`front`, `facets`), with the children of each pair in `merges` (front nodes joined by
+    /// a front edge, each node in one pair at most) merged into one over the middle of their
+    /// edge (see [`merged_child`]). Without merges each front node's child keeps its index.
+    pub fn new(front: &Ideal<'_>, facets: &[Facet], merges: &[[u32; 2]]) -> Layer {
+        let balanced = front.balanced;
+        let n = balanced.len();
+        let mut partner = vec![NONE; n];
+        for &[a, b] in merges {
+            partner[a as usize] = b;
+            partner[b as usize] = a;
+        }
+        let mut child = vec![NONE; n];
+        let mut children = Vec::with_capacity(n);
+        let mut parents = Vec::with_capacity(n);
+        for i in 0..n {
+            if child[i] != NONE {
+                continue;
+            }
+            let c = children.len() as u32;
+            child[i] = c;
+            let j = partner[i];
+            if j == NONE {
+                children.push(balanced[i]);
+                parents.push([i as u32, NONE]);
+            } else {
+                child[j as usize] = c;
+                let (p, q) = (balanced[i], balanced[j as usize]);
+                children.push(std::array::from_fn(|d| (p[d] + q[d]) / 2.0));
+                parents.push([i as u32, j]);
+            }
+        }
+        let mut top = Vec::with_capacity(facets.len());
+        let mut top_of = Vec::with_capacity(facets.len());
+        if merges.is_empty() {
+            // every child keeps its parent's index: the front's facets over the children
+            top.extend_from_slice(facets);
+            top_of.extend(0..facets.len() as u32);
+        } else {
+            for (f, facet) in facets.iter().enumerate() {
+                let t = dedup_cyclic(facet.nodes().iter().map(|&v| child[v as usize]));
+                if t.len() < 3 {
+                    continue;
+                }
+                // (a node repeated apart from itself is caught by `tangled_children`)
+                let fourth = t.get(3).copied().unwrap_or(geom_surface::NO_NODE);
+                top.push(Facet([t[0], t[1], t[2], fourth]));
+                top_of.push(f as u32);
+            }
+        }
+        Layer {
+            child,
+            children,
+            parents,
+            top,
+            top_of,
+            failing: None,
+        }
+    }
+
+    /// Whether the cell over `facet` has fewer distinct top nodes than bottom nodes.
+    pub fn is_merged(&self, facet: &Facet) -> bool {
+        let k = facet.nodes();
+        (0..k.len()).any(|i| self.child[k[i] as usize] == self.child[k[(i + 1) % k.len()] as usize])
+    }
+
+    /// The point child `c` shrinks towards: its parent, or the midpoint of its two parents.
+    pub fn base(&self, front: &[[f64; 3]], c: usize) -> [f64; 3] {
+        match self.parents[c] {
+            [p, NONE] => front[p as usize],
+            [p, q] => {
+                let (p, q) = (front[p as usize], front[q as usize]);
+                std::array::from_fn(|d| (p[d] + q[d]) / 2.0)
+            }
+        }
+    }
+
+    /// The outward faces of the cell over `facet`, nodes numbered front first (`0..n`),
+    /// then the children (`n + c`): the bottom (turned towards the wall), the top when it
+    /// keeps three nodes, then the sides along the bottom's edges (a triangle where the
+    /// edge's two children merged).
+    pub fn cell_faces(&self, facet: &Facet) -> Vec<Vec<u32>> {
+        let n = self.child.len() as u32;
+        let up = |v: u32| n + self.child[v as usize];
+        let k = facet.nodes();
+        let mut faces = vec![k.iter().rev().copied().collect::<Vec<u32>>()];
+        let top = dedup_cyclic(k.iter().map(|&v| up(v)));
+        if top.len() >= 3 {
+            faces.push(top);
+        }
+        for i in 0..k.len() {
+            let (a, b) = (k[i], k[(i + 1) % k.len()]);
+            faces.push(dedup_cyclic([a, b, up(b), up(a)]));
+        }
+        faces
+    }
+}
+
+/// The pairs of front nodes whose children merge (Coe_shrink): the children of a front edge
+/// closer than `coe` times the mean of the two nodes' ideal extrusion lengths `len`, the
+/// shortest (relative to that length) first, each node in one pair at most.
+pub(crate) fn choose_merges(
+    topo: &Topo,
+    children: &[[f64; 3]],
+    len: &[f64],
+    coe: f64,
+) -> Vec<[u32; 2]> {
+    let mut short: Vec<(f64, [u32; 2])> = topo
+        .edges
+        .iter()
+        .filter_map(|e| {
+            let [a, b] = e.nodes.map(|v| v as usize);
+            let ratio = dist(children[a], children[b]) / ((len[a] + len[b]) / 2.0);
+            (ratio < coe).then_some((ratio, e.nodes))
+        })
+        .collect();
+    short.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let mut used = vec![false; children.len()];
+    let mut merges = Vec::new();
+    for (_, [a, b]) in short {
+        if !used[a as usize] && !used[b as usize] {
+            used[a as usize] = true;
+            used[b as usize] = true;
+            merges.push([a, b]);
+        }
+    }
+    merges
+}
+
+/// Adds to `merges` (the pairs of [`choose_merges`]) the second trigger of §5.2.1: for each
+/// cell over `bad` (front facets whose cells fail their check), the children of its
+/// shortest edge relative to the mean ideal extrusion length, when that is below
+/// `ratio` and neither node merges yet.
+pub(crate) fn add_twisted(
+    topo: &Topo,
+    children: &[[f64; 3]],
+    len: &[f64],
+    bad: &[usize],
+    ratio: f64,
+    merges: &mut Vec<[u32; 2]>,
+) {
+    let mut used = vec![false; children.len()];
+    for &[a, b] in merges.iter() {
+        used[a as usize] = true;
+        used[b as usize] = true;
+    }
+    for &f in bad {
+        let shortest = topo.facet_edges[f]
+            .iter()
+            .filter(|&&e| e != u32::MAX)
+            .map(|&e| topo.edges[e as usize].nodes)
+            .filter(|e| !used[e[0] as usize] && !used[e[1] as usize])
+            .map(|[a, b]| {
+                let (x, y) = (a as usize, b as usize);
+                (
+                    dist(children[x], children[y]) / ((len[x] + len[y]) / 2.0),
+                    [a, b],
+                )
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        if let Some((_, [a, b])) = shortest.filter(|s| s.0 < ratio) {
+            used[a as usize] = true;
+            used[b as usize] = true;
+            merges.push([a, b]);
+        }
+    }
+}
+
+/// Whether the cell with the outward faces `faces` (nodes at `pos`) is strictly convex:
+/// every node of the cell off a face lies strictly inside of the triangle at every corner of
+/// that face, so every cone from a node over the faces without it — every cut of
+/// `topo-cut` — is positive.
+pub(crate) fn strictly_convex(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3]) -> bool {
+    let mut all: Vec<u32> = faces.iter().flatten().copied().collect();
+    all.sort_unstable();
+    all.dedup();
+    faces.iter().all(|k| {
+        let m = k.len();
+        (0..m).all(|i| {
+            let (p, c, q) = (pos(k[(i + m - 1) % m]), pos(k[i]), pos(k[(i + 1) % m]));
+            all.iter()
+                .filter(|v| !k.contains(v))
+                .all(|&v| is_positive_tet(c, p, q, pos(v)))
+        })
+    })
+}
+
+/// The merged children that break the new front's topology: on a new facet that repeats a
+/// node or another facet, or at an end of a new front edge not in exactly two facets
+/// running opposite ways.
+pub(crate) fn tangled_children(layer: &Layer) -> Vec<u32> {
+    let merged = |c: &u32| layer.parents[*c as usize][1] != NONE;
+    let mut bad: Vec<u32> = Vec::new();
+    let mut keys: Vec<([u32; 4], u32)> = Vec::with_capacity(layer.top.len());
+    for (t, f) in layer.top.iter().enumerate() {
+        let mut key = f.0;
+        key.sort_unstable();
+        if key
+            .windows(2)
+            .any(|w| w[0] == w[1] && w[0] != geom_surface::NO_NODE)
+        {
+            bad.extend(f.nodes().iter().filter(|c| merged(c)));
+        }
+        keys.push((key, t as u32));
+    }
+    keys.sort_unstable();
+    for w in keys.windows(2).filter(|w| w[0].0 == w[1].0) {
+        bad.extend(
+            layer.top[w[0].1 as usize]
+                .nodes()
+                .iter()
+                .filter(|c| merged(c)),
+        );
+    }
+    // (low, high, forward)
+    let mut sides: Vec<(u32, u32, bool)> = Vec::new();
+    for f in &layer.top {
+        let k = f.nodes();
+        for i in 0..k.len() {
+            let (a, b) = (k[i], k[(i + 1) % k.len()]);
+            sides.push((a.min(b), a.max(b), a < b));
+        }
+    }
+    sides.sort_unstable();
+    for group in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        if group.len() != 2 || group[0].2 == group[1].2 {
+            bad.extend([group[0].0, group[0].1].iter().filter(|c| merged(c)));
+        }
+    }
+    bad.sort_unstable();
+    bad.dedup();
+    bad
+}
+
+/// Places every merged child of `layer` where the merged cells around it are strictly
+/// convex and the most cells around it pass their check ([`layer_cell_ok`]), trying the
+/// middle of the two balanced children, either balanced child, and the ideal merged place
+/// ([`Ideal::merged_child`]), the first of the best. Returns the merged children placed
+/// nowhere.
+fn place_merged(
+    front: &Ideal<'_>,
+    facets: &[Facet],
+    unmerged_ok: &[bool],
+    layer: &mut Layer,
+) -> Vec<u32> {
+    let mut around: Vec<Vec<u32>> = vec![Vec::new(); layer.children.len()];
+    for (f, facet) in facets.iter().enumerate() {
+        for &v in facet.nodes() {
+            let c = layer.child[v as usize] as usize;
+            if layer.parents[c][1] != NONE && around[c].last() != Some(&(f as u32)) {
+                around[c].push(f as u32);
+            }
+        }
+    }
+    let mut bad = Vec::new();
+    for (c, around) in around.iter().enumerate() {
+        let [a, b] = layer.parents[c].map(|v| v as usize);
+        if b == NONE as usize {
+            continue;
+        }
+        let tries = [
+            layer.children[c],
+            front.balanced[a],
+            front.balanced[b],
+            front.merged_child(a, b),
+        ];
+        // (cells around it that pass, whether every merged one and every one that passed
+        // without merges does)
+        let fits = |layer: &Layer| {
+            let mut ok = 0;
+            let mut needed_ok = true;
+            for &f in around {
+                let facet = &facets[f as usize];
+                let pass = layer_cell_ok(front.nodes, layer, facet);
+                ok += usize::from(pass);
+                let needed = layer.is_merged(facet) || unmerged_ok[f as usize];
+                needed_ok &= pass || !needed;
+            }
+            (needed_ok, ok)
+        };
+        let mut best: Option<(usize, [f64; 3])> = None;
+        for p in tries {
+            layer.children[c] = p;
+            let (merged_ok, ok) = fits(layer);
+            if merged_ok && best.is_none_or(|b| ok > b.0) {
+                best = Some((ok, p));
+            }
+        }
+        match best {
+            Some((_, p)) => layer.children[c] = p,
+            None => bad.push(c as u32),
+        }
+    }
+    bad
+}
+
+/// The layer of the balanced children with as many of `merges` as keep the front's
+/// topology ([`tangled_children`]) and can be placed ([`place_merged`]): the merges of bad
+/// children are dropped until none is bad.
+pub(crate) fn merged_layer(
+    front: &Ideal<'_>,
+    facets: &[Facet],
+    mut merges: Vec<[u32; 2]>,
+) -> Layer {
+    let mut unmerged_ok: Vec<bool> = Vec::new();
+    loop {
+        let mut layer = Layer::new(front, facets, &merges);
+        if merges.is_empty() {
+            return layer;
+        }
+        let mut bad = tangled_children(&layer);
+        if bad.is_empty() {
+            if unmerged_ok.is_empty() {
+                let plain = Layer::new(front, facets, &[]);
+                unmerged_ok = facets
+                    .iter()
+                    .map(|f| layer_cell_ok(front.nodes, &plain, f))
+                    .collect();
+            }
+            bad = place_merged(front, facets, &unmerged_ok, &mut layer);
+            if bad.is_empty() {
+                return layer;
+            }
+        }
+        merges.retain(|&[a, _]| bad.binary_search(&layer.child[a as usize]).is_err());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_merged_edge_makes_its_quad_a_triangle_and_its_triangle_an_edge() {
+        // a unit quad 0 1 2 3 and a triangle 1 4 2 on its edge 1-2, grown by 1 along z
+        let nodes = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.5, 0.0],
+        ];
+        let balanced: Vec<[f64; 3]> = nodes.iter().map(|p| [p[0], p[1], 1.0]).collect();
+        let facets = [Facet::quad(0, 1, 2, 3), Facet::tri(1, 4, 2)];
+        let ideal = Ideal {
+            nodes: &nodes,
+            dir: &[[0.0, 0.0, 1.0]; 5],
+            len: &[1.0; 5],
+            balanced: &balanced,
+        };
+        let mut layer = Layer::new(&ideal, &facets, &[[1, 2]]);
+        assert_eq!(layer.child, vec![0, 1, 1, 2, 3]);
+        assert_eq!(layer.parents[1], [1, 2]);
+        assert_eq!(layer.children[1], [1.0, 0.5, 1.0]);
+        // the triangle's top collapsed to an edge and left the front
+        assert_eq!(layer.top, vec![Facet::tri(0, 1, 2)]);
+        assert_eq!(layer.top_of, vec![0]);
+        assert!(facets.iter().all(|f| layer.is_merged(f)));
+        // the cell under the triangle: its bottom and three sides, one a triangle
+        let faces = layer.cell_faces(&facets[1]);
+        assert_eq!(faces.len(), 4);
+        assert_eq!(faces[3], vec![2, 1, 6]);
+        let convex = |layer: &Layer, f: &Facet| {
+            let pos = |v: u32| {
+                if v < 5 {
+                    nodes[v as usize]
+                } else {
+                    layer.children[v as usize - 5]
+                }
+            };
+            strictly_convex(&layer.cell_faces(f), pos)
+        };
+        assert!(convex(&layer, &facets[0]));
+        // the merged child pushed below the front folds the cells
+        layer.children[1] = [1.0, 0.5, -0.5];
+        assert!(!convex(&layer, &facets[0]));
+    }
+
+    #[test]
+    fn a_merge_that_joins_two_facets_into_one_is_refused() {
+        // a tetrahedron's surface: merging any edge leaves two triangles on the same nodes
+        let nodes = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let facets = [
+            Facet::tri(0, 2, 1),
+            Facet::tri(0, 1, 3),
+            Facet::tri(1, 2, 3),
+            Facet::tri(0, 3, 2),
+        ];
+        let ideal = Ideal {
+            nodes: &nodes,
+            dir: &[[0.0, 0.0, 1.0]; 4],
+            len: &[1.0; 4],
+            balanced: &nodes,
+        };
+        let layer = Layer::new(&ideal, &facets, &[[0, 1]]);
+        assert_eq!(tangled_children(&layer), vec![0]);
+        assert_eq!(
+            merged_layer(&ideal, &facets, vec![[0, 1]]).children.len(),
+            4
+        );
+    }
+}
