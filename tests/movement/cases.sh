@@ -37,7 +37,7 @@ for row in "${rows[@]}"; do
   IFS='|' read -r case key args label <<< "$row"
   snap="$out/$key.bin"
   [ -f "$snap" ] || "$xtask" mesh "$case" --order 3 --snapshot "$snap" --quiet > /dev/null
-  for mover in polish smooth; do
+  for mover in default smooth; do
     flag=""; [ "$mover" = smooth ] && flag="--smooth"
     report="$out/${key}-$(echo "$label" | tr -c 'A-Za-z0-9' '_')-$mover.json"
     # shellcheck disable=SC2086
