@@ -1,5 +1,6 @@
 //! Benchmarks of the certified check: 100 000 mildly curved P3 triangles (and P2 quads),
-//! certified one by one as the curving stage does. Results in `benches/RESULTS.md`.
+//! certified one by one as the curving stage does; 10 000 mildly curved prisms (P1, P2),
+//! linear pyramids and P2 tets. Results in `benches/RESULTS.md`.
 
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
@@ -87,5 +88,70 @@ fn certify_100k(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, certify_100k);
+/// `count` 3D cells of type `ty`: the reference cell scaled, shifted, every node moved by up
+/// to `amplitude` of the cell size (the corners by a fifth of it).
+fn curved_cells_3d(ty: CellType, count: usize, amplitude: f64) -> Vec<Vec<[f64; 3]>> {
+    let reference = reference_nodes(ty).unwrap();
+    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    let mut unit = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    (0..count)
+        .map(|c| {
+            let size = 0.01 * (1.0 + 0.5 * unit());
+            let origin = [
+                (c % 100) as f64,
+                (c / 100 % 100) as f64,
+                (c / 10_000) as f64,
+            ];
+            reference
+                .iter()
+                .enumerate()
+                .map(|(i, x)| {
+                    let bump = if i < ty.shape.corners() {
+                        0.2 * amplitude
+                    } else {
+                        amplitude
+                    };
+                    [0, 1, 2].map(|d| 0.01 * origin[d] + size * (x[d] + bump * unit()))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The certificates of the 3D types added for the 3D curving: prisms and linear pyramids.
+fn certify_10k_3d(c: &mut Criterion) {
+    let params = CertifyParams::default();
+    let mut group = c.benchmark_group("certify3d");
+    group.sample_size(10);
+    for (ty, name) in [
+        (CellType::new(Shape::Prism, 1), "10k_p1_prisms"),
+        (CellType::new(Shape::Prism, 2), "10k_p2_prisms"),
+        (CellType::new(Shape::Pyramid, 1), "10k_p1_pyramids"),
+        (CellType::new(Shape::Tet, 2), "10k_p2_tets"),
+    ] {
+        let cells = curved_cells_3d(ty, 10_000, 0.05);
+        let valid = cells
+            .iter()
+            .filter(|n| certify_cell(ty, n, &params).unwrap().is_valid())
+            .count();
+        println!("{name}: {valid} of 10000 valid");
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let valid = cells
+                    .iter()
+                    .filter(|n| certify_cell(ty, n, &params).unwrap().is_valid())
+                    .count();
+                black_box(valid)
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, certify_100k, certify_10k_3d);
 criterion_main!(benches);
