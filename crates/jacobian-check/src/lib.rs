@@ -3,8 +3,8 @@
 //! **certified** check of the sign of its determinant from Bernstein coefficients with
 //! adaptive subdivision ([`certify`], after Johnen, Remacle & Geuzaine, "Geometrical
 //! validity of curvilinear finite elements", J. Comput. Phys. 2013), next to the sampled
-//! check the dissertation used; plus the area of a curved 2D mesh by exact quadrature
-//! ([`area`]), and the fraction of edges a curved mesh bends ([`curved`]).
+//! check the dissertation used; plus the area of a curved 2D mesh by exact quadrature and
+//! the volume of a curved 3D mesh from the Bernstein coefficients ([`area`]), and the fraction of edges a curved mesh bends ([`curved`]).
 //!
 //! Node order everywhere is Gmsh's (the data model's). The crate reads meshes and node
 //! coordinates and reports; it never moves a node, and does no file IO.
@@ -82,7 +82,7 @@ mod linalg;
 mod straight;
 pub mod types;
 
-pub use area::{cell_area, enclosed_area, integrate_area};
+pub use area::{cell_area, cell_volume, enclosed_area, integrate_area, integrate_volume};
 pub use certify::{
     Certificate, CertifyParams, MeshValidity, SampledCheck, certify_cell, check_mesh,
     determinant_bernstein_coefficients, sampled_check,

@@ -194,3 +194,30 @@ proptest! {
         agrees_with_sampling(PYRAMID1, &pyramid, certify_cell(PYRAMID1, &pyramid, &deep()).unwrap());
     }
 }
+
+#[test]
+fn volumes_are_exact_for_straight_and_curved_cells() {
+    use jacobian_check::cell_volume;
+    // reference cells
+    for (ty, v) in [
+        (PRISM1, 1.0),
+        (PRISM2, 1.0),
+        (PYRAMID1, 4.0 / 3.0),
+        (CellType::new(Shape::Tet, 2), 1.0 / 6.0),
+        (CellType::new(Shape::Hex, 2), 8.0),
+    ] {
+        let got = cell_volume(ty, &reference_nodes(ty).unwrap()).unwrap();
+        assert!((got - v).abs() < 1e-13, "{ty:?}: {got}");
+    }
+    // a pyramid with a slanted apex at height 2 over a 2 × 2 base: 8/3
+    let mut pyramid = reference_nodes(PYRAMID1).unwrap();
+    pyramid[4] = [0.7, -0.4, 2.0];
+    assert!((cell_volume(PYRAMID1, &pyramid).unwrap() - 8.0 / 3.0).abs() < 1e-13);
+    // a P2 tet whose edge 0–1 node is pushed out of its face z = 0 by 0.1: the face moves by
+    // 0.1 · 4λ₀λ₁ along −z, whose integral over the unit triangle is 0.1 · 4/24
+    let tet2 = CellType::new(Shape::Tet, 2);
+    let mut tet = reference_nodes(tet2).unwrap();
+    tet[4][2] -= 0.1;
+    let got = cell_volume(tet2, &tet).unwrap();
+    assert!((got - (1.0 / 6.0 + 0.1 / 6.0)).abs() < 1e-13, "{got}");
+}
