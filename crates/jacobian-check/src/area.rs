@@ -179,27 +179,6 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
     Ok(total)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn gauss_legendre_integrates_its_degree_exactly() {
-        for m in 1..=5 {
-            let g = gauss_legendre(m);
-            for d in 0..2 * m {
-                let exact = if d % 2 == 1 {
-                    0.0
-                } else {
-                    2.0 / (d as f64 + 1.0)
-                };
-                let got: f64 = g.iter().map(|(x, w)| w * x.powi(d as i32)).sum();
-                assert!((got - exact).abs() < 1e-14, "m={m} d={d}: {got} vs {exact}");
-            }
-        }
-    }
-}
-
 /// The reference volume of a 3D shape in Gmsh's reference coordinates.
 fn reference_volume(shape: Shape) -> f64 {
     match shape {
@@ -240,4 +219,25 @@ pub fn integrate_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
         total += cell_volume(cell.ty, &xyz)?;
     }
     Ok(total)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_integrates_its_degree_exactly() {
+        for m in 1..=5 {
+            let g = gauss_legendre(m);
+            for d in 0..2 * m {
+                let exact = if d % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (d as f64 + 1.0)
+                };
+                let got: f64 = g.iter().map(|(x, w)| w * x.powi(d as i32)).sum();
+                assert!((got - exact).abs() < 1e-14, "m={m} d={d}: {got} vs {exact}");
+            }
+        }
+    }
 }

@@ -226,7 +226,7 @@ impl<'a> March<'a> {
 
     /// The displacement an edge at `level` receives from below: the mean over the edges
     /// joining the nodes its ends come from. `None` when no such edge exists.
-    fn from_below(&self, e: u32, level: u32) -> Option<[f64; 3]> {
+    fn source_below(&self, e: u32, level: u32) -> Option<[f64; 3]> {
         let [a, b] = self.ends(e);
         let (mut sum, mut count) = ([0.0; 3], 0);
         for &x in self.layers.lower(&a, level) {
@@ -270,7 +270,7 @@ impl<'a> March<'a> {
                 if self.layers.parents(a).contains(&b) || self.layers.parents(b).contains(&a) {
                     continue; // an extrusion edge stays straight
                 }
-                let Some(source) = self.from_below(e, level) else {
+                let Some(source) = self.source_below(e, level) else {
                     self.stops.collapsed += 1;
                     continue;
                 };
