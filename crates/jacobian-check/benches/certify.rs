@@ -10,12 +10,19 @@ use jacobian_check::{Certificate, CertifyParams, certify_cell, reference_nodes, 
 use mesh_model::{CellType, Shape};
 use std::hint::black_box;
 
-/// `count` cells of type `ty`: the reference cell scaled, shifted, and with every
-/// non-corner node moved by up to `amplitude` (0.02 in the benches) (relative to the cell size) in a
-/// deterministic pseudo-random direction.
-fn curved_cells(ty: CellType, count: usize, amplitude: f64) -> Vec<Vec<[f64; 2]>> {
+/// `count` cells of type `ty` in dimension `D`: the reference cell scaled, shifted, and with
+/// every non-corner node moved by up to `amplitude` (relative to the cell size; 0.02 or 0.05
+/// in the benches), the corners by `corner_share` of it, in pseudo-random directions drawn
+/// from `seed`.
+fn curved_cells<const D: usize>(
+    ty: CellType,
+    count: usize,
+    amplitude: f64,
+    corner_share: f64,
+    seed: u64,
+) -> Vec<Vec<[f64; D]>> {
     let reference = reference_nodes(ty).unwrap();
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut state = seed;
     let mut unit = move || {
         state ^= state << 13;
         state ^= state >> 7;
@@ -25,25 +32,56 @@ fn curved_cells(ty: CellType, count: usize, amplitude: f64) -> Vec<Vec<[f64; 2]>
     (0..count)
         .map(|c| {
             let size = 0.01 * (1.0 + 0.5 * unit());
-            let origin = [(c % 1000) as f64 * 0.01, (c / 1000) as f64 * 0.01];
+            // cells side by side on a grid of 1000 (2D) or 100 (3D) per row
+            let row: usize = if D == 2 { 1000 } else { 100 };
+            let origin: [f64; D] =
+                std::array::from_fn(|d| (c / row.pow(d as u32) % row) as f64 * 0.01);
             reference
                 .iter()
                 .enumerate()
                 .map(|(i, x)| {
                     let bump = if i < ty.shape.corners() {
-                        0.0
+                        corner_share * amplitude
                     } else {
                         amplitude
                     };
-                    [
-                        origin[0] + size * (x[0] + bump * unit()),
-                        origin[1] + size * (x[1] + bump * unit()),
-                    ]
+                    std::array::from_fn(|d| origin[d] + size * (x[d] + bump * unit()))
                 })
                 .collect()
         })
         .collect()
 }
+
+/// Prints how `cells` certify, then benches certifying them all.
+fn bench_certify<const D: usize>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    ty: CellType,
+    name: &str,
+    cells: &[Vec<[f64; D]>],
+    params: &CertifyParams,
+) {
+    let mut tally = [0usize; 3];
+    for n in cells {
+        tally[match certify_cell(ty, n, params).unwrap() {
+            Certificate::Valid { .. } => 0,
+            Certificate::Invalid { .. } => 1,
+            Certificate::Undecided => 2,
+        }] += 1;
+    }
+    println!("{name}: valid, invalid, undecided = {tally:?}");
+    group.bench_function(name, |b| {
+        b.iter(|| {
+            let valid = cells
+                .iter()
+                .filter(|n| certify_cell(ty, n, params).unwrap().is_valid())
+                .count();
+            black_box(valid)
+        })
+    });
+}
+
+const SEED_2D: u64 = 0x9E37_79B9_7F4A_7C15;
+const SEED_3D: u64 = 0x2545_F491_4F6C_DD1D;
 
 fn certify_100k(c: &mut Criterion) {
     let params = CertifyParams::default();
@@ -53,29 +91,12 @@ fn certify_100k(c: &mut Criterion) {
         (CellType::new(Shape::Tri, 3), "100k_p3_triangles"),
         (CellType::new(Shape::Quad, 2), "100k_p2_quads"),
     ] {
-        let cells = curved_cells(ty, 100_000, 0.02);
-        let mut tally = [0usize; 3];
-        for n in &cells {
-            tally[match certify_cell(ty, n, &params).unwrap() {
-                Certificate::Valid { .. } => 0,
-                Certificate::Invalid { .. } => 1,
-                Certificate::Undecided => 2,
-            }] += 1;
-        }
-        println!("{name}: valid, invalid, undecided = {tally:?}");
-        group.bench_function(name, |b| {
-            b.iter(|| {
-                let valid = cells
-                    .iter()
-                    .filter(|n| certify_cell(ty, n, &params).unwrap().is_valid())
-                    .count();
-                black_box(valid)
-            })
-        });
+        let cells = curved_cells::<2>(ty, 100_000, 0.02, 0.0, SEED_2D);
+        bench_certify(&mut group, ty, name, &cells, &params);
     }
     // The dissertation's check: 861 sample points per triangle (41 per edge), on 10k cells.
     let ty = CellType::new(Shape::Tri, 3);
-    let cells = curved_cells(ty, 10_000, 0.02);
+    let cells = curved_cells::<2>(ty, 10_000, 0.02, 0.0, SEED_2D);
     group.bench_function("10k_p3_triangles_sampled_861_points", |b| {
         b.iter(|| {
             let positive = cells
@@ -86,41 +107,6 @@ fn certify_100k(c: &mut Criterion) {
         })
     });
     group.finish();
-}
-
-/// `count` 3D cells of type `ty`: the reference cell scaled, shifted, every node moved by up
-/// to `amplitude` of the cell size (the corners by a fifth of it).
-fn curved_cells_3d(ty: CellType, count: usize, amplitude: f64) -> Vec<Vec<[f64; 3]>> {
-    let reference = reference_nodes(ty).unwrap();
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
-    let mut unit = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    (0..count)
-        .map(|c| {
-            let size = 0.01 * (1.0 + 0.5 * unit());
-            let origin = [
-                (c % 100) as f64,
-                (c / 100 % 100) as f64,
-                (c / 10_000) as f64,
-            ];
-            reference
-                .iter()
-                .enumerate()
-                .map(|(i, x)| {
-                    let bump = if i < ty.shape.corners() {
-                        0.2 * amplitude
-                    } else {
-                        amplitude
-                    };
-                    [0, 1, 2].map(|d| 0.01 * origin[d] + size * (x[d] + bump * unit()))
-                })
-                .collect()
-        })
-        .collect()
 }
 
 /// The certificates of the 3D types added for the 3D curving: prisms and linear pyramids.
@@ -134,21 +120,8 @@ fn certify_10k_3d(c: &mut Criterion) {
         (CellType::new(Shape::Pyramid, 1), "10k_p1_pyramids"),
         (CellType::new(Shape::Tet, 2), "10k_p2_tets"),
     ] {
-        let cells = curved_cells_3d(ty, 10_000, 0.05);
-        let valid = cells
-            .iter()
-            .filter(|n| certify_cell(ty, n, &params).unwrap().is_valid())
-            .count();
-        println!("{name}: {valid} of 10000 valid");
-        group.bench_function(name, |b| {
-            b.iter(|| {
-                let valid = cells
-                    .iter()
-                    .filter(|n| certify_cell(ty, n, &params).unwrap().is_valid())
-                    .count();
-                black_box(valid)
-            })
-        });
+        let cells = curved_cells::<3>(ty, 10_000, 0.05, 0.2, SEED_3D);
+        bench_certify(&mut group, ty, name, &cells, &params);
     }
     group.finish();
 }

@@ -116,15 +116,24 @@ pub fn cell_area(ty: CellType, nodes: &[[f64; 2]]) -> Result<f64, JacobianError>
 /// # Errors
 /// A cell naming a missing node, a 3D cell, an unsupported type, a non-finite node.
 pub fn integrate_area(mesh: &Mesh) -> Result<f64, JacobianError> {
+    sum_over_cells(mesh, |n| mesh.xy(n), cell_area)
+}
+
+/// The sum of `measure` over the cells of `mesh`, each given its node coordinates by `at`.
+fn sum_over_cells<P>(
+    mesh: &Mesh,
+    at: impl Fn(u32) -> P,
+    measure: impl Fn(CellType, &[P]) -> Result<f64, JacobianError>,
+) -> Result<f64, JacobianError> {
     let mut total = 0.0;
-    let mut xy = Vec::new();
+    let mut nodes = Vec::new();
     for (i, cell) in mesh.cells.iter().enumerate() {
         if let Some(&node) = cell.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
             return Err(JacobianError::NodeOutOfRange { cell: i, node });
         }
-        xy.clear();
-        xy.extend(cell.nodes.iter().map(|&n| mesh.xy(n)));
-        total += cell_area(cell.ty, &xy)?;
+        nodes.clear();
+        nodes.extend(cell.nodes.iter().map(|&n| at(n)));
+        total += measure(cell.ty, &nodes)?;
     }
     Ok(total)
 }
@@ -208,17 +217,7 @@ pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianErro
 /// # Errors
 /// A cell naming a missing node, a 2D cell, an unsupported type, a non-finite node.
 pub fn integrate_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
-    let mut total = 0.0;
-    let mut xyz = Vec::new();
-    for (i, cell) in mesh.cells.iter().enumerate() {
-        if let Some(&node) = cell.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
-            return Err(JacobianError::NodeOutOfRange { cell: i, node });
-        }
-        xyz.clear();
-        xyz.extend(cell.nodes.iter().map(|&n| mesh.nodes[n as usize]));
-        total += cell_volume(cell.ty, &xyz)?;
-    }
-    Ok(total)
+    sum_over_cells(mesh, |n| mesh.nodes[n as usize], cell_volume)
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@
 //! `jacobian_check::check_mesh`).
 
 use mesh_model::topology::{Edges, Faces};
-use mesh_model::{CellType, Dim, Mesh, NONE, Role, Shape};
+use mesh_model::{CellType, Cells, Dim, Mesh, NONE, Role, Shape};
 
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
@@ -137,29 +137,13 @@ pub fn curve_mesh_3d(
 /// The input is a sound linear 3D mesh of tetrahedra, prisms and hexahedra with a layer per
 /// cell.
 fn check_input(mesh: &Mesh) -> Result<(), CurvingError> {
-    if let Some(problem) = mesh_model::first_structural_problem(mesh) {
-        return Err(CurvingError::InvalidMesh(problem));
-    }
-    if mesh.dim != Dim::Three || mesh.order != 1 {
-        return Err(CurvingError::Unsupported3d(format!(
-            "3D curving needs a linear 3D mesh, got a {}D mesh of order {}",
-            if mesh.dim == Dim::Two { 2 } else { 3 },
-            mesh.order
-        )));
-    }
+    let shapes = [Shape::Tet, Shape::Prism, Shape::Hex, Shape::Pyramid];
+    crate::sound_linear(mesh, Dim::Three, &shapes, CurvingError::Unsupported3d)?;
     if let Some(c) = (0..mesh.cells.len()).find(|&c| mesh.cells.get(c).ty.shape == Shape::Pyramid) {
         return Err(CurvingError::Unsupported3d(format!(
             "cell {c} is a pyramid: the 14-node pyramid has no certified check, so P2 meshes \
              with pyramids are refused (cut to tetrahedra instead)"
         )));
-    }
-    if let Some(ty) = mesh
-        .cells
-        .types()
-        .iter()
-        .find(|t| t.order != 1 || !matches!(t.shape, Shape::Tet | Shape::Prism | Shape::Hex))
-    {
-        return Err(CurvingError::Unsupported3d(format!("it has a {ty:?} cell")));
     }
     if mesh.cell_layer.len() != mesh.cells.len() || mesh.cell_layer.contains(&NONE) {
         return Err(CurvingError::BadLayers(
@@ -192,8 +176,13 @@ fn outer_nodes(mesh: &Mesh) -> Vec<bool> {
 /// The P2 mesh: linear nodes, edge nodes, quadrilateral face nodes, hexahedron centres.
 fn assemble(mesh: &Mesh, edges: &Edges, faces: &Faces, m: &crate::march3d::March<'_>) -> Mesh {
     let n0 = mesh.nodes.len() as u32;
-    let mut out = Mesh::new(Dim::Three, 2);
-    out.nodes = mesh.nodes.clone();
+    // the linear mesh's nodes, patches, layers and pipes; new cells and facets
+    let mut out = Mesh {
+        order: 2,
+        cells: Cells::new(),
+        boundary: Cells::new(),
+        ..mesh.clone()
+    };
     out.nodes
         .extend((0..edges.len() as u32).map(|e| m.edge_node(e)));
     // quadrilateral faces of cells with face nodes get one node each, in face order
@@ -244,9 +233,5 @@ fn assemble(mesh: &Mesh, edges: &Edges, faces: &Faces, m: &crate::march3d::March
         }
         out.boundary.push(CellType::new(facet.ty.shape, 2), &buf);
     }
-    out.boundary_patch = mesh.boundary_patch.clone();
-    out.patches = mesh.patches.clone();
-    out.cell_layer = mesh.cell_layer.clone();
-    out.cell_pipe = mesh.cell_pipe.clone();
     out
 }
