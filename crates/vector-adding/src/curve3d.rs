@@ -122,10 +122,10 @@ pub fn curve_mesh_3d(
     m.march(&outer)?;
     let curved_edges = m.dev.iter().filter(|d| d.iter().any(|&v| v != 0.0)).count();
     let stats = Curving3dStats {
-        edges: edges.len(),
-        curved_edges,
-        curved_edge_fraction: curved_edges as f64 / edges.len().max(1) as f64,
         wall_edges,
+        curved_edge_fraction: crate::stats::share(curved_edges, edges.len()),
+        curved_edges,
+        edges: edges.len(),
         stops: m.stops,
         reduced: m.reduced,
         deepest_curved_layer: m.deepest,

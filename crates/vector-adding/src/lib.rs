@@ -187,7 +187,7 @@ pub fn curve_mesh(
     let stats = CurvingStats {
         edges: edges.len(),
         curved_edges,
-        curved_edge_fraction: curved_edges as f64 / edges.len().max(1) as f64,
+        curved_edge_fraction: stats::share(curved_edges, edges.len()),
         curved_boundary_edges,
         stops: marched.stops,
         reduced_tops: marched.reduced_tops,
