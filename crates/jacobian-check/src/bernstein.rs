@@ -27,9 +27,12 @@ pub(crate) enum Domain {
     Simplex,
     /// The unit box of the dimension (tensor-product basis, same degree per direction).
     Box,
-    /// The unit triangle × [0, 1] (3D only): the triangle's Bernstein basis times the line's,
-    /// of the same degree.
-    Prism,
+    /// The unit triangle × [0, 1] (3D only): the triangle's Bernstein basis (of the space's
+    /// degree) times the line's, of degree `axis`.
+    Prism {
+        /// The degree along the axis.
+        axis: usize,
+    },
 }
 
 /// An affine map from unit coordinates to reference coordinates:
@@ -50,7 +53,7 @@ impl Region {
             let simplex_axis = match domain {
                 Domain::Simplex => true,
                 Domain::Box => false,
-                Domain::Prism => k < 2,
+                Domain::Prism { .. } => k < 2,
             };
             if simplex_axis {
                 axes[k][k] = 1.0;
@@ -140,14 +143,18 @@ impl Space {
     pub(crate) fn new(domain: Domain, dim: usize, degree: usize) -> Space {
         let n = degree;
         let mut index = Vec::new();
-        let top = if dim == 3 { n } else { 0 };
+        let top = match domain {
+            Domain::Prism { axis } => axis,
+            _ if dim == 3 => n,
+            _ => 0,
+        };
         for c in 0..=top {
             for b in 0..=n {
                 for a in 0..=n {
                     let keep = match domain {
                         Domain::Simplex => a + b + c <= n,
                         Domain::Box => true,
-                        Domain::Prism => a + b <= n,
+                        Domain::Prism { .. } => a + b <= n,
                     };
                     if keep {
                         index.push([a, b, c]);
@@ -158,20 +165,23 @@ impl Space {
         let lattice_unit: Vec<RefPoint> = index
             .iter()
             .map(|m| {
-                if n == 0 {
-                    match domain {
-                        Domain::Simplex => {
-                            let mut t = [0.0; 3];
-                            t[..dim].fill(1.0 / (dim as f64 + 1.0));
-                            t
-                        }
-                        Domain::Box => {
-                            let mut t = [0.0; 3];
-                            t[..dim].fill(0.5);
-                            t
-                        }
-                        Domain::Prism => [1.0 / 3.0, 1.0 / 3.0, 0.5],
-                    }
+                if let Domain::Prism { axis } = domain {
+                    let at = |k: usize, of: usize, mid: f64| {
+                        if of == 0 { mid } else { k as f64 / of as f64 }
+                    };
+                    [
+                        at(m[0], n, 1.0 / 3.0),
+                        at(m[1], n, 1.0 / 3.0),
+                        at(m[2], axis, 0.5),
+                    ]
+                } else if n == 0 {
+                    let mut t = [0.0; 3];
+                    t[..dim].fill(if domain == Domain::Simplex {
+                        1.0 / (dim as f64 + 1.0)
+                    } else {
+                        0.5
+                    });
+                    t
                 } else {
                     m.map(|k| k as f64 / n as f64)
                 }
@@ -183,7 +193,7 @@ impl Space {
             .filter(|(_, m)| match domain {
                 Domain::Simplex => simplex_corner(&m[..dim], n),
                 Domain::Box => m[..dim].iter().all(|&k| k == 0 || k == n),
-                Domain::Prism => simplex_corner(&m[..2], n) && (m[2] == 0 || m[2] == n),
+                Domain::Prism { axis } => simplex_corner(&m[..2], n) && (m[2] == 0 || m[2] == axis),
             })
             .map(|(i, _)| i)
             .collect();
@@ -237,7 +247,9 @@ impl Space {
         match self.domain {
             Domain::Simplex => simplex_basis(&a[..self.dim], &t[..self.dim], n),
             Domain::Box => (0..self.dim).map(|k| line_basis(a[k], t[k], n)).product(),
-            Domain::Prism => simplex_basis(&a[..2], &t[..2], n) * line_basis(a[2], t[2], n),
+            Domain::Prism { axis } => {
+                simplex_basis(&a[..2], &t[..2], n) * line_basis(a[2], t[2], axis)
+            }
         }
     }
 
@@ -261,7 +273,7 @@ impl Space {
         ];
         match (self.domain, self.dim) {
             (Domain::Simplex, 2) => triangles.to_vec(),
-            (Domain::Prism, _) => [0.0, h]
+            (Domain::Prism { .. }, _) => [0.0, h]
                 .iter()
                 .flat_map(|&z| {
                     triangles.iter().map(move |t| {
@@ -380,8 +392,9 @@ mod tests {
             (Domain::Box, 2, 5),
             (Domain::Simplex, 3, 3),
             (Domain::Box, 3, 2),
-            (Domain::Prism, 3, 2),
-            (Domain::Prism, 3, 5),
+            (Domain::Prism { axis: 2 }, 3, 2),
+            (Domain::Prism { axis: 5 }, 3, 4),
+            (Domain::Prism { axis: 2 }, 3, 1),
         ] {
             check_reproduction(domain, dim, n);
         }
@@ -394,7 +407,7 @@ mod tests {
             (Domain::Simplex, 3, 1.0 / 6.0),
             (Domain::Box, 2, 1.0),
             (Domain::Box, 3, 1.0),
-            (Domain::Prism, 3, 0.5),
+            (Domain::Prism { axis: 1 }, 3, 0.5),
         ] {
             let space = Space::new(domain, dim, 1);
             let measure = |r: &Region| {

@@ -130,8 +130,7 @@ struct CertTable {
 
 /// The domain and degree of the determinant's polynomial space.
 ///
-/// The prism's determinant has degree 3p − 2 on the triangle and 3p − 1 along the axis;
-/// both are taken as 3p − 1 (a degree-elevated expansion bounds as well, slightly tighter).
+/// The prism's determinant has degree 3p − 2 on the triangle and 3p − 1 along the axis.
 /// The linear pyramid's is rational in (u, v, w) but not along the rays from the apex: with
 /// ξ = u / (1 − w), η = v / (1 − w) the map is `(1 − w) B(ξ, η) + w x_apex` (B the bilinear
 /// base), so det J = det[∂B/∂ξ, ∂B/∂η, x_apex − B(ξ, η)], a biquadratic in (ξ, η) ∈ [−1, 1]²
@@ -143,7 +142,7 @@ fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
         Shape::Tri => (Domain::Simplex, 2, 2 * (p - 1)),
         Shape::Quad => (Domain::Box, 2, 2 * p - 1),
         Shape::Tet => (Domain::Simplex, 3, 3 * (p - 1)),
-        Shape::Prism => (Domain::Prism, 3, 3 * p - 1),
+        Shape::Prism => (Domain::Prism { axis: 3 * p - 1 }, 3, 3 * p - 2),
         Shape::Pyramid => (Domain::Box, 2, 2),
         _ => (Domain::Box, 3, 3 * p - 1),
     }
