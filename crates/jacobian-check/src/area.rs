@@ -3,7 +3,8 @@
 //! triangle, 2p − 1 per direction on a Q_p quadrilateral). The curving stage reports it.
 //!
 //! Triangles use the collapsed (Duffy) product of Gauss–Legendre rules; quadrilaterals the
-//! tensor product. This module owns the quadrature only.
+//! tensor product. The volume of 3D cells ([`cell_volume`]) needs no rule: it is the mean of
+//! the determinant's Bernstein coefficients. This module owns the quadrature only.
 
 use std::sync::OnceLock;
 
@@ -115,15 +116,24 @@ pub fn cell_area(ty: CellType, nodes: &[[f64; 2]]) -> Result<f64, JacobianError>
 /// # Errors
 /// A cell naming a missing node, a 3D cell, an unsupported type, a non-finite node.
 pub fn integrate_area(mesh: &Mesh) -> Result<f64, JacobianError> {
+    sum_over_cells(mesh, |n| mesh.xy(n), cell_area)
+}
+
+/// The sum of `measure` over the cells of `mesh`, each given its node coordinates by `at`.
+fn sum_over_cells<P>(
+    mesh: &Mesh,
+    at: impl Fn(u32) -> P,
+    measure: impl Fn(CellType, &[P]) -> Result<f64, JacobianError>,
+) -> Result<f64, JacobianError> {
     let mut total = 0.0;
-    let mut xy = Vec::new();
+    let mut nodes = Vec::new();
     for (i, cell) in mesh.cells.iter().enumerate() {
         if let Some(&node) = cell.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
             return Err(JacobianError::NodeOutOfRange { cell: i, node });
         }
-        xy.clear();
-        xy.extend(cell.nodes.iter().map(|&n| mesh.xy(n)));
-        total += cell_area(cell.ty, &xy)?;
+        nodes.clear();
+        nodes.extend(cell.nodes.iter().map(|&n| at(n)));
+        total += measure(cell.ty, &nodes)?;
     }
     Ok(total)
 }
@@ -176,6 +186,38 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
         }
     }
     Ok(total)
+}
+
+/// The reference volume of a 3D shape in Gmsh's reference coordinates.
+fn reference_volume(shape: Shape) -> f64 {
+    match shape {
+        Shape::Tet => 1.0 / 6.0,
+        Shape::Prism => 1.0, // the unit triangle (½) × [−1, 1]
+        Shape::Hex => 8.0,
+        Shape::Pyramid => 4.0 / 3.0,
+        Shape::Line | Shape::Tri | Shape::Quad => 0.0,
+    }
+}
+
+/// The signed volume of a 3D cell, exact for its map up to rounding: the integral of the
+/// Jacobian determinant is the mean of its Bernstein coefficients times the reference
+/// volume (every Bernstein polynomial of a degree has the same integral over the simplex, the
+/// box and the prism; the linear pyramid's determinant, a biquadratic f(ξ, η) along the rays
+/// from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3).
+///
+/// # Errors
+/// Unsupported type (the 14-node pyramid), a 2D type, wrong node count, non-finite node.
+pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianError> {
+    let c = crate::certify::determinant_bernstein_coefficients(ty, nodes)?;
+    Ok(c.iter().sum::<f64>() / c.len() as f64 * reference_volume(ty.shape))
+}
+
+/// The signed volume of a curved 3D mesh: the sum of [`cell_volume`] over its cells.
+///
+/// # Errors
+/// A cell naming a missing node, a 2D cell, an unsupported type, a non-finite node.
+pub fn integrate_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
+    sum_over_cells(mesh, |n| mesh.nodes[n as usize], cell_volume)
 }
 
 #[cfg(test)]

@@ -1,18 +1,21 @@
-//! Bernstein (Bézier) polynomial spaces on the reference simplex and box, in which the
+//! Bernstein (Bézier) polynomial spaces on the reference simplex, box and prism (triangle ×
+//! line), in which the
 //! Jacobian determinant of a cell is expanded to bound its sign (Johnen, Remacle &
 //! Geuzaine 2013).
 //!
 //! A space of degree n holds, per type and computed once: the equispaced lattice points at
 //! which the determinant is sampled; the inverse of the Bernstein–Lagrange matrix
 //! `T[k][m] = B_m(lattice_k)` that turns the samples into Bernstein coefficients; and, for
-//! each child of the regular subdivision (4 triangles, 8 tetrahedra, 2ᵈ boxes), the matrix
+//! each child of the regular subdivision (4 triangles, 8 tetrahedra, 2ᵈ boxes, 4 × 2
+//! prisms), the matrix
 //! that turns a region's coefficients into the child's. The child matrices give exactly
 //! what the de Casteljau algorithm gives (the Bernstein coefficients of the restriction of
 //! the polynomial to the child); as precomputed matrices they cost one small
 //! matrix–vector product per child.
 //!
-//! Regions are parametrised by unit coordinates t: the unit simplex, or [0, 1]ᵈ for
-//! boxes; a [`Region`] maps them affinely into Gmsh's reference coordinates.
+//! Regions are parametrised by unit coordinates t: the unit simplex, [0, 1]ᵈ for boxes, the
+//! unit triangle × [0, 1] for prisms; a [`Region`] maps them affinely into Gmsh's reference
+//! coordinates.
 
 use crate::lagrange::RefPoint;
 use crate::linalg::{invert, mat_mul};
@@ -24,6 +27,12 @@ pub(crate) enum Domain {
     Simplex,
     /// The unit box of the dimension (tensor-product basis, same degree per direction).
     Box,
+    /// The unit triangle × [0, 1] (3D only): the triangle's Bernstein basis (of the space's
+    /// degree) times the line's, of degree `axis`.
+    Prism {
+        /// The degree along the axis.
+        axis: usize,
+    },
 }
 
 /// An affine map from unit coordinates to reference coordinates:
@@ -35,17 +44,22 @@ pub(crate) struct Region {
 }
 
 impl Region {
-    /// The region spanning a reference cell: the unit simplex itself, or [−1, 1]ᵈ.
+    /// The region spanning a reference cell: the unit simplex itself, [−1, 1]ᵈ, or the unit
+    /// triangle × [−1, 1].
     pub(crate) fn root(domain: Domain, dim: usize) -> Region {
         let mut axes = [[0.0; 3]; 3];
         let mut origin = [0.0; 3];
         for k in 0..dim {
-            match domain {
-                Domain::Simplex => axes[k][k] = 1.0,
-                Domain::Box => {
-                    axes[k][k] = 2.0;
-                    origin[k] = -1.0;
-                }
+            let simplex_axis = match domain {
+                Domain::Simplex => true,
+                Domain::Box => false,
+                Domain::Prism { .. } => k < 2,
+            };
+            if simplex_axis {
+                axes[k][k] = 1.0;
+            } else {
+                axes[k][k] = 2.0;
+                origin[k] = -1.0;
             }
         }
         Region { origin, axes }
@@ -103,18 +117,44 @@ fn factorial(n: usize) -> f64 {
     (1..=n).fold(1.0, |acc, i| acc * i as f64)
 }
 
+/// Whether the simplex multi-index `m` (of degree `n`) is a corner's.
+fn simplex_corner(m: &[usize], n: usize) -> bool {
+    m.iter().sum::<usize>() == 0 || m.contains(&n)
+}
+
+/// The simplex Bernstein polynomial of degree `n` and exponents `a` (λ₀ takes the rest) at `t`.
+fn simplex_basis(a: &[usize], t: &[f64], n: usize) -> f64 {
+    let rest = n - a.iter().sum::<usize>();
+    let l0 = 1.0 - t.iter().sum::<f64>();
+    let mut v = factorial(n) / factorial(rest) * l0.powi(rest as i32);
+    for (&ak, &tk) in a.iter().zip(t) {
+        v *= tk.powi(ak as i32) / factorial(ak);
+    }
+    v
+}
+
+/// The line Bernstein polynomial of degree `n` and index `a` at `t`.
+fn line_basis(a: usize, t: f64, n: usize) -> f64 {
+    binomial(n, a) * t.powi(a as i32) * (1.0 - t).powi((n - a) as i32)
+}
+
 impl Space {
     /// Builds the space (lattice, transformation and subdivision matrices).
     pub(crate) fn new(domain: Domain, dim: usize, degree: usize) -> Space {
         let n = degree;
         let mut index = Vec::new();
-        let top = if dim == 3 { n } else { 0 };
+        let top = match domain {
+            Domain::Prism { axis } => axis,
+            _ if dim == 3 => n,
+            _ => 0,
+        };
         for c in 0..=top {
             for b in 0..=n {
                 for a in 0..=n {
                     let keep = match domain {
                         Domain::Simplex => a + b + c <= n,
                         Domain::Box => true,
+                        Domain::Prism { .. } => a + b <= n,
                     };
                     if keep {
                         index.push([a, b, c]);
@@ -125,13 +165,22 @@ impl Space {
         let lattice_unit: Vec<RefPoint> = index
             .iter()
             .map(|m| {
-                if n == 0 {
-                    let c = match domain {
-                        Domain::Simplex => 1.0 / (dim as f64 + 1.0),
-                        Domain::Box => 0.5,
+                if let Domain::Prism { axis } = domain {
+                    let at = |k: usize, of: usize, mid: f64| {
+                        if of == 0 { mid } else { k as f64 / of as f64 }
                     };
+                    [
+                        at(m[0], n, 1.0 / 3.0),
+                        at(m[1], n, 1.0 / 3.0),
+                        at(m[2], axis, 0.5),
+                    ]
+                } else if n == 0 {
                     let mut t = [0.0; 3];
-                    t[..dim].fill(c);
+                    t[..dim].fill(if domain == Domain::Simplex {
+                        1.0 / (dim as f64 + 1.0)
+                    } else {
+                        0.5
+                    });
                     t
                 } else {
                     m.map(|k| k as f64 / n as f64)
@@ -142,11 +191,9 @@ impl Space {
             .iter()
             .enumerate()
             .filter(|(_, m)| match domain {
-                Domain::Simplex => {
-                    let sum: usize = m.iter().sum();
-                    sum == 0 || m.contains(&n)
-                }
+                Domain::Simplex => simplex_corner(&m[..dim], n),
                 Domain::Box => m[..dim].iter().all(|&k| k == 0 || k == n),
+                Domain::Prism { axis } => simplex_corner(&m[..2], n) && (m[2] == 0 || m[2] == axis),
             })
             .map(|(i, _)| i)
             .collect();
@@ -198,22 +245,11 @@ impl Space {
         let n = self.degree;
         let a = self.index[m];
         match self.domain {
-            Domain::Simplex => {
-                let rest = n - a[..self.dim].iter().sum::<usize>();
-                let l0 = 1.0 - t[..self.dim].iter().sum::<f64>();
-                let mut v = factorial(n) / factorial(rest) * l0.powi(rest as i32);
-                for k in 0..self.dim {
-                    v *= t[k].powi(a[k] as i32) / factorial(a[k]);
-                }
-                v
+            Domain::Simplex => simplex_basis(&a[..self.dim], &t[..self.dim], n),
+            Domain::Box => (0..self.dim).map(|k| line_basis(a[k], t[k], n)).product(),
+            Domain::Prism { axis } => {
+                simplex_basis(&a[..2], &t[..2], n) * line_basis(a[2], t[2], axis)
             }
-            Domain::Box => (0..self.dim)
-                .map(|k| {
-                    binomial(n, a[k])
-                        * t[k].powi(a[k] as i32)
-                        * (1.0 - t[k]).powi((n - a[k]) as i32)
-                })
-                .product(),
         }
     }
 
@@ -227,17 +263,27 @@ impl Space {
             Region { origin: v[0], axes }
         };
         let h = 0.5;
+        let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let (ab, bc, ca) = ([h, 0.0, 0.0], [h, h, 0.0], [0.0, h, 0.0]);
+        let triangles = [
+            simplex(&[a, ab, ca]),
+            simplex(&[ab, b, bc]),
+            simplex(&[ca, bc, c]),
+            simplex(&[bc, ca, ab]),
+        ];
         match (self.domain, self.dim) {
-            (Domain::Simplex, 2) => {
-                let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
-                let (ab, bc, ca) = ([h, 0.0, 0.0], [h, h, 0.0], [0.0, h, 0.0]);
-                vec![
-                    simplex(&[a, ab, ca]),
-                    simplex(&[ab, b, bc]),
-                    simplex(&[ca, bc, c]),
-                    simplex(&[bc, ca, ab]),
-                ]
-            }
+            (Domain::Simplex, 2) => triangles.to_vec(),
+            (Domain::Prism { .. }, _) => [0.0, h]
+                .iter()
+                .flat_map(|&z| {
+                    triangles.iter().map(move |t| {
+                        let mut r = *t;
+                        r.origin[2] = z;
+                        r.axes[2] = [0.0, 0.0, h];
+                        r
+                    })
+                })
+                .collect(),
             (Domain::Simplex, _) => {
                 let v = [
                     [0.0, 0.0, 0.0],
@@ -346,6 +392,9 @@ mod tests {
             (Domain::Box, 2, 5),
             (Domain::Simplex, 3, 3),
             (Domain::Box, 3, 2),
+            (Domain::Prism { axis: 2 }, 3, 2),
+            (Domain::Prism { axis: 5 }, 3, 4),
+            (Domain::Prism { axis: 2 }, 3, 1),
         ] {
             check_reproduction(domain, dim, n);
         }
@@ -358,6 +407,7 @@ mod tests {
             (Domain::Simplex, 3, 1.0 / 6.0),
             (Domain::Box, 2, 1.0),
             (Domain::Box, 3, 1.0),
+            (Domain::Prism { axis: 1 }, 3, 0.5),
         ] {
             let space = Space::new(domain, dim, 1);
             let measure = |r: &Region| {
@@ -367,11 +417,7 @@ mod tests {
                 } else {
                     crate::jacobian::det3(&a)
                 };
-                let unit = if domain == Domain::Simplex {
-                    whole
-                } else {
-                    1.0
-                };
+                let unit = if domain == Domain::Box { 1.0 } else { whole };
                 d.abs() * unit
             };
             let total: f64 = space.children.iter().map(|(r, _)| measure(r)).sum();

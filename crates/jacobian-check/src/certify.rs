@@ -4,15 +4,19 @@
 //!
 //! The determinant of a P_p triangle is a polynomial of degree 2(p − 1), of a Q_p
 //! quadrilateral of degree 2p − 1 per direction, of a P_p tetrahedron 3(p − 1), of a Q_p
-//! hexahedron 3p − 1 per direction. It is sampled at the lattice points of that degree and
+//! hexahedron 3p − 1 per direction, of a P_p prism 3p − 2 on the triangle and 3p − 1 along
+//! its axis; the linear pyramid's, rational in the reference coordinates, is a biquadratic
+//! in the coordinates of the rays from the apex (see `determinant_space`: the approach of
+//! Johnen & Geuzaine for pyramids, 2015, at order 1). It is sampled at the lattice points of that degree and
 //! turned into Bernstein coefficients by a per-type matrix. The coefficients bound the
 //! determinant (convex hull property) and the corner coefficients equal it at the corners:
 //! all coefficients > 0 proves validity, a corner coefficient ≤ 0 proves invalidity,
 //! otherwise the region is subdivided and each child examined, down to a depth limit;
 //! a region still undecided there makes the cell [`Certificate::Undecided`].
 //!
-//! Certified: triangles and quadrilaterals of order 1–3, tetrahedra and hexahedra of order
-//! 1–2. Prisms and the linear pyramid have the sampled check only; P2 pyramids neither.
+//! Certified: triangles and quadrilaterals of order 1–3, tetrahedra, prisms and hexahedra of
+//! order 1–2, the linear pyramid. The 14-node pyramid has neither shape functions nor a
+//! certificate here ([`JacobianError::Unsupported`]).
 //! This module does not move nodes or repair cells.
 
 use std::sync::OnceLock;
@@ -125,12 +129,21 @@ struct CertTable {
 }
 
 /// The domain and degree of the determinant's polynomial space.
+///
+/// The prism's determinant has degree 3p − 2 on the triangle and 3p − 1 along the axis.
+/// The linear pyramid's is rational in (u, v, w) but not along the rays from the apex: with
+/// ξ = u / (1 − w), η = v / (1 − w) the map is `(1 − w) B(ξ, η) + w x_apex` (B the bilinear
+/// base), so det J = det[∂B/∂ξ, ∂B/∂η, x_apex − B(ξ, η)], a biquadratic in (ξ, η) ∈ [−1, 1]²
+/// that does not depend on w. Its expansion on the base square (w = 0) bounds the
+/// determinant over the whole pyramid, the apex's directional limits included.
 fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
     let p = ty.order as usize;
     match ty.shape {
         Shape::Tri => (Domain::Simplex, 2, 2 * (p - 1)),
         Shape::Quad => (Domain::Box, 2, 2 * p - 1),
         Shape::Tet => (Domain::Simplex, 3, 3 * (p - 1)),
+        Shape::Prism => (Domain::Prism { axis: 3 * p - 1 }, 3, 3 * p - 2),
+        Shape::Pyramid => (Domain::Box, 2, 2),
         _ => (Domain::Box, 3, 3 * p - 1),
     }
 }
@@ -248,12 +261,13 @@ fn certify_coefficients(
 }
 
 /// The certified validity of a cell of dimension `D` (triangles and quadrilaterals of order
-/// 1 to 3, tetrahedra and hexahedra of order 1 and 2) with node coordinates `nodes` in Gmsh
+/// 1 to 3, tetrahedra, prisms and hexahedra of order 1 and 2, the linear pyramid) with node
+/// coordinates `nodes` in Gmsh
 /// order. Valid means the Jacobian determinant is > 0 everywhere in the cell: the cell is
 /// not folded and is positively oriented (counter-clockwise in 2D).
 ///
 /// # Errors
-/// Unsupported type (prisms, pyramids: use [`sampled_check`]), wrong dimension, wrong node
+/// Unsupported type (the 14-node pyramid, 3D cells of order 3), wrong dimension, wrong node
 /// count, non-finite node, bad parameter.
 pub fn certify_cell<const D: usize>(
     ty: CellType,
@@ -447,8 +461,9 @@ pub struct MeshValidity {
     pub invalid_cells: Vec<usize>,
     /// Cells neither proved valid nor invalid within the depth limit.
     pub undecided: Vec<usize>,
-    /// 3D cells without a certificate (prisms, pyramids) whose samples were all positive:
-    /// probably valid, not proved.
+    /// 3D cells without a certificate whose samples were all positive: probably valid, not
+    /// proved. Empty since every 3D type with shape functions has a certificate; kept for
+    /// types that would come with shape functions first.
     pub uncertified: Vec<usize>,
     /// The least of `per_cell_scaled_jacobian` (1 for a mesh without cells).
     pub min_scaled_jacobian: f64,

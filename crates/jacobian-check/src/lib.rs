@@ -3,8 +3,8 @@
 //! **certified** check of the sign of its determinant from Bernstein coefficients with
 //! adaptive subdivision ([`certify`], after Johnen, Remacle & Geuzaine, "Geometrical
 //! validity of curvilinear finite elements", J. Comput. Phys. 2013), next to the sampled
-//! check the dissertation used; plus the area of a curved 2D mesh by exact quadrature
-//! ([`area`]), and the fraction of edges a curved mesh bends ([`curved`]).
+//! check the dissertation used; plus the area of a curved 2D mesh by exact quadrature and
+//! the volume of a curved 3D mesh from the Bernstein coefficients ([`area`]), and the fraction of edges a curved mesh bends ([`curved`]).
 //!
 //! Node order everywhere is Gmsh's (the data model's). The crate reads meshes and node
 //! coordinates and reports; it never moves a node, and does no file IO.
@@ -49,7 +49,27 @@
 //!
 //! One API for 2D and 3D: every per-cell function is generic over the dimension `D` of the
 //! node coordinates (`[f64; 2]` or `[f64; 3]`), and [`types`] is the one table of the cell
-//! types the crate knows and what it offers for each ([`capabilities`]).
+//! types the crate knows and what it offers for each ([`capabilities`]): every type with
+//! shape functions is certified — triangles and quadrilaterals of order 1–3; tetrahedra,
+//! prisms (6 and 18 nodes) and hexahedra of order 1–2; the linear pyramid. The 14-node
+//! pyramid is [`JacobianError::Unsupported`].
+//!
+//! ```
+//! use jacobian_check::{CertifyParams, certify_cell, reference_nodes};
+//! use mesh_model::{CellType, Shape};
+//!
+//! // Gmsh's 18-node prism with the node on its top edge 3–4 lifted: still valid
+//! let p2 = CellType::new(Shape::Prism, 2);
+//! let mut prism = reference_nodes(p2)?;
+//! prism[12][2] += 0.3;
+//! assert!(certify_cell(p2, &prism, &CertifyParams::default())?.is_valid());
+//! // the linear pyramid with its apex below the base: proved folded
+//! let p1 = CellType::new(Shape::Pyramid, 1);
+//! let mut pyramid = reference_nodes(p1)?;
+//! pyramid[4] = [0.5, 0.2, -0.3];
+//! assert!(!certify_cell(p1, &pyramid, &CertifyParams::default())?.is_valid());
+//! # Ok::<(), jacobian_check::JacobianError>(())
+//! ```
 
 pub mod area;
 mod bernstein;
@@ -62,7 +82,7 @@ mod linalg;
 mod straight;
 pub mod types;
 
-pub use area::{cell_area, enclosed_area, integrate_area};
+pub use area::{cell_area, cell_volume, enclosed_area, integrate_area, integrate_volume};
 pub use certify::{
     Certificate, CertifyParams, MeshValidity, SampledCheck, certify_cell, check_mesh,
     determinant_bernstein_coefficients, sampled_check,

@@ -22,6 +22,12 @@
 //! certifies every cell and decides afresh only for the pipes of cells that fail, listing
 //! each [`DecisionChange`]), replayed by [`replay`], and differentiated by [`tangent`].
 //!
+//! In 3D ([`curve3d`], [`curve_mesh_3d`]) the linear mesh `topo-cut` makes of `afsf3d`'s
+//! layers is curved to P2 the same way (dissertation §5.3): wall mid-edge nodes on the true
+//! surface through a [`SurfaceProjector`], their displacement added up the columns edge by
+//! edge, with the 2D stops, every decision certified (tetrahedra, prisms, hexahedra; P2
+//! pyramids are refused).
+//!
 //! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
 //! IO, and does not certify the final mesh as a whole (the caller runs
 //! `jacobian_check::check_mesh` on the result).
@@ -80,11 +86,13 @@ mod assemble;
 mod boundary;
 mod cellcheck;
 mod cellmap;
+pub mod curve3d;
 mod decisions;
 mod edges;
 pub mod error;
 mod keep;
 mod march;
+mod march3d;
 pub mod params;
 mod repair;
 mod split;
@@ -93,6 +101,7 @@ pub mod stats;
 use geom_curve::ClosedCurve;
 use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
 
+pub use curve3d::{Curved3d, Curving3dStats, SphereProjector, SurfaceProjector, curve_mesh_3d};
 pub use decisions::{Carry, DecisionChange, Decisions, Diagonal, EdgeRule};
 pub use error::CurvingError;
 pub use keep::{boundary_points, curve_mesh_keeping, replay, tangent};
@@ -178,7 +187,7 @@ pub fn curve_mesh(
     let stats = CurvingStats {
         edges: edges.len(),
         curved_edges,
-        curved_edge_fraction: curved_edges as f64 / edges.len().max(1) as f64,
+        curved_edge_fraction: stats::share(curved_edges, edges.len()),
         curved_boundary_edges,
         stops: marched.stops,
         reduced_tops: marched.reduced_tops,
@@ -224,11 +233,31 @@ fn decisions_of(
 /// passes its checks.
 fn check_input(input: &LayeredMesh) -> Result<(), CurvingError> {
     let mesh = &input.mesh;
+    sound_linear(
+        mesh,
+        Dim::Two,
+        &[Shape::Tri, Shape::Quad],
+        CurvingError::NotLinear2d,
+    )?;
+    match input.layering.check(mesh) {
+        Some(problem) => Err(CurvingError::BadLayers(problem)),
+        None => Ok(()),
+    }
+}
+
+/// The mesh is structurally sound (`mesh_model`'s checks) and linear, of dimension `dim`,
+/// with cells of `shapes` only; `wrong` makes the error that says what else it is.
+fn sound_linear(
+    mesh: &Mesh,
+    dim: Dim,
+    shapes: &[Shape],
+    wrong: fn(String) -> CurvingError,
+) -> Result<(), CurvingError> {
     if let Some(problem) = mesh_model::first_structural_problem(mesh) {
         return Err(CurvingError::InvalidMesh(problem));
     }
-    if mesh.dim != Dim::Two || mesh.order != 1 {
-        return Err(CurvingError::NotLinear2d(format!(
+    if mesh.dim != dim || mesh.order != 1 {
+        return Err(wrong(format!(
             "the mesh is {}D of order {}",
             if mesh.dim == Dim::Two { 2 } else { 3 },
             mesh.order
@@ -238,14 +267,11 @@ fn check_input(input: &LayeredMesh) -> Result<(), CurvingError> {
         .cells
         .types()
         .iter()
-        .find(|t| t.order != 1 || !matches!(t.shape, Shape::Tri | Shape::Quad))
+        .find(|t| t.order != 1 || !shapes.contains(&t.shape))
     {
-        return Err(CurvingError::NotLinear2d(format!("it has a {ty:?} cell")));
+        return Err(wrong(format!("it has a {ty:?} cell")));
     }
-    match input.layering.check(mesh) {
-        Some(problem) => Err(CurvingError::BadLayers(problem)),
-        None => Ok(()),
-    }
+    Ok(())
 }
 
 /// Wall-clock seconds of each phase, in order.

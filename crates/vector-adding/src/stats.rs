@@ -49,3 +49,8 @@ pub struct CurvingStats {
     /// Seconds spent in each phase: edges, boundary, march, repair, cut, assemble.
     pub timings_s: Vec<(&'static str, f64)>,
 }
+
+/// `part / whole`, 0 for an empty whole: the curved-edge fractions.
+pub(crate) fn share(part: usize, whole: usize) -> f64 {
+    part as f64 / whole.max(1) as f64
+}

@@ -1,0 +1,391 @@
+//! The marching of the 3D curving ([`crate::curve3d`]), the mirror of `march` where the
+//! algorithm truly differs: in 2D a layered cell has one bottom and one top edge, in 3D a cell
+//! cut from a layer has edges of every kind (bottom, top, diagonals, extrusion edges), so the
+//! displacement travels from edge to edge — each edge reads the edge between its ends'
+//! parents — and the decisions are taken per edge, layer of nodes by layer of nodes, each
+//! certified on the cells below the edge. The stops and the fractions (1, ½, ¼) are the 2D
+//! ones.
+
+use jacobian_check::{Certificate, certify_cell};
+use mesh_model::topology::Edges;
+use mesh_model::{CellType, Mesh, NONE, Shape};
+
+use crate::curve3d::SurfaceProjector;
+use crate::error::CurvingError;
+use crate::params::CurvingParams;
+use crate::stats::StopCounts;
+
+/// The layer of every node and its parents (the nodes below it in its columns).
+#[derive(Debug, Clone)]
+pub(crate) struct Layers {
+    pub layer: Vec<u32>,
+    parent_start: Vec<u32>,
+    parents: Vec<u32>,
+}
+
+impl Layers {
+    /// From the columns (each a wall node and its children, bottom-up).
+    pub(crate) fn new(mesh: &Mesh, columns: &[Vec<u32>]) -> Result<Layers, CurvingError> {
+        let n = mesh.nodes.len();
+        let mut layer = vec![NONE; n];
+        let mut below: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for (c, column) in columns.iter().enumerate() {
+            for (k, &node) in column.iter().enumerate() {
+                let bad = |what: &str| {
+                    CurvingError::BadLayers(format!("column {c}, level {k}: node {node} {what}"))
+                };
+                let slot = layer.get_mut(node as usize).ok_or(bad("does not exist"))?;
+                if *slot != NONE && *slot != k as u32 {
+                    return Err(bad("is at another level in another column"));
+                }
+                *slot = k as u32;
+                if k > 0 && !below[node as usize].contains(&column[k - 1]) {
+                    below[node as usize].push(column[k - 1]);
+                }
+            }
+        }
+        if let Some(node) = layer.iter().position(|&l| l == NONE) {
+            return Err(CurvingError::BadLayers(format!(
+                "node {node} is in no column"
+            )));
+        }
+        let mut parent_start = vec![0u32];
+        let mut parents = Vec::new();
+        for b in below {
+            parents.extend(b);
+            parent_start.push(parents.len() as u32);
+        }
+        Ok(Layers {
+            layer,
+            parent_start,
+            parents,
+        })
+    }
+
+    fn parents(&self, node: u32) -> &[u32] {
+        let i = node as usize;
+        &self.parents[self.parent_start[i] as usize..self.parent_start[i + 1] as usize]
+    }
+
+    /// Where an end at `node` of an edge at `level` comes from one layer down: its parents
+    /// when it is at `level`, else itself.
+    fn lower<'s>(&'s self, node: &'s u32, level: u32) -> &'s [u32] {
+        if self.layer[*node as usize] == level {
+            self.parents(*node)
+        } else {
+            std::slice::from_ref(node)
+        }
+    }
+}
+
+/// The state of the marching: the displacement of every edge's mid node from its chord's
+/// midpoint, and the figures.
+pub(crate) struct March<'a> {
+    mesh: &'a Mesh,
+    edges: &'a Edges,
+    layers: &'a Layers,
+    params: &'a CurvingParams,
+    /// Per edge: curved minus straight mid node.
+    pub dev: Vec<[f64; 3]>,
+    pub stops: StopCounts,
+    pub reduced: usize,
+    pub deepest: u32,
+    scratch: Vec<[f64; 3]>,
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+    a.map(|v| s * v)
+}
+
+fn mid(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
+}
+
+impl<'a> March<'a> {
+    pub(crate) fn new(
+        mesh: &'a Mesh,
+        edges: &'a Edges,
+        layers: &'a Layers,
+        params: &'a CurvingParams,
+    ) -> March<'a> {
+        March {
+            mesh,
+            edges,
+            layers,
+            params,
+            dev: vec![[0.0; 3]; edges.len()],
+            stops: StopCounts::default(),
+            reduced: 0,
+            deepest: 0,
+            scratch: Vec::new(),
+        }
+    }
+
+    fn ends(&self, e: u32) -> [u32; 2] {
+        let k = self.edges.nodes(e);
+        [k[0], k[1]]
+    }
+
+    fn x(&self, n: u32) -> [f64; 3] {
+        self.mesh.nodes[n as usize]
+    }
+
+    /// The mid node of edge `e`.
+    pub(crate) fn edge_node(&self, e: u32) -> [f64; 3] {
+        let [a, b] = self.ends(e);
+        add(mid(self.x(a), self.x(b)), self.dev[e as usize])
+    }
+
+    /// The centre node of the quadrilateral with corners `k` (in cyclic order): the Coons
+    /// patch of its four edges at the centre.
+    pub(crate) fn face_node(&self, k: &[u32]) -> [f64; 3] {
+        let mut p = [0.0; 3];
+        for i in 0..4 {
+            let e = self.edges.find(&[k[i], k[(i + 1) % 4]]);
+            let m = self.edge_node(e.expect("a face's sides are edges"));
+            p = add(p, add(scale(m, 0.5), scale(self.x(k[i]), -0.25)));
+        }
+        p
+    }
+
+    /// The centre node of hexahedron `c`: ½ Σ face nodes − ¼ Σ edge nodes + ⅛ Σ corners.
+    pub(crate) fn hex_centre(&self, c: usize) -> [f64; 3] {
+        let cell = self.mesh.cells.get(c);
+        let k = cell.corners();
+        let mut p = [0.0; 3];
+        for f in Shape::Hex.faces() {
+            let corners: Vec<u32> = f.iter().map(|&j| k[j]).collect();
+            p = add(p, scale(self.face_node(&corners), 0.5));
+        }
+        for &e in self.edges.of_cell(c) {
+            p = add(p, scale(self.edge_node(e), -0.25));
+        }
+        for &n in k {
+            p = add(p, scale(self.x(n), 0.125));
+        }
+        p
+    }
+
+    /// The P2 nodes of cell `c` as the edges stand now, in Gmsh order, into `out`.
+    fn cell_nodes(&self, c: usize, out: &mut Vec<[f64; 3]>) {
+        let cell = self.mesh.cells.get(c);
+        let shape = cell.ty.shape;
+        let k = cell.corners();
+        out.clear();
+        out.extend(k.iter().map(|&n| self.x(n)));
+        out.extend(self.edges.of_cell(c).iter().map(|&e| self.edge_node(e)));
+        for f in shape.faces().iter().filter(|f| f.len() == 4) {
+            let corners: Vec<u32> = f.iter().map(|&j| k[j]).collect();
+            out.push(self.face_node(&corners));
+        }
+        if shape == Shape::Hex {
+            out.push(self.hex_centre(c));
+        }
+    }
+
+    /// The certificate of cell `c` as the edges stand now.
+    fn certify(&mut self, c: usize) -> Result<Certificate<[f64; 3]>, CurvingError> {
+        let mut buf = std::mem::take(&mut self.scratch);
+        self.cell_nodes(c, &mut buf);
+        let ty = CellType::new(self.mesh.cells.get(c).ty.shape, 2);
+        let result = certify_cell(ty, &buf, &self.params.certify)
+            .map_err(|source| CurvingError::Check { cell: c, source });
+        self.scratch = buf;
+        result
+    }
+
+    /// Puts the mid node of every wall edge (both ends in layer 0) onto the true surface;
+    /// returns how many.
+    pub(crate) fn place_wall(&mut self, surface: &dyn SurfaceProjector) -> usize {
+        let mut count = 0;
+        for e in 0..self.edges.len() as u32 {
+            let [a, b] = self.ends(e);
+            if self.layers.layer[a as usize] != 0 || self.layers.layer[b as usize] != 0 {
+                continue;
+            }
+            let facet = self
+                .edges
+                .cells(e)
+                .iter()
+                .map(|u| u.cell as usize)
+                .find(|&c| self.mesh.cell_layer[c] == 0)
+                .and_then(|c| self.mesh.cell_pipe.get(c).copied())
+                .filter(|&p| p != NONE);
+            let Some(facet) = facet else { continue };
+            let m = mid(self.x(a), self.x(b));
+            let on = surface.project(m, facet as usize);
+            self.dev[e as usize] = [0, 1, 2].map(|k| on[k] - m[k]);
+            count += 1;
+        }
+        count
+    }
+
+    /// The displacement an edge at `level` receives from below: the mean over the edges
+    /// joining the nodes its ends come from. `None` when no such edge exists.
+    fn source_below(&self, e: u32, level: u32) -> Option<[f64; 3]> {
+        let [a, b] = self.ends(e);
+        let (mut sum, mut count) = ([0.0; 3], 0);
+        for &x in self.layers.lower(&a, level) {
+            for &y in self.layers.lower(&b, level) {
+                if x == y {
+                    continue;
+                }
+                if let Some(lower) = self.edges.find(&[x, y]) {
+                    sum = add(sum, self.dev[lower as usize]);
+                    count += 1;
+                }
+            }
+        }
+        (count > 0).then(|| scale(sum, 1.0 / count as f64))
+    }
+
+    /// Marches up the layers: every edge above the wall gets the displacement below it, or a
+    /// part of it, or none (module docs). `outer[n]`: node n is on the outer front.
+    pub(crate) fn march(&mut self, outer: &[bool]) -> Result<(), CurvingError> {
+        let layer = &self.layers.layer;
+        let levels: Vec<u32> = (0..self.edges.len() as u32)
+            .map(|e| {
+                let [a, b] = self.ends(e);
+                layer[a as usize].max(layer[b as usize])
+            })
+            .collect();
+        let level_of = |e: u32| levels[e as usize];
+        let mut by_level: Vec<u32> = (0..self.edges.len() as u32)
+            .filter(|&e| level_of(e) > 0)
+            .collect();
+        by_level.sort_by_key(|&e| level_of(e));
+        let mut pending = Vec::new();
+        let mut i = 0;
+        while i < by_level.len() {
+            let level = level_of(by_level[i]);
+            pending.clear();
+            while i < by_level.len() && level_of(by_level[i]) == level {
+                let e = by_level[i];
+                i += 1;
+                let [a, b] = self.ends(e);
+                if self.layers.parents(a).contains(&b) || self.layers.parents(b).contains(&a) {
+                    continue; // an extrusion edge stays straight
+                }
+                let Some(source) = self.source_below(e, level) else {
+                    self.stops.collapsed += 1;
+                    continue;
+                };
+                if source == [0.0; 3] {
+                    continue;
+                }
+                // where the layer may stop, its edges wait straight (so that the stop of one
+                // edge is judged with its neighbours straight too), else with the full source
+                let at_outer = outer[a as usize] && outer[b as usize];
+                self.dev[e as usize] = if at_outer || self.may_stop(level) {
+                    [0.0; 3]
+                } else {
+                    source
+                };
+                pending.push((e, source, at_outer));
+            }
+            // an edge found with no valid choice is decided again once its neighbours are
+            // (they may have been waiting straight); what still fails is counted
+            let mut retry = Vec::new();
+            for &(e, source, at_outer) in &pending {
+                if !self.decide(e, source, level, at_outer)? {
+                    retry.push((e, source, at_outer));
+                }
+            }
+            for (e, source, at_outer) in retry {
+                if !self.decide(e, source, level, at_outer)? {
+                    self.stops.invalid += 1;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether every cell of edge `e` at or below `level` is certified valid, with a scaled
+    /// Jacobian of at least `min_sj`.
+    fn cells_below_good(&mut self, e: u32, level: u32, min_sj: f64) -> Result<bool, CurvingError> {
+        let uses: Vec<usize> = self
+            .edges
+            .cells(e)
+            .iter()
+            .map(|u| u.cell as usize)
+            .collect();
+        for c in uses {
+            let top = self
+                .mesh
+                .cells
+                .get(c)
+                .corners()
+                .iter()
+                .map(|&n| self.layers.layer[n as usize])
+                .max();
+            if top > Some(level) {
+                continue;
+            }
+            let ok = self
+                .certify(c)?
+                .scaled_jacobian_lower_bound()
+                .is_some_and(|q| q >= min_sj);
+            if !ok {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    /// Whether edges at `level` may go straight: above `min_curved_layers` (the wall counts
+    /// as the first curved layer, as in 2D).
+    fn may_stop(&self, level: u32) -> bool {
+        level >= self.params.min_curved_layers.max(1)
+    }
+
+    /// The decision for edge `e` at `level` given the displacement `source` below it; false
+    /// when no choice leaves the cells below valid (the full displacement is kept). An edge
+    /// of the outer front stays straight whenever its cells are valid so (the outer boundary
+    /// keeps its facets), else it is curved like any other.
+    fn decide(
+        &mut self,
+        e: u32,
+        source: [f64; 3],
+        level: u32,
+        at_outer: bool,
+    ) -> Result<bool, CurvingError> {
+        let ei = e as usize;
+        if at_outer || self.may_stop(level) {
+            self.dev[ei] = [0.0; 3];
+            let threshold = if at_outer {
+                f64::MIN_POSITIVE
+            } else {
+                self.params.stop_min_scaled_jacobian
+            };
+            if self.cells_below_good(e, level, threshold)? {
+                if at_outer {
+                    self.stops.pipe_ended += 1;
+                } else {
+                    self.stops.jacobian += 1;
+                }
+                return Ok(true);
+            }
+        }
+        self.deepest = self.deepest.max(level);
+        for fraction in [1.0, 0.5, 0.25] {
+            self.dev[ei] = scale(source, fraction);
+            if self.cells_below_good(e, level, f64::MIN_POSITIVE)? {
+                if fraction < 1.0 {
+                    self.reduced += 1;
+                }
+                return Ok(true);
+            }
+        }
+        self.dev[ei] = [0.0; 3];
+        if self.cells_below_good(e, level, f64::MIN_POSITIVE)? {
+            self.stops.jacobian += 1;
+            return Ok(true);
+        }
+        self.dev[ei] = source;
+        Ok(false)
+    }
+}

@@ -1,0 +1,172 @@
+//! The 3D curving on a sphere grown by `afsf3d` and cut by `topo-cut` (tetrahedra, and the
+//! mixed cut, all prisms without merged children): every P2 cell certified valid, the wall
+//! mid-edge nodes on the sphere, the volume of the curved mesh closer to the exact volume
+//! between the sphere and the outer front than the linear mesh's; bad input refused.
+
+use afsf3d::{LayerParams, grow_layers};
+use geom_surface::Surface;
+use jacobian_check::{CertifyParams, check_mesh, integrate_volume};
+use mesh_model::{CellType, Dim, Mesh, Role, Shape};
+use vector_adding::{CurvingError, CurvingParams, SphereProjector, curve_mesh_3d};
+
+const R: f64 = 1.0;
+
+fn grown(layers: usize) -> afsf3d::Grown3d {
+    grown_on(3, 0.01, layers)
+}
+
+fn grown_on(refinement: u32, first_height: f64, layers: usize) -> afsf3d::Grown3d {
+    let sphere = Surface::sphere(R, refinement);
+    let params = LayerParams {
+        first_height,
+        growth: 1.3,
+        layers,
+        ..LayerParams::default()
+    };
+    grow_layers(&sphere, &params).unwrap()
+}
+
+fn p2() -> CurvingParams {
+    CurvingParams {
+        order: 2,
+        ..CurvingParams::default()
+    }
+}
+
+const SPHERE: SphereProjector = SphereProjector {
+    centre: [0.0; 3],
+    radius: R,
+};
+
+/// Curves `linear`, checks every cell certified valid and the wall nodes on the sphere;
+/// returns the curved mesh.
+fn curved_and_valid(linear: &Mesh, g: &afsf3d::Grown3d) -> vector_adding::Curved3d {
+    let curved = curve_mesh_3d(linear, &g.columns, &SPHERE, &p2()).unwrap();
+    let mesh = &curved.mesh;
+    assert_eq!(mesh.order, 2);
+    assert_eq!(mesh.cells.len(), linear.cells.len());
+    assert!(
+        mesh_model::validate(mesh).is_empty(),
+        "{:?}",
+        mesh_model::validate(mesh).first()
+    );
+    // every P2 cell certified valid
+    let v = check_mesh(mesh, &CertifyParams::default()).unwrap();
+    assert!(
+        v.invalid_cells.is_empty() && v.undecided.is_empty() && v.uncertified.is_empty(),
+        "{v:?} {:?}",
+        curved.stats
+    );
+    // the wall edges' mid nodes on the sphere
+    let mut on_wall = 0;
+    for (f, facet) in mesh.boundary.iter().enumerate() {
+        if mesh.patches[mesh.boundary_patch[f] as usize].role != Role::Wall {
+            continue;
+        }
+        let corners = facet.ty.shape.corners();
+        for &n in &facet.nodes[corners..] {
+            let x = mesh.nodes[n as usize];
+            let r = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+            assert!((r - R).abs() < 1e-12, "node {n} at radius {r}");
+            on_wall += 1;
+        }
+    }
+    assert!(on_wall > 0);
+    assert!(curved.stats.wall_edges > 0 && curved.stats.curved_edges > curved.stats.wall_edges);
+    curved
+}
+
+fn check_curved(linear: &Mesh, g: &afsf3d::Grown3d) {
+    let curved = curved_and_valid(linear, g);
+    let mesh = &curved.mesh;
+    // the volume between the true sphere and the (straight) outer front
+    let exact = g.front.enclosed_volume() - 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
+    let linear_volume = integrate_volume(linear).unwrap();
+    let curved_volume = integrate_volume(mesh).unwrap();
+    let (e1, e2) = ((linear_volume - exact).abs(), (curved_volume - exact).abs());
+    println!("P1 volume error {e1:.3e}, P2 {e2:.3e}; {:?}", curved.stats);
+    assert!(
+        e2 < 0.01 * e1,
+        "P1 error {e1}, P2 error {e2} ({:?})",
+        curved.stats
+    );
+}
+
+#[test]
+fn a_coarse_sphere_under_thin_layers_curves_up_to_its_outer_front_and_stays_valid() {
+    // 80 facets, whose bulge (~0.05) is as thick as all the layers: no pipe can stop
+    let g = grown_on(1, 0.01, 4);
+    for linear in [
+        topo_cut::cut_to_tets(&g.mesh).unwrap(),
+        topo_cut::cut_to_mixed(&g.mesh).unwrap(),
+    ] {
+        let curved = curved_and_valid(&linear, &g);
+        println!("{:?}", curved.stats);
+        assert_eq!(curved.stats.stops.invalid, 0);
+    }
+}
+
+#[test]
+fn a_sphere_cut_to_tetrahedra_is_curved_and_certified() {
+    let g = grown(6);
+    let linear = topo_cut::cut_to_tets(&g.mesh).unwrap();
+    check_curved(&linear, &g);
+}
+
+#[test]
+fn a_sphere_of_prisms_is_curved_and_certified() {
+    let g = grown(6);
+    let linear = topo_cut::cut_to_mixed(&g.mesh).unwrap();
+    assert_eq!(linear.count(Shape::Prism), linear.cells.len());
+    check_curved(&linear, &g);
+}
+
+#[test]
+fn bad_input_is_refused_with_a_clear_error() {
+    let g = grown(2);
+    let linear = topo_cut::cut_to_tets(&g.mesh).unwrap();
+    // order 3
+    let p3 = CurvingParams {
+        order: 3,
+        ..CurvingParams::default()
+    };
+    assert!(matches!(
+        curve_mesh_3d(&linear, &g.columns, &SPHERE, &p3),
+        Err(CurvingError::BadParameter { name: "order", .. })
+    ));
+    // a node in no column
+    let short: Vec<Vec<u32>> = g.columns[1..].to_vec();
+    let e = curve_mesh_3d(&linear, &short, &SPHERE, &p2()).unwrap_err();
+    assert!(e.to_string().contains("in no column"), "{e}");
+    // a column naming a node that does not exist
+    let mut bad = g.columns.clone();
+    bad[0].push(u32::MAX - 1);
+    assert!(matches!(
+        curve_mesh_3d(&linear, &bad, &SPHERE, &p2()),
+        Err(CurvingError::BadLayers(_))
+    ));
+    // a pyramid: refused, no P2 pyramid can be certified
+    let mut pyramid = Mesh::new(Dim::Three, 1);
+    pyramid.nodes = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.5, 0.5, 1.0],
+    ];
+    pyramid
+        .cells
+        .push(CellType::new(Shape::Pyramid, 1), &[0, 1, 2, 3, 4]);
+    pyramid.cell_layer = vec![0];
+    pyramid.cell_pipe = vec![mesh_model::NONE];
+    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
+    let e = curve_mesh_3d(&pyramid, &columns, &SPHERE, &p2()).unwrap_err();
+    assert!(matches!(e, CurvingError::Unsupported3d(_)), "{e}");
+    assert!(e.to_string().contains("pyramid"), "{e}");
+    // a 2D mesh
+    let flat = Mesh::new(Dim::Two, 1);
+    assert!(matches!(
+        curve_mesh_3d(&flat, &[], &SPHERE, &p2()),
+        Err(CurvingError::Unsupported3d(_))
+    ));
+}
