@@ -266,19 +266,26 @@ fn flip_min_max_angle(
         let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
         let mut flips = 0;
         // in a fixed order: the same input makes the same mesh
-        for &((a, b), _) in &owner.0 {
-            if a >= b || constraints.binary_search(&(a, b)).is_ok() {
+        for &((a, b), (t1, c1)) in &owner.by_edge {
+            if a >= b {
                 continue;
             }
-            let (Some((t1, c1)), Some((t2, c2))) = (owner.get((a, b)), owner.get((b, a))) else {
+            // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
+            // (b, a) when every directed edge has one owner
+            let t2 = tried[3 * t1 + c1];
+            if owner.unique && t2 != NONE && !before_sweep[t1] && !before_sweep[t2 as usize] {
+                if !flipped[t1] && !flipped[t2 as usize] {
+                    kept[3 * t1 + c1] = t2;
+                }
+                continue;
+            }
+            if constraints.binary_search(&(a, b)).is_ok() {
+                continue;
+            }
+            let Some((t2, c2)) = owner.get((b, a)) else {
                 continue;
             };
             if flipped[t1] || flipped[t2] {
-                continue;
-            }
-            let unchanged = !before_sweep[t1] && !before_sweep[t2];
-            if unchanged && tried[3 * t1 + c1] == t2 as u32 {
-                kept[3 * t1 + c1] = t2 as u32;
                 continue;
             }
             let (c, d) = (tris[t1][c1], tris[t2][c2]);
@@ -312,7 +319,11 @@ fn flip_min_max_angle(
 
 /// The triangle and the opposite corner of each directed edge (`tri[i] -> tri[i+1]`,
 /// opposite corner `i+2`), sorted by edge: a directed edge met twice keeps its last triangle.
-struct Owners(Vec<((u32, u32), (usize, usize))>);
+struct Owners {
+    by_edge: Vec<((u32, u32), (usize, usize))>,
+    /// Whether no directed edge was met twice.
+    unique: bool,
+}
 
 impl Owners {
     fn new(tris: &[[u32; 3]]) -> Self {
@@ -332,12 +343,15 @@ impl Owners {
                 _ => kept.push(o),
             }
         }
-        Owners(kept)
+        Owners {
+            unique: kept.len() == 3 * tris.len(),
+            by_edge: kept,
+        }
     }
 
     fn get(&self, edge: (u32, u32)) -> Option<(usize, usize)> {
-        let i = self.0.binary_search_by_key(&edge, |&(k, _)| k).ok()?;
-        Some(self.0[i].1)
+        let i = self.by_edge.binary_search_by_key(&edge, |&(k, _)| k).ok()?;
+        Some(self.by_edge[i].1)
     }
 }
 
