@@ -30,30 +30,37 @@ fn naca0012_30k(c: &mut Criterion) {
     });
     // a fill of some 20k triangles: the same wall in a far field of 2000 nodes
     let mut far = loops.clone();
-    far[1] = common::circle([0.5, 0.0], 20.0, 2000, mesh_model::Role::Farfield, "farfield");
+    far[1] = common::circle(
+        [0.5, 0.0],
+        20.0,
+        2000,
+        mesh_model::Role::Farfield,
+        "farfield",
+    );
     let big = afsf2d::grow_mesh(&far, &params).expect("NACA0012 meshes");
     eprintln!("far-field fill: {} triangles", big.stats.fill_triangles);
-    c.bench_function("naca0012_far2000_fill", |b| {
-        b.iter_custom(|iters| {
-            (0..iters)
-                .map(|_| {
-                    let out = afsf2d::grow_mesh(&far, &params).expect("NACA0012 meshes");
-                    Duration::from_secs_f64(out.stats.timings.fill)
-                })
-                .sum()
-        })
-    });
+    bench_fill(c, "naca0012_far2000_fill", &far, &params);
     // the report's obtuse-angle figure of that mesh (quads cut along the shorter diagonal)
     let mesh = &out.layered.mesh;
     c.bench_function("naca0012_30k_angle_histogram", |b| {
         b.iter(|| afsf2d::max_angle_histogram(mesh))
     });
-    // the fill stage alone (with its peel rounds), as timed by the mesher itself
-    c.bench_function("naca0012_30k_fill", |b| {
+    // the fill stage alone (with its peel rounds)
+    bench_fill(c, "naca0012_30k_fill", &loops, &params);
+}
+
+/// The fill stage of meshing `loops`, as timed by the mesher itself.
+fn bench_fill(
+    c: &mut Criterion,
+    name: &str,
+    loops: &[afsf2d::FrontLoop],
+    params: &afsf2d::AfsfParams,
+) {
+    c.bench_function(name, |b| {
         b.iter_custom(|iters| {
             (0..iters)
                 .map(|_| {
-                    let out = afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes");
+                    let out = afsf2d::grow_mesh(loops, params).expect("NACA0012 meshes");
                     Duration::from_secs_f64(out.stats.timings.fill)
                 })
                 .sum()

@@ -419,15 +419,16 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
     // a node tried and left where it was is tried again only once one of its neighbours
     // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
     // `settled[s]` the moves before s was last left (plus one; 0: not settled)
-    let (mut moves, mut moved, mut settled) = (0u64, vec![0u64; steiner.len()], vec![0u64; steiner.len()]);
+    let (mut moves, mut moved, mut settled) =
+        (0u64, vec![0u64; steiner.len()], vec![0u64; steiner.len()]);
     for _ in 0..SMOOTHING_SWEEPS {
         for s in 0..steiner.len() {
             let g = (n0 + s) as u32;
             if settled[s] != 0 {
                 let still = incident[s].iter().all(|&t| {
-                    tris[t as usize]
-                        .iter()
-                        .all(|&v| (v as usize) < n0 || v == g || moved[v as usize - n0] < settled[s])
+                    tris[t as usize].iter().all(|&v| {
+                        (v as usize) < n0 || v == g || moved[v as usize - n0] < settled[s]
+                    })
                 });
                 if still {
                     continue;
