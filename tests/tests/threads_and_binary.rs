@@ -8,26 +8,36 @@ use xtask::cli::Cli;
 #[test]
 fn one_and_two_threads_write_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
-    let mut files = Vec::new();
+    let (mut files, mut reports) = (Vec::new(), Vec::new());
     for threads in ["1", "2"] {
         let (msh, vtu, bin) = (
             dir.path().join(format!("t{threads}.msh")),
             dir.path().join(format!("t{threads}.vtu")),
             dir.path().join(format!("t{threads}-binary.msh")),
         );
-        // P3 naca0012: some 80 000 nodes, many chunks of the parallel writers
+        let report = dir.path().join(format!("t{threads}.json"));
+        // P3 naca0012: some 80 000 nodes, many chunks of the parallel writers; the mesh is
+        // written while the report certifies it
         for (out, binary) in [(&msh, false), (&vtu, false), (&bin, true)] {
             let mut rest = vec!["--threads", threads, "--out", s(out)];
             if binary {
                 rest.push("--binary");
+            } else {
+                rest.extend(["--report", s(&report)]);
             }
             assert_eq!(mesh("naca0012", "3", &rest).unwrap(), Outcome::Valid);
         }
         files.push([msh, vtu, bin].map(|p| std::fs::read(p).unwrap()));
+        // the report's measures (angle histogram, certified Jacobians, area) too
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+        reports.push([&json["quality"], &json["area"]].map(Clone::clone));
     }
     for (k, (one, two)) in files[0].iter().zip(&files[1]).enumerate() {
         assert!(one == two, "file {k} differs between 1 and 2 threads");
     }
+    assert_eq!(reports[0], reports[1]);
+    assert!(reports[0][0]["obtuse_hist"].is_array(), "{:?}", reports[0]);
 }
 
 #[test]

@@ -106,40 +106,50 @@ pub(crate) struct Run<'a> {
 }
 
 /// The last steps of a run: describes `mesh` in the report, with the angle figures of
-/// `linear` (the linear mesh under it, the same at every order and with --triangles),
-/// certifies every cell, then writes everything ([`write_outputs`]). Returns the path of the
-/// report, if one was written.
+/// `linear` (the linear mesh under it, the same at every order and with --triangles) and
+/// certifies every cell, while the meshes and the snapshot are written (both at once, on two
+/// threads when there are two: the files do not depend on it); then draws the pictures and
+/// writes the report ([`finish`]). Returns the path of the report, if one was written.
 pub(crate) fn check_and_write(
-    plan: Planned,
+    mut plan: Planned,
     (mesh, linear): (&Mesh, &Mesh),
     snapshot: Option<(&Snapshot, &std::path::Path)>,
     run: &Run<'_>,
     report: &mut Report,
 ) -> Result<Option<PathBuf>> {
-    report.describe_over(mesh, linear);
-    let t = Instant::now();
-    let progress = stage(run.quiet, "certified validity");
-    let scaled_jacobian = report.certify(mesh)?;
+    let progress = stage(run.quiet, "certified validity, writing");
+    let (checked, written) = rayon::join(
+        || -> Result<Vec<f64>> {
+            report.describe_over(mesh, linear);
+            let t = Instant::now();
+            let scaled_jacobian = report.certify(mesh)?;
+            report
+                .timings_s
+                .insert("validity", t.elapsed().as_secs_f64());
+            Ok(scaled_jacobian)
+        },
+        || write_meshes(&mut plan, mesh, snapshot),
+    );
     drop(progress);
-    report
-        .timings_s
-        .insert("validity", t.elapsed().as_secs_f64());
-    write_outputs(plan, mesh, snapshot, run, &scaled_jacobian, report)
+    // (a failed check is told before a failed write, as when they ran one after the other)
+    let scaled_jacobian = checked?;
+    let (wrote, seconds) = written?;
+    for (path, format) in wrote {
+        report.wrote_mesh(&path, format, mesh.order);
+    }
+    report.timings_s.insert("write", seconds);
+    finish(plan, mesh, run, &scaled_jacobian, report)
 }
 
-/// Writes the meshes, the snapshot (with its path), the pictures and the report of a run into
-/// the reserved outputs of `plan`, then puts them all in place together. Returns the path of
-/// the report, if one was written.
-fn write_outputs(
-    mut plan: Planned,
+/// Writes the meshes and the snapshot (with its path) into the reserved outputs of `plan`.
+/// Returns each mesh file written with its format, and the seconds it took.
+fn write_meshes(
+    plan: &mut Planned,
     mesh: &Mesh,
     snapshot: Option<(&Snapshot, &std::path::Path)>,
-    run: &Run<'_>,
-    scaled_jacobian: &[f64],
-    report: &mut Report,
-) -> Result<Option<PathBuf>> {
+) -> Result<(Vec<(PathBuf, Format)>, f64)> {
     let t = Instant::now();
-    let progress = stage(run.quiet, "writing");
+    let mut wrote = Vec::new();
     for (path, output) in &plan.meshes {
         let binary = plan.binary && Format::from_path(path) == Some(Format::Msh);
         plan.outputs.write_with(*output, |w| {
@@ -150,15 +160,28 @@ fn write_outputs(
             }
         })?;
         if let Some(format) = Format::from_path(path) {
-            report.wrote_mesh(path, format, mesh.order);
+            wrote.push((path.clone(), format));
         }
     }
     if let (Some(output), Some((stages, path))) = (plan.snapshot, snapshot) {
         plan.outputs
             .write_with(output, |w| mesh_io::snapshot::save_to(w, stages, path))?;
     }
-    report.timings_s.insert("write", t.elapsed().as_secs_f64());
+    Ok((wrote, t.elapsed().as_secs_f64()))
+}
+
+/// Draws the pictures and writes the report of a run into the reserved outputs of `plan`,
+/// then puts every output in place together. Returns the path of the report, if one was
+/// written.
+fn finish(
+    mut plan: Planned,
+    mesh: &Mesh,
+    run: &Run<'_>,
+    scaled_jacobian: &[f64],
+    report: &mut Report,
+) -> Result<Option<PathBuf>> {
     let t = Instant::now();
+    let progress = stage(run.quiet, "pictures");
     pictures::draw_all(
         mesh,
         &plan.pictures,

@@ -1,6 +1,7 @@
 //! Criterion benches of the linear mesher: NACA0012 in a 20-chord far field at about 30k
 //! triangles (after cutting quads), first height 5e-5, growth 1.3: the whole mesher, and its
-//! fill stage alone (the fill's own timer, `AfsfStats::timings.fill`).
+//! fill stage alone (the fill's own timer, `AfsfStats::timings.fill`), and the obtuse-angle
+//! histogram of the mesh it makes (`max_angle_histogram`, the report's figure).
 //!
 //! Measured (release, one thread, this machine): see docs/afsf.md.
 
@@ -27,12 +28,39 @@ fn naca0012_30k(c: &mut Criterion) {
     c.bench_function("naca0012_30k_triangles", |b| {
         b.iter(|| afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes"))
     });
-    // the fill stage alone (with its peel rounds), as timed by the mesher itself
-    c.bench_function("naca0012_30k_fill", |b| {
+    // a fill of some 20k triangles: the same wall in a far field of 2000 nodes
+    let mut far = loops.clone();
+    far[1] = common::circle(
+        [0.5, 0.0],
+        20.0,
+        2000,
+        mesh_model::Role::Farfield,
+        "farfield",
+    );
+    let big = afsf2d::grow_mesh(&far, &params).expect("NACA0012 meshes");
+    eprintln!("far-field fill: {} triangles", big.stats.fill_triangles);
+    bench_fill(c, "naca0012_far2000_fill", &far, &params);
+    // the report's obtuse-angle figure of that mesh (quads cut along the shorter diagonal)
+    let mesh = &out.layered.mesh;
+    c.bench_function("naca0012_30k_angle_histogram", |b| {
+        b.iter(|| afsf2d::max_angle_histogram(mesh))
+    });
+    // the fill stage alone (with its peel rounds)
+    bench_fill(c, "naca0012_30k_fill", &loops, &params);
+}
+
+/// The fill stage of meshing `loops`, as timed by the mesher itself.
+fn bench_fill(
+    c: &mut Criterion,
+    name: &str,
+    loops: &[afsf2d::FrontLoop],
+    params: &afsf2d::AfsfParams,
+) {
+    c.bench_function(name, |b| {
         b.iter_custom(|iters| {
             (0..iters)
                 .map(|_| {
-                    let out = afsf2d::grow_mesh(&loops, &params).expect("NACA0012 meshes");
+                    let out = afsf2d::grow_mesh(loops, params).expect("NACA0012 meshes");
                     Duration::from_secs_f64(out.stats.timings.fill)
                 })
                 .sum()

@@ -7,8 +7,6 @@
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.
 
-use std::collections::HashMap;
-
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
@@ -93,14 +91,15 @@ fn insert_nodes(
     directed_edges: &[(u32, u32)],
     free: &[u32],
     pos: &[P2],
-) -> Result<HashMap<u32, VertexHandle>, AfsfError> {
-    let mut handle_of: HashMap<u32, VertexHandle> = HashMap::new();
+) -> Result<Vec<Option<VertexHandle>>, AfsfError> {
+    // by node (every front and free node indexes `pos`)
+    let mut handle_of: Vec<Option<VertexHandle>> = vec![None; pos.len()];
     let nodes = directed_edges
         .iter()
         .flat_map(|&(a, b)| [a, b])
         .chain(free.iter().copied());
     for g in nodes {
-        if handle_of.contains_key(&g) {
+        if handle_of[g as usize].is_some() {
             continue;
         }
         let p = pos[g as usize];
@@ -116,7 +115,7 @@ fn insert_nodes(
                 cdt.vertex(h).data().node
             )));
         }
-        handle_of.insert(g, h);
+        handle_of[g as usize] = Some(h);
     }
     Ok(handle_of)
 }
@@ -126,11 +125,15 @@ fn insert_nodes(
 fn add_front_edges(
     cdt: &mut Cdt,
     directed_edges: &[(u32, u32)],
-    handle_of: &HashMap<u32, VertexHandle>,
+    handle_of: &[Option<VertexHandle>],
 ) -> Result<Vec<(VertexHandle, VertexHandle)>, AfsfError> {
     let mut directed = Vec::with_capacity(directed_edges.len());
     for &(ga, gb) in directed_edges {
-        let (a, b) = (handle_of[&ga], handle_of[&gb]);
+        let handle = |g: u32| {
+            handle_of[g as usize]
+                .ok_or_else(|| AfsfError::Fill(format!("front node {g} was not inserted")))
+        };
+        let (a, b) = (handle(ga)?, handle(gb)?);
         if !cdt.can_add_constraint(a, b) {
             return Err(AfsfError::Fill(format!(
                 "front edge {ga}-{gb} crosses another front edge"
@@ -153,7 +156,7 @@ fn faces_inside(
     cdt: &Cdt,
     directed: Vec<(VertexHandle, VertexHandle)>,
 ) -> Result<Vec<InnerFace>, AfsfError> {
-    let mut inside: HashMap<InnerFace, ()> = HashMap::new();
+    let mut inside = vec![false; cdt.num_all_faces()];
     let mut stack = Vec::new();
     for (a, b) in directed {
         let e = cdt.get_edge_from_neighbors(a, b).ok_or_else(|| {
@@ -164,7 +167,7 @@ fn faces_inside(
         }
     }
     while let Some(f) = stack.pop() {
-        if inside.insert(f, ()).is_some() {
+        if std::mem::replace(&mut inside[f.index()], true) {
             continue;
         }
         for e in cdt.face(f).adjacent_edges() {
@@ -173,7 +176,7 @@ fn faces_inside(
             }
             match e.rev().face().as_inner() {
                 Some(g) => {
-                    if !inside.contains_key(&g.fix()) {
+                    if !inside[g.fix().index()] {
                         stack.push(g.fix());
                     }
                 }
@@ -185,15 +188,19 @@ fn faces_inside(
             }
         }
     }
-    let mut faces: Vec<_> = inside.keys().copied().collect();
-    faces.sort_unstable_by_key(|f| f.index());
+    // in the order of their handles
+    let faces = cdt
+        .inner_faces()
+        .map(|f| f.fix())
+        .filter(|f| inside[f.index()])
+        .collect();
     Ok(faces)
 }
 
 /// The triangles of `faces` as node indices; the vertices the refinement added become new
 /// nodes, numbered from `pos.len()` in order of first use, with their positions.
 fn triangles_of(cdt: &Cdt, faces: &[InnerFace], pos: &[P2]) -> (Vec<[u32; 3]>, Vec<P2>) {
-    let mut added: HashMap<VertexHandle, u32> = HashMap::new();
+    let mut added: Vec<u32> = vec![NONE; cdt.num_vertices()];
     let mut steiner = Vec::new();
     let tris: Vec<[u32; 3]> = faces
         .iter()
@@ -204,11 +211,13 @@ fn triangles_of(cdt: &Cdt, faces: &[InnerFace], pos: &[P2]) -> (Vec<[u32; 3]>, V
                 if node != NONE {
                     return node;
                 }
-                *added.entry(h.fix()).or_insert_with(|| {
+                let slot = &mut added[h.fix().index()];
+                if *slot == NONE {
                     let p = h.position();
                     steiner.push([p.x, p.y]);
-                    (pos.len() + steiner.len() - 1) as u32
-                })
+                    *slot = (pos.len() + steiner.len() - 1) as u32;
+                }
+                *slot
             })
         })
         .collect();
@@ -244,32 +253,62 @@ fn flip_min_max_angle(
         }
         crate::quality::max_triangle_angle_deg(a, b, c)
     };
+    // each triangle's figure, kept up to date through the flips (the nodes do not move here)
+    let mut figure: Vec<f64> = tris.iter().map(|&t| worst(t)).collect();
+    // `kept[3 t + c]`: the other triangle of the edge opposite corner `c` of `t` when that pair
+    // was tried in the last sweep and not flipped; a pair tried again unchanged (neither
+    // triangle flipped since) would again not flip, so it is skipped
+    let mut kept = vec![NONE; 3 * tris.len()];
+    let mut flipped = vec![false; tris.len()];
     for _ in 0..FLIP_SWEEPS {
         let owner = Owners::new(tris);
-        let mut touched = vec![false; tris.len()];
+        let before_sweep = std::mem::replace(&mut flipped, vec![false; tris.len()]);
+        let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
         let mut flips = 0;
         // in a fixed order: the same input makes the same mesh
-        for &((a, b), _) in &owner.0 {
-            if a >= b || constraints.binary_search(&(a, b)).is_ok() {
+        for &((a, b), (t1, c1)) in &owner.by_edge {
+            if a >= b {
                 continue;
             }
-            let (Some((t1, c1)), Some((t2, c2))) = (owner.get((a, b)), owner.get((b, a))) else {
+            // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
+            // (b, a) when every directed edge has one owner
+            let t2 = tried[3 * t1 + c1];
+            if owner.unique && t2 != NONE && !before_sweep[t1] && !before_sweep[t2 as usize] {
+                if !flipped[t1] && !flipped[t2 as usize] {
+                    kept[3 * t1 + c1] = t2;
+                }
+                continue;
+            }
+            if constraints.binary_search(&(a, b)).is_ok() {
+                continue;
+            }
+            let Some((t2, c2)) = owner.get((b, a)) else {
                 continue;
             };
-            if touched[t1] || touched[t2] {
+            if flipped[t1] || flipped[t2] {
                 continue;
             }
             let (c, d) = (tris[t1][c1], tris[t2][c2]);
             // t1 = (a, b, c), t2 = (b, a, d), both counter-clockwise
-            let before = worst(tris[t1]).max(worst(tris[t2]));
+            let before = figure[t1].max(figure[t2]);
             let (n1, n2) = ([c, a, d], [d, b, c]);
-            let after = worst(n1).max(worst(n2));
-            if after < before - 1e-6 {
+            // the second triangle is measured only when the first leaves the flip possible
+            let w1 = worst(n1);
+            let w2 = if w1 >= before - 1e-6 {
+                f64::INFINITY
+            } else {
+                worst(n2)
+            };
+            if w1.max(w2) < before - 1e-6 {
                 tris[t1] = n1;
                 tris[t2] = n2;
-                touched[t1] = true;
-                touched[t2] = true;
+                figure[t1] = w1;
+                figure[t2] = w2;
+                flipped[t1] = true;
+                flipped[t2] = true;
                 flips += 1;
+            } else {
+                kept[3 * t1 + c1] = t2 as u32;
             }
         }
         if flips == 0 {
@@ -280,7 +319,11 @@ fn flip_min_max_angle(
 
 /// The triangle and the opposite corner of each directed edge (`tri[i] -> tri[i+1]`,
 /// opposite corner `i+2`), sorted by edge: a directed edge met twice keeps its last triangle.
-struct Owners(Vec<((u32, u32), (usize, usize))>);
+struct Owners {
+    by_edge: Vec<((u32, u32), (usize, usize))>,
+    /// Whether no directed edge was met twice.
+    unique: bool,
+}
 
 impl Owners {
     fn new(tris: &[[u32; 3]]) -> Self {
@@ -300,12 +343,15 @@ impl Owners {
                 _ => kept.push(o),
             }
         }
-        Owners(kept)
+        Owners {
+            unique: kept.len() == 3 * tris.len(),
+            by_edge: kept,
+        }
     }
 
     fn get(&self, edge: (u32, u32)) -> Option<(usize, usize)> {
-        let i = self.0.binary_search_by_key(&edge, |&(k, _)| k).ok()?;
-        Some(self.0[i].1)
+        let i = self.by_edge.binary_search_by_key(&edge, |&(k, _)| k).ok()?;
+        Some(self.by_edge[i].1)
     }
 }
 
@@ -336,11 +382,16 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
             steiner[g as usize - n0]
         }
     };
-    let worst = |s: usize, p: P2, steiner: &[P2]| -> f64 {
+    let corners = |s: usize, t: u32, p: P2, steiner: &[P2]| {
         let g = (n0 + s) as u32;
+        tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) })
+    };
+    // the largest angle of node `s`'s triangles with `s` at `p` (infinite when one is not
+    // positive)
+    let worst = |s: usize, p: P2, steiner: &[P2]| -> f64 {
         let mut w = 0.0f64;
         for &t in &incident[s] {
-            let c = tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) });
+            let c = corners(s, t, p, steiner);
             if orient2d(c[0], c[1], c[2]) <= 0.0 {
                 return f64::INFINITY;
             }
@@ -348,9 +399,41 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
         }
         w
     };
+    // exactly `worst(s, p, steiner) < before`, the angles mostly compared by their cosines
+    let improves = |s: usize, p: P2, steiner: &[P2], before: f64| -> bool {
+        let limit = crate::quality::AngleLimit::new(before);
+        for &t in &incident[s] {
+            let c = corners(s, t, p, steiner);
+            if orient2d(c[0], c[1], c[2]) <= 0.0 {
+                return false;
+            }
+            // (a NaN angle is passed over by the maximum in `worst`)
+            if !limit.triangle_below(c[0], c[1], c[2])
+                && !crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]).is_nan()
+            {
+                return false;
+            }
+        }
+        0.0 < before
+    };
+    // a node tried and left where it was is tried again only once one of its neighbours
+    // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
+    // `settled[s]` the moves before s was last left (plus one; 0: not settled)
+    let (mut moves, mut moved, mut settled) =
+        (0u64, vec![0u64; steiner.len()], vec![0u64; steiner.len()]);
     for _ in 0..SMOOTHING_SWEEPS {
         for s in 0..steiner.len() {
             let g = (n0 + s) as u32;
+            if settled[s] != 0 {
+                let still = incident[s].iter().all(|&t| {
+                    tris[t as usize].iter().all(|&v| {
+                        (v as usize) < n0 || v == g || moved[v as usize - n0] < settled[s]
+                    })
+                });
+                if still {
+                    continue;
+                }
+            }
             let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
             for &t in &incident[s] {
                 for &v in &tris[t as usize] {
@@ -368,13 +451,17 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
             let old = steiner[s];
             let centroid = [sx / k, sy / k];
             let before = worst(s, old, steiner);
+            settled[s] = moves + 1;
             for f in [1.0, 0.5, 0.25] {
                 let p = [
                     old[0] + f * (centroid[0] - old[0]),
                     old[1] + f * (centroid[1] - old[1]),
                 ];
-                if worst(s, p, steiner) < before {
+                if improves(s, p, steiner, before) {
                     steiner[s] = p;
+                    moves += 1;
+                    moved[s] = moves;
+                    settled[s] = 0;
                     break;
                 }
             }
@@ -418,6 +505,8 @@ pub(crate) fn fill_with_peeling(
     rounds: u32,
 ) -> Result<PeeledFill, AfsfError> {
     let mut region = Region::new(cells, facets, pos.len());
+    let peelable = Peelable::new(cells, pos);
+    let limit = crate::quality::AngleLimit::new(max_angle_deg);
     let mut peeled: Vec<u32> = Vec::new();
     let mut round = 0;
     loop {
@@ -439,38 +528,80 @@ pub(crate) fn fill_with_peeling(
                 steiner[g as usize - pos.len()]
             }
         };
-        let mut bad_node = vec![false; pos.len()];
-        let mut any = false;
-        for t in &tris {
-            if crate::quality::max_triangle_angle_deg(at(t[0]), at(t[1]), at(t[2])) >= max_angle_deg
-            {
-                for &g in t {
-                    if (g as usize) < pos.len() {
-                        bad_node[g as usize] = true;
-                        any = true;
-                    }
-                }
-            }
-        }
-        if !any {
+        // (the cosines clear nearly every triangle; the angle decides the others)
+        let bad = |a, b, c| {
+            !limit.triangle_below(a, b, c)
+                && crate::quality::max_triangle_angle_deg(a, b, c) >= max_angle_deg
+        };
+        let bad_nodes: Vec<u32> = tris
+            .iter()
+            .filter(|t| bad(at(t[0]), at(t[1]), at(t[2])))
+            .flat_map(|t| t.iter().copied().filter(|&g| (g as usize) < pos.len()))
+            .collect();
+        if bad_nodes.is_empty() {
             return Ok((tris, steiner, peeled.len()));
         }
         let before = peeled.len();
-        for (ci, c) in cells.iter_mut().enumerate() {
-            if c.len == 0
-                || c.layer == 0
-                || !c.corners().iter().any(|&g| bad_node[g as usize])
-                || edge_ratio(c, pos) > PEEL_MAX_EDGE_RATIO
-            {
+        for ci in peelable.touching(&bad_nodes) {
+            let c = &mut cells[ci as usize];
+            if c.len == 0 {
                 continue;
             }
-            peeled.push(ci as u32);
+            peeled.push(ci);
             c.len = 0;
         }
         if peeled.len() == before {
             return Ok((tris, steiner, peeled.len()));
         }
         region.peel(cells, &peeled[before..]);
+    }
+}
+
+/// The cells a peel round may take (alive at the start, above the first layer, edge ratio at
+/// most [`PEEL_MAX_EDGE_RATIO`]), by corner node: a round looks only at the cells around the
+/// nodes of its bad triangles instead of every cell.
+struct Peelable {
+    /// `cells[start[g]..start[g + 1]]` are the peelable cells with corner `g`, increasing.
+    start: Vec<u32>,
+    cells: Vec<u32>,
+}
+
+impl Peelable {
+    fn new(cells: &[Cell], pos: &[P2]) -> Self {
+        let ok = |c: &Cell| c.len > 0 && c.layer != 0 && edge_ratio(c, pos) <= PEEL_MAX_EDGE_RATIO;
+        let mut start = vec![0u32; pos.len() + 1];
+        for c in cells.iter().filter(|c| ok(c)) {
+            for &g in c.corners() {
+                start[g as usize + 1] += 1;
+            }
+        }
+        for g in 0..pos.len() {
+            start[g + 1] += start[g];
+        }
+        let mut fill = start.clone();
+        let mut of_node = vec![0u32; start[pos.len()] as usize];
+        for (ci, c) in cells.iter().enumerate().filter(|(_, c)| ok(c)) {
+            for &g in c.corners() {
+                of_node[fill[g as usize] as usize] = ci as u32;
+                fill[g as usize] += 1;
+            }
+        }
+        Peelable {
+            start,
+            cells: of_node,
+        }
+    }
+
+    /// The peelable cells with a corner among `nodes`, increasing, once each.
+    fn touching(&self, nodes: &[u32]) -> Vec<u32> {
+        let mut found: Vec<u32> = Vec::new();
+        for &g in nodes {
+            let g = g as usize;
+            found.extend(&self.cells[self.start[g] as usize..self.start[g + 1] as usize]);
+        }
+        found.sort_unstable();
+        found.dedup();
+        found
     }
 }
 
