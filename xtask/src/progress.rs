@@ -29,3 +29,19 @@ impl Drop for Stage {
         self.0.finish_and_clear();
     }
 }
+
+/// Runs `work` as a stage named `what` (its spinner on stderr unless `quiet`) and records its
+/// time in seconds under `key` in `timings`.
+pub fn timed<T>(
+    quiet: bool,
+    what: &str,
+    (key, timings): (&'static str, &mut std::collections::BTreeMap<&'static str, f64>),
+    work: impl FnOnce() -> T,
+) -> T {
+    let t = std::time::Instant::now();
+    let progress = stage(quiet, what);
+    let out = work();
+    drop(progress);
+    timings.insert(key, t.elapsed().as_secs_f64());
+    out
+}
