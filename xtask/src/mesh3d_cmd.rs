@@ -67,9 +67,11 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     let measures = timed(quiet, "measures", ("measure", t), || {
         pipeline3d::measure(&surface, &grown, &mesh, case.layers.layers)
     });
-    timed(quiet, "validation", ("validate", t), || {
+    let mut timings = std::mem::take(&mut report.timings_s);
+    timed(quiet, "validation", ("validate", &mut timings), || {
         report.describe_3d(&mesh, &measures)
     });
+    report.timings_s = timings;
     report.layers = Some(case.layers.layers as u32);
     report.notes.push(
         "a near-body mesh: the domain is the region the layers cover, its outer boundary \
