@@ -78,7 +78,11 @@ const FILES: &[(&str, &str)] = &[
 
 /// The text of built-in case `name`, if there is one.
 pub fn case_text(name: &str) -> Option<&'static str> {
-    CASES.iter().chain(CASES_3D).find(|c| c.0 == name).map(|c| c.2)
+    CASES
+        .iter()
+        .chain(CASES_3D)
+        .find(|c| c.0 == name)
+        .map(|c| c.2)
 }
 
 /// The names of the built-in 2D cases (what `bench`, `move` and the 2D tests run).

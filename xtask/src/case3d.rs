@@ -123,7 +123,9 @@ pub(crate) fn parse(
 ) -> Result<Case3d> {
     let file: CaseFile3d = crate::case::from_toml(text, origin)?;
     let Some(keys) = file.surface else {
-        bail!("{origin}: no [surface]: a 3D case needs builtin = \"sphere\" | \"cube\" | \"step\" or file = \"body.stl\"");
+        bail!(
+            "{origin}: no [surface]: a 3D case needs builtin = \"sphere\" | \"cube\" | \"step\" or file = \"body.stl\""
+        );
     };
     let surface = surface_source(&keys, files, origin)?;
     let mut layers = afsf3d::LayerParams::default();
@@ -183,7 +185,9 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
         (None, Some(name)) => {
             let path = match files {
                 FileSource::Dir(dir) => dir.join(name),
-                FileSource::Builtin => bail!("{at}: file = {name:?}: a built-in case names no file"),
+                FileSource::Builtin => {
+                    bail!("{at}: file = {name:?}: a built-in case names no file")
+                }
             };
             (SurfaceSource::File(path), &[])
         }

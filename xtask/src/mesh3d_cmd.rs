@@ -115,11 +115,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
         total,
     };
     let report_path = commit(plan, &run, &mut report)?;
-    Ok(report.finish(
-        report_path.as_deref(),
-        quiet,
-        "the mesh was written but",
-    ))
+    Ok(report.finish(report_path.as_deref(), quiet, "the mesh was written but"))
 }
 
 /// Refuses the flags of 2D runs that mean nothing in 3D, before any work.

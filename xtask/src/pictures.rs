@@ -235,7 +235,12 @@ pub fn draw_slices(
                 values: cut
                     .cell_of
                     .iter()
-                    .map(|i| shapes.iter().position(|&s| s == of_cell(i).ty.shape).unwrap_or(4) as u32)
+                    .map(|i| {
+                        shapes
+                            .iter()
+                            .position(|&s| s == of_cell(i).ty.shape)
+                            .unwrap_or(4) as u32
+                    })
                     .collect(),
                 names: shapes.iter().map(|s| s.name().to_string()).collect(),
                 label: "cell type".into(),

@@ -35,7 +35,10 @@ impl Drop for Stage {
 pub fn timed<T>(
     quiet: bool,
     what: &str,
-    (key, timings): (&'static str, &mut std::collections::BTreeMap<&'static str, f64>),
+    (key, timings): (
+        &'static str,
+        &mut std::collections::BTreeMap<&'static str, f64>,
+    ),
     work: impl FnOnce() -> T,
 ) -> T {
     let t = std::time::Instant::now();

@@ -93,7 +93,11 @@ pub fn table(r: &Report) -> String {
         let _ = writeln!(s, "  {:<22} {:>12.6e}", "area", a);
     }
     if let Some(q) = &r.quality_3d {
-        let _ = writeln!(s, "  {:<22} {:>12.1}", "max dihedral (deg)", q.max_dihedral_deg);
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12.1}",
+            "max dihedral (deg)", q.max_dihedral_deg
+        );
         for h in &q.histograms {
             let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
             let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();

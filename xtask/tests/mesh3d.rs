@@ -63,15 +63,27 @@ fn mesh_case(dir: &Path, file: &str, stem: &str, layers: u64) -> serde_json::Val
     assert_eq!(r["layers"], layers, "{r}");
     assert_eq!(r["coverage"], 1.0, "{r}");
     assert!(r["problems"].as_array().unwrap().is_empty(), "{r}");
-    assert!(r["volume_check"]["relative_difference"].as_f64().unwrap() <= 1e-9, "{r}");
+    assert!(
+        r["volume_check"]["relative_difference"].as_f64().unwrap() <= 1e-9,
+        "{r}"
+    );
     let q = &r["quality"];
     assert!(q["max_dihedral_deg"].as_f64().unwrap() < 180.0, "{r}");
     assert_eq!(q["histograms"].as_array().unwrap().len(), 3, "{r}");
-    for key in ["surface", "check", "grow", "cut", "validate", "write", "total"] {
+    for key in [
+        "surface", "check", "grow", "cut", "validate", "write", "total",
+    ] {
         assert!(r["timings_s"][key].is_number(), "{key}: {r}");
     }
-    assert_eq!(r["boundary_groups"]["wall"].as_u64().unwrap() > 0, true, "{r}");
-    assert!(r["boundary_groups"]["farfield"].as_u64().unwrap() > 0, "{r}");
+    assert_eq!(
+        r["boundary_groups"]["wall"].as_u64().unwrap() > 0,
+        true,
+        "{r}"
+    );
+    assert!(
+        r["boundary_groups"]["farfield"].as_u64().unwrap() > 0,
+        "{r}"
+    );
     // the .msh reads back as the same mesh, with the groups fluid, wall and farfield
     let back = mesh_io::read_msh(&dir.join(&msh)).unwrap();
     let cells: u64 = ["tet", "pyramid", "prism", "hex"]
@@ -83,7 +95,11 @@ fn mesh_case(dir: &Path, file: &str, stem: &str, layers: u64) -> serde_json::Val
     for group in ["\"fluid\"", "\"wall\"", "\"farfield\""] {
         assert!(text.contains(group), "{group} missing in {msh}");
     }
-    assert!(std::fs::read(dir.join(&png)).unwrap().starts_with(b"\x89PNG"));
+    assert!(
+        std::fs::read(dir.join(&png))
+            .unwrap()
+            .starts_with(b"\x89PNG")
+    );
     assert!(std::fs::metadata(dir.join(&vtu)).unwrap().len() > 0);
     r
 }
@@ -93,10 +109,22 @@ fn built_in_surfaces_are_meshed_end_to_end() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let layers = "first_height = 0.01\ngrowth = 1.2\nmax_layers = 3";
-    let sphere = case(d, "sphere", "builtin = \"sphere\"\nrefinement = 1", layers, "mixed");
+    let sphere = case(
+        d,
+        "sphere",
+        "builtin = \"sphere\"\nrefinement = 1",
+        layers,
+        "mixed",
+    );
     let r = mesh_case(d, &sphere, "sphere", 3);
     assert_eq!(r["cells"]["prism"], 3 * 80, "{r}");
-    let cube = case(d, "cube", "builtin = \"cube\"\ndivisions = 2", layers, "tets");
+    let cube = case(
+        d,
+        "cube",
+        "builtin = \"cube\"\ndivisions = 2",
+        layers,
+        "tets",
+    );
     let r = mesh_case(d, &cube, "cube", 3);
     assert_eq!(r["cells"]["hex"], 0, "{r}");
     assert!(r["cells"]["tet"].as_u64().unwrap() > 0, "{r}");
@@ -112,8 +140,16 @@ fn built_in_surfaces_are_meshed_end_to_end() {
     let o = run(
         d,
         &[
-            &sphere, "--out", "x.msh", "--png", "x.png@-0.2,0.8,0.2,1.1", "--slice", "x=0.01",
-            "--colour", "layer", "--quiet",
+            &sphere,
+            "--out",
+            "x.msh",
+            "--png",
+            "x.png@-0.2,0.8,0.2,1.1",
+            "--slice",
+            "x=0.01",
+            "--colour",
+            "layer",
+            "--quiet",
         ],
     );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
@@ -172,11 +208,25 @@ fn an_stl_torus_is_meshed_and_bad_stl_files_are_refused() {
         std::fs::write(b.join(format!("{name}.stl")), stl).unwrap();
         let file = case(b, name, &format!("file = \"{name}.stl\""), layers, "mixed");
         let before = files(b);
-        let o = run(b, &[&file, "--out", "out/x.msh", "--report", "out/x.json", "--png", "p.png"]);
+        let o = run(
+            b,
+            &[
+                &file,
+                "--out",
+                "out/x.msh",
+                "--report",
+                "out/x.json",
+                "--png",
+                "p.png",
+            ],
+        );
         assert_eq!(o.status.code(), Some(1), "{name}: {}", stderr(&o));
         let e = stderr(&o);
         assert_eq!(e.trim_end().lines().count(), 1, "{e}");
-        assert!(e.contains(says) && e.contains(&format!("{name}.stl")), "{e}");
+        assert!(
+            e.contains(says) && e.contains(&format!("{name}.stl")),
+            "{e}"
+        );
         assert_eq!(files(b), before, "{name}: a file was left behind");
     }
 }
@@ -186,17 +236,35 @@ fn what_3d_does_not_do_yet_is_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let layers = "max_layers = 2";
-    let sphere = case(d, "s", "builtin = \"sphere\"\nrefinement = 1", layers, "mixed");
+    let sphere = case(
+        d,
+        "s",
+        "builtin = \"sphere\"\nrefinement = 1",
+        layers,
+        "mixed",
+    );
     let with_order = std::fs::read_to_string(d.join(&sphere)).unwrap() + "\n[curving]\norder = 2\n";
     std::fs::write(d.join("p2.toml"), with_order).unwrap();
     let before = files(d);
     for (args, says) in [
         (vec!["p2.toml"], "P2 in 3D is not yet available"),
-        (vec![sphere.as_str(), "--order", "3"], "P3 in 3D is not yet available"),
-        (vec![sphere.as_str(), "--triangles"], "--triangles applies to 2D"),
+        (
+            vec![sphere.as_str(), "--order", "3"],
+            "P3 in 3D is not yet available",
+        ),
+        (
+            vec![sphere.as_str(), "--triangles"],
+            "--triangles applies to 2D",
+        ),
         (vec![sphere.as_str(), "--out", "a.su2"], ".msh or .vtu"),
-        (vec![sphere.as_str(), "--png", "a.png", "--slice", "w=1"], "x=C, y=C or z=C"),
-        (vec!["naca0012", "--slice", "z=0", "--png", "a.png"], "applies to 3D cases"),
+        (
+            vec![sphere.as_str(), "--png", "a.png", "--slice", "w=1"],
+            "x=C, y=C or z=C",
+        ),
+        (
+            vec!["naca0012", "--slice", "z=0", "--png", "a.png"],
+            "applies to 3D cases",
+        ),
     ] {
         let o = run(d, &args);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
@@ -204,7 +272,9 @@ fn what_3d_does_not_do_yet_is_refused_in_one_line() {
         assert_eq!(e.trim_end().lines().count(), 1, "{e}");
         assert!(e.contains(says), "{args:?}: {e}");
     }
-    let bad_key = std::fs::read_to_string(d.join(&sphere)).unwrap().replace("[cut]", "[cut]\nfoo = 1");
+    let bad_key = std::fs::read_to_string(d.join(&sphere))
+        .unwrap()
+        .replace("[cut]", "[cut]\nfoo = 1");
     std::fs::write(d.join("k.toml"), bad_key).unwrap();
     let o = run(d, &["k.toml"]);
     assert_eq!(o.status.code(), Some(1));

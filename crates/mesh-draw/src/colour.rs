@@ -271,7 +271,13 @@ fn category_colours(values: &[u32], names: &[String], label: &str) -> CellColour
     let colour = |i: usize| map_colour(i as f64 / n.saturating_sub(1).max(1) as f64);
     let per_cell = values
         .iter()
-        .map(|&v| Some(if (v as usize) < n { colour(v as usize) } else { NO_VALUE }))
+        .map(|&v| {
+            Some(if (v as usize) < n {
+                colour(v as usize)
+            } else {
+                NO_VALUE
+            })
+        })
         .collect();
     let ticks = names
         .iter()

@@ -57,7 +57,11 @@ pub fn slice(mesh: &Mesh, plane: Plane) -> Result<Sliced, DrawError> {
         let c = mesh.cells.get(i);
         let polygon = cut.polygon(c.ty.shape, c.corners());
         for piece in split(&polygon) {
-            let shape = if piece.len() == 3 { Shape::Tri } else { Shape::Quad };
+            let shape = if piece.len() == 3 {
+                Shape::Tri
+            } else {
+                Shape::Quad
+            };
             cut.out.cells.push(CellType::new(shape, 1), &piece);
             cell_of.push(i as u32);
             if layered {
@@ -76,7 +80,9 @@ pub fn slice(mesh: &Mesh, plane: Plane) -> Result<Sliced, DrawError> {
         let crossing = cut.crossings(f.ty.shape, f.corners());
         if let [a, b] = crossing[..] {
             if a != b {
-                cut.out.boundary.push(CellType::new(Shape::Line, 1), &[a, b]);
+                cut.out
+                    .boundary
+                    .push(CellType::new(Shape::Line, 1), &[a, b]);
                 cut.out.boundary_patch.push(patch);
             }
         }
@@ -117,7 +123,10 @@ impl Cutter<'_> {
         if let Some(&p) = self.points.get(&key) {
             return p;
         }
-        let (pa, pb) = (self.mesh.nodes[key.0 as usize], self.mesh.nodes[key.1 as usize]);
+        let (pa, pb) = (
+            self.mesh.nodes[key.0 as usize],
+            self.mesh.nodes[key.1 as usize],
+        );
         let t = if key.0 == key.1 { 0.0 } else { ha / (ha - hb) };
         let x: [f64; 3] = std::array::from_fn(|d| pa[d] + t * (pb[d] - pa[d]));
         let (u, v) = ((self.plane.axis + 1) % 3, (self.plane.axis + 2) % 3);
@@ -154,9 +163,9 @@ impl Cutter<'_> {
         // a convex section: its corners in order of their angle about the centroid
         let xy = |q: u32| self.out.nodes[q as usize];
         let n = p.len() as f64;
-        let c = p.iter().fold([0.0; 2], |s, &q| {
-            [s[0] + xy(q)[0] / n, s[1] + xy(q)[1] / n]
-        });
+        let c = p
+            .iter()
+            .fold([0.0; 2], |s, &q| [s[0] + xy(q)[0] / n, s[1] + xy(q)[1] / n]);
         let angle = |q: u32| (xy(q)[1] - c[1]).atan2(xy(q)[0] - c[0]);
         p.sort_by(|&a, &b| angle(a).total_cmp(&angle(b)));
         let pts: Vec<[f64; 2]> = p.iter().map(|&q| [xy(q)[0], xy(q)[1]]).collect();
@@ -203,8 +212,10 @@ mod tests {
             m.nodes
                 .extend([[0.0, 0.0, z], [1.0, 0.0, z], [1.0, 1.0, z], [0.0, 1.0, z]]);
         }
-        m.cells.push(CellType::new(Shape::Hex, 1), &[0, 1, 2, 3, 4, 5, 6, 7]);
-        m.boundary.push(CellType::new(Shape::Quad, 1), &[0, 1, 5, 4]);
+        m.cells
+            .push(CellType::new(Shape::Hex, 1), &[0, 1, 2, 3, 4, 5, 6, 7]);
+        m.boundary
+            .push(CellType::new(Shape::Quad, 1), &[0, 1, 5, 4]);
         m.boundary_patch.push(0);
         m.patches.push(Patch {
             name: "wall".into(),
@@ -221,7 +232,11 @@ mod tests {
         assert_eq!(s.mesh.boundary.len(), 1);
         let angle = mesh_model::measure::cell_max_angle_deg(&s.mesh, 0);
         assert!((angle - 90.0).abs() < 1e-9);
-        assert!(mesh_model::validate(&s.mesh).iter().all(|p| !p.is_structural()));
+        assert!(
+            mesh_model::validate(&s.mesh)
+                .iter()
+                .all(|p| !p.is_structural())
+        );
     }
 
     #[test]
@@ -235,7 +250,13 @@ mod tests {
         let on_face = slice(&cube(), Plane { axis: 2, at: 0.0 });
         assert!(on_face.is_err(), "a plane through a face cuts nothing");
         assert!(slice(&cube(), Plane { axis: 0, at: 2.0 }).is_err());
-        assert_eq!(split(&[0, 1, 2, 3, 4, 5]), vec![vec![0, 1, 2, 3], vec![0, 3, 4, 5]]);
-        assert_eq!(split(&[0, 1, 2, 3, 4]), vec![vec![0, 1, 2, 3], vec![0, 3, 4]]);
+        assert_eq!(
+            split(&[0, 1, 2, 3, 4, 5]),
+            vec![vec![0, 1, 2, 3], vec![0, 3, 4, 5]]
+        );
+        assert_eq!(
+            split(&[0, 1, 2, 3, 4]),
+            vec![vec![0, 1, 2, 3], vec![0, 3, 4]]
+        );
     }
 }

@@ -164,10 +164,13 @@ mod tests {
             [1.0, 1.0, 1.0],
             [0.0, 1.0, 1.0],
         ];
-        m.cells.push(CellType::new(Shape::Hex, 1), &[0, 1, 2, 3, 4, 5, 6, 7]);
+        m.cells
+            .push(CellType::new(Shape::Hex, 1), &[0, 1, 2, 3, 4, 5, 6, 7]);
         m.cells.push(CellType::new(Shape::Tet, 1), &[0, 1, 3, 4]);
-        m.cells.push(CellType::new(Shape::Prism, 1), &[0, 1, 3, 4, 5, 7]);
-        m.cells.push(CellType::new(Shape::Pyramid, 1), &[0, 1, 2, 3, 4]);
+        m.cells
+            .push(CellType::new(Shape::Prism, 1), &[0, 1, 3, 4, 5, 7]);
+        m.cells
+            .push(CellType::new(Shape::Pyramid, 1), &[0, 1, 2, 3, 4]);
         let v: Vec<f64> = (0..4).map(|i| cell_volume(&m, i)).collect();
         for (got, want) in v.iter().zip([1.0, 1.0 / 6.0, 0.5, 1.0 / 3.0]) {
             assert!((got - want).abs() < 1e-14, "{v:?}");
@@ -177,7 +180,12 @@ mod tests {
 
     #[test]
     fn angles_and_bins() {
-        let sq = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let sq = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
         assert!((polygon_max_angle_deg(&sq) - 90.0).abs() < 1e-12);
         assert!((angle_deg([1.0, 0.0, 0.0], [0.0, 0.0, 2.0]) - 90.0).abs() < 1e-12);
         assert_eq!(
