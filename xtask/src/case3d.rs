@@ -130,13 +130,8 @@ pub(crate) fn parse(
     let surface = surface_source(&keys, files, origin)?;
     let mut layers = afsf3d::LayerParams::default();
     let l = &file.layers;
-    if let Some(h) = l.first_height {
-        ensure!(
-            h.is_finite() && h > 0.0,
-            "{origin}: [layers] first_height = {h}: must be positive"
-        );
-        layers.first_height = h;
-    }
+    let at = format!("{origin}: [layers]");
+    layers.first_height = positive(l.first_height, layers.first_height, &at, "first_height")?;
     if let Some(g) = l.growth {
         ensure!(
             g.is_finite() && (1.0..=10.0).contains(&g),
@@ -161,6 +156,17 @@ pub(crate) fn parse(
         cells: file.cut.cells.unwrap_or(CutCells::Mixed),
         order,
     })
+}
+
+/// `value` (or `default` when not given), refused with one line naming `at` and `key` unless
+/// finite and positive.
+fn positive(value: Option<f64>, default: f64, at: &str, key: &str) -> Result<f64> {
+    let v = value.unwrap_or(default);
+    ensure!(
+        v.is_finite() && v > 0.0,
+        "{at} {key} = {v}: must be positive"
+    );
+    Ok(v)
 }
 
 /// Refuses any order but 1 in 3D, naming `what` (the key or the flag).
@@ -193,11 +199,7 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
         }
         (Some(b), None) => match b.as_str() {
             "sphere" => {
-                let radius = k.radius.unwrap_or(1.0);
-                ensure!(
-                    radius.is_finite() && radius > 0.0,
-                    "{at} radius = {radius}: must be positive"
-                );
+                let radius = positive(k.radius, 1.0, &at, "radius")?;
                 let refinement = k.refinement.unwrap_or(3);
                 ensure!(
                     refinement <= MAX_SPHERE_REFINEMENT,
@@ -209,11 +211,7 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
                 )
             }
             "cube" => {
-                let size = k.size.unwrap_or(1.0);
-                ensure!(
-                    size.is_finite() && size > 0.0,
-                    "{at} size = {size}: must be positive"
-                );
+                let size = positive(k.size, 1.0, &at, "size")?;
                 let divisions = k.divisions.unwrap_or(8);
                 ensure!(
                     (1..=MAX_VOXEL_DIVISIONS).contains(&divisions),

@@ -14,7 +14,7 @@ use mesh_io::Format;
 use crate::case3d::{Case3d, check_order};
 use crate::cli::MeshArgs;
 use crate::mesh_cmd::{OutputFlags, Run, commit, plan_with, write_meshes};
-use crate::progress::{stage, timed};
+use crate::progress::timed;
 use crate::report::Report;
 use crate::{Finished, pictures, pipeline3d};
 
@@ -51,27 +51,25 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
         .timings_s
         .insert("setup", total.elapsed().as_secs_f64());
     let quiet = args.quiet;
-    let t = &mut report.timings_s;
-    let surface = timed(quiet, "wall surface", ("surface", t), || {
+    let r = &mut report;
+    let surface = timed(r, quiet, ("surface", "wall surface"), |_| {
         pipeline3d::surface(case)
     })?;
-    timed(quiet, "surface check", ("check", t), || {
+    timed(r, quiet, ("check", "surface check"), |_| {
         pipeline3d::check_surface(case, &surface)
     })?;
-    let grown = timed(quiet, "layers (AFSF 3D)", ("grow", t), || {
+    let grown = timed(r, quiet, ("grow", "layers (AFSF 3D)"), |_| {
         pipeline3d::grow(case, &surface)
     })?;
-    let mesh = timed(quiet, "cut into standard cells", ("cut", t), || {
+    let mesh = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
         pipeline3d::cut(case, &grown)
     })?;
-    let measures = timed(quiet, "measures", ("measure", t), || {
+    let measures = timed(r, quiet, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &mesh, case.layers.layers)
     });
-    let mut timings = std::mem::take(&mut report.timings_s);
-    timed(quiet, "validation", ("validate", &mut timings), || {
-        report.describe_3d(&mesh, &measures)
+    timed(r, quiet, ("validate", "validation"), |r| {
+        r.describe_3d(&mesh, &measures)
     });
-    report.timings_s = timings;
     report.layers = Some(case.layers.layers as u32);
     report.notes.push(
         "a near-body mesh: the domain is the region the layers cover, its outer boundary \
@@ -89,24 +87,14 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
                 .into(),
         );
     }
-    let t = Instant::now();
-    let progress = stage(quiet, "writing");
-    write_meshes(&mut plan, &mesh, &mut report)?;
-    report.timings_s.insert("write", t.elapsed().as_secs_f64());
-    let t = Instant::now();
-    pictures::draw_slices(
-        &mesh,
-        &plan.pictures,
-        &args.pictures,
-        plane,
-        &case.name,
-        &mut plan.outputs,
-    )?;
-    drop(progress);
+    timed(&mut report, quiet, ("write", "writing"), |r| {
+        write_meshes(&mut plan, &mesh, r)
+    })?;
     if !plan.pictures.is_empty() {
-        report
-            .timings_s
-            .insert("pictures", t.elapsed().as_secs_f64());
+        timed(&mut report, quiet, ("pictures", "pictures"), |_| {
+            let (pictures, outputs) = (&plan.pictures, &mut plan.outputs);
+            pictures::draw_slices(&mesh, pictures, &args.pictures, plane, &case.name, outputs)
+        })?;
     }
     let run = Run {
         pictures: &args.pictures,

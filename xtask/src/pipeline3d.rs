@@ -7,7 +7,7 @@
 use anyhow::{Context, Result};
 use geom_surface::Surface;
 use mesh_model::measure3d;
-use mesh_model::{Mesh, Shape};
+use mesh_model::{Mesh, Role, Shape};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -96,8 +96,9 @@ pub struct Measures3d {
     pub cells: [(&'static str, usize); 4],
     /// Sum of the cell volumes.
     pub volume: f64,
-    /// The volume between the wall and the final front (front's enclosed volume minus the
-    /// wall's), measured on the two surfaces alone.
+    /// The volume between the wall and the final front: the volume the front's facets
+    /// enclose minus the wall's, by the divergence theorem over the mesh's boundary facets
+    /// alone (the front as the cut triangulates it), independent of the cells.
     pub volume_between: f64,
     /// The smallest cell volume.
     pub min_cell_volume: f64,
@@ -136,7 +137,7 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
             ("hex", count(Shape::Hex)),
         ],
         volume: volumes.iter().sum(),
-        volume_between: grown.front.enclosed_volume() - wall.enclosed_volume(),
+        volume_between: enclosed(mesh, Role::Farfield) + enclosed(mesh, Role::Wall),
         min_cell_volume: volumes.iter().copied().fold(f64::INFINITY, f64::min),
         max_dihedral_deg: dihedral.iter().copied().fold(0.0, f64::max),
         coverage: full as f64 / grown.columns.len().max(1) as f64,
@@ -160,6 +161,22 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
             ),
         ],
     }
+}
+
+/// The volume the boundary facets of `role` enclose, by the divergence theorem (facets turned
+/// out of the domain, so a wall's is negative), each facet fanned from its centroid.
+fn enclosed(mesh: &Mesh, role: Role) -> f64 {
+    let o = mesh.nodes.first().copied().unwrap_or_default();
+    let mut points = Vec::with_capacity(4);
+    let mut sum = 0.0;
+    for (f, &p) in mesh.boundary.iter().zip(&mesh.boundary_patch) {
+        if mesh.patches[p as usize].role == role {
+            points.clear();
+            points.extend(f.corners().iter().map(|&v| mesh.nodes[v as usize]));
+            sum += measure3d::cone_volume6(&points, o);
+        }
+    }
+    sum / 6.0
 }
 
 /// The largest corner angle of every facet of the fronts of layers 1 to n, and the deviation

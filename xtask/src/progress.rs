@@ -30,21 +30,18 @@ impl Drop for Stage {
     }
 }
 
-/// Runs `work` as a stage named `what` (its spinner on stderr unless `quiet`) and records its
-/// time in seconds under `key` in `timings`.
+/// Runs `work` on `report` as a stage shown as `what` (its spinner on stderr unless `quiet`)
+/// and records its time in seconds in the report's timings under `key`.
 pub fn timed<T>(
+    report: &mut crate::report::Report,
     quiet: bool,
-    what: &str,
-    (key, timings): (
-        &'static str,
-        &mut std::collections::BTreeMap<&'static str, f64>,
-    ),
-    work: impl FnOnce() -> T,
+    (key, what): (&'static str, &str),
+    work: impl FnOnce(&mut crate::report::Report) -> T,
 ) -> T {
     let t = std::time::Instant::now();
     let progress = stage(quiet, what);
-    let out = work();
+    let out = work(report);
     drop(progress);
-    timings.insert(key, t.elapsed().as_secs_f64());
+    report.timings_s.insert(key, t.elapsed().as_secs_f64());
     out
 }

@@ -434,7 +434,8 @@ pub struct Quality3d {
 /// The volume check of a 3D report.
 #[derive(Debug, Serialize)]
 pub struct VolumeCheck {
-    /// The final front's enclosed volume minus the wall's (divergence theorem over each).
+    /// The volume the final front encloses minus the wall's: the divergence theorem over the
+    /// mesh's boundary facets (`farfield` and `wall`), independent of the cells.
     pub between_wall_and_front: f64,
     /// |sum of cell volumes − that| / that.
     pub relative_difference: f64,
