@@ -68,6 +68,8 @@ pub const DIHEDRAL_EDGES: [f64; 4] = [90.0, 130.0, 150.0, 160.0];
 /// A histogram of the report: counts in `(-∞, e₀], (e₀, e₁], …, (eₙ₋₁, 180]`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Histogram {
+    /// A short name.
+    pub name: &'static str,
     /// What is counted.
     pub of: &'static str,
     /// The bins' upper edges, degrees (the last bin runs to 180).
@@ -79,8 +81,9 @@ pub struct Histogram {
 }
 
 impl Histogram {
-    fn new(of: &'static str, edges: &[f64], values: &[f64]) -> Histogram {
+    fn new((name, of): (&'static str, &'static str), edges: &[f64], values: &[f64]) -> Histogram {
         Histogram {
+            name,
             of,
             upper_edges_deg: edges.to_vec(),
             counts: measure3d::histogram(values.iter().copied(), edges),
@@ -143,19 +146,28 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
         coverage: full as f64 / grown.columns.len().max(1) as f64,
         histograms: [
             Histogram::new(
-                "largest corner angle of every front facet grown (layers 1 to n; \
-                 dissertation table 5)",
+                (
+                    "front facet max angle",
+                    "largest corner angle of every front facet grown (layers 1 to n; \
+                     dissertation table 5)",
+                ),
                 &FRONT_ANGLE_EDGES,
                 &front_angles,
             ),
             Histogram::new(
-                "angle between each extrusion edge and the angle-weighted normal of the \
-                 front it grew from (dissertation table 6)",
+                (
+                    "extrusion edge deviation",
+                    "angle between each extrusion edge and the angle-weighted normal of the \
+                     front it grew from (dissertation table 6)",
+                ),
                 &DEVIATION_EDGES,
                 &deviations,
             ),
             Histogram::new(
-                "largest dihedral angle of every tetrahedron (dissertation table 7)",
+                (
+                    "tet max dihedral",
+                    "largest dihedral angle of every tetrahedron (dissertation table 7)",
+                ),
                 &DIHEDRAL_EDGES,
                 &dihedral,
             ),

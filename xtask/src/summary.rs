@@ -101,10 +101,10 @@ pub fn table(r: &Report) -> String {
         for h in &q.histograms {
             let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
             let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();
-            let what = h.of.split(" (").next().unwrap_or(h.of);
             let _ = writeln!(
                 s,
-                "  {what}: {} (bins up to {} deg, then above; max {:.1})",
+                "  {:<22} {}  (up to {} deg, above; max {:.1})",
+                h.name,
                 bins.join(" / "),
                 edges.join(", "),
                 h.max_deg
