@@ -189,7 +189,8 @@ impl Report {
             .map(ToString::to_string)
             .collect();
         let difference = (m.volume - m.volume_between).abs() / m.volume_between.abs();
-        if !(difference <= VOLUME_TOLERANCE) {
+        // NaN (no volume between) fails too
+        if difference.is_nan() || difference > VOLUME_TOLERANCE {
             self.problems.push(format!(
                 "the cell volumes sum to {:e}, the volume between the wall and the final front \
                  is {:e} (relative difference {difference:e}, above {VOLUME_TOLERANCE:e})",

@@ -78,13 +78,12 @@ pub fn slice(mesh: &Mesh, plane: Plane) -> Result<Sliced, DrawError> {
     }
     for (f, &patch) in mesh.boundary.iter().zip(&mesh.boundary_patch) {
         let crossing = cut.crossings(f.ty.shape, f.corners());
+        // two distinct points (`crossings` lists each once): the facet's line in the plane
         if let [a, b] = crossing[..] {
-            if a != b {
-                cut.out
-                    .boundary
-                    .push(CellType::new(Shape::Line, 1), &[a, b]);
-                cut.out.boundary_patch.push(patch);
-            }
+            cut.out
+                .boundary
+                .push(CellType::new(Shape::Line, 1), &[a, b]);
+            cut.out.boundary_patch.push(patch);
         }
     }
     Ok(Sliced {
