@@ -22,6 +22,8 @@ merged children, cut by `topo-cut` to tetrahedra and to mixed cells (tetrahedra,
 prisms, hexahedra), linear and straight-sided P2. Gmsh reads every .msh: the counts of each
 element type of the right order, the physical groups `fluid`, `wall` and `farfield`, no warning,
 minSJ > 0 on every element, a positive volume; VTK reads every .vtu with the same counts.
+The built-in 3D cases (`--list` lines described "3D: ...") go through the same 3D checks,
+meshed by xtask to .msh and .vtu, their counts from the report.
 
 Usage: python3 tests/python/e2e.py XTASK_BINARY [CUT3D_BINARY]
 Ends with the line "N passed, M failed"; exit status 1 if any check failed.
@@ -237,6 +239,29 @@ def check_cut3d(cut3d, tmp):
         return
     meshes = [json.loads(l) for l in r.stdout.splitlines() if l.startswith("{")]
     check(len(meshes) == 8, f"cut3d wrote {len(meshes)} meshes, expected 8")
+    check_3d(meshes)
+
+
+def check_builtin_3d(xtask, names, tmp):
+    """The built-in 3D cases meshed by xtask (.msh and .vtu) read by Gmsh and VTK, their
+    counts checked against the report's."""
+    meshes = []
+    for name in names:
+        stem = os.path.join(tmp, f"{name}-3d")
+        r = subprocess.run([xtask, "mesh", name, "--quiet", "--out", stem + ".msh", "--out",
+                            stem + ".vtu", "--report", stem + ".json"],
+                           capture_output=True, text=True)
+        if check(r.returncode == 0, f"{name}: xtask exit {r.returncode}: {r.stderr.strip()}"):
+            rep = json.load(open(stem + ".json"))
+            meshes.append({"msh": stem + ".msh", "vtu": stem + ".vtu", "order": 1,
+                           "nodes": rep["nodes"], "cells": rep["cells"],
+                           "boundary_groups": rep["boundary_groups"]})
+    check_3d(meshes)
+
+
+def check_3d(meshes):
+    """Gmsh and VTK read each 3D mesh (`msh`, `vtu` or None, `order`, `nodes`, `cells` by
+    type, `boundary_groups`) with the same counts, and Gmsh finds every minSJ positive."""
     found = run_checkers([m["msh"] for m in meshes], [m["vtu"] for m in meshes if m["vtu"]], [])
     for m in meshes:
         label, order, cells = os.path.basename(m["msh"]), m["order"], m["cells"]
@@ -277,9 +302,12 @@ def check_cut3d(cut3d, tmp):
 
 def main(xtask, cut3d=None):
     start = time.monotonic()
-    names = [l.split()[0] for l in
-             subprocess.run([xtask, "mesh", "--list"], capture_output=True, text=True,
-                            check=True).stdout.splitlines() if l.strip()]
+    listed = [l.split(None, 1) for l in
+              subprocess.run([xtask, "mesh", "--list"], capture_output=True, text=True,
+                             check=True).stdout.splitlines() if l.strip()]
+    # the 3D cases (described "3D: ...") go through check_builtin_3d
+    names = [l[0] for l in listed if not l[1].startswith("3D:")]
+    names_3d = [l[0] for l in listed if l[1].startswith("3D:")]
     check(len(names) >= 4, "at least four built-in cases")
     check(all(c in names for c in REQUIRED_CASES), f"the cases {REQUIRED_CASES} are built in")
     with tempfile.TemporaryDirectory() as tmp:
@@ -344,6 +372,7 @@ def main(xtask, cut3d=None):
         check("panicked" not in r.stderr, "no panic")
         if cut3d:
             check_cut3d(cut3d, tmp)
+        check_builtin_3d(xtask, names_3d, tmp)
     end = time.monotonic()
     print(f"time: meshing {meshed - start:.1f} s, reading (Gmsh, VTK, PyFR side by side) "
           f"{read - meshed:.1f} s, total {end - start:.1f} s")

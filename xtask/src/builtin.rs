@@ -33,6 +33,25 @@ const CASES: &[(&str, &str, &str)] = &[
     ),
 ];
 
+/// The built-in 3D cases (`dimension = 3`), listed after the 2D ones.
+const CASES_3D: &[(&str, &str, &str)] = &[
+    (
+        "sphere",
+        "3D: unit sphere (1280 triangles), 30 layers from 1e-3, mixed cells",
+        include_str!("../../fixtures/cases/sphere.toml"),
+    ),
+    (
+        "cube",
+        "3D: unit cube (8x8 quads a face, sharp edges and corners), 30 layers, mixed cells",
+        include_str!("../../fixtures/cases/cube.toml"),
+    ),
+    (
+        "step",
+        "3D: 1x1x0.5 block with a 0.4x0.4x0.5 tower (90 deg concave edges), 15 layers from 2e-3",
+        include_str!("../../fixtures/cases/step.toml"),
+    ),
+];
+
 /// Data files named by the built-in cases, by the path written in the case file.
 const FILES: &[(&str, &str)] = &[
     (
@@ -59,17 +78,31 @@ const FILES: &[(&str, &str)] = &[
 
 /// The text of built-in case `name`, if there is one.
 pub fn case_text(name: &str) -> Option<&'static str> {
-    CASES.iter().find(|c| c.0 == name).map(|c| c.2)
+    CASES
+        .iter()
+        .chain(CASES_3D)
+        .find(|c| c.0 == name)
+        .map(|c| c.2)
 }
 
-/// The names of the built-in cases.
+/// The names of the built-in 2D cases (what `bench`, `move` and the 2D tests run).
 pub fn names() -> Vec<&'static str> {
     CASES.iter().map(|c| c.0).collect()
 }
 
-/// (name, description) of every built-in case.
+/// The names of the built-in 3D cases.
+pub fn names_3d() -> Vec<&'static str> {
+    CASES_3D.iter().map(|c| c.0).collect()
+}
+
+/// The names of every built-in case, 2D then 3D.
+pub fn all_names() -> Vec<&'static str> {
+    CASES.iter().chain(CASES_3D).map(|c| c.0).collect()
+}
+
+/// (name, description) of every built-in case, 2D then 3D.
 pub fn list() -> impl Iterator<Item = (&'static str, &'static str)> {
-    CASES.iter().map(|c| (c.0, c.1))
+    CASES.iter().chain(CASES_3D).map(|c| (c.0, c.1))
 }
 
 /// An embedded data file, by the path a built-in case gives.
@@ -92,5 +125,12 @@ mod tests {
             );
         }
         assert!(case_text(DEFAULT).is_some());
+        for name in names_3d() {
+            let case = crate::case::load_any(name);
+            assert!(
+                matches!(case, Ok(crate::case::AnyCase::Three(_))),
+                "{name}: {case:?}"
+            );
+        }
     }
 }

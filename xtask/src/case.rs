@@ -61,6 +61,8 @@ pub struct LoopInput {
 #[serde(deny_unknown_fields)]
 struct CaseFile {
     name: Option<String>,
+    /// 2 (the default) for this schema; 3 is read by [`crate::case3d`].
+    dimension: Option<u8>,
     #[serde(default)]
     inside: bool,
     #[serde(default)]
@@ -131,13 +133,13 @@ struct BoundaryKeys {
     medial_axis: Option<bool>,
 }
 
-/// `[layers]`: keys of `afsf2d::AfsfParams` (method.md §3).
+/// `[layers]`: keys of `afsf2d::AfsfParams` (method.md §3), and of `afsf3d::LayerParams` in 3D.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct LayerKeys {
-    first_height: Option<f64>,
-    growth: Option<f64>,
-    max_layers: Option<u32>,
+pub(crate) struct LayerKeys {
+    pub(crate) first_height: Option<f64>,
+    pub(crate) growth: Option<f64>,
+    pub(crate) max_layers: Option<u32>,
 }
 
 /// `[curving]`: the order, and keys of `vector_adding::CurvingParams` (method.md §4).
@@ -241,23 +243,44 @@ impl Case {
 }
 
 /// Where a case's relative file names are looked up.
-enum FileSource<'a> {
+pub(crate) enum FileSource<'a> {
     /// On disk, relative to the case file's folder.
     Dir(&'a Path),
     /// Embedded in the binary (built-in cases).
     Builtin,
 }
 
-/// Loads a case: `spec` is a path to a `.toml` file or the name of a built-in case.
+/// A 2D or a 3D case.
+#[derive(Debug, Clone)]
+pub enum AnyCase {
+    /// `dimension = 2` (the default).
+    Two(Case),
+    /// `dimension = 3`.
+    Three(crate::case3d::Case3d),
+}
+
+/// Loads a 2D case: `spec` is a path to a `.toml` file or the name of a built-in case; a 3D
+/// case is refused with one line.
 pub fn load(spec: &str) -> Result<Case> {
+    match load_any(spec)? {
+        AnyCase::Two(case) => Ok(case),
+        AnyCase::Three(case) => bail!(
+            "{}: a 3D case (dimension = 3): this command takes 2D cases only",
+            case.origin
+        ),
+    }
+}
+
+/// Loads a 2D or 3D case: `spec` is a path to a `.toml` file or the name of a built-in case.
+pub fn load_any(spec: &str) -> Result<AnyCase> {
     if let Some(text) = builtin::case_text(spec) {
-        return parse(text, spec, FileSource::Builtin, spec);
+        return parse_any(text, spec, FileSource::Builtin, spec);
     }
     let path = PathBuf::from(spec);
     if path.extension().is_none_or(|e| e != "toml") && !path.exists() {
         bail!(
             "'{spec}' is neither a built-in case ({}) nor a case file (.toml)",
-            builtin::names().join(", ")
+            builtin::all_names().join(", ")
         );
     }
     let text = std::fs::read_to_string(&path)
@@ -268,12 +291,31 @@ pub fn load(spec: &str) -> Result<Case> {
         .and_then(|s| s.to_str())
         .unwrap_or("case")
         .to_string();
-    parse(
+    parse_any(
         &text,
         &path.display().to_string(),
         FileSource::Dir(dir),
         &stem,
     )
+}
+
+/// The case in `text`: 3D when its top-level `dimension` is 3, else 2D.
+fn parse_any(
+    text: &str,
+    origin: &str,
+    files: FileSource<'_>,
+    default_name: &str,
+) -> Result<AnyCase> {
+    /// Reads `dimension` alone (every other key ignored here).
+    #[derive(Deserialize)]
+    struct Probe {
+        dimension: Option<toml::Value>,
+    }
+    let probe = toml::from_str::<Probe>(text).ok().and_then(|p| p.dimension);
+    if probe.and_then(|d| d.as_integer()) == Some(3) {
+        return crate::case3d::parse(text, origin, &files, default_name).map(AnyCase::Three);
+    }
+    parse(text, origin, files, default_name).map(AnyCase::Two)
 }
 
 /// Parses a case from TOML text without touching the disk: a loop's `file` names a built-in
@@ -298,6 +340,9 @@ pub(crate) fn from_toml<T: serde::de::DeserializeOwned>(text: &str, origin: &str
 
 fn parse(text: &str, origin: &str, files: FileSource<'_>, default_name: &str) -> Result<Case> {
     let file: CaseFile = from_toml(text, origin)?;
+    if let Some(d) = file.dimension.filter(|&d| d != 2) {
+        bail!("{origin}: dimension = {d}: must be 2 or 3");
+    }
     let (boundary, layers, order, curving) = file.params();
     check_params(origin, &boundary, &layers, order, &curving)?;
     ensure!(

@@ -353,9 +353,15 @@ pub struct PictureArgs {
     pub view: Option<String>,
 
     /// What colours the cells in pictures (default: layer for `mesh`; angle for `quality`,
-    /// since a .msh file keeps no layer index).
+    /// since a .msh file keeps no layer index; type for 3D slices).
     #[arg(long, value_enum)]
     pub colour: Option<crate::pictures::Colour>,
+
+    /// 3D cases: the plane the pictures cut through the volume, `x=C`, `y=C` or `z=C`
+    /// (default: z through the middle of the mesh); views are in the plane's coordinates
+    /// ((y, z) for x, (z, x) for y, (x, y) for z).
+    #[arg(long, value_name = "AXIS=VALUE", allow_hyphen_values = true)]
+    pub slice: Option<String>,
 
     /// Width of PNG pictures in pixels (the height is three quarters of it).
     #[arg(long, value_name = "PX", default_value_t = 2000,

@@ -22,13 +22,13 @@ use crate::{Finished, airfoil, builtin, case, estimate, pipeline};
 
 /// The files a run will write, reserved before any work.
 pub(crate) struct Planned {
-    outputs: Outputs,
-    meshes: Vec<(PathBuf, Output)>,
-    snapshot: Option<Output>,
-    pictures: Vec<(Picture, Output)>,
-    report: Option<(PathBuf, Output)>,
+    pub(crate) outputs: Outputs,
+    pub(crate) meshes: Vec<(PathBuf, Output)>,
+    pub(crate) snapshot: Option<Output>,
+    pub(crate) pictures: Vec<(Picture, Output)>,
+    pub(crate) report: Option<(PathBuf, Output)>,
     /// `--binary`: the .msh outputs in binary MSH 4.1.
-    binary: bool,
+    pub(crate) binary: bool,
 }
 
 /// Runs `cargo xtask mesh`, in a pool of `--threads` threads when given (else on rayon's
@@ -51,7 +51,10 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
         return Ok(Finished::valid());
     }
     let total = Instant::now();
-    let case = load(args)?;
+    let case = match load(args)? {
+        case::AnyCase::Two(case) => case,
+        case::AnyCase::Three(case) => return crate::mesh3d_cmd::run(args, &case, total),
+    };
     let order = args.output.order.unwrap_or(case.order);
     let flags = OutputFlags {
         outs: &args.output.outs,
@@ -149,20 +152,7 @@ fn write_meshes(
     snapshot: Option<(&Snapshot, &std::path::Path)>,
 ) -> Result<(Vec<(PathBuf, Format)>, f64)> {
     let t = Instant::now();
-    let mut wrote = Vec::new();
-    for (path, output) in &plan.meshes {
-        let binary = plan.binary && Format::from_path(path) == Some(Format::Msh);
-        plan.outputs.write_with(*output, |w| {
-            if binary {
-                mesh_io::msh::write_binary_to(w, mesh, path)
-            } else {
-                mesh_io::write_to(w, path, mesh)
-            }
-        })?;
-        if let Some(format) = Format::from_path(path) {
-            wrote.push((path.clone(), format));
-        }
-    }
+    let wrote = write_mesh_files(plan, mesh)?;
     if let (Some(output), Some((stages, path))) = (plan.snapshot, snapshot) {
         plan.outputs
             .write_with(output, |w| mesh_io::snapshot::save_to(w, stages, path))?;
@@ -197,6 +187,45 @@ fn finish(
             .timings_s
             .insert("pictures", t.elapsed().as_secs_f64());
     }
+    commit(plan, run, report)
+}
+
+/// Writes `mesh` into every reserved mesh output of `plan`, each in its format (`.msh` binary
+/// with `--binary`). Returns each file written with its format.
+fn write_mesh_files(plan: &mut Planned, mesh: &Mesh) -> Result<Vec<(PathBuf, Format)>> {
+    let mut wrote = Vec::new();
+    for (path, output) in &plan.meshes {
+        let binary = plan.binary && Format::from_path(path) == Some(Format::Msh);
+        plan.outputs.write_with(*output, |w| {
+            if binary {
+                mesh_io::msh::write_binary_to(w, mesh, path)
+            } else {
+                mesh_io::write_to(w, path, mesh)
+            }
+        })?;
+        if let Some(format) = Format::from_path(path) {
+            wrote.push((path.clone(), format));
+        }
+    }
+    Ok(wrote)
+}
+
+/// Writes `mesh` into every reserved mesh output of `plan` ([`write_mesh_files`]) and records
+/// each file in the report (the 3D run; the 2D one writes while it certifies).
+pub(crate) fn write_and_record(plan: &mut Planned, mesh: &Mesh, report: &mut Report) -> Result<()> {
+    for (path, format) in write_mesh_files(plan, mesh)? {
+        report.wrote_mesh(&path, format, mesh.order);
+    }
+    Ok(())
+}
+
+/// The end of a run: the files, the total time and the peak memory into the report, the
+/// report written, every output put in place. Returns the path of the report, if written.
+pub(crate) fn commit(
+    mut plan: Planned,
+    run: &Run<'_>,
+    report: &mut Report,
+) -> Result<Option<PathBuf>> {
     report.files = plan.outputs.files();
     report
         .timings_s
@@ -209,9 +238,9 @@ fn finish(
     Ok(plan.report.map(|(p, _)| p))
 }
 
-/// The case named on the command line: a case file or built-in case, or airfoil `.dat`
-/// files; the airfoil flags are refused with anything but `.dat` files.
-fn load(args: &MeshArgs) -> Result<case::Case> {
+/// The case named on the command line: a case file or built-in case (2D or 3D), or airfoil
+/// `.dat` files; the airfoil flags are refused with anything but `.dat` files.
+fn load(args: &MeshArgs) -> Result<case::AnyCase> {
     let dats = args.case.iter().filter(|c| airfoil::is_dat(c)).count();
     if dats > 0 {
         if dats < args.case.len() {
@@ -220,7 +249,7 @@ fn load(args: &MeshArgs) -> Result<case::Case> {
                 args.case.join(" ")
             );
         }
-        return airfoil::case(&args.case, &args.airfoil);
+        return airfoil::case(&args.case, &args.airfoil).map(case::AnyCase::Two);
     }
     let a = &args.airfoil;
     let given = [
@@ -234,8 +263,8 @@ fn load(args: &MeshArgs) -> Result<case::Case> {
         bail!("{flag} applies to airfoil .dat files only (a case file sets its own geometry)");
     }
     match args.case.as_slice() {
-        [] => case::load(builtin::DEFAULT),
-        [one] => case::load(one),
+        [] => case::load_any(builtin::DEFAULT),
+        [one] => case::load_any(one),
         more => bail!(
             "one case at a time (several files only as airfoil .dat files): {}",
             more.join(" ")
@@ -264,8 +293,17 @@ pub(crate) fn plan(
     stem: &str,
     views: &std::collections::BTreeMap<String, [f64; 4]>,
 ) -> Result<Planned> {
+    plan_with(flags, stem, || pictures::parse(flags.pictures, views))
+}
+
+/// [`plan`] with the pictures parsed by `pictures` (after the mesh and report flags).
+pub(crate) fn plan_with(
+    flags: &OutputFlags<'_>,
+    stem: &str,
+    pictures: impl FnOnce() -> Result<Vec<Picture>>,
+) -> Result<Planned> {
     let (outs, report_path) = outputs(flags, stem)?;
-    let pictures = pictures::parse(flags.pictures, views)?;
+    let pictures = pictures()?;
     let mut outputs = Outputs::new();
     let meshes = outs
         .into_iter()

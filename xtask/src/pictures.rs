@@ -5,8 +5,9 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
+use mesh_draw::slice::Plane;
 use mesh_draw::{ColourBy, DrawParams, View};
-use mesh_model::{Mesh, Role};
+use mesh_model::{Mesh, Role, Shape};
 
 use crate::cli::PictureArgs;
 use crate::outputs::{Output, Outputs};
@@ -55,11 +56,48 @@ pub enum Colour {
     Angle,
     /// Certified scaled Jacobian (min J / max J) of each cell.
     Jacobian,
+    /// 3D slices: the type of the cell each polygon lies in (tet, pyramid, prism, hex).
+    Type,
+    /// 3D slices: the largest dihedral angle of the tetrahedron each polygon lies in (other
+    /// cells without a value).
+    Dihedral,
 }
 
 /// Parses `FILE` or `FILE@VIEW` of each `--png` and `--svg`; `VIEW` is a name (`all`, `walls`, or a
 /// view of the case's `[views]`) or `x0,y0,x1,y1`. `--view` applies where no `@VIEW` is given.
 pub fn parse(args: &PictureArgs, named: &BTreeMap<String, [f64; 4]>) -> Result<Vec<Picture>> {
+    if let Some(slice) = &args.slice {
+        bail!("--slice {slice}: applies to 3D cases (dimension = 3)");
+    }
+    parse_files(args, named)
+}
+
+/// [`parse`] without the 2D check: the pictures of a 3D run and the plane they cut through
+/// the mesh (`--slice`, default z through the middle of the mesh: `None`).
+pub fn parse_3d(args: &PictureArgs) -> Result<(Vec<Picture>, Option<Plane>)> {
+    let plane = match &args.slice {
+        None => None,
+        Some(spec) => {
+            let fail = || anyhow::anyhow!("--slice {spec}: give x=C, y=C or z=C (C a number)");
+            let (axis, at) = spec.split_once('=').ok_or_else(fail)?;
+            let axis = ["x", "y", "z"]
+                .iter()
+                .position(|a| a.eq_ignore_ascii_case(axis.trim()))
+                .ok_or_else(fail)?;
+            let at: f64 = at.trim().parse().map_err(|_| fail())?;
+            if !at.is_finite() {
+                return Err(fail());
+            }
+            Some(Plane { axis, at })
+        }
+    };
+    if let Some(c @ (Colour::Angle | Colour::Jacobian)) = args.colour {
+        bail!("--colour {c:?}: 3D slices are coloured by type, layer, dihedral or none");
+    }
+    Ok((parse_files(args, &BTreeMap::new())?, plane))
+}
+
+fn parse_files(args: &PictureArgs, named: &BTreeMap<String, [f64; 4]>) -> Result<Vec<Picture>> {
     let (pngs, svgs, default_view) = (&args.pngs, &args.svgs, args.view.as_deref());
     let mut pictures = Vec::new();
     for (specs, format, flag) in [(pngs, Format::Png, "--png"), (svgs, Format::Svg, "--svg")] {
@@ -151,7 +189,92 @@ pub fn draw_all(
     scaled_jacobian: &[f64],
     outputs: &mut Outputs,
 ) -> Result<()> {
-    let (colour, width_px) = (args.colour.unwrap_or(default_colour), args.width);
+    let colour_by = |colour| {
+        Ok(match colour {
+            Colour::Layer if mesh.cell_layer.len() == mesh.cells.len() => ColourBy::Layer,
+            Colour::None | Colour::Layer => ColourBy::None,
+            Colour::Angle => ColourBy::MaxAngle,
+            Colour::Jacobian => ColourBy::ScaledJacobian(scaled_jacobian.to_vec()),
+            Colour::Type | Colour::Dihedral => {
+                bail!("--colour {colour:?}: applies to 3D slices")
+            }
+        })
+    };
+    let colour = args.colour.unwrap_or(default_colour);
+    draw_each(mesh, pictures, args, colour_by(colour)?, title, outputs)
+}
+
+/// Draws every picture of a 3D run: the cut of `mesh` by `plane` (default z through the
+/// middle of the mesh's nodes), coloured as the flags say (default by cell type).
+pub fn draw_slices(
+    mesh: &Mesh,
+    pictures: &[(Picture, Output)],
+    args: &PictureArgs,
+    plane: Option<Plane>,
+    title: &str,
+    outputs: &mut Outputs,
+) -> Result<()> {
+    if pictures.is_empty() {
+        return Ok(());
+    }
+    let plane = plane.unwrap_or_else(|| {
+        let (lo, hi) = mesh.nodes.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+            (lo.min(p[2]), hi.max(p[2]))
+        });
+        Plane {
+            axis: 2,
+            at: 0.5 * (lo + hi),
+        }
+    });
+    let cut = mesh_draw::slice::slice(mesh, plane)?;
+    let of_cell = |i: &u32| mesh.cells.get(*i as usize);
+    let colour = match args.colour.unwrap_or(Colour::Type) {
+        Colour::Type => {
+            let shapes = [Shape::Tet, Shape::Pyramid, Shape::Prism, Shape::Hex];
+            ColourBy::Categories {
+                values: cut
+                    .cell_of
+                    .iter()
+                    .map(|i| {
+                        shapes
+                            .iter()
+                            .position(|&s| s == of_cell(i).ty.shape)
+                            .unwrap_or(4) as u32
+                    })
+                    .collect(),
+                names: shapes.iter().map(|s| s.name().to_string()).collect(),
+                label: "cell type".into(),
+            }
+        }
+        Colour::Dihedral => ColourBy::CellValues {
+            values: cut
+                .cell_of
+                .iter()
+                .map(|&i| match of_cell(&i).ty.shape {
+                    Shape::Tet => mesh_model::measure3d::tet_max_dihedral_deg(mesh, i as usize),
+                    _ => f64::NAN,
+                })
+                .collect(),
+            label: "max dihedral".into(),
+        },
+        Colour::Layer => ColourBy::Layer,
+        _ => ColourBy::None,
+    };
+    let axis = ["x", "y", "z"][plane.axis];
+    let title = format!("{title}, slice {axis} = {}", plane.at);
+    draw_each(&cut.mesh, pictures, args, colour, &title, outputs)
+}
+
+/// Draws every picture of the 2D `mesh` coloured by `colour`, into its reserved output.
+fn draw_each(
+    mesh: &Mesh,
+    pictures: &[(Picture, Output)],
+    args: &PictureArgs,
+    colour: ColourBy,
+    title: &str,
+    outputs: &mut Outputs,
+) -> Result<()> {
+    let width_px = args.width;
     for (p, output) in pictures {
         let view = match p.view {
             ViewSpec::All => None,
@@ -161,17 +284,11 @@ pub fn draw_all(
             ),
             ViewSpec::Rect(v) => Some(v),
         };
-        let colour = match colour {
-            Colour::Layer if mesh.cell_layer.len() == mesh.cells.len() => ColourBy::Layer,
-            Colour::None | Colour::Layer => ColourBy::None,
-            Colour::Angle => ColourBy::MaxAngle,
-            Colour::Jacobian => ColourBy::ScaledJacobian(scaled_jacobian.to_vec()),
-        };
         let params = DrawParams {
             width_px,
             height_px: width_px * 3 / 4,
             view,
-            colour,
+            colour: colour.clone(),
             title: Some(format!("{title}, view {}", p.view_name)),
             ..DrawParams::default()
         };

@@ -29,3 +29,19 @@ impl Drop for Stage {
         self.0.finish_and_clear();
     }
 }
+
+/// Runs `work` on `report` as a stage shown as `what` (its spinner on stderr unless `quiet`)
+/// and records its time in seconds in the report's timings under `key`.
+pub fn timed<T>(
+    report: &mut crate::report::Report,
+    quiet: bool,
+    (key, what): (&'static str, &str),
+    work: impl FnOnce(&mut crate::report::Report) -> T,
+) -> T {
+    let t = std::time::Instant::now();
+    let progress = stage(quiet, what);
+    let out = work(report);
+    drop(progress);
+    report.timings_s.insert(key, t.elapsed().as_secs_f64());
+    out
+}

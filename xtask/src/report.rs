@@ -50,6 +50,18 @@ pub struct Report {
     /// Area of the meshed domain (integrated over the curved cells when curved), when meshed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub area: Option<f64>,
+    /// 3D: the quality figures (written as `quality`, in place of the 2D block).
+    #[serde(rename = "quality", skip_serializing_if = "Option::is_none")]
+    pub quality_3d: Option<Quality3d>,
+    /// 3D: the sum of the cell volumes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub volume: Option<f64>,
+    /// 3D: the cell volumes against the volume between the wall and the final front.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub volume_check: Option<VolumeCheck>,
+    /// 3D: the fraction of wall nodes that keep their full column of layers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coverage: Option<f64>,
     /// Each boundary loop: name, role, node count, corner count.
     pub loops: Vec<LoopReport>,
     /// The files written.
@@ -126,6 +138,20 @@ impl Report {
         for shape in [Shape::Tri, Shape::Quad] {
             self.cells.insert(shape.name(), mesh.count(shape));
         }
+        self.count_boundary(mesh);
+        let problems = mesh_model::validate(mesh);
+        // orientation and conformity problems leave every index and array sound: the angles
+        // (and the certified check, see `certify`) still tell what is wrong where
+        let sound = !problems.iter().any(mesh_model::Problem::is_structural);
+        self.problems = problems.iter().map(ToString::to_string).collect();
+        if sound && !mesh.cells.is_empty() {
+            self.linear_angles(linear);
+        }
+        self.timings_s.insert("describe", t.elapsed().as_secs_f64());
+    }
+
+    /// Counts the boundary facets by role and by boundary group.
+    fn count_boundary(&mut self, mesh: &Mesh) {
         for role in [Role::Wall, Role::Farfield] {
             let n = mesh
                 .boundary_patch
@@ -146,15 +172,43 @@ impl Report {
                 self.boundary_groups.insert(group.name.clone(), n);
             }
         }
-        let problems = mesh_model::validate(mesh);
-        // orientation and conformity problems leave every index and array sound: the angles
-        // (and the certified check, see `certify`) still tell what is wrong where
-        let sound = !problems.iter().any(mesh_model::Problem::is_structural);
-        self.problems = problems.iter().map(ToString::to_string).collect();
-        if sound && !mesh.cells.is_empty() {
-            self.linear_angles(linear);
+    }
+
+    /// Fills what can be read off a finished linear 3D mesh with its measures `m`: counts,
+    /// quality, volume, coverage, and as problems whatever `mesh_model::validate` finds (the
+    /// structure, conformity, positive corner Jacobians by the exact `orient3d`) and a volume
+    /// that differs from the volume between the wall and the front by more than
+    /// [`VOLUME_TOLERANCE`].
+    pub fn describe_3d(&mut self, mesh: &Mesh, m: &crate::pipeline3d::Measures3d) {
+        self.dimension = 3;
+        self.nodes = mesh.nodes.len();
+        self.cells = m.cells.iter().copied().collect();
+        self.count_boundary(mesh);
+        self.problems = mesh_model::validate(mesh)
+            .iter()
+            .map(ToString::to_string)
+            .collect();
+        let difference = (m.volume - m.volume_between).abs() / m.volume_between.abs();
+        // NaN (no volume between) fails too
+        if difference.is_nan() || difference > VOLUME_TOLERANCE {
+            self.problems.push(format!(
+                "the cell volumes sum to {:e}, the volume between the wall and the final front \
+                 is {:e} (relative difference {difference:e}, above {VOLUME_TOLERANCE:e})",
+                m.volume, m.volume_between
+            ));
         }
-        self.timings_s.insert("describe", t.elapsed().as_secs_f64());
+        self.volume = Some(m.volume);
+        self.volume_check = Some(VolumeCheck {
+            between_wall_and_front: m.volume_between,
+            relative_difference: difference,
+            tolerance: VOLUME_TOLERANCE,
+        });
+        self.coverage = Some(m.coverage);
+        self.quality_3d = Some(Quality3d {
+            max_dihedral_deg: m.max_dihedral_deg,
+            min_cell_volume: m.min_cell_volume,
+            histograms: m.histograms.to_vec(),
+        });
     }
 
     /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut
@@ -361,6 +415,33 @@ pub struct Quality {
     /// False only if some cell could be neither proved valid nor proved invalid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub certified: Option<bool>,
+}
+
+/// The largest relative difference allowed between the sum of the cell volumes and the volume
+/// between the wall and the final front.
+pub const VOLUME_TOLERANCE: f64 = 1e-9;
+
+/// The quality block of a 3D report.
+#[derive(Debug, Serialize)]
+pub struct Quality3d {
+    /// The largest dihedral angle of any tetrahedron, degrees (0 without tetrahedra).
+    pub max_dihedral_deg: f64,
+    /// The smallest cell volume (from the corners, faces fanned from their centroid).
+    pub min_cell_volume: f64,
+    /// The dissertation's tables 5, 6 and 7.
+    pub histograms: Vec<crate::pipeline3d::Histogram>,
+}
+
+/// The volume check of a 3D report.
+#[derive(Debug, Serialize)]
+pub struct VolumeCheck {
+    /// The volume the final front encloses minus the wall's: the divergence theorem over the
+    /// mesh's boundary facets (`farfield` and `wall`), independent of the cells.
+    pub between_wall_and_front: f64,
+    /// |sum of cell volumes − that| / that.
+    pub relative_difference: f64,
+    /// Above this the run fails validation.
+    pub tolerance: f64,
 }
 
 /// A cell named by a quality figure.

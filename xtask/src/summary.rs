@@ -92,6 +92,35 @@ pub fn table(r: &Report) -> String {
     if let Some(a) = r.area {
         let _ = writeln!(s, "  {:<22} {:>12.6e}", "area", a);
     }
+    if let Some(q) = &r.quality_3d {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12.1}",
+            "max dihedral (deg)", q.max_dihedral_deg
+        );
+        for h in &q.histograms {
+            let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
+            let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();
+            let _ = writeln!(
+                s,
+                "  {:<22} {}  (up to {} deg, above; max {:.1})",
+                h.name,
+                bins.join(" / "),
+                edges.join(", "),
+                h.max_deg
+            );
+        }
+    }
+    if let (Some(v), Some(c)) = (r.volume, &r.volume_check) {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12.6e}  (between wall and front {:.6e}, relative difference {:.1e})",
+            "volume", v, c.between_wall_and_front, c.relative_difference
+        );
+    }
+    if let Some(c) = r.coverage {
+        let _ = writeln!(s, "  {:<22} {:>11.1}%", "coverage", 100.0 * c);
+    }
     let timings: Vec<String> = r
         .timings_s
         .iter()

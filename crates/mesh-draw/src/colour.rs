@@ -168,6 +168,14 @@ pub(crate) fn cell_colours(mesh: &Mesh, by: &ColourBy) -> Result<CellColours, Dr
                 false,
             ))
         }
+        ColourBy::Categories {
+            values,
+            names,
+            label,
+        } => {
+            check_len("the cell categories", values.len())?;
+            Ok(category_colours(values, names, label))
+        }
         ColourBy::CellValues { values, label } => {
             check_len("the cell values", values.len())?;
             let (lo, hi) = finite_range(values);
@@ -253,6 +261,40 @@ fn continuous(
             bar: BarPaint::Gradient(stops),
             ticks,
             swatches,
+        }),
+    }
+}
+
+/// One colour per category, spread over the map; a value without a name in grey.
+fn category_colours(values: &[u32], names: &[String], label: &str) -> CellColours {
+    let n = names.len();
+    let colour = |i: usize| map_colour(i as f64 / n.saturating_sub(1).max(1) as f64);
+    let per_cell = values
+        .iter()
+        .map(|&v| {
+            Some(if (v as usize) < n {
+                colour(v as usize)
+            } else {
+                NO_VALUE
+            })
+        })
+        .collect();
+    let ticks = names
+        .iter()
+        .enumerate()
+        .map(|(i, name)| Tick {
+            frac: (i as f64 + 0.5) / n.max(1) as f64,
+            label: name.clone(),
+            major: true,
+        })
+        .collect();
+    CellColours {
+        per_cell,
+        legend: Some(Legend {
+            title: label.to_string(),
+            bar: BarPaint::Blocks((0..n).map(colour).collect()),
+            ticks,
+            swatches: Vec::new(),
         }),
     }
 }

@@ -68,6 +68,18 @@ pub enum DrawError {
         /// The role's name.
         role: &'static str,
     },
+    /// A plane cut through a 3D mesh that cannot be made: not a 3D mesh, an axis other than
+    /// x, y or z, a plane that is not finite or crosses no cell.
+    /// Fix: put the plane through the mesh (see its bounding box).
+    #[error("cannot cut the mesh by the plane {} = {at}: {reason}", ["x", "y", "z"].get(*axis).unwrap_or(&"?"))]
+    BadSlice {
+        /// 0, 1 or 2.
+        axis: usize,
+        /// Where the plane crosses the axis.
+        at: f64,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// The PNG encoder failed (out of memory, in practice).
     #[error("PNG encoding failed: {0}")]
     PngEncode(String),

@@ -23,6 +23,10 @@
 //! its own small stroke font (see the `font` module for the reasons) instead of a font
 //! rasteriser and a font file; the SVG writes `<text>` elements for the viewer's font.
 //!
+//! 3D meshes are drawn as a plane cut through them ([`slice`]): the polygons where the cells
+//! meet the plane, a 2D mesh like any other, coloured by the type of their cell
+//! ([`ColourBy::Categories`]) or any other way.
+//!
 //! Inputs that are refused with a [`DrawError`] rather than drawn: an empty mesh (no cell and no
 //! boundary facet), a 3D mesh, a view that is empty or not finite, a picture side outside 16 to
 //! 16384 px, per-cell values of the wrong length, broken indices or non-finite coordinates.
@@ -81,6 +85,7 @@ mod params;
 mod png;
 mod quality;
 mod scene;
+pub mod slice;
 mod svg;
 
 use mesh_model::Mesh;

@@ -174,6 +174,16 @@ pub enum ColourBy {
     /// The scaled Jacobian of each cell, as computed by the caller (one value per cell), on a
     /// fixed 0–1 scale; negative values (inverted cells) in red, NaN in grey.
     ScaledJacobian(Vec<f64>),
+    /// A category per cell (one per cell, an index into `names`), each its own colour, the
+    /// legend a block per name: the type of the 3D cell each polygon of a slice lies in.
+    Categories {
+        /// The category of each cell.
+        values: Vec<u32>,
+        /// The name of each category, for the legend.
+        names: Vec<String>,
+        /// The legend's heading (for instance `cell type`).
+        label: String,
+    },
     /// Any value per cell (one per cell), on the range of the finite values; NaN in grey.
     CellValues {
         /// The values, one per cell.

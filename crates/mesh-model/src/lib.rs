@@ -42,6 +42,7 @@ pub mod cell;
 pub mod cells;
 pub mod layering;
 pub mod measure;
+pub mod measure3d;
 pub mod mesh;
 pub mod poly;
 pub mod reference;

@@ -1,0 +1,196 @@
+//! Plain geometric measures of linear 3D cells and surface facets that several stages share:
+//! the dihedral angles of a tetrahedron (the cut's quality target and the report's table 7),
+//! the volume of a standard cell by the divergence theorem over its faces (quadrilateral
+//! faces fanned from their centroid, so that neighbours and the surfaces around the domain
+//! measure each face alike), the largest corner angle of a polygon in space, the angle
+//! between two vectors, and a histogram over bins. No meshing decision is made here.
+
+use geom_predicates::vector::{cross3, dot, sub};
+
+use crate::cell::Shape;
+use crate::mesh::Mesh;
+
+/// The six interior dihedral angles of the tetrahedron `p`, in degrees, at its edges in
+/// Gmsh's edge order (`Shape::Tet.edges()`).
+pub fn tet_dihedral_angles_deg(p: [[f64; 3]; 4]) -> [f64; 6] {
+    let mut out = [0.0; 6];
+    for (o, e) in out.iter_mut().zip(Shape::Tet.edges()) {
+        let [i, j] = *e;
+        let mut others = (0..4).filter(|&k| k != i && k != j);
+        let (k, l) = (others.next().unwrap_or(0), others.next().unwrap_or(0));
+        let axis = sub(p[j], p[i]);
+        let aa = dot(axis, axis);
+        // the other two corners seen along the edge: their components across it
+        let across = |q: [f64; 3]| {
+            let v = sub(q, p[i]);
+            let t = dot(v, axis) / aa;
+            [v[0] - t * axis[0], v[1] - t * axis[1], v[2] - t * axis[2]]
+        };
+        let (u, w) = (across(p[k]), across(p[l]));
+        let c = dot(u, w) / (dot(u, u) * dot(w, w)).sqrt();
+        *o = if c.is_finite() {
+            c.clamp(-1.0, 1.0).acos().to_degrees()
+        } else {
+            180.0
+        };
+    }
+    out
+}
+
+/// The largest dihedral angle of tetrahedron `i` of `mesh` (its corners), in degrees.
+pub fn tet_max_dihedral_deg(mesh: &Mesh, i: usize) -> f64 {
+    let k = mesh.cells.get(i).corners();
+    let p = [0, 1, 2, 3].map(|j| mesh.nodes[k[j] as usize]);
+    tet_dihedral_angles_deg(p).into_iter().fold(0.0, f64::max)
+}
+
+/// The largest dihedral angle of the mesh's tetrahedra, in degrees (0 without any).
+pub fn max_dihedral_deg(mesh: &Mesh) -> f64 {
+    (0..mesh.cells.len())
+        .filter(|&i| mesh.cells.get(i).ty.shape == Shape::Tet)
+        .map(|i| tet_max_dihedral_deg(mesh, i))
+        .fold(0.0, f64::max)
+}
+
+/// Six times the signed volume of the cone from `o` over the polygon `p` (fanned from its
+/// centroid). Summed over the outward faces of a closed polyhedron it is six times its
+/// volume, whatever `o`.
+pub fn cone_volume6(p: &[[f64; 3]], o: [f64; 3]) -> f64 {
+    let n = p.len() as f64;
+    let mut c = [0.0; 3];
+    for q in p {
+        (0..3).for_each(|d| c[d] += (q[d] - o[d]) / n);
+    }
+    (0..p.len())
+        .map(|i| dot(c, cross3(sub(p[i], o), sub(p[(i + 1) % p.len()], o))))
+        .sum()
+}
+
+/// The volume of 3D cell `i` of `mesh` from its corners: the divergence theorem over its
+/// outward faces (`Shape::faces`), quadrilaterals fanned from their centroid. Positive for a
+/// cell in Gmsh's orientation; 0 for a cell that is not 3D.
+pub fn cell_volume(mesh: &Mesh, i: usize) -> f64 {
+    let c = mesh.cells.get(i);
+    if c.ty.shape.dim() != 3 {
+        return 0.0;
+    }
+    let k = c.corners();
+    let o = mesh.nodes[k[0] as usize];
+    let mut face = Vec::with_capacity(4);
+    let mut sum = 0.0;
+    for f in c.ty.shape.faces() {
+        face.clear();
+        face.extend(f.iter().map(|&j| mesh.nodes[k[j] as usize]));
+        sum += cone_volume6(&face, o);
+    }
+    sum / 6.0
+}
+
+/// The angle between two vectors in degrees, in [0, 180] (0 when one is zero).
+pub fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let x = cross3(a, b);
+    dot(x, x).sqrt().atan2(dot(a, b)).to_degrees()
+}
+
+/// The largest corner angle of the polygon `p` in space, degrees (each corner between its two
+/// sides; 180 at a corner with a zero-length side).
+pub fn polygon_max_angle_deg(p: &[[f64; 3]]) -> f64 {
+    let n = p.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (sub(p[(i + n - 1) % n], p[i]), sub(p[(i + 1) % n], p[i]));
+            if dot(a, a) == 0.0 || dot(b, b) == 0.0 {
+                180.0
+            } else {
+                angle_deg(a, b)
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Counts `values` into the bins `(-∞, e₀], (e₀, e₁], …, (eₙ₋₁, ∞)` of the increasing upper
+/// edges `edges` (`edges.len() + 1` counts; NaN falls in the last bin).
+pub fn histogram(values: impl IntoIterator<Item = f64>, edges: &[f64]) -> Vec<usize> {
+    let mut counts = vec![0; edges.len() + 1];
+    for v in values {
+        let bin = edges.iter().position(|&e| v <= e).unwrap_or(edges.len());
+        counts[bin] += 1;
+    }
+    counts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{CellType, Dim};
+
+    #[test]
+    fn the_regular_tetrahedron_has_its_dihedral_angle_everywhere() {
+        let s = 1.0 / 2f64.sqrt();
+        let p = [
+            [1.0, 0.0, -s],
+            [-1.0, 0.0, -s],
+            [0.0, 1.0, s],
+            [0.0, -1.0, s],
+        ];
+        let want = (1.0f64 / 3.0).acos().to_degrees();
+        for a in tet_dihedral_angles_deg(p) {
+            assert!((a - want).abs() < 1e-12, "{a}");
+        }
+        // the corner tetrahedron: three right angles at the edges through the corner
+        let q = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let a = tet_dihedral_angles_deg(q);
+        assert!(
+            (a[0] - 90.0).abs() < 1e-12 && (a[3] - 90.0).abs() < 1e-12,
+            "{a:?}"
+        );
+    }
+
+    #[test]
+    fn volumes_of_the_unit_cells() {
+        let mut m = Mesh::new(Dim::Three, 1);
+        m.nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ];
+        m.cells
+            .push(CellType::new(Shape::Hex, 1), &[0, 1, 2, 3, 4, 5, 6, 7]);
+        m.cells.push(CellType::new(Shape::Tet, 1), &[0, 1, 3, 4]);
+        m.cells
+            .push(CellType::new(Shape::Prism, 1), &[0, 1, 3, 4, 5, 7]);
+        m.cells
+            .push(CellType::new(Shape::Pyramid, 1), &[0, 1, 2, 3, 4]);
+        let v: Vec<f64> = (0..4).map(|i| cell_volume(&m, i)).collect();
+        for (got, want) in v.iter().zip([1.0, 1.0 / 6.0, 0.5, 1.0 / 3.0]) {
+            assert!((got - want).abs() < 1e-14, "{v:?}");
+        }
+        assert!((tet_max_dihedral_deg(&m, 1) - 90.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn angles_and_bins() {
+        let sq = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        assert!((polygon_max_angle_deg(&sq) - 90.0).abs() < 1e-12);
+        assert!((angle_deg([1.0, 0.0, 0.0], [0.0, 0.0, 2.0]) - 90.0).abs() < 1e-12);
+        assert_eq!(
+            histogram([5.0, 10.0, 10.5, 35.0, f64::NAN], &[10.0, 20.0, 30.0]),
+            vec![2, 1, 0, 2]
+        );
+    }
+}

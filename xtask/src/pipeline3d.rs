@@ -1,0 +1,225 @@
+//! The stages of a 3D run as plain functions: the wall surface (built in or read through
+//! `mesh-io`), its check, the layers (`afsf3d`), the cut into standard cells (`topo-cut`), and
+//! the measures of the result (cells by type, dihedral angles, volume against the volume
+//! between the wall and the final front, coverage, the histograms of the dissertation's
+//! tables 5–7). No file is written here.
+
+use anyhow::{Context, Result};
+use geom_surface::Surface;
+use mesh_model::measure3d;
+use mesh_model::{Mesh, Role, Shape};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::case3d::{Case3d, CutCells, SurfaceSource};
+
+/// The wall surface of a case: built, or read from its file (not yet checked).
+pub fn surface(case: &Case3d) -> Result<Surface> {
+    Ok(match &case.surface {
+        SurfaceSource::Sphere { radius, refinement } => Surface::sphere(*radius, *refinement),
+        SurfaceSource::Cube {
+            size,
+            divisions,
+            triangles,
+        } => Surface::cube(*size, *divisions, *triangles),
+        SurfaceSource::Step { refinement } => Surface::step(*refinement),
+        SurfaceSource::File(path) => {
+            let (nodes, tris) = mesh_io::stl::read_surface(path)
+                .with_context(|| format!("{}: [surface] file", case.origin))?;
+            Surface::from_triangles(nodes, &tris)
+        }
+    })
+}
+
+/// Checks that the surface can be meshed; the error names the first bad facet (or edge or
+/// node) and where the surface came from.
+pub fn check_surface(case: &Case3d, surface: &Surface) -> Result<()> {
+    surface.check().map_err(|e| {
+        let source = match &case.surface {
+            SurfaceSource::File(path) => path.display().to_string(),
+            _ => format!("{}: the built-in surface", case.origin),
+        };
+        anyhow::anyhow!("{source}: {e}")
+    })
+}
+
+/// The layers grown from the wall.
+pub fn grow(case: &Case3d, surface: &Surface) -> Result<afsf3d::Grown3d> {
+    afsf3d::grow_layers(surface, &case.layers)
+        .map_err(|e| anyhow::anyhow!("{}: growing the layers: {e}", case.origin))
+}
+
+/// The layer cells cut into tetrahedra or mixed standard cells.
+pub fn cut(case: &Case3d, grown: &afsf3d::Grown3d) -> Result<Mesh> {
+    match case.cells {
+        CutCells::Tets => topo_cut::cut_to_tets(&grown.mesh),
+        CutCells::Mixed => topo_cut::cut_to_mixed(&grown.mesh),
+    }
+    .map_err(|e| anyhow::anyhow!("{}: cutting the layer cells: {e}", case.origin))
+}
+
+/// The upper bin edges of table 5 (largest angle of the front facets), degrees.
+pub const FRONT_ANGLE_EDGES: [f64; 3] = [90.0, 125.0, 140.0];
+/// The upper bin edges of table 6 (extrusion-edge deviation), degrees.
+pub const DEVIATION_EDGES: [f64; 3] = [10.0, 20.0, 30.0];
+/// The upper bin edges of table 7 (largest dihedral angle of the tetrahedra), degrees.
+pub const DIHEDRAL_EDGES: [f64; 4] = [90.0, 130.0, 150.0, 160.0];
+
+/// A histogram of the report: counts in `(-∞, e₀], (e₀, e₁], …, (eₙ₋₁, 180]`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Histogram {
+    /// A short name.
+    pub name: &'static str,
+    /// What is counted.
+    pub of: &'static str,
+    /// The bins' upper edges, degrees (the last bin runs to 180).
+    pub upper_edges_deg: Vec<f64>,
+    /// How many in each bin.
+    pub counts: Vec<usize>,
+    /// The largest value, degrees.
+    pub max_deg: f64,
+}
+
+impl Histogram {
+    fn new((name, of): (&'static str, &'static str), edges: &[f64], values: &[f64]) -> Histogram {
+        Histogram {
+            name,
+            of,
+            upper_edges_deg: edges.to_vec(),
+            counts: measure3d::histogram(values.iter().copied(), edges),
+            max_deg: values.iter().copied().fold(0.0, f64::max),
+        }
+    }
+}
+
+/// What a 3D mesh measures.
+#[derive(Debug, Clone)]
+pub struct Measures3d {
+    /// Cells by type.
+    pub cells: [(&'static str, usize); 4],
+    /// Sum of the cell volumes.
+    pub volume: f64,
+    /// The volume between the wall and the final front: the volume the front's facets
+    /// enclose minus the wall's, by the divergence theorem over the mesh's boundary facets
+    /// alone (the front as the cut triangulates it), independent of the cells.
+    pub volume_between: f64,
+    /// The smallest cell volume.
+    pub min_cell_volume: f64,
+    /// The largest dihedral angle of the tetrahedra (0 without any).
+    pub max_dihedral_deg: f64,
+    /// Fraction of the wall nodes with their full column of layers.
+    pub coverage: f64,
+    /// Tables 5, 6 and 7.
+    pub histograms: [Histogram; 3],
+}
+
+/// Measures the cut `mesh` of the layers `grown` from `wall` ([`Measures3d`]).
+pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usize) -> Measures3d {
+    let n = mesh.cells.len();
+    let volumes: Vec<f64> = (0..n)
+        .into_par_iter()
+        .map(|i| measure3d::cell_volume(mesh, i))
+        .collect();
+    let dihedral: Vec<f64> = (0..n)
+        .into_par_iter()
+        .filter(|&i| mesh.cells.get(i).ty.shape == Shape::Tet)
+        .map(|i| measure3d::tet_max_dihedral_deg(mesh, i))
+        .collect();
+    let full = grown
+        .columns
+        .iter()
+        .filter(|c| c.len() == layers + 1)
+        .count();
+    let (front_angles, deviations) = front_measures(wall, grown);
+    let count = |s| mesh.count(s);
+    Measures3d {
+        cells: [
+            ("tet", count(Shape::Tet)),
+            ("pyramid", count(Shape::Pyramid)),
+            ("prism", count(Shape::Prism)),
+            ("hex", count(Shape::Hex)),
+        ],
+        volume: volumes.iter().sum(),
+        volume_between: enclosed(mesh, Role::Farfield) + enclosed(mesh, Role::Wall),
+        min_cell_volume: volumes.iter().copied().fold(f64::INFINITY, f64::min),
+        max_dihedral_deg: dihedral.iter().copied().fold(0.0, f64::max),
+        coverage: full as f64 / grown.columns.len().max(1) as f64,
+        histograms: [
+            Histogram::new(
+                (
+                    "front facet max angle",
+                    "largest corner angle of every front facet grown (layers 1 to n; \
+                     dissertation table 5)",
+                ),
+                &FRONT_ANGLE_EDGES,
+                &front_angles,
+            ),
+            Histogram::new(
+                (
+                    "extrusion edge deviation",
+                    "angle between each extrusion edge and the angle-weighted normal of the \
+                     front it grew from (dissertation table 6)",
+                ),
+                &DEVIATION_EDGES,
+                &deviations,
+            ),
+            Histogram::new(
+                (
+                    "tet max dihedral",
+                    "largest dihedral angle of every tetrahedron (dissertation table 7)",
+                ),
+                &DIHEDRAL_EDGES,
+                &dihedral,
+            ),
+        ],
+    }
+}
+
+/// The volume the boundary facets of `role` enclose, by the divergence theorem (facets turned
+/// out of the domain, so a wall's is negative), each facet fanned from its centroid.
+fn enclosed(mesh: &Mesh, role: Role) -> f64 {
+    let o = mesh.nodes.first().copied().unwrap_or_default();
+    let mut points = Vec::with_capacity(4);
+    let mut sum = 0.0;
+    for (f, &p) in mesh.boundary.iter().zip(&mesh.boundary_patch) {
+        if mesh.patches[p as usize].role == role {
+            points.clear();
+            points.extend(f.corners().iter().map(|&v| mesh.nodes[v as usize]));
+            sum += measure3d::cone_volume6(&points, o);
+        }
+    }
+    sum / 6.0
+}
+
+/// The largest corner angle of every facet of the fronts of layers 1 to n, and the deviation
+/// of every extrusion edge from the normal of the front it grew from.
+fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64>) {
+    let nodes = &grown.mesh.nodes;
+    let depth = grown.columns.iter().map(Vec::len).min().unwrap_or(0);
+    let mut front = wall.clone();
+    let mut angles = Vec::new();
+    let mut deviations = Vec::new();
+    let mut points = Vec::with_capacity(4);
+    for k in 0..depth.saturating_sub(1) {
+        for (i, column) in grown.columns.iter().enumerate() {
+            front.nodes[i] = nodes[column[k] as usize];
+        }
+        for (normal, column) in front.node_normals().into_iter().zip(&grown.columns) {
+            let (a, b) = (nodes[column[k] as usize], nodes[column[k + 1] as usize]);
+            deviations.push(measure3d::angle_deg(
+                std::array::from_fn(|d| b[d] - a[d]),
+                normal,
+            ));
+        }
+        for f in &wall.facets {
+            points.clear();
+            points.extend(
+                f.nodes()
+                    .iter()
+                    .map(|&v| nodes[grown.columns[v as usize][k + 1] as usize]),
+            );
+            angles.push(measure3d::polygon_max_angle_deg(&points));
+        }
+    }
+    (angles, deviations)
+}

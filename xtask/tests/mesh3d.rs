@@ -1,0 +1,285 @@
+//! `cargo xtask mesh` on 3D cases (`dimension = 3`), run through the binary: the built-in
+//! surfaces (at a small refinement and few layers, written here as case files, so the test
+//! stays fast in debug builds) to `.msh`, `.vtu`, a slice picture and the report; an STL torus
+//! written by the test meshed end to end; open and inverted STL files, order 2 and flags of 2D
+//! runs refused with exit 1, one line and no file left behind.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::process::{Command, Output};
+
+const XTASK: &str = env!("CARGO_BIN_EXE_xtask");
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    Command::new(XTASK)
+        .arg("mesh")
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Every file below `dir` (relative names, sorted).
+fn files(dir: &Path) -> Vec<String> {
+    let mut out: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    out.sort();
+    out
+}
+
+fn case(dir: &Path, name: &str, surface: &str, layers: &str, cut: &str) -> String {
+    let text = format!(
+        "name = \"{name}\"\ndimension = 3\n\n[surface]\n{surface}\n\n[layers]\n{layers}\n\n[cut]\ncells = \"{cut}\"\n"
+    );
+    let file = format!("{name}.toml");
+    std::fs::write(dir.join(&file), text).unwrap();
+    file
+}
+
+/// Runs a case to `.msh`, `.vtu`, a slice picture and the report; checks the report.
+fn mesh_case(dir: &Path, file: &str, stem: &str, layers: u64) -> serde_json::Value {
+    let (msh, vtu, png, json) = (
+        format!("{stem}.msh"),
+        format!("{stem}.vtu"),
+        format!("{stem}.png"),
+        format!("{stem}.json"),
+    );
+    let o = run(
+        dir,
+        &[
+            file, "--out", &msh, "--out", &vtu, "--report", &json, "--png", &png, "--quiet",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{file}: {}", stderr(&o));
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join(&json)).unwrap()).unwrap();
+    assert_eq!(r["dimension"], 3, "{r}");
+    assert_eq!(r["layers"], layers, "{r}");
+    assert_eq!(r["coverage"], 1.0, "{r}");
+    assert!(r["problems"].as_array().unwrap().is_empty(), "{r}");
+    assert!(
+        r["volume_check"]["relative_difference"].as_f64().unwrap() <= 1e-9,
+        "{r}"
+    );
+    let q = &r["quality"];
+    assert!(q["max_dihedral_deg"].as_f64().unwrap() < 180.0, "{r}");
+    assert_eq!(q["histograms"].as_array().unwrap().len(), 3, "{r}");
+    for key in [
+        "surface", "check", "grow", "cut", "validate", "write", "total",
+    ] {
+        assert!(r["timings_s"][key].is_number(), "{key}: {r}");
+    }
+    assert!(r["boundary_groups"]["wall"].as_u64().unwrap() > 0, "{r}");
+    assert!(
+        r["boundary_groups"]["farfield"].as_u64().unwrap() > 0,
+        "{r}"
+    );
+    // the .msh reads back as the same mesh, with the groups fluid, wall and farfield
+    let back = mesh_io::read_msh(&dir.join(&msh)).unwrap();
+    let cells: u64 = ["tet", "pyramid", "prism", "hex"]
+        .iter()
+        .map(|k| r["cells"][k].as_u64().unwrap())
+        .sum();
+    assert_eq!(back.cells.len() as u64, cells);
+    let text = std::fs::read_to_string(dir.join(&msh)).unwrap();
+    for group in ["\"fluid\"", "\"wall\"", "\"farfield\""] {
+        assert!(text.contains(group), "{group} missing in {msh}");
+    }
+    assert!(
+        std::fs::read(dir.join(&png))
+            .unwrap()
+            .starts_with(b"\x89PNG")
+    );
+    assert!(std::fs::metadata(dir.join(&vtu)).unwrap().len() > 0);
+    r
+}
+
+#[test]
+fn built_in_surfaces_are_meshed_end_to_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let layers = "first_height = 0.01\ngrowth = 1.2\nmax_layers = 3";
+    let sphere = case(
+        d,
+        "sphere",
+        "builtin = \"sphere\"\nrefinement = 1",
+        layers,
+        "mixed",
+    );
+    let r = mesh_case(d, &sphere, "sphere", 3);
+    assert_eq!(r["cells"]["prism"], 3 * 80, "{r}");
+    let cube = case(
+        d,
+        "cube",
+        "builtin = \"cube\"\ndivisions = 2",
+        layers,
+        "tets",
+    );
+    let r = mesh_case(d, &cube, "cube", 3);
+    assert_eq!(r["cells"]["hex"], 0, "{r}");
+    assert!(r["cells"]["tet"].as_u64().unwrap() > 0, "{r}");
+    let step = case(
+        d,
+        "step",
+        "builtin = \"step\"",
+        "first_height = 2e-3\ngrowth = 1.2\nmax_layers = 2",
+        "mixed",
+    );
+    mesh_case(d, &step, "step", 2);
+    // a slice along x, coloured by layer, zoomed on the wall
+    let o = run(
+        d,
+        &[
+            &sphere,
+            "--out",
+            "x.msh",
+            "--png",
+            "x.png@-0.2,0.8,0.2,1.1",
+            "--slice",
+            "x=0.01",
+            "--colour",
+            "layer",
+            "--quiet",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
+/// An ASCII STL torus (major radius 1, minor 0.3), facets counter-clockwise seen from outside
+/// (or inside when `inverted`); `open` leaves one facet out.
+fn torus_stl(inverted: bool, open: bool) -> String {
+    let (n, m) = (24, 12);
+    let at = |i: usize, j: usize| {
+        let (u, v) = (
+            std::f64::consts::TAU * (i % n) as f64 / n as f64,
+            std::f64::consts::TAU * (j % m) as f64 / m as f64,
+        );
+        let r = 1.0 + 0.3 * v.cos();
+        [r * u.cos(), r * u.sin(), 0.3 * v.sin()]
+    };
+    let mut s = String::from("solid torus\n");
+    let mut facet = |t: [[f64; 3]; 3]| {
+        let t = if inverted { [t[0], t[2], t[1]] } else { t };
+        s.push_str(" facet normal 0 0 0\n  outer loop\n");
+        for p in t {
+            let _ = writeln!(s, "   vertex {} {} {}", p[0], p[1], p[2]);
+        }
+        s.push_str("  endloop\n endfacet\n");
+    };
+    for i in 0..n {
+        for j in 0..m {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            if !(open && i == 0 && j == 0) {
+                facet([a, b, c]);
+            }
+            facet([a, c, d]);
+        }
+    }
+    s.push_str("endsolid torus\n");
+    s
+}
+
+#[test]
+fn an_stl_torus_is_meshed_and_bad_stl_files_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let layers = "first_height = 0.01\ngrowth = 1.2\nmax_layers = 2";
+    std::fs::write(d.join("torus.stl"), torus_stl(false, false)).unwrap();
+    let torus = case(d, "torus", "file = \"torus.stl\"", layers, "mixed");
+    let r = mesh_case(d, &torus, "torus", 2);
+    assert_eq!(r["cells"]["prism"], 2 * 24 * 12 * 2, "{r}");
+
+    let bad = tempfile::tempdir().unwrap();
+    let b = bad.path();
+    for (name, stl, says) in [
+        ("open", torus_stl(false, true), "not closed"),
+        ("inverted", torus_stl(true, false), "inverted"),
+    ] {
+        std::fs::write(b.join(format!("{name}.stl")), stl).unwrap();
+        let file = case(b, name, &format!("file = \"{name}.stl\""), layers, "mixed");
+        let before = files(b);
+        let o = run(
+            b,
+            &[
+                &file,
+                "--out",
+                "out/x.msh",
+                "--report",
+                "out/x.json",
+                "--png",
+                "p.png",
+            ],
+        );
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(
+            e.contains(says) && e.contains(&format!("{name}.stl")),
+            "{e}"
+        );
+        assert_eq!(files(b), before, "{name}: a file was left behind");
+    }
+}
+
+#[test]
+fn what_3d_does_not_do_yet_is_refused_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let layers = "max_layers = 2";
+    let sphere = case(
+        d,
+        "s",
+        "builtin = \"sphere\"\nrefinement = 1",
+        layers,
+        "mixed",
+    );
+    let with_order = std::fs::read_to_string(d.join(&sphere)).unwrap() + "\n[curving]\norder = 2\n";
+    std::fs::write(d.join("p2.toml"), with_order).unwrap();
+    let before = files(d);
+    for (args, says) in [
+        (vec!["p2.toml"], "P2 in 3D is not yet available"),
+        (
+            vec![sphere.as_str(), "--order", "3"],
+            "P3 in 3D is not yet available",
+        ),
+        (
+            vec![sphere.as_str(), "--triangles"],
+            "--triangles applies to 2D",
+        ),
+        (vec![sphere.as_str(), "--out", "a.su2"], ".msh or .vtu"),
+        (
+            vec![sphere.as_str(), "--png", "a.png", "--slice", "w=1"],
+            "x=C, y=C or z=C",
+        ),
+        (
+            vec!["naca0012", "--slice", "z=0", "--png", "a.png"],
+            "applies to 3D cases",
+        ),
+    ] {
+        let o = run(d, &args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(e.contains(says), "{args:?}: {e}");
+    }
+    let bad_key = std::fs::read_to_string(d.join(&sphere))
+        .unwrap()
+        .replace("[cut]", "[cut]\nfoo = 1");
+    std::fs::write(d.join("k.toml"), bad_key).unwrap();
+    let o = run(d, &["k.toml"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("foo"), "{}", stderr(&o));
+    std::fs::remove_file(d.join("k.toml")).unwrap();
+    assert_eq!(files(d), before);
+    // the list names the 3D cases
+    let list = String::from_utf8_lossy(&run(d, &["--list"]).stdout).into_owned();
+    for name in ["sphere", "cube", "step"] {
+        assert!(list.lines().any(|l| l.starts_with(name)), "{list}");
+    }
+}
