@@ -50,6 +50,11 @@ const CASES_3D: &[(&str, &str, &str)] = &[
         "3D: 1x1x0.5 block with a 0.4x0.4x0.5 tower (90 deg concave edges), 15 layers from 2e-3",
         include_str!("../../fixtures/cases/step.toml"),
     ),
+    (
+        "wing",
+        "3D: NACA 0012 wing of span 2 from the naca0012 case, 45 layers from 1e-3, tets (tables 5-7, case 1)",
+        include_str!("../../fixtures/cases/wing.toml"),
+    ),
 ];
 
 /// Data files named by the built-in cases, by the path written in the case file.

@@ -1,5 +1,6 @@
 //! The 3D case file (`dimension = 3`): the wall surface (`[surface]`: a built-in sphere, cube
-//! or step, or a `.stl` / `.msh` file relative to the case file), the layers (`[layers]`, as
+//! or step, a `.stl` / `.msh` file relative to the case file, or the finite wing of a 2D case),
+//! the layers (`[layers]`, as
 //! in 2D), the cut into standard cells (`[cut] cells = "tets" | "mixed"`) and the order
 //! (`[curving] order = 1`: curved 3D cells are not yet available). Unknown keys are errors,
 //! as in 2D; every value is checked here, each fault named by its section and key.
@@ -54,6 +55,17 @@ pub enum SurfaceSource {
     },
     /// `file = "body.stl"` (or `.msh`), resolved against the case file's folder.
     File(PathBuf),
+    /// `wing = "naca0012"`: the finite wing of a 2D case (a built-in case's name, or a case
+    /// file relative to this one), [`crate::wing::wing_surface`].
+    Wing {
+        /// The 2D case: a built-in name or a path.
+        case: String,
+        /// `span` (default 2, chords of the section).
+        span: f64,
+        /// `triangles` (default true: the side's and caps' quads split, as the tetrahedral
+        /// cut of the dissertation's wing takes them).
+        triangles: bool,
+    },
 }
 
 /// What the layer cells are cut into.
@@ -86,6 +98,8 @@ struct CaseFile3d {
 struct SurfaceKeys {
     builtin: Option<String>,
     file: Option<String>,
+    wing: Option<String>,
+    span: Option<f64>,
     radius: Option<f64>,
     refinement: Option<u32>,
     size: Option<f64>,
@@ -183,10 +197,42 @@ pub fn check_order(order: u8, what: &str) -> Result<()> {
 fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Result<SurfaceSource> {
     let at = format!("{origin}: [surface]");
     // the keys each source takes; any other key given is refused
+    if let Some(name) = &k.wing {
+        ensure!(
+            k.builtin.is_none() && k.file.is_none(),
+            "{at}: give one of builtin, file or wing"
+        );
+        let case = match files {
+            _ if crate::builtin::case_text(name).is_some() => name.clone(),
+            FileSource::Dir(dir) => dir.join(name).display().to_string(),
+            FileSource::Builtin => bail!("{at}: wing = {name:?}: not a built-in case"),
+        };
+        let span = positive(k.span, 2.0, &at, "span")?;
+        let triangles = k.triangles.unwrap_or(true);
+        let given = [
+            ("radius", k.radius.is_some()),
+            ("refinement", k.refinement.is_some()),
+            ("size", k.size.is_some()),
+            ("divisions", k.divisions.is_some()),
+        ];
+        if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+            bail!("{at}: {key} does not apply to a wing");
+        }
+        return Ok(SurfaceSource::Wing {
+            case,
+            span,
+            triangles,
+        });
+    }
+    if k.span.is_some() {
+        bail!("{at}: span applies to a wing only");
+    }
     let (source, allowed): (SurfaceSource, &[&str]) = match (&k.builtin, &k.file) {
         (Some(_), Some(_)) => bail!("{at}: give builtin or file, not both"),
         (None, None) => {
-            bail!("{at}: give builtin = \"sphere\" | \"cube\" | \"step\" or file = \"body.stl\"")
+            bail!(
+                "{at}: give builtin = \"sphere\" | \"cube\" | \"step\", file = \"body.stl\" or wing = \"naca0012\""
+            )
         }
         (None, Some(name)) => {
             let path = match files {

@@ -28,6 +28,17 @@ pub fn surface(case: &Case3d) -> Result<Surface> {
                 .with_context(|| format!("{}: [surface] file", case.origin))?;
             Surface::from_triangles(nodes, &tris)
         }
+        SurfaceSource::Wing {
+            case: section,
+            span,
+            triangles,
+        } => {
+            let at = || format!("{}: [surface] wing = {section:?}", case.origin);
+            let section_case = crate::case::load(section).with_context(at)?;
+            crate::wing::wing_surface(&section_case, *span, *triangles)
+                .with_context(at)?
+                .0
+        }
     })
 }
 

@@ -283,3 +283,35 @@ fn what_3d_does_not_do_yet_is_refused_in_one_line() {
         assert!(list.lines().any(|l| l.starts_with(name)), "{list}");
     }
 }
+
+#[test]
+fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let wing = case(
+        d,
+        "wing",
+        "wing = \"naca0012\"\nspan = 1.0",
+        "first_height = 1e-3\ngrowth = 1.3\nmax_layers = 3",
+        "tets",
+    );
+    let r = mesh_case(d, &wing, "wing", 3);
+    assert!(r["cells"]["tet"].as_u64().unwrap() > 0, "{r}");
+    let before = files(d);
+    for (surface, says) in [
+        ("wing = \"naca0012\"\nspan = -1.0", "span"),
+        ("wing = \"nothing-here\"", "nothing-here"),
+        ("wing = \"naca0012\"\nradius = 2.0", "radius"),
+        ("builtin = \"sphere\"\nspan = 2.0", "span"),
+        ("wing = \"sphere\"", "sphere"),
+    ] {
+        let bad = case(d, "bad", surface, "max_layers = 2", "tets");
+        let o = run(d, &[&bad, "--quiet"]);
+        assert_eq!(o.status.code(), Some(1), "{surface}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert_eq!(err.trim().lines().count(), 1, "{surface}: {err}");
+        assert!(err.contains(says), "{surface}: {err}");
+        std::fs::remove_file(d.join(&bad)).unwrap();
+        assert_eq!(files(d), before);
+    }
+}
