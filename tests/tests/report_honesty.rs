@@ -155,13 +155,19 @@ fn every_stage_of_the_run_is_timed() {
         assert!(t[key].as_f64().unwrap() >= 0.0, "timings_s.{key}");
     }
     // the stages add up to the whole run, less what lies between them (the snapshot's copy,
-    // the summary): nothing slow goes untimed
+    // the summary), the overlap counted once: nothing slow goes untimed
     let stages: f64 = t
         .iter()
         .filter(|(k, _)| k.as_str() != "total")
         .map(|(_, v)| v.as_f64().unwrap())
         .sum();
     let total = t["total"].as_f64().unwrap();
-    assert!(stages <= total, "{stages} s of stages in {total} s");
+    // the mesh is written while the report describes and certifies it: those two overlap
+    let (write, check) = (
+        t["write"].as_f64().unwrap(),
+        t["describe"].as_f64().unwrap() + t["validity"].as_f64().unwrap(),
+    );
+    let sequential = stages - write.min(check);
+    assert!(sequential <= total, "{sequential} s of stages in {total} s");
     assert!(stages >= 0.9 * total, "only {stages} s of {total} s timed");
 }
