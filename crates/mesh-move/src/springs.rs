@@ -144,6 +144,10 @@ impl Default for SpringMoveParams {
             solver: SolverParams {
                 max_iterations: 500,
                 tolerance: 1e-4,
+                // the two groups of §4.1 with their own move limits: the extrusion springs
+                // move a node along its extrusion edge, the neighbour and angle springs
+                // across it (their forces are at right angles to the edge)
+                lateral_max_move: Some(LATERAL_MAX_MOVE),
                 ..SolverParams::default()
             },
             strategy: Strategy::AllTogether,
@@ -172,6 +176,12 @@ impl SpringMoveParams {
         }
     }
 }
+
+/// The move limit across a node's extrusion edge per iteration (fraction of its length
+/// scale), against 0.25 along it: the sideways pull of the neighbour and angle springs is
+/// taken in smaller steps than the extrusion spring's, so a column is set to its height
+/// before it swings.
+const LATERAL_MAX_MOVE: f64 = 0.1;
 
 /// Figures of a spring move.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

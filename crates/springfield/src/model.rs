@@ -183,6 +183,13 @@ pub trait ForceModel<const D: usize> {
     }
     /// Which nodes' forces depend on which, over `n` nodes.
     fn influence(&self, n: usize) -> Influence;
+    /// The unit direction of `node`'s extrusion edge (from its parent) at `positions`, for
+    /// [`crate::SolverParams::lateral_max_move`]; `None` (the default) when the model has no
+    /// such edge for it: its whole move is then limited by `max_move`.
+    fn extrusion_axis(&self, node: usize, positions: &[[f64; D]]) -> Option<[f64; D]> {
+        let _ = (node, positions);
+        None
+    }
     /// Appends ∂F/∂X at `positions` for the nodes flagged in `movable` (see [`Triplet`]).
     /// Its pattern lies within [`ForceModel::influence`] plus the diagonal blocks.
     fn jacobian(&self, positions: &[[f64; D]], movable: &[bool], out: &mut Vec<Triplet>);

@@ -116,6 +116,14 @@ pub struct SolverParams {
     /// Largest move of a node in one iteration, as a fraction of its length scale.
     /// Default 0.25.
     pub max_move: f64,
+    /// Separate move limits (§4.1, for movement: the extrusion springs and the neighbour and
+    /// angle springs each with their own limit): when set, a node's move along its extrusion
+    /// axis ([`crate::ForceModel::extrusion_axis`]) is limited by `max_move` and its move
+    /// across it by this, both as fractions of its length scale. The two are the groups'
+    /// moves: the extrusion force lies along the edge, the neighbour and angle forces on a
+    /// child at right angles to it. `None` (the default, the mesher's): `max_move` for the
+    /// whole move.
+    pub lateral_max_move: Option<f64>,
     /// Iterations at constant (unit) mass before oscillating nodes may get heavier (§4.1).
     /// Default 30.
     pub constant_mass_iterations: usize,
@@ -141,6 +149,7 @@ impl Default for SolverParams {
             max_iterations: 200,
             relaxation: 0.7,
             max_move: 0.25,
+            lateral_max_move: None,
             constant_mass_iterations: 30,
             mass_factor: 2.0,
             judge_travel: 0.5,
@@ -153,7 +162,9 @@ impl Default for SolverParams {
 impl SolverParams {
     /// Checks every setting's range.
     pub fn check(&self) -> Result<(), SpringError> {
-        let checks: [(&'static str, f64, bool, &'static str); 6] = [
+        let lateral = self.lateral_max_move.unwrap_or(self.max_move);
+        let checks: [(&'static str, f64, bool, &'static str); 7] = [
+            ("lateral_max_move", lateral, lateral > 0.0, "finite and > 0"),
             (
                 "relaxation",
                 self.relaxation,

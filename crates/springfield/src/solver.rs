@@ -125,9 +125,15 @@ pub fn solve<const D: usize, A>(
 where
     A: FnMut(&[[f64; D]], &mut [[f64; D]], &mut [f64]),
 {
-    solve_core(positions, scale, movable, None, params, |p, _, f, s| {
-        assemble(p, f, s)
-    })
+    solve_core(
+        positions,
+        scale,
+        movable,
+        None,
+        params,
+        |p, _, f, s| assemble(p, f, s),
+        &no_axis,
+    )
 }
 
 /// [`solve()`] with an active set: a node is updated only while it, or a node its force
@@ -158,7 +164,15 @@ where
             movable: influence.len(),
         });
     }
-    solve_core(positions, scale, movable, Some(influence), params, assemble)
+    solve_core(
+        positions,
+        scale,
+        movable,
+        Some(influence),
+        params,
+        assemble,
+        &no_axis,
+    )
 }
 
 /// [`solve()`] with the forces of a [`ForceModel`].
@@ -169,9 +183,16 @@ pub fn solve_model<const D: usize, M: ForceModel<D> + ?Sized>(
     model: &M,
     params: &SolverParams,
 ) -> Result<SolveOutcome, SpringError> {
-    solve(positions, scale, movable, params, |p, f, s| {
-        model.assemble(p, f, s)
-    })
+    let axis = |i: usize, p: &[[f64; D]]| model.extrusion_axis(i, p);
+    solve_core(
+        positions,
+        scale,
+        movable,
+        None,
+        params,
+        |p, _, f, s| model.assemble(p, f, s),
+        &axis,
+    )
 }
 
 /// [`solve_active()`] with the forces and influence table of a [`ForceModel`].
@@ -183,14 +204,31 @@ pub fn solve_model_active<const D: usize, M: ForceModel<D> + ?Sized>(
     params: &SolverParams,
 ) -> Result<SolveOutcome, SpringError> {
     let influence = model.influence(positions.len());
-    solve_active(
+    if influence.len() != positions.len() {
+        return Err(SpringError::LengthMismatch {
+            positions: positions.len(),
+            scales: scale.len(),
+            movable: influence.len(),
+        });
+    }
+    let axis = |i: usize, p: &[[f64; D]]| model.extrusion_axis(i, p);
+    solve_core(
         positions,
         scale,
         movable,
-        &influence,
+        Some(&influence),
         params,
         |p, active, f, s| model.assemble_active(p, active, f, s),
+        &axis,
     )
+}
+
+/// A node's extrusion axis at the positions ([`ForceModel::extrusion_axis`]).
+type Axis<'a, const D: usize> = dyn Fn(usize, &[[f64; D]]) -> Option<[f64; D]> + 'a;
+
+/// No extrusion axes: the solves given only a force closure.
+fn no_axis<const D: usize>(_: usize, _: &[[f64; D]]) -> Option<[f64; D]> {
+    None
 }
 
 fn solve_core<const D: usize, A>(
@@ -200,6 +238,7 @@ fn solve_core<const D: usize, A>(
     influence: Option<&Influence>,
     params: &SolverParams,
     mut assemble: A,
+    axis: &Axis<'_, D>,
 ) -> Result<SolveOutcome, SpringError>
 where
     A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
@@ -268,7 +307,11 @@ where
             if s <= 0.0 {
                 continue;
             }
-            let (step, len) = clamped_step(&f, s, masses.mass[i], scale[i], params);
+            let axis = match params.lateral_max_move {
+                Some(_) => axis(i, positions),
+                None => None,
+            };
+            let (step, len) = clamped_step(&f, s, masses.mass[i], scale[i], params, axis);
             for k in 0..D {
                 positions[i][k] += step[k];
             }
@@ -328,7 +371,8 @@ fn select_active(
 }
 
 /// The damped Jacobi move ω·F/(S·m) of one node, clamped to `max_move × scale`, and its
-/// length.
+/// length; with a lateral limit and the node's extrusion `axis`, the parts along and across
+/// the axis are clamped separately (`max_move` and `lateral_max_move`).
 #[inline]
 fn clamped_step<const D: usize>(
     f: &[f64; D],
@@ -336,8 +380,20 @@ fn clamped_step<const D: usize>(
     mass: f64,
     scale: f64,
     params: &SolverParams,
+    axis: Option<[f64; D]>,
 ) -> ([f64; D], f64) {
     let mut step: [f64; D] = std::array::from_fn(|k| params.relaxation * f[k] / (s * mass));
+    if let (Some(lateral), Some(u)) = (params.lateral_max_move, axis) {
+        let along: f64 = (0..D).map(|k| step[k] * u[k]).sum();
+        let mut across: [f64; D] = std::array::from_fn(|k| step[k] - along * u[k]);
+        let along = along.clamp(-params.max_move * scale, params.max_move * scale);
+        let (len, limit) = (norm(&across), lateral * scale);
+        if len > limit {
+            across.iter_mut().for_each(|x| *x *= limit / len);
+        }
+        let step: [f64; D] = std::array::from_fn(|k| along * u[k] + across[k]);
+        return (step, norm(&step));
+    }
     let len = norm(&step);
     let limit = params.max_move * scale;
     if len > limit {
@@ -395,6 +451,29 @@ impl<const D: usize> MassSchedule<D> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn separate_limits_clamp_the_move_along_and_across_the_extrusion_axis() {
+        let separate = SolverParams {
+            relaxation: 1.0,
+            max_move: 0.25,
+            lateral_max_move: Some(0.05),
+            ..SolverParams::default()
+        };
+        let (step, len) =
+            super::clamped_step(&[1.0, 10.0], 1.0, 1.0, 2.0, &separate, Some([0.0, 1.0]));
+        assert_eq!(step, [0.1, 0.5]);
+        assert!((len - 0.1f64.hypot(0.5)).abs() < 1e-15);
+        // a node without an axis, or no lateral limit: the whole move clamped to max_move
+        let one = SolverParams {
+            lateral_max_move: None,
+            ..separate
+        };
+        for (params, axis) in [(&separate, None), (&one, Some([0.0, 1.0]))] {
+            let (step, len) = super::clamped_step(&[0.0, 10.0], 1.0, 1.0, 2.0, params, axis);
+            assert_eq!((step, len), ([0.0, 0.5], 0.5));
+        }
+    }
     use super::*;
     use proptest::prelude::*;
 

@@ -288,6 +288,20 @@ impl ForceModel<2> for SpringField2d<'_> {
         assemble_2d(self.set, self.params, positions, force, stiffness);
     }
 
+    fn extrusion_axis(&self, node: usize, positions: &[[f64; 2]]) -> Option<[f64; 2]> {
+        let index = &self.index;
+        let range = *index.offsets.get(node)? as usize..*index.offsets.get(node + 1)? as usize;
+        let spring = index.springs[range]
+            .iter()
+            .filter(|&&id| id >> KIND_SHIFT == 0)
+            .map(|&id| &self.set.extrusion[(id & INDEX_MASK) as usize])
+            .find(|e| e.upper as usize == node)?;
+        let (p, q) = (positions[spring.lower as usize], positions[node]);
+        let d = [q[0] - p[0], q[1] - p[1]];
+        let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        (l > 0.0).then(|| [d[0] / l, d[1] / l])
+    }
+
     fn assemble_active(
         &self,
         positions: &[[f64; 2]],
@@ -708,6 +722,25 @@ pub(crate) mod tests {
             }
         }
         (x, set)
+    }
+
+    #[test]
+    fn the_extrusion_axis_runs_from_the_parent_and_only_children_have_one() {
+        let (x, set) = two_layers(&[0.0; 16], 0.5, 0.3);
+        let params = SpringParams::default();
+        let model = SpringField2d::new(&set, &params, x.len());
+        for e in &set.extrusion {
+            let (p, q) = (x[e.lower as usize], x[e.upper as usize]);
+            let l = (q[0] - p[0]).hypot(q[1] - p[1]);
+            let u = model.extrusion_axis(e.upper as usize, &x).unwrap();
+            assert!((u[0] - (q[0] - p[0]) / l).abs() < 1e-15);
+            assert!((u[1] - (q[1] - p[1]) / l).abs() < 1e-15);
+        }
+        let children: Vec<u32> = set.extrusion.iter().map(|e| e.upper).collect();
+        for n in (0..x.len()).filter(|n| !children.contains(&(*n as u32))) {
+            assert_eq!(model.extrusion_axis(n, &x), None);
+        }
+        assert_eq!(model.extrusion_axis(x.len() + 5, &x), None);
     }
 
     proptest::proptest! {
