@@ -157,13 +157,6 @@ pub fn solve_active<const D: usize, A>(
 where
     A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
-    if influence.len() != positions.len() {
-        return Err(SpringError::LengthMismatch {
-            positions: positions.len(),
-            scales: scale.len(),
-            movable: influence.len(),
-        });
-    }
     solve_core(
         positions,
         scale,
@@ -204,13 +197,6 @@ pub fn solve_model_active<const D: usize, M: ForceModel<D> + ?Sized>(
     params: &SolverParams,
 ) -> Result<SolveOutcome, SpringError> {
     let influence = model.influence(positions.len());
-    if influence.len() != positions.len() {
-        return Err(SpringError::LengthMismatch {
-            positions: positions.len(),
-            scales: scale.len(),
-            movable: influence.len(),
-        });
-    }
     let axis = |i: usize, p: &[[f64; D]]| model.extrusion_axis(i, p);
     solve_core(
         positions,
@@ -245,6 +231,13 @@ where
 {
     params.check()?;
     let n = positions.len();
+    if let Some(influence) = influence.filter(|i| i.len() != n) {
+        return Err(SpringError::LengthMismatch {
+            positions: n,
+            scales: scale.len(),
+            movable: influence.len(),
+        });
+    }
     if scale.len() != n || movable.len() != n {
         return Err(SpringError::LengthMismatch {
             positions: n,
