@@ -15,7 +15,7 @@ use crate::{Outcome, builtin, case, pipeline};
 
 /// Runs `cargo xtask bench`.
 pub fn run(args: &BenchArgs) -> Result<Outcome> {
-    if args.vs_gmsh || args.scaling {
+    if args.vs_gmsh || args.scaling || args.three_d {
         crate::bench_vs::run(args)?;
         return Ok(Outcome::Valid);
     }

@@ -43,7 +43,7 @@ const TINY_SCALING: [(f64, usize); 2] = [(1.0, 1), (0.5, 1)];
 
 /// One timed process.
 #[derive(Debug, Clone, Copy)]
-struct Timed {
+pub(crate) struct Timed {
     wall_s: f64,
     cpu_s: f64,
 }
@@ -87,12 +87,15 @@ fn run_in(args: &BenchArgs, runs: usize, work: &Work) -> Result<()> {
         }
         perf_doc::write_scaling(&args.doc, &rows)?;
     }
+    if args.three_d {
+        crate::bench3d::run(work, runs, args.tiny, &args.doc)?;
+    }
     println!("wrote {}", args.doc.display());
     Ok(())
 }
 
 /// The temporary folder of the cases and meshes, and this binary.
-struct Work {
+pub(crate) struct Work {
     dir: PathBuf,
     exe: PathBuf,
 }
@@ -112,7 +115,7 @@ impl Work {
 
     /// Writes built-in case `name` with each `(from, to)` line replaced (its data files
     /// beside it) and returns its path.
-    fn case(&self, name: &str, edits: &[(&str, &str)]) -> Result<PathBuf> {
+    pub(crate) fn case(&self, name: &str, edits: &[(&str, &str)]) -> Result<PathBuf> {
         let mut text = builtin::case_text(name)
             .with_context(|| format!("no built-in case {name}"))?
             .to_string();
@@ -183,11 +186,19 @@ fn timed(command: &mut Command) -> Result<(Timed, std::process::Output)> {
 
 /// One run of our `mesh` on `case` at P3: its times and its report.
 fn ours(work: &Work, case: &Path) -> Result<(Timed, Value)> {
+    mesh_process(work, case, &["--order", "3"])
+}
+
+/// One run of our `mesh` on `case` with the `extra` flags, writing a `.msh` and the report:
+/// its times and its report.
+pub(crate) fn mesh_process(work: &Work, case: &Path, extra: &[&str]) -> Result<(Timed, Value)> {
     let msh = work.dir.join("ours.msh");
     let report = work.dir.join("ours.json");
     let (time, out) = timed(
         Command::new(&work.exe)
-            .args(["mesh", "--order", "3", "-q", "--out"])
+            .arg("mesh")
+            .args(extra)
+            .args(["-q", "--out"])
             .arg(&msh)
             .arg("--report")
             .arg(&report)
@@ -354,7 +365,7 @@ fn scaling_row(work: &Work, case: &Path, spacing: f64, runs: usize) -> Result<Sc
 }
 
 /// The medians of the wall and CPU times.
-fn medians(runs: &[Timed]) -> perf_doc::Times {
+pub(crate) fn medians(runs: &[Timed]) -> perf_doc::Times {
     let mut wall: Vec<f64> = runs.iter().map(|t| t.wall_s).collect();
     let mut cpu: Vec<f64> = runs.iter().map(|t| t.cpu_s).collect();
     perf_doc::Times {

@@ -287,16 +287,22 @@ pub struct BenchArgs {
     #[arg(long)]
     pub scaling: bool,
 
-    /// Runs of each process for --vs-gmsh and --scaling (default 3).
+    /// Whole runs of the built-in 3D cases and of the built-in wing made long enough for about
+    /// 1M tetrahedra: wall and CPU time, each stage's time, peak memory; writes the table into
+    /// --doc.
+    #[arg(long = "3d")]
+    pub three_d: bool,
+
+    /// Runs of each process for --vs-gmsh, --scaling and --3d (default 3).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub runs: Option<u16>,
 
-    /// --vs-gmsh and --scaling on a tiny configuration (one coarse row, two small points, one
-    /// run): checks that the commands work; the times mean nothing.
+    /// --vs-gmsh, --scaling and --3d on a tiny configuration (one coarse row, two small points,
+    /// the step, one run): checks that the commands work; the times mean nothing.
     #[arg(long)]
     pub tiny: bool,
 
-    /// The document --vs-gmsh and --scaling write their parts into (between marker comments;
+    /// The document --vs-gmsh, --scaling and --3d write their parts into (between marker comments;
     /// the rest is kept), its plot in figures/ beside it.
     #[arg(long, value_name = "FILE.md", default_value = "docs/performance.md")]
     pub doc: PathBuf,

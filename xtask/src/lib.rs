@@ -15,6 +15,7 @@
 //! ([`mesh_io::atomic::Transaction`], see [`outputs`]).
 
 mod airfoil;
+mod bench3d;
 mod bench_cmd;
 mod bench_vs;
 pub mod builtin;

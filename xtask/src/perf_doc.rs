@@ -251,7 +251,7 @@ pub fn write_scaling(doc: &Path, rows: &[ScalingRow]) -> Result<()> {
 
 /// Replaces what lies between `<!-- NAME:begin -->` and `<!-- NAME:end -->` in `doc` by
 /// `body` (the part is appended when missing; the document is made when missing).
-fn replace_part(doc: &Path, name: &str, body: &str) -> Result<()> {
+pub(crate) fn replace_part(doc: &Path, name: &str, body: &str) -> Result<()> {
     let old = match std::fs::read_to_string(doc) {
         Ok(text) => text,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => "# Performance\n".to_string(),

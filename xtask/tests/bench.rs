@@ -1,4 +1,4 @@
-//! `cargo xtask bench --vs-gmsh --scaling` on its tiny configuration, run as a user runs it:
+//! `cargo xtask bench --vs-gmsh --scaling --3d` on its tiny configuration, run as a user runs it:
 //! it works, prints one line per row and point, skips Gmsh's side in one line when there is
 //! no Python with Gmsh, and writes its parts of the document (the hand-written rest kept) and
 //! the plot. No timing is checked.
@@ -12,7 +12,7 @@ fn bench_vs_gmsh_and_scaling_work_on_a_tiny_configuration() {
     std::fs::create_dir_all(doc.parent().unwrap()).unwrap();
     std::fs::write(&doc, "# Performance\n\nWritten by hand.\n").unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(["bench", "--vs-gmsh", "--scaling", "--tiny", "--doc"])
+        .args(["bench", "--vs-gmsh", "--scaling", "--3d", "--tiny", "--doc"])
         .arg(&doc)
         .env("CHECKERS_VENV", dir.path().join("no-venv"))
         .output()
@@ -46,6 +46,8 @@ fn bench_vs_gmsh_and_scaling_work_on_a_tiny_configuration() {
         "Gmsh's side was skipped",
         "<!-- scaling:end -->",
         "Fitted exponent",
+        "<!-- 3d:begin -->",
+        "| step | 7200 hexes |",
     ] {
         assert!(text.contains(needle), "no {needle:?} in {text}");
     }
