@@ -14,8 +14,15 @@ use crate::bench_cmd::median;
 use crate::bench_vs::{Timed, Work, mesh_process};
 use crate::perf_doc::{self, Times};
 
-/// The rows: (label, built-in case, line edits of its case file).
-const ROWS: [(&str, &str, &[(&str, &str)]); 5] = [
+/// A row to run: (label, built-in case, `(from, to)` line edits of its case file).
+type Spec = (
+    &'static str,
+    &'static str,
+    &'static [(&'static str, &'static str)],
+);
+
+/// The rows.
+const ROWS: [Spec; 5] = [
     ("sphere", "sphere", &[]),
     ("cube", "cube", &[]),
     ("step", "step", &[]),
@@ -24,7 +31,7 @@ const ROWS: [(&str, &str, &[(&str, &str)]); 5] = [
     ("wing, span 4", "wing", &[("span = 2.0", "span = 4.0")]),
 ];
 /// `--tiny`: the smallest case, to check that the command works.
-const TINY_ROWS: [(&str, &str, &[(&str, &str)]); 1] = [("step", "step", &[])];
+const TINY_ROWS: [Spec; 1] = [("step", "step", &[])];
 
 /// The stages shown, in pipeline order (those no row has are left out).
 const STAGES: [&str; 9] = [
@@ -46,7 +53,7 @@ struct Row {
 
 /// Runs `--3d` and writes its part of `doc`.
 pub fn run(work: &Work, runs: usize, tiny: bool, doc: &std::path::Path) -> Result<()> {
-    let rows: &[(&str, &str, &[(&str, &str)])] = if tiny { &TINY_ROWS } else { &ROWS };
+    let rows: &[Spec] = if tiny { &TINY_ROWS } else { &ROWS };
     let mut table = Vec::new();
     for &(label, name, edits) in rows {
         let case = work.case(name, edits)?;
