@@ -62,6 +62,10 @@ pub enum SurfaceSource {
         case: String,
         /// `span` (default 2, chords of the section).
         span: f64,
+        /// `first_height`: the surface's first height — the caps' own layers and the span
+        /// grading from each tip — in place of the 2D case's `[layers] first_height` (the
+        /// dissertation's "surface" height of tables 5–7; `None`: the 2D case's).
+        first_height: Option<f64>,
         /// `triangles` (default true: the side's and caps' quads split, as the tetrahedral
         /// cut of the dissertation's wing takes them).
         triangles: bool,
@@ -100,6 +104,7 @@ struct SurfaceKeys {
     file: Option<String>,
     wing: Option<String>,
     span: Option<f64>,
+    first_height: Option<f64>,
     radius: Option<f64>,
     refinement: Option<u32>,
     size: Option<f64>,
@@ -208,6 +213,10 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
             FileSource::Builtin => bail!("{at}: wing = {name:?}: not a built-in case"),
         };
         let span = positive(k.span, 2.0, &at, "span")?;
+        let first_height = k
+            .first_height
+            .map(|h| positive(Some(h), h, &at, "first_height"))
+            .transpose()?;
         let triangles = k.triangles.unwrap_or(true);
         let given = [
             ("radius", k.radius.is_some()),
@@ -221,11 +230,13 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
         return Ok(SurfaceSource::Wing {
             case,
             span,
+            first_height,
             triangles,
         });
     }
-    if k.span.is_some() {
-        bail!("{at}: span applies to a wing only");
+    if k.span.is_some() || k.first_height.is_some() {
+        let key = if k.span.is_some() { "span" } else { "first_height" };
+        bail!("{at}: {key} applies to a wing only");
     }
     let (source, allowed): (SurfaceSource, &[&str]) = match (&k.builtin, &k.file) {
         (Some(_), Some(_)) => bail!("{at}: give builtin or file, not both"),

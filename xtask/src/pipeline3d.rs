@@ -31,10 +31,14 @@ pub fn surface(case: &Case3d) -> Result<Surface> {
         SurfaceSource::Wing {
             case: section,
             span,
+            first_height,
             triangles,
         } => {
             let at = || format!("{}: [surface] wing = {section:?}", case.origin);
-            let section_case = crate::case::load(section).with_context(at)?;
+            let mut section_case = crate::case::load(section).with_context(at)?;
+            if let Some(h) = first_height {
+                section_case.layers.first_height = *h;
+            }
             crate::wing::wing_surface(&section_case, *span, *triangles)
                 .with_context(at)?
                 .0

@@ -291,7 +291,7 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
     let wing = case(
         d,
         "wing",
-        "wing = \"naca0012\"\nspan = 1.0",
+        "wing = \"naca0012\"\nspan = 1.0\nfirst_height = 1e-3",
         "first_height = 1e-3\ngrowth = 1.3\nmax_layers = 3",
         "tets",
     );
@@ -303,6 +303,8 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
         ("wing = \"nothing-here\"", "nothing-here"),
         ("wing = \"naca0012\"\nradius = 2.0", "radius"),
         ("builtin = \"sphere\"\nspan = 2.0", "span"),
+        ("builtin = \"sphere\"\nfirst_height = 1e-3", "first_height"),
+        ("wing = \"naca0012\"\nfirst_height = 0.0", "first_height"),
         ("wing = \"sphere\"", "sphere"),
     ] {
         let bad = case(d, "bad", surface, "max_layers = 2", "tets");
