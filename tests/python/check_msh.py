@@ -19,12 +19,18 @@ import numpy as np
 # Gmsh's Gauss rule exact to degree 12: the Jacobian determinant of a cubic quadrilateral is of
 # degree 5 in each variable (10 in all), of a cubic triangle 4, so the integral is exact.
 QUADRATURE = "Gauss12"
+# Linear cells: det J is constant on a tetrahedron and of degree 2 in each variable on a
+# prism, hexahedron or pyramid, so Gauss4 is exact. It matters in 3D: getJacobians returns
+# every point's matrix and position, and Gauss12 has 210 points on a tetrahedron (about 20 KB
+# per element: the 505 000-tetrahedron wing would need 10 GB).
+QUADRATURE_LINEAR = "Gauss4"
 
 
-def measure(etype):
+def measure(etype, order):
     """Sum over all elements of one type of the integral of det J (area in 2D, volume in 3D),
     from Gmsh's Jacobians at Gmsh's own Gauss points; signed, so an inverted cell lowers it."""
-    uvw, weights = gmsh.model.mesh.getIntegrationPoints(etype, QUADRATURE)
+    rule = QUADRATURE_LINEAR if order == 1 else QUADRATURE
+    uvw, weights = gmsh.model.mesh.getIntegrationPoints(etype, rule)
     _, det, _ = gmsh.model.mesh.getJacobians(etype, uvw)
     det = np.asarray(det).reshape(-1, len(weights))
     return float((det @ np.asarray(weights)).sum())
@@ -60,7 +66,7 @@ def read(path):
                 m = float(min(q))
                 min_sj = m if min_sj is None else min(min_sj, m)
             if dim == top and dim >= 2:
-                area += measure(t)
+                area += measure(t, order)
     groups = []
     for dim, tag in gmsh.model.getPhysicalGroups():
         n = 0

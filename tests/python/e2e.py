@@ -242,21 +242,11 @@ def check_cut3d(cut3d, tmp):
     check_3d(meshes)
 
 
-# Built-in 3D cases left out of the Gmsh check: Gmsh's Python API holds every element's
-# Jacobians at its Gauss points in Python lists (about 40 KB per tetrahedron here), and the
-# wing's 710 000 tetrahedra take more memory than the machine has; the wing is meshed at a
-# small size by xtask's own tests (xtask/tests/mesh3d.rs).
-TOO_BIG_FOR_GMSH_CHECK = {"wing": "710 000 tetrahedra: too many for Gmsh's Python checker"}
-
-
 def check_builtin_3d(xtask, names, tmp):
     """The built-in 3D cases meshed by xtask (.msh and .vtu) read by Gmsh and VTK, their
     counts checked against the report's."""
     meshes = []
     for name in names:
-        if name in TOO_BIG_FOR_GMSH_CHECK:
-            print(f"skip 3D {name}: {TOO_BIG_FOR_GMSH_CHECK[name]}")
-            continue
         stem = os.path.join(tmp, f"{name}-3d")
         r = subprocess.run([xtask, "mesh", name, "--quiet", "--out", stem + ".msh", "--out",
                             stem + ".vtu", "--report", stem + ".json"],
