@@ -235,7 +235,11 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
         });
     }
     if k.span.is_some() || k.first_height.is_some() {
-        let key = if k.span.is_some() { "span" } else { "first_height" };
+        let key = if k.span.is_some() {
+            "span"
+        } else {
+            "first_height"
+        };
         bail!("{at}: {key} applies to a wing only");
     }
     let (source, allowed): (SurfaceSource, &[&str]) = match (&k.builtin, &k.file) {

@@ -207,34 +207,120 @@ fn enclosed(mesh: &Mesh, role: Role) -> f64 {
 }
 
 /// The largest corner angle of every facet of the fronts of layers 1 to n, and the deviation
-/// of every extrusion edge from the normal of the front it grew from.
+/// of every extrusion edge from the angle-weighted normal of the front it grew from. A front
+/// is the wall's facets over the nodes of that layer: where children merged, a facet loses
+/// its repeated corner (a quad becomes a triangle) or, left with two corners, is no facet of
+/// that front (it collapsed to an edge) and is not counted; an extrusion edge two merged
+/// columns share is counted once.
 fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64>) {
-    let nodes = &grown.mesh.nodes;
     let depth = grown.columns.iter().map(Vec::len).min().unwrap_or(0);
-    let mut front = wall.clone();
     let mut angles = Vec::new();
     let mut deviations = Vec::new();
     let mut points = Vec::with_capacity(4);
+    let mut below = layer_front(wall, grown, 0);
     for k in 0..depth.saturating_sub(1) {
-        for (i, column) in grown.columns.iter().enumerate() {
-            front.nodes[i] = nodes[column[k] as usize];
-        }
-        for (normal, column) in front.node_normals().into_iter().zip(&grown.columns) {
-            let (a, b) = (nodes[column[k] as usize], nodes[column[k + 1] as usize]);
+        let normals = below.node_normals();
+        let mut edges: Vec<(u32, u32)> = grown
+            .columns
+            .iter()
+            .map(|c| (c[k], c[k + 1]))
+            .filter(|(a, b)| a != b)
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        for (a, b) in edges {
+            let (p, q) = (below.nodes[a as usize], below.nodes[b as usize]);
             deviations.push(measure3d::angle_deg(
-                std::array::from_fn(|d| b[d] - a[d]),
-                normal,
+                std::array::from_fn(|d| q[d] - p[d]),
+                normals[a as usize],
             ));
         }
-        for f in &wall.facets {
+        let above = layer_front(wall, grown, k + 1);
+        for f in &above.facets {
             points.clear();
-            points.extend(
-                f.nodes()
-                    .iter()
-                    .map(|&v| nodes[grown.columns[v as usize][k + 1] as usize]),
-            );
+            points.extend(f.nodes().iter().map(|&v| above.nodes[v as usize]));
             angles.push(measure3d::polygon_max_angle_deg(&points));
         }
+        below = above;
     }
     (angles, deviations)
+}
+
+/// The front of layer `k` as a surface over the grown mesh's nodes: each wall facet over its
+/// corners' layer-`k` nodes, repeated corners dropped, those left with fewer than three
+/// corners left out.
+fn layer_front(wall: &Surface, grown: &afsf3d::Grown3d, k: usize) -> Surface {
+    let mut facets = Vec::with_capacity(wall.facets.len());
+    let mut corners: Vec<u32> = Vec::with_capacity(4);
+    for f in &wall.facets {
+        corners.clear();
+        for &v in f.nodes() {
+            let node = grown.columns[v as usize][k];
+            if corners.last() != Some(&node) {
+                corners.push(node);
+            }
+        }
+        while corners.len() > 1 && corners.first() == corners.last() {
+            corners.pop();
+        }
+        match corners[..] {
+            [a, b, c] if a != c => facets.push(geom_surface::Facet::tri(a, b, c)),
+            [a, b, c, d] => facets.push(geom_surface::Facet::quad(a, b, c, d)),
+            _ => {}
+        }
+    }
+    Surface::single_patch(grown.mesh.nodes.clone(), facets, "front")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geom_surface::Facet;
+
+    /// A square wall split in two triangles, two layers; at layer 1 the children of wall
+    /// nodes 1 and 2 merged (node 5), so the first triangle's child collapsed to an edge.
+    fn merged() -> (Surface, afsf3d::Grown3d) {
+        let wall = Surface::single_patch(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+            vec![Facet::tri(0, 1, 2), Facet::tri(0, 2, 3)],
+            "wall",
+        );
+        let mut mesh = mesh_model::poly::PolyMesh::new();
+        mesh.nodes = wall.nodes.clone();
+        mesh.nodes
+            .extend([[0.0, 0.0, 1.0], [1.0, 0.5, 1.0], [0.0, 1.0, 1.0]]);
+        mesh.nodes
+            .extend([[0.0, 0.0, 2.0], [1.0, 0.5, 2.0], [0.0, 1.0, 2.0]]);
+        let grown = afsf3d::Grown3d {
+            mesh,
+            columns: vec![vec![0, 4, 7], vec![1, 5, 8], vec![2, 5, 8], vec![3, 6, 9]],
+            front: wall.clone(),
+            front_nodes: vec![],
+            node_layer: vec![],
+            node_parents: vec![],
+            layer_merges: vec![0, 1, 0],
+            stats: Default::default(),
+        };
+        (wall, grown)
+    }
+
+    #[test]
+    fn collapsed_facets_and_shared_extrusion_edges_are_not_counted() {
+        let (wall, grown) = merged();
+        let front = layer_front(&wall, &grown, 1);
+        assert_eq!(front.facets, vec![Facet::tri(4, 5, 6)]);
+        let (angles, deviations) = front_measures(&wall, &grown);
+        // layer 1: the one triangle left; layer 2: the same
+        assert_eq!(angles.len(), 2, "{angles:?}");
+        assert!(angles.iter().all(|&a| a < 90.0), "{angles:?}");
+        // layer 0 to 1: four edges; layer 1 to 2: three (5 -> 8 once)
+        assert_eq!(deviations.len(), 7, "{deviations:?}");
+        assert!(deviations[..4].iter().all(|&d| d < 60.0), "{deviations:?}");
+        assert!(deviations[4..].iter().all(|&d| d < 1e-9), "{deviations:?}");
+    }
 }
