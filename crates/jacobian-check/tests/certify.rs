@@ -188,6 +188,35 @@ fn a_fold_in_a_mesh_is_reported_with_its_cell() {
 }
 
 #[test]
+fn the_per_cell_min_det_is_the_certificates_and_nan_where_not_valid() {
+    let mut mesh = annulus(&AnnulusParams {
+        order: 3,
+        ..AnnulusParams::default()
+    });
+    let cell = mesh.cells.get(5);
+    let (a, b, n) = (cell.nodes[0], cell.nodes[1], cell.nodes[3]);
+    let (pa, pb) = (mesh.nodes[a as usize], mesh.nodes[b as usize]);
+    mesh.nodes[n as usize] = [0.1 * pa[0] + 0.9 * pb[0], 0.1 * pa[1] + 0.9 * pb[1], 0.0];
+    let params = CertifyParams::default();
+    let v = check_mesh(&mesh, &params).unwrap();
+    assert_eq!(v.per_cell_min_det.len(), mesh.cells.len());
+    for (i, c) in mesh.cells.iter().enumerate() {
+        let nodes: Vec<[f64; 2]> = c.nodes.iter().map(|&k| mesh.xy(k)).collect();
+        match certify_cell(c.ty, &nodes, &params).unwrap() {
+            Certificate::Valid { min_coeff, .. } => {
+                assert_eq!(
+                    v.per_cell_min_det[i].to_bits(),
+                    min_coeff.to_bits(),
+                    "cell {i}"
+                );
+            }
+            other => assert!(v.per_cell_min_det[i].is_nan(), "cell {i}: {other:?}"),
+        }
+    }
+    assert!(v.per_cell_min_det[5].is_nan());
+}
+
+#[test]
 fn straight_sided_cells_have_the_constant_linear_determinant() {
     let a = [[1.3, 0.4], [-0.2, 0.9]];
     let b = [5.0, -2.0];
