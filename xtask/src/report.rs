@@ -127,12 +127,13 @@ impl Report {
     /// Fills what can be read off a finished 2D mesh: counts, angles, and the structural
     /// problems found by `mesh_model::validate`.
     pub fn describe(&mut self, mesh: &Mesh) {
-        self.describe_over(mesh, mesh);
+        self.describe_over(mesh, LinearAngles::Of(mesh));
     }
 
     /// [`Report::describe`], with the angle figures of `linear`, the linear mesh under `mesh`
-    /// (see [`Report::linear_angles`]); timed as `describe`.
-    pub fn describe_over(&mut self, mesh: &Mesh, linear: &Mesh) {
+    /// ([`ANGLES_OF`]), or those figures already computed; timed as
+    /// `describe` (with the seconds the given figures took).
+    pub fn describe_over(&mut self, mesh: &Mesh, linear: LinearAngles<'_>) {
         let t = std::time::Instant::now();
         self.nodes = mesh.nodes.len();
         for shape in [Shape::Tri, Shape::Quad] {
@@ -144,10 +145,19 @@ impl Report {
         // (and the certified check, see `certify`) still tell what is wrong where
         let sound = !problems.iter().any(mesh_model::Problem::is_structural);
         self.problems = problems.iter().map(ToString::to_string).collect();
+        let mut seconds = 0.0;
         if sound && !mesh.cells.is_empty() {
-            self.linear_angles(linear);
+            let angles = match linear {
+                LinearAngles::Of(linear) => afsf2d::max_angle_histogram(linear),
+                LinearAngles::Given { angles, seconds: s } => {
+                    seconds = s;
+                    angles
+                }
+            };
+            self.set_angles(&angles);
         }
-        self.timings_s.insert("describe", t.elapsed().as_secs_f64());
+        self.timings_s
+            .insert("describe", seconds + t.elapsed().as_secs_f64());
     }
 
     /// Counts the boundary facets by role and by boundary group.
@@ -211,10 +221,10 @@ impl Report {
         });
     }
 
-    /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut
-    /// along the shorter diagonal), so that they do not depend on the order or on `--triangles`.
-    pub fn linear_angles(&mut self, mesh: &Mesh) {
-        let angles = afsf2d::max_angle_histogram(mesh);
+    /// Fills the angle figures from those of the linear mesh under the final one (its cell
+    /// corners, quads cut along the shorter diagonal), so that they do not depend on the order
+    /// or on `--triangles`.
+    fn set_angles(&mut self, angles: &afsf2d::AngleStats) {
         let q = self.quality.get_or_insert_with(Quality::default);
         q.max_angle_deg = angles.max_angle_deg;
         q.obtuse_hist = angles.histogram;
@@ -299,6 +309,21 @@ impl Report {
         }
         Ok(v.per_cell_scaled_jacobian)
     }
+}
+
+/// Where the angle figures of a 2D run come from: the linear mesh under the final one, or
+/// its figures computed earlier (so that the linear mesh need not be kept; sound by then).
+#[derive(Debug, Clone, Copy)]
+pub enum LinearAngles<'a> {
+    /// Computed from this mesh, when the final mesh is structurally sound.
+    Of(&'a Mesh),
+    /// Already computed, in `seconds`.
+    Given {
+        /// The figures.
+        angles: afsf2d::AngleStats,
+        /// What computing them took.
+        seconds: f64,
+    },
 }
 
 /// What `min_scaled_jacobian` is.
