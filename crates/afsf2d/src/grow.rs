@@ -28,7 +28,7 @@ use springfield::{
 };
 
 use geom_predicates::vector::{cross2, dist, dot};
-use geom_predicates::{for_each_overlapping_pair_grid, orient2d, segment_distance};
+use geom_predicates::{for_each_overlapping_pair, orient2d, segment_distance};
 
 use crate::geom::{Aabb, P2};
 use crate::input::AfsfParams;
@@ -451,8 +451,7 @@ impl<'p> Work<'p> {
                 }
             }
         };
-        // (a pair only sets flags: the order of the pairs does not matter)
-        for_each_overlapping_pair_grid(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (&segs[x], &segs[y]);
             if sx.owner[0] == NONE && sy.owner[0] == NONE {
                 return;
@@ -1006,8 +1005,7 @@ impl<'p> Work<'p> {
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
-        // (`bad` only becomes flags: the order of the pairs does not matter)
-        for_each_overlapping_pair_grid(&boxes, |x, y| {
+        for_each_overlapping_pair(&boxes, |x, y| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;

@@ -13,8 +13,8 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use geom_predicates::{
-    Aabb, PointTree, SegmentMeet, for_each_overlapping_pair, for_each_overlapping_pair_grid,
-    orient2d, orient3d, point_in_loop, point_segment_distance, segment_meet,
+    Aabb, PointTree, SegmentMeet, for_each_overlapping_pair, orient2d, orient3d, point_in_loop,
+    point_segment_distance, segment_meet,
 };
 use std::hint::black_box;
 
@@ -90,36 +90,6 @@ fn predicates(c: &mut Criterion) {
             n
         })
     });
-    // the fronts of a mesh: segments around an airfoil-like ellipse and a far circle, boxes
-    // grown by clearances of many sizes (the closing test's broad phase)
-    let fronts: Vec<Aabb<2>> = (0..20_000)
-        .map(|i| {
-            // (semi-axes, segments, index along the loop)
-            let ((rx, ry), m, k) = if i < 16_000 {
-                ((0.5, 0.06), 16_000.0, i as f64)
-            } else {
-                ((20.0, 20.0), 4000.0, (i - 16_000) as f64)
-            };
-            let at = |t: f64| {
-                let a = std::f64::consts::TAU * t / m;
-                [0.5 + rx * a.cos(), ry * a.sin()]
-            };
-            Aabb::of_segment(at(k), at(k + 1.0), 1e-4 * (1.0 + (i % 5) as f64))
-        })
-        .collect();
-    for (name, grid) in [("sort-and-sweep", false), ("uniform grid", true)] {
-        c.bench_function(&format!("{name} 20000 front boxes"), |b| {
-            b.iter(|| {
-                let mut n = 0usize;
-                if grid {
-                    for_each_overlapping_pair_grid(black_box(&fronts), |_, _| n += 1);
-                } else {
-                    for_each_overlapping_pair(black_box(&fronts), |_, _| n += 1);
-                }
-                n
-            })
-        });
-    }
     let tree = PointTree::new(&p[..2000]);
     c.bench_function("kd-tree nearest x1000 (2000 points)", |b| {
         b.iter(|| {

@@ -3,8 +3,7 @@
 //! in 2D and 3D (Shewchuk's adaptive predicates from the `robust` crate), segment–segment
 //! intersection (proper or touching) and segment/triangle–triangle intersection in 3D decided
 //! on exact signs, point projection and distances to segments, polylines and loops, point in
-//! loop by an exact winding number, polygon area, a sort-and-sweep broad phase over boxes (and a uniform-grid one for 2D
-//! boxes), and a k-d tree
+//! loop by an exact winding number, polygon area, a sort-and-sweep broad phase over boxes, and a k-d tree
 //! (over `kiddo`) for nearest-point and within-radius queries.
 //!
 //! Points are plain `[f64; D]`; functions are generic over `const D` where the geometry allows
@@ -43,7 +42,6 @@
 //! assert_eq!(tree.nearest([0.9, 0.2, 0.0]).map(|(i, _)| i), Some(1));
 //! ```
 
-mod grid;
 mod orient;
 mod polygon;
 mod segment;
@@ -52,7 +50,6 @@ mod tree;
 mod triangle;
 pub mod vector;
 
-pub use grid::for_each_overlapping_pair_grid;
 pub use orient::{Sign, orient2d, orient2d_sign, orient3d, orient3d_sign};
 pub use polygon::{point_in_loop, polygon_area, winding_number};
 pub use segment::{
