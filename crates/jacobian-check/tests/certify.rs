@@ -170,17 +170,22 @@ fn curved_annulus_cells_are_all_valid() {
     }
 }
 
-#[test]
-fn a_fold_in_a_mesh_is_reported_with_its_cell() {
+/// A P3 annulus with an edge node of cell 5 slid far along its edge, past its neighbour.
+fn annulus_folded_at_cell_5() -> mesh_model::Mesh {
     let mut mesh = annulus(&AnnulusParams {
         order: 3,
         ..AnnulusParams::default()
     });
-    // Slide an edge node of cell 5 far along its edge, past its neighbour.
     let cell = mesh.cells.get(5);
     let (a, b, n) = (cell.nodes[0], cell.nodes[1], cell.nodes[3]);
     let (pa, pb) = (mesh.nodes[a as usize], mesh.nodes[b as usize]);
     mesh.nodes[n as usize] = [0.1 * pa[0] + 0.9 * pb[0], 0.1 * pa[1] + 0.9 * pb[1], 0.0];
+    mesh
+}
+
+#[test]
+fn a_fold_in_a_mesh_is_reported_with_its_cell() {
+    let mesh = annulus_folded_at_cell_5();
     let v = check_mesh(&mesh, &CertifyParams::default()).unwrap();
     assert!(v.invalid_cells.contains(&5), "{v:?}");
     assert!(v.per_cell_scaled_jacobian[5] <= 0.0);
@@ -189,14 +194,7 @@ fn a_fold_in_a_mesh_is_reported_with_its_cell() {
 
 #[test]
 fn the_per_cell_min_det_is_the_certificates_and_nan_where_not_valid() {
-    let mut mesh = annulus(&AnnulusParams {
-        order: 3,
-        ..AnnulusParams::default()
-    });
-    let cell = mesh.cells.get(5);
-    let (a, b, n) = (cell.nodes[0], cell.nodes[1], cell.nodes[3]);
-    let (pa, pb) = (mesh.nodes[a as usize], mesh.nodes[b as usize]);
-    mesh.nodes[n as usize] = [0.1 * pa[0] + 0.9 * pb[0], 0.1 * pa[1] + 0.9 * pb[1], 0.0];
+    let mesh = annulus_folded_at_cell_5();
     let params = CertifyParams::default();
     let v = check_mesh(&mesh, &params).unwrap();
     assert_eq!(v.per_cell_min_det.len(), mesh.cells.len());
