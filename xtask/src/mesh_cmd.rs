@@ -16,7 +16,7 @@ use crate::cli::MeshArgs;
 use crate::outputs::{Output, Outputs};
 use crate::pictures::{self, Colour, Picture};
 use crate::progress::stage;
-use crate::report::{LoopReport, Report};
+use crate::report::{LinearAngles, LoopReport, Report};
 use crate::stages::Snapshot;
 use crate::{Finished, airfoil, builtin, case, estimate, pipeline};
 
@@ -80,7 +80,7 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
     report
         .timings_s
         .insert("setup", total.elapsed().as_secs_f64());
-    let (mesh, snapshot, linear) = make(args, &case, order, &mut report)?;
+    let (mesh, snapshot, angles) = make(args, &case, order, &mut report)?;
     let snapshot = snapshot.as_ref().zip(args.snapshot.as_deref());
     let run = Run {
         pictures: &args.pictures,
@@ -88,7 +88,7 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
         quiet: args.quiet,
         total,
     };
-    let report_path = check_and_write(plan, (&mesh, &linear), snapshot, &run, &mut report)?;
+    let report_path = check_and_write(plan, (&mesh, angles), snapshot, &run, &mut report)?;
     Ok(report.finish(
         report_path.as_deref(),
         args.quiet,
@@ -109,13 +109,13 @@ pub(crate) struct Run<'a> {
 }
 
 /// The last steps of a run: describes `mesh` in the report, with the angle figures of
-/// `linear` (the linear mesh under it, the same at every order and with --triangles) and
+/// `linear` (of the linear mesh under it, the same at every order and with --triangles) and
 /// certifies every cell, while the meshes and the snapshot are written (both at once, on two
 /// threads when there are two: the files do not depend on it); then draws the pictures and
 /// writes the report ([`finish`]). Returns the path of the report, if one was written.
 pub(crate) fn check_and_write(
     mut plan: Planned,
-    (mesh, linear): (&Mesh, &Mesh),
+    (mesh, linear): (&Mesh, LinearAngles<'_>),
     snapshot: Option<(&Snapshot, &std::path::Path)>,
     run: &Run<'_>,
     report: &mut Report,
@@ -333,13 +333,15 @@ pub(crate) fn plan_with(
 
 /// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
 /// and the curving when `order` > 1. Returns the final mesh and, when `--snapshot` is given,
-/// the stages to save, and the linear layered mesh (its quads uncut).
+/// the stages to save, and the angle figures of the linear layered mesh (its quads uncut),
+/// computed here so that the linear mesh is let go before the final one is checked and
+/// written.
 fn make(
     args: &MeshArgs,
     case: &case::Case,
     order: u8,
     report: &mut Report,
-) -> Result<(Mesh, Option<Snapshot>, Mesh)> {
+) -> Result<(Mesh, Option<Snapshot>, LinearAngles<'static>)> {
     let (curves, nodes, grown) = grow(case, args.quiet, args.max_cells, report)?;
     let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
         case: case.name.clone(),
@@ -354,7 +356,10 @@ fn make(
         args.quiet,
         report,
     )?;
-    Ok((mesh, snapshot, grown.layered.mesh))
+    let t = Instant::now();
+    let angles = afsf2d::max_angle_histogram(&grown.layered.mesh);
+    let seconds = t.elapsed().as_secs_f64();
+    Ok((mesh, snapshot, LinearAngles::Given { angles, seconds }))
 }
 
 /// The first stages: curves, boundary mesh (then the cell estimate, refused above

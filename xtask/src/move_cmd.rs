@@ -149,8 +149,13 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
         total,
     };
     let linear_mesh = &moved_layered.mesh;
-    let report_path =
-        mesh_cmd::check_and_write(plan, (&mesh, linear_mesh), None, &run, &mut report)?;
+    let report_path = mesh_cmd::check_and_write(
+        plan,
+        (&mesh, crate::report::LinearAngles::Of(linear_mesh)),
+        None,
+        &run,
+        &mut report,
+    )?;
     // written only with a valid mesh
     let valid = report.problems.is_empty();
     if let (Some(path), Some(columns), true) = (&args.sensitivities, &sensitivities, valid) {

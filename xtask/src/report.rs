@@ -127,12 +127,13 @@ impl Report {
     /// Fills what can be read off a finished 2D mesh: counts, angles, and the structural
     /// problems found by `mesh_model::validate`.
     pub fn describe(&mut self, mesh: &Mesh) {
-        self.describe_over(mesh, mesh);
+        self.describe_over(mesh, LinearAngles::Of(mesh));
     }
 
     /// [`Report::describe`], with the angle figures of `linear`, the linear mesh under `mesh`
-    /// (see [`Report::linear_angles`]); timed as `describe`.
-    pub fn describe_over(&mut self, mesh: &Mesh, linear: &Mesh) {
+    /// ([`ANGLES_OF`]), or those figures already computed; timed as
+    /// `describe` (with the seconds the given figures took).
+    pub fn describe_over(&mut self, mesh: &Mesh, linear: LinearAngles<'_>) {
         let t = std::time::Instant::now();
         self.nodes = mesh.nodes.len();
         for shape in [Shape::Tri, Shape::Quad] {
@@ -144,10 +145,19 @@ impl Report {
         // (and the certified check, see `certify`) still tell what is wrong where
         let sound = !problems.iter().any(mesh_model::Problem::is_structural);
         self.problems = problems.iter().map(ToString::to_string).collect();
+        let mut seconds = 0.0;
         if sound && !mesh.cells.is_empty() {
-            self.linear_angles(linear);
+            let angles = match linear {
+                LinearAngles::Of(linear) => afsf2d::max_angle_histogram(linear),
+                LinearAngles::Given { angles, seconds: s } => {
+                    seconds = s;
+                    angles
+                }
+            };
+            self.set_angles(&angles);
         }
-        self.timings_s.insert("describe", t.elapsed().as_secs_f64());
+        self.timings_s
+            .insert("describe", seconds + t.elapsed().as_secs_f64());
     }
 
     /// Counts the boundary facets by role and by boundary group.
@@ -211,10 +221,10 @@ impl Report {
         });
     }
 
-    /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut
-    /// along the shorter diagonal), so that they do not depend on the order or on `--triangles`.
-    pub fn linear_angles(&mut self, mesh: &Mesh) {
-        let angles = afsf2d::max_angle_histogram(mesh);
+    /// Fills the angle figures from those of the linear mesh under the final one (its cell
+    /// corners, quads cut along the shorter diagonal), so that they do not depend on the order
+    /// or on `--triangles`.
+    fn set_angles(&mut self, angles: &afsf2d::AngleStats) {
         let q = self.quality.get_or_insert_with(Quality::default);
         q.max_angle_deg = angles.max_angle_deg;
         q.obtuse_hist = angles.histogram;
@@ -273,7 +283,7 @@ impl Report {
         q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
         q.scaled_jacobian_of = Some(SCALED_JACOBIAN_OF);
         q.worst_cell = worst(mesh, &v.per_cell_scaled_jacobian);
-        let gmsh = gmsh_min_sj(mesh);
+        let gmsh = gmsh_min_sj(mesh, &v.per_cell_min_det);
         q.min_sj_gmsh = worst(mesh, &gmsh);
         q.min_sj_gmsh_of = Some(MIN_SJ_GMSH_OF);
         q.invalid_cells = Some(v.invalid_cells.len());
@@ -299,6 +309,21 @@ impl Report {
         }
         Ok(v.per_cell_scaled_jacobian)
     }
+}
+
+/// Where the angle figures of a 2D run come from: the linear mesh under the final one, or
+/// its figures computed earlier (so that the linear mesh need not be kept; sound by then).
+#[derive(Debug, Clone, Copy)]
+pub enum LinearAngles<'a> {
+    /// Computed from this mesh, when the final mesh is structurally sound.
+    Of(&'a Mesh),
+    /// Already computed, in `seconds`.
+    Given {
+        /// The figures.
+        angles: afsf2d::AngleStats,
+        /// What computing them took.
+        seconds: f64,
+    },
 }
 
 /// What `min_scaled_jacobian` is.
@@ -329,28 +354,29 @@ fn worst(mesh: &Mesh, value: &[f64]) -> Option<WorstCell> {
     })
 }
 
-/// Gmsh's `minSJ` of every cell ([`MIN_SJ_GMSH_OF`]); NaN for a cell that is not certified
-/// valid.
-fn gmsh_min_sj(mesh: &Mesh) -> Vec<f64> {
-    use jacobian_check::{Certificate, CertifyParams, certify_cell, jacobian};
+/// Gmsh's `minSJ` of every cell ([`MIN_SJ_GMSH_OF`]) from the certified lower bound of its
+/// det J (`min_det`, NaN for a cell not certified valid, from the certification that already
+/// ran); NaN for a cell that is not certified valid.
+fn gmsh_min_sj(mesh: &Mesh, min_det: &[f64]) -> Vec<f64> {
+    use jacobian_check::jacobian;
     use mesh_model::CellType;
     use rayon::prelude::*;
-    let params = CertifyParams::default();
-    (0..mesh.cells.len())
-        .into_par_iter()
-        .map(|i| {
+    min_det
+        .par_iter()
+        .with_min_len(1024)
+        .enumerate()
+        .map(|(i, &min_det)| {
+            if min_det.is_nan() {
+                return f64::NAN;
+            }
             let c = mesh.cells.get(i);
-            let nodes: Vec<[f64; 2]> = c.nodes.iter().map(|&v| mesh.xy(v)).collect();
             let corners: Vec<[f64; 2]> = c.corners().iter().map(|&v| mesh.xy(v)).collect();
             let centre = match c.ty.shape {
                 Shape::Quad => [0.0, 0.0],
                 _ => [1.0 / 3.0, 1.0 / 3.0],
             };
-            let linear = jacobian(CellType::new(c.ty.shape, 1), &corners, centre);
-            match (certify_cell(c.ty, &nodes, &params), linear) {
-                (Ok(Certificate::Valid { min_coeff, .. }), Ok(j)) if j.det > 0.0 => {
-                    min_coeff / j.det
-                }
+            match jacobian(CellType::new(c.ty.shape, 1), &corners, centre) {
+                Ok(j) if j.det > 0.0 => min_det / j.det,
                 _ => f64::NAN,
             }
         })

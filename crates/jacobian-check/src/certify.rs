@@ -471,6 +471,11 @@ pub struct MeshValidity {
     /// `min_coeff / max_coeff`; for the others the sampled `min J / max |J|`, lowered to
     /// the determinant at the proved invalid point when there is one (≤ 0).
     pub per_cell_scaled_jacobian: Vec<f64>,
+    /// Per cell, for the cells certified valid the certified lower bound of det J (the
+    /// least Bernstein coefficient, `Certificate::Valid::min_coeff`); NaN for the others.
+    /// What a caller needs for other measures built on it (Gmsh's minSJ) without
+    /// certifying the cells a second time.
+    pub per_cell_min_det: Vec<f64>,
 }
 
 /// Checks every cell of a 2D or 3D mesh: certified where a certificate exists, sampled
@@ -483,7 +488,7 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
     use rayon::prelude::*;
     params.check()?;
     // cells are judged in parallel, in chunks large enough to amortise the scheduling
-    let verdicts: Vec<(f64, Verdict)> = (0..mesh.cells.len())
+    let verdicts: Vec<(f64, f64, Verdict)> = (0..mesh.cells.len())
         .into_par_iter()
         .with_min_len(256)
         .map(|i| {
@@ -510,8 +515,9 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
         uncertified: Vec::new(),
         min_scaled_jacobian: 1.0,
         per_cell_scaled_jacobian: Vec::with_capacity(mesh.cells.len()),
+        per_cell_min_det: Vec::with_capacity(mesh.cells.len()),
     };
-    for (i, (scaled, verdict)) in verdicts.into_iter().enumerate() {
+    for (i, (scaled, min_det, verdict)) in verdicts.into_iter().enumerate() {
         match verdict {
             Verdict::Valid => {}
             Verdict::Invalid => out.invalid_cells.push(i),
@@ -519,6 +525,7 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
             Verdict::Uncertified => out.uncertified.push(i),
         }
         out.per_cell_scaled_jacobian.push(scaled);
+        out.per_cell_min_det.push(min_det);
         out.min_scaled_jacobian = out.min_scaled_jacobian.min(scaled);
     }
     Ok(out)
@@ -533,12 +540,13 @@ enum Verdict {
     Uncertified,
 }
 
-/// Certifies (or samples) one cell: its scaled Jacobian and verdict.
+/// Certifies (or samples) one cell: its scaled Jacobian, its certified lower bound of det J
+/// (NaN unless certified valid) and verdict.
 fn judge<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
     params: &CertifyParams,
-) -> Result<(f64, Verdict), JacobianError> {
+) -> Result<(f64, f64, Verdict), JacobianError> {
     let certificate = match certify_cell(ty, nodes, params) {
         Ok(c) => Some(c),
         Err(JacobianError::Unsupported { .. }) if D == 3 => None,
@@ -549,7 +557,7 @@ fn judge<const D: usize>(
         max_coeff,
     }) = certificate
     {
-        return Ok((min_coeff / max_coeff, Verdict::Valid));
+        return Ok((min_coeff / max_coeff, min_coeff, Verdict::Valid));
     }
     let sampled = sampled_check(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();
@@ -570,5 +578,5 @@ fn judge<const D: usize>(
         None if sampled.all_positive() => Verdict::Uncertified,
         _ => Verdict::Invalid,
     };
-    Ok((scaled, verdict))
+    Ok((scaled, f64::NAN, verdict))
 }

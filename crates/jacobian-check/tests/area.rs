@@ -63,6 +63,39 @@ fn linear_mesh_area_is_the_shoelace_area() {
     assert!((a - mesh.linear_area()).abs() < 1e-12);
 }
 
+#[test]
+fn the_area_is_summed_in_cell_order_whatever_the_threads() {
+    // many chunks of cells: measured in parallel, summed one after the other
+    let mesh = ring(3, 6000);
+    let mut sequential = 0.0;
+    for c in mesh.cells.iter() {
+        let nodes: Vec<[f64; 2]> = c.nodes.iter().map(|&k| mesh.xy(k)).collect();
+        sequential += cell_area(c.ty, &nodes).unwrap();
+    }
+    for threads in [1, 2, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let a = pool.install(|| integrate_area(&mesh)).unwrap();
+        assert_eq!(a.to_bits(), sequential.to_bits(), "{threads} threads");
+    }
+}
+
+#[test]
+fn the_first_bad_cell_is_the_one_named() {
+    let mut mesh = ring(2, 6000);
+    let n = mesh.nodes.len() as u32;
+    // two cells naming a missing node, far apart (in different chunks): the first is named
+    for cell in [5000, 11000] {
+        mesh.cells.nodes_mut(cell)[0] = n + cell as u32;
+    }
+    match integrate_area(&mesh) {
+        Err(JacobianError::NodeOutOfRange { cell, .. }) => assert_eq!(cell, 5000),
+        other => panic!("{other:?}"),
+    }
+}
+
 /// Observed convergence rates of the area error of the annulus (exact 3π) under halving
 /// of the angular cell size.
 fn rates(order: u8) -> Vec<f64> {

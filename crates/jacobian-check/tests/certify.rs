@@ -170,21 +170,48 @@ fn curved_annulus_cells_are_all_valid() {
     }
 }
 
-#[test]
-fn a_fold_in_a_mesh_is_reported_with_its_cell() {
+/// A P3 annulus with an edge node of cell 5 slid far along its edge, past its neighbour.
+fn annulus_folded_at_cell_5() -> mesh_model::Mesh {
     let mut mesh = annulus(&AnnulusParams {
         order: 3,
         ..AnnulusParams::default()
     });
-    // Slide an edge node of cell 5 far along its edge, past its neighbour.
     let cell = mesh.cells.get(5);
     let (a, b, n) = (cell.nodes[0], cell.nodes[1], cell.nodes[3]);
     let (pa, pb) = (mesh.nodes[a as usize], mesh.nodes[b as usize]);
     mesh.nodes[n as usize] = [0.1 * pa[0] + 0.9 * pb[0], 0.1 * pa[1] + 0.9 * pb[1], 0.0];
+    mesh
+}
+
+#[test]
+fn a_fold_in_a_mesh_is_reported_with_its_cell() {
+    let mesh = annulus_folded_at_cell_5();
     let v = check_mesh(&mesh, &CertifyParams::default()).unwrap();
     assert!(v.invalid_cells.contains(&5), "{v:?}");
     assert!(v.per_cell_scaled_jacobian[5] <= 0.0);
     assert!(v.min_scaled_jacobian <= 0.0);
+}
+
+#[test]
+fn the_per_cell_min_det_is_the_certificates_and_nan_where_not_valid() {
+    let mesh = annulus_folded_at_cell_5();
+    let params = CertifyParams::default();
+    let v = check_mesh(&mesh, &params).unwrap();
+    assert_eq!(v.per_cell_min_det.len(), mesh.cells.len());
+    for (i, c) in mesh.cells.iter().enumerate() {
+        let nodes: Vec<[f64; 2]> = c.nodes.iter().map(|&k| mesh.xy(k)).collect();
+        match certify_cell(c.ty, &nodes, &params).unwrap() {
+            Certificate::Valid { min_coeff, .. } => {
+                assert_eq!(
+                    v.per_cell_min_det[i].to_bits(),
+                    min_coeff.to_bits(),
+                    "cell {i}"
+                );
+            }
+            other => assert!(v.per_cell_min_det[i].is_nan(), "cell {i}: {other:?}"),
+        }
+    }
+    assert!(v.per_cell_min_det[5].is_nan());
 }
 
 #[test]

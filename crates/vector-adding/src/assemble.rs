@@ -9,22 +9,32 @@ use crate::edges::EdgeTable;
 use crate::split::OutCell;
 
 /// The mesh of order `edges.p` over `cells`; `sorted_edges` is how many leading edges of the
-/// table are in sorted order (the linear mesh's own, before any diagonal).
+/// table are in sorted order (the linear mesh's own, before any diagonal). `points` are the
+/// edges' inner points (`edges.points`, taken out of the table: they are copied into the
+/// node array and dropped before the cells are built, so that the two never coexist with
+/// the cells' nodes). The node array is allocated once at its final size (`cells` is
+/// walked twice: once to count the cells' interior nodes).
 pub(crate) fn assemble(
     linear: &Mesh,
     edges: &EdgeTable,
+    points: Vec<[f64; 2]>,
     sorted_edges: usize,
-    cells: &[OutCell],
+    cells: impl Iterator<Item = OutCell> + Clone,
     interiors: &Interiors,
 ) -> Mesh {
     let p = edges.p;
     let q = p - 1;
     let mut mesh = Mesh::new(linear.dim, p as u8);
     let base = linear.nodes.len() as u32;
-    mesh.nodes = Vec::with_capacity(linear.nodes.len() + edges.len() * q + cells.len());
+    let (mut cell_count, mut interior_nodes) = (0, 0);
+    for c in cells.clone() {
+        cell_count += 1;
+        interior_nodes += interiors.count(c.len(), p);
+    }
+    mesh.nodes = Vec::with_capacity(linear.nodes.len() + points.len() + interior_nodes);
     mesh.nodes.extend_from_slice(&linear.nodes);
-    mesh.nodes
-        .extend(edges.points.iter().map(|v| [v[0], v[1], 0.0]));
+    mesh.nodes.extend(points.iter().map(|v| [v[0], v[1], 0.0]));
+    drop(points);
     let edge_node = |e: u32, from: u32, i: usize| -> u32 {
         let j = if edges.ends[e as usize][0] == from {
             i
@@ -34,7 +44,7 @@ pub(crate) fn assemble(
         base + e * q as u32 + j as u32
     };
     let nodes_per_cell = CellType::new(Shape::Quad, p as u8).node_count();
-    mesh.cells = Cells::with_capacity(cells.len(), nodes_per_cell);
+    mesh.cells = Cells::with_capacity(cell_count, nodes_per_cell);
     let (mut corners, mut pts, mut coords, mut ids) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let has_layers = !linear.cell_layer.is_empty();

@@ -25,6 +25,15 @@ impl Interiors {
             .collect();
         Interiors { quad }
     }
+
+    /// How many interior nodes [`cell_nodes`] gives a cell of `corners` corners at order `p`.
+    pub(crate) fn count(&self, corners: usize, p: usize) -> usize {
+        match (corners, p) {
+            (3, 3) => 1,
+            (4, _) => self.quad.len(),
+            _ => 0,
+        }
+    }
 }
 
 /// Fills `out` with the Gmsh-ordered nodes of a cell of order `p`: `corners` (3 or 4), then

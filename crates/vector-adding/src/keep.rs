@@ -131,15 +131,17 @@ fn replay_on(
         &params,
     )?
     .map_err(|_| CurvingError::NotTheSameMesh("its carried edges form a loop".into()))?;
-    Ok(assemble_laid(mesh, &laid))
+    Ok(assemble_laid(mesh, laid))
 }
 
-fn assemble_laid(mesh: &Mesh, laid: &Laid) -> Mesh {
+fn assemble_laid(mesh: &Mesh, mut laid: Laid) -> Mesh {
+    let points = std::mem::take(&mut laid.edges.points);
     assemble(
         mesh,
         &laid.edges,
+        points,
         laid.sorted_edges,
-        &laid.cells,
+        laid.cells.iter().copied(),
         &laid.interiors,
     )
 }
@@ -205,7 +207,8 @@ fn lay_out(
     let (cells, cut) = if params.triangles {
         split::cut(mesh, &roles, &mut edges, &interiors, params, Some(cuts))?
     } else {
-        (split::keep(mesh, &edges), split::CutOutcome::default())
+        let cells = split::keep(mesh, &edges.cell_edges).collect();
+        (cells, split::CutOutcome::default())
     };
     Ok(Ok(Laid {
         edges,
@@ -302,7 +305,7 @@ pub fn curve_mesh_keeping(
         let failing = failing_cells(mesh, &laid, &merged, params)?;
         if failing.is_empty() || own.all {
             let changes = changes(previous, &merged);
-            return Ok((finish(mesh, &laid, merged, failing.len()), changes));
+            return Ok((finish(mesh, laid, merged, failing.len()), changes));
         }
         if fresh.is_none() {
             fresh = Some(curve_mesh(input, loops, params)?.decisions);
@@ -416,7 +419,7 @@ fn changes(before: &Decisions, now: &Decisions) -> Vec<DecisionChange> {
 }
 
 /// The curved mesh of `laid` with the figures a replay knows.
-fn finish(mesh: &Mesh, laid: &Laid, decisions: Decisions, invalid: usize) -> Curved {
+fn finish(mesh: &Mesh, laid: Laid, decisions: Decisions, invalid: usize) -> Curved {
     let edges = laid.edges.len();
     let curved_edges = laid.edges.curved.iter().filter(|&&c| c).count();
     let stats = CurvingStats {

@@ -176,18 +176,39 @@ pub fn curve_mesh(
     )?;
     clock.lap("repair");
     let (cells, cut) = if params.triangles {
-        split::cut(mesh, &roles, &mut edges, &interiors, params, None)?
+        let (cells, cut) = split::cut(mesh, &roles, &mut edges, &interiors, params, None)?;
+        (Some(cells), cut)
     } else {
-        (split::keep(mesh, &edges), split::CutOutcome::default())
+        (None, split::CutOutcome::default())
     };
     clock.lap("cut");
-    let out = assemble::assemble(mesh, &edges, sorted_edges, &cells, &interiors);
-    clock.lap("assemble");
     let curved_edges = edges.curved.iter().filter(|&&c| c).count();
+    let edge_count = edges.len();
+    // what the assembly does not read is let go before it (the peak of the run is there):
+    // the rules move into the record, the edge points into the node array
+    let rules = take_sorted(&mut edges.rules, sorted_edges);
+    let points = std::mem::take(&mut edges.points);
+    edges.cells = Vec::new();
+    edges.curved = Vec::new();
+    let out = match cells {
+        Some(cells) => assemble::assemble(
+            mesh,
+            &edges,
+            points,
+            sorted_edges,
+            cells.into_iter(),
+            &interiors,
+        ),
+        None => {
+            let kept = split::keep(mesh, &edges.cell_edges);
+            assemble::assemble(mesh, &edges, points, sorted_edges, kept, &interiors)
+        }
+    };
+    clock.lap("assemble");
     let stats = CurvingStats {
-        edges: edges.len(),
+        edges: edge_count,
         curved_edges,
-        curved_edge_fraction: stats::share(curved_edges, edges.len()),
+        curved_edge_fraction: stats::share(curved_edges, edge_count),
         curved_boundary_edges,
         stops: marched.stops,
         reduced_tops: marched.reduced_tops,
@@ -199,7 +220,18 @@ pub fn curve_mesh(
         invalid_after_cut: cut.invalid,
         timings_s: clock.laps,
     };
-    let decisions = decisions_of(&edges, sorted_edges, params, cut.diagonals);
+    let decisions = Decisions {
+        order: params.order,
+        triangles: params.triangles,
+        strategy: params.strategy,
+        edges: take_sorted(&mut edges.ends, sorted_edges),
+        rules,
+        diagonals: if params.triangles {
+            cut.diagonals
+        } else {
+            vec![None; edges.cell_edges.len()]
+        },
+    };
     Ok(Curved {
         mesh: out,
         stats,
@@ -207,26 +239,11 @@ pub fn curve_mesh(
     })
 }
 
-/// The record of a run's decisions: the rules of the linear mesh's edges (the first
-/// `sorted_edges` of the table) and the cuts.
-fn decisions_of(
-    edges: &edges::EdgeTable,
-    sorted_edges: usize,
-    params: &CurvingParams,
-    diagonals: Vec<Option<Diagonal>>,
-) -> Decisions {
-    Decisions {
-        order: params.order,
-        triangles: params.triangles,
-        strategy: params.strategy,
-        edges: edges.ends[..sorted_edges].to_vec(),
-        rules: edges.rules[..sorted_edges].to_vec(),
-        diagonals: if params.triangles {
-            diagonals
-        } else {
-            vec![None; edges.cell_edges.len()]
-        },
-    }
+/// The first `sorted` entries of `v` (the linear mesh's own edges), moved out of it.
+fn take_sorted<T>(v: &mut Vec<T>, sorted: usize) -> Vec<T> {
+    let mut head = std::mem::take(v);
+    head.truncate(sorted);
+    head
 }
 
 /// The mesh is structurally sound (`mesh_model`'s checks), linear 2D, with a layering that

@@ -35,23 +35,24 @@ impl OutCell {
     }
 }
 
-/// The output cells without cutting: one per linear cell.
-pub(crate) fn keep(mesh: &Mesh, edges: &EdgeTable) -> Vec<OutCell> {
-    mesh.cells
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let mut corners = [0; 4];
-            corners[..c.corners().len()].copy_from_slice(c.corners());
-            OutCell {
-                shape: c.ty.shape,
-                corners,
-                edges: edges.cell_edges[i],
-                source: i as u32,
-                interior: None,
-            }
-        })
-        .collect()
+/// The output cells without cutting: one per linear cell, made as they are read (no array of
+/// them: the assembly walks them without holding a copy of the cells).
+pub(crate) fn keep<'a>(
+    mesh: &'a Mesh,
+    cell_edges: &'a [[u32; 4]],
+) -> impl Iterator<Item = OutCell> + Clone + 'a {
+    (0..mesh.cells.len()).map(move |i| {
+        let c = mesh.cells.get(i);
+        let mut corners = [0; 4];
+        corners[..c.corners().len()].copy_from_slice(c.corners());
+        OutCell {
+            shape: c.ty.shape,
+            corners,
+            edges: cell_edges[i],
+            source: i as u32,
+            interior: None,
+        }
+    })
 }
 
 /// The two triangles of a quadrilateral cut along its shorter diagonal, and the verdict on
