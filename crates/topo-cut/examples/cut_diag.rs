@@ -117,6 +117,9 @@ fn main() {
     let passes = std::env::var("PASSES").map_or(8, |s| s.parse().unwrap());
     let depth = std::env::var("DEPTH").map_or(2, |s| s.parse().unwrap());
     topo_cut::refine::refine(&p, &mut cut, 150.0, passes, depth);
+    if let Ok(deep) = std::env::var("DEEP") {
+        topo_cut::refine::refine(&p, &mut cut, 160.0, passes, deep.parse().unwrap());
+    }
     println!(
         "after refine ({passes} passes, depth {depth}) +{:.3}s:",
         t.elapsed().as_secs_f64()

@@ -125,10 +125,9 @@ fn best_apex(
     let mut best: Option<(f64, u32)> = None;
     for j in 0..buf.0.len() {
         let a = buf.0[j];
-        if let Some(q) = cone_quality(nodes, faces, a, split, &mut buf.1) {
-            if best.is_none_or(|b| q < b.0) {
-                best = Some((q, a));
-            }
+        let q = cone_quality(nodes, faces, a, split, &mut buf.1);
+        if let Some(q) = q.filter(|&q| best.is_none_or(|b| q < b.0)) {
+            best = Some((q, a));
         }
     }
     best
@@ -214,39 +213,49 @@ impl Refiner<'_> {
         let mut nodes = Vec::new();
         faces.distinct_nodes(&mut nodes);
         let mut split = current.clone();
-        let mut best: Option<Change> = None;
-        let (faces_mark, cells_mark) = (change.faces.len(), change.cells.len());
+        let set = |split: &mut [u32], bits: u32| {
+            for (b, &i) in free.iter().enumerate() {
+                let k = faces.face(i);
+                split[i] = normal_split(k, k[((bits >> b) & 1) as usize]);
+            }
+        };
+        // the cuts of the cell alone under the bound, best first: the neighbours only make
+        // a candidate worse, so the search stops at the first no better than the best found
+        let mut candidates: Vec<(f64, u32, u32)> = Vec::new();
         for &a in &nodes {
             for bits in 0..1u32 << free.len() {
-                for (b, &i) in free.iter().enumerate() {
-                    let k = faces.face(i);
-                    split[i] = normal_split(k, k[((bits >> b) & 1) as usize]);
+                set(&mut split, bits);
+                let q = cone_quality(&self.poly.nodes, &faces, a, &split, &mut self.buf.1);
+                if let Some(q) = q.filter(|&q| q < bound) {
+                    candidates.push((q, a, bits));
                 }
-                let limit = best.as_ref().map_or(bound, |x| x.worst());
-                let Some(qc) = cone_quality(&self.poly.nodes, &faces, a, &split, &mut self.buf.1)
-                else {
-                    continue;
-                };
-                if qc >= limit {
-                    continue;
-                }
-                change
-                    .faces
-                    .extend(ids.iter().copied().zip(split.iter().copied()));
-                change.cells.push((c, a, qc));
-                let ok = free
-                    .iter()
-                    .filter(|&&i| split[i] != current[i])
-                    .all(|&i| self.settle(c, ids[i], change, depth, limit));
-                if ok && change.worst() < limit {
-                    best = Some(Change {
-                        faces: change.faces[faces_mark..].to_vec(),
-                        cells: change.cells[cells_mark..].to_vec(),
-                    });
-                }
-                change.faces.truncate(faces_mark);
-                change.cells.truncate(cells_mark);
             }
+        }
+        candidates.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut best: Option<Change> = None;
+        let (faces_mark, cells_mark) = (change.faces.len(), change.cells.len());
+        for (qc, a, bits) in candidates {
+            let limit = best.as_ref().map_or(bound, |x| x.worst());
+            if qc >= limit {
+                break;
+            }
+            set(&mut split, bits);
+            change
+                .faces
+                .extend(ids.iter().copied().zip(split.iter().copied()));
+            change.cells.push((c, a, qc));
+            let ok = free
+                .iter()
+                .filter(|&&i| split[i] != current[i])
+                .all(|&i| self.settle(c, ids[i], change, depth, limit));
+            if ok && change.worst() < limit {
+                best = Some(Change {
+                    faces: change.faces[faces_mark..].to_vec(),
+                    cells: change.cells[cells_mark..].to_vec(),
+                });
+            }
+            change.faces.truncate(faces_mark);
+            change.cells.truncate(cells_mark);
         }
         best
     }
@@ -266,11 +275,10 @@ impl Refiner<'_> {
         let theirs: Vec<u32> = (0..other.len())
             .map(|j| change.split(self.cut, other.id(j)))
             .collect();
-        if let Some((q, a)) = best_apex(&self.poly.nodes, &other, &theirs, &mut self.buf) {
-            if q < bound {
-                change.cells.push((n, a, q));
-                return true;
-            }
+        let apex = best_apex(&self.poly.nodes, &other, &theirs, &mut self.buf);
+        if let Some((q, a)) = apex.filter(|x| x.0 < bound) {
+            change.cells.push((n, a, q));
+            return true;
         }
         if depth == 0 {
             return false;
@@ -309,18 +317,30 @@ pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth:
         buf: Default::default(),
     };
     r.q = (0..poly.cell_count()).map(|c| r.cell_quality(c)).collect();
+    // a cell is tried again only when a re-cut touched it or a neighbour since its last try
+    let mut dirty = vec![true; poly.cell_count()];
     for _ in 0..passes {
         let mut bad: Vec<u32> = (0..r.q.len() as u32)
             .filter(|&c| r.q[c as usize] > target && r.cut.apex[c as usize] != UNRANKED)
+            .filter(|&c| dirty[c as usize])
             .collect();
         bad.sort_by(|&a, &b| r.q[b as usize].total_cmp(&r.q[a as usize]));
         let mut changed = false;
         for c in bad {
+            dirty[c as usize] = false;
             if r.q[c as usize] <= target {
                 continue;
             }
             let bound = r.q[c as usize] - 1e-9;
             if let Some(x) = r.recut(c, &mut Change::default(), depth, bound) {
+                for &(d, _, _) in &x.cells {
+                    dirty[d as usize] = true;
+                    for cf in poly.cell(d as usize) {
+                        if let Some(n) = r.neighbour(d, cf.face) {
+                            dirty[n as usize] = true;
+                        }
+                    }
+                }
                 r.apply(x);
                 changed = true;
             }
