@@ -223,9 +223,13 @@ fn report(p: &PolyMesh, mesh: &mesh_model::Mesh) {
             }
         }
         if verbose || (actual > 160.0 && best > 160.0 && geom_fault <= 10) {
+            let mut x = [0.0; 3];
+            for &v in &nodes {
+                (0..3).for_each(|d| x[d] += p.nodes[v as usize][d] / nodes.len() as f64);
+            }
             println!(
-                "cell {c} layer {} pipe {} {shape} cut {actual:.1} best cone {best:.1}",
-                p.cell_layer[c], p.cell_pipe[c]
+                "cell {c} layer {} pipe {} {shape} cut {actual:.1} best cone {best:.1} at ({:.4}, {:.4}, {:.4})",
+                p.cell_layer[c], p.cell_pipe[c], x[0], x[1], x[2]
             );
         }
     }

@@ -336,12 +336,12 @@ fn a_merged_cell_by_hand_is_cut_conforming_and_positive() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(16))]
+    #![proptest_config(ProptestConfig::with_cases(10))]
     /// From any order of the nodes, the refined cut is conforming and positive, and no worse
     /// than the order's own cut.
     #[test]
     fn refining_any_cut_keeps_it_conforming_and_never_worse(
-        seed in any::<u64>(), quads in any::<bool>(), p in 0.0f64..0.7, layers in 2usize..5,
+        seed in any::<u64>(), quads in any::<bool>(), p in 0.0f64..0.7, layers in 2usize..4,
     ) {
         let mut spec = Spec::new(3, quads, layers);
         (spec.h0, spec.growth) = (0.15, 1.2);
@@ -353,7 +353,7 @@ proptest! {
         rng.shuffle(&mut rank);
         let mut cut = topo_cut::refine::Cut::from_ranks(&poly, &rank);
         let before = topo_cut::max_dihedral_deg(&topo_cut::assemble_cut(&poly, &cut).unwrap());
-        let worst = topo_cut::refine::refine(&poly, &mut cut, 0.0, 4, 2);
+        let worst = topo_cut::refine::refine(&poly, &mut cut, 120.0, 4, 1);
         let mesh = topo_cut::assemble_cut(&poly, &cut).unwrap();
         let s = check(&poly, &mesh);
         prop_assert!(s.max_dihedral <= before + 1e-9, "{} > {before}", s.max_dihedral);
