@@ -280,7 +280,8 @@ proptest! {
 /// A merged cell by hand: over the bottom triangle (0, 1, 2) nodes 0 and 1 have one child 4,
 /// node 2 the child 5, so the cell has no top (faces: the bottom, the triangle (0, 1, 4), two
 /// quadrilaterals); next to it a prism over (1, 3, 2) with the children 4, 6, 5, kept by the
-/// mixed cut. The quadrilateral they share is twisted by `lift` (child 5 raised).
+/// mixed cut. The quadrilateral they share is twisted by `lift` (child 5 raised): twisted far
+/// enough, the pyramid over it is no longer positive, and the prism has to be cut as well.
 fn merged_pair(lift: f64) -> PolyMesh {
     let mut p = PolyMesh::new();
     p.nodes = vec![
@@ -321,17 +322,14 @@ fn merged_pair(lift: f64) -> PolyMesh {
 
 #[test]
 fn a_merged_cell_by_hand_is_cut_conforming_and_positive() {
-    for lift in [0.0, 0.1, 0.2] {
+    for lift in [0.0, 0.6, 1.2, 2.0] {
         let p = merged_pair(lift);
         assert!(p.validate().is_empty(), "{:?}", p.validate());
-        for mesh in [
-            topo_cut::cut_to_tets(&p).expect("tets"),
-            topo_cut::cut_to_mixed(&p).expect("mixed"),
-        ] {
-            let s = check(&p, &mesh);
-            println!("lift {lift}: {s}");
-            assert!(s.max_dihedral < 170.0, "{s}");
-        }
+        let tets = check(&p, &topo_cut::cut_to_tets(&p).expect("tets"));
+        let mixed = check(&p, &topo_cut::cut_to_mixed(&p).expect("mixed"));
+        println!("lift {lift}: tets: {tets}; mixed: {mixed}");
+        assert!(tets.max_dihedral < 170.0 && mixed.max_dihedral < 170.0);
+        assert_eq!(mixed.prisms, usize::from(lift < 1.0), "{mixed}");
     }
 }
 
