@@ -317,3 +317,21 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
         assert_eq!(files(d), before);
     }
 }
+
+/// The built-in step (15 layers) cut into tetrahedra keeps every dihedral angle under 160°
+/// (issue 13's bar; 163.4° before the cut was refined cell by cell).
+#[test]
+fn the_step_cut_into_tets_stays_under_160_degrees() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let step = case(
+        d,
+        "step",
+        "builtin = \"step\"",
+        "first_height = 2e-3\ngrowth = 1.2\nmax_layers = 15",
+        "tets",
+    );
+    let r = mesh_case(d, &step, "step", 15);
+    let max = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
+    assert!(max <= 160.0, "max dihedral {max}: {r}");
+}

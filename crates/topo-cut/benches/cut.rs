@@ -20,7 +20,8 @@ fn bench(c: &mut Criterion) {
             b.iter(|| topo_cut::cut_to_mixed(&poly).expect("cut"))
         });
     }
-    // the stages of cut_to_tets, to see where its time goes
+    // the stages of cut_to_tets, to see where its time goes (improve is now only the fallback
+    // when a piece stays inverted)
     let mut spec = fixture::Spec::new(16, false, 20);
     spec.merge = fixture::Merge::Shrink(1.3);
     let poly = fixture::poly(&spec);
@@ -34,6 +35,14 @@ fn bench(c: &mut Criterion) {
             let mut rank = ranks.clone();
             topo_cut::improve::improve(&poly, &mut rank, 150.0, 4);
             rank
+        })
+    });
+    c.bench_function("stage/refine", |b| {
+        b.iter(|| {
+            let mut cut = topo_cut::refine::Cut::from_ranks(&poly, &ranks);
+            topo_cut::refine::refine(&poly, &mut cut, 150.0, 8, 1);
+            topo_cut::refine::refine(&poly, &mut cut, 160.0, 8, 3);
+            cut
         })
     });
 }

@@ -4,11 +4,12 @@ use mesh_model::poly::PolyMesh;
 use mesh_model::{CellType, Dim, Mesh, NONE, Patch, Role, Shape};
 
 use crate::CutError;
-use crate::cone::{CellFaces, Piece, split_face};
+use crate::cone::{CellFaces, Piece, UNRANKED, split_face};
+use crate::refine::Cut;
 
-/// Cuts every cell of `poly` around its first ranked node (or keeps it when none is ranked)
-/// and adds the boundary facets.
-pub fn cut(poly: &PolyMesh, rank: &[u32]) -> Result<Mesh, CutError> {
+/// Cuts every cell of `poly` as `cut` says (or keeps it when it has no apex) and adds the
+/// boundary facets.
+pub fn cut(poly: &PolyMesh, cut: &Cut) -> Result<Mesh, CutError> {
     let mut mesh = Mesh::new(Dim::Three, 1);
     mesh.nodes = poly.nodes.clone();
     let mut faces = CellFaces::default();
@@ -16,9 +17,9 @@ pub fn cut(poly: &PolyMesh, rank: &[u32]) -> Result<Mesh, CutError> {
     for c in 0..poly.cell_count() {
         crate::load_checked(&mut faces, poly, c)?;
         pieces.clear();
-        match faces.first_ranked(rank) {
-            Some(apex) => faces.cone(apex, rank, &mut pieces),
-            None => pieces.push(faces.standard().ok_or(CutError::NotStandard { cell: c })?),
+        match cut.apex[c] {
+            UNRANKED => pieces.push(faces.standard().ok_or(CutError::NotStandard { cell: c })?),
+            _ => cut.pieces(&faces, c, &mut pieces),
         }
         let layer = poly.cell_layer.get(c).copied().unwrap_or(NONE);
         let pipe = poly.cell_pipe.get(c).copied().unwrap_or(NONE);
@@ -29,14 +30,14 @@ pub fn cut(poly: &PolyMesh, rank: &[u32]) -> Result<Mesh, CutError> {
             mesh.cell_pipe.push(pipe);
         }
     }
-    boundary(poly, rank, &mut mesh);
+    boundary(poly, &cut.split, &mut mesh);
     Ok(mesh)
 }
 
 /// The faces of one cell: the bottoms of layer-0 cells are the wall, the others the far
 /// field; split as the cells split them, turned out of the domain. When the wall's pipes are
 /// `0..n`, one each, the first part of pipe `p`'s wall facet is facet `p`.
-fn boundary(poly: &PolyMesh, rank: &[u32], mesh: &mut Mesh) {
+fn boundary(poly: &PolyMesh, split: &[u32], mesh: &mut Mesh) {
     let mut uses = vec![0u8; poly.face_count()];
     for c in 0..poly.cell_count() {
         for cf in poly.cell(c) {
@@ -58,7 +59,8 @@ fn boundary(poly: &PolyMesh, rank: &[u32], mesh: &mut Mesh) {
             }
             let wall = i == 0 && layer == 0;
             parts.clear();
-            split_face(faces.face(i), rank, &mut parts);
+            let w = Some(split[cf.face as usize]).filter(|&s| s != UNRANKED);
+            split_face(faces.face(i), w, &mut parts);
             for (j, k) in parts.drain(..).enumerate() {
                 match (wall, j) {
                     (true, 0) => facets.push((pipe, Role::Wall, k)),

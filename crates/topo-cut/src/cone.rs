@@ -15,6 +15,7 @@ pub type Piece = (Shape, [u32; 8]);
 pub struct CellFaces {
     nodes: Vec<u32>,
     start: Vec<usize>,
+    ids: Vec<u32>,
 }
 
 impl CellFaces {
@@ -22,8 +23,10 @@ impl CellFaces {
     pub fn load(&mut self, poly: &PolyMesh, c: usize) {
         self.nodes.clear();
         self.start.clear();
+        self.ids.clear();
         self.start.push(0);
         for cf in poly.cell(c) {
+            self.ids.push(cf.face);
             let k = poly.face(cf.face as usize);
             if cf.reversed {
                 self.nodes.extend(k.iter().rev());
@@ -47,6 +50,11 @@ impl CellFaces {
     /// Face `i`, turned outward.
     pub fn face(&self, i: usize) -> &[u32] {
         &self.nodes[self.start[i]..self.start[i + 1]]
+    }
+
+    /// The index in the polyhedral mesh of face `i`.
+    pub fn id(&self, i: usize) -> u32 {
+        self.ids[i]
     }
 
     /// The faces, turned outward.
@@ -140,8 +148,20 @@ impl CellFaces {
     /// Faces through the apex are fanned from it, which is how the neighbour across them cuts
     /// them too. Every face must be a triangle or a quadrilateral.
     pub fn cone(&self, apex: u32, rank: &[u32], out: &mut Vec<Piece>) {
-        for k in self.faces().filter(|k| !k.contains(&apex)) {
-            match (k.len(), first_ranked(k, rank)) {
+        self.cone_split(apex, |_, k| first_ranked(k, rank), out);
+    }
+
+    /// The cone from `apex` over each face that does not contain it, a quadrilateral face
+    /// `i` split by the diagonal through node `split(i, face)`, or kept whole (a pyramid's
+    /// base) when that is `None`. The faces through the apex must be split through it.
+    pub fn cone_split(
+        &self,
+        apex: u32,
+        split: impl Fn(usize, &[u32]) -> Option<u32>,
+        out: &mut Vec<Piece>,
+    ) {
+        for (i, k) in self.faces().enumerate().filter(|(_, k)| !k.contains(&apex)) {
+            match (k.len(), split(i, k)) {
                 (3, _) => out.push(tet([k[0], k[1], k[2]], apex)),
                 (_, None) => {
                     let mut c = [0u32; 8];
@@ -177,9 +197,9 @@ fn tet(k: [u32; 3], apex: u32) -> Piece {
 }
 
 /// The outward triangles of face `k` split as its two cells see it: a triangle itself, a
-/// quadrilateral with a ranked node by the diagonal through its first one, else whole.
-pub fn split_face(k: &[u32], rank: &[u32], out: &mut Vec<Vec<u32>>) {
-    match (k.len(), first_ranked(k, rank)) {
+/// quadrilateral by the diagonal through node `w`, else whole.
+pub fn split_face(k: &[u32], w: Option<u32>, out: &mut Vec<Vec<u32>>) {
+    match (k.len(), w) {
         (4, Some(w)) => {
             let at = k.iter().position(|&x| x == w).unwrap_or(0);
             let r = |j: usize| k[(at + j) % 4];

@@ -14,7 +14,7 @@ use crate::cone::{CellFaces, Piece, UNRANKED};
 use crate::quality::tet_dihedral_angles_deg;
 
 /// The quality of a cell that is cut into a piece that is not positive.
-const INVERTED: f64 = 360.0;
+pub const INVERTED: f64 = 360.0;
 
 /// The cells around each node (compressed rows).
 pub struct Around {

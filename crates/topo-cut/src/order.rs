@@ -13,7 +13,7 @@ use mesh_model::NONE;
 use mesh_model::poly::PolyMesh;
 
 use crate::cone::{CellFaces, UNRANKED};
-use crate::improve::{Around, Scratch};
+use crate::improve::{Around, INVERTED, Scratch, piece_quality};
 use crate::{CutError, TARGET_DIHEDRAL_DEG};
 
 /// The cells in the order of their layers (cells without a layer last), then by index.
@@ -115,7 +115,8 @@ pub fn sweep_ranks(poly: &PolyMesh) -> Vec<u32> {
 }
 
 /// The ranks restricted to the nodes round-cut for the mixed mesh (the others
-/// [`UNRANKED`]): for each non-standard cell, in layer order, that has no such node yet, the
+/// [`UNRANKED`]): for each non-standard cell (or standard one with a corner not positive), in
+/// layer order, that has no such node yet, the
 /// node of it whose cut keeps the cells around it under the target dihedral angle, then
 /// touches the fewest standard cells still untouched, then cuts best (ties: first in the
 /// sweep).
@@ -126,7 +127,10 @@ pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutEr
     let mut standard = vec![false; cc];
     for (c, is_standard) in standard.iter_mut().enumerate() {
         crate::load_checked(&mut faces, poly, c)?;
-        *is_standard = faces.standard().is_some();
+        // a standard cell with a corner not positive (a warped merged cell) is cut as well
+        *is_standard = faces
+            .standard()
+            .is_some_and(|p| piece_quality(&poly.nodes, &p) < INVERTED);
         let mut nodes = Vec::new();
         faces.distinct_nodes(&mut nodes);
         cell_nodes.push(nodes);
@@ -171,5 +175,47 @@ pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutEr
                 .for_each(|&d| touched[d as usize] = true);
         }
     }
+    uncover_inverted(poly, sweep, &around, &mut rank);
     Ok(rank)
+}
+
+/// Where a round-cut cell still has a piece that is not positive (a pyramid over a warped
+/// quadrilateral of a kept neighbour), ranks one more node of it, the one whose cut keeps
+/// the cells around it best, so that the quadrilateral is split and the neighbour cut too;
+/// a few rounds at most (every node ranked is the pure tetrahedral cut).
+fn uncover_inverted(poly: &PolyMesh, sweep: &[u32], around: &Around, rank: &mut [u32]) {
+    let mut scratch = Scratch::default();
+    let mut faces = CellFaces::default();
+    let mut nodes = Vec::new();
+    for _ in 0..8 {
+        let mut changed = false;
+        for c in 0..poly.cell_count() as u32 {
+            if scratch.quality(poly, c, rank) < INVERTED {
+                continue;
+            }
+            faces.load(poly, c as usize);
+            faces.distinct_nodes(&mut nodes);
+            nodes.retain(|&v| rank[v as usize] == UNRANKED);
+            let mut best: Option<(f64, u32)> = None;
+            for &v in &nodes {
+                rank[v as usize] = sweep[v as usize];
+                let worst = around
+                    .of(v)
+                    .iter()
+                    .map(|&d| scratch.quality(poly, d, rank))
+                    .fold(0.0, f64::max);
+                rank[v as usize] = UNRANKED;
+                if best.is_none_or(|b| worst < b.0) {
+                    best = Some((worst, v));
+                }
+            }
+            if let Some((_, v)) = best {
+                rank[v as usize] = sweep[v as usize];
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
 }

@@ -276,3 +276,85 @@ proptest! {
         both(&spec);
     }
 }
+
+/// A merged cell by hand: over the bottom triangle (0, 1, 2) nodes 0 and 1 have one child 4,
+/// node 2 the child 5, so the cell has no top (faces: the bottom, the triangle (0, 1, 4), two
+/// quadrilaterals); next to it a prism over (1, 3, 2) with the children 4, 6, 5, kept by the
+/// mixed cut. The quadrilateral they share is twisted by `lift` (child 5 raised): twisted far
+/// enough, the pyramid over it is no longer positive, and the prism has to be cut as well.
+fn merged_pair(lift: f64) -> PolyMesh {
+    let mut p = PolyMesh::new();
+    p.nodes = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.5, -0.1, 0.4],
+        [-0.05, 1.0, 0.3 + lift],
+        [1.05, 1.05, 0.35],
+    ];
+    let face = |p: &mut PolyMesh, k: &[u32], reversed: bool| CellFace {
+        face: p.push_face(k),
+        reversed,
+    };
+    // faces turned out of their cell; the shared one out of the merged cell
+    let shared = face(&mut p, &[1, 2, 5, 4], false);
+    let a = [
+        face(&mut p, &[0, 2, 1], false),
+        face(&mut p, &[0, 1, 4], false),
+        shared,
+        face(&mut p, &[2, 0, 4, 5], false),
+    ];
+    p.push_cell(&a, 0, 0);
+    let b = [
+        face(&mut p, &[1, 2, 3], false),
+        face(&mut p, &[4, 6, 5], false),
+        CellFace {
+            reversed: true,
+            ..shared
+        },
+        face(&mut p, &[1, 3, 6, 4], false),
+        face(&mut p, &[3, 2, 5, 6], false),
+    ];
+    p.push_cell(&b, 0, 1);
+    p
+}
+
+#[test]
+fn a_merged_cell_by_hand_is_cut_conforming_and_positive() {
+    for lift in [0.0, 0.6, 1.2, 2.0] {
+        let p = merged_pair(lift);
+        assert!(p.validate().is_empty(), "{:?}", p.validate());
+        let tets = check(&p, &topo_cut::cut_to_tets(&p).expect("tets"));
+        let mixed = check(&p, &topo_cut::cut_to_mixed(&p).expect("mixed"));
+        println!("lift {lift}: tets: {tets}; mixed: {mixed}");
+        assert!(tets.max_dihedral < 170.0 && mixed.max_dihedral < 170.0);
+        assert_eq!(mixed.prisms, usize::from(lift < 1.0), "{mixed}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(10))]
+    /// From any order of the nodes, the refined cut is conforming and positive, and no worse
+    /// than the order's own cut.
+    #[test]
+    fn refining_any_cut_keeps_it_conforming_and_never_worse(
+        seed in any::<u64>(), quads in any::<bool>(), p in 0.0f64..0.7, layers in 2usize..4,
+    ) {
+        let mut spec = Spec::new(3, quads, layers);
+        (spec.h0, spec.growth) = (0.15, 1.2);
+        spec.seed = seed;
+        spec.merge = Merge::Random(p);
+        let poly = fixture::poly(&spec);
+        let mut rng = fixture::Rng(seed ^ 0x9e37_79b9);
+        let mut rank: Vec<u32> = (0..poly.nodes.len() as u32).collect();
+        rng.shuffle(&mut rank);
+        let mut cut = topo_cut::refine::Cut::from_ranks(&poly, &rank);
+        let before = topo_cut::max_dihedral_deg(&topo_cut::assemble_cut(&poly, &cut).unwrap());
+        let worst = topo_cut::refine::refine(&poly, &mut cut, 120.0, 4, 1);
+        let mesh = topo_cut::assemble_cut(&poly, &cut).unwrap();
+        let s = check(&poly, &mesh);
+        prop_assert!(s.max_dihedral <= before + 1e-9, "{} > {before}", s.max_dihedral);
+        prop_assert!((s.max_dihedral - worst).abs() < 1e-9 || worst == 0.0, "{s} vs {worst}");
+    }
+}

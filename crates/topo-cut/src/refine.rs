@@ -1,0 +1,353 @@
+//! The cut refined cell by cell: a cut is one apex per cell and one diagonal per
+//! quadrilateral face ([`Cut`]); the sweep gives a first one ([`Cut::from_ranks`]), then
+//! [`refine`] re-cuts the cells worse than the target one at a time.
+//!
+//! A cut is conforming when both cells of a face split it by the same diagonal, and a cell's
+//! cone is a cut of it when every quadrilateral through its apex is split through the apex.
+//! So a bad cell may take any apex and any diagonals on its quadrilaterals away from it, as
+//! long as each neighbour across a changed face still has an apex on all its split diagonals
+//! (the neighbour then takes the best such apex). Unlike a swap of two nodes' ranks, which
+//! re-cuts every cell around both nodes, this changes one cell and its face neighbours only,
+//! and reaches the diagonal patterns no single order gives around it. A change is kept when it
+//! lowers the largest dihedral angle over the cell and its neighbours (then the cell's own).
+//! Faces kept whole (a kept cell's quadrilateral in the mixed cut) stay whole.
+
+use mesh_model::poly::PolyMesh;
+
+use crate::cone::{CellFaces, Piece, UNRANKED, first_ranked};
+use crate::improve::piece_quality;
+
+/// One apex per cell ([`UNRANKED`]: kept whole) and for each face the node its diagonal runs
+/// through ([`UNRANKED`]: a triangle, or a quadrilateral kept whole).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cut {
+    /// The apex of each cell's cone.
+    pub apex: Vec<u32>,
+    /// The node of each face its diagonal runs through (one of its first two nodes).
+    pub split: Vec<u32>,
+}
+
+/// Normalises the node a quadrilateral's diagonal runs through to one of its first two.
+fn normal_split(k: &[u32], w: u32) -> u32 {
+    match k.iter().position(|&x| x == w) {
+        Some(at) => k[at % 2],
+        None => UNRANKED,
+    }
+}
+
+/// Whether quadrilateral `k`'s diagonal through `s` runs through `a` (a node of `k`).
+fn through(k: &[u32], s: u32, a: u32) -> bool {
+    let (Some(i), Some(j)) = (
+        k.iter().position(|&x| x == s),
+        k.iter().position(|&x| x == a),
+    ) else {
+        return false;
+    };
+    i % 2 == j % 2
+}
+
+impl Cut {
+    /// The cut of the sweep: each cell's first ranked node, each quadrilateral split through
+    /// its first ranked node.
+    pub fn from_ranks(poly: &PolyMesh, rank: &[u32]) -> Cut {
+        let mut faces = CellFaces::default();
+        let apex = (0..poly.cell_count())
+            .map(|c| {
+                faces.load(poly, c);
+                faces.first_ranked(rank).unwrap_or(UNRANKED)
+            })
+            .collect();
+        let split = (0..poly.face_count())
+            .map(|f| {
+                let k = poly.face(f);
+                match (k.len(), first_ranked(k, rank)) {
+                    (4, Some(w)) => normal_split(k, w),
+                    _ => UNRANKED,
+                }
+            })
+            .collect();
+        Cut { apex, split }
+    }
+
+    /// The split node of face `i` of the loaded cell, if it is split.
+    fn split_of(&self, faces: &CellFaces, i: usize) -> Option<u32> {
+        Some(self.split[faces.id(i) as usize]).filter(|&s| s != UNRANKED)
+    }
+
+    /// Cuts the loaded cell into `out` (nothing when it is kept whole).
+    pub fn pieces(&self, faces: &CellFaces, c: usize, out: &mut Vec<Piece>) {
+        let apex = self.apex[c];
+        if apex != UNRANKED {
+            faces.cone_split(apex, |i, _| self.split_of(faces, i), out);
+        }
+    }
+}
+
+/// The worst piece of the loaded cell's cone from `apex` with the diagonals `split` (by face
+/// of the cell), or `None` when a quadrilateral through the apex is not split through it.
+fn cone_quality(
+    nodes: &[[f64; 3]],
+    faces: &CellFaces,
+    apex: u32,
+    split: &[u32],
+    pieces: &mut Vec<Piece>,
+) -> Option<f64> {
+    let fits = faces
+        .faces()
+        .enumerate()
+        .all(|(i, k)| k.len() != 4 || !k.contains(&apex) || through(k, split[i], apex));
+    if !fits {
+        return None;
+    }
+    pieces.clear();
+    faces.cone_split(
+        apex,
+        |i, _| Some(split[i]).filter(|&s| s != UNRANKED),
+        pieces,
+    );
+    Some(
+        pieces
+            .iter()
+            .map(|p| piece_quality(nodes, p))
+            .fold(0.0, f64::max),
+    )
+}
+
+/// The best apex of the loaded cell for the diagonals `split` (by face of the cell), and its
+/// worst piece; `None` when no node is on every split diagonal through it.
+fn best_apex(
+    nodes: &[[f64; 3]],
+    faces: &CellFaces,
+    split: &[u32],
+    buf: &mut (Vec<u32>, Vec<Piece>),
+) -> Option<(f64, u32)> {
+    faces.distinct_nodes(&mut buf.0);
+    let mut best: Option<(f64, u32)> = None;
+    for j in 0..buf.0.len() {
+        let a = buf.0[j];
+        let q = cone_quality(nodes, faces, a, split, &mut buf.1);
+        if let Some(q) = q.filter(|&q| best.is_none_or(|b| q < b.0)) {
+            best = Some((q, a));
+        }
+    }
+    best
+}
+
+/// The two cells of each face (the second [`UNRANKED`] on the boundary).
+fn face_cells(poly: &PolyMesh) -> Vec<[u32; 2]> {
+    let mut out = vec![[UNRANKED; 2]; poly.face_count()];
+    for c in 0..poly.cell_count() {
+        for cf in poly.cell(c) {
+            let e = &mut out[cf.face as usize];
+            let slot = if e[0] == UNRANKED { 0 } else { 1 };
+            e[slot] = c as u32;
+        }
+    }
+    out
+}
+
+/// Working state of [`refine`].
+struct Refiner<'a> {
+    poly: &'a PolyMesh,
+    cut: &'a mut Cut,
+    q: Vec<f64>,
+    across: Vec<[u32; 2]>,
+    buf: (Vec<u32>, Vec<Piece>),
+}
+
+/// A re-cut of a few cells: the new diagonals by face (with the faces of the re-cut cells that
+/// keep theirs), and (cell, apex, worst piece) of each re-cut cell.
+#[derive(Default)]
+struct Change {
+    faces: Vec<(u32, u32)>,
+    cells: Vec<(u32, u32, f64)>,
+}
+
+impl Change {
+    fn split(&self, cut: &Cut, f: u32) -> u32 {
+        match self.faces.iter().rev().find(|x| x.0 == f) {
+            Some(x) => x.1,
+            None => cut.split[f as usize],
+        }
+    }
+
+    fn worst(&self) -> f64 {
+        self.cells.iter().map(|x| x.2).fold(0.0, f64::max)
+    }
+}
+
+impl Refiner<'_> {
+    fn cell_quality(&mut self, c: usize) -> f64 {
+        let mut faces = CellFaces::default();
+        faces.load(self.poly, c);
+        self.buf.1.clear();
+        self.cut.pieces(&faces, c, &mut self.buf.1);
+        let nodes = &self.poly.nodes;
+        self.buf
+            .1
+            .iter()
+            .map(|p| piece_quality(nodes, p))
+            .fold(0.0, f64::max)
+    }
+
+    /// The neighbour across face `f` of cell `c`.
+    fn neighbour(&self, c: u32, f: u32) -> Option<u32> {
+        let e = self.across[f as usize];
+        let n = if e[0] == c { e[1] } else { e[0] };
+        (n != UNRANKED).then_some(n)
+    }
+
+    /// The best re-cut of cell `c` under the diagonals `change` already fixes, every re-cut
+    /// cell's worst piece under `bound`: `c` takes any apex and any diagonals on its other
+    /// split faces; each neighbour across a changed face takes its best apex, or, `depth`
+    /// levels down, is re-cut the same way.
+    fn recut(&mut self, c: u32, change: &mut Change, depth: usize, bound: f64) -> Option<Change> {
+        let mut faces = CellFaces::default();
+        faces.load(self.poly, c as usize);
+        let ids: Vec<u32> = (0..faces.len()).map(|i| faces.id(i)).collect();
+        let current: Vec<u32> = ids.iter().map(|&f| change.split(self.cut, f)).collect();
+        let fixed = |f: u32, change: &Change| change.faces.iter().any(|x| x.0 == f);
+        let free: Vec<usize> = (0..ids.len())
+            .filter(|&i| current[i] != UNRANKED && !fixed(ids[i], change))
+            .collect();
+        let mut nodes = Vec::new();
+        faces.distinct_nodes(&mut nodes);
+        let mut split = current.clone();
+        let set = |split: &mut [u32], bits: u32| {
+            for (b, &i) in free.iter().enumerate() {
+                let k = faces.face(i);
+                split[i] = normal_split(k, k[((bits >> b) & 1) as usize]);
+            }
+        };
+        // the cuts of the cell alone under the bound, best first: the neighbours only make
+        // a candidate worse, so the search stops at the first no better than the best found
+        let mut candidates: Vec<(f64, u32, u32)> = Vec::new();
+        for &a in &nodes {
+            for bits in 0..1u32 << free.len() {
+                set(&mut split, bits);
+                let q = cone_quality(&self.poly.nodes, &faces, a, &split, &mut self.buf.1);
+                if let Some(q) = q.filter(|&q| q < bound) {
+                    candidates.push((q, a, bits));
+                }
+            }
+        }
+        candidates.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut best: Option<Change> = None;
+        let (faces_mark, cells_mark) = (change.faces.len(), change.cells.len());
+        for (qc, a, bits) in candidates {
+            let limit = best.as_ref().map_or(bound, |x| x.worst());
+            if qc >= limit {
+                break;
+            }
+            set(&mut split, bits);
+            change
+                .faces
+                .extend(ids.iter().copied().zip(split.iter().copied()));
+            change.cells.push((c, a, qc));
+            let ok = free
+                .iter()
+                .filter(|&&i| split[i] != current[i])
+                .all(|&i| self.settle(c, ids[i], change, depth, limit));
+            if ok && change.worst() < limit {
+                best = Some(Change {
+                    faces: change.faces[faces_mark..].to_vec(),
+                    cells: change.cells[cells_mark..].to_vec(),
+                });
+            }
+            change.faces.truncate(faces_mark);
+            change.cells.truncate(cells_mark);
+        }
+        best
+    }
+
+    /// Settles the neighbour of `c` across the re-split face `f` into `change`: its best apex
+    /// under the diagonals so far, else (`depth` > 0) a re-cut of it; false when neither stays
+    /// under `bound`.
+    fn settle(&mut self, c: u32, f: u32, change: &mut Change, depth: usize, bound: f64) -> bool {
+        let Some(n) = self.neighbour(c, f) else {
+            return true;
+        };
+        if change.cells.iter().any(|x| x.0 == n) {
+            return false;
+        }
+        let mut other = CellFaces::default();
+        other.load(self.poly, n as usize);
+        let theirs: Vec<u32> = (0..other.len())
+            .map(|j| change.split(self.cut, other.id(j)))
+            .collect();
+        let apex = best_apex(&self.poly.nodes, &other, &theirs, &mut self.buf);
+        if let Some((q, a)) = apex.filter(|x| x.0 < bound) {
+            change.cells.push((n, a, q));
+            return true;
+        }
+        if depth == 0 {
+            return false;
+        }
+        match self.recut(n, change, depth - 1, bound) {
+            Some(x) => {
+                change.faces.extend(x.faces);
+                change.cells.extend(x.cells);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn apply(&mut self, x: Change) {
+        for (f, s) in x.faces {
+            self.cut.split[f as usize] = s;
+        }
+        for (c, a, q) in x.cells {
+            self.cut.apex[c as usize] = a;
+            self.q[c as usize] = q;
+        }
+    }
+}
+
+/// Re-cuts the cells cut worse than `target` degrees (worst first) while that lowers the
+/// worst piece over them and their neighbours; at most `passes` passes. Cells kept whole stay
+/// whole. A re-cut may re-cut the neighbours `depth` levels deep. Every cell must have faces
+/// of three or four nodes. Returns the worst piece of the cut (an inverted one counts 360°).
+pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth: usize) -> f64 {
+    let mut r = Refiner {
+        poly,
+        cut,
+        q: Vec::new(),
+        across: face_cells(poly),
+        buf: Default::default(),
+    };
+    r.q = (0..poly.cell_count()).map(|c| r.cell_quality(c)).collect();
+    // a cell is tried again only when a re-cut touched it or a neighbour since its last try
+    let mut dirty = vec![true; poly.cell_count()];
+    for _ in 0..passes {
+        let mut bad: Vec<u32> = (0..r.q.len() as u32)
+            .filter(|&c| r.q[c as usize] > target && r.cut.apex[c as usize] != UNRANKED)
+            .filter(|&c| dirty[c as usize])
+            .collect();
+        bad.sort_by(|&a, &b| r.q[b as usize].total_cmp(&r.q[a as usize]));
+        let mut changed = false;
+        for c in bad {
+            dirty[c as usize] = false;
+            if r.q[c as usize] <= target {
+                continue;
+            }
+            let bound = r.q[c as usize] - 1e-9;
+            if let Some(x) = r.recut(c, &mut Change::default(), depth, bound) {
+                for &(d, _, _) in &x.cells {
+                    dirty[d as usize] = true;
+                    for cf in poly.cell(d as usize) {
+                        if let Some(n) = r.neighbour(d, cf.face) {
+                            dirty[n as usize] = true;
+                        }
+                    }
+                }
+                r.apply(x);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    r.q.iter().copied().fold(0.0, f64::max)
+}
