@@ -19,18 +19,25 @@ fn tet_volume(mesh: &Mesh) -> f64 {
         .sum()
 }
 
-#[test]
-fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
+/// The NACA0012 wing of span 0.5 (surface and layers from 1e-3, growth 1.3) and `layers`
+/// layers grown from it.
+fn wing(triangles: bool, layers: usize) -> (geom_surface::Surface, afsf3d::Grown3d) {
     let mut case = xtask::case::load("naca0012").unwrap();
     case.layers.first_height = 1e-3;
-    let (wall, _) = xtask::wing::wing_surface(&case, 0.5, true).unwrap();
+    let (wall, _) = xtask::wing::wing_surface(&case, 0.5, triangles).unwrap();
     let params = LayerParams {
         first_height: 1e-3,
         growth: 1.3,
-        layers: 4,
+        layers,
         ..LayerParams::default()
     };
     let grown = grow_layers(&wall, &params).unwrap();
+    (wall, grown)
+}
+
+#[test]
+fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
+    let (wall, grown) = wing(true, 4);
     assert!(
         grown.columns.iter().all(|c| c.len() == 5),
         "a column was cut off"
@@ -63,16 +70,7 @@ fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
 /// sine of their corner angles (0.045) before any growth.
 #[test]
 fn the_trailing_edge_cells_of_a_wing_with_quads_stay_above_the_bar() {
-    let mut case = xtask::case::load("naca0012").unwrap();
-    case.layers.first_height = 1e-3;
-    let (wall, _) = xtask::wing::wing_surface(&case, 0.5, false).unwrap();
-    let params = LayerParams {
-        first_height: 1e-3,
-        growth: 1.3,
-        layers: 3,
-        ..LayerParams::default()
-    };
-    let grown = grow_layers(&wall, &params).unwrap();
+    let (wall, grown) = wing(false, 3);
     let mixed = topo_cut::cut_to_mixed(&grown.mesh).unwrap();
     let x_te = wall.nodes.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
     let side = wall.patches.iter().position(|p| p.name == "wall").unwrap() as u32;
