@@ -155,34 +155,13 @@ fn corner_scaled_jacobians(shape: Shape, p: &[[f64; 3]]) -> Vec<f64> {
     corner_dets(shape, p, true)
 }
 
-/// The corner determinants of a linear prism or hexahedron, each divided by the product of
-/// its three edges' lengths when `normalised`.
+/// The corner determinants of a linear prism or hexahedron
+/// ([`mesh_model::measure3d::corner_determinants`]), none for other shapes.
 fn corner_dets(shape: Shape, p: &[[f64; 3]], normalised: bool) -> Vec<f64> {
-    let m = match shape {
-        Shape::Prism => 3,
-        Shape::Hex => 4,
-        _ => return vec![],
-    };
-    let sub = geom_predicates::vector::sub;
-    let sj = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
-        let d = geom_predicates::vector::dot(geom_predicates::vector::cross3(a, b), c);
-        let l = |v: [f64; 3]| geom_predicates::vector::dot(v, v).sqrt();
-        if normalised {
-            d / (l(a) * l(b) * l(c))
-        } else {
-            d
-        }
-    };
-    let mut out = Vec::with_capacity(2 * m);
-    for top in [0, m] {
-        for i in 0..m {
-            let o = p[top + i];
-            let next = p[top + (i + 1) % m];
-            let prev = p[top + (i + m - 1) % m];
-            out.push(sj(sub(next, o), sub(prev, o), sub(p[i + m], p[i])));
-        }
+    match shape {
+        Shape::Prism | Shape::Hex => mesh_model::measure3d::corner_determinants(p, normalised),
+        _ => vec![],
     }
-    out
 }
 
 /// The smallest corner scaled Jacobian of the prisms and hexahedra: at the trailing edge

@@ -19,18 +19,25 @@ fn tet_volume(mesh: &Mesh) -> f64 {
         .sum()
 }
 
-#[test]
-fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
+/// The NACA0012 wing of span 0.5 (surface and layers from 1e-3, growth 1.3) and `layers`
+/// layers grown from it.
+fn wing(triangles: bool, layers: usize) -> (geom_surface::Surface, afsf3d::Grown3d) {
     let mut case = xtask::case::load("naca0012").unwrap();
     case.layers.first_height = 1e-3;
-    let (wall, _) = xtask::wing::wing_surface(&case, 0.5, true).unwrap();
+    let (wall, _) = xtask::wing::wing_surface(&case, 0.5, triangles).unwrap();
     let params = LayerParams {
         first_height: 1e-3,
         growth: 1.3,
-        layers: 4,
+        layers,
         ..LayerParams::default()
     };
     let grown = grow_layers(&wall, &params).unwrap();
+    (wall, grown)
+}
+
+#[test]
+fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
+    let (wall, grown) = wing(true, 4);
     assert!(
         grown.columns.iter().all(|c| c.len() == 5),
         "a column was cut off"
@@ -54,4 +61,32 @@ fn a_naca0012_wing_grows_full_columns_and_cuts_into_valid_cells() {
         validate(&mixed).first()
     );
     assert_eq!(mixed.count(mesh_model::Shape::Prism), 4 * wall.facets.len());
+}
+
+/// With the quads kept (hexahedra on the side, prisms over the caps' triangles) the cells at
+/// the blunt trailing edge keep an edge-normalised corner scaled Jacobian above the issue's
+/// 0.2 for the first layers (measured 0.444 at 3 layers, span 2; `docs/3d.md` has the
+/// values at 10–23 layers). The caps are left out: their thinnest 2D cells bound it at the
+/// sine of their corner angles (0.045) before any growth.
+#[test]
+fn the_trailing_edge_cells_of_a_wing_with_quads_stay_above_the_bar() {
+    let (wall, grown) = wing(false, 3);
+    let mixed = topo_cut::cut_to_mixed(&grown.mesh).unwrap();
+    let x_te = wall.nodes.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
+    let side = wall.patches.iter().position(|p| p.name == "wall").unwrap() as u32;
+    let mut worst = f64::INFINITY;
+    for i in 0..mixed.cells.len() {
+        let Some(q) = mesh_model::measure3d::min_corner_scaled_jacobian(&mixed, i) else {
+            continue;
+        };
+        let k = mixed.cells.get(i).corners();
+        let at_te = k.iter().any(|&v| mixed.nodes[v as usize][0] > x_te - 0.01);
+        if at_te && wall.facet_patch[mixed.cell_pipe[i] as usize] == side {
+            worst = worst.min(q);
+        }
+    }
+    assert!(
+        worst > 0.4,
+        "trailing edge: min corner scaled Jacobian {worst}"
+    );
 }

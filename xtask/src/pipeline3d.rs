@@ -126,6 +126,65 @@ pub struct Measures3d {
     pub coverage: f64,
     /// Tables 5, 6 and 7.
     pub histograms: [Histogram; 3],
+    /// The smallest corner scaled Jacobian of the prisms and hexahedra (`None` without any).
+    pub min_corner_sj: Option<CornerJacobian>,
+}
+
+/// The smallest corner scaled Jacobian of a mesh's prisms and hexahedra and where it is.
+#[derive(Debug, Clone, Serialize)]
+pub struct CornerJacobian {
+    /// What is measured.
+    pub of: &'static str,
+    /// The smallest value.
+    pub value: f64,
+    /// Its cell (0-based).
+    pub cell: usize,
+    /// Its cell's layer (0 on the wall).
+    pub layer: u32,
+    /// The mean of its cell's corners.
+    pub at: [f64; 3],
+    /// The smallest value over the cells grown from each wall patch (by name).
+    pub by_wall_patch: std::collections::BTreeMap<String, f64>,
+}
+
+/// The prisms' and hexahedra's smallest corner scaled Jacobian ([`CornerJacobian`]).
+fn min_corner_sj(wall: &Surface, mesh: &Mesh) -> Option<CornerJacobian> {
+    let (value, cell) = (0..mesh.cells.len())
+        .into_par_iter()
+        .filter_map(|i| measure3d::min_corner_scaled_jacobian(mesh, i).map(|q| (q, i)))
+        .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))?;
+    let mut by_wall_patch = std::collections::BTreeMap::new();
+    for i in 0..mesh.cells.len() {
+        let (Some(q), Some(&f)) = (
+            measure3d::min_corner_scaled_jacobian(mesh, i),
+            mesh.cell_pipe.get(i),
+        ) else {
+            continue;
+        };
+        let Some(patch) = wall
+            .facet_patch
+            .get(f as usize)
+            .and_then(|&p| wall.patches.get(p as usize))
+        else {
+            continue;
+        };
+        let name = patch.name.clone();
+        let v = by_wall_patch.entry(name).or_insert(q);
+        *v = q.min(*v);
+    }
+    let k = mesh.cells.get(cell).corners();
+    let at = std::array::from_fn(|d| {
+        k.iter().map(|&v| mesh.nodes[v as usize][d]).sum::<f64>() / k.len() as f64
+    });
+    Some(CornerJacobian {
+        of: "smallest edge-normalised corner scaled Jacobian of the prisms and hexahedra: \
+             det(e1, e2, e3) / (|e1| |e2| |e3|) of the three edges at each corner",
+        value,
+        cell,
+        layer: mesh.cell_layer.get(cell).copied().unwrap_or(0),
+        at,
+        by_wall_patch,
+    })
 }
 
 /// Measures the cut `mesh` of the layers `grown` from `wall` ([`Measures3d`]).
@@ -187,6 +246,7 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
                 &dihedral,
             ),
         ],
+        min_corner_sj: min_corner_sj(wall, mesh),
     }
 }
 

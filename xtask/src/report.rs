@@ -218,6 +218,7 @@ impl Report {
             max_dihedral_deg: m.max_dihedral_deg,
             min_cell_volume: m.min_cell_volume,
             histograms: m.histograms.to_vec(),
+            min_corner_scaled_jacobian: m.min_corner_sj.clone(),
         });
     }
 
@@ -456,6 +457,9 @@ pub struct Quality3d {
     pub min_cell_volume: f64,
     /// The dissertation's tables 5, 6 and 7.
     pub histograms: Vec<crate::pipeline3d::Histogram>,
+    /// The prisms' and hexahedra's smallest corner scaled Jacobian (absent without any).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_corner_scaled_jacobian: Option<crate::pipeline3d::CornerJacobian>,
 }
 
 /// The volume check of a 3D report.

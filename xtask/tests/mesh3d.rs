@@ -70,6 +70,11 @@ fn mesh_case(dir: &Path, file: &str, stem: &str, layers: u64) -> serde_json::Val
     let q = &r["quality"];
     assert!(q["max_dihedral_deg"].as_f64().unwrap() < 180.0, "{r}");
     assert_eq!(q["histograms"].as_array().unwrap().len(), 3, "{r}");
+    // prisms and hexahedra: their smallest corner scaled Jacobian, positive and at most 1
+    if r["cells"]["prism"].as_u64().unwrap() + r["cells"]["hex"].as_u64().unwrap() > 0 {
+        let sj = q["min_corner_scaled_jacobian"]["value"].as_f64().unwrap();
+        assert!(sj > 0.0 && sj <= 1.0, "{r}");
+    }
     for key in [
         "surface", "check", "grow", "cut", "validate", "write", "total",
     ] {

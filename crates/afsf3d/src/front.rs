@@ -88,7 +88,8 @@ impl Topo {
 /// it is then `smoothing` times replaced by the normalised sum of its own and its
 /// neighbours' directions, which fans the directions out of concave edges so the front
 /// spreads there instead of folding; elsewhere (convex edges and corners) it stays the
-/// normal. The length is `height`, divided at a concave node by the smallest cosine between
+/// normal. Then a direction that stands off one of its facets at a cosine below `floor` is
+/// turned towards the max-min direction ([`stand_off`]). The length is `height`, divided at a concave node by the smallest cosine between
 /// its direction and its facets' normals (at most 2), so that the child stands `height` off
 /// each facet there.
 pub(crate) fn ideal_steps(
@@ -96,6 +97,7 @@ pub(crate) fn ideal_steps(
     topo: &Topo,
     height: f64,
     smoothing: usize,
+    floor: f64,
 ) -> (Vec<[f64; 3]>, Vec<f64>) {
     let mut dir = front.node_normals();
     let n = front.nodes.len();
@@ -127,6 +129,9 @@ pub(crate) fn ideal_steps(
             dir[i] = unit(sum[i]);
         }
     }
+    if floor > 0.0 {
+        stand_off(front, floor, &mut dir);
+    }
     let mut min_cos = vec![1.0f64; n];
     for f in &front.facets {
         let normal = unit(fan_normal(&front.nodes, f.nodes()));
@@ -145,4 +150,110 @@ pub(crate) fn ideal_steps(
         })
         .collect();
     (dir, len)
+}
+
+/// Turns each node's direction `dir` that stands off one of its facets at a cosine below
+/// `floor` towards the direction that stands most steeply off all of them
+/// ([`max_min_direction`]), just far enough to reach `floor` (or all the way, where even
+/// that direction does not). Elsewhere the direction is left as it is, to the bit.
+///
+/// At a saddle corner (the foot of a convex edge between two concave ones, as at the step's
+/// tower) the angle-weighted normal leans towards the side with the most facet angle: it
+/// stands off the tower's sides at a cosine of 1/√11 ≈ 0.30, the max-min direction at
+/// 1/√3 ≈ 0.58 off all three planes.
+fn stand_off(front: &Surface, floor: f64, dir: &mut [[f64; 3]]) {
+    let mut normals: Vec<Vec<[f64; 3]>> = vec![Vec::new(); front.nodes.len()];
+    for f in &front.facets {
+        let normal = unit(fan_normal(&front.nodes, f.nodes()));
+        for &v in f.nodes() {
+            normals[v as usize].push(normal);
+        }
+    }
+    let worst = |d: [f64; 3], n: &[[f64; 3]]| {
+        n.iter()
+            .map(|&m| geom_predicates::vector::dot(d, m))
+            .fold(f64::INFINITY, f64::min)
+    };
+    for (d, n) in dir.iter_mut().zip(&normals) {
+        if worst(*d, n) >= floor {
+            continue;
+        }
+        let best = max_min_direction(n, *d);
+        let target = floor.min(worst(best, n));
+        let at = |t: f64| unit(std::array::from_fn(|k| (1.0 - t) * d[k] + t * best[k]));
+        // the least blend that reaches the target, by bisection
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..30 {
+            let mid = 0.5 * (lo + hi);
+            if worst(at(mid), n) >= target {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        *d = at(hi);
+    }
+}
+
+/// The unit vector maximising the smallest dot product with the unit vectors `normals` (the
+/// centre of their smallest enclosing spherical cap): the best of `start`, each normal, the
+/// normalised sum of each pair and the vector at equal dot products with each triple.
+pub(crate) fn max_min_direction(normals: &[[f64; 3]], start: [f64; 3]) -> [f64; 3] {
+    use geom_predicates::vector::{cross3, dot};
+    let worst = |d: [f64; 3]| {
+        normals
+            .iter()
+            .map(|&n| dot(d, n))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut best = (worst(start), start);
+    let mut consider = |d: [f64; 3]| {
+        let d = unit(d);
+        let w = worst(d);
+        if w > best.0 + 1e-12 {
+            best = (w, d);
+        }
+    };
+    let m = normals.len();
+    for i in 0..m {
+        consider(normals[i]);
+        for j in i + 1..m {
+            let (a, b) = (normals[i], normals[j]);
+            consider(std::array::from_fn(|d| a[d] + b[d]));
+            for c in &normals[j + 1..] {
+                let det = dot(a, cross3(b, *c));
+                if det.abs() > 1e-9 {
+                    let (x, y, z) = (cross3(b, *c), cross3(*c, a), cross3(a, b));
+                    consider(std::array::from_fn(|d| (x[d] + y[d] + z[d]) / det));
+                }
+            }
+        }
+    }
+    best.1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_max_min_direction_of_a_saddle_corner_stands_equally_off_its_three_planes() {
+        let (x, y, z) = ([1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]);
+        // the step's tower foot: three block-top facets, one on each tower side
+        let start = unit([1.0, -1.0, 3.0]);
+        let d = max_min_direction(&[z, z, z, x, y], start);
+        let s = 1.0 / 3f64.sqrt();
+        assert!(
+            d.iter().zip([s, -s, s]).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{d:?}"
+        );
+        // two planes: the bisector; one: its normal
+        let d = max_min_direction(&[x, z], [0.0, 0.0, 1.0]);
+        let h = 0.5f64.sqrt();
+        assert!(
+            (d[0] - h).abs() < 1e-12 && (d[2] - h).abs() < 1e-12,
+            "{d:?}"
+        );
+        assert_eq!(max_min_direction(&[z], z), z);
+    }
 }

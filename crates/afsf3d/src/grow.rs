@@ -46,7 +46,7 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         thickness += height;
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
         let front = &state.front;
-        let (dir, len) = ideal_steps(front, &topo, height, rounds);
+        let (dir, len) = ideal_steps(front, &topo, height, rounds, params.stand_off);
         let step = Step {
             x: &front.nodes,
             dir: &dir,
@@ -281,6 +281,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.coe_shrink >= 0.0 && p.coe_shrink < 1.0) {
         return bad("coe_shrink must be in [0, 1)");
+    }
+    if !(p.stand_off >= 0.0 && p.stand_off < 1.0) {
+        return bad("stand_off must be in [0, 1)");
     }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
         return bad("tension_ratio must be in (0, 1]");

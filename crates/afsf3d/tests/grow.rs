@@ -9,6 +9,7 @@
 
 use afsf3d::{GrowError, Grown3d, LayerParams, grow_layers};
 use geom_surface::{Facet, Surface, angle_between, fan_normal};
+use mesh_model::measure3d::corner_determinants;
 use mesh_model::{Layering, Mesh, NONE, Shape, validate};
 
 struct Measures {
@@ -212,13 +213,41 @@ fn measures(surface: &Surface, grown: &Grown3d) -> Measures {
     }
 }
 
+/// The smallest edge-normalised corner scaled Jacobian
+/// (`mesh_model::measure3d::corner_determinants`) of the cells of layers `layers` (from 0)
+/// whose columns did not merge there, each cell read off its wall facet's columns.
+fn min_corner_sj(surface: &Surface, grown: &Grown3d, layers: std::ops::Range<usize>) -> f64 {
+    let x = &grown.mesh.nodes;
+    let mut worst = f64::INFINITY;
+    let mut p = Vec::with_capacity(8);
+    for k in layers {
+        for f in &surface.facets {
+            let level = |l: usize| f.nodes().iter().map(move |&v| grown.columns[v as usize][l]);
+            let top: Vec<u32> = level(k + 1).collect();
+            if (0..top.len()).any(|i| top[i] == top[(i + 1) % top.len()]) {
+                continue; // merged: not a prism or hexahedron
+            }
+            p.clear();
+            p.extend(level(k).chain(level(k + 1)).map(|v| x[v as usize]));
+            worst = corner_determinants(&p, true)
+                .into_iter()
+                .fold(worst, f64::min);
+        }
+    }
+    worst
+}
+
 #[test]
 fn the_sphere_keeps_30_full_layers() {
     let params = LayerParams {
         layers: 30,
         ..LayerParams::default()
     };
-    grow_and_check("sphere", &Surface::sphere(1.0, 3), &params);
+    let sphere = Surface::sphere(1.0, 3);
+    let grown = grow_and_check("sphere", &sphere, &params);
+    // the bar: every prism corner's scaled Jacobian above 0.5 (measured 0.795)
+    let sj = min_corner_sj(&sphere, &grown, 0..30);
+    assert!(sj > 0.79, "sphere: min corner scaled Jacobian {sj}");
 }
 
 #[test]
@@ -227,7 +256,12 @@ fn the_cube_keeps_30_full_layers_at_its_sharp_edges_and_corners() {
         layers: 30,
         ..LayerParams::default()
     };
-    grow_and_check("cube quads", &Surface::cube(1.0, 8, false), &params);
+    let cube = Surface::cube(1.0, 8, false);
+    let grown = grow_and_check("cube quads", &cube, &params);
+    // 1/√3 at the corners: the corner node's direction stands off each face at 1/√3
+    let sj = min_corner_sj(&cube, &grown, 0..30);
+    assert!(sj > 0.57, "cube quads: min corner scaled Jacobian {sj}");
+    // (triangles: 0.31, prisms over the right triangles' 45° corners at the cube's corners)
     grow_and_check("cube triangles", &Surface::cube(1.0, 8, true), &params);
 }
 
@@ -239,7 +273,34 @@ fn the_step_keeps_15_full_layers_in_its_concave_edges() {
         layers: 15,
         ..LayerParams::default()
     };
-    grow_and_check("step", &Surface::step(1), &params);
+    let step = Surface::step(1);
+    let grown = grow_and_check("step", &step, &params);
+    // the tower's foot corners: the angle-weighted normal stands off the tower's sides at
+    // 1/√11 ≈ 0.30 (0.34 after the smoothing)
+    let sj = min_corner_sj(&step, &grown, 0..12);
+    assert!(
+        sj > 0.34,
+        "step: min corner scaled Jacobian {sj} in layers 0-11"
+    );
+    // turned to stand off every facet at 0.55 (`stand_off`): 0.535 in the first layer, above
+    // 0.5 up to layer 11 (thickness 0.079); the last three layers, as thick as the wall's
+    // spacing, squeeze the cells over the block's top diagonally off each foot corner
+    // (docs/3d.md): 0.40, 0.21, 0.08
+    let turned = LayerParams {
+        stand_off: 0.55,
+        ..params
+    };
+    let grown = grow_and_check("step, stand-off 0.55", &step, &turned);
+    let sj = min_corner_sj(&step, &grown, 0..12);
+    assert!(
+        sj > 0.5,
+        "step: min corner scaled Jacobian {sj} in layers 0-11"
+    );
+    let first = min_corner_sj(&step, &grown, 0..1);
+    assert!(
+        first > 0.53,
+        "step: first layer's min corner scaled Jacobian {first}"
+    );
 }
 
 #[test]

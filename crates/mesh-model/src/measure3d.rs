@@ -3,7 +3,8 @@
 //! the volume of a standard cell by the divergence theorem over its faces (quadrilateral
 //! faces fanned from their centroid, so that neighbours and the surfaces around the domain
 //! measure each face alike), the largest corner angle of a polygon in space, the angle
-//! between two vectors, and a histogram over bins. No meshing decision is made here.
+//! between two vectors, the corner scaled Jacobian of prisms and hexahedra, and a histogram
+//! over bins. No meshing decision is made here.
 
 use geom_predicates::vector::{cross3, dot, sub};
 
@@ -50,6 +51,52 @@ pub fn max_dihedral_deg(mesh: &Mesh) -> f64 {
         .filter(|&i| mesh.cells.get(i).ty.shape == Shape::Tet)
         .map(|i| tet_max_dihedral_deg(mesh, i))
         .fold(0.0, f64::max)
+}
+
+/// The corner determinants of the linear prism or hexahedron `p` (Gmsh's node order: the
+/// bottom face's `m` corners, then the top's, each above its bottom corner; `p.len()` is
+/// `2m`), bottom corners first. At a corner `o` of the bottom or the top face, with `next`
+/// and `prev` its neighbours on that face: det(next − o, prev − o, e), `e` the extrusion
+/// edge of that corner's column (bottom corner to top corner) — positive at every corner of
+/// a valid cell. With `normalised`, each is divided by the product of its three edges'
+/// lengths: the **edge-normalised corner scaled Jacobian**, in [−1, 1], 1 at every corner of
+/// a box, the sine of the face's corner angle at a right prism's corner, 0 where an edge has
+/// no length.
+pub fn corner_determinants(p: &[[f64; 3]], normalised: bool) -> Vec<f64> {
+    let m = p.len() / 2;
+    let len = |v: [f64; 3]| dot(v, v).sqrt();
+    let mut out = Vec::with_capacity(2 * m);
+    for face in [0, m] {
+        for i in 0..m {
+            let o = p[face + i];
+            let a = sub(p[face + (i + 1) % m], o);
+            let b = sub(p[face + (i + m - 1) % m], o);
+            let e = sub(p[m + i], p[i]);
+            let d = dot(cross3(a, b), e);
+            out.push(if normalised {
+                let q = d / (len(a) * len(b) * len(e));
+                if q.is_finite() { q } else { 0.0 }
+            } else {
+                d
+            });
+        }
+    }
+    out
+}
+
+/// The smallest edge-normalised corner scaled Jacobian ([`corner_determinants`]) of cell `i`
+/// of `mesh`, if it is a prism or a hexahedron.
+pub fn min_corner_scaled_jacobian(mesh: &Mesh, i: usize) -> Option<f64> {
+    let c = mesh.cells.get(i);
+    if !matches!(c.ty.shape, Shape::Prism | Shape::Hex) {
+        return None;
+    }
+    let p: Vec<[f64; 3]> = c
+        .corners()
+        .iter()
+        .map(|&v| mesh.nodes[v as usize])
+        .collect();
+    corner_determinants(&p, true).into_iter().reduce(f64::min)
 }
 
 /// Six times the signed volume of the cone from `o` over the polygon `p` (fanned from its
@@ -176,6 +223,43 @@ mod tests {
             assert!((got - want).abs() < 1e-14, "{v:?}");
         }
         assert!((tet_max_dihedral_deg(&m, 1) - 90.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn corner_scaled_jacobians_of_boxes_prisms_and_sheared_cells() {
+        let mut m = Mesh::new(Dim::Three, 1);
+        m.nodes = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.1],
+            [2.0, 0.0, 0.1],
+            [2.0, 1.0, 0.1],
+            [0.0, 1.0, 0.1],
+        ];
+        m.cells
+            .push(CellType::new(Shape::Hex, 1), &[0, 1, 2, 3, 4, 5, 6, 7]);
+        m.cells
+            .push(CellType::new(Shape::Prism, 1), &[0, 1, 3, 4, 5, 7]);
+        m.cells.push(CellType::new(Shape::Tet, 1), &[0, 1, 3, 4]);
+        assert_eq!(min_corner_scaled_jacobian(&m, 0), Some(1.0));
+        // the prism's corners at 1 and 3: the sine of the triangle's angle there, 1/√5
+        let want = 1.0 / 5f64.sqrt();
+        let got = min_corner_scaled_jacobian(&m, 1).expect("a prism");
+        assert!((got - want).abs() < 1e-15, "{got}");
+        assert_eq!(min_corner_scaled_jacobian(&m, 2), None);
+        // the top sheared by 45° along x: every corner 1/√2
+        let mut p: Vec<[f64; 3]> = m.nodes.clone();
+        p[4..].iter_mut().for_each(|q| q[0] += 0.1);
+        for d in corner_determinants(&p, true) {
+            assert!((d - 0.5f64.sqrt()).abs() < 1e-14, "{d}");
+        }
+        // inverted (top below bottom): negative everywhere; unnormalised: the volumes
+        p[4..].iter_mut().for_each(|q| q[2] = -0.1);
+        assert!(corner_determinants(&p, true).iter().all(|&d| d < 0.0));
+        let dets = corner_determinants(&m.nodes, false);
+        assert!(dets.iter().all(|&d| (d - 0.2).abs() < 1e-15), "{dets:?}");
     }
 
     #[test]
