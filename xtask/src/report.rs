@@ -208,7 +208,83 @@ impl Report {
             max_dihedral_deg: m.max_dihedral_deg,
             min_cell_volume: m.min_cell_volume,
             histograms: m.histograms.to_vec(),
+            min_scaled_jacobian: None,
+            scaled_jacobian_of: None,
+            invalid_cells: None,
+            certified: None,
         });
+    }
+
+    /// Certifies every cell of the P2 mesh `curved` (after [`Report::describe_3d`]) as
+    /// [`Report::certify`] does in 2D: the validity figures in the quality block, every
+    /// invalid, undecided or uncertified cell a problem; and what the curving did, as notes.
+    pub fn certify_3d(
+        &mut self,
+        curved: &vector_adding::Curved3d,
+        shape: &crate::pipeline3d::TrueShape,
+    ) -> Result<()> {
+        use crate::pipeline3d::TrueShape;
+        let mesh = &curved.mesh;
+        let v = match jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default()) {
+            Ok(v) => v,
+            Err(e) if !self.problems.is_empty() => {
+                self.problems
+                    .push(format!("the certified Jacobian check could not run: {e}"));
+                return Ok(());
+            }
+            Err(e) => anyhow::bail!("certifying the mesh: {e}"),
+        };
+        if let Some(q) = self.quality_3d.as_mut() {
+            q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
+            q.scaled_jacobian_of = Some(SCALED_JACOBIAN_OF);
+            q.invalid_cells = Some(v.invalid_cells.len());
+            q.certified = Some(v.undecided.is_empty() && v.uncertified.is_empty());
+        }
+        let verdicts = [
+            ("invalid", &v.invalid_cells),
+            ("undecided", &v.undecided),
+            ("uncertified", &v.uncertified),
+        ];
+        for (what, cells) in verdicts {
+            if let Some(&c) = cells.first() {
+                let first: Vec<String> = cells.iter().take(5).map(ToString::to_string).collect();
+                let k = mesh.cells.get(c).corners();
+                let x = [0, 1, 2].map(|d| {
+                    k.iter().map(|&n| mesh.nodes[n as usize][d]).sum::<f64>() / k.len() as f64
+                });
+                self.problems.push(format!(
+                    "{} cells {what} by the certified Jacobian check (first: {}; cell {c} near \
+                     ({:.6e}, {:.6e}, {:.6e}))",
+                    cells.len(),
+                    first.join(", "),
+                    x[0],
+                    x[1],
+                    x[2]
+                ));
+            }
+        }
+        let s = &curved.stats;
+        self.curved_edge_fraction = Some(s.curved_edge_fraction);
+        let wall = match shape {
+            TrueShape::Sphere(_) => "the wall's P2 nodes on the true sphere",
+            TrueShape::Wing(_) => {
+                "the wall's P2 nodes on the true wing (the section's curve times the span; the \
+                 tip caps flat)"
+            }
+            TrueShape::Flat => {
+                "the wall is flat-faceted (a cube, step, STL or .msh surface): its P2 nodes at \
+                 the edge midpoints, so the cells are straight-sided P2 cells"
+            }
+        };
+        self.notes.push(format!(
+            "P2 by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
+             {} pyramid edges kept straight (a 14-node pyramid is certified only \
+             straight-sided); validity: every cell certified by the Bernstein Jacobian check; \
+             volume: the curved cells' (integrated) against the volume the curved boundary \
+             encloses",
+            s.curved_edges, s.edges, s.deepest_curved_layer, s.pyramid_edges_kept_straight
+        ));
+        Ok(())
     }
 
     /// Fills the angle figures from the linear mesh under `mesh` (its cell corners, quads cut
@@ -430,6 +506,18 @@ pub struct Quality3d {
     pub min_cell_volume: f64,
     /// The dissertation's tables 5, 6 and 7.
     pub histograms: Vec<crate::pipeline3d::Histogram>,
+    /// Order 2: the certified min scaled Jacobian, as in 2D ([`SCALED_JACOBIAN_OF`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_scaled_jacobian: Option<f64>,
+    /// What `min_scaled_jacobian` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scaled_jacobian_of: Option<&'static str>,
+    /// Order 2: cells whose Jacobian determinant is not positive everywhere (certified).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub invalid_cells: Option<usize>,
+    /// Order 2: false only when some cell could not be decided.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub certified: Option<bool>,
 }
 
 /// The volume check of a 3D report.
