@@ -66,12 +66,7 @@ pub fn table(r: &Report) -> String {
                     at(g)
                 );
             }
-            let verdict = match (bad, certified) {
-                (0, true) => "every cell proved valid".to_string(),
-                (0, false) => "no cell proved invalid, some undecided".to_string(),
-                (n, _) => format!("{n} cells INVALID"),
-            };
-            let _ = writeln!(s, "  {:<22} {:>12}", "certified check", verdict);
+            let _ = writeln!(s, "  {:<22} {:>12}", "certified check", verdict(bad, certified));
         }
     }
     if let Some(f) = r.curved_edge_fraction {
@@ -98,6 +93,18 @@ pub fn table(r: &Report) -> String {
             "  {:<22} {:>12.1}",
             "max dihedral (deg)", q.max_dihedral_deg
         );
+        if let (Some(sj), Some(bad), Some(certified)) =
+            (q.min_scaled_jacobian, q.invalid_cells, q.certified)
+        {
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12.3}\n  {:<22} {:>12}",
+                "min scaled Jacobian",
+                sj,
+                "certified check",
+                verdict(bad, certified)
+            );
+        }
         for h in &q.histograms {
             let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
             let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();
@@ -147,4 +154,13 @@ pub fn table(r: &Report) -> String {
         }
     }
     s
+}
+
+/// The certified check's verdict in words.
+fn verdict(invalid: usize, certified: bool) -> String {
+    match (invalid, certified) {
+        (0, true) => "every cell proved valid".to_string(),
+        (0, false) => "no cell proved invalid, some undecided".to_string(),
+        (n, _) => format!("{n} cells INVALID"),
+    }
 }

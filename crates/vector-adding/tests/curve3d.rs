@@ -204,5 +204,14 @@ fn one_pyramid() -> Mesh {
         .push(CellType::new(Shape::Pyramid, 1), &[0, 1, 2, 3, 4]);
     pyramid.cell_layer = vec![0];
     pyramid.cell_pipe = vec![0];
+    // the base is wall facet 0 (facing out of the cell)
+    pyramid.patches = vec![mesh_model::Patch {
+        name: "wall".into(),
+        role: Role::Wall,
+    }];
+    pyramid
+        .boundary
+        .push(CellType::new(Shape::Quad, 1), &[0, 3, 2, 1]);
+    pyramid.boundary_patch = vec![0];
     pyramid
 }
