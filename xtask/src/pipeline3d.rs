@@ -106,11 +106,12 @@ pub fn curve(
     })
 }
 
-/// The curved mesh's volume (`jacobian_check::integrate_volume`), its smallest cell volume
-/// and the volume its curved boundary encloses (`jacobian_check::enclosed_volume`), into
-/// `m` in place of the linear mesh's.
+/// The curved mesh's volume (the sum of `jacobian_check::cell_volume` over the cells in
+/// order, as `jacobian_check::integrate_volume` adds them; the cells on all cores), its
+/// smallest cell volume and the volume its curved boundary encloses
+/// (`jacobian_check::enclosed_volume`), into `m` in place of the linear mesh's.
 pub fn curved_volumes(curved: &Mesh, m: &mut Measures3d) -> Result<()> {
-    let min = (0..curved.cells.len())
+    let volumes: Vec<f64> = (0..curved.cells.len())
         .into_par_iter()
         .map(|i| {
             let cell = curved.cells.get(i);
@@ -121,10 +122,10 @@ pub fn curved_volumes(curved: &Mesh, m: &mut Measures3d) -> Result<()> {
                 .collect();
             jacobian_check::cell_volume(cell.ty, &x)
         })
-        .try_reduce(|| f64::INFINITY, |a, b| Ok(a.min(b)))
+        .collect::<Result<_, _>>()
         .context("the curved cells' volumes")?;
-    m.min_cell_volume = min;
-    m.volume = jacobian_check::integrate_volume(curved).context("the curved volume")?;
+    m.min_cell_volume = volumes.iter().copied().fold(f64::INFINITY, f64::min);
+    m.volume = volumes.iter().sum();
     m.volume_between =
         jacobian_check::enclosed_volume(curved).context("the curved boundary's volume")?;
     Ok(())

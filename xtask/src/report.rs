@@ -208,10 +208,7 @@ impl Report {
             max_dihedral_deg: m.max_dihedral_deg,
             min_cell_volume: m.min_cell_volume,
             histograms: m.histograms.to_vec(),
-            min_scaled_jacobian: None,
-            scaled_jacobian_of: None,
-            invalid_cells: None,
-            certified: None,
+            validity: None,
         });
     }
 
@@ -235,10 +232,12 @@ impl Report {
             Err(e) => anyhow::bail!("certifying the mesh: {e}"),
         };
         if let Some(q) = self.quality_3d.as_mut() {
-            q.min_scaled_jacobian = Some(v.min_scaled_jacobian);
-            q.scaled_jacobian_of = Some(SCALED_JACOBIAN_OF);
-            q.invalid_cells = Some(v.invalid_cells.len());
-            q.certified = Some(v.undecided.is_empty() && v.uncertified.is_empty());
+            q.validity = Some(Validity3d {
+                min_scaled_jacobian: v.min_scaled_jacobian,
+                scaled_jacobian_of: SCALED_JACOBIAN_OF,
+                invalid_cells: v.invalid_cells.len(),
+                certified: v.undecided.is_empty() && v.uncertified.is_empty(),
+            });
         }
         let verdicts = [
             ("invalid", &v.invalid_cells),
@@ -506,18 +505,22 @@ pub struct Quality3d {
     pub min_cell_volume: f64,
     /// The dissertation's tables 5, 6 and 7.
     pub histograms: Vec<crate::pipeline3d::Histogram>,
-    /// Order 2: the certified min scaled Jacobian, as in 2D ([`SCALED_JACOBIAN_OF`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub min_scaled_jacobian: Option<f64>,
+    /// Order 2: the certified check, its keys those of the 2D quality block.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub validity: Option<Validity3d>,
+}
+
+/// The certified check of a P2 3D mesh, as the 2D quality block gives it.
+#[derive(Debug, Serialize)]
+pub struct Validity3d {
+    /// The least certified scaled Jacobian over the cells ([`SCALED_JACOBIAN_OF`]).
+    pub min_scaled_jacobian: f64,
     /// What `min_scaled_jacobian` is.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub scaled_jacobian_of: Option<&'static str>,
-    /// Order 2: cells whose Jacobian determinant is not positive everywhere (certified).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub invalid_cells: Option<usize>,
-    /// Order 2: false only when some cell could not be decided.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub certified: Option<bool>,
+    pub scaled_jacobian_of: &'static str,
+    /// Cells whose Jacobian determinant is not positive everywhere (certified).
+    pub invalid_cells: usize,
+    /// False only when some cell could not be decided.
+    pub certified: bool,
 }
 
 /// The volume check of a 3D report.

@@ -66,7 +66,12 @@ pub fn table(r: &Report) -> String {
                     at(g)
                 );
             }
-            let _ = writeln!(s, "  {:<22} {:>12}", "certified check", verdict(bad, certified));
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12}",
+                "certified check",
+                verdict(bad, certified)
+            );
         }
     }
     if let Some(f) = r.curved_edge_fraction {
@@ -93,16 +98,14 @@ pub fn table(r: &Report) -> String {
             "  {:<22} {:>12.1}",
             "max dihedral (deg)", q.max_dihedral_deg
         );
-        if let (Some(sj), Some(bad), Some(certified)) =
-            (q.min_scaled_jacobian, q.invalid_cells, q.certified)
-        {
+        if let Some(v) = &q.validity {
             let _ = writeln!(
                 s,
                 "  {:<22} {:>12.3}\n  {:<22} {:>12}",
                 "min scaled Jacobian",
-                sj,
+                v.min_scaled_jacobian,
                 "certified check",
-                verdict(bad, certified)
+                verdict(v.invalid_cells, v.certified)
             );
         }
         for h in &q.histograms {
