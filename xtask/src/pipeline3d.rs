@@ -98,7 +98,7 @@ pub fn curve(
     };
     vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params).map_err(|e| {
         let hint = if mesh.count(Shape::Pyramid) > 0 {
-            " (use [cut] cells = \"tets\", or a wall of triangles)"
+            " (use [cut] cells = \"tets\")"
         } else {
             ""
         };

@@ -150,7 +150,7 @@ impl<'a> March<'a> {
             .find(|&c| self.mesh.cells.get(c as usize).ty.shape == Shape::Pyramid);
         Err(CurvingError::Unsupported3d(format!(
             "cell {} is a pyramid with an edge on the curved wall: P2 pyramids are certified \
-             only straight-sided; cut to tetrahedra or give the wall triangles",
+             only straight-sided; cut to tetrahedra instead",
             c.unwrap_or_default()
         )))
     }
