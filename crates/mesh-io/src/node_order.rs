@@ -243,7 +243,10 @@ mod tests {
 
     #[test]
     fn unverified_orderings_have_no_vtk_type() {
-        for ty in [CellType::new(Shape::Prism, 3)] {
+        for ty in [
+            CellType::new(Shape::Pyramid, 3),
+            CellType::new(Shape::Prism, 3),
+        ] {
             assert_eq!(vtk_cell_type(ty), None, "{ty:?}");
         }
     }
