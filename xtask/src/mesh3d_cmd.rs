@@ -1,9 +1,9 @@
 //! `cargo xtask mesh` on a 3D case (`dimension = 3`): reserve every output, then the stages —
 //! the wall surface, its check, the layers, the cut into standard cells, the validation and
 //! measures (at order 2 after the curving, each wall onto its true surface, and the certified
-//! check of every cell) — then the meshes (`.msh` with the physical groups `fluid`, `wall` and `farfield`,
-//! the final front; `.vtu`), the pictures (a plane cut through the volume) and the report, all
-//! put in place together. Bad input (a surface that is open, inverted, self-intersecting; a
+//! check of every cell) — then the meshes (`.msh` with the physical groups `fluid`, `wall`
+//! and `farfield`, the final front; `.vtu`), the pictures (a plane cut through the linear
+//! cells) and the report, all put in place together. Bad input (a surface that is open, inverted, self-intersecting; a
 //! flag that does not apply in 3D) leaves every output as it was and exits 1; a mesh that
 //! fails validation is written and exits 2.
 
