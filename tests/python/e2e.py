@@ -23,7 +23,14 @@ prisms, hexahedra), linear and straight-sided P2. Gmsh reads every .msh: the cou
 element type of the right order, the physical groups `fluid`, `wall` and `farfield`, no warning,
 minSJ > 0 on every element, a positive volume; VTK reads every .vtu with the same counts.
 The built-in 3D cases (`--list` lines described "3D: ...") go through the same 3D checks,
-meshed by xtask to .msh and .vtu, their counts from the report.
+meshed by xtask to .msh and .vtu, their counts from the report. At P2 (curved, every cell
+certified by xtask): the sphere (mixed: prisms; and tets) and the step (hexahedra and the
+straight-sided cells of a flat wall), from the built-in case files with fewer layers and, for
+the sphere, one refinement less (Gmsh's checker holds every element's Jacobians in memory):
+the same 3D checks (Gmsh: no element with minSJ <= 0, the counts; VTK: the counts), the
+report's certificate (no invalid cell, all certified, volume check passed), and `pyfr import`
+of the mixed sphere: the report's elements of each kind with P2 node counts, some curved,
+and faces on `wall` and `farfield`.
 
 Usage: python3 tests/python/e2e.py XTASK_BINARY [CUT3D_BINARY]
 Ends with the line "N passed, M failed"; exit status 1 if any check failed.
@@ -228,8 +235,17 @@ GMSH_3D = {"Tetrahedron": ("tet", {1: 4, 2: 10}), "Pyramid": ("pyramid", {1: 5, 
            "Prism": ("prism", {1: 6, 2: 18}), "Hexahedron": ("hex", {1: 8, 2: 27}),
            "Triangle": (None, {1: 3, 2: 6}), "Quadrilateral": (None, {1: 4, 2: 9})}
 # VTK cell type ids: linear tetra, pyramid, wedge, hexahedron; Lagrange tetra, wedge, hexahedron.
+# At P2 the 14-node pyramid is VTK's quadratic pyramid (27).
 VTK_3D = {1: {"tet": 10, "pyramid": 14, "prism": 13, "hex": 12},
-          2: {"tet": 71, "prism": 73, "hex": 72}}
+          2: {"tet": 71, "pyramid": 27, "prism": 73, "hex": 72}}
+# The P2 runs: (label, built-in case file, edits to its text, PyFR imports it).
+P2_3D = (("sphere-mixed", "sphere.toml", (("refinement = 3", "refinement = 2"),
+                                           ("max_layers = 30", "max_layers = 6")), True),
+         ("sphere-tets", "sphere.toml", (("refinement = 3", "refinement = 2"),
+                                          ("max_layers = 30", "max_layers = 6"),
+                                          ('cells = "mixed"', 'cells = "tets"')), False),
+         ("step", "step.toml", (("max_layers = 15", "max_layers = 5"),), False))
+PYFR_3D = {"tet": ("tet", 10), "pyramid": ("pyr", 14), "prism": ("pri", 18), "hex": ("hex", 27)}
 
 
 def check_cut3d(cut3d, tmp):
@@ -257,6 +273,59 @@ def check_builtin_3d(xtask, names, tmp):
                            "nodes": rep["nodes"], "cells": rep["cells"],
                            "boundary_groups": rep["boundary_groups"]})
     check_3d(meshes)
+
+
+def check_p2_3d(xtask, tmp):
+    """The 3D cases at P2 (P2_3D): xtask's certificate in the report, Gmsh and VTK read them
+    (check_3d), PyFR imports the mixed sphere."""
+    meshes, pyfr = [], []
+    for label, fixture, edits, with_pyfr in P2_3D:
+        text = open(os.path.join(HERE, "..", "..", "fixtures", "cases", fixture)).read()
+        for old, new in edits:
+            check(old in text, f"{label}: {fixture} has {old!r}")
+            text = text.replace(old, new)
+        stem = os.path.join(tmp, f"{label}-p2")
+        with open(stem + ".toml", "w") as f:
+            f.write(text)
+        r = subprocess.run([xtask, "mesh", stem + ".toml", "--order", "2", "--quiet", "--out",
+                            stem + ".msh", "--out", stem + ".vtu", "--report", stem + ".json"],
+                           capture_output=True, text=True)
+        if not check(r.returncode == 0, f"{label} P2: xtask exit {r.returncode}: {r.stderr.strip()}"):
+            continue
+        rep = json.load(open(stem + ".json"))
+        q = rep["quality"]
+        check(rep["order"] == 2 and q.get("invalid_cells") == 0 and q.get("certified") is True
+              and q.get("min_scaled_jacobian", 0) > 0 and not rep["problems"],
+              f"{label} P2: report certificate {q.get('invalid_cells')} "
+              f"{q.get('certified')} {q.get('min_scaled_jacobian')} {rep['problems'][:2]}")
+        m = {"msh": stem + ".msh", "vtu": stem + ".vtu", "order": 2, "nodes": rep["nodes"],
+             "cells": rep["cells"], "boundary_groups": rep["boundary_groups"]}
+        meshes.append(m)
+        if with_pyfr:
+            pyfr.append(m)
+    check_3d(meshes)
+    found = run_checkers([], [], [m["msh"] for m in pyfr])
+    for m in pyfr:
+        label = os.path.basename(m["msh"])
+        p = found.get(("check_pyfr.py", m["msh"]))
+        if not check(p is not None, f"{label}: PyFR gave no answer: {found.get(('check_pyfr.py', 'error'))}"):
+            continue
+        bad = problems(p, [name for name, n in m["boundary_groups"].items() if n])
+        if not check(not bad, f"{label}: PyFR: {bad}"):
+            continue
+        els = p["elements"]
+        for kind, n in m["cells"].items():
+            name, nodes = PYFR_3D[kind]
+            e = els.get(name, {"count": 0, "nodes_per_element": nodes})
+            check(e["count"] == n and e["nodes_per_element"] == nodes,
+                  f"{label}: PyFR {name} {e} vs {n} of {nodes} nodes")
+        for name, n in m["boundary_groups"].items():
+            check(p["boundaries"].get(name) == n,
+                  f"{label}: PyFR {name} faces {p['boundaries'].get(name)} vs {n}")
+        curved = sum(e["curved"] for e in els.values())
+        check(curved > 0, f"{label}: PyFR marks {curved} elements curved")
+        print(f"{'ok  ' if not bad else 'bad '} 3D {label:<22} PyFR "
+              + "  ".join(f"{k} {e['count']}" for k, e in els.items()) + f"  curved {curved}")
 
 
 def check_3d(meshes):
@@ -373,6 +442,7 @@ def main(xtask, cut3d=None):
         if cut3d:
             check_cut3d(cut3d, tmp)
         check_builtin_3d(xtask, names_3d, tmp)
+        check_p2_3d(xtask, tmp)
     end = time.monotonic()
     print(f"time: meshing {meshed - start:.1f} s, reading (Gmsh, VTK, PyFR side by side) "
           f"{read - meshed:.1f} s, total {end - start:.1f} s")

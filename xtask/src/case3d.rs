@@ -2,7 +2,7 @@
 //! or step, a `.stl` / `.msh` file relative to the case file, or the finite wing of a 2D case),
 //! the layers (`[layers]`, as
 //! in 2D), the cut into standard cells (`[cut] cells = "tets" | "mixed"`) and the order
-//! (`[curving] order = 1`: curved 3D cells are not yet available). Unknown keys are errors,
+//! (`[curving] order = 1` or `2`: P2 cells curved onto the true wall, P3 not in 3D). Unknown keys are errors,
 //! as in 2D; every value is checked here, each fault named by its section and key.
 
 use std::path::PathBuf;
@@ -25,7 +25,7 @@ pub struct Case3d {
     pub layers: afsf3d::LayerParams,
     /// `[cut] cells`.
     pub cells: CutCells,
-    /// `[curving] order` (1).
+    /// `[curving] order` (1 or 2).
     pub order: u8,
 }
 
@@ -188,14 +188,12 @@ fn positive(value: Option<f64>, default: f64, at: &str, key: &str) -> Result<f64
     Ok(v)
 }
 
-/// Refuses any order but 1 in 3D, naming `what` (the key or the flag).
+/// Refuses any order but 1 and 2 in 3D, naming `what` (the key or the flag).
 pub fn check_order(order: u8, what: &str) -> Result<()> {
     match order {
-        1 => Ok(()),
-        2 | 3 => bail!(
-            "{what}: P{order} in 3D is not yet available (curved 3D cells are coming); use order 1"
-        ),
-        _ => bail!("{what}: must be 1 (3D meshes are linear for now)"),
+        1 | 2 => Ok(()),
+        3 => bail!("{what}: P3 is not available in 3D; use order 1 or 2"),
+        _ => bail!("{what}: must be 1 or 2 in 3D"),
     }
 }
 

@@ -1,8 +1,9 @@
 //! `cargo xtask mesh` on a 3D case (`dimension = 3`): reserve every output, then the stages —
 //! the wall surface, its check, the layers, the cut into standard cells, the validation and
-//! measures — then the meshes (`.msh` with the physical groups `fluid`, `wall` and `farfield`,
-//! the final front; `.vtu`), the pictures (a plane cut through the volume) and the report, all
-//! put in place together. Bad input (a surface that is open, inverted, self-intersecting; a
+//! measures (at order 2 after the curving, each wall onto its true surface, and the certified
+//! check of every cell) — then the meshes (`.msh` with the physical groups `fluid`, `wall`
+//! and `farfield`, the final front; `.vtu`), the pictures (a plane cut through the linear
+//! cells) and the report, all put in place together. Bad input (a surface that is open, inverted, self-intersecting; a
 //! flag that does not apply in 3D) leaves every output as it was and exits 1; a mesh that
 //! fails validation is written and exits 2.
 
@@ -52,7 +53,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
         .insert("setup", total.elapsed().as_secs_f64());
     let quiet = args.quiet;
     let r = &mut report;
-    let surface = timed(r, quiet, ("surface", "wall surface"), |_| {
+    let (surface, shape) = timed(r, quiet, ("surface", "wall surface"), |_| {
         pipeline3d::surface(case)
     })?;
     timed(r, quiet, ("check", "surface check"), |_| {
@@ -64,23 +65,41 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     let mesh = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
         pipeline3d::cut(case, &grown)
     })?;
-    let measures = timed(r, quiet, ("measure", "measures"), |_| {
+    let mut measures = timed(r, quiet, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &mesh, case.layers.layers)
     });
+    let curved = if order == 2 {
+        let curved = timed(r, quiet, ("curving", "curving to P2"), |_| {
+            pipeline3d::curve(case, &shape, &grown, &mesh)
+        })?;
+        timed(r, quiet, ("volume", "curved volumes"), |_| {
+            pipeline3d::curved_volumes(&curved.mesh, &mut measures)
+        })?;
+        Some(curved)
+    } else {
+        None
+    };
+    let out = curved.as_ref().map_or(&mesh, |c| &c.mesh);
     timed(r, quiet, ("validate", "validation"), |r| {
-        r.describe_3d(&mesh, &measures)
-    });
+        r.describe_3d(out, &measures);
+        match &curved {
+            Some(c) => r.certify_3d(c, &shape),
+            None => Ok(()),
+        }
+    })?;
     report.layers = Some(case.layers.layers as u32);
     report.notes.push(
         "a near-body mesh: the domain is the region the layers cover, its outer boundary \
          (farfield) the final front"
             .into(),
     );
-    report.notes.push(
-        "linear cells: validity is every corner Jacobian positive by the exact orient3d \
-         (mesh_model::validate); curved 3D cells are not yet available"
-            .into(),
-    );
+    if curved.is_none() {
+        report.notes.push(
+            "linear cells: validity is every corner Jacobian positive by the exact orient3d \
+             (mesh_model::validate)"
+                .into(),
+        );
+    }
     if !grown.stats.converged {
         report.notes.push(
             "some layers' spring balances ran out of iterations (the layers passed their checks)"
@@ -88,7 +107,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
         );
     }
     timed(&mut report, quiet, ("write", "writing"), |r| {
-        write_and_record(&mut plan, &mesh, r)
+        write_and_record(&mut plan, out, r)
     })?;
     if !plan.pictures.is_empty() {
         timed(&mut report, quiet, ("pictures", "pictures"), |_| {

@@ -2,7 +2,8 @@
 //! `mesh-io`), its check, the layers (`afsf3d`), the cut into standard cells (`topo-cut`), and
 //! the measures of the result (cells by type, dihedral angles, volume against the volume
 //! between the wall and the final front, coverage, the histograms of the dissertation's
-//! tables 5–7). No file is written here.
+//! tables 5–7); at order 2 the curving (`vector-adding`, each wall onto its true surface)
+//! and the curved volumes. No file is written here.
 
 use anyhow::{Context, Result};
 use geom_surface::Surface;
@@ -13,20 +14,53 @@ use serde::Serialize;
 
 use crate::case3d::{Case3d, CutCells, SurfaceSource};
 
-/// The wall surface of a case: built, or read from its file (not yet checked).
-pub fn surface(case: &Case3d) -> Result<Surface> {
+/// The true shape of a wall, where the P2 wall nodes go.
+#[derive(Debug, Clone)]
+pub enum TrueShape {
+    /// The built-in sphere (centred at the origin).
+    Sphere(vector_adding::SphereProjector),
+    /// The wing: the section's curve times a straight line, the caps flat.
+    Wing(Box<crate::wing::WingProjector>),
+    /// The facets themselves (cube, step, STL and `.msh` surfaces): straight-sided P2 cells.
+    Flat,
+}
+
+/// Projects nothing: a flat (faceted) wall.
+struct FlatWall;
+
+impl vector_adding::SurfaceProjector for FlatWall {
+    fn project(&self, p: [f64; 3], _facet: usize) -> [f64; 3] {
+        p
+    }
+}
+
+/// The wall surface of a case: built, or read from its file (not yet checked), and its true
+/// shape.
+pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
     Ok(match &case.surface {
-        SurfaceSource::Sphere { radius, refinement } => Surface::sphere(*radius, *refinement),
+        SurfaceSource::Sphere { radius, refinement } => {
+            let sphere = vector_adding::SphereProjector {
+                centre: [0.0; 3],
+                radius: *radius,
+            };
+            (
+                Surface::sphere(*radius, *refinement),
+                TrueShape::Sphere(sphere),
+            )
+        }
         SurfaceSource::Cube {
             size,
             divisions,
             triangles,
-        } => Surface::cube(*size, *divisions, *triangles),
-        SurfaceSource::Step { refinement } => Surface::step(*refinement),
+        } => (
+            Surface::cube(*size, *divisions, *triangles),
+            TrueShape::Flat,
+        ),
+        SurfaceSource::Step { refinement } => (Surface::step(*refinement), TrueShape::Flat),
         SurfaceSource::File(path) => {
             let (nodes, tris) = mesh_io::stl::read_surface(path)
                 .with_context(|| format!("{}: [surface] file", case.origin))?;
-            Surface::from_triangles(nodes, &tris)
+            (Surface::from_triangles(nodes, &tris), TrueShape::Flat)
         }
         SurfaceSource::Wing {
             case: section,
@@ -39,11 +73,66 @@ pub fn surface(case: &Case3d) -> Result<Surface> {
             if let Some(h) = first_height {
                 section_case.layers.first_height = *h;
             }
-            crate::wing::wing_surface(&section_case, *span, *triangles)
-                .with_context(at)?
-                .0
+            let (surface, shape) =
+                crate::wing::wing_surface(&section_case, *span, *triangles).with_context(at)?;
+            let projector = crate::wing::WingProjector {
+                surface: surface.clone(),
+                shape,
+            };
+            (surface, TrueShape::Wing(Box::new(projector)))
         }
     })
+}
+
+/// The cut mesh curved to P2 by Vector-Adding, the wall's P2 nodes on its true shape.
+pub fn curve(
+    case: &Case3d,
+    shape: &TrueShape,
+    grown: &afsf3d::Grown3d,
+    mesh: &Mesh,
+) -> Result<vector_adding::Curved3d> {
+    let params = vector_adding::CurvingParams {
+        order: 2,
+        ..vector_adding::CurvingParams::default()
+    };
+    let projector: &dyn vector_adding::SurfaceProjector = match shape {
+        TrueShape::Sphere(s) => s,
+        TrueShape::Wing(w) => w.as_ref(),
+        TrueShape::Flat => &FlatWall,
+    };
+    vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params).map_err(|e| {
+        let hint = if mesh.count(Shape::Pyramid) > 0 {
+            " (use [cut] cells = \"tets\")"
+        } else {
+            ""
+        };
+        anyhow::anyhow!("{}: curving to P2: {e}{hint}", case.origin)
+    })
+}
+
+/// The curved mesh's volume (the sum of `jacobian_check::cell_volume` over the cells in
+/// order, as `jacobian_check::integrate_volume` adds them; the cells on all cores), its
+/// smallest cell volume and the volume its curved boundary encloses
+/// (`jacobian_check::enclosed_volume`), into `m` in place of the linear mesh's.
+pub fn curved_volumes(curved: &Mesh, m: &mut Measures3d) -> Result<()> {
+    let volumes: Vec<f64> = (0..curved.cells.len())
+        .into_par_iter()
+        .map(|i| {
+            let cell = curved.cells.get(i);
+            let x: Vec<[f64; 3]> = cell
+                .nodes
+                .iter()
+                .map(|&n| curved.nodes[n as usize])
+                .collect();
+            jacobian_check::cell_volume(cell.ty, &x)
+        })
+        .collect::<Result<_, _>>()
+        .context("the curved cells' volumes")?;
+    m.min_cell_volume = volumes.iter().copied().fold(f64::INFINITY, f64::min);
+    m.volume = volumes.iter().sum();
+    m.volume_between =
+        jacobian_check::enclosed_volume(curved).context("the curved boundary's volume")?;
+    Ok(())
 }
 
 /// Checks that the surface can be meshed; the error names the first bad facet (or edge or

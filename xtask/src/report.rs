@@ -219,8 +219,84 @@ impl Report {
             min_cell_volume: m.min_cell_volume,
             histograms: m.histograms.to_vec(),
             min_corner_scaled_jacobian: m.min_corner_sj.clone(),
+            validity: None,
         });
     }
+
+    /// Certifies every cell of the P2 mesh `curved` (after [`Report::describe_3d`]) as
+    /// [`Report::certify`] does in 2D: the validity figures in the quality block, every
+    /// invalid, undecided or uncertified cell a problem; and what the curving did, as notes.
+    pub fn certify_3d(
+        &mut self,
+        curved: &vector_adding::Curved3d,
+        shape: &crate::pipeline3d::TrueShape,
+    ) -> Result<()> {
+        use crate::pipeline3d::TrueShape;
+        let mesh = &curved.mesh;
+        let v = match jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default()) {
+            Ok(v) => v,
+            Err(e) if !self.problems.is_empty() => {
+                self.problems
+                    .push(format!("the certified Jacobian check could not run: {e}"));
+                return Ok(());
+            }
+            Err(e) => anyhow::bail!("certifying the mesh: {e}"),
+        };
+        if let Some(q) = self.quality_3d.as_mut() {
+            q.validity = Some(Validity3d {
+                min_scaled_jacobian: v.min_scaled_jacobian,
+                scaled_jacobian_of: SCALED_JACOBIAN_OF,
+                invalid_cells: v.invalid_cells.len(),
+                certified: v.undecided.is_empty() && v.uncertified.is_empty(),
+            });
+        }
+        let verdicts = [
+            ("invalid", &v.invalid_cells),
+            ("undecided", &v.undecided),
+            ("uncertified", &v.uncertified),
+        ];
+        for (what, cells) in verdicts {
+            if let Some(&c) = cells.first() {
+                let first: Vec<String> = cells.iter().take(5).map(ToString::to_string).collect();
+                let k = mesh.cells.get(c).corners();
+                let x = [0, 1, 2].map(|d| {
+                    k.iter().map(|&n| mesh.nodes[n as usize][d]).sum::<f64>() / k.len() as f64
+                });
+                self.problems.push(format!(
+                    "{} cells {what} by the certified Jacobian check (first: {}; cell {c} near \
+                     ({:.6e}, {:.6e}, {:.6e}))",
+                    cells.len(),
+                    first.join(", "),
+                    x[0],
+                    x[1],
+                    x[2]
+                ));
+            }
+        }
+        let s = &curved.stats;
+        self.curved_edge_fraction = Some(s.curved_edge_fraction);
+        let wall = match shape {
+            TrueShape::Sphere(_) => "the wall's P2 nodes on the true sphere",
+            TrueShape::Wing(_) => {
+                "the wall's P2 nodes on the true wing (the section's curve times the span; the \
+                 tip caps flat)"
+            }
+            TrueShape::Flat => {
+                "the wall is flat-faceted (a cube, step, STL or .msh surface): its P2 nodes at \
+                 the edge midpoints, so the cells are straight-sided P2 cells"
+            }
+        };
+        self.notes.push(format!(
+            "P2 by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
+             {} pyramid edges kept straight (a 14-node pyramid is certified only \
+             straight-sided); validity: every cell certified by the Bernstein Jacobian check; \
+             volume: the curved cells' (integrated) against the volume the curved boundary \
+             encloses",
+            s.curved_edges, s.edges, s.deepest_curved_layer, s.pyramid_edges_kept_straight
+        ));
+        Ok(())
+    }
+
 
     /// Fills the angle figures from those of the linear mesh under the final one (its cell
     /// corners, quads cut along the shorter diagonal), so that they do not depend on the order
@@ -460,6 +536,22 @@ pub struct Quality3d {
     /// The prisms' and hexahedra's smallest corner scaled Jacobian (absent without any).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_corner_scaled_jacobian: Option<crate::pipeline3d::CornerJacobian>,
+    /// Order 2: the certified check, its keys those of the 2D quality block.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub validity: Option<Validity3d>,
+}
+
+/// The certified check of a P2 3D mesh, as the 2D quality block gives it.
+#[derive(Debug, Serialize)]
+pub struct Validity3d {
+    /// The least certified scaled Jacobian over the cells ([`SCALED_JACOBIAN_OF`]).
+    pub min_scaled_jacobian: f64,
+    /// What `min_scaled_jacobian` is.
+    pub scaled_jacobian_of: &'static str,
+    /// Cells whose Jacobian determinant is not positive everywhere (certified).
+    pub invalid_cells: usize,
+    /// False only when some cell could not be decided.
+    pub certified: bool,
 }
 
 /// The volume check of a 3D report.

@@ -66,12 +66,12 @@ pub fn table(r: &Report) -> String {
                     at(g)
                 );
             }
-            let verdict = match (bad, certified) {
-                (0, true) => "every cell proved valid".to_string(),
-                (0, false) => "no cell proved invalid, some undecided".to_string(),
-                (n, _) => format!("{n} cells INVALID"),
-            };
-            let _ = writeln!(s, "  {:<22} {:>12}", "certified check", verdict);
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12}",
+                "certified check",
+                verdict(bad, certified)
+            );
         }
     }
     if let Some(f) = r.curved_edge_fraction {
@@ -98,6 +98,16 @@ pub fn table(r: &Report) -> String {
             "  {:<22} {:>12.1}",
             "max dihedral (deg)", q.max_dihedral_deg
         );
+        if let Some(v) = &q.validity {
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12.3}\n  {:<22} {:>12}",
+                "min scaled Jacobian",
+                v.min_scaled_jacobian,
+                "certified check",
+                verdict(v.invalid_cells, v.certified)
+            );
+        }
         for h in &q.histograms {
             let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
             let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();
@@ -147,4 +157,13 @@ pub fn table(r: &Report) -> String {
         }
     }
     s
+}
+
+/// The certified check's verdict in words.
+fn verdict(invalid: usize, certified: bool) -> String {
+    match (invalid, certified) {
+        (0, true) => "every cell proved valid".to_string(),
+        (0, false) => "no cell proved invalid, some undecided".to_string(),
+        (n, _) => format!("{n} cells INVALID"),
+    }
 }

@@ -31,6 +31,40 @@ impl SectionCurve for Section {
     }
 }
 
+/// The wing's true surface as the 3D curving sees it: the mid-edge point of a wall edge on
+/// the curved side from [`WingShape::edge_point`], the caps flat.
+#[derive(Debug, Clone)]
+pub struct WingProjector {
+    /// The wing's surface (the layers grew from it).
+    pub surface: Surface,
+    /// Its true shape.
+    pub shape: WingShape<Section>,
+}
+
+impl vector_adding::SurfaceProjector for WingProjector {
+    /// `p` is the straight midpoint of an edge of wall facet `facet`: the edge whose midpoint
+    /// it is goes onto the true wing, at half its arc length.
+    fn project(&self, p: [f64; 3], facet: usize) -> [f64; 3] {
+        let Some(f) = self.surface.facets.get(facet) else {
+            return p;
+        };
+        let k = f.nodes();
+        let x = |v: u32| self.surface.nodes[v as usize];
+        let off = |i: usize| {
+            let (a, b) = (x(k[i]), x(k[(i + 1) % k.len()]));
+            (0..3)
+                .map(|d| (0.5 * (a[d] + b[d]) - p[d]).abs())
+                .fold(0.0, f64::max)
+        };
+        let i = (0..k.len())
+            .min_by(|&i, &j| off(i).total_cmp(&off(j)))
+            .expect("a facet has corners");
+        self.shape
+            .edge_point(k[i], k[(i + 1) % k.len()], 0.5)
+            .unwrap_or(p)
+    }
+}
+
 /// The wing made from `case`'s one wall loop: chord and position as in the case, span `span`
 /// along z from 0. The section's boundary nodes are the 2D pipeline's; the span stations are
 /// graded from each tip by the case's first layer height (`[layers] first_height`) and the

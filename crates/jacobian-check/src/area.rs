@@ -4,7 +4,9 @@
 //!
 //! Triangles use the collapsed (Duffy) product of Gauss–Legendre rules; quadrilaterals the
 //! tensor product. The volume of 3D cells ([`cell_volume`]) needs no rule: it is the mean of
-//! the determinant's Bernstein coefficients. This module owns the quadrature only.
+//! the determinant's Bernstein coefficients. The volume a curved 3D mesh's boundary
+//! encloses ([`enclosed_volume`]) is its independent check. This module owns the quadrature
+//! only.
 
 use std::sync::OnceLock;
 
@@ -226,8 +228,15 @@ fn reference_volume(shape: Shape) -> f64 {
 /// from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3).
 ///
 /// # Errors
-/// Unsupported type (the 14-node pyramid), a 2D type, wrong node count, non-finite node.
+/// Unsupported type (a curved 14-node pyramid; a straight-sided one is its linear pyramid),
+/// a 2D type, wrong node count, non-finite node.
 pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianError> {
+    if crate::straight::is_pyramid14(ty) {
+        check_cell(ty, nodes)?;
+        if crate::straight::is_straight(ty, nodes)?.is_some() {
+            return cell_volume(CellType::new(Shape::Pyramid, 1), &nodes[..5]);
+        }
+    }
     let c = crate::certify::determinant_bernstein_coefficients(ty, nodes)?;
     Ok(c.iter().sum::<f64>() / c.len() as f64 * reference_volume(ty.shape))
 }
@@ -238,6 +247,74 @@ pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianErro
 /// A cell naming a missing node, a 2D cell, an unsupported type, a non-finite node.
 pub fn integrate_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
     sum_over_cells(mesh, |n| mesh.nodes[n as usize], cell_volume)
+}
+
+/// The volume enclosed by the boundary facets of a 3D mesh (turned out of the domain), along
+/// their curved (Lagrange) shape: ⅓∮ x·n dA by Gauss quadrature exact for triangles and
+/// quadrilaterals of order 1 and 2 (x·(x_u × x_v) has degree 4 on a P2 triangle, taken by
+/// the collapsed 3 × 3 rule; degree 5 per direction on a Q2 quadrilateral, 3 × 3 Gauss).
+/// Equal to [`integrate_volume`] up to rounding when the cells tile the domain exactly —
+/// the independent check that a curved 3D mesh is conforming and leaves no gap.
+///
+/// # Errors
+/// A facet naming a missing node, a facet that is not a triangle or quadrilateral of order 1
+/// or 2.
+pub fn enclosed_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
+    let g: Vec<(f64, f64)> = gauss_legendre(3);
+    let origin = mesh.nodes.first().copied().unwrap_or_default();
+    let mut total = 0.0;
+    let mut x = Vec::new();
+    for (i, f) in mesh.boundary.iter().enumerate() {
+        let ty = f.ty;
+        if !matches!(ty.shape, Shape::Tri | Shape::Quad) || !(1..=2).contains(&ty.order) {
+            return Err(JacobianError::Unsupported {
+                ty,
+                what: "the enclosed volume (boundary triangles and quadrilaterals of order 1 or 2)",
+            });
+        }
+        if let Some(&node) = f.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
+            return Err(JacobianError::NodeOutOfRange { cell: i, node });
+        }
+        x.clear();
+        x.extend(f.nodes.iter().map(|&n| {
+            let p = mesh.nodes[n as usize];
+            [0, 1, 2].map(|d| p[d] - origin[d])
+        }));
+        for &(a, wa) in &g {
+            for &(b, wb) in &g {
+                // a point of the reference cell and its weight
+                let (xi, w) = match ty.shape {
+                    Shape::Tri => {
+                        let (s, t) = (0.5 * (a + 1.0), 0.5 * (b + 1.0));
+                        ([s, (1.0 - s) * t, 0.0], 0.25 * wa * wb * (1.0 - s))
+                    }
+                    _ => ([a, b, 0.0], wa * wb),
+                };
+                total += w * flux(ty, &x, xi)?;
+            }
+        }
+    }
+    Ok(total / 3.0)
+}
+
+/// x·(x_u × x_v) at reference point `xi` of the facet with nodes `x`.
+fn flux(ty: CellType, x: &[[f64; 3]], xi: [f64; 3]) -> Result<f64, JacobianError> {
+    let n = crate::lagrange::shape_functions(ty, xi)?;
+    let dn = crate::lagrange::shape_gradients(ty, xi)?;
+    let (mut p, mut u, mut v) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    for (j, xj) in x.iter().enumerate() {
+        for d in 0..3 {
+            p[d] += n[j] * xj[d];
+            u[d] += dn[j][0] * xj[d];
+            v[d] += dn[j][1] * xj[d];
+        }
+    }
+    let c = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    Ok(p[0] * c[0] + p[1] * c[1] + p[2] * c[2])
 }
 
 #[cfg(test)]
@@ -258,5 +335,46 @@ mod tests {
                 assert!((got - exact).abs() < 1e-14, "m={m} d={d}: {got} vs {exact}");
             }
         }
+    }
+
+    #[test]
+    fn the_enclosed_volume_of_curved_tetrahedra_is_their_integrated_volume() {
+        // a P2 tetrahedron with a bowed edge, its four faces as boundary facets
+        let ty = CellType::new(Shape::Tet, 2);
+        let mut nodes = crate::reference_nodes(ty).unwrap();
+        nodes[4][1] -= 0.2; // edge 0-1 bows out of the cell
+        nodes[9][0] += 0.1; // and edge 3-1
+        let mut mesh = Mesh::new(mesh_model::Dim::Three, 2);
+        mesh.nodes = nodes;
+        let ids: Vec<u32> = (0..10).collect();
+        mesh.cells.push(ty, &ids);
+        // faces with their edge nodes (Gmsh edge order 0-1, 1-2, 2-0, 3-0, 3-2, 3-1)
+        let tri6 = CellType::new(Shape::Tri, 2);
+        for f in [
+            [0, 2, 1, 6, 5, 4],
+            [0, 1, 3, 4, 9, 7],
+            [0, 3, 2, 7, 8, 6],
+            [3, 1, 2, 9, 5, 8],
+        ] {
+            mesh.boundary.push(tri6, &f);
+        }
+        let enclosed = enclosed_volume(&mesh).unwrap();
+        let integrated = integrate_volume(&mesh).unwrap();
+        assert!(
+            (enclosed - integrated).abs() < 1e-14,
+            "{enclosed} vs {integrated}"
+        );
+        assert!(
+            (integrated - 1.0 / 6.0).abs() > 1e-3,
+            "the bow changed the volume"
+        );
+        // a linear unit cube of one hexahedron's faces
+        let mut cube = Mesh::new(mesh_model::Dim::Three, 1);
+        cube.nodes = crate::reference_nodes(CellType::new(Shape::Hex, 1)).unwrap();
+        for f in Shape::Hex.faces() {
+            let k: Vec<u32> = f.iter().map(|&j| j as u32).collect();
+            cube.boundary.push(CellType::new(Shape::Quad, 1), &k);
+        }
+        assert!((enclosed_volume(&cube).unwrap() - 8.0).abs() < 1e-13);
     }
 }

@@ -15,8 +15,9 @@
 //! a region still undecided there makes the cell [`Certificate::Undecided`].
 //!
 //! Certified: triangles and quadrilaterals of order 1–3, tetrahedra, prisms and hexahedra of
-//! order 1–2, the linear pyramid. The 14-node pyramid has neither shape functions nor a
-//! certificate here ([`JacobianError::Unsupported`]).
+//! order 1–2, the linear pyramid, and the straight-sided 14-node pyramid (as its linear
+//! pyramid). A curved 14-node pyramid has neither shape functions nor a certificate here
+//! ([`JacobianError::Unsupported`]).
 //! This module does not move nodes or repair cells.
 
 use std::sync::OnceLock;
@@ -267,8 +268,9 @@ fn certify_coefficients(
 /// not folded and is positively oriented (counter-clockwise in 2D).
 ///
 /// # Errors
-/// Unsupported type (the 14-node pyramid, 3D cells of order 3), wrong dimension, wrong node
-/// count, non-finite node, bad parameter.
+/// Unsupported type (a curved 14-node pyramid — a straight-sided one is certified as its
+/// linear pyramid —, 3D cells of order 3), wrong dimension, wrong node count, non-finite
+/// node, bad parameter.
 pub fn certify_cell<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
@@ -558,6 +560,10 @@ fn judge<const D: usize>(
     }) = certificate
     {
         return Ok((min_coeff / max_coeff, min_coeff, Verdict::Valid));
+    }
+    if crate::straight::is_pyramid14(ty) {
+        // straight-sided (else `certify_cell` refused it): judged as its linear pyramid
+        return judge(CellType::new(Shape::Pyramid, 1), &nodes[..5], params);
     }
     let sampled = sampled_check(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();

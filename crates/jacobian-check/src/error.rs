@@ -7,8 +7,8 @@ use mesh_model::CellType;
 pub enum JacobianError {
     /// The cell type has no shape functions or no certified check here (pyramids of order 2
     /// and above, cells of order 3 in 3D, order 0 or above 3, lines).
-    /// Fix: use a supported type (see the crate documentation); a mesh with 14-node pyramids
-    /// cannot be checked here.
+    /// Fix: use a supported type (see the crate documentation); a mesh with curved 14-node
+    /// pyramids cannot be checked here (straight-sided ones can).
     #[error("cell type {shape} P{order} is not supported by {what}", shape = ty.shape.name(), order = ty.order)]
     Unsupported {
         /// The cell type asked for.

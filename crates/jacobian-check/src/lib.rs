@@ -51,7 +51,9 @@
 //! node coordinates (`[f64; 2]` or `[f64; 3]`), and [`types`] is the one table of the cell
 //! types the crate knows and what it offers for each ([`capabilities`]): every type with
 //! shape functions is certified — triangles and quadrilaterals of order 1–3; tetrahedra,
-//! prisms (6 and 18 nodes) and hexahedra of order 1–2; the linear pyramid. The 14-node
+//! prisms (6 and 18 nodes) and hexahedra of order 1–2; the linear pyramid. A straight-sided
+//! 14-node pyramid (edge nodes at the edge midpoints, the base node at the base's centre)
+//! *is* its linear pyramid and is certified (and integrated) as one; a curved 14-node
 //! pyramid is [`JacobianError::Unsupported`].
 //!
 //! ```
@@ -82,7 +84,9 @@ mod linalg;
 mod straight;
 pub mod types;
 
-pub use area::{cell_area, cell_volume, enclosed_area, integrate_area, integrate_volume};
+pub use area::{
+    cell_area, cell_volume, enclosed_area, enclosed_volume, integrate_area, integrate_volume,
+};
 pub use certify::{
     Certificate, CertifyParams, MeshValidity, SampledCheck, certify_cell, check_mesh,
     determinant_bernstein_coefficients, sampled_check,

@@ -3,10 +3,16 @@
 //! order-1 map, and its determinant is certified from the order-1 cell's few coefficients
 //! instead of the full Bernstein expansion. Most cells of a curved viscous mesh are such
 //! cells, so this is where the certification spends least.
+//!
+//! The 14-node pyramid (Gmsh type 14) has no shape functions or Bernstein space here (its
+//! basis is rational, Bergot's), but the same argument covers its straight-sided cells: its
+//! space contains the linear pyramid's, so a 14-node pyramid whose edge nodes sit at the edge
+//! midpoints and whose base node at the mean of the base corners *is* the linear pyramid,
+//! and is certified as one. A curved 14-node pyramid stays unsupported.
 
 use std::sync::OnceLock;
 
-use mesh_model::CellType;
+use mesh_model::{CellType, Shape};
 
 use crate::error::JacobianError;
 use crate::lagrange::{basis, reference_nodes};
@@ -14,6 +20,9 @@ use crate::types::{Feature, SLOTS, capabilities, slot};
 
 /// Per type: the order-1 shape values at each of its reference nodes (row per node).
 fn table(ty: CellType) -> Option<&'static Vec<f64>> {
+    if is_pyramid14(ty) {
+        return Some(pyramid14_table());
+    }
     static CACHE: [OnceLock<Vec<f64>>; SLOTS] = [const { OnceLock::new() }; SLOTS];
     if !capabilities(ty)?.straight_shortcut {
         return None;
@@ -30,6 +39,30 @@ fn table(ty: CellType) -> Option<&'static Vec<f64>> {
         }
         values
     }))
+}
+
+/// Whether `ty` is the 14-node (P2) pyramid.
+pub(crate) fn is_pyramid14(ty: CellType) -> bool {
+    ty.shape == Shape::Pyramid && ty.order == 2
+}
+
+/// The linear pyramid's shape values at the 14-node pyramid's reference nodes: ½, ½ at an
+/// edge's midpoint (the linear pyramid is linear along each edge), ¼ each at the base's
+/// centre.
+fn pyramid14_table() -> &'static Vec<f64> {
+    static CACHE: OnceLock<Vec<f64>> = OnceLock::new();
+    CACHE.get_or_init(|| {
+        let mut values = vec![0.0; 14 * 5];
+        for i in 0..5 {
+            values[i * 5 + i] = 1.0;
+        }
+        for (k, e) in Shape::Pyramid.edges().iter().enumerate() {
+            values[(5 + k) * 5 + e[0]] = 0.5;
+            values[(5 + k) * 5 + e[1]] = 0.5;
+        }
+        values[13 * 5..13 * 5 + 4].fill(0.25);
+        values
+    })
 }
 
 /// Whether the high-order cell `nodes` of type `ty` is its corners' order-1 map: every node
@@ -112,5 +145,59 @@ mod tests {
             let c = certify_cell(ty, &folded, &CertifyParams::default()).unwrap();
             assert!(!c.is_valid(), "P{p}: {c:?}");
         }
+    }
+
+    /// A linear pyramid (a sheared base, the apex off-centre) as 14 nodes: its corners, the
+    /// edge midpoints, the base's centre.
+    fn pyramid14(apex: [f64; 3]) -> Vec<[f64; 3]> {
+        let mut k = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.1, 0.0],
+            [2.1, 1.9, 0.1],
+            [-0.1, 2.0, 0.0],
+            apex,
+        ];
+        let mid = |a: [f64; 3], b: [f64; 3]| [0, 1, 2].map(|d| 0.5 * (a[d] + b[d]));
+        for e in Shape::Pyramid.edges() {
+            k.push(mid(k[e[0]], k[e[1]]));
+        }
+        k.push([0, 1, 2].map(|d| 0.25 * (k[0][d] + k[1][d] + k[2][d] + k[3][d])));
+        k
+    }
+
+    #[test]
+    fn a_straight_14_node_pyramid_is_its_linear_pyramid() {
+        let ty = CellType::new(Shape::Pyramid, 2);
+        let linear = CellType::new(Shape::Pyramid, 1);
+        let params = CertifyParams::default();
+        for apex in [[0.8, 1.1, 1.5], [0.8, 1.1, -0.7]] {
+            let k = pyramid14(apex);
+            let c = certify_cell(ty, &k, &params).unwrap();
+            assert_eq!(c, certify_cell(linear, &k[..5], &params).unwrap());
+            assert_eq!(c.is_valid(), apex[2] > 0.0);
+            let v = crate::cell_volume(ty, &k).unwrap();
+            assert_eq!(v, crate::cell_volume(linear, &k[..5]).unwrap());
+        }
+        // in a mesh: judged as the linear pyramid, the folded one named
+        let mut mesh = mesh_model::Mesh::new(mesh_model::Dim::Three, 2);
+        for apex in [[0.8, 1.1, 1.5], [0.8, 1.1, -0.7]] {
+            let n0 = mesh.nodes.len() as u32;
+            mesh.nodes.extend(pyramid14(apex));
+            let ids: Vec<u32> = (n0..n0 + 14).collect();
+            mesh.cells.push(ty, &ids);
+        }
+        let v = crate::check_mesh(&mesh, &params).unwrap();
+        assert_eq!(v.invalid_cells, vec![1]);
+        assert!(v.per_cell_scaled_jacobian[0] > 0.0);
+    }
+
+    #[test]
+    fn a_curved_14_node_pyramid_is_refused() {
+        let ty = CellType::new(Shape::Pyramid, 2);
+        let mut k = pyramid14([0.8, 1.1, 1.5]);
+        k[7][0] += 0.05; // the node on edge 0–4 off its midpoint
+        let err = certify_cell(ty, &k, &CertifyParams::default()).unwrap_err();
+        assert!(matches!(err, JacobianError::Unsupported { .. }), "{err}");
+        assert!(crate::cell_volume(ty, &k).is_err());
     }
 }

@@ -16,12 +16,14 @@
 use mesh_model::{CellType, Shape};
 
 /// The VTK cell type number of a cell type: the linear VTK cell for order 1, the Lagrange
-/// cell for orders 2 and 3, or `None` where no verified node ordering exists here
-/// (pyramids above order 1, prisms of order 3).
+/// cell for orders 2 and 3, the 14-node pyramid as VTK's 13-node quadratic pyramid (27; see
+/// [`vtk_from_gmsh`]), or `None` where no verified node ordering exists here (pyramids of
+/// order 3, prisms of order 3).
 pub fn vtk_cell_type(ty: CellType) -> Option<u8> {
     vtk_from_gmsh(ty)?;
     let linear = ty.order == 1;
     Some(match ty.shape {
+        Shape::Pyramid if ty.order == 2 => 27,
         Shape::Line if linear => 3,
         Shape::Line => 68,
         Shape::Tri if linear => 5,
@@ -40,6 +42,13 @@ pub fn vtk_cell_type(ty: CellType) -> Option<u8> {
 
 /// The permutation from Gmsh's node order to VTK's: VTK node `k` is Gmsh node `perm[k]`.
 /// `None` for cell types without a verified ordering (see [`vtk_cell_type`]).
+///
+/// The 14-node pyramid has no VTK cell (VTK's Lagrange pyramid is not implemented, its
+/// tri-quadratic pyramid has 19 nodes): it maps onto the quadratic pyramid (27), 5 corners
+/// and 8 edge nodes in VTK's edge order 0-1, 1-2, 2-3, 3-0, 0-4, 1-4, 2-4, 3-4
+/// (`vtkQuadraticPyramid`), leaving out Gmsh's base node 13. That is exact when the base node
+/// is the serendipity point of the base's edges, ½ Σ edge nodes − ¼ Σ corners (the node the
+/// curving puts there); `crate::vtu` refuses any other.
 pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
     const ID: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9];
     const QUAD16: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8, 11, 10, 12, 13, 15, 14];
@@ -57,6 +66,7 @@ pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
         32, 35, 33, 34, 52, 53, 55, 54, 56, 57, 59, 58, 60, 61, 63, 62,
     ];
     const PRISM18: [usize; 18] = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11, 15, 17, 16];
+    const PYRAMID13: [usize; 13] = [0, 1, 2, 3, 4, 5, 8, 10, 6, 7, 9, 11, 12];
     let n = ty.node_count();
     match (ty.shape, ty.order) {
         (_, 1) => Some(&ID[..n]),
@@ -69,6 +79,7 @@ pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
         (Shape::Hex, 2) => Some(&HEX27),
         (Shape::Hex, 3) => Some(&HEX64),
         (Shape::Prism, 2) => Some(&PRISM18),
+        (Shape::Pyramid, 2) => Some(&PYRAMID13),
         _ => None,
     }
 }
@@ -201,9 +212,38 @@ mod tests {
     }
 
     #[test]
+    fn the_14_node_pyramid_maps_onto_vtks_quadratic_pyramid() {
+        // vtkQuadraticPyramid's edges (VTK's documentation), in its corner numbering, which
+        // is Gmsh's
+        const VTK_EDGES: [[usize; 2]; 8] = [
+            [0, 1],
+            [1, 2],
+            [2, 3],
+            [3, 0],
+            [0, 4],
+            [1, 4],
+            [2, 4],
+            [3, 4],
+        ];
+        let ty = CellType::new(Shape::Pyramid, 2);
+        assert_eq!(vtk_cell_type(ty), Some(27));
+        let perm = vtk_from_gmsh(ty).unwrap();
+        let g = gmsh_reference_nodes(ty).unwrap();
+        assert_eq!(perm[..5], [0, 1, 2, 3, 4]);
+        for (k, [a, b]) in VTK_EDGES.into_iter().enumerate() {
+            let mid = [0, 1, 2].map(|d| 0.5 * (g[a][d] + g[b][d]));
+            assert!(close(g[perm[5 + k]], mid), "VTK node {}", 5 + k);
+        }
+        // every Gmsh node but the base's centre (13), once
+        let mut used = perm.to_vec();
+        used.sort_unstable();
+        assert_eq!(used, (0..13).collect::<Vec<_>>());
+        assert_eq!(g[13], [0.0; 3]);
+    }
+
+    #[test]
     fn unverified_orderings_have_no_vtk_type() {
         for ty in [
-            CellType::new(Shape::Pyramid, 2),
             CellType::new(Shape::Pyramid, 3),
             CellType::new(Shape::Prism, 3),
         ] {

@@ -4,8 +4,10 @@
 //! Lagrange curves 68, ends first as in Gmsh; faces in 3D). Linear cells use the linear VTK
 //! types (triangle 5, quad 9, tetra 10, hexahedron 12, wedge 13, pyramid 14); orders 2 and 3
 //! use VTK's Lagrange cells (triangle 69, quadrilateral 70, tetra 71, hexahedron 72, wedge 73
-//! at order 2) with the nodes permuted from Gmsh's order by [`crate::node_order`]. High-order
-//! pyramids and order-3 prisms have no verified ordering and give [`IoError::Unsupported`].
+//! at order 2) with the nodes permuted from Gmsh's order by [`crate::node_order`]; the
+//! 14-node pyramid as VTK's 13-node quadratic pyramid (27) when its base node is the
+//! serendipity point of its base's edges (else [`IoError::Unsupported`]). Pyramids of order 3
+//! and order-3 prisms have no verified ordering and give [`IoError::Unsupported`].
 //!
 //! Cell data: `layer` and `pipe` (as `Int64`, −1 for [`mesh_model::NONE`] and for facets) when
 //! the mesh has them, `order` (the polynomial order of each cell or facet), and
@@ -65,10 +67,42 @@ fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError
             });
         }
     }
+    check_pyramids(mesh, path)?;
     boundary_groups(mesh).map_err(|message| IoError::InvalidMesh {
         path: path.to_path_buf(),
         message,
     })
+}
+
+/// Refuses a 14-node pyramid whose base node is not the serendipity point of its base's
+/// edges: VTK's quadratic pyramid, which leaves that node out, would change its shape.
+fn check_pyramids(mesh: &Mesh, path: &Path) -> Result<(), IoError> {
+    let pyramid14 = mesh_model::CellType::new(mesh_model::Shape::Pyramid, 2);
+    for (i, c) in mesh.cells.iter().enumerate() {
+        if c.ty != pyramid14 {
+            continue;
+        }
+        let x = |j: usize| mesh.nodes[c.nodes[j] as usize];
+        // Gmsh's base edge nodes: 0-1 (5), 0-3 (6), 1-2 (8), 2-3 (10)
+        let centre = x(13);
+        let scale = (0..14).flat_map(&x).fold(0.0f64, |m, v| m.max(v.abs()));
+        let off = (0..3).any(|d| {
+            let at = 0.5 * (x(5)[d] + x(6)[d] + x(8)[d] + x(10)[d])
+                - 0.25 * (x(0)[d] + x(1)[d] + x(2)[d] + x(3)[d]);
+            (centre[d] - at).abs() > 64.0 * f64::EPSILON * scale.max(f64::MIN_POSITIVE)
+        });
+        if off {
+            return Err(IoError::Unsupported {
+                path: path.to_path_buf(),
+                format: "vtu",
+                what: format!(
+                    "cell {i}, a 14-node pyramid whose base node is not the serendipity point of \
+                     its base (VTK's quadratic pyramid has no base node)"
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 fn int_array(
@@ -165,7 +199,7 @@ fn body(
     let mut offset = 0i64;
     let offsets: Vec<i64> = all()
         .map(|c| {
-            offset += c.nodes.len() as i64;
+            offset += vtk_from_gmsh(c.ty).map_or(c.nodes.len(), <[usize]>::len) as i64;
             offset
         })
         .collect();
@@ -297,10 +331,24 @@ mod tests {
     }
 
     #[test]
-    fn high_order_pyramids_are_refused_before_writing() {
+    fn p2_pyramids_are_quadratic_pyramids_and_a_bent_base_is_refused_before_writing() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("m.vtu");
-        let m = reference_cells_3d(2);
+        let mut m = reference_cells_3d(2);
+        let text = to_string(&m).unwrap();
+        let types = array(&text, "types");
+        assert_eq!(types[..4], [71.0, 27.0, 73.0, 72.0]);
+        let offsets = array(&text, "offsets");
+        assert_eq!(offsets[..4], [10.0, 23.0, 41.0, 68.0]);
+        // the pyramid's VTK nodes: corners, then edges 0-1, 1-2, 2-3, 3-0, 0-4, 1-4, 2-4, 3-4
+        let conn = array(&text, "connectivity");
+        let p = m.cells.get(1).nodes.to_vec();
+        let vtk: Vec<u32> = conn[10..23].iter().map(|&v| v as u32).collect();
+        let gmsh = [0, 1, 2, 3, 4, 5, 8, 10, 6, 7, 9, 11, 12].map(|j| p[j]);
+        assert_eq!(vtk, gmsh);
+        // its base node moved off the base: refused
+        let base = m.cells.get(1).nodes[13] as usize;
+        m.nodes[base][2] += 0.1;
         let err = write(&path, &m).unwrap_err();
         assert!(matches!(err, IoError::Unsupported { .. }), "{err}");
         assert!(err.to_string().contains("pyramid"), "{err}");

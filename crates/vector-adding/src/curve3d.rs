@@ -19,8 +19,12 @@
 //! certificate. Quadrilateral faces get their centre node from their four edges
 //! (the Coons patch: ½ Σ edge nodes − ¼ Σ corners), a hexahedron its centre likewise.
 //!
-//! P2 pyramids (Gmsh's 14 nodes) have no certified check yet ([`jacobian_check`]): a mesh
-//! with pyramids is refused ([`CurvingError::Unsupported3d`]); cut it to tetrahedra.
+//! Pyramids stay straight-sided: `jacobian_check` certifies a 14-node pyramid only when it
+//! is its linear pyramid (a curved one has no certified check), so every edge of a pyramid
+//! is kept straight above the wall (counted in `pyramid_edges_kept_straight`; its
+//! neighbours' shared faces are then straight too, and the final certification judges
+//! them), and a pyramid with an edge on a curved wall is refused
+//! ([`CurvingError::Unsupported3d`]: cut to tetrahedra, or give the wall triangles).
 //! This module does no IO and does not certify the final mesh as a whole (the caller runs
 //! `jacobian_check::check_mesh`).
 
@@ -89,6 +93,8 @@ pub struct Curving3dStats {
     pub reduced: usize,
     /// The highest layer of nodes with a curved edge (the wall is layer 0).
     pub deepest_curved_layer: u32,
+    /// Edges above the wall kept straight because they are edges of a pyramid.
+    pub pyramid_edges_kept_straight: usize,
 }
 
 /// Curves the linear 3D mesh `mesh` to P2. `columns[i]` lists a wall node and its children
@@ -96,8 +102,8 @@ pub struct Curving3dStats {
 /// `params.order` must be 2.
 ///
 /// # Errors
-/// Bad parameters, a mesh that is not linear 3D or has pyramids, columns that do not match
-/// the mesh, a cell the certified check cannot evaluate.
+/// Bad parameters, a mesh that is not linear 3D, columns that do not match the mesh, a
+/// pyramid on a curved wall edge, a cell the certified check cannot evaluate.
 pub fn curve_mesh_3d(
     mesh: &Mesh,
     columns: &[Vec<u32>],
@@ -119,6 +125,7 @@ pub fn curve_mesh_3d(
     let outer = outer_nodes(mesh);
     let mut m = crate::march3d::March::new(mesh, &edges, &layers, params);
     let wall_edges = m.place_wall(surface);
+    m.check_pyramids_on_wall()?;
     m.march(&outer)?;
     let curved_edges = m.dev.iter().filter(|d| d.iter().any(|&v| v != 0.0)).count();
     let stats = Curving3dStats {
@@ -129,22 +136,17 @@ pub fn curve_mesh_3d(
         stops: m.stops,
         reduced: m.reduced,
         deepest_curved_layer: m.deepest,
+        pyramid_edges_kept_straight: m.pyramid_straight,
     };
     let out = assemble(mesh, &edges, &faces, &m);
     Ok(Curved3d { mesh: out, stats })
 }
 
-/// The input is a sound linear 3D mesh of tetrahedra, prisms and hexahedra with a layer per
-/// cell.
+/// The input is a sound linear 3D mesh of tetrahedra, pyramids, prisms and hexahedra with a
+/// layer per cell.
 fn check_input(mesh: &Mesh) -> Result<(), CurvingError> {
     let shapes = [Shape::Tet, Shape::Prism, Shape::Hex, Shape::Pyramid];
     crate::sound_linear(mesh, Dim::Three, &shapes, CurvingError::Unsupported3d)?;
-    if let Some(c) = (0..mesh.cells.len()).find(|&c| mesh.cells.get(c).ty.shape == Shape::Pyramid) {
-        return Err(CurvingError::Unsupported3d(format!(
-            "cell {c} is a pyramid: the 14-node pyramid has no certified check, so P2 meshes \
-             with pyramids are refused (cut to tetrahedra instead)"
-        )));
-    }
     if mesh.cell_layer.len() != mesh.cells.len() || mesh.cell_layer.contains(&NONE) {
         return Err(CurvingError::BadLayers(
             "every cell needs its layer (cell_layer)".into(),
@@ -206,7 +208,7 @@ fn assemble(mesh: &Mesh, edges: &Edges, faces: &Faces, m: &crate::march3d::March
         buf.clear();
         buf.extend_from_slice(cell.corners());
         buf.extend(edges.of_cell(c).iter().map(|&e| n0 + e));
-        if matches!(shape, Shape::Prism | Shape::Hex) {
+        if shape != Shape::Tet {
             for (j, &f) in faces.of_cell(c).iter().enumerate() {
                 if shape.faces()[j].len() == 4 {
                     buf.push(face_node[f as usize]);

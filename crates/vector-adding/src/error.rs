@@ -19,8 +19,9 @@ pub enum CurvingError {
     /// The input mesh is not a linear 2D mesh of triangles and quadrilaterals.
     #[error("curving needs a linear 2D mesh of triangles and quadrilaterals: {0}")]
     NotLinear2d(String),
-    /// The input of the 3D curving is not a linear 3D mesh of tetrahedra, prisms and
-    /// hexahedra (P2 pyramids have no certified check).
+    /// The input of the 3D curving is not a linear 3D mesh of tetrahedra, pyramids, prisms
+    /// and hexahedra, or a pyramid has an edge on a curved wall (a P2 pyramid is certified
+    /// only straight-sided).
     #[error("3D curving: {0}")]
     Unsupported3d(String),
     /// The input mesh breaks a structural invariant of the data model (a node index out of

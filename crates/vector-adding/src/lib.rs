@@ -25,8 +25,8 @@
 //! In 3D ([`curve3d`], [`curve_mesh_3d`]) the linear mesh `topo-cut` makes of `afsf3d`'s
 //! layers is curved to P2 the same way (dissertation §5.3): wall mid-edge nodes on the true
 //! surface through a [`SurfaceProjector`], their displacement added up the columns edge by
-//! edge, with the 2D stops, every decision certified (tetrahedra, prisms, hexahedra; P2
-//! pyramids are refused).
+//! edge, with the 2D stops, every decision certified (tetrahedra, prisms, hexahedra;
+//! pyramids kept straight-sided, refused on a curved wall).
 //!
 //! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
 //! IO, and does not certify the final mesh as a whole (the caller runs

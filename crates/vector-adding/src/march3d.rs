@@ -90,6 +90,10 @@ pub(crate) struct March<'a> {
     pub stops: StopCounts,
     pub reduced: usize,
     pub deepest: u32,
+    /// Edges kept straight because they belong to a pyramid.
+    pub pyramid_straight: usize,
+    /// Per edge: whether it is an edge of a pyramid.
+    of_pyramid: Vec<bool>,
     scratch: Vec<[f64; 3]>,
 }
 
@@ -121,8 +125,34 @@ impl<'a> March<'a> {
             stops: StopCounts::default(),
             reduced: 0,
             deepest: 0,
+            pyramid_straight: 0,
+            of_pyramid: (0..edges.len() as u32)
+                .map(|e| {
+                    let shape =
+                        |u: &mesh_model::topology::Use| mesh.cells.get(u.cell as usize).ty.shape;
+                    edges.cells(e).iter().any(|u| shape(u) == Shape::Pyramid)
+                })
+                .collect(),
             scratch: Vec::new(),
         }
+    }
+
+    /// Refuses a pyramid with a curved wall edge (placed by `place_wall`): a 14-node pyramid
+    /// is certified only straight-sided.
+    pub(crate) fn check_pyramids_on_wall(&self) -> Result<(), CurvingError> {
+        let curved = (0..self.edges.len()).find(|&e| self.of_pyramid[e] && self.dev[e] != [0.0; 3]);
+        let Some(e) = curved else { return Ok(()) };
+        let c = self
+            .edges
+            .cells(e as u32)
+            .iter()
+            .map(|u| u.cell)
+            .find(|&c| self.mesh.cells.get(c as usize).ty.shape == Shape::Pyramid);
+        Err(CurvingError::Unsupported3d(format!(
+            "cell {} is a pyramid with an edge on the curved wall: P2 pyramids are certified \
+             only straight-sided; cut to tetrahedra instead",
+            c.unwrap_or_default()
+        )))
     }
 
     fn ends(&self, e: u32) -> [u32; 2] {
@@ -269,6 +299,12 @@ impl<'a> March<'a> {
                 let [a, b] = self.ends(e);
                 if self.layers.parents(a).contains(&b) || self.layers.parents(b).contains(&a) {
                     continue; // an extrusion edge stays straight
+                }
+                if self.of_pyramid[e as usize] {
+                    // a pyramid stays straight-sided (the final certification judges its
+                    // neighbours)
+                    self.pyramid_straight += 1;
+                    continue;
                 }
                 let Some(source) = self.source_below(e, level) else {
                     self.stops.collapsed += 1;

@@ -145,7 +145,52 @@ fn bad_input_is_refused_with_a_clear_error() {
         curve_mesh_3d(&linear, &bad, &SPHERE, &p2()),
         Err(CurvingError::BadLayers(_))
     ));
-    // a pyramid: refused, no P2 pyramid can be certified
+    // a pyramid on the curved wall: refused, a P2 pyramid is certified only straight-sided
+    let pyramid = one_pyramid();
+    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
+    let e = curve_mesh_3d(&pyramid, &columns, &SPHERE, &p2()).unwrap_err();
+    assert!(matches!(e, CurvingError::Unsupported3d(_)), "{e}");
+    assert!(e.to_string().contains("pyramid"), "{e}");
+    // a 2D mesh
+    let flat = Mesh::new(Dim::Two, 1);
+    assert!(matches!(
+        curve_mesh_3d(&flat, &[], &SPHERE, &p2()),
+        Err(CurvingError::Unsupported3d(_))
+    ));
+}
+
+/// A flat wall: every point is on it.
+struct Flat;
+
+impl vector_adding::SurfaceProjector for Flat {
+    fn project(&self, p: [f64; 3], _facet: usize) -> [f64; 3] {
+        p
+    }
+}
+
+#[test]
+fn a_pyramid_on_a_flat_wall_stays_straight_and_is_certified() {
+    let pyramid = one_pyramid();
+    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
+    let curved = curve_mesh_3d(&pyramid, &columns, &Flat, &p2()).unwrap();
+    let mesh = &curved.mesh;
+    assert_eq!(mesh.cells.get(0).nodes.len(), 14);
+    let v = check_mesh(mesh, &CertifyParams::default()).unwrap();
+    assert!(
+        v.invalid_cells.is_empty() && v.min_scaled_jacobian > 0.0,
+        "{v:?}"
+    );
+    let volume = integrate_volume(mesh).unwrap();
+    assert!((volume - 1.0 / 3.0).abs() < 1e-12, "{volume}");
+    // the base's centre node
+    assert_eq!(
+        mesh.nodes[mesh.cells.get(0).nodes[13] as usize],
+        [0.5, 0.5, 0.0]
+    );
+}
+
+/// A unit-square pyramid in layer 0 on wall facet 0 (its apex in layer 1).
+fn one_pyramid() -> Mesh {
     let mut pyramid = Mesh::new(Dim::Three, 1);
     pyramid.nodes = vec![
         [0.0, 0.0, 0.0],
@@ -158,15 +203,15 @@ fn bad_input_is_refused_with_a_clear_error() {
         .cells
         .push(CellType::new(Shape::Pyramid, 1), &[0, 1, 2, 3, 4]);
     pyramid.cell_layer = vec![0];
-    pyramid.cell_pipe = vec![mesh_model::NONE];
-    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
-    let e = curve_mesh_3d(&pyramid, &columns, &SPHERE, &p2()).unwrap_err();
-    assert!(matches!(e, CurvingError::Unsupported3d(_)), "{e}");
-    assert!(e.to_string().contains("pyramid"), "{e}");
-    // a 2D mesh
-    let flat = Mesh::new(Dim::Two, 1);
-    assert!(matches!(
-        curve_mesh_3d(&flat, &[], &SPHERE, &p2()),
-        Err(CurvingError::Unsupported3d(_))
-    ));
+    pyramid.cell_pipe = vec![0];
+    // the base is wall facet 0 (facing out of the cell)
+    pyramid.patches = vec![mesh_model::Patch {
+        name: "wall".into(),
+        role: Role::Wall,
+    }];
+    pyramid
+        .boundary
+        .push(CellType::new(Shape::Quad, 1), &[0, 3, 2, 1]);
+    pyramid.boundary_patch = vec![0];
+    pyramid
 }
