@@ -16,7 +16,7 @@ fn main() -> Result<()> {
     let AnyCase::Three(case) = load_any(case)? else {
         bail!("{case}: not a 3D case");
     };
-    let surface = pipeline3d::surface(&case)?;
+    let (surface, _shape) = pipeline3d::surface(&case)?;
     pipeline3d::check_surface(&case, &surface)?;
     let grown = pipeline3d::grow(&case, &surface)?;
     let p = &grown.mesh;

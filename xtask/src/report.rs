@@ -297,7 +297,6 @@ impl Report {
         Ok(())
     }
 
-
     /// Fills the angle figures from those of the linear mesh under the final one (its cell
     /// corners, quads cut along the shorter diagonal), so that they do not depend on the order
     /// or on `--triangles`.
