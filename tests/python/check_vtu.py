@@ -124,6 +124,10 @@ def read(path):
     grid = reader.GetOutput()
     if errors or grid is None or grid.GetNumberOfCells() == 0:
         return {"file": path, "error": "VTK could not read the file"}
+    # the file's points, counted before the boundary facets are split off: the extraction
+    # keeps only points some cell uses, and VTK's quadratic pyramid leaves out the base node
+    # of a P2 pyramid (a node no other cell may use)
+    points = grid.GetNumberOfPoints()
     grid, boundary_groups = split_boundary(grid)
     types = vtk_to_numpy(grid.GetCellTypes())
     sizes = np.diff(vtk_to_numpy(grid.GetCells().GetOffsetsArray()))
@@ -143,7 +147,7 @@ def read(path):
     if dims == {2}:
         measure["area"], measure["min_scaled_jacobian"] = lagrange_area(grid)
     cd = grid.GetCellData()
-    return {"file": path, "points": grid.GetNumberOfPoints(), "cells": grid.GetNumberOfCells(),
+    return {"file": path, "points": points, "cells": grid.GetNumberOfCells(),
             "types": {str(k): int(v) for k, v in sorted(collections.Counter(types).items())},
             "points_per_cell": {k: sorted(v) for k, v in sorted(points_per_cell.items())},
             "cell_data": [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())],
