@@ -366,9 +366,10 @@ fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64
     let mut angles = Vec::new();
     let mut deviations = Vec::new();
     let mut points = Vec::with_capacity(4);
+    let nodes = &grown.mesh.nodes;
     let mut below = layer_front(wall, grown, 0);
     for k in 0..depth.saturating_sub(1) {
-        let normals = below.node_normals();
+        let normals = geom_surface::node_normals(nodes, &below);
         let mut edges: Vec<(u32, u32)> = grown
             .columns
             .iter()
@@ -378,16 +379,16 @@ fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64
         edges.sort_unstable();
         edges.dedup();
         for (a, b) in edges {
-            let (p, q) = (below.nodes[a as usize], below.nodes[b as usize]);
+            let (p, q) = (nodes[a as usize], nodes[b as usize]);
             deviations.push(measure3d::angle_deg(
                 std::array::from_fn(|d| q[d] - p[d]),
                 normals[a as usize],
             ));
         }
         let above = layer_front(wall, grown, k + 1);
-        for f in &above.facets {
+        for f in &above {
             points.clear();
-            points.extend(f.nodes().iter().map(|&v| above.nodes[v as usize]));
+            points.extend(f.nodes().iter().map(|&v| nodes[v as usize]));
             angles.push(measure3d::polygon_max_angle_deg(&points));
         }
         below = above;
@@ -395,10 +396,10 @@ fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64
     (angles, deviations)
 }
 
-/// The front of layer `k` as a surface over the grown mesh's nodes: each wall facet over its
+/// The front of layer `k` as facets over the grown mesh's nodes: each wall facet over its
 /// corners' layer-`k` nodes, repeated corners dropped, those left with fewer than three
 /// corners left out.
-fn layer_front(wall: &Surface, grown: &afsf3d::Grown3d, k: usize) -> Surface {
+fn layer_front(wall: &Surface, grown: &afsf3d::Grown3d, k: usize) -> Vec<geom_surface::Facet> {
     let mut facets = Vec::with_capacity(wall.facets.len());
     let mut corners: Vec<u32> = Vec::with_capacity(4);
     for f in &wall.facets {
@@ -418,7 +419,7 @@ fn layer_front(wall: &Surface, grown: &afsf3d::Grown3d, k: usize) -> Surface {
             _ => {}
         }
     }
-    Surface::single_patch(grown.mesh.nodes.clone(), facets, "front")
+    facets
 }
 
 #[cfg(test)]
@@ -462,7 +463,7 @@ mod tests {
     fn collapsed_facets_and_shared_extrusion_edges_are_not_counted() {
         let (wall, grown) = merged();
         let front = layer_front(&wall, &grown, 1);
-        assert_eq!(front.facets, vec![Facet::tri(4, 5, 6)]);
+        assert_eq!(front, vec![Facet::tri(4, 5, 6)]);
         let (angles, deviations) = front_measures(&wall, &grown);
         // layer 1: the one triangle left; layer 2: the same
         assert_eq!(angles.len(), 2, "{angles:?}");

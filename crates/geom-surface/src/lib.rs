@@ -131,22 +131,29 @@ impl Surface {
     /// normals of the facets around it, each weighted by the facet's angle at the node.
     /// A node in no facet gets a zero vector.
     pub fn node_normals(&self) -> Vec<[f64; 3]> {
-        let mut acc = vec![[0.0; 3]; self.nodes.len()];
-        for f in &self.facets {
-            let k = f.nodes();
-            let n = unit(fan_normal(&self.nodes, k));
-            for i in 0..k.len() {
-                let p = self.nodes[k[i] as usize];
-                let a = sub(self.nodes[k[(i + k.len() - 1) % k.len()] as usize], p);
-                let b = sub(self.nodes[k[(i + 1) % k.len()] as usize], p);
-                let angle = angle_between(a, b);
-                for d in 0..3 {
-                    acc[k[i] as usize][d] += angle * n[d];
-                }
+        node_normals(&self.nodes, &self.facets)
+    }
+}
+
+/// The angle-weighted unit normals of `facets` over `nodes` (see [`Surface::node_normals`]),
+/// for facets that index a node array they do not own (a layer's front over a volume mesh's
+/// nodes), without copying the nodes into a [`Surface`].
+pub fn node_normals(nodes: &[[f64; 3]], facets: &[Facet]) -> Vec<[f64; 3]> {
+    let mut acc = vec![[0.0; 3]; nodes.len()];
+    for f in facets {
+        let k = f.nodes();
+        let n = unit(fan_normal(nodes, k));
+        for i in 0..k.len() {
+            let p = nodes[k[i] as usize];
+            let a = sub(nodes[k[(i + k.len() - 1) % k.len()] as usize], p);
+            let b = sub(nodes[k[(i + 1) % k.len()] as usize], p);
+            let angle = angle_between(a, b);
+            for d in 0..3 {
+                acc[k[i] as usize][d] += angle * n[d];
             }
         }
-        acc.into_iter().map(unit).collect()
     }
+    acc.into_iter().map(unit).collect()
 }
 
 /// Six times the signed volume of the cone from `o` over the facet `k` (fanned from its
