@@ -15,7 +15,7 @@ use std::ops::ControlFlow;
 
 use crate::cell::Shape;
 use crate::mesh::{Dim, Mesh, NONE};
-use crate::topology::Entities;
+use crate::topology::for_each_use_count;
 
 /// One thing wrong with a mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -364,46 +364,34 @@ pub fn is_positive_tet(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bo
     geom_predicates::orient3d(o, a, b, c) < 0.0
 }
 
-/// Each edge (2D) or face (3D) in two cells, or in one cell and one boundary facet.
+/// Each edge (2D) or face (3D) in two cells, or in one cell and one boundary facet: only
+/// the counts of the uses ([`crate::topology::for_each_use_count`]), not the whole topology.
 fn conformity(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
-    let cells = || mesh.cells.shapes_and_corners();
+    let cells = mesh.cells.shapes_and_corners();
     let facets = mesh.boundary.iter().map(|f| f.corners());
+    let conforming = |cells: usize, facets: usize| matches!((cells, facets), (2, 0) | (1, 1));
     match mesh.dim {
-        Dim::Two => {
-            let edges = crate::topology::Edges::build(cells(), facets);
-            conforming(&edges, sink, |e, cells, on_boundary| {
-                Problem::NonConforming {
-                    edge: [e[0], e[1]],
-                    cells,
-                    on_boundary,
-                }
+        Dim::Two => for_each_use_count::<2, _>(cells, facets, |e, cells, facets| {
+            if conforming(cells, facets) {
+                return ControlFlow::Continue(());
+            }
+            sink(Problem::NonConforming {
+                edge: [e[0], e[1]],
+                cells,
+                on_boundary: facets > 0,
             })
-        }
-        Dim::Three => {
-            let faces = crate::topology::Faces::build(cells(), facets);
-            conforming(&faces, sink, |f, cells, on_boundary| {
-                Problem::NonConformingFace {
-                    face: f.to_vec(),
-                    cells,
-                    on_boundary,
-                }
+        }),
+        Dim::Three => for_each_use_count::<4, _>(cells, facets, |f, cells, facets| {
+            if conforming(cells, facets) {
+                return ControlFlow::Continue(());
+            }
+            sink(Problem::NonConformingFace {
+                face: f.to_vec(),
+                cells,
+                on_boundary: facets > 0,
             })
-        }
+        }),
     }
-}
-
-fn conforming<const N: usize>(
-    entities: &Entities<N>,
-    sink: Sink<'_>,
-    problem: impl Fn(&[u32], usize, bool) -> Problem,
-) -> ControlFlow<Problem> {
-    for e in 0..entities.len() as u32 {
-        let (cells, facets) = (entities.cells(e).len(), entities.facets(e).len());
-        if !matches!((cells, facets), (2, 0) | (1, 1)) {
-            sink(problem(entities.nodes(e), cells, facets > 0))?;
-        }
-    }
-    ControlFlow::Continue(())
 }
 
 #[cfg(test)]

@@ -123,6 +123,33 @@ proptest! {
     }
 
     #[test]
+    fn the_use_counts_are_those_of_the_topology(m in grid_strategy(), pick in any::<prop::sample::Index>()) {
+        // with one cell dropped too, so that some counts are not those of a sound mesh
+        let mut damaged = m.clone();
+        let drop = pick.index(m.cells.len());
+        damaged.cells = mesh_model::Cells::default();
+        for (_, cell) in m.cells.iter().enumerate().filter(|&(c, _)| c != drop) {
+            damaged.cells.push(cell.ty, cell.nodes);
+        }
+        for mesh in [&m, &damaged] {
+            let edges = Topology::new(mesh).edges;
+            let mut seen = Vec::new();
+            let _ = mesh_model::topology::for_each_use_count::<2, ()>(
+                mesh.cells.shapes_and_corners(),
+                mesh.boundary.iter().map(|f| f.corners()),
+                |k, cells, facets| {
+                    seen.push((k.to_vec(), cells, facets));
+                    std::ops::ControlFlow::Continue(())
+                },
+            );
+            let expected: Vec<_> = (0..edges.len() as u32)
+                .map(|e| (edges.nodes(e).to_vec(), edges.cells(e).len(), edges.facets(e).len()))
+                .collect();
+            prop_assert_eq!(seen, expected);
+        }
+    }
+
+    #[test]
     fn the_first_problem_is_the_first_of_all_problems(m in grid_strategy(), pick in any::<prop::sample::Index>()) {
         let mut m = m;
         let i = pick.index(m.cells.len());
