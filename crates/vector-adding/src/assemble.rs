@@ -9,15 +9,14 @@ use crate::edges::EdgeTable;
 use crate::split::OutCell;
 
 /// The mesh of order `edges.p` over `cells`; `sorted_edges` is how many leading edges of the
-/// table are in sorted order (the linear mesh's own, before any diagonal). `points` are the
-/// edges' inner points (`edges.points`, taken out of the table: they are copied into the
-/// node array and dropped before the cells are built, so that the two never coexist with
-/// the cells' nodes). The node array is allocated once at its final size (`cells` is
-/// walked twice: once to count the cells' interior nodes).
+/// table are in sorted order (the linear mesh's own, before any diagonal). `nodes` is the
+/// table's node array (`edges.nodes`, taken out of it: the linear nodes, then the edges'
+/// inner points), which becomes the mesh's: it grows once, by exactly the cells' interior
+/// nodes (`cells` is walked twice: once to count them), and nothing in it is copied.
 pub(crate) fn assemble(
     linear: &Mesh,
     edges: &EdgeTable,
-    points: Vec<[f64; 2]>,
+    nodes: Vec<[f64; 3]>,
     sorted_edges: usize,
     cells: impl Iterator<Item = OutCell> + Clone,
     interiors: &Interiors,
@@ -31,10 +30,8 @@ pub(crate) fn assemble(
         cell_count += 1;
         interior_nodes += interiors.count(c.len(), p);
     }
-    mesh.nodes = Vec::with_capacity(linear.nodes.len() + points.len() + interior_nodes);
-    mesh.nodes.extend_from_slice(&linear.nodes);
-    mesh.nodes.extend(points.iter().map(|v| [v[0], v[1], 0.0]));
-    drop(points);
+    mesh.nodes = nodes;
+    mesh.nodes.reserve_exact(interior_nodes);
     let edge_node = |e: u32, from: u32, i: usize| -> u32 {
         let j = if edges.ends[e as usize][0] == from {
             i

@@ -20,8 +20,13 @@ pub(crate) struct EdgeTable {
     /// Per cell, the edge of each local edge (Gmsh order; NONE in the fourth slot of a
     /// triangle).
     pub cell_edges: Vec<[u32; 4]>,
-    /// `p − 1` points per edge, from `ends[0]` to `ends[1]`.
-    pub points: Vec<[f64; 2]>,
+    /// The high-order mesh's node array as far as the edges go: the linear mesh's nodes, then
+    /// `p − 1` points per edge (from `ends[0]` to `ends[1]`), edge by edge. The assembly
+    /// takes it and appends the cells' interior nodes, so the edges' points are never
+    /// copied (at 1M cells, a copy would sit at the run's memory peak).
+    pub nodes: Vec<[f64; 3]>,
+    /// Where the edges' points start in `nodes`: the linear mesh's node count.
+    base: usize,
     /// Whether an edge's points were moved off its chord.
     pub curved: Vec<bool>,
     /// How each edge got its points (the record of the decisions).
@@ -55,20 +60,18 @@ impl EdgeTable {
                     local
                 })
                 .collect(),
-            points: Vec::new(),
+            nodes: Vec::new(),
+            base: mesh.nodes.len(),
             curved: Vec::new(),
             rules: Vec::new(),
         };
-        let nodes: Vec<[f64; 2]> = mesh.nodes.iter().map(|v| [v[0], v[1]]).collect();
-        table.points = Vec::with_capacity(table.ends.len() * (p - 1));
+        table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1));
+        table.nodes.extend_from_slice(&mesh.nodes);
         for e in 0..table.ends.len() {
             let [a, b] = table.ends[e];
             for i in 1..p {
-                table.points.push(lerp(
-                    nodes[a as usize],
-                    nodes[b as usize],
-                    i as f64 / p as f64,
-                ));
+                let x = lerp(mesh.xy(a), mesh.xy(b), i as f64 / p as f64);
+                table.nodes.push([x[0], x[1], 0.0]);
             }
         }
         table.curved = vec![false; table.ends.len()];
@@ -90,13 +93,12 @@ impl EdgeTable {
     /// The inner points of edge `e` listed from node `from` to the other end.
     pub fn points_from(&self, e: u32, from: u32, out: &mut [[f64; 2]]) {
         let q = self.p - 1;
-        let pts = &self.points[e as usize * q..(e as usize + 1) * q];
+        let at = self.base + e as usize * q;
+        let pts = self.nodes[at..at + q].iter().map(|v| [v[0], v[1]]);
         if self.ends[e as usize][0] == from {
-            out[..q].copy_from_slice(pts);
+            out[..q].iter_mut().zip(pts).for_each(|(o, v)| *o = v);
         } else {
-            for (o, v) in out[..q].iter_mut().zip(pts.iter().rev()) {
-                *o = *v;
-            }
+            out[..q].iter_mut().zip(pts.rev()).for_each(|(o, v)| *o = v);
         }
     }
 
@@ -104,9 +106,10 @@ impl EdgeTable {
     pub fn set_points_from(&mut self, e: u32, from: u32, pts: &[[f64; 2]], curved: bool) {
         let q = self.p - 1;
         let forward = self.ends[e as usize][0] == from;
-        let dst = &mut self.points[e as usize * q..(e as usize + 1) * q];
-        for i in 0..q {
-            dst[i] = if forward { pts[i] } else { pts[q - 1 - i] };
+        let at = self.base + e as usize * q;
+        for (i, dst) in self.nodes[at..at + q].iter_mut().enumerate() {
+            let v = if forward { pts[i] } else { pts[q - 1 - i] };
+            *dst = [v[0], v[1], 0.0];
         }
         self.curved[e as usize] = curved;
     }
@@ -153,7 +156,7 @@ impl EdgeTable {
         self.ends.push([a.min(b), a.max(b)]);
         self.cells.push([NONE; 2]);
         let q = self.p - 1;
-        self.points.extend(std::iter::repeat_n([0.0; 2], q));
+        self.nodes.extend(std::iter::repeat_n([0.0; 3], q));
         self.curved.push(false);
         self.rules.push(EdgeRule::Straight);
         self.set_points_from(id, a, from_a, curved);

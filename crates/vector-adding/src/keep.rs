@@ -135,11 +135,11 @@ fn replay_on(
 }
 
 fn assemble_laid(mesh: &Mesh, mut laid: Laid) -> Mesh {
-    let points = std::mem::take(&mut laid.edges.points);
+    let nodes = std::mem::take(&mut laid.edges.nodes);
     assemble(
         mesh,
         &laid.edges,
-        points,
+        nodes,
         laid.sorted_edges,
         laid.cells.iter().copied(),
         &laid.interiors,

@@ -185,23 +185,23 @@ pub fn curve_mesh(
     let curved_edges = edges.curved.iter().filter(|&&c| c).count();
     let edge_count = edges.len();
     // what the assembly does not read is let go before it (the peak of the run is there):
-    // the rules move into the record, the edge points into the node array
+    // the rules move into the record, the node array (with the edges' points) to the mesh
     let rules = take_sorted(&mut edges.rules, sorted_edges);
-    let points = std::mem::take(&mut edges.points);
+    let nodes = std::mem::take(&mut edges.nodes);
     edges.cells = Vec::new();
     edges.curved = Vec::new();
     let out = match cells {
         Some(cells) => assemble::assemble(
             mesh,
             &edges,
-            points,
+            nodes,
             sorted_edges,
             cells.into_iter(),
             &interiors,
         ),
         None => {
             let kept = split::keep(mesh, &edges.cell_edges);
-            assemble::assemble(mesh, &edges, points, sorted_edges, kept, &interiors)
+            assemble::assemble(mesh, &edges, nodes, sorted_edges, kept, &interiors)
         }
     };
     clock.lap("assemble");

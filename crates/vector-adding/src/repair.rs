@@ -205,8 +205,8 @@ fn mend(
             let mark = log.len();
             for (j, rule, pts) in &cand {
                 let e = ce[*j as usize];
-                let q = edges.p - 1;
-                let old = edges.points[e as usize * q..(e as usize + 1) * q].to_vec();
+                let mut old = vec![[0.0; 2]; edges.p - 1];
+                edges.points_from(e, edges.ends[e as usize][0], &mut old);
                 log.push((e, old, edges.curved[e as usize], edges.rules[e as usize]));
                 edges.carry(e, *rule, pts);
             }
@@ -234,11 +234,9 @@ fn mend(
 
 /// Restores the edges changed since `log[mark]`, latest first.
 fn undo(edges: &mut EdgeTable, log: &mut ChangeLog, mark: usize) {
-    let q = edges.p - 1;
     while log.len() > mark {
         let (e, old, curved, rule) = log.pop().expect("log longer than mark");
-        edges.points[e as usize * q..(e as usize + 1) * q].copy_from_slice(&old);
-        edges.curved[e as usize] = curved;
+        edges.set_points_from(e, edges.ends[e as usize][0], &old, curved);
         edges.rules[e as usize] = rule;
     }
 }
