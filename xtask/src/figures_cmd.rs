@@ -69,6 +69,31 @@ pub const FIGURES: &[&[&str]] = &[
         "--png",
         "{fig}/30p30n-p3-flap-gap-jacobian.png@flap-gap",
     ],
+    // guide (3D): the step cut through its tower, the cells by type
+    &[
+        "mesh",
+        "step",
+        "--out",
+        "{tmp}/step.msh",
+        "--slice",
+        "x=0.5",
+        "--png",
+        "{fig}/step-slice-x.png@-0.25,-0.25,1.25,1.15",
+    ],
+    // guide (3D): the wing cut at mid-span, its trailing edge, the tetrahedra by their
+    // largest dihedral angle
+    &[
+        "mesh",
+        "wing",
+        "--out",
+        "{tmp}/wing.msh",
+        "--slice",
+        "z=1",
+        "--colour",
+        "dihedral",
+        "--png",
+        "{fig}/wing-te-dihedral.png@0.9,-0.075,1.1,0.075",
+    ],
     // guide: `quality` drawing a .msh file
     &[
         "quality",
