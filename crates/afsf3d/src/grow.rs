@@ -13,6 +13,7 @@ use springfield::{
 use crate::check::{bad_cells, shrink_until_valid};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
+use crate::squeeze::squeezed_layer;
 use crate::{GrowError, GrowStats, Grown3d, LayerParams};
 
 /// A cell that fails its check merges the children of its shortest edge when that edge is
@@ -67,7 +68,13 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             len: &len,
             balanced: &balanced,
         };
-        let mut next = merged_layer(&ideal, &front.facets, merges.clone());
+        // where the layers are as thick as half the wall's spacing, squeezed cells merge too
+        let (mut next, merges) = if layer > 0 && params.squeeze > 0.0 && 2.0 * thickness >= spacing
+        {
+            squeezed_layer(&topo, &ideal, &front.facets, params.squeeze, merges)
+        } else {
+            (merged_layer(&ideal, &front.facets, merges.clone()), merges)
+        };
         if layer > 0 && params.coe_shrink > 0.0 {
             // cells that fail merge their shortest edge rather than shrink, if it is short
             let bad = bad_cells(&front.nodes, &next, &front.facets);
@@ -284,6 +291,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.stand_off >= 0.0 && p.stand_off < 1.0) {
         return bad("stand_off must be in [0, 1)");
+    }
+    if !(p.squeeze >= 0.0 && p.squeeze < 1.0) {
+        return bad("squeeze must be in [0, 1)");
     }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
         return bad("tension_ratio must be in (0, 1]");

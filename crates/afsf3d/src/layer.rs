@@ -199,6 +199,23 @@ pub(crate) fn choose_merges(
     merges
 }
 
+/// The edge of front facet `f` with neither node `used` and the smallest `ratio` of its two
+/// nodes, with that ratio (ties to the smaller pair).
+pub(crate) fn best_free_edge(
+    topo: &Topo,
+    f: usize,
+    used: &[bool],
+    ratio: impl Fn(usize, usize) -> f64,
+) -> Option<(f64, [u32; 2])> {
+    topo.facet_edges[f]
+        .iter()
+        .filter(|&&e| e != u32::MAX)
+        .map(|&e| topo.edges[e as usize].nodes)
+        .filter(|e| !used[e[0] as usize] && !used[e[1] as usize])
+        .map(|[a, b]| (ratio(a as usize, b as usize), [a, b]))
+        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+}
+
 /// Adds to `merges` (the pairs of [`choose_merges`]) the second trigger of §5.2.1: for each
 /// cell over `bad` (front facets whose cells fail their check), the children of its
 /// shortest edge relative to the mean ideal extrusion length, when that is below
@@ -217,19 +234,9 @@ pub(crate) fn add_twisted(
         used[b as usize] = true;
     }
     for &f in bad {
-        let shortest = topo.facet_edges[f]
-            .iter()
-            .filter(|&&e| e != u32::MAX)
-            .map(|&e| topo.edges[e as usize].nodes)
-            .filter(|e| !used[e[0] as usize] && !used[e[1] as usize])
-            .map(|[a, b]| {
-                let (x, y) = (a as usize, b as usize);
-                (
-                    dist(children[x], children[y]) / ((len[x] + len[y]) / 2.0),
-                    [a, b],
-                )
-            })
-            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        let shortest = best_free_edge(topo, f, &used, |x, y| {
+            dist(children[x], children[y]) / ((len[x] + len[y]) / 2.0)
+        });
         if let Some((_, [a, b])) = shortest.filter(|s| s.0 < ratio) {
             used[a as usize] = true;
             used[b as usize] = true;

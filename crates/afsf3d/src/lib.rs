@@ -67,6 +67,7 @@ mod check;
 mod front;
 mod grow;
 mod layer;
+mod squeeze;
 
 pub use grow::grow_layers;
 
@@ -106,6 +107,12 @@ pub struct LayerParams {
     /// scaled Jacobian in layers 0–11 from 0.34 to 0.51, but the step at a first height of
     /// 3e-3 then fails in its merging layer (13), so it is not the default yet.
     pub stand_off: f64,
+    /// A cell whose smallest corner scaled Jacobian (with its balanced children) falls below
+    /// this merges the children of the edge along which the front shrinks most (not in the
+    /// first layer; see `docs/afsf3d.md`): the front loses nodes where it is squeezed, as
+    /// at the step's concave edges once the layers are as thick as the wall's spacing.
+    /// Default 0 (off); 0 never merges by it.
+    pub squeeze: f64,
 }
 
 impl Default for LayerParams {
@@ -124,6 +131,7 @@ impl Default for LayerParams {
             smoothing: 8,
             coe_shrink: 0.65,
             stand_off: 0.0,
+            squeeze: 0.0,
         }
     }
 }

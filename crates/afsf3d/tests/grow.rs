@@ -490,6 +490,26 @@ fn the_step_merges_children_where_its_front_shrinks_and_keeps_15_layers() {
     cut_and_check("step, quads of 0.05", &grown);
 }
 
+#[test]
+fn the_step_squeezed_merges_stay_cells_topo_cut_cuts() {
+    // `squeeze` 0.5: squeezed cells round the concave edges merge from layer 10 on (the
+    // layers thicker than half the wall's spacing); the merged cells are cut into valid
+    // tetrahedra and mixed cells, the layering record checks, every column is full
+    for first_height in [2e-3, 3e-3, 1e-3] {
+        let params = LayerParams {
+            first_height,
+            growth: 1.2,
+            layers: 15,
+            squeeze: 0.5,
+            ..LayerParams::default()
+        };
+        let name = format!("step, squeeze 0.5, first height {first_height}");
+        let grown = grow_and_check(&name, &Surface::step(1), &params);
+        assert!(grown.stats.merges > 0, "{name}");
+        cut_and_check(&name, &grown);
+    }
+}
+
 /// A block with a slot 0.1 wide through it: the slot's two sides grow towards each other.
 fn slot() -> Surface {
     Surface::voxels([5, 3, 3], 0.1, |[i, _, k]| k == 0 || i != 2, "slot")
