@@ -77,6 +77,32 @@ pub fn wing_surface(
     span: f64,
     triangles: bool,
 ) -> Result<(Surface, WingShape<Section>)> {
+    wing_surface_with(case, span, triangles, CapMesh::default())
+}
+
+/// How the tip caps are meshed (`[surface] cap`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CapMesh {
+    /// `"fill"` (default): isotropic triangles graded by the section's own spacing
+    /// (`afsf2d::fill_loop`: the 2D mesher's fill of the section, no layers), so that every
+    /// cap triangle makes a well-shaped prism base; what a Gmsh or Pointwise user gets on a
+    /// flat tip face meshed from its boundary.
+    #[default]
+    Fill,
+    /// `"layers"`: the 2D mesher's whole mesh of the section's inside (`inside = true`): its
+    /// own layers from the rim at the surface's first height, then the fill; the layers' thin
+    /// cells make thin prism and hexahedron bases.
+    Layers,
+}
+
+/// [`wing_surface`] with the tip caps meshed as `cap` says.
+pub fn wing_surface_with(
+    case: &Case,
+    span: f64,
+    triangles: bool,
+    cap: CapMesh,
+) -> Result<(Surface, WingShape<Section>)> {
     let walls: Vec<usize> = (0..case.loops.len())
         .filter(|&i| case.loops[i].role == Role::Wall)
         .collect();
@@ -94,19 +120,34 @@ pub fn wing_surface(
     let mut nodes = pipeline::boundary_nodes(case, &curves)?;
     let (curve, section) = (curves.swap_remove(w), nodes.swap_remove(w));
     let points: Vec<[f64; 2]> = section.points.iter().map(|p| [p.x, p.y]).collect();
-    let (cap_nodes, cap_facets) = cap_mesh(case, w, &section)?;
+    let (cap_nodes, cap_facets) = match cap {
+        CapMesh::Fill => cap_fill(&points)?,
+        CapMesh::Layers => cap_mesh(case, w, &section)?,
+    };
     let longest = (0..points.len())
         .map(|i| {
             let (a, b) = (points[i], points[(i + 1) % points.len()]);
             (a[0] - b[0]).hypot(a[1] - b[1])
         })
         .fold(0.0, f64::max);
+    let envf = |k: &str, d: f64| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
     let stations = span_stations(
         span,
-        case.layers.first_height,
-        case.boundary.growth,
-        longest,
+        envf("WING_FIRST", case.layers.first_height),
+        envf("WING_GROWTH", case.boundary.growth),
+        longest * envf("WING_MAXF", 1.0),
     );
+    if std::env::var("WING_DEBUG").is_ok() {
+        let mut seg: Vec<f64> = (0..points.len()).map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % points.len()]);
+            (a[0] - b[0]).hypot(a[1] - b[1])
+        }).collect();
+        eprintln!("section {} nodes, stations {}: first steps {:?}", points.len(), stations.len(), stations.windows(2).take(20).map(|w| w[1]-w[0]).collect::<Vec<_>>());
+        seg.sort_by(f64::total_cmp);
+        eprintln!("segments min {:.2e} p10 {:.2e} median {:.2e} max {:.2e}", seg[0], seg[seg.len()/10], seg[seg.len()/2], seg[seg.len()-1]);
+        for (i,p) in points.iter().enumerate() { if p[0] > 0.995 { eprint!("{i}:({:.5},{:.5}) ", p[0], p[1]); } }
+        eprintln!();
+    }
     let cap = Cap {
         nodes: &cap_nodes,
         facets: &cap_facets,
@@ -120,6 +161,19 @@ pub fn wing_surface(
         triangles,
     )
     .map_err(|e| anyhow::anyhow!("wing of '{}': {e}", case.name))
+}
+
+/// The smallest angle (degrees) the isotropic cap's fill refines toward: the 2D mesher's
+/// default for its fill.
+const CAP_MIN_ANGLE_DEG: f64 = 30.0;
+
+/// The section's inside filled with isotropic triangles from its boundary nodes `points`
+/// (counter-clockwise; they come first, at their coordinates).
+fn cap_fill(points: &[[f64; 2]]) -> Result<(Vec<[f64; 2]>, Vec<Facet>)> {
+    let (nodes, tris) = afsf2d::fill_loop(points, CAP_MIN_ANGLE_DEG)
+        .map_err(|e| anyhow::anyhow!("the wing's tip cap: {e}"))?;
+    let facets = tris.iter().map(|&[a, b, c]| Facet::tri(a, b, c)).collect();
+    Ok((nodes, facets))
 }
 
 /// The 2D mesh of the inside of wall loop `w` from its boundary nodes: the nodes (the

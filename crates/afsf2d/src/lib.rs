@@ -183,6 +183,26 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     })
 }
 
+/// The inside of one closed loop of `points` (counter-clockwise, no two alike) filled with
+/// triangles by the mesher's fill, without layers: the constrained Delaunay triangulation of
+/// the loop's nodes refined toward `min_angle_deg` (the loop's edges never split), then
+/// improved by largest-angle flips and smoothing, as the region between the fronts is. The
+/// nodes are the loop's, first and at their coordinates, then the added ones; the triangles
+/// are counter-clockwise. An isotropic mesh graded by the loop's own spacing (the wing's tip
+/// caps).
+pub fn fill_loop(
+    points: &[[f64; 2]],
+    min_angle_deg: f64,
+) -> Result<(Vec<[f64; 2]>, Vec<[u32; 3]>), AfsfError> {
+    let n = points.len() as u32;
+    if n < 3 {
+        return Err(AfsfError::Fill(format!("a loop of {n} points has no inside")));
+    }
+    let edges: Vec<(u32, u32)> = (0..n).map(|i| (i, (i + 1) % n)).collect();
+    let (tris, added) = fill::fill_region(&edges, &[], points, min_angle_deg)?;
+    Ok(([points, &added[..]].concat(), tris))
+}
+
 /// The narrowest gap that admits no good triangle across it: an error when the parameters
 /// refuse narrow gaps, else reported in the statistics.
 fn narrow_gap(
