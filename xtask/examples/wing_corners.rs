@@ -64,8 +64,7 @@ fn main() -> Result<()> {
     for name in ["wall", "tip-root", "tip-far"] {
         let (mut a, mut at) = (180.0, 0);
         for f in 0..surface.facets.len() {
-            if surface.patches[surface.facet_patch[f] as usize].name == name && min_angle(f) < a
-            {
+            if surface.patches[surface.facet_patch[f] as usize].name == name && min_angle(f) < a {
                 (a, at) = (min_angle(f), f);
             }
         }
@@ -95,7 +94,11 @@ fn main() -> Result<()> {
                 .and_then(|t| t.split(':').next())
                 .and_then(|t| t.parse::<usize>().ok());
             if let Some(f) = f {
-                println!("facet {f} at {:?}, smallest angle {:.1}°", centre(f), min_angle(f));
+                println!(
+                    "facet {f} at {:?}, smallest angle {:.1}°",
+                    centre(f),
+                    min_angle(f)
+                );
             }
             bail!("{msg}");
         }
@@ -114,7 +117,10 @@ fn main() -> Result<()> {
         };
         let f = mesh.cell_pipe[i] as usize;
         let l = mesh.cell_layer[i];
-        let b = bands.iter().position(|&(a, z)| a <= l && l <= z).unwrap_or(0);
+        let b = bands
+            .iter()
+            .position(|&(a, z)| a <= l && l <= z)
+            .unwrap_or(0);
         for key in [(region(f), b), ("all", b), (region(f), 99), ("all", 99)] {
             let e = worst.entry(key).or_insert((f64::INFINITY, 0usize));
             if q < e.0 {
@@ -124,7 +130,9 @@ fn main() -> Result<()> {
     }
     for ((r, b), (q, i)) in &worst {
         let f = mesh.cell_pipe[*i] as usize;
-        let band = bands.get(*b).map_or("all".to_string(), |(a, z)| format!("{a}-{z}"));
+        let band = bands
+            .get(*b)
+            .map_or("all".to_string(), |(a, z)| format!("{a}-{z}"));
         println!(
             "{r:5} layers {band:6} min corner SJ {q:.4}: cell {i} layer {} over {} facet {f} at [{:.4}, {:.4}, {:.4}] (facet's smallest angle {:.1}°)",
             mesh.cell_layer[*i],

@@ -316,6 +316,8 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
         ("builtin = \"sphere\"\nfirst_height = 1e-3", "first_height"),
         ("wing = \"naca0012\"\nfirst_height = 0.0", "first_height"),
         ("wing = \"sphere\"", "sphere"),
+        ("wing = \"naca0012\"\ncap = \"round\"", "cap"),
+        ("builtin = \"sphere\"\ncap = \"fill\"", "cap"),
     ] {
         let bad = case(d, "bad", surface, "max_layers = 2", "tets");
         let o = run(d, &[&bad, "--quiet"]);
@@ -325,6 +327,29 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
         assert!(err.contains(says), "{surface}: {err}");
         std::fs::remove_file(d.join(&bad)).unwrap();
         assert_eq!(files(d), before);
+    }
+}
+
+/// The wing's mixed mesh over a quad side and the isotropic caps (the default): in its first
+/// layers every prism and hexahedron corner has a scaled Jacobian of at least 0.2 (issue 13's
+/// bar at the tips and the trailing edge; 0.0063 at the caps and 0.0054 at the trailing edge
+/// before, with the caps' own 2D layers and a triangulated side).
+#[test]
+fn the_wing_mixed_over_quads_has_corner_sj_above_0_2_at_tips_and_trailing_edge() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let wing = case(
+        d,
+        "wing",
+        "wing = \"naca0012\"\nspan = 2.0\nfirst_height = 1e-3\ntriangles = false",
+        "first_height = 1e-3\ngrowth = 1.3\nmax_layers = 2",
+        "mixed",
+    );
+    let r = mesh_case(d, &wing, "wing", 2);
+    let sj = &r["quality"]["min_corner_scaled_jacobian"];
+    assert!(sj["value"].as_f64().unwrap() >= 0.2, "{sj}");
+    for patch in ["wall", "tip-root", "tip-far"] {
+        assert!(sj["by_wall_patch"][patch].as_f64().unwrap() >= 0.2, "{sj}");
     }
 }
 

@@ -196,7 +196,9 @@ pub fn fill_loop(
 ) -> Result<(Vec<[f64; 2]>, Vec<[u32; 3]>), AfsfError> {
     let n = points.len() as u32;
     if n < 3 {
-        return Err(AfsfError::Fill(format!("a loop of {n} points has no inside")));
+        return Err(AfsfError::Fill(format!(
+            "a loop of {n} points has no inside"
+        )));
     }
     let edges: Vec<(u32, u32)> = (0..n).map(|i| (i, (i + 1) % n)).collect();
     let (tris, added) = fill::fill_region(&edges, &[], points, min_angle_deg)?;
