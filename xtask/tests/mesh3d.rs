@@ -316,7 +316,7 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
         ("builtin = \"sphere\"\nfirst_height = 1e-3", "first_height"),
         ("wing = \"naca0012\"\nfirst_height = 0.0", "first_height"),
         ("wing = \"sphere\"", "sphere"),
-        ("wing = \"naca0012\"\ncap = \"round\"", "cap"),
+        ("wing = \"naca0012\"\ncap = \"round\"", "`fill` or `layers`"),
         ("builtin = \"sphere\"\ncap = \"fill\"", "cap"),
     ] {
         let bad = case(d, "bad", surface, "max_layers = 2", "tets");
