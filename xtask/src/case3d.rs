@@ -62,7 +62,7 @@ pub enum SurfaceSource {
         case: String,
         /// `span` (default 2, chords of the section).
         span: f64,
-        /// `first_height`: the surface's first height — the caps' own layers and the span
+        /// `first_height`: the surface's first height — the section's spacing at corners, the span
         /// grading from each tip — in place of the 2D case's `[layers] first_height` (the
         /// dissertation's "surface" height of tables 5–7; `None`: the 2D case's).
         first_height: Option<f64>,
