@@ -294,18 +294,24 @@ fn what_3d_does_not_do_yet_is_refused_in_one_line() {
     }
 }
 
+/// The `naca0012` wing (surface and layers from 1e-3, growth 1.3) with the `[surface]` keys
+/// `surface`, `layers` layers and the cut `cut`, meshed by [`mesh_case`].
+fn mesh_wing(d: &Path, surface: &str, layers: u64, cut: &str) -> serde_json::Value {
+    let wing = case(
+        d,
+        "wing",
+        &format!("wing = \"naca0012\"\nfirst_height = 1e-3\n{surface}"),
+        &format!("first_height = 1e-3\ngrowth = 1.3\nmax_layers = {layers}"),
+        cut,
+    );
+    mesh_case(d, &wing, "wing", layers)
+}
+
 #[test]
 fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let wing = case(
-        d,
-        "wing",
-        "wing = \"naca0012\"\nspan = 1.0\nfirst_height = 1e-3",
-        "first_height = 1e-3\ngrowth = 1.3\nmax_layers = 3",
-        "tets",
-    );
-    let r = mesh_case(d, &wing, "wing", 3);
+    let r = mesh_wing(d, "span = 1.0", 3, "tets");
     assert!(r["cells"]["tet"].as_u64().unwrap() > 0, "{r}");
     let before = files(d);
     for (surface, says) in [
@@ -337,15 +343,7 @@ fn the_wing_of_a_2d_case_is_meshed_and_bad_wing_keys_are_refused() {
 #[test]
 fn the_wing_mixed_over_quads_has_corner_sj_above_0_2_at_tips_and_trailing_edge() {
     let tmp = tempfile::tempdir().unwrap();
-    let d = tmp.path();
-    let wing = case(
-        d,
-        "wing",
-        "wing = \"naca0012\"\nspan = 2.0\nfirst_height = 1e-3\ntriangles = false",
-        "first_height = 1e-3\ngrowth = 1.3\nmax_layers = 2",
-        "mixed",
-    );
-    let r = mesh_case(d, &wing, "wing", 2);
+    let r = mesh_wing(tmp.path(), "span = 2.0\ntriangles = false", 2, "mixed");
     let sj = &r["quality"]["min_corner_scaled_jacobian"];
     assert!(sj["value"].as_f64().unwrap() >= 0.2, "{sj}");
     for patch in ["wall", "tip-root", "tip-far"] {
