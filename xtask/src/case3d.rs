@@ -62,13 +62,16 @@ pub enum SurfaceSource {
         case: String,
         /// `span` (default 2, chords of the section).
         span: f64,
-        /// `first_height`: the surface's first height — the caps' own layers and the span
+        /// `first_height`: the surface's first height — the section's spacing at corners, the span
         /// grading from each tip — in place of the 2D case's `[layers] first_height` (the
         /// dissertation's "surface" height of tables 5–7; `None`: the 2D case's).
         first_height: Option<f64>,
         /// `triangles` (default true: the side's and caps' quads split, as the tetrahedral
         /// cut of the dissertation's wing takes them).
         triangles: bool,
+        /// `cap` (default `"fill"`: isotropic triangles; `"layers"`: the 2D mesher's layers
+        /// inside the section), [`crate::wing::CapMesh`].
+        cap: crate::wing::CapMesh,
     },
 }
 
@@ -110,6 +113,7 @@ struct SurfaceKeys {
     size: Option<f64>,
     divisions: Option<usize>,
     triangles: Option<bool>,
+    cap: Option<crate::wing::CapMesh>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -230,14 +234,15 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
             span,
             first_height,
             triangles,
+            cap: k.cap.unwrap_or_default(),
         });
     }
-    if k.span.is_some() || k.first_height.is_some() {
-        let key = if k.span.is_some() {
-            "span"
-        } else {
-            "first_height"
-        };
+    let wing_only = [
+        ("span", k.span.is_some()),
+        ("first_height", k.first_height.is_some()),
+        ("cap", k.cap.is_some()),
+    ];
+    if let Some((key, _)) = wing_only.iter().find(|(_, g)| *g) {
         bail!("{at}: {key} applies to a wing only");
     }
     let (source, allowed): (SurfaceSource, &[&str]) = match (&k.builtin, &k.file) {

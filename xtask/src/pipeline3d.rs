@@ -67,6 +67,7 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
             span,
             first_height,
             triangles,
+            cap,
         } => {
             let at = || format!("{}: [surface] wing = {section:?}", case.origin);
             let mut section_case = crate::case::load(section).with_context(at)?;
@@ -74,7 +75,8 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
                 section_case.layers.first_height = *h;
             }
             let (surface, shape) =
-                crate::wing::wing_surface(&section_case, *span, *triangles).with_context(at)?;
+                crate::wing::wing_surface_with(&section_case, *span, *triangles, *cap)
+                    .with_context(at)?;
             let projector = crate::wing::WingProjector {
                 surface: surface.clone(),
                 shape,

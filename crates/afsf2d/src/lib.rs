@@ -183,6 +183,28 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     })
 }
 
+/// A filled loop: its nodes and its triangles ([`fill_loop`]).
+pub type FilledLoop = (Vec<[f64; 2]>, Vec<[u32; 3]>);
+
+/// The inside of one closed loop of `points` (counter-clockwise, no two alike) filled with
+/// triangles by the mesher's fill, without layers: the constrained Delaunay triangulation of
+/// the loop's nodes refined toward `min_angle_deg` (the loop's edges never split), then
+/// improved by largest-angle flips and smoothing, as the region between the fronts is. The
+/// nodes are the loop's, first and at their coordinates, then the added ones; the triangles
+/// are counter-clockwise. An isotropic mesh graded by the loop's own spacing (the wing's tip
+/// caps).
+pub fn fill_loop(points: &[[f64; 2]], min_angle_deg: f64) -> Result<FilledLoop, AfsfError> {
+    let n = points.len() as u32;
+    if n < 3 {
+        return Err(AfsfError::Fill(format!(
+            "a loop of {n} points has no inside"
+        )));
+    }
+    let edges: Vec<(u32, u32)> = (0..n).map(|i| (i, (i + 1) % n)).collect();
+    let (tris, added) = fill::fill_region(&edges, &[], points, min_angle_deg)?;
+    Ok(([points, &added[..]].concat(), tris))
+}
+
 /// The narrowest gap that admits no good triangle across it: an error when the parameters
 /// refuse narrow gaps, else reported in the statistics.
 fn narrow_gap(
@@ -394,4 +416,36 @@ fn fill_tags(
         }
     }
     fill_tag
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_loop_is_filled_with_its_nodes_first_and_its_area_kept() {
+        // an ellipse 1 × 0.1 with 64 nodes: thin, as a wing section
+        let points: Vec<[f64; 2]> = (0..64)
+            .map(|i| {
+                let t = i as f64 / 64.0 * std::f64::consts::TAU;
+                [t.cos(), 0.1 * t.sin()]
+            })
+            .collect();
+        let (nodes, tris) = fill_loop(&points, 20.0).unwrap();
+        assert_eq!(&nodes[..64], &points[..]);
+        let area2 = |[a, b, c]: [u32; 3]| {
+            let (a, b, c) = (nodes[a as usize], nodes[b as usize], nodes[c as usize]);
+            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        };
+        assert!(tris.iter().all(|&t| area2(t) > 0.0));
+        let polygon: f64 = (0..64)
+            .map(|i| {
+                let (a, b) = (points[i], points[(i + 1) % 64]);
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum();
+        let filled: f64 = tris.iter().map(|&t| area2(t)).sum();
+        assert!((filled - polygon).abs() < 1e-12, "{filled} vs {polygon}");
+        assert!(fill_loop(&points[..2], 20.0).is_err());
+    }
 }
