@@ -13,6 +13,7 @@ use springfield::{
 use crate::check::{bad_cells, shrink_until_valid};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
+use crate::repair::{CUT_LIMIT, repair_layer};
 use crate::{GrowError, GrowStats, Grown3d, LayerParams};
 
 /// A cell that fails its check merges the children of its shortest edge when that edge is
@@ -89,6 +90,11 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             layer,
             &mut state.stats,
         )?;
+        // the few cells no cut can keep under the limit: their children moved (checked)
+        let r = repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+        if std::env::var_os("REPAIR_DEBUG").is_some() && r.bad_before > 0 {
+            eprintln!("layer {layer}: {r:?}");
+        }
         let merged = next.children.len() < front.nodes.len();
         state.push_layer(&topo, next, layer);
         if merged {

@@ -67,6 +67,7 @@ mod check;
 mod front;
 mod grow;
 mod layer;
+mod repair;
 
 pub use grow::grow_layers;
 
