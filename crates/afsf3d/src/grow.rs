@@ -91,10 +91,8 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             &mut state.stats,
         )?;
         // the few cells no cut can keep under the limit: their children moved (checked)
-        let r = repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
-        if std::env::var_os("REPAIR_DEBUG").is_some() && r.bad_before > 0 {
-            eprintln!("layer {layer}: {r:?}");
-        }
+        state.stats.repaired +=
+            repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
         let merged = next.children.len() < front.nodes.len();
         state.push_layer(&topo, next, layer);
         if merged {

@@ -175,6 +175,8 @@ pub struct GrowStats {
     pub converged: bool,
     /// Merged children (each merging two front nodes).
     pub merges: usize,
+    /// Children moved by the repair of cells without a good cone cut (`docs/3d.md`).
+    pub repaired: usize,
 }
 
 /// Grown layers.
