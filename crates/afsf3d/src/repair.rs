@@ -22,7 +22,7 @@ use mesh_model::measure3d::{corner_determinants, tet_dihedral_angles_deg};
 use mesh_model::{NONE, is_positive_tet};
 use rayon::prelude::*;
 
-use crate::check::layer_cell_ok;
+use crate::check::{cell_node, layer_cell_ok};
 use crate::layer::Layer;
 
 /// The quality given to a cut with an inverted or flat tetrahedron.
@@ -83,18 +83,14 @@ pub(crate) fn best_cone_cut(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3], e
     best
 }
 
-/// The worst best cone cut ([`best_cone_cut`]) of the cells of `layer` over `facets`
-/// (front nodes `front`).
+/// The best cone cut ([`best_cone_cut`]) of the cell of `layer` over `facet` (front nodes
+/// `front`).
 fn cell_cut(front: &[[f64; 3]], layer: &Layer, facet: &Facet, enough: f64) -> f64 {
-    let n = front.len() as u32;
-    let pos = |v: u32| {
-        if v < n {
-            front[v as usize]
-        } else {
-            layer.children[(v - n) as usize]
-        }
-    };
-    best_cone_cut(&layer.cell_faces(facet), pos, enough)
+    best_cone_cut(
+        &layer.cell_faces(facet),
+        |v| cell_node(front, layer, v),
+        enough,
+    )
 }
 
 /// The smallest edge-normalised corner scaled Jacobian of the cells of `layer` over
@@ -363,15 +359,14 @@ mod tests {
 
     #[test]
     fn the_best_cone_cut_of_a_right_prism_is_that_of_its_best_apex() {
-        // a unit right prism over a right triangle: the cut through the right-angle corner
-        let nodes = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 0.0, 1.0],
-            [0.0, 1.0, 1.0],
-        ];
+        // a right prism over a right isosceles triangle, as high as its legs: the cut
+        // through the right-angle corner
+        let nodes: Vec<[f64; 3]> = (0..6)
+            .map(|i| {
+                let (x, y) = [(0.0, 0.0), (2.0, 0.0), (0.0, 2.0)][i % 3];
+                [x, y, if i < 3 { 0.0 } else { 2.0 }]
+            })
+            .collect();
         let faces = vec![
             vec![0, 2, 1],
             vec![3, 4, 5],
