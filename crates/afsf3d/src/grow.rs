@@ -90,9 +90,13 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             layer,
             &mut state.stats,
         )?;
-        // the few cells no cut can keep under the limit: their children moved (checked)
-        state.stats.repaired +=
-            repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+        // the few cells no cut can keep under the limit: their children moved (checked); not
+        // in the first layer, whose children stand on the wall's normals at its first height
+        // (moved there, the wing's thin tip-cap cells made the second layer fail)
+        if layer > 0 {
+            state.stats.repaired +=
+                repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+        }
         let merged = next.children.len() < front.nodes.len();
         state.push_layer(&topo, next, layer);
         if merged {
