@@ -494,23 +494,7 @@ fn front_volume(msh: &Path) -> f64 {
 #[test]
 fn the_built_in_wing_cut_into_tets_stays_under_160_degrees() {
     let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    let o = run(
-        d,
-        &[
-            "wing",
-            "--out",
-            "wing.msh",
-            "--report",
-            "wing.json",
-            "--quiet",
-        ],
-    );
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(d.join("wing.json")).unwrap()).unwrap();
-    assert_eq!(r["layers"], 45, "{r}");
-    assert_eq!(r["coverage"], 1.0, "{r}");
+    let r = mesh_case(dir.path(), "wing", "wing", 45);
     let max = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
     assert!(max <= 160.0, "max dihedral {max}");
 }
