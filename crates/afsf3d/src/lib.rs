@@ -36,11 +36,11 @@
 //! the check repeated, at most [`LayerParams::max_shrinks`] times; then the growth fails
 //! with the layer and wall facet.
 //!
-//! Then, from the second layer on, where a cell over a front triangle has no cone cut (any apex, any diagonals) with
-//! every tetrahedron under 140° — a cap on its top, one child almost on the line of two
-//! others — its children are moved by a small checked search to improve the cells' best
-//! cuts (`repair`, counted in [`GrowStats::repaired`]; `docs/3d.md`). Layers without such a
-//! cell are left to the bit.
+//! Then, from the second layer on, where a cell over a front triangle has no cone cut (any
+//! apex, any diagonals) with every tetrahedron under 140° — a cap on its top, one child
+//! almost on the line of two others — its children are moved by a small checked search to
+//! improve the cells' best cuts (`repair`, counted in [`GrowStats::repaired`];
+//! `docs/3d.md`). Layers without such a cell are left to the bit.
 //!
 //! The result ([`Grown3d`]) is a [`PolyMesh`] of the raw layer cells with `cell_layer` and
 //! `cell_pipe` (the wall facet each cell descends from), the column of every wall node (its
