@@ -24,21 +24,24 @@ fn corners_ok(
     })
 }
 
+/// The position of node `v` of [`Layer::cell_faces`]: front node `v`, or child `v - n` of
+/// `layer` (`n` front nodes).
+pub(crate) fn cell_node(front: &[[f64; 3]], layer: &Layer, v: u32) -> [f64; 3] {
+    let n = front.len() as u32;
+    if v < n {
+        front[v as usize]
+    } else {
+        layer.children[(v - n) as usize]
+    }
+}
+
 /// Whether the cell of `layer` over the front facet `facet` is valid: [`corners_ok`] when its
 /// top keeps every node, strictly convex (every cut of `topo-cut` positive) when children
 /// of it merged.
 pub(crate) fn layer_cell_ok(front: &[[f64; 3]], layer: &Layer, facet: &Facet) -> bool {
     let k = facet.nodes();
     if layer.is_merged(facet) {
-        let n = front.len() as u32;
-        let pos = |v: u32| {
-            if v < n {
-                front[v as usize]
-            } else {
-                layer.children[(v - n) as usize]
-            }
-        };
-        strictly_convex(&layer.cell_faces(facet), pos)
+        strictly_convex(&layer.cell_faces(facet), |v| cell_node(front, layer, v))
     } else {
         let up = |i: usize| layer.children[layer.child[k[i] as usize] as usize];
         corners_ok(|i| front[k[i] as usize], up, k.len())

@@ -13,6 +13,7 @@ use springfield::{
 use crate::check::{bad_cells, shrink_until_valid};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
+use crate::repair::{CUT_LIMIT, repair_layer};
 use crate::squeeze::squeezed_layer;
 use crate::{GrowError, GrowStats, Grown3d, LayerParams};
 
@@ -96,6 +97,13 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             layer,
             &mut state.stats,
         )?;
+        // the few cells no cut can keep under the limit: their children moved (checked); not
+        // in the first layer, whose children stand on the wall's normals at its first height
+        // (moved there, the wing's thin tip-cap cells made the second layer fail)
+        if layer > 0 {
+            state.stats.repaired +=
+                repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+        }
         let merged = next.children.len() < front.nodes.len();
         state.push_layer(&topo, next, layer);
         if merged {

@@ -36,6 +36,12 @@
 //! the check repeated, at most [`LayerParams::max_shrinks`] times; then the growth fails
 //! with the layer and wall facet.
 //!
+//! Then, from the second layer on, where a cell over a front triangle has no cone cut (any
+//! apex, any diagonals) with every tetrahedron under 140° — a cap on its top, one child
+//! almost on the line of two others — its children are moved by a small checked search to
+//! improve the cells' best cuts (`repair`, counted in [`GrowStats::repaired`];
+//! `docs/3d.md`). Layers without such a cell are left to the bit.
+//!
 //! The result ([`Grown3d`]) is a [`PolyMesh`] of the raw layer cells with `cell_layer` and
 //! `cell_pipe` (the wall facet each cell descends from), the column of every wall node (its
 //! node and its children, bottom-up; a merged child is in the columns of both its parents),
@@ -67,6 +73,7 @@ mod check;
 mod front;
 mod grow;
 mod layer;
+mod repair;
 mod squeeze;
 
 pub use grow::grow_layers;
@@ -182,6 +189,8 @@ pub struct GrowStats {
     pub converged: bool,
     /// Merged children (each merging two front nodes).
     pub merges: usize,
+    /// Children moved by the repair of cells without a good cone cut (`docs/3d.md`).
+    pub repaired: usize,
 }
 
 /// Grown layers.
