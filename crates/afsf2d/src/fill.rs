@@ -254,7 +254,10 @@ fn flip_min_max_angle(
         crate::quality::max_triangle_angle_deg(a, b, c)
     };
     // each triangle's figure, kept up to date through the flips (the nodes do not move here)
-    let mut figure: Vec<f64> = tris.iter().map(|&t| worst(t)).collect();
+    let mut figure: Vec<f64> = {
+        use rayon::prelude::*;
+        tris.par_iter().map(|&t| worst(t)).collect()
+    };
     // `kept[3 t + c]`: the other triangle of the edge opposite corner `c` of `t` when that pair
     // was tried in the last sweep and not flipped; a pair tried again unchanged (neither
     // triangle flipped since) would again not flip, so it is skipped
@@ -327,18 +330,22 @@ struct Owners {
 
 impl Owners {
     fn new(tris: &[[u32; 3]]) -> Self {
-        let mut owner: Vec<((u32, u32), (usize, usize))> = tris
-            .iter()
+        use rayon::prelude::*;
+        // (edge, position 3 t + i): the keys are distinct, so the unstable (parallel) sort
+        // orders equal edges by position, as a stable sort by edge alone would
+        let mut owner: Vec<(u32, u32, u32)> = tris
+            .par_iter()
             .enumerate()
-            .flat_map(|(t, tri)| {
-                (0..3).map(move |i| ((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3)))
+            .flat_map_iter(|(t, tri)| {
+                (0..3).map(move |i| (tri[i], tri[(i + 1) % 3], (3 * t + i) as u32))
             })
             .collect();
-        // stable: among equal edges the last one written stays last, and is the one kept
-        owner.sort_by_key(|&(k, _)| k);
+        owner.par_sort_unstable();
         let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::with_capacity(owner.len());
-        for o in owner {
+        for (a, b, at) in owner {
+            let o = ((a, b), (at as usize / 3, (at as usize % 3 + 2) % 3));
             match kept.last_mut() {
+                // among equal edges the last position is kept
                 Some(last) if last.0 == o.0 => *last = o,
                 _ => kept.push(o),
             }
