@@ -393,20 +393,30 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
         let g = (n0 + s) as u32;
         tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) })
     };
-    // the largest angle of node `s`'s triangles with `s` at `p` (infinite when one is not
-    // positive)
-    let worst = |s: usize, p: P2, steiner: &[P2]| -> f64 {
+    // the largest angle of each triangle where its corners are (infinite when it is not
+    // positive), kept until one of its corners moves: `None` when not measured since
+    let mut figure: Vec<Option<f64>> = vec![None; tris.len()];
+    // the largest angle of node `s`'s triangles where they are (infinite when one is not
+    // positive), from the kept figures
+    let worst = |s: usize, steiner: &[P2], figure: &mut [Option<f64>]| -> f64 {
         let mut w = 0.0f64;
         for &t in &incident[s] {
-            let c = corners(s, t, p, steiner);
-            if orient2d(c[0], c[1], c[2]) <= 0.0 {
+            let f = *figure[t as usize].get_or_insert_with(|| {
+                let c = tris[t as usize].map(|v| at(v, steiner));
+                if orient2d(c[0], c[1], c[2]) <= 0.0 {
+                    f64::INFINITY
+                } else {
+                    crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
+                }
+            });
+            if f == f64::INFINITY {
                 return f64::INFINITY;
             }
-            w = w.max(crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]));
+            w = w.max(f);
         }
         w
     };
-    // exactly `worst(s, p, steiner) < before`, the angles mostly compared by their cosines
+    // exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles mostly compared by their cosines
     let improves = |s: usize, p: P2, steiner: &[P2], before: f64| -> bool {
         let limit = crate::quality::AngleLimit::new(before);
         for &t in &incident[s] {
@@ -457,7 +467,7 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
             }
             let old = steiner[s];
             let centroid = [sx / k, sy / k];
-            let before = worst(s, old, steiner);
+            let before = worst(s, steiner, &mut figure);
             settled[s] = moves + 1;
             for f in [1.0, 0.5, 0.25] {
                 let p = [
@@ -466,6 +476,9 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
                 ];
                 if improves(s, p, steiner, before) {
                     steiner[s] = p;
+                    for &t in &incident[s] {
+                        figure[t as usize] = None;
+                    }
                     moves += 1;
                     moved[s] = moves;
                     settled[s] = 0;
