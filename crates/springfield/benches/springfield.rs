@@ -33,7 +33,11 @@ fn ring() -> (Vec<[f64; 2]>, Vec<bool>, Vec<f64>, SpringSet2d) {
         for i in 0..N {
             let t = -std::f64::consts::TAU * i as f64 / N as f64;
             let r = 1.0 + h;
-            let (dx, dy) = if k == 0 { (0.0, 0.0) } else { (noise(), noise()) };
+            let (dx, dy) = if k == 0 {
+                (0.0, 0.0)
+            } else {
+                (noise(), noise())
+            };
             pos.push([r * t.cos() + dx, r * t.sin() + dy]);
         }
     }

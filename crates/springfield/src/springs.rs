@@ -203,7 +203,11 @@ fn extrusion_into<const D: usize>(
     let k = params.k_extrusion / s.ideal_length;
     let (a_up, a_lo) = (f / len, -s.lower_share * f / len);
     add(s.upper, std::array::from_fn(|i| a_up * v[i]), k);
-    add(s.lower, std::array::from_fn(|i| a_lo * v[i]), s.lower_share * k);
+    add(
+        s.lower,
+        std::array::from_fn(|i| a_lo * v[i]),
+        s.lower_share * k,
+    );
 }
 
 impl<const D: usize> Spring<D> for ExtrusionSpring {
@@ -491,9 +495,15 @@ pub fn assemble_2d_active(
             .map(|nodes| {
                 let mut out = Vec::with_capacity(4 * nodes.len());
                 for &node in nodes {
-                    springs_of_node(set, index, params, positions, flags, node, &mut |n, f, k| {
-                        out.push((n, f, k))
-                    });
+                    springs_of_node(
+                        set,
+                        index,
+                        params,
+                        positions,
+                        flags,
+                        node,
+                        &mut |n, f, k| out.push((n, f, k)),
+                    );
                 }
                 out
             })
@@ -504,9 +514,15 @@ pub fn assemble_2d_active(
         return;
     }
     for &node in active.nodes {
-        springs_of_node(set, index, params, positions, flags, node, &mut |n, f, k| {
-            add_to(force, stiffness, n, f, k)
-        });
+        springs_of_node(
+            set,
+            index,
+            params,
+            positions,
+            flags,
+            node,
+            &mut |n, f, k| add_to(force, stiffness, n, f, k),
+        );
     }
 }
 
