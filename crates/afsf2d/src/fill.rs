@@ -331,8 +331,9 @@ struct Owners {
 impl Owners {
     fn new(tris: &[[u32; 3]]) -> Self {
         use rayon::prelude::*;
-        // (edge, position 3 t + i): the keys are distinct, so the unstable (parallel) sort
-        // orders equal edges by position, as a stable sort by edge alone would
+        // (edge, position 3 t + i): the keys are distinct, so sorting them orders equal edges
+        // by position, as a stable sort by edge alone did (the parallel merge sort, like the
+        // sequential one, runs in near-linear time over the runs of a triangulation's edges)
         let mut owner: Vec<(u32, u32, u32)> = tris
             .par_iter()
             .enumerate()
@@ -340,7 +341,7 @@ impl Owners {
                 (0..3).map(move |i| (tri[i], tri[(i + 1) % 3], (3 * t + i) as u32))
             })
             .collect();
-        owner.par_sort_unstable();
+        owner.par_sort();
         let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::with_capacity(owner.len());
         for (a, b, at) in owner {
             let o = ((a, b), (at as usize / 3, (at as usize % 3 + 2) % 3));
@@ -789,6 +790,39 @@ mod tests {
             }
         }
         directed
+    }
+
+    /// The edge owners by the parallel sort on (edge, position) are those of a stable sort by
+    /// edge, where a directed edge met twice keeps its last triangle.
+    #[test]
+    fn the_edge_owners_are_those_of_a_stable_sort() {
+        let mut seed = 5u64;
+        let mut node = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) % 40) as u32
+        };
+        // random triangles over few nodes: many directed edges are met twice or more
+        let tris: Vec<[u32; 3]> = (0..3000).map(|_| [node(), node(), node()]).collect();
+        let mut owner: Vec<((u32, u32), (usize, usize))> = tris
+            .iter()
+            .enumerate()
+            .flat_map(|(t, tri)| {
+                (0..3).map(move |i| ((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3)))
+            })
+            .collect();
+        owner.sort_by_key(|&(k, _)| k);
+        let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::new();
+        for o in owner {
+            match kept.last_mut() {
+                Some(last) if last.0 == o.0 => *last = o,
+                _ => kept.push(o),
+            }
+        }
+        let owners = Owners::new(&tris);
+        assert!(!owners.unique);
+        assert_eq!(owners.by_edge, kept);
     }
 
     #[test]

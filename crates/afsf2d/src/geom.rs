@@ -22,6 +22,11 @@ pub(crate) fn par_overlapping<T: Send>(
     boxes: &[Aabb],
     visit: impl Fn(usize, usize, &mut Vec<T>) + Sync,
 ) -> Vec<T> {
+    if rayon::current_num_threads() == 1 {
+        let mut out = Vec::new();
+        geom_predicates::for_each_overlapping_pair(boxes, |i, j| visit(i, j, &mut out));
+        return out;
+    }
     let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
     order.par_sort_by(|&a, &b| boxes[a as usize].lo[0].total_cmp(&boxes[b as usize].lo[0]));
     let sorted: Vec<Aabb> = order.par_iter().map(|&i| boxes[i as usize]).collect();
@@ -47,4 +52,46 @@ pub(crate) fn par_overlapping<T: Send>(
         })
         .collect();
     found.into_iter().flatten().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The parallel sweep finds the pairs of the sequential one, in its order, with one
+    /// thread and with several.
+    #[test]
+    fn the_parallel_sweep_finds_the_sequential_pairs_in_order() {
+        let mut seed = 99u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        // many boxes, some with equal low x (ties keep the input order)
+        let boxes: Vec<Aabb> = (0..3 * SWEEP_CHUNK)
+            .map(|i| {
+                let x = if i % 7 == 0 { 0.5 } else { next() };
+                let p = [x, next()];
+                let q = [x + 0.01 * next(), p[1] + 0.01 * next()];
+                Aabb::of_segment(p, q, 0.001)
+            })
+            .collect();
+        let mut expected = Vec::new();
+        geom_predicates::for_each_overlapping_pair(&boxes, |i, j| expected.push((i, j)));
+        assert!(expected.len() > 1000);
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let found = pool.install(|| {
+                par_overlapping(&boxes, |i, j, out: &mut Vec<(usize, usize)>| {
+                    out.push((i, j))
+                })
+            });
+            assert_eq!(found, expected, "{threads} threads");
+        }
+    }
 }

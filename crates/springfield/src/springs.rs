@@ -150,21 +150,8 @@ fn extrusion_masked<const D: usize>(
         {
             continue;
         }
-        extrusion_one(s, params, positions, force, stiffness);
+        extrusion_into(s, params, positions, &mut direct(force, stiffness));
     }
-}
-
-#[inline(always)]
-fn extrusion_one<const D: usize>(
-    s: &ExtrusionSpring,
-    params: &SpringParams,
-    positions: &[[f64; D]],
-    force: &mut [[f64; D]],
-    stiffness: &mut [f64],
-) {
-    extrusion_into(s, params, positions, &mut |node, f, k| {
-        add_to(force, stiffness, node, f, k)
-    });
 }
 
 /// Adds one contribution (force `f`, stiffness `k`) to node `node`: `force += f` component by
@@ -182,6 +169,15 @@ fn add_to<const D: usize>(
         fo[i] += f[i];
     }
     stiffness[node as usize] += k;
+}
+
+/// The sink that adds each contribution straight into `force` and `stiffness`.
+#[inline(always)]
+fn direct<'a, const D: usize>(
+    force: &'a mut [[f64; D]],
+    stiffness: &'a mut [f64],
+) -> impl FnMut(u32, [f64; D], f64) + 'a {
+    move |node, f, k| add_to(force, stiffness, node, f, k)
 }
 
 /// The contributions of one extrusion spring, handed to `add` (node, force, stiffness) in
@@ -226,7 +222,7 @@ impl<const D: usize> Spring<D> for ExtrusionSpring {
         force: &mut [[f64; D]],
         stiffness: &mut [f64],
     ) {
-        extrusion_one(self, params, positions, force, stiffness);
+        extrusion_into(self, params, positions, &mut direct(force, stiffness));
     }
 
     /// Closed form: with v = X_upper − X_lower, l = |v| and L the ideal length, the force on
@@ -288,14 +284,14 @@ macro_rules! spring_2d {
                 force: &mut [[f64; 2]],
                 stiffness: &mut [f64],
             ) {
-                $force(self, params, positions, force, stiffness);
+                $force(self, params, positions, &mut direct(force, stiffness));
             }
         }
     };
 }
 
-spring_2d!(NeighbourSpring, neighbour_one, reads: [left, centre, right, parent], pushes: [centre]);
-spring_2d!(AngleSpring, angle_one, reads: [left, centre, right, child], pushes: [child, centre]);
+spring_2d!(NeighbourSpring, neighbour_into, reads: [left, centre, right, parent], pushes: [centre]);
+spring_2d!(AngleSpring, angle_into, reads: [left, centre, right, child], pushes: [child, centre]);
 
 /// The 2D spring set bound to its coefficients and per-node index: the [`ForceModel`] of the
 /// 2D mesher. Its active assembly is [`assemble_2d_active`].
@@ -416,10 +412,10 @@ pub fn assemble_2d(
 ) {
     extrusion_masked(&set.extrusion, params, positions, None, force, stiffness);
     for s in &set.neighbour {
-        neighbour_one(s, params, positions, force, stiffness);
+        neighbour_into(s, params, positions, &mut direct(force, stiffness));
     }
     for s in &set.angle {
-        angle_one(s, params, positions, force, stiffness);
+        angle_into(s, params, positions, &mut direct(force, stiffness));
     }
 }
 
@@ -483,7 +479,13 @@ pub fn assemble_2d_active(
     force: &mut [[f64; 2]],
     stiffness: &mut [f64],
 ) {
-    let flags = active.flags;
+    let eval = ActiveEval {
+        set,
+        index,
+        params,
+        positions,
+        flags: active.flags,
+    };
     if active.nodes.len() >= PARALLEL_MIN_NODES && rayon::current_num_threads() > 1 {
         // the springs are evaluated on every thread, each chunk of active nodes recording its
         // contributions in order; they are then summed in that order, the sequential one, so
@@ -494,35 +496,15 @@ pub fn assemble_2d_active(
             .par_chunks(PARALLEL_CHUNK)
             .map(|nodes| {
                 let mut out = Vec::with_capacity(4 * nodes.len());
-                for &node in nodes {
-                    springs_of_node(
-                        set,
-                        index,
-                        params,
-                        positions,
-                        flags,
-                        node,
-                        &mut |n, f, k| out.push((n, f, k)),
-                    );
-                }
+                eval.springs_of(nodes, &mut |n, f, k| out.push((n, f, k)));
                 out
             })
             .collect();
         for &(n, f, k) in parts.iter().flatten() {
             add_to(force, stiffness, n, f, k);
         }
-        return;
-    }
-    for &node in active.nodes {
-        springs_of_node(
-            set,
-            index,
-            params,
-            positions,
-            flags,
-            node,
-            &mut |n, f, k| add_to(force, stiffness, n, f, k),
-        );
+    } else {
+        eval.springs_of(active.nodes, &mut direct(force, stiffness));
     }
 }
 
@@ -531,53 +513,47 @@ const PARALLEL_MIN_NODES: usize = 4096;
 /// Active nodes per parallel task of [`assemble_2d_active`].
 const PARALLEL_CHUNK: usize = 1024;
 
-/// The contributions of the springs that active node `node` evaluates (those pushing it that
-/// no other active node evaluates first), handed to `add` in order.
-#[inline(always)]
-fn springs_of_node(
-    set: &SpringSet2d,
-    index: &SpringIndex2d,
-    params: &SpringParams,
-    positions: &[[f64; 2]],
-    flags: &[bool],
-    node: u32,
-    add: &mut impl FnMut(u32, [f64; 2], f64),
-) {
-    let n = node as usize;
-    let range = index.offsets[n] as usize..index.offsets[n + 1] as usize;
-    for &id in &index.springs[range] {
-        let i = (id & INDEX_MASK) as usize;
-        match id >> KIND_SHIFT {
-            0 => {
-                // pushed both ways: evaluated from the upper node when it is active
-                let s = &set.extrusion[i];
-                if s.upper == node || !flags[s.upper as usize] {
-                    extrusion_into(s, params, positions, add);
-                }
-            }
-            1 => neighbour_into(&set.neighbour[i], params, positions, add),
-            _ => {
-                // pushes child and centre: evaluated from the child when it is active
-                let s = &set.angle[i];
-                if s.child == node || !flags[s.child as usize] {
-                    angle_into(s, params, positions, add);
+/// What the active assembly reads: the springs, their index, coefficients, positions and the
+/// active flags.
+struct ActiveEval<'a> {
+    set: &'a SpringSet2d,
+    index: &'a SpringIndex2d,
+    params: &'a SpringParams,
+    positions: &'a [[f64; 2]],
+    flags: &'a [bool],
+}
+
+impl ActiveEval<'_> {
+    /// The contributions of the springs that the active `nodes` evaluate (for each node, those
+    /// pushing it that no other active node evaluates first), handed to `add` in order.
+    #[inline(always)]
+    fn springs_of(&self, nodes: &[u32], add: &mut impl FnMut(u32, [f64; 2], f64)) {
+        let (set, params, positions, flags) = (self.set, self.params, self.positions, self.flags);
+        for &node in nodes {
+            let n = node as usize;
+            let range = self.index.offsets[n] as usize..self.index.offsets[n + 1] as usize;
+            for &id in &self.index.springs[range] {
+                let i = (id & INDEX_MASK) as usize;
+                match id >> KIND_SHIFT {
+                    0 => {
+                        // pushed both ways: evaluated from the upper node when it is active
+                        let s = &set.extrusion[i];
+                        if s.upper == node || !flags[s.upper as usize] {
+                            extrusion_into(s, params, positions, add);
+                        }
+                    }
+                    1 => neighbour_into(&set.neighbour[i], params, positions, add),
+                    _ => {
+                        // pushes child and centre: evaluated from the child when it is active
+                        let s = &set.angle[i];
+                        if s.child == node || !flags[s.child as usize] {
+                            angle_into(s, params, positions, add);
+                        }
+                    }
                 }
             }
         }
     }
-}
-
-#[inline(always)]
-fn neighbour_one(
-    s: &NeighbourSpring,
-    params: &SpringParams,
-    positions: &[[f64; 2]],
-    force: &mut [[f64; 2]],
-    stiffness: &mut [f64],
-) {
-    neighbour_into(s, params, positions, &mut |node, f, k| {
-        add_to(force, stiffness, node, f, k)
-    });
 }
 
 /// The contribution of one neighbour spring (to its centre), handed to `add`.
@@ -617,19 +593,6 @@ fn neighbour_into(
         [f * t[0], f * t[1]],
         params.k_neighbour * boost * 2.0 / (la + lb),
     );
-}
-
-#[inline(always)]
-fn angle_one(
-    s: &AngleSpring,
-    params: &SpringParams,
-    positions: &[[f64; 2]],
-    force: &mut [[f64; 2]],
-    stiffness: &mut [f64],
-) {
-    angle_into(s, params, positions, &mut |node, f, k| {
-        add_to(force, stiffness, node, f, k)
-    });
 }
 
 /// The contributions of one angle spring, handed to `add`: its child, then its centre.
@@ -845,6 +808,84 @@ pub(crate) mod tests {
             }
         }
         (x, set)
+    }
+
+    /// The active assembly on several threads adds the same contributions in the same order
+    /// as on one: the forces and stiffnesses agree to the last bit, those of inactive nodes
+    /// (partial sums) too.
+    #[test]
+    fn the_parallel_active_assembly_is_bitwise_the_sequential_one() {
+        let (cols, layers) = (5000u32, 4u32);
+        let at = |k: u32, i: u32| k * cols + i;
+        let mut seed = 3u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let x: Vec<[f64; 2]> = (0..layers * cols)
+            .map(|g| {
+                let (k, i) = (g / cols, g % cols);
+                [i as f64 + 0.2 * next(), k as f64 * 0.3 + 0.1 * next()]
+            })
+            .collect();
+        let mut set = SpringSet2d::default();
+        for k in 1..layers {
+            for i in 1..cols - 1 {
+                let (child, parent) = (at(k, i), at(k - 1, i));
+                set.extrusion.push(ExtrusionSpring {
+                    lower: parent,
+                    upper: child,
+                    ideal_length: 0.3,
+                    lower_share: 0.8,
+                });
+                set.neighbour.push(NeighbourSpring {
+                    left: child - 1,
+                    centre: child,
+                    right: child + 1,
+                    parent,
+                    left_share: 0.4 + 0.2 * next(),
+                });
+                set.angle.push(AngleSpring {
+                    left: parent - 1,
+                    centre: parent,
+                    right: parent + 1,
+                    child,
+                    offset_rad: if i % 5 == 0 { 0.1 } else { 0.0 },
+                    ideal_length: 0.2,
+                });
+            }
+        }
+        let n = x.len();
+        let flags: Vec<bool> = (0..n).map(|g| g >= cols as usize && next() < 0.7).collect();
+        // the active nodes in a scrambled order, as the solver's active set gives them
+        let mut nodes: Vec<u32> = (0..n as u32).filter(|&g| flags[g as usize]).collect();
+        nodes.sort_by_key(|&g| (g.wrapping_mul(2654435761) >> 7, g));
+        assert!(nodes.len() > 2 * PARALLEL_MIN_NODES);
+        let index = set.index(n);
+        let params = SpringParams::default();
+        let assemble = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let (mut f, mut s) = (vec![[0.0; 2]; n], vec![0.0; n]);
+            let active = crate::Active {
+                flags: &flags,
+                nodes: &nodes,
+            };
+            pool.install(|| assemble_2d_active(&set, &index, &params, &x, active, &mut f, &mut s));
+            let bits = |v: f64| v.to_bits();
+            let f: Vec<[u64; 2]> = f.iter().map(|p| [bits(p[0]), bits(p[1])]).collect();
+            let s: Vec<u64> = s.iter().map(|&v| bits(v)).collect();
+            (f, s)
+        };
+        let one = assemble(1);
+        assert!(one.1.iter().any(|&b| b != 0));
+        for threads in [2, 3] {
+            assert!(assemble(threads) == one, "{threads} threads");
+        }
     }
 
     #[test]
