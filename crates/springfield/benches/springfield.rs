@@ -43,12 +43,12 @@ fn ring() -> (Vec<[f64; 2]>, Vec<bool>, Vec<f64>, SpringSet2d) {
     }
     let at = |k: usize, i: usize| (k * N + i % N) as u32;
     let mut set = SpringSet2d::default();
-    for k in 1..3 {
+    for (k, &ideal_k) in ideal.iter().enumerate().skip(1) {
         for i in 0..N {
             set.extrusion.push(ExtrusionSpring {
                 lower: at(k - 1, i),
                 upper: at(k, i),
-                ideal_length: ideal[k],
+                ideal_length: ideal_k,
                 lower_share: 1.0 / 1.3,
             });
             set.neighbour.push(NeighbourSpring {
@@ -64,7 +64,7 @@ fn ring() -> (Vec<[f64; 2]>, Vec<bool>, Vec<f64>, SpringSet2d) {
                 right: at(k - 1, i + 1),
                 child: at(k, i),
                 offset_rad: 0.0,
-                ideal_length: ideal[k],
+                ideal_length: ideal_k,
             });
         }
     }
