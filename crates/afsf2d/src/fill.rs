@@ -796,13 +796,8 @@ mod tests {
     /// edge, where a directed edge met twice keeps its last triangle.
     #[test]
     fn the_edge_owners_are_those_of_a_stable_sort() {
-        let mut seed = 5u64;
-        let mut node = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) % 40) as u32
-        };
+        let mut rng = testkit::layered::Rng(5);
+        let mut node = || rng.below(40) as u32;
         // random triangles over few nodes: many directed edges are met twice or more
         let tris: Vec<[u32; 3]> = (0..3000).map(|_| [node(), node(), node()]).collect();
         let mut owner: Vec<((u32, u32), (usize, usize))> = tris

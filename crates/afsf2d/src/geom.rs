@@ -62,13 +62,8 @@ mod tests {
     /// thread and with several.
     #[test]
     fn the_parallel_sweep_finds_the_sequential_pairs_in_order() {
-        let mut seed = 99u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = testkit::layered::Rng(99);
+        let mut next = || rng.unit();
         // many boxes, some with equal low x (ties keep the input order)
         let boxes: Vec<Aabb> = (0..3 * SWEEP_CHUNK)
             .map(|i| {
