@@ -60,39 +60,18 @@ impl Influence {
             rows[fill[on as usize] as usize] = pushed;
             fill[on as usize] += 1;
         }
-        // each row sorted and deduplicated in place (on every thread: rows are disjoint),
-        // then the rows packed in order
-        let mut slices: Vec<&mut [u32]> = Vec::with_capacity(n);
-        let mut rest = &mut rows[..];
-        for i in 0..n {
-            let (row, tail) = rest.split_at_mut((start[i + 1] - start[i]) as usize);
-            slices.push(row);
-            rest = tail;
-        }
-        let lens: Vec<u32> = {
-            use rayon::prelude::*;
-            slices
-                .par_iter_mut()
-                .with_min_len(1024)
-                .map(|row| {
-                    row.sort_unstable();
-                    let mut kept = 0;
-                    for k in 0..row.len() {
-                        if kept == 0 || row[kept - 1] != row[k] {
-                            row[kept] = row[k];
-                            kept += 1;
-                        }
-                    }
-                    kept as u32
-                })
-                .collect()
-        };
         let mut offsets = Vec::with_capacity(n + 1);
         offsets.push(0u32);
         let mut targets: Vec<u32> = Vec::with_capacity(rows.len());
-        for (i, &len) in lens.iter().enumerate() {
-            let row = start[i] as usize;
-            targets.extend_from_slice(&rows[row..row + len as usize]);
+        for i in 0..n {
+            let row = &mut rows[start[i] as usize..start[i + 1] as usize];
+            row.sort_unstable();
+            let first = targets.len();
+            for &t in row.iter() {
+                if targets.len() == first || targets[targets.len() - 1] != t {
+                    targets.push(t);
+                }
+            }
             offsets.push(targets.len() as u32);
         }
         Influence { offsets, targets }

@@ -486,32 +486,8 @@ pub fn assemble_2d_active(
         positions,
         flags: active.flags,
     };
-    if active.nodes.len() >= PARALLEL_MIN_NODES && rayon::current_num_threads() > 1 {
-        // the springs are evaluated on every thread, each chunk of active nodes recording its
-        // contributions in order; they are then summed in that order, the sequential one, so
-        // the sums are the same to the last bit whatever the number of threads
-        use rayon::prelude::*;
-        let parts: Vec<Vec<(u32, [f64; 2], f64)>> = active
-            .nodes
-            .par_chunks(PARALLEL_CHUNK)
-            .map(|nodes| {
-                let mut out = Vec::with_capacity(4 * nodes.len());
-                eval.springs_of(nodes, &mut |n, f, k| out.push((n, f, k)));
-                out
-            })
-            .collect();
-        for &(n, f, k) in parts.iter().flatten() {
-            add_to(force, stiffness, n, f, k);
-        }
-    } else {
-        eval.springs_of(active.nodes, &mut direct(force, stiffness));
-    }
+    eval.springs_of(active.nodes, &mut direct(force, stiffness));
 }
-
-/// Active nodes from which [`assemble_2d_active`] works on every thread.
-const PARALLEL_MIN_NODES: usize = 4096;
-/// Active nodes per parallel task of [`assemble_2d_active`].
-const PARALLEL_CHUNK: usize = 1024;
 
 /// What the active assembly reads: the springs, their index, coefficients, positions and the
 /// active flags.
@@ -808,84 +784,6 @@ pub(crate) mod tests {
             }
         }
         (x, set)
-    }
-
-    /// The active assembly on several threads adds the same contributions in the same order
-    /// as on one: the forces and stiffnesses agree to the last bit, those of inactive nodes
-    /// (partial sums) too.
-    #[test]
-    fn the_parallel_active_assembly_is_bitwise_the_sequential_one() {
-        let (cols, layers) = (5000u32, 4u32);
-        let at = |k: u32, i: u32| k * cols + i;
-        let mut seed = 3u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let x: Vec<[f64; 2]> = (0..layers * cols)
-            .map(|g| {
-                let (k, i) = (g / cols, g % cols);
-                [i as f64 + 0.2 * next(), k as f64 * 0.3 + 0.1 * next()]
-            })
-            .collect();
-        let mut set = SpringSet2d::default();
-        for k in 1..layers {
-            for i in 1..cols - 1 {
-                let (child, parent) = (at(k, i), at(k - 1, i));
-                set.extrusion.push(ExtrusionSpring {
-                    lower: parent,
-                    upper: child,
-                    ideal_length: 0.3,
-                    lower_share: 0.8,
-                });
-                set.neighbour.push(NeighbourSpring {
-                    left: child - 1,
-                    centre: child,
-                    right: child + 1,
-                    parent,
-                    left_share: 0.4 + 0.2 * next(),
-                });
-                set.angle.push(AngleSpring {
-                    left: parent - 1,
-                    centre: parent,
-                    right: parent + 1,
-                    child,
-                    offset_rad: if i % 5 == 0 { 0.1 } else { 0.0 },
-                    ideal_length: 0.2,
-                });
-            }
-        }
-        let n = x.len();
-        let flags: Vec<bool> = (0..n).map(|g| g >= cols as usize && next() < 0.7).collect();
-        // the active nodes in a scrambled order, as the solver's active set gives them
-        let mut nodes: Vec<u32> = (0..n as u32).filter(|&g| flags[g as usize]).collect();
-        nodes.sort_by_key(|&g| (g.wrapping_mul(2654435761) >> 7, g));
-        assert!(nodes.len() > 2 * PARALLEL_MIN_NODES);
-        let index = set.index(n);
-        let params = SpringParams::default();
-        let assemble = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let (mut f, mut s) = (vec![[0.0; 2]; n], vec![0.0; n]);
-            let active = crate::Active {
-                flags: &flags,
-                nodes: &nodes,
-            };
-            pool.install(|| assemble_2d_active(&set, &index, &params, &x, active, &mut f, &mut s));
-            let bits = |v: f64| v.to_bits();
-            let f: Vec<[u64; 2]> = f.iter().map(|p| [bits(p[0]), bits(p[1])]).collect();
-            let s: Vec<u64> = s.iter().map(|&v| bits(v)).collect();
-            (f, s)
-        };
-        let one = assemble(1);
-        assert!(one.1.iter().any(|&b| b != 0));
-        for threads in [2, 3] {
-            assert!(assemble(threads) == one, "{threads} threads");
-        }
     }
 
     #[test]
