@@ -254,7 +254,10 @@ fn flip_min_max_angle(
         crate::quality::max_triangle_angle_deg(a, b, c)
     };
     // each triangle's figure, kept up to date through the flips (the nodes do not move here)
-    let mut figure: Vec<f64> = tris.iter().map(|&t| worst(t)).collect();
+    let mut figure: Vec<f64> = {
+        use rayon::prelude::*;
+        tris.par_iter().map(|&t| worst(t)).collect()
+    };
     // `kept[3 t + c]`: the other triangle of the edge opposite corner `c` of `t` when that pair
     // was tried in the last sweep and not flipped; a pair tried again unchanged (neither
     // triangle flipped since) would again not flip, so it is skipped
@@ -327,18 +330,23 @@ struct Owners {
 
 impl Owners {
     fn new(tris: &[[u32; 3]]) -> Self {
-        let mut owner: Vec<((u32, u32), (usize, usize))> = tris
-            .iter()
+        use rayon::prelude::*;
+        // (edge, position 3 t + i): the keys are distinct, so sorting them orders equal edges
+        // by position, as a stable sort by edge alone did (the parallel merge sort, like the
+        // sequential one, runs in near-linear time over the runs of a triangulation's edges)
+        let mut owner: Vec<(u32, u32, u32)> = tris
+            .par_iter()
             .enumerate()
-            .flat_map(|(t, tri)| {
-                (0..3).map(move |i| ((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3)))
+            .flat_map_iter(|(t, tri)| {
+                (0..3).map(move |i| (tri[i], tri[(i + 1) % 3], (3 * t + i) as u32))
             })
             .collect();
-        // stable: among equal edges the last one written stays last, and is the one kept
-        owner.sort_by_key(|&(k, _)| k);
+        owner.par_sort();
         let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::with_capacity(owner.len());
-        for o in owner {
+        for (a, b, at) in owner {
+            let o = ((a, b), (at as usize / 3, (at as usize % 3 + 2) % 3));
             match kept.last_mut() {
+                // among equal edges the last position is kept
                 Some(last) if last.0 == o.0 => *last = o,
                 _ => kept.push(o),
             }
@@ -386,20 +394,30 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
         let g = (n0 + s) as u32;
         tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) })
     };
-    // the largest angle of node `s`'s triangles with `s` at `p` (infinite when one is not
-    // positive)
-    let worst = |s: usize, p: P2, steiner: &[P2]| -> f64 {
+    // the largest angle of each triangle where its corners are (infinite when it is not
+    // positive), kept until one of its corners moves: `None` when not measured since
+    let mut figure: Vec<Option<f64>> = vec![None; tris.len()];
+    // the largest angle of node `s`'s triangles where they are (infinite when one is not
+    // positive), from the kept figures
+    let worst = |s: usize, steiner: &[P2], figure: &mut [Option<f64>]| -> f64 {
         let mut w = 0.0f64;
         for &t in &incident[s] {
-            let c = corners(s, t, p, steiner);
-            if orient2d(c[0], c[1], c[2]) <= 0.0 {
+            let f = *figure[t as usize].get_or_insert_with(|| {
+                let c = tris[t as usize].map(|v| at(v, steiner));
+                if orient2d(c[0], c[1], c[2]) <= 0.0 {
+                    f64::INFINITY
+                } else {
+                    crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
+                }
+            });
+            if f == f64::INFINITY {
                 return f64::INFINITY;
             }
-            w = w.max(crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]));
+            w = w.max(f);
         }
         w
     };
-    // exactly `worst(s, p, steiner) < before`, the angles mostly compared by their cosines
+    // exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles mostly compared by their cosines
     let improves = |s: usize, p: P2, steiner: &[P2], before: f64| -> bool {
         let limit = crate::quality::AngleLimit::new(before);
         for &t in &incident[s] {
@@ -450,7 +468,7 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
             }
             let old = steiner[s];
             let centroid = [sx / k, sy / k];
-            let before = worst(s, old, steiner);
+            let before = worst(s, steiner, &mut figure);
             settled[s] = moves + 1;
             for f in [1.0, 0.5, 0.25] {
                 let p = [
@@ -459,6 +477,9 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
                 ];
                 if improves(s, p, steiner, before) {
                     steiner[s] = p;
+                    for &t in &incident[s] {
+                        figure[t as usize] = None;
+                    }
                     moves += 1;
                     moved[s] = moves;
                     settled[s] = 0;
@@ -769,6 +790,34 @@ mod tests {
             }
         }
         directed
+    }
+
+    /// The edge owners by the parallel sort on (edge, position) are those of a stable sort by
+    /// edge, where a directed edge met twice keeps its last triangle.
+    #[test]
+    fn the_edge_owners_are_those_of_a_stable_sort() {
+        let mut rng = testkit::layered::Rng(5);
+        let mut node = || rng.below(40) as u32;
+        // random triangles over few nodes: many directed edges are met twice or more
+        let tris: Vec<[u32; 3]> = (0..3000).map(|_| [node(), node(), node()]).collect();
+        let mut owner: Vec<((u32, u32), (usize, usize))> = tris
+            .iter()
+            .enumerate()
+            .flat_map(|(t, tri)| {
+                (0..3).map(move |i| ((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3)))
+            })
+            .collect();
+        owner.sort_by_key(|&(k, _)| k);
+        let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::new();
+        for o in owner {
+            match kept.last_mut() {
+                Some(last) if last.0 == o.0 => *last = o,
+                _ => kept.push(o),
+            }
+        }
+        let owners = Owners::new(&tris);
+        assert!(!owners.unique);
+        assert_eq!(owners.by_edge, kept);
     }
 
     #[test]

@@ -28,9 +28,9 @@ use springfield::{
 };
 
 use geom_predicates::vector::{cross2, dist, dot};
-use geom_predicates::{for_each_overlapping_pair, orient2d, segment_distance};
+use geom_predicates::{orient2d, segment_distance};
 
-use crate::geom::{Aabb, P2};
+use crate::geom::{Aabb, P2, par_overlapping};
 use crate::input::AfsfParams;
 use crate::nodes::{NewNode, NodeStore};
 use crate::sanity::front_edges_meet;
@@ -444,14 +444,9 @@ impl<'p> Work<'p> {
             .map(|s| Aabb::of_segment(s.p, s.q, s.clearance))
             .collect();
         let path_ratio = 2.5;
-        let mut freeze = |li: u32, owner: [u32; 2]| {
-            for e in owner {
-                if e != NONE {
-                    frozen[li as usize][e as usize] = true;
-                }
-            }
-        };
-        for_each_overlapping_pair(&boxes, |x, y| {
+        // the pairs are tested on every thread; what they freeze is a set of flags, the same
+        // whatever the order
+        let freezes = par_overlapping(&boxes, |x, y, out: &mut Vec<(u32, [u32; 2])>| {
             let (sx, sy) = (&segs[x], &segs[y]);
             if sx.owner[0] == NONE && sy.owner[0] == NONE {
                 return;
@@ -496,9 +491,16 @@ impl<'p> Work<'p> {
                         continue;
                     }
                 }
-                freeze(a.lp, a.owner);
+                out.push((a.lp, a.owner));
             }
         });
+        for (li, owner) in freezes {
+            for e in owner {
+                if e != NONE {
+                    frozen[li as usize][e as usize] = true;
+                }
+            }
+        }
     }
 
     /// The segments of the closing test (current front edges, planned cell sides and tops,
@@ -1005,15 +1007,15 @@ impl<'p> Work<'p> {
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
-        for_each_overlapping_pair(&boxes, |x, y| {
+        // tested on every thread: the edges to freeze are a set, the same in any order
+        let hit_cells = par_overlapping(&boxes, |x, y, out: &mut Vec<u32>| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;
             if !(x_new || y_new) {
                 return;
             }
-            let hit = front_edges_meet(&self.nodes.pos, [sx.0, sx.1], [sy.0, sy.1]);
-            if !hit {
+            if !front_edges_meet(&self.nodes.pos, [sx.0, sx.1], [sy.0, sy.1]) {
                 return;
             }
             for (s, is_new) in [(sx, x_new), (sy, y_new)] {
@@ -1022,10 +1024,13 @@ impl<'p> Work<'p> {
                 }
                 let cell = self.loops[s.2 as usize].edges[s.3 as usize].cell;
                 if cell != NONE && (cell as usize) >= new_cell {
-                    mark(&self.cells[cell as usize], &mut bad);
+                    out.push(cell);
                 }
             }
         });
+        for cell in hit_cells {
+            mark(&self.cells[cell as usize], &mut bad);
+        }
         (bad, old_bad)
     }
 

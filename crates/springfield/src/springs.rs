@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::model::{FiniteDifference, ForceModel, Spring, Triplet, influence_pairs, jacobian_of};
 use crate::params::SpringParams;
-use crate::vec::{axpy, norm, sub};
+use crate::vec::{norm, sub};
 
 /// Parent–child spring along an extrusion edge:
 /// F = C_aniso·K_extru·(l_ideal − l_real)/l_ideal along the edge (§4.1, Eq. 1).
@@ -150,17 +150,44 @@ fn extrusion_masked<const D: usize>(
         {
             continue;
         }
-        extrusion_one(s, params, positions, force, stiffness);
+        extrusion_into(s, params, positions, &mut direct(force, stiffness));
     }
 }
 
+/// Adds one contribution (force `f`, stiffness `k`) to node `node`: `force += f` component by
+/// component, then `stiffness += k`.
 #[inline(always)]
-fn extrusion_one<const D: usize>(
+fn add_to<const D: usize>(
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+    node: u32,
+    f: [f64; D],
+    k: f64,
+) {
+    let fo = &mut force[node as usize];
+    for i in 0..D {
+        fo[i] += f[i];
+    }
+    stiffness[node as usize] += k;
+}
+
+/// The sink that adds each contribution straight into `force` and `stiffness`.
+#[inline(always)]
+fn direct<'a, const D: usize>(
+    force: &'a mut [[f64; D]],
+    stiffness: &'a mut [f64],
+) -> impl FnMut(u32, [f64; D], f64) + 'a {
+    move |node, f, k| add_to(force, stiffness, node, f, k)
+}
+
+/// The contributions of one extrusion spring, handed to `add` (node, force, stiffness) in
+/// the order they are summed: the upper node, then the lower.
+#[inline(always)]
+fn extrusion_into<const D: usize>(
     s: &ExtrusionSpring,
     params: &SpringParams,
     positions: &[[f64; D]],
-    force: &mut [[f64; D]],
-    stiffness: &mut [f64],
+    add: &mut impl FnMut(u32, [f64; D], f64),
 ) {
     let (lo, up) = (s.lower as usize, s.upper as usize);
     let v = sub(&positions[up], &positions[lo]);
@@ -170,10 +197,13 @@ fn extrusion_one<const D: usize>(
     }
     let f = params.k_extrusion * (s.ideal_length - len) / s.ideal_length;
     let k = params.k_extrusion / s.ideal_length;
-    axpy(&mut force[up], f / len, &v);
-    stiffness[up] += k;
-    axpy(&mut force[lo], -s.lower_share * f / len, &v);
-    stiffness[lo] += s.lower_share * k;
+    let (a_up, a_lo) = (f / len, -s.lower_share * f / len);
+    add(s.upper, std::array::from_fn(|i| a_up * v[i]), k);
+    add(
+        s.lower,
+        std::array::from_fn(|i| a_lo * v[i]),
+        s.lower_share * k,
+    );
 }
 
 impl<const D: usize> Spring<D> for ExtrusionSpring {
@@ -192,7 +222,7 @@ impl<const D: usize> Spring<D> for ExtrusionSpring {
         force: &mut [[f64; D]],
         stiffness: &mut [f64],
     ) {
-        extrusion_one(self, params, positions, force, stiffness);
+        extrusion_into(self, params, positions, &mut direct(force, stiffness));
     }
 
     /// Closed form: with v = X_upper − X_lower, l = |v| and L the ideal length, the force on
@@ -254,14 +284,14 @@ macro_rules! spring_2d {
                 force: &mut [[f64; 2]],
                 stiffness: &mut [f64],
             ) {
-                $force(self, params, positions, force, stiffness);
+                $force(self, params, positions, &mut direct(force, stiffness));
             }
         }
     };
 }
 
-spring_2d!(NeighbourSpring, neighbour_one, reads: [left, centre, right, parent], pushes: [centre]);
-spring_2d!(AngleSpring, angle_one, reads: [left, centre, right, child], pushes: [child, centre]);
+spring_2d!(NeighbourSpring, neighbour_into, reads: [left, centre, right, parent], pushes: [centre]);
+spring_2d!(AngleSpring, angle_into, reads: [left, centre, right, child], pushes: [child, centre]);
 
 /// The 2D spring set bound to its coefficients and per-node index: the [`ForceModel`] of the
 /// 2D mesher. Its active assembly is [`assemble_2d_active`].
@@ -382,10 +412,10 @@ pub fn assemble_2d(
 ) {
     extrusion_masked(&set.extrusion, params, positions, None, force, stiffness);
     for s in &set.neighbour {
-        neighbour_one(s, params, positions, force, stiffness);
+        neighbour_into(s, params, positions, &mut direct(force, stiffness));
     }
     for s in &set.angle {
-        angle_one(s, params, positions, force, stiffness);
+        angle_into(s, params, positions, &mut direct(force, stiffness));
     }
 }
 
@@ -449,26 +479,52 @@ pub fn assemble_2d_active(
     force: &mut [[f64; 2]],
     stiffness: &mut [f64],
 ) {
-    let flags = active.flags;
-    for &node in active.nodes {
-        let n = node as usize;
-        let range = index.offsets[n] as usize..index.offsets[n + 1] as usize;
-        for &id in &index.springs[range] {
-            let i = (id & INDEX_MASK) as usize;
-            match id >> KIND_SHIFT {
-                0 => {
-                    // pushed both ways: evaluated from the upper node when it is active
-                    let s = &set.extrusion[i];
-                    if s.upper == node || !flags[s.upper as usize] {
-                        extrusion_one(s, params, positions, force, stiffness);
+    let eval = ActiveEval {
+        set,
+        index,
+        params,
+        positions,
+        flags: active.flags,
+    };
+    eval.springs_of(active.nodes, &mut direct(force, stiffness));
+}
+
+/// What the active assembly reads: the springs, their index, coefficients, positions and the
+/// active flags.
+struct ActiveEval<'a> {
+    set: &'a SpringSet2d,
+    index: &'a SpringIndex2d,
+    params: &'a SpringParams,
+    positions: &'a [[f64; 2]],
+    flags: &'a [bool],
+}
+
+impl ActiveEval<'_> {
+    /// The contributions of the springs that the active `nodes` evaluate (for each node, those
+    /// pushing it that no other active node evaluates first), handed to `add` in order.
+    #[inline(always)]
+    fn springs_of(&self, nodes: &[u32], add: &mut impl FnMut(u32, [f64; 2], f64)) {
+        let (set, params, positions, flags) = (self.set, self.params, self.positions, self.flags);
+        for &node in nodes {
+            let n = node as usize;
+            let range = self.index.offsets[n] as usize..self.index.offsets[n + 1] as usize;
+            for &id in &self.index.springs[range] {
+                let i = (id & INDEX_MASK) as usize;
+                match id >> KIND_SHIFT {
+                    0 => {
+                        // pushed both ways: evaluated from the upper node when it is active
+                        let s = &set.extrusion[i];
+                        if s.upper == node || !flags[s.upper as usize] {
+                            extrusion_into(s, params, positions, add);
+                        }
                     }
-                }
-                1 => neighbour_one(&set.neighbour[i], params, positions, force, stiffness),
-                _ => {
-                    // pushes child and centre: evaluated from the child when it is active
-                    let s = &set.angle[i];
-                    if s.child == node || !flags[s.child as usize] {
-                        angle_one(s, params, positions, force, stiffness);
+                    1 => neighbour_into(&set.neighbour[i], params, positions, add),
+                    _ => {
+                        // pushes child and centre: evaluated from the child when it is active
+                        let s = &set.angle[i];
+                        if s.child == node || !flags[s.child as usize] {
+                            angle_into(s, params, positions, add);
+                        }
                     }
                 }
             }
@@ -476,13 +532,13 @@ pub fn assemble_2d_active(
     }
 }
 
+/// The contribution of one neighbour spring (to its centre), handed to `add`.
 #[inline(always)]
-fn neighbour_one(
+fn neighbour_into(
     s: &NeighbourSpring,
     params: &SpringParams,
     positions: &[[f64; 2]],
-    force: &mut [[f64; 2]],
-    stiffness: &mut [f64],
+    add: &mut impl FnMut(u32, [f64; 2], f64),
 ) {
     let (a, k, b, p) = (
         positions[s.left as usize],
@@ -508,19 +564,20 @@ fn neighbour_one(
         1.0
     };
     let f = params.k_neighbour * boost * 2.0 * (s.left_share - la / (la + lb));
-    let kc = &mut force[s.centre as usize];
-    kc[0] += f * t[0];
-    kc[1] += f * t[1];
-    stiffness[s.centre as usize] += params.k_neighbour * boost * 2.0 / (la + lb);
+    add(
+        s.centre,
+        [f * t[0], f * t[1]],
+        params.k_neighbour * boost * 2.0 / (la + lb),
+    );
 }
 
+/// The contributions of one angle spring, handed to `add`: its child, then its centre.
 #[inline(always)]
-fn angle_one(
+fn angle_into(
     s: &AngleSpring,
     params: &SpringParams,
     positions: &[[f64; 2]],
-    force: &mut [[f64; 2]],
-    stiffness: &mut [f64],
+    add: &mut impl FnMut(u32, [f64; 2], f64),
 ) {
     let deg_per_rad = 180.0 / std::f64::consts::PI;
     let (a, k, b, o) = (
@@ -567,10 +624,11 @@ fn angle_one(
         (gain, perp)
     };
     let share_o = 1.0 - params.c_percent;
-    let fo = &mut force[s.child as usize];
-    fo[0] += share_o * f_mag * dir_o[0];
-    fo[1] += share_o * f_mag * dir_o[1];
-    stiffness[s.child as usize] += share_o * k_len;
+    add(
+        s.child,
+        [share_o * f_mag * dir_o[0], share_o * f_mag * dir_o[1]],
+        share_o * k_len,
+    );
     if params.c_percent > 0.0 {
         let dir_k = if cos_a >= 0.0 {
             // O leans toward A when it is counter-clockwise of the ideal direction.
@@ -584,10 +642,14 @@ fn angle_one(
         } else {
             [-dir_o[0], -dir_o[1]]
         };
-        let fk = &mut force[s.centre as usize];
-        fk[0] += params.c_percent * f_mag * dir_k[0];
-        fk[1] += params.c_percent * f_mag * dir_k[1];
-        stiffness[s.centre as usize] += params.c_percent * k_len;
+        add(
+            s.centre,
+            [
+                params.c_percent * f_mag * dir_k[0],
+                params.c_percent * f_mag * dir_k[1],
+            ],
+            params.c_percent * k_len,
+        );
     }
 }
 

@@ -10,10 +10,3 @@ pub(crate) fn sub<const D: usize>(a: &[f64; D], b: &[f64; D]) -> [f64; D] {
 pub(crate) fn norm<const D: usize>(a: &[f64; D]) -> f64 {
     a.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
-
-#[inline]
-pub(crate) fn axpy<const D: usize>(y: &mut [f64; D], s: f64, x: &[f64; D]) {
-    for i in 0..D {
-        y[i] += s * x[i];
-    }
-}
