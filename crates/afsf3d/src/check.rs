@@ -3,6 +3,7 @@
 
 use geom_surface::{Facet, first_self_intersection};
 use mesh_model::is_positive_tet;
+use mesh_model::measure3d::corner_determinants;
 use rayon::prelude::*;
 
 use crate::layer::{Layer, strictly_convex};
@@ -33,6 +34,20 @@ pub(crate) fn cell_node(front: &[[f64; 3]], layer: &Layer, v: u32) -> [f64; 3] {
     } else {
         layer.children[(v - n) as usize]
     }
+}
+
+/// The smallest edge-normalised corner scaled Jacobian of the prism or hexahedron over the
+/// front facet `facet` (nodes `nodes`) whose node `v` has the child `top(v)`.
+pub(crate) fn cell_sj(nodes: &[[f64; 3]], facet: &Facet, top: impl Fn(u32) -> [f64; 3]) -> f64 {
+    let k = facet.nodes();
+    let p: Vec<[f64; 3]> = k
+        .iter()
+        .map(|&v| nodes[v as usize])
+        .chain(k.iter().map(|&v| top(v)))
+        .collect();
+    corner_determinants(&p, true)
+        .into_iter()
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Whether the cell of `layer` over the front facet `facet` is valid: [`corners_ok`] when its

@@ -18,11 +18,11 @@
 
 use geom_predicates::vector::{cross3, dist, dot, sub};
 use geom_surface::{Facet, first_self_intersection, unit};
-use mesh_model::measure3d::{corner_determinants, tet_dihedral_angles_deg};
+use mesh_model::measure3d::tet_dihedral_angles_deg;
 use mesh_model::{NONE, is_positive_tet};
 use rayon::prelude::*;
 
-use crate::check::{cell_node, layer_cell_ok};
+use crate::check::{cell_node, cell_sj, layer_cell_ok};
 use crate::layer::Layer;
 
 /// The quality given to a cut with an inverted or flat tetrahedron.
@@ -103,15 +103,9 @@ fn min_corner_sj(front: &[[f64; 3]], facets: &[Facet], around: &[u32], layer: &L
         if layer.is_merged(facet) {
             continue;
         }
-        let k = facet.nodes();
-        let mut p: Vec<[f64; 3]> = k.iter().map(|&v| front[v as usize]).collect();
-        p.extend(
-            k.iter()
-                .map(|&v| layer.children[layer.child[v as usize] as usize]),
-        );
-        worst = corner_determinants(&p, true)
-            .into_iter()
-            .fold(worst, f64::min);
+        worst = worst.min(cell_sj(front, facet, |v| {
+            layer.children[layer.child[v as usize] as usize]
+        }));
     }
     worst
 }

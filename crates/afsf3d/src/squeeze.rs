@@ -19,28 +19,14 @@
 
 use geom_predicates::vector::dist;
 use geom_surface::Facet;
-use mesh_model::measure3d::corner_determinants;
 
+use crate::check::cell_sj;
 use crate::front::Topo;
 use crate::layer::{Ideal, Layer, best_free_edge, merged_layer};
 
 /// A squeezed cell merges the children of an edge only where they came closer than this
 /// fraction of their parents' distance: where the front shrinks.
 const SHRUNK: f64 = 1.0;
-
-/// The smallest edge-normalised corner scaled Jacobian of the prism or hexahedron over the
-/// front facet `facet` (nodes `nodes`) whose node `v` has the child `top(v)`.
-fn cell_sj(nodes: &[[f64; 3]], facet: &Facet, top: impl Fn(u32) -> [f64; 3]) -> f64 {
-    let k = facet.nodes();
-    let p: Vec<[f64; 3]> = k
-        .iter()
-        .map(|&v| nodes[v as usize])
-        .chain(k.iter().map(|&v| top(v)))
-        .collect();
-    corner_determinants(&p, true)
-        .into_iter()
-        .fold(f64::INFINITY, f64::min)
-}
 
 /// Adds to `merges` (node-disjoint pairs of front nodes joined by a front edge) the merges
 /// of squeezed cells: for each front facet whose cell's smallest corner scaled Jacobian is
