@@ -621,22 +621,19 @@ fn role_of_name(name: &str) -> Option<Role> {
         .find(|r| r.name().eq_ignore_ascii_case(name))
 }
 
-fn assemble(file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
-    let path = cur.path;
-    let missing = |section| IoError::MissingSection {
-        path: path.to_path_buf(),
-        section,
-    };
-    let mut raw_nodes = file.nodes.ok_or_else(|| missing("Nodes"))?;
-    let elements = file.elements.ok_or_else(|| missing("Elements"))?;
-
-    // Nodes in tag order.
+/// The nodes in tag order and the index from a tag to its position; a tag given twice is an
+/// error (named at `elements_line`, the nearest line the reader kept).
+fn node_table(
+    mut raw_nodes: Vec<(u64, [f64; 3])>,
+    cur: &Cursor<'_>,
+    elements_line: usize,
+) -> Result<(Vec<[f64; 3]>, NodeIndex), IoError> {
     if !raw_nodes.is_sorted_by_key(|n| n.0) {
         raw_nodes.sort_by_key(|n| n.0);
     }
     if let Some(w) = raw_nodes.windows(2).find(|w| w[0].0 == w[1].0) {
         return Err(cur.malformed(
-            file.elements_line,
+            elements_line,
             format!("node tag {} appears twice in $Nodes", w[0].0),
         ));
     }
@@ -659,7 +656,82 @@ fn assemble(file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
                 .collect(),
         )
     };
-    let nodes: Vec<[f64; 3]> = raw_nodes.into_iter().map(|n| n.1).collect();
+    let nodes = raw_nodes.into_iter().map(|n| n.1).collect();
+    Ok((nodes, index))
+}
+
+/// The boundary patches: the entities holding facets and those named in `$MeshIoPatches`,
+/// each with its name and role (from its one physical group), and the entity → patch map.
+fn patches_of(
+    file: &RawFile,
+    facet_elems: &[&RawElement],
+    fd: u8,
+    cur: &Cursor<'_>,
+) -> Result<(Vec<Patch>, HashMap<i64, u32>), IoError> {
+    let mut patch_entities: BTreeSet<i64> = facet_elems.iter().map(|e| e.entity).collect();
+    patch_entities.extend(file.patch_names.keys().copied());
+    let mut patches = Vec::with_capacity(patch_entities.len());
+    let mut patch_of_entity = HashMap::with_capacity(patch_entities.len());
+    for &entity in &patch_entities {
+        let line = facet_elems
+            .iter()
+            .find(|e| e.entity == entity)
+            .map_or(file.elements_line, |e| e.line);
+        let entities = file
+            .entities
+            .as_ref()
+            .ok_or_else(|| IoError::MissingSection {
+                path: cur.path.to_path_buf(),
+                section: "Entities",
+            })?;
+        let groups: Vec<&str> = entities
+            .get(&(fd, entity))
+            .into_iter()
+            .flatten()
+            .filter_map(|t| file.physical_names.get(&(fd, *t)).map(String::as_str))
+            .collect();
+        let roles: BTreeSet<&str> = groups
+            .iter()
+            .copied()
+            .filter(|g| role_of_name(g).is_some())
+            .collect();
+        let role = match roles.len() {
+            1 => role_of_name(roles.first().copied().unwrap_or_default()),
+            // a group named after its body (`slat`): the role written beside the patch name,
+            // else (a file without our section) a wall
+            0 if groups.len() == 1 => file.patch_roles.get(&entity).copied().or(Some(Role::Wall)),
+            _ => None,
+        }
+        .ok_or_else(|| {
+            cur.malformed(
+                line,
+                format!(
+                    "boundary entity (dimension {fd}, tag {entity}) must be in exactly one physical group (\"farfield\", or a wall's name); its groups are {groups:?}"
+                ),
+            )
+        })?;
+        let name = file
+            .patch_names
+            .get(&entity)
+            .cloned()
+            .or_else(|| groups.first().map(|g| g.to_string()))
+            .unwrap_or_else(|| role.name().to_string());
+        patch_of_entity.insert(entity, patches.len() as u32);
+        patches.push(Patch { name, role });
+    }
+    Ok((patches, patch_of_entity))
+}
+
+fn assemble(mut file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
+    let path = cur.path;
+    let missing = |section| IoError::MissingSection {
+        path: path.to_path_buf(),
+        section,
+    };
+    let raw_nodes = file.nodes.take().ok_or_else(|| missing("Nodes"))?;
+    let elements = file.elements.take().ok_or_else(|| missing("Elements"))?;
+
+    let (nodes, index) = node_table(raw_nodes, cur, file.elements_line)?;
 
     let top = elements.iter().map(|e| e.ty.shape.dim()).max().unwrap_or(0);
     let planar = nodes.iter().all(|p| p[2] == 0.0);
@@ -700,53 +772,7 @@ fn assemble(file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
         .collect();
     facet_elems.sort_by_key(|e| e.tag);
 
-    // Patches: entities holding facets, and entities named in $MeshIoPatches.
-    let fd = facet_dim;
-    let mut patch_entities: BTreeSet<i64> = facet_elems.iter().map(|e| e.entity).collect();
-    patch_entities.extend(file.patch_names.keys().copied());
-    let mut patches = Vec::with_capacity(patch_entities.len());
-    let mut patch_of_entity = HashMap::with_capacity(patch_entities.len());
-    for &entity in &patch_entities {
-        let line = facet_elems
-            .iter()
-            .find(|e| e.entity == entity)
-            .map_or(file.elements_line, |e| e.line);
-        let entities = file.entities.as_ref().ok_or_else(|| missing("Entities"))?;
-        let groups: Vec<&str> = entities
-            .get(&(fd, entity))
-            .into_iter()
-            .flatten()
-            .filter_map(|t| file.physical_names.get(&(fd, *t)).map(String::as_str))
-            .collect();
-        let roles: BTreeSet<&str> = groups
-            .iter()
-            .copied()
-            .filter(|g| role_of_name(g).is_some())
-            .collect();
-        let role = match roles.len() {
-            1 => role_of_name(roles.first().copied().unwrap_or_default()),
-            // a group named after its body (`slat`): the role written beside the patch name,
-            // else (a file without our section) a wall
-            0 if groups.len() == 1 => file.patch_roles.get(&entity).copied().or(Some(Role::Wall)),
-            _ => None,
-        }
-        .ok_or_else(|| {
-            cur.malformed(
-                line,
-                format!(
-                    "boundary entity (dimension {fd}, tag {entity}) must be in exactly one physical group (\"farfield\", or a wall's name); its groups are {groups:?}"
-                ),
-            )
-        })?;
-        let name = file
-            .patch_names
-            .get(&entity)
-            .cloned()
-            .or_else(|| groups.first().map(|g| g.to_string()))
-            .unwrap_or_else(|| role.name().to_string());
-        patch_of_entity.insert(entity, patches.len() as u32);
-        patches.push(Patch { name, role });
-    }
+    let (patches, patch_of_entity) = patches_of(&file, &facet_elems, facet_dim, cur)?;
 
     let mut cells = Cells::with_capacity(cell_elems.len(), 0);
     for e in &cell_elems {
