@@ -483,6 +483,73 @@ fn check_params(
     Ok(())
 }
 
+/// A loop's points as given (before scale, rotation and translation) by its one source — a
+/// coordinate file, NACA digits, a list of points or a circle — with where they came from
+/// and the file's stem (the loop's default name).
+fn loop_points(
+    spec: &LoopSpec,
+    files: &FileSource<'_>,
+    what: &str,
+) -> Result<(Vec<geom_curve::Point2<f64>>, String, Option<String>)> {
+    if let Some(name) = &spec.file {
+        let (text, shown) = match files {
+            FileSource::Dir(dir) => {
+                let path = dir.join(name);
+                let text = std::fs::read_to_string(&path)
+                    .with_context(|| format!("{what}: cannot read {}", path.display()))?;
+                (text, path.display().to_string())
+            }
+            FileSource::Builtin => match builtin::data_file(name) {
+                Some(text) => (text.to_string(), format!("built-in {name}")),
+                None => bail!("{what}: built-in data file {name} does not exist"),
+            },
+        };
+        let points = geom_curve::selig::parse(&text).with_context(|| shown.clone())?;
+        let stem = Path::new(name)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .map(str::to_string);
+        Ok((points, shown, stem))
+    } else if let Some(digits) = &spec.naca {
+        let n = spec.naca_points.unwrap_or(101);
+        ensure!(
+            n <= MAX_GENERATED_POINTS,
+            "{what}: naca_points = {n}: at most {MAX_GENERATED_POINTS}"
+        );
+        let points =
+            geom_curve::naca::naca4(digits, n, true).with_context(|| format!("{what}: naca"))?;
+        Ok((
+            points,
+            format!("NACA {digits}"),
+            Some(format!("naca{digits}")),
+        ))
+    } else if let Some(points) = &spec.points {
+        let pts = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let [x, y] = exactly::<2>(p, &format!("{what}: point {}", i + 1), "[x, y]")?;
+                Ok(geom_curve::Point2::new(x, y))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok((pts, format!("{what} points"), None))
+    } else if let Some(c) = &spec.circle {
+        // the radius's range is geom-curve's (`circle_points`), named in its error
+        ensure!(
+            (8..=MAX_GENERATED_POINTS).contains(&c.points),
+            "{what}: circle points = {}: give 8 to {MAX_GENERATED_POINTS}",
+            c.points
+        );
+        let [cx, cy] = exactly::<2>(&c.center, &format!("{what}: circle center"), "[x, y]")?;
+        let centre = geom_curve::Point2::new(cx, cy);
+        let pts = geom_curve::circle_points(centre, c.radius, c.points)
+            .with_context(|| format!("{what}: circle"))?;
+        Ok((pts, format!("circle of radius {}", c.radius), None))
+    } else {
+        bail!("{what}: give one of file, naca, points or circle")
+    }
+}
+
 fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<LoopInput> {
     let sources = [
         spec.file.is_some(),
@@ -518,63 +585,7 @@ fn read_loop(spec: &LoopSpec, files: &FileSource<'_>, what: &str) -> Result<Loop
         RoleSpec::Wall => Role::Wall,
         RoleSpec::Farfield => Role::Farfield,
     };
-    let (raw, origin, stem) = if let Some(name) = &spec.file {
-        let (text, shown) = match files {
-            FileSource::Dir(dir) => {
-                let path = dir.join(name);
-                let text = std::fs::read_to_string(&path)
-                    .with_context(|| format!("{what}: cannot read {}", path.display()))?;
-                (text, path.display().to_string())
-            }
-            FileSource::Builtin => match builtin::data_file(name) {
-                Some(text) => (text.to_string(), format!("built-in {name}")),
-                None => bail!("{what}: built-in data file {name} does not exist"),
-            },
-        };
-        let points = geom_curve::selig::parse(&text).with_context(|| shown.clone())?;
-        let stem = Path::new(name)
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .map(str::to_string);
-        (points, shown, stem)
-    } else if let Some(digits) = &spec.naca {
-        let n = spec.naca_points.unwrap_or(101);
-        ensure!(
-            n <= MAX_GENERATED_POINTS,
-            "{what}: naca_points = {n}: at most {MAX_GENERATED_POINTS}"
-        );
-        let points =
-            geom_curve::naca::naca4(digits, n, true).with_context(|| format!("{what}: naca"))?;
-        (
-            points,
-            format!("NACA {digits}"),
-            Some(format!("naca{digits}")),
-        )
-    } else if let Some(points) = &spec.points {
-        let pts = points
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let [x, y] = exactly::<2>(p, &format!("{what}: point {}", i + 1), "[x, y]")?;
-                Ok(geom_curve::Point2::new(x, y))
-            })
-            .collect::<Result<Vec<_>>>()?;
-        (pts, format!("{what} points"), None)
-    } else if let Some(c) = &spec.circle {
-        // the radius's range is geom-curve's (`circle_points`), named in its error
-        ensure!(
-            (8..=MAX_GENERATED_POINTS).contains(&c.points),
-            "{what}: circle points = {}: give 8 to {MAX_GENERATED_POINTS}",
-            c.points
-        );
-        let [cx, cy] = exactly::<2>(&c.center, &format!("{what}: circle center"), "[x, y]")?;
-        let centre = geom_curve::Point2::new(cx, cy);
-        let pts = geom_curve::circle_points(centre, c.radius, c.points)
-            .with_context(|| format!("{what}: circle"))?;
-        (pts, format!("circle of radius {}", c.radius), None)
-    } else {
-        unreachable!("exactly one source was checked above")
-    };
+    let (raw, origin, stem) = loop_points(spec, files, what)?;
     let (s, (sin, cos)) = (spec.scale, spec.rotate_deg.to_radians().sin_cos());
     let points = raw
         .iter()

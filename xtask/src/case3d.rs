@@ -201,41 +201,102 @@ pub fn check_order(order: u8, what: &str) -> Result<()> {
     }
 }
 
+/// A wing's surface keys: the 2D case it is made from, its span, the surface's first height,
+/// whether the side is triangulated, how the tips are closed; a sphere's, cube's or step's key
+/// is refused.
+fn wing_source(
+    k: &SurfaceKeys,
+    name: &str,
+    files: &FileSource<'_>,
+    at: &str,
+) -> Result<SurfaceSource> {
+    ensure!(
+        k.builtin.is_none() && k.file.is_none(),
+        "{at}: give one of builtin, file or wing"
+    );
+    let case = match files {
+        _ if crate::builtin::case_text(name).is_some() => name.to_string(),
+        FileSource::Dir(dir) => dir.join(name).display().to_string(),
+        FileSource::Builtin => bail!("{at}: wing = {name:?}: not a built-in case"),
+    };
+    let span = positive(k.span, 2.0, at, "span")?;
+    let first_height = k
+        .first_height
+        .map(|h| positive(Some(h), h, at, "first_height"))
+        .transpose()?;
+    let triangles = k.triangles.unwrap_or(true);
+    let given = [
+        ("radius", k.radius.is_some()),
+        ("refinement", k.refinement.is_some()),
+        ("size", k.size.is_some()),
+        ("divisions", k.divisions.is_some()),
+    ];
+    if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+        bail!("{at}: {key} does not apply to a wing");
+    }
+    Ok(SurfaceSource::Wing {
+        case,
+        span,
+        first_height,
+        triangles,
+        cap: k.cap.unwrap_or_default(),
+    })
+}
+
+/// A built-in surface's keys (sphere, cube or step) and the keys it takes.
+fn builtin_source(
+    k: &SurfaceKeys,
+    builtin: &str,
+    at: &str,
+) -> Result<(SurfaceSource, &'static [&'static str])> {
+    Ok(match builtin {
+        "sphere" => {
+            let radius = positive(k.radius, 1.0, at, "radius")?;
+            let refinement = k.refinement.unwrap_or(3);
+            ensure!(
+                refinement <= MAX_SPHERE_REFINEMENT,
+                "{at} refinement = {refinement}: must be 0 to {MAX_SPHERE_REFINEMENT}"
+            );
+            (
+                SurfaceSource::Sphere { radius, refinement },
+                &["radius", "refinement"],
+            )
+        }
+        "cube" => {
+            let size = positive(k.size, 1.0, at, "size")?;
+            let divisions = k.divisions.unwrap_or(8);
+            ensure!(
+                (1..=MAX_VOXEL_DIVISIONS).contains(&divisions),
+                "{at} divisions = {divisions}: must be 1 to {MAX_VOXEL_DIVISIONS}"
+            );
+            let triangles = k.triangles.unwrap_or(false);
+            (
+                SurfaceSource::Cube {
+                    size,
+                    divisions,
+                    triangles,
+                },
+                &["size", "divisions", "triangles"],
+            )
+        }
+        "step" => {
+            let refinement = k.refinement.unwrap_or(1) as usize;
+            ensure!(
+                (1..=MAX_VOXEL_DIVISIONS / 10).contains(&refinement),
+                "{at} refinement = {refinement}: must be 1 to {}",
+                MAX_VOXEL_DIVISIONS / 10
+            );
+            (SurfaceSource::Step { refinement }, &["refinement"])
+        }
+        other => bail!("{at} builtin = {other:?}: must be \"sphere\", \"cube\" or \"step\""),
+    })
+}
+
 fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Result<SurfaceSource> {
     let at = format!("{origin}: [surface]");
     // the keys each source takes; any other key given is refused
     if let Some(name) = &k.wing {
-        ensure!(
-            k.builtin.is_none() && k.file.is_none(),
-            "{at}: give one of builtin, file or wing"
-        );
-        let case = match files {
-            _ if crate::builtin::case_text(name).is_some() => name.clone(),
-            FileSource::Dir(dir) => dir.join(name).display().to_string(),
-            FileSource::Builtin => bail!("{at}: wing = {name:?}: not a built-in case"),
-        };
-        let span = positive(k.span, 2.0, &at, "span")?;
-        let first_height = k
-            .first_height
-            .map(|h| positive(Some(h), h, &at, "first_height"))
-            .transpose()?;
-        let triangles = k.triangles.unwrap_or(true);
-        let given = [
-            ("radius", k.radius.is_some()),
-            ("refinement", k.refinement.is_some()),
-            ("size", k.size.is_some()),
-            ("divisions", k.divisions.is_some()),
-        ];
-        if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
-            bail!("{at}: {key} does not apply to a wing");
-        }
-        return Ok(SurfaceSource::Wing {
-            case,
-            span,
-            first_height,
-            triangles,
-            cap: k.cap.unwrap_or_default(),
-        });
+        return wing_source(k, name, files, &at);
     }
     let wing_only = [
         ("span", k.span.is_some()),
@@ -261,47 +322,7 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Resu
             };
             (SurfaceSource::File(path), &[])
         }
-        (Some(b), None) => match b.as_str() {
-            "sphere" => {
-                let radius = positive(k.radius, 1.0, &at, "radius")?;
-                let refinement = k.refinement.unwrap_or(3);
-                ensure!(
-                    refinement <= MAX_SPHERE_REFINEMENT,
-                    "{at} refinement = {refinement}: must be 0 to {MAX_SPHERE_REFINEMENT}"
-                );
-                (
-                    SurfaceSource::Sphere { radius, refinement },
-                    &["radius", "refinement"],
-                )
-            }
-            "cube" => {
-                let size = positive(k.size, 1.0, &at, "size")?;
-                let divisions = k.divisions.unwrap_or(8);
-                ensure!(
-                    (1..=MAX_VOXEL_DIVISIONS).contains(&divisions),
-                    "{at} divisions = {divisions}: must be 1 to {MAX_VOXEL_DIVISIONS}"
-                );
-                let triangles = k.triangles.unwrap_or(false);
-                (
-                    SurfaceSource::Cube {
-                        size,
-                        divisions,
-                        triangles,
-                    },
-                    &["size", "divisions", "triangles"],
-                )
-            }
-            "step" => {
-                let refinement = k.refinement.unwrap_or(1) as usize;
-                ensure!(
-                    (1..=MAX_VOXEL_DIVISIONS / 10).contains(&refinement),
-                    "{at} refinement = {refinement}: must be 1 to {}",
-                    MAX_VOXEL_DIVISIONS / 10
-                );
-                (SurfaceSource::Step { refinement }, &["refinement"])
-            }
-            other => bail!("{at} builtin = {other:?}: must be \"sphere\", \"cube\" or \"step\""),
-        },
+        (Some(b), None) => builtin_source(k, b, &at)?,
     };
     let given = [
         ("radius", k.radius.is_some()),

@@ -24,14 +24,6 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     let order = args.output.order.unwrap_or(case.order);
     check_order(order, &format!("--order {order}"))?;
     refuse_2d_flags(args)?;
-    for out in &args.output.outs {
-        if Format::from_path(out) == Some(Format::Su2) {
-            bail!(
-                "--out {}: 3D meshes are written as .msh or .vtu",
-                out.display()
-            );
-        }
-    }
     let flags = OutputFlags {
         outs: &args.output.outs,
         report: args.output.report.as_deref(),
@@ -88,24 +80,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
         }
     })?;
     report.layers = Some(case.layers.layers as u32);
-    report.notes.push(
-        "a near-body mesh: the domain is the region the layers cover, its outer boundary \
-         (farfield) the final front"
-            .into(),
-    );
-    if curved.is_none() {
-        report.notes.push(
-            "linear cells: validity is every corner Jacobian positive by the exact orient3d \
-             (mesh_model::validate)"
-                .into(),
-        );
-    }
-    if !grown.stats.converged {
-        report.notes.push(
-            "some layers' spring balances ran out of iterations (the layers passed their checks)"
-                .into(),
-        );
-    }
+    push_notes(&mut report, curved.is_none(), grown.stats.converged);
     timed(&mut report, quiet, ("write", "writing"), |r| {
         write_and_record(&mut plan, out, r)
     })?;
@@ -125,7 +100,31 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     Ok(report.finish(report_path.as_deref(), quiet, "the mesh was written but"))
 }
 
-/// Refuses the flags of 2D runs that mean nothing in 3D, before any work.
+/// The report's notes on what the mesh is: near-body, how validity was judged, balances that
+/// ran out of iterations.
+fn push_notes(report: &mut Report, linear: bool, converged: bool) {
+    report.notes.push(
+        "a near-body mesh: the domain is the region the layers cover, its outer boundary \
+         (farfield) the final front"
+            .into(),
+    );
+    if linear {
+        report.notes.push(
+            "linear cells: validity is every corner Jacobian positive by the exact orient3d \
+             (mesh_model::validate)"
+                .into(),
+        );
+    }
+    if !converged {
+        report.notes.push(
+            "some layers' spring balances ran out of iterations (the layers passed their checks)"
+                .into(),
+        );
+    }
+}
+
+/// Refuses the flags of 2D runs that mean nothing in 3D, and the linear-only `.su2` output,
+/// before any work.
 fn refuse_2d_flags(args: &MeshArgs) -> Result<()> {
     let given = [
         ("--snapshot", args.snapshot.is_some()),
@@ -133,6 +132,14 @@ fn refuse_2d_flags(args: &MeshArgs) -> Result<()> {
     ];
     if let Some((flag, _)) = given.into_iter().find(|f| f.1) {
         bail!("{flag} applies to 2D cases (this case has dimension = 3)");
+    }
+    for out in &args.output.outs {
+        if Format::from_path(out) == Some(Format::Su2) {
+            bail!(
+                "--out {}: 3D meshes are written as .msh or .vtu",
+                out.display()
+            );
+        }
     }
     Ok(())
 }

@@ -31,17 +31,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
     let total = Instant::now();
     let case = case::load(&args.case)?;
     let order = args.output.order.unwrap_or(case.order);
-    ensure!(
-        args.method == MoveMethod::Springs || (args.sensitivities.is_none() && !args.smooth),
-        "--smooth and --sensitivities need --method springs (the smooth balance)"
-    );
-    if let Some(path) = &args.sensitivities {
-        ensure!(
-            path.extension().is_some_and(|e| e == "csv"),
-            "--sensitivities {}: the sensitivities are CSV: give a .csv file name",
-            path.display()
-        );
-    }
+    check_flags(args)?;
     let motions = motions(&args.motion, &case)?;
     let moved = moved_geometry(&case, &motions)?;
     let flags = OutputFlags {
@@ -102,19 +92,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
         Some(_) if linear.stats.inverted_cells == 0 => {
             let t = Instant::now();
             let progress = stage(args.quiet, "mesh sensitivities");
-            let field = mesh_move::ShapeField::of(&layered, SpringMoveParams::smooth().shape)
-                .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
-            let x: Vec<[f64; 2]> = (0..moved_layered.mesh.nodes.len() as u32)
-                .map(|k| moved_layered.mesh.xy(k))
-                .collect();
-            let mut fixed = vec![false; x.len()];
-            boundary
-                .nodes
-                .iter()
-                .for_each(|&k| fixed[k as usize] = true);
-            let balance = field
-                .linearise(&x, &fixed)
-                .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
+            let balance = balance_at(&layered, &moved_layered, &boundary)?;
             let at = crate::move_sens::At {
                 case: &case,
                 motions: &motions,
@@ -174,6 +152,44 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
         print!("{summary}");
     }
     Ok(finished)
+}
+
+/// `--smooth` and `--sensitivities` need the springs; the sensitivities are a CSV file.
+fn check_flags(args: &MoveArgs) -> Result<()> {
+    ensure!(
+        args.method == MoveMethod::Springs || (args.sensitivities.is_none() && !args.smooth),
+        "--smooth and --sensitivities need --method springs (the smooth balance)"
+    );
+    if let Some(path) = &args.sensitivities {
+        ensure!(
+            path.extension().is_some_and(|e| e == "csv"),
+            "--sensitivities {}: the sensitivities are CSV: give a .csv file name",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// The smooth balance of the original mesh's shape field linearised at the moved nodes, the
+/// boundary nodes fixed: what `--sensitivities` differentiates.
+fn balance_at(
+    original: &LayeredMesh,
+    moved: &LayeredMesh,
+    boundary: &BoundaryMotion,
+) -> Result<mesh_move::Sensitivity> {
+    let field = mesh_move::ShapeField::of(original, SpringMoveParams::smooth().shape)
+        .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))?;
+    let x: Vec<[f64; 2]> = (0..moved.mesh.nodes.len() as u32)
+        .map(|k| moved.mesh.xy(k))
+        .collect();
+    let mut fixed = vec![false; x.len()];
+    boundary
+        .nodes
+        .iter()
+        .for_each(|&k| fixed[k as usize] = true);
+    field
+        .linearise(&x, &fixed)
+        .map_err(|e| anyhow::anyhow!("sensitivities: {e}"))
 }
 
 /// The moved layered mesh curved as the original one is (`vector_adding::curve_mesh_keeping`

@@ -31,48 +31,7 @@ pub fn table(r: &Report) -> String {
         );
     }
     if let Some(q) = &r.quality {
-        let _ = writeln!(
-            s,
-            "  angles of the linear mesh (cell corners, quads cut on the shorter diagonal):"
-        );
-        let _ = writeln!(s, "  {:<22} {:>12.1}", "max angle (deg)", q.max_angle_deg);
-        let h = q.obtuse_hist;
-        let _ = writeln!(
-            s,
-            "  obtuse triangles      95-105: {}  105-115: {}  115-125: {}  125-135: {}  >=135: {}",
-            h[0], h[1], h[2], h[3], h[4]
-        );
-        if let (Some(sj), Some(bad), Some(certified)) =
-            (q.min_scaled_jacobian, q.invalid_cells, q.certified)
-        {
-            let _ = writeln!(s, "  {:<22} {:>12.3}", "min scaled Jacobian", sj);
-            let at = |w: &crate::report::WorstCell| {
-                format!("cell {} at ({:.6}, {:.6})", w.cell, w.x, w.y)
-            };
-            if let Some(w) = &q.worst_cell {
-                let _ = writeln!(
-                    s,
-                    "    (certified min/max of det J per cell, order {}; {})",
-                    r.order,
-                    at(w)
-                );
-            }
-            if let Some(g) = &q.min_sj_gmsh {
-                let _ = writeln!(
-                    s,
-                    "  {:<22} {:>12.3}\n    (min det J / det J of the straight cell at its centre; {})",
-                    "Gmsh's minSJ",
-                    g.value,
-                    at(g)
-                );
-            }
-            let _ = writeln!(
-                s,
-                "  {:<22} {:>12}",
-                "certified check",
-                verdict(bad, certified)
-            );
-        }
+        quality_2d(&mut s, q, r.order);
     }
     if let Some(f) = r.curved_edge_fraction {
         let _ = writeln!(s, "  {:<22} {:>11.1}%", "curved edges", 100.0 * f);
@@ -93,33 +52,7 @@ pub fn table(r: &Report) -> String {
         let _ = writeln!(s, "  {:<22} {:>12.6e}", "area", a);
     }
     if let Some(q) = &r.quality_3d {
-        let _ = writeln!(
-            s,
-            "  {:<22} {:>12.1}",
-            "max dihedral (deg)", q.max_dihedral_deg
-        );
-        if let Some(v) = &q.validity {
-            let _ = writeln!(
-                s,
-                "  {:<22} {:>12.3}\n  {:<22} {:>12}",
-                "min scaled Jacobian",
-                v.min_scaled_jacobian,
-                "certified check",
-                verdict(v.invalid_cells, v.certified)
-            );
-        }
-        for h in &q.histograms {
-            let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
-            let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();
-            let _ = writeln!(
-                s,
-                "  {:<22} {}  (up to {} deg, above; max {:.1})",
-                h.name,
-                bins.join(" / "),
-                edges.join(", "),
-                h.max_deg
-            );
-        }
+        quality_3d(&mut s, q);
     }
     if let (Some(v), Some(c)) = (r.volume, &r.volume_check) {
         let _ = writeln!(
@@ -143,6 +76,88 @@ pub fn table(r: &Report) -> String {
     for p in &r.problems {
         let _ = writeln!(s, "  PROBLEM: {p}");
     }
+    files(&mut s, r);
+    s
+}
+
+/// The 2D quality lines: the linear mesh's angles, the certified scaled Jacobian and verdict.
+fn quality_2d(s: &mut String, q: &crate::report::Quality, order: u8) {
+    let _ = writeln!(
+        s,
+        "  angles of the linear mesh (cell corners, quads cut on the shorter diagonal):"
+    );
+    let _ = writeln!(s, "  {:<22} {:>12.1}", "max angle (deg)", q.max_angle_deg);
+    let h = q.obtuse_hist;
+    let _ = writeln!(
+        s,
+        "  obtuse triangles      95-105: {}  105-115: {}  115-125: {}  125-135: {}  >=135: {}",
+        h[0], h[1], h[2], h[3], h[4]
+    );
+    if let (Some(sj), Some(bad), Some(certified)) =
+        (q.min_scaled_jacobian, q.invalid_cells, q.certified)
+    {
+        let _ = writeln!(s, "  {:<22} {:>12.3}", "min scaled Jacobian", sj);
+        let at =
+            |w: &crate::report::WorstCell| format!("cell {} at ({:.6}, {:.6})", w.cell, w.x, w.y);
+        if let Some(w) = &q.worst_cell {
+            let _ = writeln!(
+                s,
+                "    (certified min/max of det J per cell, order {}; {})",
+                order,
+                at(w)
+            );
+        }
+        if let Some(g) = &q.min_sj_gmsh {
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12.3}\n    (min det J / det J of the straight cell at its centre; {})",
+                "Gmsh's minSJ",
+                g.value,
+                at(g)
+            );
+        }
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12}",
+            "certified check",
+            verdict(bad, certified)
+        );
+    }
+}
+
+/// The 3D quality lines: the largest dihedral angle, the certification, the histograms.
+fn quality_3d(s: &mut String, q: &crate::report::Quality3d) {
+    let _ = writeln!(
+        s,
+        "  {:<22} {:>12.1}",
+        "max dihedral (deg)", q.max_dihedral_deg
+    );
+    if let Some(v) = &q.validity {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12.3}\n  {:<22} {:>12}",
+            "min scaled Jacobian",
+            v.min_scaled_jacobian,
+            "certified check",
+            verdict(v.invalid_cells, v.certified)
+        );
+    }
+    for h in &q.histograms {
+        let bins: Vec<String> = h.counts.iter().map(ToString::to_string).collect();
+        let edges: Vec<String> = h.upper_edges_deg.iter().map(ToString::to_string).collect();
+        let _ = writeln!(
+            s,
+            "  {:<22} {}  (up to {} deg, above; max {:.1})",
+            h.name,
+            bins.join(" / "),
+            edges.join(", "),
+            h.max_deg
+        );
+    }
+}
+
+/// One line per file written, with the order of the mesh in it.
+fn files(s: &mut String, r: &Report) {
     for f in &r.files {
         match r.meshes.iter().find(|m| &m.file == f) {
             Some(m) if m.order == 1 && r.order > 1 => {
@@ -156,7 +171,6 @@ pub fn table(r: &Report) -> String {
             }
         }
     }
-    s
 }
 
 /// The certified check's verdict in words.
