@@ -122,125 +122,216 @@ pub(crate) fn march(
         let (b0, b1) = (k[bottom as usize], k[(bottom as usize + 1) % n]);
         let (t0, t1) = (k[(top as usize + 1) % n], k[top as usize]); // t0 above b0
         let bulge = edges.deviation(mesh, be, b0, &mut dev);
-        let (xb0, xb1) = (mesh.xy(b0), mesh.xy(b1));
         let te = edges.cell_edges[ci][top as usize];
         let above = edges.other_cell(te, i);
         let continues = above != NONE
             && roles[above as usize][0] != NO_EDGE
             && edges.cell_edges[above as usize][roles[above as usize][0] as usize] == te
             && mesh.cell_layer[above as usize] == layer + 1;
-        let (xt0, xt1) = (mesh.xy(t0), mesh.xy(t1));
-        let top_with =
-            |lambda: f64, pts: &mut [[f64; 2]]| lay(p, xt0, xt1, &dev, false, lambda, pts);
-        // the record of a top laid with `fraction` of the bottom's deviation
-        let rule = |fraction: f64| Carry {
-            source: be,
-            source_from: b0,
-            from: t0,
-            reversed: false,
-            fraction,
+        let mut t = Top {
+            p,
+            ci,
+            top,
+            te,
+            be,
+            b0,
+            t0,
+            xt: [mesh.xy(t0), mesh.xy(t1)],
+            dev: &dev,
+            straight: None,
         };
-        // the straight top is judged only when it may be used: lazily
-        let mut straight_cert: Option<Certificate> = None;
-        let mut straight =
-            |edges: &EdgeTable, s: &mut Scratch| -> Result<Certificate, CurvingError> {
-                if let Some(c) = straight_cert {
-                    return Ok(c);
-                }
-                let mut pts = vec![[0.0; 2]; q];
-                top_with(0.0, &mut pts);
-                let c = check(&ctx, edges, ci, &[(top, t0, &pts)], s)?;
-                straight_cert = Some(c);
-                Ok(c)
-            };
         if !continues {
             out.stops.pipe_ended += 1;
-            let flat = straight(edges, &mut s)?;
-            // ending in the filled region below the threshold, the pipe may hand part of its
-            // deviation to the fill triangle above, where that makes the worse of the two
-            // cells better than the straight top does
-            let mut best: Option<(f64, f64)> = None;
-            if quality(&flat) < params.stop_min_scaled_jacobian
-                && above != NONE
-                && above as usize >= layered_cells
-            {
-                let l = edges.cell_edges[above as usize]
-                    .iter()
-                    .position(|&e| e == te);
-                let l = l.expect("the cell above an edge has that edge") as u8;
-                for lambda in [1.0, 0.5, 0.25] {
-                    top_with(lambda, &mut top_pts);
-                    let mine = check(&ctx, edges, ci, &[(top, t0, &top_pts)], &mut s)?;
-                    if !mine.is_valid() {
-                        continue;
-                    }
-                    let theirs = check(&ctx, edges, above as usize, &[(l, t0, &top_pts)], &mut s)?;
-                    let worse = quality(&mine).min(quality(&theirs));
-                    if theirs.is_valid() && worse > best.map_or(quality(&flat), |b| b.0) {
-                        best = Some((worse, lambda));
-                    }
-                }
-            }
-            match best {
-                Some((_, lambda)) => {
-                    top_with(lambda, &mut top_pts);
-                    edges.carry(te, rule(lambda), &top_pts);
-                    out.certified[ci] = true;
-                    out.handed_to_fill += 1;
-                }
-                None if flat.is_valid() => out.certified[ci] = true,
-                None => out.stops.invalid += 1,
-            }
+            let to_fill = (above != NONE && above as usize >= layered_cells).then_some(above);
+            end_pipe(
+                &ctx,
+                edges,
+                &mut t,
+                to_fill,
+                (&mut s, &mut top_pts),
+                &mut out,
+            )?;
             continue;
         }
         let may_stop = layer + 1 >= min_layers(mesh, ci, params);
         // A straight top over a bottom that bulges by d in a cell of height h leaves a scaled
         // Jacobian near (h − d)/h; where even twice that estimate misses the threshold, the
         // check is skipped and the pipe goes on (always safe: that cell is certified too).
-        let height = dist(xb0, xt0).min(dist(xb1, xt1));
+        let height = dist(mesh.xy(b0), t.xt[0]).min(dist(mesh.xy(b1), t.xt[1]));
         let hopeless = height * (1.0 - params.stop_min_scaled_jacobian) < 0.5 * bulge;
-        if may_stop && !hopeless {
-            let good_straight = straight(edges, &mut s)?
-                .scaled_jacobian_lower_bound()
-                .is_some_and(|q| q >= params.stop_min_scaled_jacobian);
-            if good_straight {
-                out.stops.jacobian += 1;
-                out.certified[ci] = true;
+        go_on(
+            &ctx,
+            edges,
+            &mut t,
+            may_stop && !hopeless,
+            (&mut s, &mut top_pts),
+            &mut out,
+        )?;
+    }
+    Ok(out)
+}
+
+/// The top edge of one pipe cell being decided: local edge `top` (topology edge `te`) from
+/// corner `t0`, above the bottom edge `be` from its corner `b0`, whose deviation from its
+/// chord is `dev`; the straight top's certificate once it has been judged.
+struct Top<'a> {
+    p: usize,
+    ci: usize,
+    top: u8,
+    te: u32,
+    be: u32,
+    b0: u32,
+    t0: u32,
+    /// The top's corners, `t0` first.
+    xt: [[f64; 2]; 2],
+    dev: &'a [[f64; 2]],
+    straight: Option<Certificate>,
+}
+
+impl Top<'_> {
+    /// The top's points with `lambda` times the bottom's deviation laid on its chord.
+    fn lay(&self, lambda: f64, pts: &mut [[f64; 2]]) {
+        lay(self.p, self.xt[0], self.xt[1], self.dev, false, lambda, pts);
+    }
+
+    /// The record of a top laid with `fraction` of the bottom's deviation.
+    fn rule(&self, fraction: f64) -> Carry {
+        Carry {
+            source: self.be,
+            source_from: self.b0,
+            from: self.t0,
+            reversed: false,
+            fraction,
+        }
+    }
+
+    /// The cell certified with the top laid with `lambda` (its points left in `pts`).
+    fn check(
+        &self,
+        ctx: &Ctx<'_>,
+        edges: &EdgeTable,
+        lambda: f64,
+        (s, pts): (&mut Scratch, &mut [[f64; 2]]),
+    ) -> Result<Certificate, CurvingError> {
+        self.lay(lambda, pts);
+        check(ctx, edges, self.ci, &[(self.top, self.t0, pts)], s)
+    }
+
+    /// The cell certified with a straight top, judged once: only where it may be used.
+    fn straight(
+        &mut self,
+        ctx: &Ctx<'_>,
+        edges: &EdgeTable,
+        s: &mut Scratch,
+    ) -> Result<Certificate, CurvingError> {
+        if let Some(c) = self.straight {
+            return Ok(c);
+        }
+        let mut pts = vec![[0.0; 2]; self.p - 1];
+        let c = self.check(ctx, edges, 0.0, (s, &mut pts))?;
+        self.straight = Some(c);
+        Ok(c)
+    }
+
+    /// Lays `lambda` of the deviation on the top edge and records the rule.
+    fn carry(&self, edges: &mut EdgeTable, lambda: f64, pts: &mut [[f64; 2]]) {
+        self.lay(lambda, pts);
+        edges.carry(self.te, self.rule(lambda), pts);
+    }
+}
+
+/// A pipe that ends at this cell: its top stays straight, unless the cell above is a fill
+/// cell (`to_fill`) and the straight top is below the stop threshold — then the pipe may hand
+/// part of its deviation to that triangle, where that makes the worse of the two cells better
+/// than the straight top does.
+fn end_pipe(
+    ctx: &Ctx<'_>,
+    edges: &mut EdgeTable,
+    t: &mut Top<'_>,
+    to_fill: Option<u32>,
+    (s, top_pts): (&mut Scratch, &mut [[f64; 2]]),
+    out: &mut MarchOutcome,
+) -> Result<(), CurvingError> {
+    let flat = t.straight(ctx, edges, s)?;
+    let mut best: Option<(f64, f64)> = None;
+    if let Some(above) = to_fill.filter(|_| quality(&flat) < ctx.params.stop_min_scaled_jacobian) {
+        let l = edges.cell_edges[above as usize]
+            .iter()
+            .position(|&e| e == t.te);
+        let l = l.expect("the cell above an edge has that edge") as u8;
+        for lambda in [1.0, 0.5, 0.25] {
+            let mine = t.check(ctx, edges, lambda, (s, top_pts))?;
+            if !mine.is_valid() {
                 continue;
             }
-        }
-        let mut chosen = None;
-        for lambda in [1.0, 0.5, 0.25] {
-            top_with(lambda, &mut top_pts);
-            let c = check(&ctx, edges, ci, &[(top, t0, &top_pts)], &mut s)?;
-            if c.is_valid() {
-                chosen = Some(lambda);
-                break;
-            }
-        }
-        match chosen {
-            Some(lambda) => {
-                if lambda < 1.0 {
-                    out.reduced_tops += 1;
-                }
-                out.certified[ci] = true;
-                top_with(lambda, &mut top_pts);
-                edges.carry(te, rule(lambda), &top_pts);
-            }
-            None if straight(edges, &mut s)?.is_valid() => {
-                out.stops.jacobian += 1;
-                out.certified[ci] = true;
-            }
-            None => {
-                // nothing valid: keep the full deviation and let the repair or the final
-                // certification deal with it
-                out.stops.invalid += 1;
-                top_with(1.0, &mut top_pts);
-                edges.carry(te, rule(1.0), &top_pts);
+            let theirs = check(ctx, edges, above as usize, &[(l, t.t0, top_pts)], s)?;
+            let worse = quality(&mine).min(quality(&theirs));
+            if theirs.is_valid() && worse > best.map_or(quality(&flat), |b| b.0) {
+                best = Some((worse, lambda));
             }
         }
     }
-    Ok(out)
+    match best {
+        Some((_, lambda)) => {
+            t.carry(edges, lambda, top_pts);
+            out.certified[t.ci] = true;
+            out.handed_to_fill += 1;
+        }
+        None if flat.is_valid() => out.certified[t.ci] = true,
+        None => out.stops.invalid += 1,
+    }
+    Ok(())
+}
+
+/// A pipe that goes on: it stops with a straight top where it may (`may_stop`) and that top
+/// keeps the stop threshold, else the top takes the bottom's deviation, or half or a quarter
+/// of it, whichever first leaves the cell valid.
+fn go_on(
+    ctx: &Ctx<'_>,
+    edges: &mut EdgeTable,
+    t: &mut Top<'_>,
+    may_stop: bool,
+    (s, top_pts): (&mut Scratch, &mut [[f64; 2]]),
+    out: &mut MarchOutcome,
+) -> Result<(), CurvingError> {
+    if may_stop {
+        let good_straight = t
+            .straight(ctx, edges, s)?
+            .scaled_jacobian_lower_bound()
+            .is_some_and(|q| q >= ctx.params.stop_min_scaled_jacobian);
+        if good_straight {
+            out.stops.jacobian += 1;
+            out.certified[t.ci] = true;
+            return Ok(());
+        }
+    }
+    let mut chosen = None;
+    for lambda in [1.0, 0.5, 0.25] {
+        if t.check(ctx, edges, lambda, (s, top_pts))?.is_valid() {
+            chosen = Some(lambda);
+            break;
+        }
+    }
+    match chosen {
+        Some(lambda) => {
+            if lambda < 1.0 {
+                out.reduced_tops += 1;
+            }
+            out.certified[t.ci] = true;
+            t.carry(edges, lambda, top_pts);
+        }
+        None if t.straight(ctx, edges, s)?.is_valid() => {
+            out.stops.jacobian += 1;
+            out.certified[t.ci] = true;
+        }
+        None => {
+            // nothing valid: keep the full deviation and let the repair or the final
+            // certification deal with it
+            out.stops.invalid += 1;
+            t.carry(edges, 1.0, top_pts);
+        }
+    }
+    Ok(())
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
