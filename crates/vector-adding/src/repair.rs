@@ -119,21 +119,9 @@ fn mend(
     let n = k.len();
     let local = ty.shape.edges();
     let ce = edges.cell_edges[ci];
-    // the most curved edge is the source of the deviation
-    let mut source = None;
-    let mut most = 0.0;
     let mut dev = vec![[0.0; 2]; q];
-    for j in 0..n {
-        if !edges.curved[ce[j] as usize] {
-            continue;
-        }
-        let d = edges.deviation(mesh, ce[j], k[local[j][0]], &mut dev);
-        if d > most {
-            most = d;
-            source = Some(j);
-        }
-    }
-    let Some(src) = source else {
+    // the most curved edge is the source of the deviation
+    let Some(src) = most_curved(mesh, edges, (&k, local, &ce), &mut dev) else {
         return Ok(false);
     };
     let (a, b) = (k[local[src][0]], k[local[src][1]]);
@@ -159,35 +147,7 @@ fn mend(
         for lambda in [1.0, 0.5] {
             cand.clear();
             for &j in subset {
-                let (u, w) = (k[local[j][0]], k[local[j][1]]);
-                // walk the bent edge from the corner it shares with the source edge, or, on
-                // a quadrilateral's opposite edge, from the corner above the source's start
-                let (from, to, reverse) = if u == a || w == a {
-                    let other = if u == a { w } else { u };
-                    (a, other, false)
-                } else if u == b || w == b {
-                    let other = if u == b { w } else { u };
-                    (b, other, true)
-                } else {
-                    (w, u, false)
-                };
-                let mut pts = vec![[0.0; 2]; q];
-                lay(
-                    p,
-                    mesh.xy(from),
-                    mesh.xy(to),
-                    &dev,
-                    reverse,
-                    lambda,
-                    &mut pts,
-                );
-                let rule = Carry {
-                    source: ce[src],
-                    source_from: a,
-                    from,
-                    reversed: reverse,
-                    fraction: lambda,
-                };
+                let (rule, pts) = bent(mesh, p, (&k, local, &ce), j, (src, a, b), &dev, lambda);
                 cand.push((j as u8, rule, pts));
             }
             let mine: Vec<Candidate<'_>> = cand
@@ -230,6 +190,73 @@ fn mend(
         }
     }
     Ok(false)
+}
+
+/// The local index of the most curved of a cell's edges (corners `k`, shape edges `local`,
+/// topology edges `ce`); `None` if none is curved. `dev` is scratch.
+fn most_curved(
+    mesh: &Mesh,
+    edges: &EdgeTable,
+    (k, local, ce): (&[u32], &[[usize; 2]], &[u32]),
+    dev: &mut [[f64; 2]],
+) -> Option<usize> {
+    let mut source = None;
+    let mut most = 0.0;
+    for j in 0..k.len() {
+        if !edges.curved[ce[j] as usize] {
+            continue;
+        }
+        let d = edges.deviation(mesh, ce[j], k[local[j][0]], dev);
+        if d > most {
+            most = d;
+            source = Some(j);
+        }
+    }
+    source
+}
+
+/// The cell's local edge `j` (corners `k`, shape edges `local`, topology edges `ce`) bent
+/// with `lambda` times the deviation `dev` of the source edge `src`, from its corner `a` to
+/// `b`: the rule and the `p − 1` points.
+fn bent(
+    mesh: &Mesh,
+    p: usize,
+    (k, local, ce): (&[u32], &[[usize; 2]], &[u32]),
+    j: usize,
+    (src, a, b): (usize, u32, u32),
+    dev: &[[f64; 2]],
+    lambda: f64,
+) -> (Carry, Vec<[f64; 2]>) {
+    let (u, w) = (k[local[j][0]], k[local[j][1]]);
+    // walk the bent edge from the corner it shares with the source edge, or, on a
+    // quadrilateral's opposite edge, from the corner above the source's start
+    let (from, to, reverse) = if u == a || w == a {
+        let other = if u == a { w } else { u };
+        (a, other, false)
+    } else if u == b || w == b {
+        let other = if u == b { w } else { u };
+        (b, other, true)
+    } else {
+        (w, u, false)
+    };
+    let mut pts = vec![[0.0; 2]; p - 1];
+    lay(
+        p,
+        mesh.xy(from),
+        mesh.xy(to),
+        dev,
+        reverse,
+        lambda,
+        &mut pts,
+    );
+    let rule = Carry {
+        source: ce[src],
+        source_from: a,
+        from,
+        reversed: reverse,
+        fraction: lambda,
+    };
+    (rule, pts)
 }
 
 /// Restores the edges changed since `log[mark]`, latest first.
