@@ -48,7 +48,14 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         thickness += height;
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
         let front = &state.front;
-        let (dir, len) = ideal_steps(front, &topo, height, rounds, params.stand_off);
+        let (dir, len) = ideal_steps(
+            front,
+            &topo,
+            height,
+            rounds,
+            params.stand_off,
+            params.patch_normals,
+        );
         let step = Step {
             x: &front.nodes,
             dir: &dir,

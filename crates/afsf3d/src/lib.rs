@@ -120,6 +120,14 @@ pub struct LayerParams {
     /// at the step's concave edges once the layers are as thick as the wall's spacing.
     /// Default 0 (off); 0 never merges by it.
     pub squeeze: f64,
+    /// Each node's direction from its patches alike: the unit angle-weighted normal of its
+    /// facets of each wall patch (the pipes' patches), summed over the patches and
+    /// normalised, instead of the angle-weighted normal of all its facets. On a rim where
+    /// the wing's quad side meets its tip cap, the plain weights feed back: a side quad
+    /// sheared by the growth has a smaller angle at the rim node, which then leans to the
+    /// cap, which shears the quad more, until the front's quads twist and a cell inverts
+    /// (layer 11 of the quad wing; with this, layer 21, `docs/3d.md`). Default false.
+    pub patch_normals: bool,
 }
 
 impl Default for LayerParams {
@@ -139,6 +147,7 @@ impl Default for LayerParams {
             coe_shrink: 0.65,
             stand_off: 0.0,
             squeeze: 0.0,
+            patch_normals: false,
         }
     }
 }
