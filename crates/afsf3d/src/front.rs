@@ -274,6 +274,35 @@ mod tests {
     use super::*;
 
     #[test]
+    fn patch_normals_weigh_each_patch_alike_however_sheared_its_facets_are() {
+        // node 0 on a rim: a cap patch below (z = 0, facing -z, a right angle at node 0) and
+        // a side patch (y = 0, facing -y) whose quad is sheared to a 20° angle at node 0
+        let t = 20f64.to_radians();
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [t.cos(), 0.0, t.sin()],
+            [1.0 + t.cos(), 0.0, t.sin()],
+        ];
+        let facets = vec![Facet::tri(0, 2, 1), Facet::quad(0, 1, 4, 3)];
+        let mut surface = Surface::single_patch(nodes, facets, "cap");
+        surface.patches.push(surface.patches[0].clone());
+        surface.patches[1].name = "side".to_string();
+        surface.facet_patch[1] = 1;
+        let h = 0.5f64.sqrt();
+        let d = patch_normals(&surface)[0];
+        assert!((d[0]).abs() < 1e-12 && (d[1] + h).abs() < 1e-12 && (d[2] + h).abs() < 1e-12);
+        // the plain angle weights lean to the cap: 90° against 20°
+        let plain = surface.node_normals()[0];
+        assert!(plain[2] < -0.9, "{plain:?}");
+        // one patch: the plain angle-weighted normal
+        let one = Surface::single_patch(surface.nodes.clone(), surface.facets.clone(), "wall");
+        let (a, b) = (patch_normals(&one)[0], one.node_normals()[0]);
+        assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-12), "{a:?} {b:?}");
+    }
+
+    #[test]
     fn the_max_min_direction_of_a_saddle_corner_stands_equally_off_its_three_planes() {
         let (x, y, z) = ([1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]);
         // the step's tower foot: three block-top facets, one on each tower side
