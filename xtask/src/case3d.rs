@@ -169,6 +169,14 @@ pub(crate) fn parse(
         );
         layers.layers = n as usize;
     }
+    // a wing's quad side meets its caps on a rim where the plain angle weights feed back
+    layers.patch_normals = matches!(
+        surface,
+        SurfaceSource::Wing {
+            triangles: false,
+            ..
+        }
+    );
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
     Ok(Case3d {

@@ -73,19 +73,36 @@ pub(crate) fn bad_cells(front: &[[f64; 3]], layer: &Layer, facets: &[Facet]) -> 
         .collect()
 }
 
-/// Checks `layer` over the front (nodes `front`, facets `facets`, the wall facet of each in
-/// `pipes`); while a cell is invalid or the new front intersects itself, moves the children
-/// of the failing facets halfway back to their parents (a merged child to the midpoint of
-/// its two). Fails after `max_shrinks` rounds.
+/// Where a layer stays invalid: the failing front facets and what fails.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Failed {
+    pub bad: Vec<usize>,
+    pub what: &'static str,
+}
+
+impl Failed {
+    /// The growth's error for this failure in layer `layer` (the wall facet of each front
+    /// facet in `pipes`).
+    pub fn error(&self, pipes: &[u32], layer: usize) -> GrowError {
+        GrowError::LayerFailed {
+            layer,
+            facet: pipes[self.bad[0]] as usize,
+            what: self.what,
+        }
+    }
+}
+
+/// Checks `layer` over the front (nodes `front`, facets `facets`); while a cell is invalid
+/// or the new front intersects itself, moves the children of the failing facets halfway
+/// back to their parents (a merged child to the midpoint of its two). Fails after
+/// `max_shrinks` rounds, with the facets that still fail.
 pub(crate) fn shrink_until_valid(
     front: &[[f64; 3]],
     facets: &[Facet],
-    pipes: &[u32],
     layer: &mut Layer,
     max_shrinks: usize,
-    layer_index: usize,
     stats: &mut GrowStats,
-) -> Result<(), GrowError> {
+) -> Result<(), Failed> {
     let mut round = 0;
     loop {
         let mut bad = match layer.failing.take() {
@@ -103,11 +120,7 @@ pub(crate) fn shrink_until_valid(
             }
         }
         if round == max_shrinks {
-            return Err(GrowError::LayerFailed {
-                layer: layer_index,
-                facet: pipes[bad[0]] as usize,
-                what,
-            });
+            return Err(Failed { bad, what });
         }
         round += 1;
         let mut moved = vec![false; layer.children.len()];

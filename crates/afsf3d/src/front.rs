@@ -83,7 +83,8 @@ impl Topo {
 
 /// Each front node's ideal direction and ideal length.
 ///
-/// The direction is the angle-weighted normal of the node's facets; near concave nodes (a
+/// The direction is the angle-weighted normal of the node's facets (with `by_patch`, of each
+/// patch's facets apart, the patches then weighted alike: [`patch_normals`]); near concave nodes (a
 /// node whose neighbours lie on average above its tangent plane, and the nodes next to it)
 /// it is then `smoothing` times replaced by the normalised sum of its own and its
 /// neighbours' directions, which fans the directions out of concave edges so the front
@@ -98,8 +99,13 @@ pub(crate) fn ideal_steps(
     height: f64,
     smoothing: usize,
     floor: f64,
+    by_patch: bool,
 ) -> (Vec<[f64; 3]>, Vec<f64>) {
-    let mut dir = front.node_normals();
+    let mut dir = if by_patch {
+        patch_normals(front)
+    } else {
+        front.node_normals()
+    };
     let n = front.nodes.len();
     let mut rise = vec![0.0f64; n];
     for e in &topo.edges {
@@ -150,6 +156,37 @@ pub(crate) fn ideal_steps(
         })
         .collect();
     (dir, len)
+}
+
+/// Each node's normal: the sum over the patches of its facets of each patch's unit
+/// angle-weighted normal at the node (each patch counted once, however its facets' angles at
+/// the node change), normalised.
+fn patch_normals(front: &Surface) -> Vec<[f64; 3]> {
+    let patches = front.patches.len().max(1);
+    let mut acc = vec![[0.0f64; 3]; front.nodes.len() * patches];
+    for (f, facet) in front.facets.iter().enumerate() {
+        let k = facet.nodes();
+        let nrm = unit(fan_normal(&front.nodes, k));
+        let patch = front.facet_patch.get(f).copied().unwrap_or(0) as usize;
+        for i in 0..k.len() {
+            let x = |j: usize| front.nodes[k[(i + j) % k.len()] as usize];
+            let a = geom_predicates::vector::sub(x(k.len() - 1), x(0));
+            let b = geom_predicates::vector::sub(x(1), x(0));
+            let angle = geom_surface::angle_between(a, b);
+            let slot = &mut acc[k[i] as usize * patches + patch];
+            (0..3).for_each(|d| slot[d] += angle * nrm[d]);
+        }
+    }
+    acc.chunks(patches)
+        .map(|per| {
+            let mut sum = [0.0; 3];
+            for p in per {
+                let u = unit(*p);
+                (0..3).for_each(|d| sum[d] += u[d]);
+            }
+            unit(sum)
+        })
+        .collect()
 }
 
 /// Turns each node's direction `dir` that stands off one of its facets at a cosine below
@@ -235,6 +272,35 @@ pub(crate) fn max_min_direction(normals: &[[f64; 3]], start: [f64; 3]) -> [f64; 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn patch_normals_weigh_each_patch_alike_however_sheared_its_facets_are() {
+        // node 0 on a rim: a cap patch below (z = 0, facing -z, a right angle at node 0) and
+        // a side patch (y = 0, facing -y) whose quad is sheared to a 20° angle at node 0
+        let t = 20f64.to_radians();
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [t.cos(), 0.0, t.sin()],
+            [1.0 + t.cos(), 0.0, t.sin()],
+        ];
+        let facets = vec![Facet::tri(0, 2, 1), Facet::quad(0, 1, 4, 3)];
+        let mut surface = Surface::single_patch(nodes, facets, "cap");
+        surface.patches.push(surface.patches[0].clone());
+        surface.patches[1].name = "side".to_string();
+        surface.facet_patch[1] = 1;
+        let h = 0.5f64.sqrt();
+        let d = patch_normals(&surface)[0];
+        assert!((d[0]).abs() < 1e-12 && (d[1] + h).abs() < 1e-12 && (d[2] + h).abs() < 1e-12);
+        // the plain angle weights lean to the cap: 90° against 20°
+        let plain = surface.node_normals()[0];
+        assert!(plain[2] < -0.9, "{plain:?}");
+        // one patch: the plain angle-weighted normal
+        let one = Surface::single_patch(surface.nodes.clone(), surface.facets.clone(), "wall");
+        let (a, b) = (patch_normals(&one)[0], one.node_normals()[0]);
+        assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-12), "{a:?} {b:?}");
+    }
 
     #[test]
     fn the_max_min_direction_of_a_saddle_corner_stands_equally_off_its_three_planes() {

@@ -2,7 +2,7 @@
 //! polyhedral mesh.
 
 use geom_predicates::vector::dist;
-use geom_surface::Surface;
+use geom_surface::{Facet, Surface};
 use mesh_model::poly::{CellFace, PolyMesh};
 use mesh_model::{NONE, Role};
 use springfield::{
@@ -10,7 +10,7 @@ use springfield::{
     solve_model,
 };
 
-use crate::check::{bad_cells, shrink_until_valid};
+use crate::check::{Failed, bad_cells, shrink_until_valid};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
 use crate::repair::{CUT_LIMIT, repair_layer};
@@ -48,7 +48,14 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         thickness += height;
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
         let front = &state.front;
-        let (dir, len) = ideal_steps(front, &topo, height, rounds, params.stand_off);
+        let (dir, len) = ideal_steps(
+            front,
+            &topo,
+            height,
+            rounds,
+            params.stand_off,
+            params.patch_normals,
+        );
         let step = Step {
             x: &front.nodes,
             dir: &dir,
@@ -88,15 +95,14 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
                 next.failing = Some(bad);
             }
         }
-        shrink_until_valid(
-            &front.nodes,
+        settle_layer(
+            &ideal,
             &front.facets,
-            &state.pipes,
             &mut next,
             params.max_shrinks,
-            layer,
             &mut state.stats,
-        )?;
+        )
+        .map_err(|failed| failed.error(&state.pipes, layer))?;
         // the few cells no cut can keep under the limit: their children moved (checked); not
         // in the first layer, whose children stand on the wall's normals at its first height
         // (moved there, the wing's thin tip-cap cells made the second layer fail)
@@ -111,6 +117,53 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         }
     }
     Ok(state.finish())
+}
+
+/// How many times a layer that stays invalid drops the merges of its failing cells and is
+/// checked again.
+const UNMERGE_TRIES: usize = 4;
+
+/// Shrinks `next` (the layer over the front of `ideal`, its facets `facets`) until valid
+/// ([`shrink_until_valid`]). Where it stays invalid and children of its failing cells are
+/// merged, the layer is built again from the balanced children without those merges
+/// ([`merged_layer`] with the others) and shrunk again, at most [`UNMERGE_TRIES`] times:
+/// a merged child stands over the middle of its two parents, half an edge off each
+/// parent's column, and the halving moves it towards that middle, so an unmerged cell
+/// next to it that it shears stays inverted however far it is shrunk (the quad wing's
+/// side near a tip, `docs/3d.md`).
+fn settle_layer(
+    ideal: &Ideal<'_>,
+    facets: &[Facet],
+    next: &mut Layer,
+    max_shrinks: usize,
+    stats: &mut GrowStats,
+) -> Result<(), Failed> {
+    let mut merges: Vec<[u32; 2]> = next
+        .parents
+        .iter()
+        .filter(|p| p[1] != NONE)
+        .copied()
+        .collect();
+    let mut tries = 0;
+    loop {
+        let failed = match shrink_until_valid(ideal.nodes, facets, next, max_shrinks, stats) {
+            Ok(()) => return Ok(()),
+            Err(failed) => failed,
+        };
+        let mut drop: Vec<u32> = failed
+            .bad
+            .iter()
+            .flat_map(|&f| facets[f].nodes().iter().copied())
+            .collect();
+        drop.sort_unstable();
+        let before = merges.len();
+        merges.retain(|m| drop.binary_search(&m[0]).is_err() && drop.binary_search(&m[1]).is_err());
+        if tries == UNMERGE_TRIES || merges.len() == before {
+            return Err(failed);
+        }
+        tries += 1;
+        *next = merged_layer(ideal, facets, merges.clone());
+    }
 }
 
 /// What the layer loop carries from one layer to the next.

@@ -5,7 +5,8 @@
 //! it fails.
 //!
 //! Layer k (from 0) has the height `first_height × growth^k`. Each front node's ideal
-//! direction is the angle-weighted normal of the front facets around it; its ideal length is
+//! direction is the angle-weighted normal of the front facets around it (with
+//! [`LayerParams::patch_normals`], each wall patch's apart, the patches weighted alike); its ideal length is
 //! the layer height, divided, at a concave node, by the smallest cosine between the direction
 //! and the normals of its facets (so that the child stands the layer height off every facet
 //! there; see `docs/afsf3d.md`). The children start at their ideal places and are balanced
@@ -33,8 +34,11 @@
 //! and the new front must not intersect itself anywhere (facet pairs by sort-and-sweep over
 //! the whole front, the exact triangle test). The children of a failing cell or facet pair
 //! are moved halfway back to their parents (a merged child to the midpoint of its two), and
-//! the check repeated, at most [`LayerParams::max_shrinks`] times; then the growth fails
-//! with the layer and wall facet.
+//! the check repeated, at most [`LayerParams::max_shrinks`] times. A layer still invalid
+//! then drops the merges of its failing cells' nodes (a merged child stands half an edge off
+//! its parents' columns and shrinks towards their middle, so a neighbour it shears stays
+//! inverted) and is built and shrunk again, at most four times; then the growth fails with
+//! the layer and wall facet.
 //!
 //! Then, from the second layer on, where a cell over a front triangle has no cone cut (any
 //! apex, any diagonals) with every tetrahedron under 140° — a cap on its top, one child
@@ -120,6 +124,14 @@ pub struct LayerParams {
     /// at the step's concave edges once the layers are as thick as the wall's spacing.
     /// Default 0 (off); 0 never merges by it.
     pub squeeze: f64,
+    /// Each node's direction from its patches alike: the unit angle-weighted normal of its
+    /// facets of each wall patch (the pipes' patches), summed over the patches and
+    /// normalised, instead of the angle-weighted normal of all its facets. On a rim where
+    /// the wing's quad side meets its tip cap, the plain weights feed back: a side quad
+    /// sheared by the growth has a smaller angle at the rim node, which then leans to the
+    /// cap, which shears the quad more, until the front's quads twist and a cell inverts
+    /// (layer 11 of the quad wing; with this, layer 21, `docs/3d.md`). Default false.
+    pub patch_normals: bool,
 }
 
 impl Default for LayerParams {
@@ -139,6 +151,7 @@ impl Default for LayerParams {
             coe_shrink: 0.65,
             stand_off: 0.0,
             squeeze: 0.0,
+            patch_normals: false,
         }
     }
 }
