@@ -726,6 +726,9 @@ struct Region {
     table: Option<EdgeTable>,
 }
 
+/// The open cell edges of a region, sorted, and whether each facet is bare.
+type OpenAndBare = (Vec<(u32, u32)>, Vec<bool>);
+
 /// The edges of the cells alive at the start and their uses by the cells still alive.
 struct EdgeTable {
     /// The edges of the cells in `Region::live`, with the boundary facets on theirs.
@@ -846,11 +849,7 @@ impl Region {
     /// The open cell edges (sorted) and the bare facets, from the fronts: every front edge
     /// with a cell is a side of that alive cell, met once; every front edge without one is a
     /// facet, met once; else `None`.
-    fn open_from_fronts(
-        &self,
-        cells: &[Cell],
-        fronts: &[(u32, u32, u32)],
-    ) -> Option<(Vec<(u32, u32)>, Vec<bool>)> {
+    fn open_from_fronts(&self, cells: &[Cell], fronts: &[(u32, u32, u32)]) -> Option<OpenAndBare> {
         let mut open = Vec::with_capacity(fronts.len());
         let mut bare_edges = Vec::new();
         for &(a, b, c) in fronts {
