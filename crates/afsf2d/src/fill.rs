@@ -264,15 +264,12 @@ fn flip_min_max_angle(
     let mut kept = vec![NONE; 3 * tris.len()];
     let mut flipped = vec![false; tris.len()];
     for _ in 0..FLIP_SWEEPS {
-        let owner = Owners::new(tris);
+        let owner = Owners::new(tris, n0 + steiner.len());
         let before_sweep = std::mem::replace(&mut flipped, vec![false; tris.len()]);
         let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
         let mut flips = 0;
         // in a fixed order: the same input makes the same mesh
-        for &((a, b), (t1, c1)) in &owner.by_edge {
-            if a >= b {
-                continue;
-            }
+        for ((a, b), (t1, c1)) in owner.ascending() {
             // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
             // (b, a) when every directed edge has one owner
             let t2 = tried[3 * t1 + c1];
@@ -321,46 +318,92 @@ fn flip_min_max_angle(
 }
 
 /// The triangle and the opposite corner of each directed edge (`tri[i] -> tri[i+1]`,
-/// opposite corner `i+2`), sorted by edge: a directed edge met twice keeps its last triangle.
+/// opposite corner `i+2`), by first node and then second node (the order of a sort by edge):
+/// a directed edge met twice keeps its last triangle. Built by a counting sort on the first
+/// node, each node's few edges then sorted by their second node and position.
 struct Owners {
-    by_edge: Vec<((u32, u32), (usize, usize))>,
+    /// `edges[start[a]..start[a + 1]]`: the edges leaving node `a`, as (second node, position
+    /// `3 t + i` of the edge in the triangles), increasing.
+    start: Vec<u32>,
+    edges: Vec<(u32, u32)>,
     /// Whether no directed edge was met twice.
     unique: bool,
 }
 
 impl Owners {
-    fn new(tris: &[[u32; 3]]) -> Self {
-        use rayon::prelude::*;
-        // (edge, position 3 t + i): the keys are distinct, so sorting them orders equal edges
-        // by position, as a stable sort by edge alone did (the parallel merge sort, like the
-        // sequential one, runs in near-linear time over the runs of a triangulation's edges)
-        let mut owner: Vec<(u32, u32, u32)> = tris
-            .par_iter()
-            .enumerate()
-            .flat_map_iter(|(t, tri)| {
-                (0..3).map(move |i| (tri[i], tri[(i + 1) % 3], (3 * t + i) as u32))
-            })
-            .collect();
-        owner.par_sort();
-        let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::with_capacity(owner.len());
-        for (a, b, at) in owner {
-            let o = ((a, b), (at as usize / 3, (at as usize % 3 + 2) % 3));
-            match kept.last_mut() {
-                // among equal edges the last position is kept
-                Some(last) if last.0 == o.0 => *last = o,
-                _ => kept.push(o),
+    fn new(tris: &[[u32; 3]], n_nodes: usize) -> Self {
+        let mut start = vec![0u32; n_nodes + 1];
+        for tri in tris {
+            for &a in tri {
+                start[a as usize + 1] += 1;
             }
         }
+        for a in 0..n_nodes {
+            start[a + 1] += start[a];
+        }
+        let mut next = start.clone();
+        let mut edges = vec![(0u32, 0u32); 3 * tris.len()];
+        for (t, tri) in tris.iter().enumerate() {
+            for i in 0..3 {
+                let slot = &mut next[tri[i] as usize];
+                edges[*slot as usize] = (tri[(i + 1) % 3], (3 * t + i) as u32);
+                *slot += 1;
+            }
+        }
+        let mut unique = true;
+        for a in 0..n_nodes {
+            let run = &mut edges[start[a] as usize..start[a + 1] as usize];
+            // (the keys are distinct: a run of a few edges, in position order already)
+            run.sort_unstable();
+            unique &= run.windows(2).all(|w| w[0].0 != w[1].0);
+        }
+        if !unique {
+            // among equal edges the last position is kept
+            let mut kept = Vec::with_capacity(edges.len());
+            let mut kept_start = vec![0u32; n_nodes + 1];
+            for a in 0..n_nodes {
+                let run = &edges[start[a] as usize..start[a + 1] as usize];
+                for (k, e) in run.iter().enumerate() {
+                    if run.get(k + 1).is_none_or(|f| f.0 != e.0) {
+                        kept.push(*e);
+                    }
+                }
+                kept_start[a + 1] = kept.len() as u32;
+            }
+            return Owners {
+                start: kept_start,
+                edges: kept,
+                unique,
+            };
+        }
         Owners {
-            unique: kept.len() == 3 * tris.len(),
-            by_edge: kept,
+            start,
+            edges,
+            unique,
         }
     }
 
-    fn get(&self, edge: (u32, u32)) -> Option<(usize, usize)> {
-        let i = self.by_edge.binary_search_by_key(&edge, |&(k, _)| k).ok()?;
-        Some(self.by_edge[i].1)
+    /// Every directed edge `(a, b)` with `a < b`, increasing, with its triangle and the
+    /// triangle's corner opposite the edge.
+    fn ascending(&self) -> impl Iterator<Item = ((u32, u32), (usize, usize))> + '_ {
+        (0..self.start.len() - 1).flat_map(move |a| {
+            self.edges[self.start[a] as usize..self.start[a + 1] as usize]
+                .iter()
+                .filter(move |e| e.0 > a as u32)
+                .map(move |&(b, at)| ((a as u32, b), split(at)))
+        })
     }
+
+    fn get(&self, (a, b): (u32, u32)) -> Option<(usize, usize)> {
+        let a = a as usize;
+        let run = &self.edges[self.start[a] as usize..self.start[a + 1] as usize];
+        run.iter().find(|e| e.0 == b).map(|e| split(e.1))
+    }
+}
+
+/// The triangle of edge position `3 t + i` and its corner opposite the edge.
+fn split(at: u32) -> (usize, usize) {
+    (at as usize / 3, (at as usize % 3 + 2) % 3)
 }
 
 /// Sweeps of the Steiner-node smoothing.
@@ -510,23 +553,25 @@ fn edge_ratio(c: &Cell, pos: &[P2]) -> f64 {
 }
 
 /// Fills the region left between the layered cells and, while some fill triangle has an
-/// angle of `max_angle_deg` or more, peels the layered cells (not the first layer) that touch
-/// those triangles into the region and fills again, at most `rounds` times: a coarse cell
+/// angle of `angles.peel_max_angle_deg` or more, peels the layered cells (not the first
+/// layer) that touch those triangles into the region and fills again, at most
+/// `angles.rounds` times: a coarse cell
 /// whose corner pinches the region between fronts of very different sizes thus becomes room
 /// for well-shaped triangles. Peeled cells get `len` 0; their nodes are kept (inside the
 /// region, as triangulation vertices, when no remaining cell uses them). `facets` are the
-/// boundary facets with the domain on their left. Returns the triangles, the added nodes
+/// boundary facets with the domain on their left, `fronts` the final fronts' edges
+/// ([`Region::new`]). Returns the triangles, the added nodes
 /// (numbered from `pos.len()` on) and the number of cells peeled.
 pub(crate) fn fill_with_peeling(
     cells: &mut [Cell],
     facets: &[(u32, u32)],
+    fronts: &[(u32, u32, u32)],
     pos: &[P2],
-    min_angle_deg: f64,
-    max_angle_deg: f64,
-    rounds: u32,
+    angles: FillAngles,
 ) -> Result<PeeledFill, AfsfError> {
-    let mut region = Region::new(cells, facets, pos.len());
-    let peelable = Peelable::new(cells, pos);
+    let mut region = Region::new(cells, facets, fronts, pos.len());
+    let mut peelable: Option<Peelable> = None;
+    let max_angle_deg = angles.peel_max_angle_deg;
     let limit = crate::quality::AngleLimit::new(max_angle_deg);
     let mut peeled: Vec<u32> = Vec::new();
     let mut round = 0;
@@ -535,10 +580,29 @@ pub(crate) fn fill_with_peeling(
         let free: Vec<u32> = peeled
             .iter()
             .flat_map(|&c| cells[c as usize].nodes)
-            .filter(|&g| g != mesh_model::NONE && region.node_uses[g as usize] == 0)
+            .filter(|&g| g != mesh_model::NONE && region.unused(g))
             .collect();
-        let (tris, steiner) = fill_region(&directed, &free, pos, min_angle_deg)?;
-        if round == rounds {
+        let fill = || fill_region(&directed, &free, pos, angles.min_angle_deg);
+        let (tris, steiner) = if round == 0 && angles.rounds > 0 && rayon::current_num_threads() > 1
+        {
+            // what a peel round needs is built on the other thread while the first fill runs
+            let start: &[Cell] = cells;
+            let (filled, (table, cells_of_node)) = rayon::join(fill, || {
+                let table = match region.table {
+                    None => Some(EdgeTable::new(start, &region.live, facets, pos.len())),
+                    Some(_) => None,
+                };
+                (table, Peelable::new(start, pos))
+            });
+            if table.is_some() {
+                region.table = table;
+            }
+            peelable = Some(cells_of_node);
+            filled?
+        } else {
+            fill()?
+        };
+        if round == angles.rounds {
             return Ok((tris, steiner, peeled.len()));
         }
         round += 1;
@@ -554,14 +618,19 @@ pub(crate) fn fill_with_peeling(
             !limit.triangle_below(a, b, c)
                 && crate::quality::max_triangle_angle_deg(a, b, c) >= max_angle_deg
         };
-        let bad_nodes: Vec<u32> = tris
-            .iter()
-            .filter(|t| bad(at(t[0]), at(t[1]), at(t[2])))
-            .flat_map(|t| t.iter().copied().filter(|&g| (g as usize) < pos.len()))
-            .collect();
+        let bad_nodes: Vec<u32> = {
+            use rayon::prelude::*;
+            tris.par_iter()
+                .filter(|t| bad(at(t[0]), at(t[1]), at(t[2])))
+                .flat_map_iter(|t| t.iter().copied().filter(|&g| (g as usize) < pos.len()))
+                .collect()
+        };
         if bad_nodes.is_empty() {
             return Ok((tris, steiner, peeled.len()));
         }
+        // (built before the first peel: both describe the cells alive at the start)
+        region.ensure_table(cells, pos.len());
+        let peelable = peelable.get_or_insert_with(|| Peelable::new(cells, pos));
         let before = peeled.len();
         for ci in peelable.touching(&bad_nodes) {
             let c = &mut cells[ci as usize];
@@ -576,6 +645,15 @@ pub(crate) fn fill_with_peeling(
         }
         region.peel(cells, &peeled[before..]);
     }
+}
+
+/// The fill's angle parameters: the refinement's smallest angle, and the peel rounds
+/// (at most `rounds`, while a triangle has an angle of `peel_max_angle_deg` or more).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FillAngles {
+    pub min_angle_deg: f64,
+    pub peel_max_angle_deg: f64,
+    pub rounds: u32,
 }
 
 /// The cells a peel round may take (alive at the start, above the first layer, edge ratio at
@@ -626,17 +704,34 @@ impl Peelable {
     }
 }
 
-/// The boundary of the region left to the fill, kept up to date as cells are peeled: the
-/// edges of the cells alive at the start are counted once (by `mesh_model::topology`), then
-/// each peel round only updates the counts of the peeled cells' edges and corners, instead of
-/// counting the edges of every layered cell again.
+/// The boundary of the region left to the fill, kept up to date as cells are peeled. At the
+/// start it is read off the final fronts (each front edge knows its cell); the edge table of
+/// the cells alive at the start (by `mesh_model::topology`) is built only when a round peels,
+/// and then each peel round only updates the counts of the peeled cells' edges and corners,
+/// instead of counting the edges of every layered cell again.
 struct Region {
     /// The cells alive at the start, by index; their position in this list is their index in
-    /// `edges`.
+    /// the edge table.
     live: Vec<u32>,
     /// Position in `live` of each cell (`NONE` for a cell not alive at the start).
     position: Vec<u32>,
-    /// The edges of the cells in `live`, with the boundary facets on theirs.
+    /// The cell edges on the region's boundary (alive in one cell, no facet on it), as
+    /// (position in `live`, local edge), sorted.
+    open: Vec<(u32, u32)>,
+    /// The boundary facets, domain on their left.
+    facets: Vec<(u32, u32)>,
+    /// Before the edge table: whether each facet has no cell on it (a front edge).
+    bare: Vec<bool>,
+    /// The edge table, once built.
+    table: Option<EdgeTable>,
+}
+
+/// The open cell edges of a region, sorted, and whether each facet is bare.
+type OpenAndBare = (Vec<(u32, u32)>, Vec<bool>);
+
+/// The edges of the cells alive at the start and their uses by the cells still alive.
+struct EdgeTable {
+    /// The edges of the cells in `Region::live`, with the boundary facets on theirs.
     edges: Edges,
     /// Whether each cell of `live` is still alive (not peeled).
     alive: Vec<bool>,
@@ -644,30 +739,22 @@ struct Region {
     edge_uses: Vec<u32>,
     /// Cells still alive with each node as a corner.
     node_uses: Vec<u32>,
-    /// The cell edges on the region's boundary (alive in one cell, no facet on it), as
-    /// (position in `live`, local edge), sorted.
-    open: Vec<(u32, u32)>,
     /// The edge of each boundary facet (`NONE` when no cell has it).
     facet_edge: Vec<u32>,
-    /// The boundary facets, domain on their left.
-    facets: Vec<(u32, u32)>,
 }
 
-impl Region {
-    fn new(cells: &[Cell], facets: &[(u32, u32)], n_nodes: usize) -> Self {
+fn cell_shape(c: &Cell) -> Shape {
+    if c.len == 3 { Shape::Tri } else { Shape::Quad }
+}
+
+impl EdgeTable {
+    /// The table of the cells `live` (all alive) and the boundary facets.
+    fn new(cells: &[Cell], live: &[u32], facets: &[(u32, u32)], n_nodes: usize) -> Self {
         let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
-        let live: Vec<u32> = (0..cells.len() as u32)
-            .filter(|&c| cells[c as usize].len > 0)
-            .collect();
-        let mut position = vec![NONE; cells.len()];
-        for (i, &c) in live.iter().enumerate() {
-            position[c as usize] = i as u32;
-        }
-        let shape = |c: &Cell| if c.len == 3 { Shape::Tri } else { Shape::Quad };
         let edges = Edges::build(
             live.iter().map(|&c| {
                 let c = &cells[c as usize];
-                (shape(c), c.corners())
+                (cell_shape(c), c.corners())
             }),
             facet_nodes.iter().map(|f| &f[..]),
         );
@@ -675,32 +762,139 @@ impl Region {
             .map(|e| edges.cells(e).len() as u32)
             .collect();
         let mut node_uses = vec![0u32; n_nodes];
-        let mut open = Vec::new();
-        for (i, &c) in live.iter().enumerate() {
+        for &c in live {
             for &g in cells[c as usize].corners() {
                 node_uses[g as usize] += 1;
-            }
-            for (j, &e) in edges.of_cell(i).iter().enumerate() {
-                if edge_uses[e as usize] == 1 && !edges.is_boundary(e) {
-                    open.push((i as u32, j as u32));
-                }
             }
         }
         let facet_edge = facets
             .iter()
             .map(|&(a, b)| edges.find(&[a, b]).unwrap_or(NONE))
             .collect();
-        Region {
+        EdgeTable {
             alive: vec![true; live.len()],
-            live,
-            position,
             edges,
             edge_uses,
             node_uses,
-            open,
             facet_edge,
-            facets: facets.to_vec(),
         }
+    }
+
+    /// Whether no alive cell stands on facet `f`.
+    fn bare(&self, f: usize) -> bool {
+        let e = self.facet_edge[f];
+        e == NONE || self.edge_uses[e as usize] == 0
+    }
+
+    /// The open cell edges (alive in one cell, no facet on it), sorted.
+    fn open(&self) -> Vec<(u32, u32)> {
+        let mut open = Vec::new();
+        for i in 0..self.alive.len() {
+            for (j, &e) in self.edges.of_cell(i).iter().enumerate() {
+                if self.edge_uses[e as usize] == 1 && !self.edges.is_boundary(e) {
+                    open.push((i as u32, j as u32));
+                }
+            }
+        }
+        open
+    }
+}
+
+impl Region {
+    /// The region of the cells alive in `cells`, whose fronts are the directed edges
+    /// `fronts` (`(a, b, cell)`: the region on the left, the cell on the right or `NONE` on a
+    /// bare facet). When the fronts do not match the cells edge for edge, the boundary is
+    /// counted from the edge table instead.
+    fn new(
+        cells: &[Cell],
+        facets: &[(u32, u32)],
+        fronts: &[(u32, u32, u32)],
+        n_nodes: usize,
+    ) -> Self {
+        let live: Vec<u32> = (0..cells.len() as u32)
+            .filter(|&c| cells[c as usize].len > 0)
+            .collect();
+        let mut position = vec![NONE; cells.len()];
+        for (i, &c) in live.iter().enumerate() {
+            position[c as usize] = i as u32;
+        }
+        let mut region = Region {
+            live,
+            position,
+            open: Vec::new(),
+            facets: facets.to_vec(),
+            bare: Vec::new(),
+            table: None,
+        };
+        match region.open_from_fronts(cells, fronts) {
+            Some((open, bare)) => {
+                region.open = open;
+                region.bare = bare;
+                if cfg!(debug_assertions) {
+                    let table = EdgeTable::new(cells, &region.live, facets, n_nodes);
+                    assert_eq!(region.open, table.open(), "the fronts' open edges");
+                    let bare: Vec<bool> = (0..facets.len()).map(|f| table.bare(f)).collect();
+                    assert_eq!(region.bare, bare, "the fronts' bare facets");
+                }
+            }
+            None => {
+                let table = EdgeTable::new(cells, &region.live, facets, n_nodes);
+                region.open = table.open();
+                region.table = Some(table);
+            }
+        }
+        region
+    }
+
+    /// The open cell edges (sorted) and the bare facets, from the fronts: every front edge
+    /// with a cell is a side of that alive cell, met once; every front edge without one is a
+    /// facet, met once; else `None`.
+    fn open_from_fronts(&self, cells: &[Cell], fronts: &[(u32, u32, u32)]) -> Option<OpenAndBare> {
+        let mut open = Vec::with_capacity(fronts.len());
+        let mut bare_edges = Vec::new();
+        for &(a, b, c) in fronts {
+            if c == NONE {
+                bare_edges.push((a, b));
+                continue;
+            }
+            let i = *self.position.get(c as usize)?;
+            if i == NONE {
+                return None;
+            }
+            let k = cells[c as usize].corners();
+            // the cell is on the right of the front edge: its side (b, a)
+            let j = (0..k.len()).find(|&j| k[j] == b && k[(j + 1) % k.len()] == a)?;
+            open.push((i, j as u32));
+        }
+        open.sort_unstable();
+        if open.windows(2).any(|w| w[0] == w[1]) {
+            return None;
+        }
+        bare_edges.sort_unstable();
+        let bare: Vec<bool> = self
+            .facets
+            .iter()
+            .map(|f| bare_edges.binary_search(f).is_ok())
+            .collect();
+        let n_bare = bare.iter().filter(|&&b| b).count();
+        if n_bare != bare_edges.len() || bare_edges.windows(2).any(|w| w[0] == w[1]) {
+            return None;
+        }
+        Some((open, bare))
+    }
+
+    /// Builds the edge table now (before any cell of `live` is peeled) if it is not yet.
+    fn ensure_table(&mut self, cells: &[Cell], n_nodes: usize) {
+        if self.table.is_none() {
+            self.table = Some(EdgeTable::new(cells, &self.live, &self.facets, n_nodes));
+        }
+    }
+
+    /// Whether node `g` is a corner of no alive cell (only after a peel).
+    fn unused(&self, g: u32) -> bool {
+        self.table
+            .as_ref()
+            .is_some_and(|t| t.node_uses[g as usize] == 0)
     }
 
     /// The region's boundary as directed edges with the region on their left: the open cell
@@ -715,43 +909,45 @@ impl Region {
                 (k[(j + 1) % k.len()], k[j])
             })
             .collect();
+        let bare = |f: usize| match &self.table {
+            Some(t) => t.bare(f),
+            None => self.bare[f],
+        };
         directed.extend(
-            self.facets
-                .iter()
-                .zip(&self.facet_edge)
-                .filter(|&(_, &e)| e == NONE || self.edge_uses[e as usize] == 0)
-                .map(|(&f, _)| f),
+            (0..self.facets.len())
+                .filter(|&f| bare(f))
+                .map(|f| self.facets[f]),
         );
         directed
     }
 
     /// Takes the cells `peeled` (alive until now, their `len` already 0) out of the region's
-    /// walls: the edges they shared with alive cells open.
+    /// walls: the edges they shared with alive cells open. The edge table must be built.
     fn peel(&mut self, cells: &[Cell], peeled: &[u32]) {
+        let t = self
+            .table
+            .as_mut()
+            .expect("the edge table is built before a peel");
         let mut touched = Vec::new();
         for &c in peeled {
             let i = self.position[c as usize] as usize;
-            self.alive[i] = false;
-            let of_cell = self.edges.of_cell(i);
+            t.alive[i] = false;
+            let of_cell = t.edges.of_cell(i);
             for &g in &cells[c as usize].nodes[..of_cell.len()] {
-                self.node_uses[g as usize] -= 1;
+                t.node_uses[g as usize] -= 1;
             }
             for &e in of_cell {
-                self.edge_uses[e as usize] -= 1;
+                t.edge_uses[e as usize] -= 1;
                 touched.push(e);
             }
         }
-        let alive = &self.alive;
+        let alive = &t.alive;
         self.open.retain(|&(i, _)| alive[i as usize]);
         for e in touched {
-            if self.edge_uses[e as usize] != 1 || self.edges.is_boundary(e) {
+            if t.edge_uses[e as usize] != 1 || t.edges.is_boundary(e) {
                 continue;
             }
-            let open = self
-                .edges
-                .cells(e)
-                .iter()
-                .filter(|u| alive[u.cell as usize]);
+            let open = t.edges.cells(e).iter().filter(|u| alive[u.cell as usize]);
             self.open.extend(open.map(|u| (u.cell, u32::from(u.local))));
         }
         self.open.sort_unstable();
@@ -792,7 +988,7 @@ mod tests {
         directed
     }
 
-    /// The edge owners by the parallel sort on (edge, position) are those of a stable sort by
+    /// The edge owners by the counting sort on the first node are those of a stable sort by
     /// edge, where a directed edge met twice keeps its last triangle.
     #[test]
     fn the_edge_owners_are_those_of_a_stable_sort() {
@@ -815,9 +1011,24 @@ mod tests {
                 _ => kept.push(o),
             }
         }
-        let owners = Owners::new(&tris);
+        let owners = Owners::new(&tris, 40);
         assert!(!owners.unique);
-        assert_eq!(owners.by_edge, kept);
+        let listed: Vec<((u32, u32), (usize, usize))> = (0..40usize)
+            .flat_map(|a| {
+                let run = &owners.edges[owners.start[a] as usize..owners.start[a + 1] as usize];
+                run.iter().map(move |&(b, at)| ((a as u32, b), split(at)))
+            })
+            .collect();
+        assert_eq!(listed, kept);
+        let ascending: Vec<_> = kept.iter().copied().filter(|o| o.0.0 < o.0.1).collect();
+        assert_eq!(owners.ascending().collect::<Vec<_>>(), ascending);
+        for &(edge, owner) in &kept {
+            assert_eq!(owners.get(edge), Some(owner));
+        }
+        // a triangulation's edges are met once each
+        let grid = [[0, 1, 2], [2, 1, 3]];
+        assert!(Owners::new(&grid, 4).unique);
+        assert_eq!(Owners::new(&grid, 4).get((2, 1)), Some((1, 2)));
     }
 
     #[test]
@@ -846,11 +1057,37 @@ mod tests {
             }
         }
         let facets: Vec<(u32, u32)> = (0..n - 1).map(|i| (at(i, 0), at(i + 1, 0))).collect();
-        let mut region = Region::new(&cells, &facets, (n * n) as usize);
-        assert_eq!(
-            region.directed(&cells),
-            directed_from_scratch(&cells, &facets)
-        );
+        // the fronts: every open cell side reversed with its cell, the bare facets without
+        let mut fronts = Vec::new();
+        for (ci, c) in cells.iter().enumerate() {
+            let k = c.corners();
+            for j in 0..k.len() {
+                let (a, b) = (k[j], k[(j + 1) % k.len()]);
+                let shared = cells.iter().enumerate().any(|(di, d)| {
+                    let m = d.corners();
+                    di != ci && (0..m.len()).any(|i| m[i] == b && m[(i + 1) % m.len()] == a)
+                });
+                if !shared && !facets.contains(&(a, b)) {
+                    fronts.push((b, a, ci as u32));
+                }
+            }
+        }
+        fronts.reverse(); // any order
+        // a front edge on no cell side: the boundary is counted from the edge table instead
+        let wrong = [(at(0, 0), at(7, 7), 3)];
+        let n_nodes = (n * n) as usize;
+        let mut regions = [
+            Region::new(&cells, &facets, &fronts, n_nodes),
+            Region::new(&cells, &facets, &wrong, n_nodes),
+        ];
+        assert!(regions[0].table.is_none() && regions[1].table.is_some());
+        for region in &mut regions {
+            assert_eq!(
+                region.directed(&cells),
+                directed_from_scratch(&cells, &facets)
+            );
+            region.ensure_table(&cells, n_nodes);
+        }
         let mut seed = 12345u64;
         for _round in 0..6 {
             let mut peeled = Vec::new();
@@ -863,14 +1100,16 @@ mod tests {
                     peeled.push(ci as u32);
                 }
             }
-            region.peel(&cells, &peeled);
-            assert_eq!(
-                region.directed(&cells),
-                directed_from_scratch(&cells, &facets)
-            );
-            for g in 0..n * n {
-                let used = cells.iter().any(|c| c.corners().contains(&g));
-                assert_eq!(region.node_uses[g as usize] > 0, used, "node {g}");
+            for region in &mut regions {
+                region.peel(&cells, &peeled);
+                assert_eq!(
+                    region.directed(&cells),
+                    directed_from_scratch(&cells, &facets)
+                );
+                for g in 0..n * n {
+                    let used = cells.iter().any(|c| c.corners().contains(&g));
+                    assert_eq!(!region.unused(g), used, "node {g}");
+                }
             }
         }
         assert!(

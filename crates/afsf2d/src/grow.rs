@@ -236,6 +236,17 @@ impl<'p> Work<'p> {
         Ok(())
     }
 
+    /// Every front edge as (first node, second node, the cell it bounds or `NONE`), loop
+    /// after loop: the region left to fill is on their left.
+    pub(crate) fn front_edges(&self) -> Vec<(u32, u32, u32)> {
+        let mut out = Vec::new();
+        for l in &self.loops {
+            let m = l.items.len();
+            out.extend((0..m).map(|i| (l.items[i], l.items[(i + 1) % m], l.edges[i].cell)));
+        }
+        out
+    }
+
     fn ideal_length(&self, law: Law, g: usize) -> f64 {
         match law {
             Law::Geometric { first, growth } => first * growth.powi(self.nodes.layer[g] as i32),

@@ -133,13 +133,17 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         .iter()
         .map(|f| (f.nodes[0], f.nodes[1]))
         .collect();
+    let fronts = work.front_edges();
     let (fill, steiner, peeled) = fill::fill_with_peeling(
         &mut work.cells,
         &facets,
+        &fronts,
         &work.nodes.pos,
-        params.fill_min_angle_deg,
-        params.peel_max_angle_deg,
-        params.peel_rounds,
+        fill::FillAngles {
+            min_angle_deg: params.fill_min_angle_deg,
+            peel_max_angle_deg: params.peel_max_angle_deg,
+            rounds: params.peel_rounds,
+        },
     )?;
     for p in steiner {
         work.nodes.push_node(nodes::NewNode::unlayered(p));

@@ -161,7 +161,7 @@ impl<const D: usize> LocalProblem<D> {
     /// positions, each moving node's scale being `scale(g)` (fixed nodes 1); writes the moving
     /// nodes back into `positions` and forgets the numbering. Returns the saved positions of
     /// the moving nodes older than `new_start` (the new ones go with the step on undo).
-    pub fn solve<M: ForceModel<D> + ?Sized>(
+    pub fn solve<M: ForceModel<D> + Sync + ?Sized>(
         &mut self,
         positions: &mut [[f64; D]],
         new_start: usize,

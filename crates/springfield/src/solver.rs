@@ -161,7 +161,7 @@ where
         positions,
         scale,
         movable,
-        Some(influence),
+        Some(Table::Given(influence)),
         params,
         assemble,
         &no_axis,
@@ -188,25 +188,57 @@ pub fn solve_model<const D: usize, M: ForceModel<D> + ?Sized>(
     )
 }
 
-/// [`solve_active()`] with the forces and influence table of a [`ForceModel`].
-pub fn solve_model_active<const D: usize, M: ForceModel<D> + ?Sized>(
+/// [`solve_active()`] with the forces and influence table of a [`ForceModel`]. The first
+/// iteration, a sweep over every movable node, needs no influence table: the table is built
+/// on another thread of the pool while that iteration's forces are assembled (the same
+/// table, the same iterations, whatever the number of threads).
+pub fn solve_model_active<const D: usize, M: ForceModel<D> + Sync + ?Sized>(
     positions: &mut [[f64; D]],
     scale: &[f64],
     movable: &[bool],
     model: &M,
     params: &SolverParams,
 ) -> Result<SolveOutcome, SpringError> {
-    let influence = model.influence(positions.len());
+    let n = positions.len();
+    let influence = std::cell::OnceCell::new();
     let axis = |i: usize, p: &[[f64; D]]| model.extrusion_axis(i, p);
     solve_core(
         positions,
         scale,
         movable,
-        Some(&influence),
+        Some(Table::Lazy(&influence)),
         params,
-        |p, active, f, s| model.assemble_active(p, active, f, s),
+        |p, active, f, s| {
+            if influence.get().is_some() {
+                model.assemble_active(p, active, f, s);
+                return;
+            }
+            let (table, ()) = rayon::join(
+                || model.influence(n),
+                || model.assemble_active(p, active, f, s),
+            );
+            // (set once: this is the first call)
+            let _ = influence.set(table);
+        },
         &axis,
     )
+}
+
+/// The influence table of an active-set solve: given, or built during the first call of the
+/// assembly (which comes before any iteration that reads it).
+#[derive(Clone, Copy)]
+enum Table<'a> {
+    Given(&'a Influence),
+    Lazy(&'a std::cell::OnceCell<Influence>),
+}
+
+impl Table<'_> {
+    fn get(&self) -> Option<&Influence> {
+        match *self {
+            Table::Given(t) => Some(t),
+            Table::Lazy(cell) => cell.get(),
+        }
+    }
 }
 
 /// A node's extrusion axis at the positions ([`ForceModel::extrusion_axis`]).
@@ -221,7 +253,7 @@ fn solve_core<const D: usize, A>(
     positions: &mut [[f64; D]],
     scale: &[f64],
     movable: &[bool],
-    influence: Option<&Influence>,
+    influence: Option<Table<'_>>,
     params: &SolverParams,
     mut assemble: A,
     axis: &Axis<'_, D>,
@@ -231,7 +263,11 @@ where
 {
     params.check()?;
     let n = positions.len();
-    if let Some(influence) = influence.filter(|i| i.len() != n) {
+    let given = influence.and_then(|t| match t {
+        Table::Given(t) => Some(t),
+        Table::Lazy(_) => None,
+    });
+    if let Some(influence) = given.filter(|i| i.len() != n) {
         return Err(SpringError::LengthMismatch {
             positions: n,
             scales: scale.len(),
@@ -265,7 +301,9 @@ where
     let mut full_sweep = true;
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
-        if let Some(influence) = influence {
+        // (a lazy table is not built before the first iteration, whose active set, every
+        // movable node, is already selected)
+        if let Some(influence) = influence.as_ref().and_then(|t| t.get()) {
             let woken = if full_sweep { None } else { Some(&moved[..]) };
             select_active(
                 influence,
