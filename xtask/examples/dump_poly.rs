@@ -1,5 +1,5 @@
 //! Diagnostic: grows the layers of a 3D case and writes the raw polyhedral mesh (before the
-//! cut) to a flat little-endian file, for `topo-cut`'s `cut_diag` example:
+//! cut) to a flat little-endian file, for the `cut_diag` example:
 //! `cargo run --release -p xtask --example dump_poly -- <case.toml> <out.poly>`.
 
 use std::io::Write;

@@ -524,12 +524,14 @@ fn front_volume(msh: &Path) -> f64 {
 }
 
 /// The built-in wing (case 1 of tables 5–7, 45 layers, tets) keeps every dihedral angle
-/// under 160° (issue 13's bar; 179.7° before the growth's repair of capped cells,
-/// `afsf3d::repair`), with every wall node's full column.
+/// under 152° (issue 13's bar is 160°, its aim 150°; 179.7° before the growth's repair of
+/// capped cells, `afsf3d::repair`, 154.6° before `topo-cut`'s first refining pass went two
+/// levels deep, now 151.7°), with every wall node's full column. Cases 2 and 3 (157.6°,
+/// 157.4°) take too long for a debug test; `docs/3d.md` gives their commands.
 #[test]
-fn the_built_in_wing_cut_into_tets_stays_under_160_degrees() {
+fn the_built_in_wing_cut_into_tets_stays_under_152_degrees() {
     let dir = tempfile::tempdir().unwrap();
     let r = mesh_case(dir.path(), "wing", "wing", 45);
     let max = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
-    assert!(max <= 160.0, "max dihedral {max}");
+    assert!(max <= 152.0, "max dihedral {max}");
 }

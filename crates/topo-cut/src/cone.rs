@@ -161,20 +161,27 @@ impl CellFaces {
         out: &mut Vec<Piece>,
     ) {
         for (i, k) in self.faces().enumerate().filter(|(_, k)| !k.contains(&apex)) {
-            match (k.len(), split(i, k)) {
-                (3, _) => out.push(tet([k[0], k[1], k[2]], apex)),
-                (_, None) => {
-                    let mut c = [0u32; 8];
-                    c[..5].copy_from_slice(&[k[0], k[3], k[2], k[1], apex]);
-                    out.push((Shape::Pyramid, c));
-                }
-                (_, Some(w)) => {
-                    let at = k.iter().position(|&x| x == w).unwrap_or(0);
-                    let r = |j: usize| k[(at + j) % 4];
-                    out.push(tet([r(0), r(1), r(2)], apex));
-                    out.push(tet([r(0), r(2), r(3)], apex));
-                }
-            }
+            face_cone(k, split(i, k), apex, out);
+        }
+    }
+}
+
+/// The pieces of the cone from `apex` over the outward face `k` (not through it): a
+/// triangle's tetrahedron, a quadrilateral's two split by the diagonal through node `w`, or
+/// its pyramid when `w` is `None`.
+pub fn face_cone(k: &[u32], w: Option<u32>, apex: u32, out: &mut Vec<Piece>) {
+    match (k.len(), w) {
+        (3, _) => out.push(tet([k[0], k[1], k[2]], apex)),
+        (_, None) => {
+            let mut c = [0u32; 8];
+            c[..5].copy_from_slice(&[k[0], k[3], k[2], k[1], apex]);
+            out.push((Shape::Pyramid, c));
+        }
+        (_, Some(w)) => {
+            let at = k.iter().position(|&x| x == w).unwrap_or(0);
+            let r = |j: usize| k[(at + j) % 4];
+            out.push(tet([r(0), r(1), r(2)], apex));
+            out.push(tet([r(0), r(2), r(3)], apex));
         }
     }
 }

@@ -14,7 +14,7 @@
 
 use mesh_model::poly::PolyMesh;
 
-use crate::cone::{CellFaces, Piece, UNRANKED, first_ranked};
+use crate::cone::{CellFaces, Piece, UNRANKED, face_cone, first_ranked};
 use crate::improve::piece_quality;
 
 /// One apex per cell ([`UNRANKED`]: kept whole) and for each face the node its diagonal runs
@@ -133,6 +133,84 @@ fn best_apex(
     best
 }
 
+/// The cone cuts of the loaded cell under `bound` into `out`, as (worst piece, apex, bits):
+/// every apex, and the diagonals of the faces `free` (by face of the cell; the others keep
+/// `current`) set by the bits (bit `b` set: face `free[b]` split through its second node,
+/// else its first). Only the admissible cuts are listed (each quadrilateral through the apex
+/// split through it: 8 of a hexahedron's 64 diagonal sets per apex, 2 of a prism's 8), in
+/// the order of apex, then bits; each face's pieces are measured once per apex, a cut's
+/// worst piece being the worst of its faces'.
+fn cell_cuts(
+    nodes: &[[f64; 3]],
+    faces: &CellFaces,
+    (free, current): (&[usize], &[u32]),
+    bound: f64,
+    pieces: &mut Vec<Piece>,
+    out: &mut Vec<(f64, u32, u32)>,
+) {
+    let mut apices = Vec::new();
+    faces.distinct_nodes(&mut apices);
+    let mut worst = |k: &[u32], w: Option<u32>, a: u32| {
+        pieces.clear();
+        face_cone(k, w, a, pieces);
+        pieces
+            .iter()
+            .map(|p| piece_quality(nodes, p))
+            .fold(0.0, f64::max)
+    };
+    // the free faces away from the apex: (bit, worst piece with each diagonal)
+    let mut far: Vec<(usize, [f64; 2])> = Vec::new();
+    'apex: for &a in &apices {
+        far.clear();
+        let (mut forced, mut fixed) = (0u32, 0.0f64);
+        for (i, k) in faces.faces().enumerate() {
+            let bit = free.iter().position(|&j| j == i);
+            match (k.iter().position(|&x| x == a), bit) {
+                (Some(at), Some(b)) if k.len() == 4 => forced |= ((at % 2) as u32) << b,
+                (Some(_), None) if k.len() == 4 && !through(k, current[i], a) => continue 'apex,
+                (Some(_), _) => {}
+                (None, Some(b)) => {
+                    far.push((b, [worst(k, Some(k[0]), a), worst(k, Some(k[1]), a)]))
+                }
+                (None, None) => {
+                    let w = Some(current[i]).filter(|&s| s != UNRANKED);
+                    fixed = fixed.max(worst(k, w, a));
+                }
+            }
+            if fixed >= bound {
+                continue 'apex;
+            }
+        }
+        for m in 0..1u32 << far.len() {
+            let (mut bits, mut q) = (forced, fixed);
+            for (j, &(b, x)) in far.iter().enumerate() {
+                let s = ((m >> j) & 1) as usize;
+                bits |= (s as u32) << b;
+                q = q.max(x[s]);
+            }
+            if q < bound {
+                out.push((q, a, bits));
+            }
+        }
+    }
+}
+
+/// The worst piece of cell `c` (loaded in `faces`) as `cut` cuts it (0 when kept whole).
+fn cut_quality(
+    nodes: &[[f64; 3]],
+    cut: &Cut,
+    faces: &CellFaces,
+    c: usize,
+    pieces: &mut Vec<Piece>,
+) -> f64 {
+    pieces.clear();
+    cut.pieces(faces, c, pieces);
+    pieces
+        .iter()
+        .map(|p| piece_quality(nodes, p))
+        .fold(0.0, f64::max)
+}
+
 /// The two cells of each face (the second [`UNRANKED`] on the boundary).
 fn face_cells(poly: &PolyMesh) -> Vec<[u32; 2]> {
     let mut out = vec![[UNRANKED; 2]; poly.face_count()];
@@ -177,19 +255,6 @@ impl Change {
 }
 
 impl Refiner<'_> {
-    fn cell_quality(&mut self, c: usize) -> f64 {
-        let mut faces = CellFaces::default();
-        faces.load(self.poly, c);
-        self.buf.1.clear();
-        self.cut.pieces(&faces, c, &mut self.buf.1);
-        let nodes = &self.poly.nodes;
-        self.buf
-            .1
-            .iter()
-            .map(|p| piece_quality(nodes, p))
-            .fold(0.0, f64::max)
-    }
-
     /// The neighbour across face `f` of cell `c`.
     fn neighbour(&self, c: u32, f: u32) -> Option<u32> {
         let e = self.across[f as usize];
@@ -210,8 +275,6 @@ impl Refiner<'_> {
         let free: Vec<usize> = (0..ids.len())
             .filter(|&i| current[i] != UNRANKED && !fixed(ids[i], change))
             .collect();
-        let mut nodes = Vec::new();
-        faces.distinct_nodes(&mut nodes);
         let mut split = current.clone();
         let set = |split: &mut [u32], bits: u32| {
             for (b, &i) in free.iter().enumerate() {
@@ -222,15 +285,14 @@ impl Refiner<'_> {
         // the cuts of the cell alone under the bound, best first: the neighbours only make
         // a candidate worse, so the search stops at the first no better than the best found
         let mut candidates: Vec<(f64, u32, u32)> = Vec::new();
-        for &a in &nodes {
-            for bits in 0..1u32 << free.len() {
-                set(&mut split, bits);
-                let q = cone_quality(&self.poly.nodes, &faces, a, &split, &mut self.buf.1);
-                if let Some(q) = q.filter(|&q| q < bound) {
-                    candidates.push((q, a, bits));
-                }
-            }
-        }
+        cell_cuts(
+            &self.poly.nodes,
+            &faces,
+            (&free, &current),
+            bound,
+            &mut self.buf.1,
+            &mut candidates,
+        );
         candidates.sort_by(|x, y| x.0.total_cmp(&y.0));
         let mut best: Option<Change> = None;
         let (faces_mark, cells_mark) = (change.faces.len(), change.cells.len());
@@ -306,7 +368,8 @@ impl Refiner<'_> {
 
 /// Re-cuts the cells cut worse than `target` degrees (worst first) while that lowers the
 /// worst piece over them and their neighbours; at most `passes` passes. Cells kept whole stay
-/// whole. A re-cut may re-cut the neighbours `depth` levels deep. Every cell must have faces
+/// whole. A re-cut may re-cut the neighbours `depth` levels deep (one from a cell of more
+/// than five faces when `depth` is 2). Every cell must have faces
 /// of three or four nodes. Returns the worst piece of the cut (an inverted one counts 360°).
 pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth: usize) -> f64 {
     let mut r = Refiner {
@@ -316,7 +379,13 @@ pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth:
         across: face_cells(poly),
         buf: Default::default(),
     };
-    r.q = (0..poly.cell_count()).map(|c| r.cell_quality(c)).collect();
+    let mut faces = CellFaces::default();
+    r.q = (0..poly.cell_count())
+        .map(|c| {
+            faces.load(poly, c);
+            cut_quality(&poly.nodes, r.cut, &faces, c, &mut r.buf.1)
+        })
+        .collect();
     // a cell is tried again only when a re-cut touched it or a neighbour since its last try
     let mut dirty = vec![true; poly.cell_count()];
     for _ in 0..passes {
@@ -332,7 +401,15 @@ pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth:
                 continue;
             }
             let bound = r.q[c as usize] - 1e-9;
-            if let Some(x) = r.recut(c, &mut Change::default(), depth, bound) {
+            // a hexahedron's re-cut lists 48 cuts against a prism's 12: two levels from it
+            // cost too much (16 s for the bench's 26k merged hexahedra), so one; the bar's
+            // deep pass (three levels, few cells) is left as asked
+            let deep = if poly.cell(c as usize).len() > 5 && depth == 2 {
+                1
+            } else {
+                depth
+            };
+            if let Some(x) = r.recut(c, &mut Change::default(), deep, bound) {
                 for &(d, _, _) in &x.cells {
                     dirty[d as usize] = true;
                     for cf in poly.cell(d as usize) {

@@ -1,5 +1,5 @@
 //! Diagnostic of the cut on a raw polyhedral mesh written by `xtask`'s `dump_poly` example:
-//! `cargo run --release -p topo-cut --example cut_diag -- <file.poly> [tets|mixed]`.
+//! `cargo run --release -p xtask --example cut_diag -- <file.poly> [tets|mixed]`.
 //! For every raw cell whose cut has a tetrahedron over 150°: its layer, node count and face
 //! sizes, the worst piece of the cut and the best worst piece over every cone cut of the cell
 //! alone (every apex, every diagonal of the quadrilaterals away from it): when even the best
