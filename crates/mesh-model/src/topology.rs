@@ -236,9 +236,10 @@ fn key<const N: usize>(corners: impl Iterator<Item = u32>) -> [u32; N] {
     k
 }
 
-/// `raw` sorted: a counting sort by `first` (the lowest node of each key), then each bucket
-/// (a node's few entities) sorted in full.
-fn counting_sort<T: Copy + Ord>(raw: Vec<T>, first: impl Fn(&T) -> u32) -> Vec<T> {
+/// `raw` sorted: a counting sort by `first` (the lowest node of each key), in place (each
+/// record swapped into its bucket, no second array: at 1M cells a copy of the records sat
+/// at the run's memory peak), then each bucket (a node's few entities) sorted in full.
+fn counting_sort<T: Copy + Ord>(mut raw: Vec<T>, first: impl Fn(&T) -> u32) -> Vec<T> {
     let Some(n) = raw.iter().map(|r| first(r) as usize + 1).max() else {
         return raw;
     };
@@ -249,17 +250,26 @@ fn counting_sort<T: Copy + Ord>(raw: Vec<T>, first: impl Fn(&T) -> u32) -> Vec<T
     for v in 0..n {
         start[v + 1] += start[v];
     }
+    // the next unsettled slot of each bucket; a record taken out of a slot goes to the next
+    // slot of its own bucket, displacing the record there, until one of this bucket comes
     let mut fill = start.clone();
-    let mut sorted = raw.clone();
-    for r in raw {
-        let slot = &mut fill[first(&r) as usize];
-        sorted[*slot as usize] = r;
-        *slot += 1;
+    for b in 0..n {
+        while fill[b] < start[b + 1] {
+            let mut r = raw[fill[b] as usize];
+            let mut to = first(&r) as usize;
+            while to != b {
+                std::mem::swap(&mut r, &mut raw[fill[to] as usize]);
+                fill[to] += 1;
+                to = first(&r) as usize;
+            }
+            raw[fill[b] as usize] = r;
+            fill[b] += 1;
+        }
     }
     for v in 0..n {
-        sorted[start[v] as usize..start[v + 1] as usize].sort_unstable();
+        raw[start[v] as usize..start[v + 1] as usize].sort_unstable();
     }
-    sorted
+    raw
 }
 
 /// Calls `f` with the corner nodes (increasing), the number of cells and the number of
@@ -306,6 +316,24 @@ pub fn for_each_use_count<'a, const N: usize, B>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_counting_sort_in_place_sorts_in_full() {
+        // keys of many sizes of buckets (empty ones too), with repeats, in a scrambled order
+        let mut x = 12345u64;
+        let mut raw: Vec<[u32; 2]> = (0..5000)
+            .map(|_| {
+                x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let a = ((x >> 33) % 700) as u32 * 3;
+                [a, a + ((x >> 20) % 5) as u32]
+            })
+            .collect();
+        raw.extend([[0, 0], [2099, 2100], [0, 0]]);
+        let mut sorted = raw.clone();
+        sorted.sort_unstable();
+        assert_eq!(counting_sort(raw, |k| k[0]), sorted);
+        assert!(counting_sort(Vec::<[u32; 2]>::new(), |k| k[0]).is_empty());
+    }
 
     #[test]
     fn two_tets_share_one_face_and_its_three_edges() {

@@ -5,7 +5,7 @@
 use mesh_model::topology::Edges;
 use mesh_model::{Mesh, NONE};
 
-use crate::decisions::{Carry, EdgeRule, lay};
+use crate::decisions::{Carry, EdgeRule, EdgeRules, lay};
 
 /// Every edge of the mesh, with the `p − 1` inner points of each, from its lower-numbered end
 /// to its higher-numbered one.
@@ -30,7 +30,7 @@ pub(crate) struct EdgeTable {
     /// Whether an edge's points were moved off its chord.
     pub curved: Vec<bool>,
     /// How each edge got its points (the record of the decisions).
-    pub rules: Vec<EdgeRule>,
+    pub rules: EdgeRules,
 }
 
 impl EdgeTable {
@@ -63,7 +63,7 @@ impl EdgeTable {
             nodes: Vec::new(),
             base: mesh.nodes.len(),
             curved: Vec::new(),
-            rules: Vec::new(),
+            rules: EdgeRules::default(),
         };
         table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1));
         table.nodes.extend_from_slice(&mesh.nodes);
@@ -75,8 +75,13 @@ impl EdgeTable {
             }
         }
         table.curved = vec![false; table.ends.len()];
-        table.rules = vec![EdgeRule::Straight; table.ends.len()];
+        table.rules = EdgeRules::straight(table.ends.len());
         table
+    }
+
+    /// Where the edges' points start in `nodes`: the linear mesh's node count.
+    pub fn base(&self) -> usize {
+        self.base
     }
 
     /// Number of edges.
@@ -118,7 +123,7 @@ impl EdgeTable {
     /// the rule.
     pub fn carry(&mut self, e: u32, rule: Carry, pts: &[[f64; 2]]) {
         self.set_points_from(e, rule.from, pts, true);
-        self.rules[e as usize] = EdgeRule::Carried(rule);
+        self.rules.set(e as usize, EdgeRule::Carried(rule));
     }
 
     /// Lays edge `e`'s points by `rule` from the current points of its source (`dev` is
