@@ -13,8 +13,9 @@ use crate::split::OutCell;
 /// table's node array (`edges.nodes`, taken out of it: the linear nodes, then the edges'
 /// inner points), which becomes the mesh's: it grows once, by exactly the cells' interior
 /// nodes (`cells` is walked twice: once to count them and their nodes), and nothing in it is
-/// copied. The linear nodes are read from it: `linear.nodes` may have been let go. The
-/// per-cell records (layer, pipe) of `linear` go with each cell when it has them.
+/// copied. The linear nodes are read from it and the cells from `cells`: `linear.nodes` and
+/// `linear.cells` may have been let go. The per-cell records (layer, pipe) of `linear` go
+/// with each cell when it has them.
 pub(crate) fn assemble(
     linear: &Mesh,
     edges: &EdgeTable,

@@ -207,7 +207,7 @@ fn lay_out(
     let (cells, cut) = if params.triangles {
         split::cut(mesh, &roles, &mut edges, &interiors, params, Some(cuts))?
     } else {
-        let cells = split::keep(mesh, &edges.cell_edges).collect();
+        let cells = split::keep(&edges.cell_edges, &edges.ends).collect();
         (cells, split::CutOutcome::default())
     };
     Ok(Ok(Laid {

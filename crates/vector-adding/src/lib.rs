@@ -146,9 +146,10 @@ pub fn curve_mesh(
 
 /// [`curve_mesh`] on a linear mesh it is given to keep: the same curved mesh and record to the
 /// last bit, with less memory at the run's peak, the assembly of the curved mesh. Before it
-/// the linear mesh's nodes (the assembly reads its copy in the curved mesh's node array) and
-/// its layers are let go, and, when the quadrilaterals are not cut, its per-cell records
-/// (layer, pipe) move into the curved mesh rather than being copied.
+/// the linear mesh's nodes (the assembly reads its copy in the curved mesh's node array), its
+/// cells (it reads them from the edge table) and its layers are let go, and, when the
+/// quadrilaterals are not cut, its per-cell records (layer, pipe) move into the curved mesh
+/// rather than being copied.
 ///
 /// # Errors
 /// As [`curve_mesh`].
@@ -161,6 +162,7 @@ pub fn curve_mesh_owned(
     let LayeredMesh { mut mesh, layering } = input;
     drop(layering);
     mesh.nodes = Vec::new();
+    mesh.cells = mesh_model::Cells::new();
     // kept cells are the linear ones in their order: their records are the linear mesh's
     let records = (!params.triangles).then(|| {
         (
@@ -264,8 +266,8 @@ fn decide(
     })
 }
 
-/// The curved mesh of `decided` over the linear mesh `linear` (its nodes are not read: the
-/// edge table holds them), with its record. `records`: the linear mesh's per-cell layers and
+/// The curved mesh of `decided` over the linear mesh `linear` (its nodes and cells are not
+/// read: the edge table holds them), with its record. `records`: the linear mesh's per-cell layers and
 /// pipes, taken out of it, for the curved mesh (its cells being the linear ones in order).
 fn build(
     decided: Decided,
@@ -299,7 +301,7 @@ fn build(
             &interiors,
         ),
         None => {
-            let kept = split::keep(linear, &edges.cell_edges);
+            let kept = split::keep(&edges.cell_edges, &edges.ends);
             assemble::assemble(linear, &edges, nodes, sorted_edges, kept, &interiors)
         }
     };
