@@ -272,6 +272,41 @@ fn counting_sort<T: Copy + Ord>(mut raw: Vec<T>, first: impl Fn(&T) -> u32) -> V
     raw
 }
 
+/// The unique edges of the 2D `cells` (each a shape and at least its corner nodes, in Gmsh
+/// order), in the order of [`Edges::build`], as three arrays and nothing more: each edge's
+/// ends (lower node first); the first two cells of each edge (lower cell index first,
+/// [`NONE`] when missing); each cell's edge at each local edge ([`NONE`] past its last). What
+/// the curving's edge table keeps, without the tables of [`Edges`] (on a large mesh, built,
+/// copied and dropped, they stayed with the allocator at the run's memory peak): the records
+/// are sorted in one array that is let go whole.
+pub fn edge_table_2d<'a>(
+    cells: impl ExactSizeIterator<Item = (Shape, &'a [u32])>,
+) -> (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 4]>) {
+    let mut of_cell = vec![[NONE; 4]; cells.len()];
+    // (key, cell, local edge): sorted, the order of `Raw` without facets
+    let mut raw: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(cells.len() * 4);
+    for (i, (shape, nodes)) in cells.enumerate() {
+        for (j, e) in shape.edges().iter().enumerate() {
+            raw.push((key(e.iter().map(|&c| nodes[c])), i as u32, j as u8));
+        }
+    }
+    let raw = counting_sort(raw, |r| r.0[0]);
+    let unique = raw.windows(2).filter(|w| w[0].0 != w[1].0).count() + usize::from(!raw.is_empty());
+    let (mut ends, mut cells_of) = (Vec::with_capacity(unique), Vec::with_capacity(unique));
+    for (k, cell, local) in raw {
+        if ends.last() != Some(&k) {
+            ends.push(k);
+            cells_of.push([NONE; 2]);
+        }
+        let e = ends.len() - 1;
+        if let Some(slot) = cells_of[e].iter_mut().find(|c| **c == NONE) {
+            *slot = cell;
+        }
+        of_cell[cell as usize][usize::from(local)] = e as u32;
+    }
+    (ends, cells_of, of_cell)
+}
+
 /// Calls `f` with the corner nodes (increasing), the number of cells and the number of
 /// facets of every entity of `cells` and `facets`, in the order of [`Entities::build`],
 /// until `f` breaks. What a conformity check needs, without the tables of [`Entities`]: the
@@ -333,6 +368,35 @@ mod tests {
         sorted.sort_unstable();
         assert_eq!(counting_sort(raw, |k| k[0]), sorted);
         assert!(counting_sort(Vec::<[u32; 2]>::new(), |k| k[0]).is_empty());
+    }
+
+    #[test]
+    fn the_edge_table_is_that_of_the_edges() {
+        // a quad, a triangle on its top and one on its right, and a quad beyond
+        let cells: Vec<(Shape, Vec<u32>)> = vec![
+            (Shape::Quad, vec![0, 1, 4, 3]),
+            (Shape::Tri, vec![3, 4, 6]),
+            (Shape::Tri, vec![1, 2, 4]),
+            (Shape::Quad, vec![2, 5, 7, 4]),
+        ];
+        let of = || cells.iter().map(|(s, n)| (*s, &n[..]));
+        let edges = Edges::build(of(), []);
+        let (ends, cells_of, of_cell) = edge_table_2d(of());
+        assert_eq!(ends.len(), edges.len());
+        for e in 0..edges.len() as u32 {
+            assert_eq!(ends[e as usize], edges.key(e));
+            let mut two = [NONE; 2];
+            for (slot, u) in two.iter_mut().zip(edges.cells(e)) {
+                *slot = u.cell;
+            }
+            assert_eq!(cells_of[e as usize], two);
+        }
+        for (c, local) in of_cell.iter().enumerate() {
+            let n = edges.of_cell(c).len();
+            assert_eq!(&local[..n], edges.of_cell(c));
+            assert!(local[n..].iter().all(|&e| e == NONE));
+        }
+        assert_eq!(edge_table_2d(std::iter::empty()).0.len(), 0);
     }
 
     #[test]

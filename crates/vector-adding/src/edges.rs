@@ -2,7 +2,7 @@
 //! marching writes into and the assembly reads from, so that a curved edge is curved the same
 //! way in both cells that share it.
 
-use mesh_model::topology::Edges;
+use mesh_model::topology::edge_table_2d;
 use mesh_model::{Mesh, NONE};
 
 use crate::decisions::{Carry, EdgeRule, EdgeRules, lay};
@@ -38,28 +38,12 @@ impl EdgeTable {
     pub fn new(mesh: &Mesh, p: usize) -> Self {
         // the mesh's unique edges in the topology's order (sorted by their end nodes), which
         // the high-order node numbering follows; a 2D cell has at most four edges
-        let topo = Edges::build(mesh.cells.shapes_and_corners(), []);
+        let (ends, cells, cell_edges) = edge_table_2d(mesh.cells.shapes_and_corners());
         let mut table = EdgeTable {
             p,
-            ends: (0..topo.len() as u32).map(|e| topo.key(e)).collect(),
-            cells: (0..topo.len() as u32)
-                .map(|e| {
-                    let mut cells = [NONE; 2];
-                    for (slot, u) in cells.iter_mut().zip(topo.cells(e)) {
-                        *slot = u.cell;
-                    }
-                    cells
-                })
-                .collect(),
-            cell_edges: (0..mesh.cells.len())
-                .map(|c| {
-                    let mut local = [NONE; 4];
-                    for (slot, &e) in local.iter_mut().zip(topo.of_cell(c)) {
-                        *slot = e;
-                    }
-                    local
-                })
-                .collect(),
+            ends,
+            cells,
+            cell_edges,
             nodes: Vec::new(),
             base: mesh.nodes.len(),
             curved: Vec::new(),
