@@ -158,7 +158,15 @@ pub fn curve_mesh_owned(
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
 ) -> Result<Curved, CurvingError> {
-    let decided = decide(&input, loops, params)?;
+    let mut input = input;
+    params.check()?;
+    check_input(&input)?;
+    // the curving reads of the layers only the node layers and the layered cells' count: the
+    // rest goes before the edge table is built (which can then take its memory)
+    let layering = &mut input.layering;
+    (layering.node_parents, layering.pipe_start, layering.pipe_cells) =
+        (Vec::new(), Vec::new(), Vec::new());
+    let decided = decide_checked(&input, loops, params)?;
     let LayeredMesh { mut mesh, layering } = input;
     drop(layering);
     mesh.nodes = Vec::new();
@@ -198,8 +206,17 @@ fn decide(
     params: &CurvingParams,
 ) -> Result<Decided, CurvingError> {
     params.check()?;
-    let mesh = &input.mesh;
     check_input(input)?;
+    decide_checked(input, loops, params)
+}
+
+/// [`decide`] on an input and parameters already checked.
+fn decide_checked(
+    input: &LayeredMesh,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+) -> Result<Decided, CurvingError> {
+    let mesh = &input.mesh;
     let p = params.order as usize;
     let mut clock = Clock::default();
     let interiors = cellmap::Interiors::new(p);
