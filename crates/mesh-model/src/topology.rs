@@ -358,7 +358,9 @@ mod tests {
         let mut x = 12345u64;
         let mut raw: Vec<[u32; 2]> = (0..5000)
             .map(|_| {
-                x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 let a = ((x >> 33) % 700) as u32 * 3;
                 [a, a + ((x >> 20) % 5) as u32]
             })

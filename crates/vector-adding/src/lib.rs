@@ -164,8 +164,9 @@ pub fn curve_mesh_owned(
     // the curving reads of the layers only the node layers and the layered cells' count: the
     // rest goes before the edge table is built (which can then take its memory)
     let layering = &mut input.layering;
-    (layering.node_parents, layering.pipe_start, layering.pipe_cells) =
-        (Vec::new(), Vec::new(), Vec::new());
+    layering.node_parents = Vec::new();
+    layering.pipe_start = Vec::new();
+    layering.pipe_cells = Vec::new();
     let decided = decide_checked(&input, loops, params)?;
     let LayeredMesh { mut mesh, layering } = input;
     drop(layering);

@@ -106,7 +106,8 @@ fn decisions_of_another_topology_or_order_are_refused() {
         reversed: false,
         fraction: 1.0,
     };
-    bad.rules.set(0, EdgeRule::Carried(carry(u32::MAX, u32::MAX)));
+    bad.rules
+        .set(0, EdgeRule::Carried(carry(u32::MAX, u32::MAX)));
     let e = curve_mesh_keeping(&g.output.layered, &on, &params, &bad).unwrap_err();
     assert!(e.to_string().contains("carried from"), "{e}");
     bad.rules.set(0, EdgeRule::Carried(carry(0, b)));
