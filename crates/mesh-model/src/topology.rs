@@ -272,6 +272,10 @@ fn counting_sort<T: Copy + Ord>(mut raw: Vec<T>, first: impl Fn(&T) -> u32) -> V
     raw
 }
 
+/// What [`edge_table_2d`] gives: each edge's ends, each edge's first two cells, each cell's
+/// edges.
+pub type EdgeTable2d = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 4]>);
+
 /// The unique edges of the 2D `cells` (each a shape and at least its corner nodes, in Gmsh
 /// order), in the order of [`Edges::build`], as three arrays and nothing more: each edge's
 /// ends (lower node first); the first two cells of each edge (lower cell index first,
@@ -279,9 +283,7 @@ fn counting_sort<T: Copy + Ord>(mut raw: Vec<T>, first: impl Fn(&T) -> u32) -> V
 /// the curving's edge table keeps, without the tables of [`Edges`] (on a large mesh, built,
 /// copied and dropped, they stayed with the allocator at the run's memory peak): the records
 /// are sorted in one array that is let go whole.
-pub fn edge_table_2d<'a>(
-    cells: impl ExactSizeIterator<Item = (Shape, &'a [u32])>,
-) -> (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 4]>) {
+pub fn edge_table_2d<'a>(cells: impl ExactSizeIterator<Item = (Shape, &'a [u32])>) -> EdgeTable2d {
     let mut of_cell = vec![[NONE; 4]; cells.len()];
     // (key, cell, local edge): sorted, the order of `Raw` without facets
     let mut raw: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(cells.len() * 4);
