@@ -207,7 +207,7 @@ mod tests {
             source,
             source_from: 0,
             from: 1,
-            reversed: source % 2 == 0,
+            reversed: source > 1,
             fraction,
         })
     }
