@@ -334,8 +334,8 @@ pub(crate) fn plan_with(
 /// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
 /// and the curving when `order` > 1. Returns the final mesh and, when `--snapshot` is given,
 /// the stages to save, and the angle figures of the linear layered mesh (its quads uncut),
-/// computed here so that the linear mesh is let go before the final one is checked and
-/// written.
+/// computed here, before the linear mesh goes into the curving (which lets go of what it
+/// does not need before it builds the curved mesh, the peak of the run's memory).
 fn make(
     args: &MeshArgs,
     case: &case::Case,
@@ -348,17 +348,17 @@ fn make(
         boundary: nodes.clone(),
         layered: grown.layered.clone(),
     });
+    let t = Instant::now();
+    let angles = afsf2d::max_angle_histogram(&grown.layered.mesh);
+    let seconds = t.elapsed().as_secs_f64();
     let mesh = at_order(
         case,
         (&curves, &nodes),
-        &grown.layered,
+        grown.layered,
         (order, args.output.triangles),
         args.quiet,
         report,
     )?;
-    let t = Instant::now();
-    let angles = afsf2d::max_angle_histogram(&grown.layered.mesh);
-    let seconds = t.elapsed().as_secs_f64();
     Ok((mesh, snapshot, LinearAngles::Given { angles, seconds }))
 }
 
@@ -408,27 +408,27 @@ pub(crate) fn grow(
 }
 
 /// The mesh of the run at `order` (quads cut when `triangles`): `layered` curved by
-/// Vector-Adding with its boundary nodes on `curves` at the `t` of `nodes`, or itself at
-/// order 1.
-pub(crate) fn at_order(
+/// Vector-Adding with its boundary nodes on `curves` at the `t` of `nodes` (the curving
+/// takes it, to let go of what it no longer needs), or itself at order 1.
+fn at_order(
     case: &case::Case,
     (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
-    layered: &LayeredMesh,
+    layered: LayeredMesh,
     (order, triangles): (u8, bool),
     quiet: bool,
     report: &mut Report,
 ) -> Result<Mesh> {
     if order == 1 {
-        // a linear mesh has no curved edge
-        report.curved_edge_fraction = Some(0.0);
         return Ok(if triangles {
-            afsf2d::cut_quads_shorter_diagonal(&layered.mesh)
+            linear_at_order(&layered, triangles, report)
         } else {
-            layered.mesh.clone()
+            report.curved_edge_fraction = Some(0.0);
+            layered.mesh
         });
     }
     let t = Instant::now();
     let progress = stage(quiet, "curving (Vector-Adding)");
+    let layered = std::borrow::Cow::Owned(layered);
     let curved = pipeline::curved_mesh(case, curves, nodes, layered, order, triangles)?;
     drop(progress);
     report
@@ -437,6 +437,17 @@ pub(crate) fn at_order(
     report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
     report.curving = Some(curved.stats);
     Ok(curved.mesh)
+}
+
+/// The mesh of the run at order 1: `layered`'s own (a copy), its quads cut when `triangles`.
+pub(crate) fn linear_at_order(layered: &LayeredMesh, triangles: bool, report: &mut Report) -> Mesh {
+    // a linear mesh has no curved edge
+    report.curved_edge_fraction = Some(0.0);
+    if triangles {
+        afsf2d::cut_quads_shorter_diagonal(&layered.mesh)
+    } else {
+        layered.mesh.clone()
+    }
 }
 
 /// The mesh files and the report to write, by flags or by default (under `out/`, named after

@@ -68,14 +68,7 @@ pub fn run(args: &MoveArgs) -> Result<Finished> {
         ));
         moved_layered.mesh.clone()
     } else if order == 1 {
-        mesh_cmd::at_order(
-            &moved.case,
-            (&moved.curves, &nodes),
-            &moved_layered,
-            (order, args.output.triangles),
-            args.quiet,
-            &mut report,
-        )?
+        mesh_cmd::linear_at_order(&moved_layered, args.output.triangles, &mut report)
     } else {
         let curved = curve_keeping(
             (&case, &moved),
@@ -210,6 +203,7 @@ fn curve_keeping(
         "curving (Vector-Adding, the original's decisions kept)",
     );
     let curves = pipeline::curves(case)?;
+    let original = std::borrow::Cow::Borrowed(original);
     let before = pipeline::curved_mesh(case, &curves, nodes, original, order, triangles)?;
     let (curved, changes) = vector_adding::curve_mesh_keeping(
         layered,

@@ -1,6 +1,8 @@
 //! The stages of the pipeline as plain functions, shared by `mesh` and `bench`: checked loops
 //! → curves → boundary nodes → the layered linear mesh. No file is touched here.
 
+use std::borrow::Cow;
+
 use afsf2d::AfsfParams;
 use anyhow::{Result, bail};
 use boundary1d::{BoundaryNodes, SpacingParams};
@@ -162,20 +164,25 @@ pub fn curving_of(curving: &CurvingParams, order: u8, triangles: bool) -> Curvin
 
 /// The curved mesh of order 2 or 3 made from the layered linear mesh by Vector-Adding, with
 /// the boundary's high-order nodes on `curves` (the case's, or its moved curves) at the
-/// parameters `t` of the boundary `nodes`.
+/// parameters `t` of the boundary `nodes`. A `layered` given to keep is let go piece by piece
+/// as the curving no longer needs it (`vector_adding::curve_mesh_owned`): the same mesh with
+/// less memory at the peak.
 pub fn curved_mesh(
     case: &Case,
     curves: &[ClosedCurve],
     nodes: &[BoundaryNodes],
-    layered: &mesh_model::LayeredMesh,
+    layered: Cow<'_, mesh_model::LayeredMesh>,
     order: u8,
     triangles: bool,
 ) -> Result<vector_adding::Curved> {
-    vector_adding::curve_mesh(
-        layered,
-        &loop_curves(curves, nodes),
-        &curving_params(case, order, triangles),
-    )
+    let (loops, params) = (
+        loop_curves(curves, nodes),
+        curving_params(case, order, triangles),
+    );
+    match layered {
+        Cow::Borrowed(layered) => vector_adding::curve_mesh(layered, &loops, &params),
+        Cow::Owned(layered) => vector_adding::curve_mesh_owned(layered, &loops, &params),
+    }
     .map_err(|e| anyhow::anyhow!("curving: {e}"))
 }
 

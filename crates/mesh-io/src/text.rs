@@ -215,8 +215,10 @@ pub(crate) fn write_points(w: &mut dyn Write, nodes: &[[f64; 3]]) -> io::Result<
 
 /// Records per chunk of [`write_records`].
 const CHUNK: usize = 8192;
-/// Chunks formatted at once (in parallel) before they are written.
-const BATCH: usize = 16;
+/// Chunks formatted at once (in parallel) before they are written: enough for the cores of a
+/// small machine, few enough that the buffers (about 1 MiB a chunk of P3 cells, twice that
+/// in capacity) stay small next to the mesh (at 1M cells the writer runs at the memory peak).
+const BATCH: usize = 8;
 
 /// Writes records `0..n`, each formatted by `record(i, buffer)`: chunks of records are
 /// formatted in parallel into their own buffers, a batch at a time, and written in order.

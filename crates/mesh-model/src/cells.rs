@@ -47,12 +47,18 @@ impl Cells {
 
     /// An empty store with room for `cells` cells of `nodes_per_cell` nodes.
     pub fn with_capacity(cells: usize, nodes_per_cell: usize) -> Self {
+        Cells::with_capacity_for(cells, cells * nodes_per_cell)
+    }
+
+    /// An empty store with room for `cells` cells of `nodes` nodes in all (no more: a store
+    /// of mixed cells filled to the byte).
+    pub fn with_capacity_for(cells: usize, nodes: usize) -> Self {
         let mut offsets = Vec::with_capacity(cells + 1);
         offsets.push(0);
         Cells {
             types: Vec::with_capacity(cells),
             offsets,
-            nodes: Vec::with_capacity(cells * nodes_per_cell),
+            nodes: Vec::with_capacity(nodes),
         }
     }
 

@@ -236,9 +236,10 @@ fn key<const N: usize>(corners: impl Iterator<Item = u32>) -> [u32; N] {
     k
 }
 
-/// `raw` sorted: a counting sort by `first` (the lowest node of each key), then each bucket
-/// (a node's few entities) sorted in full.
-fn counting_sort<T: Copy + Ord>(raw: Vec<T>, first: impl Fn(&T) -> u32) -> Vec<T> {
+/// `raw` sorted: a counting sort by `first` (the lowest node of each key), in place (each
+/// record swapped into its bucket, no second array: at 1M cells a copy of the records sat
+/// at the run's memory peak), then each bucket (a node's few entities) sorted in full.
+fn counting_sort<T: Copy + Ord>(mut raw: Vec<T>, first: impl Fn(&T) -> u32) -> Vec<T> {
     let Some(n) = raw.iter().map(|r| first(r) as usize + 1).max() else {
         return raw;
     };
@@ -249,17 +250,63 @@ fn counting_sort<T: Copy + Ord>(raw: Vec<T>, first: impl Fn(&T) -> u32) -> Vec<T
     for v in 0..n {
         start[v + 1] += start[v];
     }
+    // the next unsettled slot of each bucket; a record taken out of a slot goes to the next
+    // slot of its own bucket, displacing the record there, until one of this bucket comes
     let mut fill = start.clone();
-    let mut sorted = raw.clone();
-    for r in raw {
-        let slot = &mut fill[first(&r) as usize];
-        sorted[*slot as usize] = r;
-        *slot += 1;
+    for b in 0..n {
+        while fill[b] < start[b + 1] {
+            let mut r = raw[fill[b] as usize];
+            let mut to = first(&r) as usize;
+            while to != b {
+                std::mem::swap(&mut r, &mut raw[fill[to] as usize]);
+                fill[to] += 1;
+                to = first(&r) as usize;
+            }
+            raw[fill[b] as usize] = r;
+            fill[b] += 1;
+        }
     }
     for v in 0..n {
-        sorted[start[v] as usize..start[v + 1] as usize].sort_unstable();
+        raw[start[v] as usize..start[v + 1] as usize].sort_unstable();
     }
-    sorted
+    raw
+}
+
+/// What [`edge_table_2d`] gives: each edge's ends, each edge's first two cells, each cell's
+/// edges.
+pub type EdgeTable2d = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 4]>);
+
+/// The unique edges of the 2D `cells` (each a shape and at least its corner nodes, in Gmsh
+/// order), in the order of [`Edges::build`], as three arrays and nothing more: each edge's
+/// ends (lower node first); the first two cells of each edge (lower cell index first,
+/// [`NONE`] when missing); each cell's edge at each local edge ([`NONE`] past its last). What
+/// the curving's edge table keeps, without the tables of [`Edges`] (on a large mesh, built,
+/// copied and dropped, they stayed with the allocator at the run's memory peak): the records
+/// are sorted in one array that is let go whole.
+pub fn edge_table_2d<'a>(cells: impl ExactSizeIterator<Item = (Shape, &'a [u32])>) -> EdgeTable2d {
+    let mut of_cell = vec![[NONE; 4]; cells.len()];
+    // (key, cell, local edge): sorted, the order of `Raw` without facets
+    let mut raw: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(cells.len() * 4);
+    for (i, (shape, nodes)) in cells.enumerate() {
+        for (j, e) in shape.edges().iter().enumerate() {
+            raw.push((key(e.iter().map(|&c| nodes[c])), i as u32, j as u8));
+        }
+    }
+    let raw = counting_sort(raw, |r| r.0[0]);
+    let unique = raw.windows(2).filter(|w| w[0].0 != w[1].0).count() + usize::from(!raw.is_empty());
+    let (mut ends, mut cells_of) = (Vec::with_capacity(unique), Vec::with_capacity(unique));
+    for (k, cell, local) in raw {
+        if ends.last() != Some(&k) {
+            ends.push(k);
+            cells_of.push([NONE; 2]);
+        }
+        let e = ends.len() - 1;
+        if let Some(slot) = cells_of[e].iter_mut().find(|c| **c == NONE) {
+            *slot = cell;
+        }
+        of_cell[cell as usize][usize::from(local)] = e as u32;
+    }
+    (ends, cells_of, of_cell)
 }
 
 /// Calls `f` with the corner nodes (increasing), the number of cells and the number of
@@ -306,6 +353,55 @@ pub fn for_each_use_count<'a, const N: usize, B>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_counting_sort_in_place_sorts_in_full() {
+        // keys of many sizes of buckets (empty ones too), with repeats, in a scrambled order
+        let mut x = 12345u64;
+        let mut raw: Vec<[u32; 2]> = (0..5000)
+            .map(|_| {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let a = ((x >> 33) % 700) as u32 * 3;
+                [a, a + ((x >> 20) % 5) as u32]
+            })
+            .collect();
+        raw.extend([[0, 0], [2099, 2100], [0, 0]]);
+        let mut sorted = raw.clone();
+        sorted.sort_unstable();
+        assert_eq!(counting_sort(raw, |k| k[0]), sorted);
+        assert!(counting_sort(Vec::<[u32; 2]>::new(), |k| k[0]).is_empty());
+    }
+
+    #[test]
+    fn the_edge_table_is_that_of_the_edges() {
+        // a quad, a triangle on its top and one on its right, and a quad beyond
+        let cells: Vec<(Shape, Vec<u32>)> = vec![
+            (Shape::Quad, vec![0, 1, 4, 3]),
+            (Shape::Tri, vec![3, 4, 6]),
+            (Shape::Tri, vec![1, 2, 4]),
+            (Shape::Quad, vec![2, 5, 7, 4]),
+        ];
+        let of = || cells.iter().map(|(s, n)| (*s, &n[..]));
+        let edges = Edges::build(of(), []);
+        let (ends, cells_of, of_cell) = edge_table_2d(of());
+        assert_eq!(ends.len(), edges.len());
+        for e in 0..edges.len() as u32 {
+            assert_eq!(ends[e as usize], edges.key(e));
+            let mut two = [NONE; 2];
+            for (slot, u) in two.iter_mut().zip(edges.cells(e)) {
+                *slot = u.cell;
+            }
+            assert_eq!(cells_of[e as usize], two);
+        }
+        for (c, local) in of_cell.iter().enumerate() {
+            let n = edges.of_cell(c).len();
+            assert_eq!(&local[..n], edges.of_cell(c));
+            assert!(local[n..].iter().all(|&e| e == NONE));
+        }
+        assert_eq!(edge_table_2d(std::iter::empty()).0.len(), 0);
+    }
 
     #[test]
     fn two_tets_share_one_face_and_its_three_edges() {

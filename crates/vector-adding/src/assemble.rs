@@ -12,7 +12,10 @@ use crate::split::OutCell;
 /// table are in sorted order (the linear mesh's own, before any diagonal). `nodes` is the
 /// table's node array (`edges.nodes`, taken out of it: the linear nodes, then the edges'
 /// inner points), which becomes the mesh's: it grows once, by exactly the cells' interior
-/// nodes (`cells` is walked twice: once to count them), and nothing in it is copied.
+/// nodes (`cells` is walked twice: once to count them and their nodes), and nothing in it is
+/// copied. The linear nodes are read from it and the cells from `cells`: `linear.nodes` and
+/// `linear.cells` may have been let go. The per-cell records (layer, pipe) of `linear` go
+/// with each cell when it has them.
 pub(crate) fn assemble(
     linear: &Mesh,
     edges: &EdgeTable,
@@ -24,11 +27,12 @@ pub(crate) fn assemble(
     let p = edges.p;
     let q = p - 1;
     let mut mesh = Mesh::new(linear.dim, p as u8);
-    let base = linear.nodes.len() as u32;
-    let (mut cell_count, mut interior_nodes) = (0, 0);
+    let base = edges.base() as u32;
+    let (mut cell_count, mut interior_nodes, mut cell_nodes_count) = (0, 0, 0);
     for c in cells.clone() {
         cell_count += 1;
         interior_nodes += interiors.count(c.len(), p);
+        cell_nodes_count += CellType::new(c.shape, p as u8).node_count();
     }
     mesh.nodes = nodes;
     mesh.nodes.reserve_exact(interior_nodes);
@@ -40,12 +44,17 @@ pub(crate) fn assemble(
         };
         base + e * q as u32 + j as u32
     };
-    let nodes_per_cell = CellType::new(Shape::Quad, p as u8).node_count();
-    mesh.cells = Cells::with_capacity(cell_count, nodes_per_cell);
+    mesh.cells = Cells::with_capacity_for(cell_count, cell_nodes_count);
     let (mut corners, mut pts, mut coords, mut ids) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let has_layers = !linear.cell_layer.is_empty();
     let has_pipes = !linear.cell_pipe.is_empty();
+    if has_layers {
+        mesh.cell_layer.reserve_exact(cell_count);
+    }
+    if has_pipes {
+        mesh.cell_pipe.reserve_exact(cell_count);
+    }
     for c in cells {
         let n = c.len();
         let local = c.shape.edges();
@@ -53,7 +62,8 @@ pub(crate) fn assemble(
         pts.clear();
         ids.clear();
         for &v in &c.corners[..n] {
-            corners.push(linear.xy(v));
+            let x = mesh.nodes[v as usize];
+            corners.push([x[0], x[1]]);
             ids.push(v);
         }
         for (j, e) in local.iter().enumerate() {

@@ -92,7 +92,7 @@ pub(crate) fn place_on_curves(
             (q[0] - l[0]).hypot(q[1] - l[1]) > 1e-9 * chord
         });
         edges.set_points_from(e, a, &pts, curved);
-        edges.rules[e as usize] = EdgeRule::OnCurve;
+        edges.rules.set(e as usize, EdgeRule::OnCurve);
     }
     Ok(())
 }
@@ -141,7 +141,7 @@ pub(crate) fn place_given(
             what: format!("no cell has the edge {a}–{b}"),
         })?;
         edges.set_points_from(e, a, &pts[f * q..(f + 1) * q], true);
-        edges.rules[e as usize] = EdgeRule::OnCurve;
+        edges.rules.set(e as usize, EdgeRule::OnCurve);
     }
     Ok(())
 }

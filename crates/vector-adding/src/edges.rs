@@ -2,10 +2,10 @@
 //! marching writes into and the assembly reads from, so that a curved edge is curved the same
 //! way in both cells that share it.
 
-use mesh_model::topology::Edges;
+use mesh_model::topology::edge_table_2d;
 use mesh_model::{Mesh, NONE};
 
-use crate::decisions::{Carry, EdgeRule, lay};
+use crate::decisions::{Carry, EdgeRule, EdgeRules, lay};
 
 /// Every edge of the mesh, with the `p − 1` inner points of each, from its lower-numbered end
 /// to its higher-numbered one.
@@ -30,7 +30,7 @@ pub(crate) struct EdgeTable {
     /// Whether an edge's points were moved off its chord.
     pub curved: Vec<bool>,
     /// How each edge got its points (the record of the decisions).
-    pub rules: Vec<EdgeRule>,
+    pub rules: EdgeRules,
 }
 
 impl EdgeTable {
@@ -38,32 +38,16 @@ impl EdgeTable {
     pub fn new(mesh: &Mesh, p: usize) -> Self {
         // the mesh's unique edges in the topology's order (sorted by their end nodes), which
         // the high-order node numbering follows; a 2D cell has at most four edges
-        let topo = Edges::build(mesh.cells.shapes_and_corners(), []);
+        let (ends, cells, cell_edges) = edge_table_2d(mesh.cells.shapes_and_corners());
         let mut table = EdgeTable {
             p,
-            ends: (0..topo.len() as u32).map(|e| topo.key(e)).collect(),
-            cells: (0..topo.len() as u32)
-                .map(|e| {
-                    let mut cells = [NONE; 2];
-                    for (slot, u) in cells.iter_mut().zip(topo.cells(e)) {
-                        *slot = u.cell;
-                    }
-                    cells
-                })
-                .collect(),
-            cell_edges: (0..mesh.cells.len())
-                .map(|c| {
-                    let mut local = [NONE; 4];
-                    for (slot, &e) in local.iter_mut().zip(topo.of_cell(c)) {
-                        *slot = e;
-                    }
-                    local
-                })
-                .collect(),
+            ends,
+            cells,
+            cell_edges,
             nodes: Vec::new(),
             base: mesh.nodes.len(),
             curved: Vec::new(),
-            rules: Vec::new(),
+            rules: EdgeRules::default(),
         };
         table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1));
         table.nodes.extend_from_slice(&mesh.nodes);
@@ -75,8 +59,13 @@ impl EdgeTable {
             }
         }
         table.curved = vec![false; table.ends.len()];
-        table.rules = vec![EdgeRule::Straight; table.ends.len()];
+        table.rules = EdgeRules::straight(table.ends.len());
         table
+    }
+
+    /// Where the edges' points start in `nodes`: the linear mesh's node count.
+    pub fn base(&self) -> usize {
+        self.base
     }
 
     /// Number of edges.
@@ -118,7 +107,7 @@ impl EdgeTable {
     /// the rule.
     pub fn carry(&mut self, e: u32, rule: Carry, pts: &[[f64; 2]]) {
         self.set_points_from(e, rule.from, pts, true);
-        self.rules[e as usize] = EdgeRule::Carried(rule);
+        self.rules.set(e as usize, EdgeRule::Carried(rule));
     }
 
     /// Lays edge `e`'s points by `rule` from the current points of its source (`dev` is

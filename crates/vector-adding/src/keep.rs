@@ -12,7 +12,7 @@ use crate::assemble::assemble;
 use crate::boundary::{facet_points, place_given, place_on_curves};
 use crate::cellcheck::{Ctx, Scratch, check_as_cut};
 use crate::cellmap::Interiors;
-use crate::decisions::{DecisionChange, Decisions, Diagonal, EdgeRule};
+use crate::decisions::{DecisionChange, Decisions, Diagonal, EdgeRule, EdgeRules};
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
@@ -169,7 +169,7 @@ fn fits(mesh: &Mesh, decisions: &Decisions, params: &CurvingParams) -> Result<()
         let n = decisions.diagonals.len();
         return bad(format!("{n} cells, the mesh has {}", mesh.cells.len()));
     }
-    for (e, rule) in decisions.rules.iter().enumerate() {
+    for (e, rule) in decisions.rules.not_straight() {
         let EdgeRule::Carried(c) = rule else { continue };
         let source = decisions.edges.get(c.source as usize);
         if !decisions.edges[e].contains(&c.from)
@@ -187,7 +187,7 @@ fn lay_out(
     mesh: &Mesh,
     layering: &Layering,
     boundary: Boundary<'_>,
-    rules: &[EdgeRule],
+    rules: &EdgeRules,
     cuts: &[Option<Diagonal>],
     params: &CurvingParams,
 ) -> Result<Result<Laid, Vec<u32>>, CurvingError> {
@@ -207,7 +207,7 @@ fn lay_out(
     let (cells, cut) = if params.triangles {
         split::cut(mesh, &roles, &mut edges, &interiors, params, Some(cuts))?
     } else {
-        let cells = split::keep(mesh, &edges.cell_edges).collect();
+        let cells = split::keep(&edges.cell_edges, &edges.ends).collect();
         (cells, split::CutOutcome::default())
     };
     Ok(Ok(Laid {
@@ -223,14 +223,15 @@ fn lay_out(
 
 /// Lays every carried edge by its rule, each after its source; Err: the edges of a loop of
 /// sources.
-fn lay_rules(mesh: &Mesh, rules: &[EdgeRule], edges: &mut EdgeTable) -> Result<(), Vec<u32>> {
+fn lay_rules(mesh: &Mesh, rules: &EdgeRules, edges: &mut EdgeTable) -> Result<(), Vec<u32>> {
     const TODO: u8 = 0;
     const ON_CHAIN: u8 = 1;
     const DONE: u8 = 2;
     let mut state = vec![TODO; rules.len()];
     let mut chain: Vec<usize> = Vec::new();
     let mut dev = vec![[0.0; 2]; edges.p - 1];
-    for e in 0..rules.len() {
+    // a chain starts at a carried edge (the others are laid already)
+    for (e, _) in rules.not_straight() {
         chain.clear();
         let mut at = e;
         while let EdgeRule::Carried(c) = rules[at] {
@@ -328,9 +329,9 @@ impl Fresh {
     fn merge(&self, previous: &Decisions, fresh: Option<&Decisions>) -> Decisions {
         let mut out = previous.clone();
         let Some(fresh) = fresh else { return out };
-        for (e, rule) in out.rules.iter_mut().enumerate() {
+        for e in 0..out.rules.len() {
             if self.all || self.edges[e] {
-                *rule = fresh.rules[e];
+                out.rules.set(e, fresh.rules[e]);
             }
         }
         for (c, cut) in out.diagonals.iter_mut().enumerate() {
@@ -400,9 +401,9 @@ fn failing_cells(
 /// Every decision of `now` that differs from `before`.
 fn changes(before: &Decisions, now: &Decisions) -> Vec<DecisionChange> {
     let mut out = Vec::new();
-    for (e, (old, new)) in before.rules.iter().zip(&now.rules).enumerate() {
+    for (e, (old, new)) in before.rules.iter().zip(now.rules.iter()).enumerate() {
         if old != new {
-            let (corners, old, new) = (now.edges[e], *old, *new);
+            let corners = now.edges[e];
             out.push(DecisionChange::Edge { corners, old, new });
         }
     }

@@ -102,7 +102,7 @@ use geom_curve::ClosedCurve;
 use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
 
 pub use curve3d::{Curved3d, Curving3dStats, SphereProjector, SurfaceProjector, curve_mesh_3d};
-pub use decisions::{Carry, DecisionChange, Decisions, Diagonal, EdgeRule};
+pub use decisions::{Carry, DecisionChange, Decisions, Diagonal, EdgeRule, EdgeRules};
 pub use error::CurvingError;
 pub use keep::{boundary_points, curve_mesh_keeping, replay, tangent};
 pub use params::{CurvingParams, Strategy};
@@ -140,9 +140,84 @@ pub fn curve_mesh(
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
 ) -> Result<Curved, CurvingError> {
+    let decided = decide(input, loops, params)?;
+    Ok(build(decided, &input.mesh, params, None))
+}
+
+/// [`curve_mesh`] on a linear mesh it is given to keep: the same curved mesh and record to the
+/// last bit, with less memory at the run's peak, the assembly of the curved mesh. Before it
+/// the linear mesh's nodes (the assembly reads its copy in the curved mesh's node array), its
+/// cells (it reads them from the edge table) and its layers are let go, and, when the
+/// quadrilaterals are not cut, its per-cell records (layer, pipe) move into the curved mesh
+/// rather than being copied.
+///
+/// # Errors
+/// As [`curve_mesh`].
+pub fn curve_mesh_owned(
+    input: LayeredMesh,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+) -> Result<Curved, CurvingError> {
+    let mut input = input;
     params.check()?;
-    let mesh = &input.mesh;
+    check_input(&input)?;
+    // the curving reads of the layers only the node layers and the layered cells' count: the
+    // rest goes before the edge table is built (which can then take its memory)
+    let layering = &mut input.layering;
+    layering.node_parents = Vec::new();
+    layering.pipe_start = Vec::new();
+    layering.pipe_cells = Vec::new();
+    let decided = decide_checked(&input, loops, params)?;
+    let LayeredMesh { mut mesh, layering } = input;
+    drop(layering);
+    mesh.nodes = Vec::new();
+    mesh.cells = mesh_model::Cells::new();
+    // kept cells are the linear ones in their order: their records are the linear mesh's
+    let records = (!params.triangles).then(|| {
+        (
+            std::mem::take(&mut mesh.cell_layer),
+            std::mem::take(&mut mesh.cell_pipe),
+        )
+    });
+    Ok(build(decided, &mesh, params, records))
+}
+
+/// What the curving decided, before the curved mesh is assembled.
+struct Decided {
+    /// The edges with their points and rules.
+    edges: edges::EdgeTable,
+    /// How many leading edges of the table are the linear mesh's own.
+    sorted_edges: usize,
+    /// The cells of a cut, when cutting.
+    cells: Option<Vec<split::OutCell>>,
+    /// The diagonals of a cut (empty when not cutting).
+    diagonals: Vec<Option<Diagonal>>,
+    /// The interior-node maps.
+    interiors: cellmap::Interiors,
+    /// The figures so far (the assembly adds its lap).
+    stats: CurvingStats,
+    clock: Clock,
+}
+
+/// Every decision of the curving of `input`: the edge table after the boundary, the marching,
+/// the repair and the cut.
+fn decide(
+    input: &LayeredMesh,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+) -> Result<Decided, CurvingError> {
+    params.check()?;
     check_input(input)?;
+    decide_checked(input, loops, params)
+}
+
+/// [`decide`] on an input and parameters already checked.
+fn decide_checked(
+    input: &LayeredMesh,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+) -> Result<Decided, CurvingError> {
+    let mesh = &input.mesh;
     let p = params.order as usize;
     let mut clock = Clock::default();
     let interiors = cellmap::Interiors::new(p);
@@ -183,32 +258,10 @@ pub fn curve_mesh(
     };
     clock.lap("cut");
     let curved_edges = edges.curved.iter().filter(|&&c| c).count();
-    let edge_count = edges.len();
-    // what the assembly does not read is let go before it (the peak of the run is there):
-    // the rules move into the record, the node array (with the edges' points) to the mesh
-    let rules = take_sorted(&mut edges.rules, sorted_edges);
-    let nodes = std::mem::take(&mut edges.nodes);
-    edges.cells = Vec::new();
-    edges.curved = Vec::new();
-    let out = match cells {
-        Some(cells) => assemble::assemble(
-            mesh,
-            &edges,
-            nodes,
-            sorted_edges,
-            cells.into_iter(),
-            &interiors,
-        ),
-        None => {
-            let kept = split::keep(mesh, &edges.cell_edges);
-            assemble::assemble(mesh, &edges, nodes, sorted_edges, kept, &interiors)
-        }
-    };
-    clock.lap("assemble");
     let stats = CurvingStats {
-        edges: edge_count,
+        edges: edges.len(),
         curved_edges,
-        curved_edge_fraction: stats::share(curved_edges, edge_count),
+        curved_edge_fraction: stats::share(curved_edges, edges.len()),
         curved_boundary_edges,
         stops: marched.stops,
         reduced_tops: marched.reduced_tops,
@@ -218,8 +271,63 @@ pub fn curve_mesh(
         unrepaired_cells: repaired.unrepaired,
         curved_diagonals: cut.curved_diagonals,
         invalid_after_cut: cut.invalid,
-        timings_s: clock.laps,
+        timings_s: Vec::new(),
     };
+    Ok(Decided {
+        edges,
+        sorted_edges,
+        cells,
+        diagonals: cut.diagonals,
+        interiors,
+        stats,
+        clock,
+    })
+}
+
+/// The curved mesh of `decided` over the linear mesh `linear` (its nodes and cells are not
+/// read: the edge table holds them), with its record. `records`: the linear mesh's per-cell layers and
+/// pipes, taken out of it, for the curved mesh (its cells being the linear ones in order).
+fn build(
+    decided: Decided,
+    linear: &Mesh,
+    params: &CurvingParams,
+    records: Option<(Vec<u32>, Vec<u32>)>,
+) -> Curved {
+    let Decided {
+        mut edges,
+        sorted_edges,
+        cells,
+        diagonals,
+        interiors,
+        mut stats,
+        mut clock,
+    } = decided;
+    // what the assembly does not read is let go before it (the peak of the run is there):
+    // the rules move into the record, the node array (with the edges' points) to the mesh
+    let mut rules = std::mem::take(&mut edges.rules);
+    rules.truncate(sorted_edges);
+    let nodes = std::mem::take(&mut edges.nodes);
+    edges.cells = Vec::new();
+    edges.curved = Vec::new();
+    let mut out = match cells {
+        Some(cells) => assemble::assemble(
+            linear,
+            &edges,
+            nodes,
+            sorted_edges,
+            cells.into_iter(),
+            &interiors,
+        ),
+        None => {
+            let kept = split::keep(&edges.cell_edges, &edges.ends);
+            assemble::assemble(linear, &edges, nodes, sorted_edges, kept, &interiors)
+        }
+    };
+    if let Some((cell_layer, cell_pipe)) = records {
+        (out.cell_layer, out.cell_pipe) = (cell_layer, cell_pipe);
+    }
+    clock.lap("assemble");
+    stats.timings_s = clock.laps;
     let decisions = Decisions {
         order: params.order,
         triangles: params.triangles,
@@ -227,16 +335,16 @@ pub fn curve_mesh(
         edges: take_sorted(&mut edges.ends, sorted_edges),
         rules,
         diagonals: if params.triangles {
-            cut.diagonals
+            diagonals
         } else {
             vec![None; edges.cell_edges.len()]
         },
     };
-    Ok(Curved {
+    Curved {
         mesh: out,
         stats,
         decisions,
-    })
+    }
 }
 
 /// The first `sorted` entries of `v` (the linear mesh's own edges), moved out of it.

@@ -264,6 +264,6 @@ fn undo(edges: &mut EdgeTable, log: &mut ChangeLog, mark: usize) {
     while log.len() > mark {
         let (e, old, curved, rule) = log.pop().expect("log longer than mark");
         edges.set_points_from(e, edges.ends[e as usize][0], &old, curved);
-        edges.rules[e as usize] = rule;
+        edges.rules.set(e as usize, rule);
     }
 }

@@ -6,7 +6,7 @@
 //! lower triangle's map (one-vector).
 
 use jacobian_check::{Certificate, CertifyParams, JacobianError, certify_cell};
-use mesh_model::{CellType, Mesh, Shape};
+use mesh_model::{CellType, Mesh, NONE, Shape};
 
 use crate::cellcheck::{Scratch, quality};
 use crate::cellmap::{Interiors, coons, lagrange_1d};
@@ -36,19 +36,33 @@ impl OutCell {
 }
 
 /// The output cells without cutting: one per linear cell, made as they are read (no array of
-/// them: the assembly walks them without holding a copy of the cells).
+/// them: the assembly walks them without holding a copy of the cells) from the edge table
+/// alone, so that the linear cells can be let go before: `cell_edges` are each cell's edges
+/// in Gmsh order (NONE in a triangle's fourth slot), `ends` each edge's ends, and corner `j`
+/// of a cell is where its edges `j − 1` and `j` meet.
 pub(crate) fn keep<'a>(
-    mesh: &'a Mesh,
     cell_edges: &'a [[u32; 4]],
+    ends: &'a [[u32; 2]],
 ) -> impl Iterator<Item = OutCell> + Clone + 'a {
-    (0..mesh.cells.len()).map(move |i| {
-        let c = mesh.cells.get(i);
+    cell_edges.iter().enumerate().map(move |(i, &edges)| {
+        let (shape, n) = if edges[3] == NONE {
+            (Shape::Tri, 3)
+        } else {
+            (Shape::Quad, 4)
+        };
         let mut corners = [0; 4];
-        corners[..c.corners().len()].copy_from_slice(c.corners());
+        for (j, corner) in corners.iter_mut().enumerate().take(n) {
+            let [a, b] = ends[edges[(j + n - 1) % n] as usize];
+            *corner = if ends[edges[j] as usize].contains(&a) {
+                a
+            } else {
+                b
+            };
+        }
         OutCell {
-            shape: c.ty.shape,
+            shape,
             corners,
-            edges: cell_edges[i],
+            edges,
             source: i as u32,
             interior: None,
         }
