@@ -52,6 +52,14 @@ impl Around {
     }
 }
 
+/// The worst of `pieces` ([`piece_quality`]), 0 when there are none.
+pub(crate) fn worst_piece(nodes: &[[f64; 3]], pieces: &[Piece]) -> f64 {
+    pieces
+        .iter()
+        .map(|p| piece_quality(nodes, p))
+        .fold(0.0, f64::max)
+}
+
 /// The worst piece of a cut: the largest dihedral angle of a tetrahedron in degrees, 0 for
 /// another positive piece, [`INVERTED`] when a corner is not positive.
 pub fn piece_quality(nodes: &[[f64; 3]], (shape, k): &Piece) -> f64 {
@@ -89,10 +97,7 @@ impl Scratch {
             Some(apex) => self.faces.cone(apex, rank, &mut self.pieces),
             None => return 0.0,
         }
-        self.pieces
-            .iter()
-            .map(|p| piece_quality(&poly.nodes, p))
-            .fold(0.0, f64::max)
+        worst_piece(&poly.nodes, &self.pieces)
     }
 }
 

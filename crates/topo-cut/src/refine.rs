@@ -15,7 +15,7 @@
 use mesh_model::poly::PolyMesh;
 
 use crate::cone::{CellFaces, Piece, UNRANKED, face_cone, first_ranked};
-use crate::improve::piece_quality;
+use crate::improve::worst_piece;
 
 /// One apex per cell ([`UNRANKED`]: kept whole) and for each face the node its diagonal runs
 /// through ([`UNRANKED`]: a triangle, or a quadrilateral kept whole).
@@ -105,12 +105,7 @@ fn cone_quality(
         |i, _| Some(split[i]).filter(|&s| s != UNRANKED),
         pieces,
     );
-    Some(
-        pieces
-            .iter()
-            .map(|p| piece_quality(nodes, p))
-            .fold(0.0, f64::max),
-    )
+    Some(worst_piece(nodes, pieces))
 }
 
 /// The best apex of the loaded cell for the diagonals `split` (by face of the cell), and its
@@ -153,10 +148,7 @@ fn cell_cuts(
     let mut worst = |k: &[u32], w: Option<u32>, a: u32| {
         pieces.clear();
         face_cone(k, w, a, pieces);
-        pieces
-            .iter()
-            .map(|p| piece_quality(nodes, p))
-            .fold(0.0, f64::max)
+        worst_piece(nodes, pieces)
     };
     // the free faces away from the apex: (bit, worst piece with each diagonal)
     let mut far: Vec<(usize, [f64; 2])> = Vec::new();
@@ -205,10 +197,7 @@ fn cut_quality(
 ) -> f64 {
     pieces.clear();
     cut.pieces(faces, c, pieces);
-    pieces
-        .iter()
-        .map(|p| piece_quality(nodes, p))
-        .fold(0.0, f64::max)
+    worst_piece(nodes, pieces)
 }
 
 /// The two cells of each face (the second [`UNRANKED`] on the boundary).
