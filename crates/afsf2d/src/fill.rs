@@ -417,54 +417,145 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
     if steiner.is_empty() {
         return;
     }
-    let n0 = pos.len();
-    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); steiner.len()];
-    for (t, tri) in tris.iter().enumerate() {
-        for &g in tri {
-            if g as usize >= n0 {
-                incident[g as usize - n0].push(t as u32);
+    let mut smoother = Smoother::new(tris, pos, steiner.len());
+    // a node tried and left where it was is tried again only once one of its neighbours
+    // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
+    // `settled[s]` the moves before s was last left (plus one; 0: not settled)
+    let (mut moves, mut moved, mut settled) =
+        (0u64, vec![0u64; steiner.len()], vec![0u64; steiner.len()]);
+    for _ in 0..SMOOTHING_SWEEPS {
+        for s in 0..steiner.len() {
+            if settled[s] != 0 && smoother.still(s, &moved, settled[s]) {
+                continue;
+            }
+            let Some(centroid) = smoother.centroid(s, steiner) else {
+                continue;
+            };
+            let old = steiner[s];
+            let before = smoother.worst(s, steiner);
+            settled[s] = moves + 1;
+            for f in [1.0, 0.5, 0.25] {
+                let p = [
+                    old[0] + f * (centroid[0] - old[0]),
+                    old[1] + f * (centroid[1] - old[1]),
+                ];
+                if smoother.improves(s, p, steiner, before) {
+                    smoother.place(s, p, steiner);
+                    moves += 1;
+                    moved[s] = moves;
+                    settled[s] = 0;
+                    break;
+                }
             }
         }
     }
-    let at = |g: u32, steiner: &[P2]| {
-        if (g as usize) < n0 {
-            pos[g as usize]
-        } else {
-            steiner[g as usize - n0]
-        }
-    };
-    let corners = |s: usize, t: u32, p: P2, steiner: &[P2]| {
-        let g = (n0 + s) as u32;
-        tris[t as usize].map(|v| if v == g { p } else { at(v, steiner) })
-    };
-    // the largest angle of each triangle where its corners are (infinite when it is not
-    // positive), kept until one of its corners moves: `None` when not measured since
-    let mut figure: Vec<Option<f64>> = vec![None; tris.len()];
-    // the largest angle of node `s`'s triangles where they are (infinite when one is not
-    // positive), from the kept figures
-    let worst = |s: usize, steiner: &[P2], figure: &mut [Option<f64>]| -> f64 {
-        let mut w = 0.0f64;
-        for &t in &incident[s] {
-            let f = *figure[t as usize].get_or_insert_with(|| {
-                let c = tris[t as usize].map(|v| at(v, steiner));
-                if orient2d(c[0], c[1], c[2]) <= 0.0 {
-                    f64::INFINITY
-                } else {
-                    crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
+}
+
+/// The Steiner-node smoothing's tables: the fill triangles, the front nodes (numbered
+/// first; added node `s` is `n0 + s`), each added node's triangles, and the largest angle of
+/// each triangle where its corners are (infinite when it is not positive), kept until one
+/// of its corners moves (`None` when not measured since).
+struct Smoother<'a> {
+    tris: &'a [[u32; 3]],
+    pos: &'a [P2],
+    n0: usize,
+    incident: Vec<Vec<u32>>,
+    figure: Vec<Option<f64>>,
+}
+
+impl<'a> Smoother<'a> {
+    fn new(tris: &'a [[u32; 3]], pos: &'a [P2], added: usize) -> Self {
+        let n0 = pos.len();
+        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); added];
+        for (t, tri) in tris.iter().enumerate() {
+            for &g in tri {
+                if g as usize >= n0 {
+                    incident[g as usize - n0].push(t as u32);
                 }
-            });
+            }
+        }
+        Smoother {
+            tris,
+            pos,
+            n0,
+            incident,
+            figure: vec![None; tris.len()],
+        }
+    }
+
+    fn at(&self, g: u32, steiner: &[P2]) -> P2 {
+        if (g as usize) < self.n0 {
+            self.pos[g as usize]
+        } else {
+            steiner[g as usize - self.n0]
+        }
+    }
+
+    /// Triangle `t`'s corners with added node `s` at `p`.
+    fn corners(&self, s: usize, t: u32, p: P2, steiner: &[P2]) -> [P2; 3] {
+        let g = (self.n0 + s) as u32;
+        self.tris[t as usize].map(|v| if v == g { p } else { self.at(v, steiner) })
+    }
+
+    /// Whether no corner of `s`'s triangles but `s` moved since `s` was left (`settled`).
+    fn still(&self, s: usize, moved: &[u64], settled: u64) -> bool {
+        let g = (self.n0 + s) as u32;
+        self.incident[s].iter().all(|&t| {
+            self.tris[t as usize]
+                .iter()
+                .all(|&v| (v as usize) < self.n0 || v == g || moved[v as usize - self.n0] < settled)
+        })
+    }
+
+    /// The centroid of the other corners of `s`'s triangles (none without triangles).
+    fn centroid(&self, s: usize, steiner: &[P2]) -> Option<P2> {
+        let g = (self.n0 + s) as u32;
+        let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
+        for &t in &self.incident[s] {
+            for &v in &self.tris[t as usize] {
+                if v != g {
+                    let q = self.at(v, steiner);
+                    sx += q[0];
+                    sy += q[1];
+                    k += 1.0;
+                }
+            }
+        }
+        (k != 0.0).then(|| [sx / k, sy / k])
+    }
+
+    /// The largest angle of node `s`'s triangles where they are (infinite when one is not
+    /// positive), from the kept figures.
+    fn worst(&mut self, s: usize, steiner: &[P2]) -> f64 {
+        let mut w = 0.0f64;
+        for &t in &self.incident[s] {
+            let f = match self.figure[t as usize] {
+                Some(f) => f,
+                None => {
+                    let c = self.tris[t as usize].map(|v| self.at(v, steiner));
+                    let f = if orient2d(c[0], c[1], c[2]) <= 0.0 {
+                        f64::INFINITY
+                    } else {
+                        crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
+                    };
+                    self.figure[t as usize] = Some(f);
+                    f
+                }
+            };
             if f == f64::INFINITY {
                 return f64::INFINITY;
             }
             w = w.max(f);
         }
         w
-    };
-    // exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles mostly compared by their cosines
-    let improves = |s: usize, p: P2, steiner: &[P2], before: f64| -> bool {
+    }
+
+    /// Exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles
+    /// mostly compared by their cosines.
+    fn improves(&self, s: usize, p: P2, steiner: &[P2], before: f64) -> bool {
         let limit = crate::quality::AngleLimit::new(before);
-        for &t in &incident[s] {
-            let c = corners(s, t, p, steiner);
+        for &t in &self.incident[s] {
+            let c = self.corners(s, t, p, steiner);
             if orient2d(c[0], c[1], c[2]) <= 0.0 {
                 return false;
             }
@@ -476,59 +567,13 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
             }
         }
         0.0 < before
-    };
-    // a node tried and left where it was is tried again only once one of its neighbours
-    // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
-    // `settled[s]` the moves before s was last left (plus one; 0: not settled)
-    let (mut moves, mut moved, mut settled) =
-        (0u64, vec![0u64; steiner.len()], vec![0u64; steiner.len()]);
-    for _ in 0..SMOOTHING_SWEEPS {
-        for s in 0..steiner.len() {
-            let g = (n0 + s) as u32;
-            if settled[s] != 0 {
-                let still = incident[s].iter().all(|&t| {
-                    tris[t as usize].iter().all(|&v| {
-                        (v as usize) < n0 || v == g || moved[v as usize - n0] < settled[s]
-                    })
-                });
-                if still {
-                    continue;
-                }
-            }
-            let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
-            for &t in &incident[s] {
-                for &v in &tris[t as usize] {
-                    if v != g {
-                        let q = at(v, steiner);
-                        sx += q[0];
-                        sy += q[1];
-                        k += 1.0;
-                    }
-                }
-            }
-            if k == 0.0 {
-                continue;
-            }
-            let old = steiner[s];
-            let centroid = [sx / k, sy / k];
-            let before = worst(s, steiner, &mut figure);
-            settled[s] = moves + 1;
-            for f in [1.0, 0.5, 0.25] {
-                let p = [
-                    old[0] + f * (centroid[0] - old[0]),
-                    old[1] + f * (centroid[1] - old[1]),
-                ];
-                if improves(s, p, steiner, before) {
-                    steiner[s] = p;
-                    for &t in &incident[s] {
-                        figure[t as usize] = None;
-                    }
-                    moves += 1;
-                    moved[s] = moves;
-                    settled[s] = 0;
-                    break;
-                }
-            }
+    }
+
+    /// Moves `s` to `p`, forgetting its triangles' figures.
+    fn place(&mut self, s: usize, p: P2, steiner: &mut [P2]) {
+        steiner[s] = p;
+        for &t in &self.incident[s] {
+            self.figure[t as usize] = None;
         }
     }
 }

@@ -263,32 +263,7 @@ where
 {
     params.check()?;
     let n = positions.len();
-    let given = influence.and_then(|t| match t {
-        Table::Given(t) => Some(t),
-        Table::Lazy(_) => None,
-    });
-    if let Some(influence) = given.filter(|i| i.len() != n) {
-        return Err(SpringError::LengthMismatch {
-            positions: n,
-            scales: scale.len(),
-            movable: influence.len(),
-        });
-    }
-    if scale.len() != n || movable.len() != n {
-        return Err(SpringError::LengthMismatch {
-            positions: n,
-            scales: scale.len(),
-            movable: movable.len(),
-        });
-    }
-    for i in 0..n {
-        if movable[i] && !(scale[i].is_finite() && scale[i] > 0.0) {
-            return Err(SpringError::BadScale {
-                node: i,
-                scale: scale[i],
-            });
-        }
-    }
+    check_lengths(n, scale, movable, influence.as_ref())?;
     let mut force = vec![[0.0; D]; n];
     let mut stiffness = vec![0.0; n];
     let mut masses = MassSchedule::new(positions);
@@ -297,7 +272,6 @@ where
     let mut active_nodes: Vec<u32> = all_movable.clone();
     // nodes that moved by at least the wake threshold in the last iteration
     let mut moved: Vec<u32> = Vec::new();
-    let wake = params.wake_fraction * params.tolerance;
     let mut full_sweep = true;
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
@@ -328,33 +302,16 @@ where
             &mut force,
             &mut stiffness,
         );
-        let mut max_step = 0.0f64;
-        for &iu in &active_nodes {
-            let i = iu as usize;
-            let (f, s) = (force[i], stiffness[i]);
-            if !(s.is_finite() && f.iter().all(|c| c.is_finite())) {
-                return Err(SpringError::NonFiniteForce { node: i, iteration });
-            }
-            if s <= 0.0 {
-                continue;
-            }
-            let axis = match params.lateral_max_move {
-                Some(_) => axis(i, positions),
-                None => None,
-            };
-            let (step, len) = clamped_step(&f, s, masses.mass[i], scale[i], params, axis);
-            for k in 0..D {
-                positions[i][k] += step[k];
-            }
-            let relative = len / scale[i];
-            max_step = max_step.max(relative);
-            if relative >= wake {
-                moved.push(iu);
-            }
-            if masses.record(i, len, positions[i], scale[i], iteration, params) {
-                outcome.heavy_nodes += 1;
-            }
-        }
+        let (max_step, heavy) = step_active(
+            positions,
+            (&force, &stiffness),
+            scale,
+            &active_nodes,
+            (params, axis, iteration),
+            &mut masses,
+            &mut moved,
+        )?;
+        outcome.heavy_nodes += heavy;
         outcome.iterations = iteration + 1;
         outcome.max_relative_step = max_step;
         if max_step < params.tolerance {
@@ -368,6 +325,87 @@ where
         }
     }
     Ok(outcome)
+}
+
+/// Refuses inputs whose lengths disagree with the positions' (`n`), or a movable node
+/// without a finite positive scale.
+fn check_lengths(
+    n: usize,
+    scale: &[f64],
+    movable: &[bool],
+    influence: Option<&Table<'_>>,
+) -> Result<(), SpringError> {
+    let given = influence.and_then(|t| match t {
+        Table::Given(t) => Some(*t),
+        Table::Lazy(_) => None,
+    });
+    if let Some(influence) = given.filter(|i| i.len() != n) {
+        return Err(SpringError::LengthMismatch {
+            positions: n,
+            scales: scale.len(),
+            movable: influence.len(),
+        });
+    }
+    if scale.len() != n || movable.len() != n {
+        return Err(SpringError::LengthMismatch {
+            positions: n,
+            scales: scale.len(),
+            movable: movable.len(),
+        });
+    }
+    for i in 0..n {
+        if movable[i] && !(scale[i].is_finite() && scale[i] > 0.0) {
+            return Err(SpringError::BadScale {
+                node: i,
+                scale: scale[i],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// One iteration's moves: each active node steps by its force over its stiffness and mass
+/// (clamped), in the order of `active_nodes`; returns the largest step relative to its
+/// node's scale and how many nodes became heavy, and lists in `moved` the nodes that stepped
+/// past the wake threshold.
+fn step_active<const D: usize>(
+    positions: &mut [[f64; D]],
+    (force, stiffness): (&[[f64; D]], &[f64]),
+    scale: &[f64],
+    active_nodes: &[u32],
+    (params, axis, iteration): (&SolverParams, &Axis<'_, D>, usize),
+    masses: &mut MassSchedule<D>,
+    moved: &mut Vec<u32>,
+) -> Result<(f64, usize), SpringError> {
+    let wake = params.wake_fraction * params.tolerance;
+    let (mut max_step, mut heavy) = (0.0f64, 0);
+    for &iu in active_nodes {
+        let i = iu as usize;
+        let (f, s) = (force[i], stiffness[i]);
+        if !(s.is_finite() && f.iter().all(|c| c.is_finite())) {
+            return Err(SpringError::NonFiniteForce { node: i, iteration });
+        }
+        if s <= 0.0 {
+            continue;
+        }
+        let axis = match params.lateral_max_move {
+            Some(_) => axis(i, positions),
+            None => None,
+        };
+        let (step, len) = clamped_step(&f, s, masses.mass[i], scale[i], params, axis);
+        for k in 0..D {
+            positions[i][k] += step[k];
+        }
+        let relative = len / scale[i];
+        max_step = max_step.max(relative);
+        if relative >= wake {
+            moved.push(iu);
+        }
+        if masses.record(i, len, positions[i], scale[i], iteration, params) {
+            heavy += 1;
+        }
+    }
+    Ok((max_step, heavy))
 }
 
 /// Updates the active set: after a full sweep's failure or at the start every movable node,
