@@ -149,10 +149,36 @@ pub fn check_surface(case: &Case3d, surface: &Surface) -> Result<()> {
     })
 }
 
-/// The layers grown from the wall.
+/// The layers grown from the wall. A layer that fails names its wall facet and where that
+/// facet is, so the user can find it.
 pub fn grow(case: &Case3d, surface: &Surface) -> Result<afsf3d::Grown3d> {
-    afsf3d::grow_layers(surface, &case.layers)
-        .map_err(|e| anyhow::anyhow!("{}: growing the layers: {e}", case.origin))
+    afsf3d::grow_layers(surface, &case.layers).map_err(|e| {
+        let at = match &e {
+            afsf3d::GrowError::LayerFailed { facet, .. } => facet_centre(surface, *facet)
+                .map(|c| {
+                    format!(
+                        " (wall facet {facet} is centred at {:.4}, {:.4}, {:.4})",
+                        c[0], c[1], c[2]
+                    )
+                })
+                .unwrap_or_default(),
+            _ => String::new(),
+        };
+        anyhow::anyhow!("{}: growing the layers: {e}{at}", case.origin)
+    })
+}
+
+/// The mean of facet `f`'s nodes (`None` past the last facet).
+fn facet_centre(surface: &Surface, f: usize) -> Option<[f64; 3]> {
+    let nodes = surface.facets.get(f)?.nodes();
+    let mut c = [0.0; 3];
+    for &v in nodes {
+        let p = surface.nodes[v as usize];
+        for d in 0..3 {
+            c[d] += p[d] / nodes.len() as f64;
+        }
+    }
+    Some(c)
 }
 
 /// The layer cells cut into tetrahedra or mixed standard cells.

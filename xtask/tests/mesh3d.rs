@@ -381,6 +381,30 @@ fn the_step_cut_into_tets_stays_under_160_degrees() {
     assert!(max <= 160.0, "max dihedral {max}: {r}");
 }
 
+/// A step whose layers are too thick for its concave edges fails in one line that names the
+/// layer, the wall facet and where that facet is, exits 1 and writes nothing.
+#[test]
+fn a_layer_that_cannot_grow_is_named_with_its_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let step = case(
+        d,
+        "step",
+        "builtin = \"step\"",
+        "first_height = 4e-3\ngrowth = 1.2\nmax_layers = 15",
+        "mixed",
+    );
+    let o = run(d, &[&step, "--out", "step.msh", "--report", "r.json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert_eq!(e.trim().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("cannot be grown over wall facet") && e.contains("is centred at 0.3000, "),
+        "{e}"
+    );
+    assert_eq!(files(d), vec![step]);
+}
+
 /// Runs `file` at `order` to a `.msh` and the report; returns the report.
 fn at_order(dir: &Path, file: &str, order: &str) -> serde_json::Value {
     let (msh, json) = (format!("p{order}.msh"), format!("p{order}.json"));
