@@ -236,6 +236,7 @@ pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianErro
         if crate::straight::is_straight(ty, nodes)?.is_some() {
             return cell_volume(CellType::new(Shape::Pyramid, 1), &nodes[..5]);
         }
+        return Ok(crate::pyramid::volume(nodes));
     }
     let c = crate::certify::determinant_bernstein_coefficients(ty, nodes)?;
     Ok(c.iter().sum::<f64>() / c.len() as f64 * reference_volume(ty.shape))

@@ -144,7 +144,9 @@ fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
         Shape::Quad => (Domain::Box, 2, 2 * p - 1),
         Shape::Tet => (Domain::Simplex, 3, 3 * (p - 1)),
         Shape::Prism => (Domain::Prism { axis: 3 * p - 1 }, 3, 3 * p - 2),
-        Shape::Pyramid => (Domain::Box, 2, 2),
+        Shape::Pyramid if p == 1 => (Domain::Box, 2, 2),
+        // the 14-node pyramid: degree 5 in (ξ̂, η̂), 3 in ζ (see `crate::pyramid`)
+        Shape::Pyramid => (Domain::Pyramid { axis: 3 }, 3, 5),
         _ => (Domain::Box, 3, 3 * p - 1),
     }
 }
@@ -160,7 +162,13 @@ fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
         let nodes = ty.node_count();
         let mut grads = vec![[0.0; 3]; space.len() * nodes];
         for (k, t) in space.lattice_unit.iter().enumerate() {
-            b.gradients(root.apply(*t), &mut grads[k * nodes..(k + 1) * nodes]);
+            let g = &mut grads[k * nodes..(k + 1) * nodes];
+            if let Domain::Pyramid { .. } = domain {
+                // the lattice is in collapsed coordinates: ζ = 1 holds the apex's limits
+                crate::pyramid::bergot2().collapsed_gradients(root.apply(*t), g);
+            } else {
+                b.gradients(root.apply(*t), g);
+            }
         }
         CertTable {
             space,
@@ -311,7 +319,12 @@ pub fn certify_cell<const D: usize>(
                 min_coeff,
                 max_coeff,
             },
-            Certificate::Invalid { at } => Certificate::Invalid { at: to_point(at) },
+            Certificate::Invalid { at } => Certificate::Invalid {
+                at: to_point(match table.space.domain {
+                    Domain::Pyramid { .. } => crate::pyramid::to_reference(at),
+                    _ => at,
+                }),
+            },
             Certificate::Undecided => Certificate::Undecided,
         },
     )
@@ -560,10 +573,6 @@ fn judge<const D: usize>(
     }) = certificate
     {
         return Ok((min_coeff / max_coeff, min_coeff, Verdict::Valid));
-    }
-    if crate::straight::is_pyramid14(ty) {
-        // straight-sided (else `certify_cell` refused it): judged as its linear pyramid
-        return judge(CellType::new(Shape::Pyramid, 1), &nodes[..5], params);
     }
     let sampled = sampled_check(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();
