@@ -7,7 +7,9 @@
 //! hexahedron 3p − 1 per direction, of a P_p prism 3p − 2 on the triangle and 3p − 1 along
 //! its axis; the linear pyramid's, rational in the reference coordinates, is a biquadratic
 //! in the coordinates of the rays from the apex (see `determinant_space`: the approach of
-//! Johnen & Geuzaine for pyramids, 2015, at order 1). It is sampled at the lattice points of that degree and
+//! Johnen & Geuzaine for pyramids, 2015, at order 1); the 14-node pyramid's is a polynomial
+//! of degree 5, 5, 3 in the collapsed coordinates (ξ̂, η̂, ζ) of the box [−1, 1]² × [0, 1]
+//! (the `pyramid` module). It is sampled at the lattice points of that degree and
 //! turned into Bernstein coefficients by a per-type matrix. The coefficients bound the
 //! determinant (convex hull property) and the corner coefficients equal it at the corners:
 //! all coefficients > 0 proves validity, a corner coefficient ≤ 0 proves invalidity,
@@ -15,9 +17,8 @@
 //! a region still undecided there makes the cell [`Certificate::Undecided`].
 //!
 //! Certified: triangles and quadrilaterals of order 1–3, tetrahedra, prisms and hexahedra of
-//! order 1–2, the linear pyramid, and the straight-sided 14-node pyramid (as its linear
-//! pyramid). A curved 14-node pyramid has neither shape functions nor a certificate here
-//! ([`JacobianError::Unsupported`]).
+//! order 1–2, the linear pyramid, and the 14-node pyramid (a straight-sided one as its
+//! linear pyramid).
 //! This module does not move nodes or repair cells.
 
 use std::sync::OnceLock;
@@ -270,14 +271,13 @@ fn certify_coefficients(
 }
 
 /// The certified validity of a cell of dimension `D` (triangles and quadrilaterals of order
-/// 1 to 3, tetrahedra, prisms and hexahedra of order 1 and 2, the linear pyramid) with node
+/// 1 to 3, tetrahedra, prisms and hexahedra of order 1 and 2, the 5- and 14-node pyramids) with node
 /// coordinates `nodes` in Gmsh
 /// order. Valid means the Jacobian determinant is > 0 everywhere in the cell: the cell is
 /// not folded and is positively oriented (counter-clockwise in 2D).
 ///
 /// # Errors
-/// Unsupported type (a curved 14-node pyramid — a straight-sided one is certified as its
-/// linear pyramid —, 3D cells of order 3), wrong dimension, wrong node count, non-finite
+/// Unsupported type (3D cells of order 3), wrong dimension, wrong node count, non-finite
 /// node, bad parameter.
 pub fn certify_cell<const D: usize>(
     ty: CellType,

@@ -5,8 +5,9 @@
 //!
 //! Supported: triangles and quadrilaterals of order 1 to 3; tetrahedra, prisms and
 //! hexahedra of order 1 and 2; the linear pyramid (its classical rational shape functions)
-//! and Gmsh's 14-node pyramid (its rational Bergot basis, [`crate::pyramid`]). Polynomial bases are built once per type from their
-//! monomial space and reference nodes (the inverse of the Vandermonde matrix) and cached.
+//! and Gmsh's 14-node pyramid (its rational Bergot basis, the `pyramid` module). Polynomial
+//! bases are built once per type from their monomial space and reference nodes (the
+//! inverse of the Vandermonde matrix) and cached.
 //!
 //! This module owns the reference cells only; mapping to physical space is
 //! [`mod@crate::jacobian`].
@@ -80,7 +81,7 @@ pub(crate) enum Basis {
     },
     /// The linear pyramid's rational shape functions.
     Pyramid1,
-    /// The 14-node pyramid's (Bergot's space, [`crate::pyramid`]).
+    /// The 14-node pyramid's (Bergot's space, the `pyramid` module).
     Pyramid2,
 }
 

@@ -23,7 +23,7 @@ pub struct Capabilities {
 
 /// Every type with Lagrange shape functions, and whether it has a certificate (all of them
 /// now; the column stays for a type that would come with shape functions first). The 14-node
-/// pyramid of Gmsh has a rational (Bergot) basis ([`crate::pyramid`]).
+/// pyramid of Gmsh has a rational (Bergot) basis (the `pyramid` module).
 const TABLE: [(Shape, u8, bool); 14] = [
     (Shape::Tri, 1, true),
     (Shape::Tri, 2, true),
