@@ -4,8 +4,8 @@
 //! where a dense sample is negative (nor invalid where the determinant is positive).
 
 use jacobian_check::{
-    Certificate, CertifyParams, JacobianError, certify_cell, jacobian, reference_nodes,
-    sampled_check, shape_functions,
+    Certificate, CertifyParams, certify_cell, jacobian, reference_nodes, sampled_check,
+    shape_functions,
 };
 use mesh_model::{CellType, Shape};
 use proptest::prelude::*;
