@@ -102,14 +102,8 @@ pub fn curve(
         TrueShape::Wing(w) => w.as_ref(),
         TrueShape::Flat => &FlatWall,
     };
-    vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params).map_err(|e| {
-        let hint = if mesh.count(Shape::Pyramid) > 0 {
-            " (use [cut] cells = \"tets\")"
-        } else {
-            ""
-        };
-        anyhow::anyhow!("{}: curving to P2: {e}{hint}", case.origin)
-    })
+    vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params)
+        .map_err(|e| anyhow::anyhow!("{}: curving to P2: {e}", case.origin))
 }
 
 /// The curved mesh's volume (the sum of `jacobian_check::cell_volume` over the cells in

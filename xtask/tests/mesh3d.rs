@@ -533,6 +533,42 @@ fn the_wing_at_p2_has_its_side_nodes_on_the_true_wing() {
     assert!(side > 0 && cap > 0, "{side} {cap}");
 }
 
+/// The wing with quads on its side cut into mixed cells at P2, its first layer thick enough for
+/// pyramids with an edge on the wall: those pyramids are curved onto the true wing (refused
+/// before the 14-node pyramid was certified) and every cell is certified.
+#[test]
+fn the_mixed_wing_at_p2_is_certified_with_curved_pyramids() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let file = case(
+        d,
+        "wingmix",
+        "wing = \"naca0012\"\nfirst_height = 1e-3\nspan = 1.0\ntriangles = false",
+        "first_height = 0.02\ngrowth = 1.3\nmax_layers = 3",
+        "mixed",
+    );
+    let r = at_order(d, &file, "2");
+    assert_certified(&r);
+    let mesh = mesh_io::read_msh(&d.join("p2.msh")).unwrap();
+    let pyramid14 = mesh_model::CellType::new(mesh_model::Shape::Pyramid, 2);
+    let curved = mesh
+        .cells
+        .iter()
+        .filter(|c| c.ty == pyramid14)
+        .filter(|c| {
+            let x = |k: usize| mesh.nodes[c.nodes[k] as usize];
+            mesh_model::Shape::Pyramid
+                .edges()
+                .iter()
+                .enumerate()
+                .any(|(k, e)| {
+                    (0..3).any(|i| (x(5 + k)[i] - 0.5 * (x(e[0])[i] + x(e[1])[i])).abs() > 1e-9)
+                })
+        })
+        .count();
+    assert!(curved > 100, "{curved} curved pyramids");
+}
+
 /// The volume the outer front (the `farfield` facets) of the mesh in `msh` encloses, along
 /// the facets' curved shape.
 fn front_volume(msh: &Path) -> f64 {

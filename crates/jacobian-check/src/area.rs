@@ -225,17 +225,19 @@ fn reference_volume(shape: Shape) -> f64 {
 /// Jacobian determinant is the mean of its Bernstein coefficients times the reference
 /// volume (every Bernstein polynomial of a degree has the same integral over the simplex, the
 /// box and the prism; the linear pyramid's determinant, a biquadratic f(ξ, η) along the rays
-/// from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3).
+/// from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3). A
+/// straight-sided 14-node pyramid is its linear pyramid; a curved one is integrated by an
+/// exact Gauss rule on its collapsed box (the `pyramid` module).
 ///
 /// # Errors
-/// Unsupported type (a curved 14-node pyramid; a straight-sided one is its linear pyramid),
-/// a 2D type, wrong node count, non-finite node.
+/// Unsupported type, a 2D type, wrong node count, non-finite node.
 pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianError> {
     if crate::straight::is_pyramid14(ty) {
         check_cell(ty, nodes)?;
         if crate::straight::is_straight(ty, nodes)?.is_some() {
             return cell_volume(CellType::new(Shape::Pyramid, 1), &nodes[..5]);
         }
+        return Ok(crate::pyramid::volume(nodes));
     }
     let c = crate::certify::determinant_bernstein_coefficients(ty, nodes)?;
     Ok(c.iter().sum::<f64>() / c.len() as f64 * reference_volume(ty.shape))

@@ -1,5 +1,5 @@
-//! Bernstein (Bézier) polynomial spaces on the reference simplex, box and prism (triangle ×
-//! line), in which the
+//! Bernstein (Bézier) polynomial spaces on the reference simplex, box, prism (triangle ×
+//! line) and square × line (the pyramid's collapsed coordinates), in which the
 //! Jacobian determinant of a cell is expanded to bound its sign (Johnen, Remacle &
 //! Geuzaine 2013).
 //!
@@ -33,6 +33,13 @@ pub(crate) enum Domain {
         /// The degree along the axis.
         axis: usize,
     },
+    /// The unit square × [0, 1] (3D only): the square's tensor Bernstein basis (of the
+    /// space's degree per direction) times the line's, of degree `axis`. The root region
+    /// spans the pyramid's collapsed coordinates (ξ̂, η̂) ∈ [−1, 1]², ζ ∈ [0, 1].
+    Pyramid {
+        /// The degree along ζ.
+        axis: usize,
+    },
 }
 
 /// An affine map from unit coordinates to reference coordinates:
@@ -54,6 +61,7 @@ impl Region {
                 Domain::Simplex => true,
                 Domain::Box => false,
                 Domain::Prism { .. } => k < 2,
+                Domain::Pyramid { .. } => k == 2,
             };
             if simplex_axis {
                 axes[k][k] = 1.0;
@@ -144,7 +152,7 @@ impl Space {
         let n = degree;
         let mut index = Vec::new();
         let top = match domain {
-            Domain::Prism { axis } => axis,
+            Domain::Prism { axis } | Domain::Pyramid { axis } => axis,
             _ if dim == 3 => n,
             _ => 0,
         };
@@ -153,7 +161,7 @@ impl Space {
                 for a in 0..=n {
                     let keep = match domain {
                         Domain::Simplex => a + b + c <= n,
-                        Domain::Box => true,
+                        Domain::Box | Domain::Pyramid { .. } => true,
                         Domain::Prism { .. } => a + b <= n,
                     };
                     if keep {
@@ -165,15 +173,17 @@ impl Space {
         let lattice_unit: Vec<RefPoint> = index
             .iter()
             .map(|m| {
+                let at = |k: usize, of: usize, mid: f64| {
+                    if of == 0 { mid } else { k as f64 / of as f64 }
+                };
                 if let Domain::Prism { axis } = domain {
-                    let at = |k: usize, of: usize, mid: f64| {
-                        if of == 0 { mid } else { k as f64 / of as f64 }
-                    };
                     [
                         at(m[0], n, 1.0 / 3.0),
                         at(m[1], n, 1.0 / 3.0),
                         at(m[2], axis, 0.5),
                     ]
+                } else if let Domain::Pyramid { axis } = domain {
+                    [at(m[0], n, 0.5), at(m[1], n, 0.5), at(m[2], axis, 0.5)]
                 } else if n == 0 {
                     let mut t = [0.0; 3];
                     t[..dim].fill(if domain == Domain::Simplex {
@@ -194,6 +204,9 @@ impl Space {
                 Domain::Simplex => simplex_corner(&m[..dim], n),
                 Domain::Box => m[..dim].iter().all(|&k| k == 0 || k == n),
                 Domain::Prism { axis } => simplex_corner(&m[..2], n) && (m[2] == 0 || m[2] == axis),
+                Domain::Pyramid { axis } => {
+                    m[..2].iter().all(|&k| k == 0 || k == n) && (m[2] == 0 || m[2] == axis)
+                }
             })
             .map(|(i, _)| i)
             .collect();
@@ -249,6 +262,9 @@ impl Space {
             Domain::Box => (0..self.dim).map(|k| line_basis(a[k], t[k], n)).product(),
             Domain::Prism { axis } => {
                 simplex_basis(&a[..2], &t[..2], n) * line_basis(a[2], t[2], axis)
+            }
+            Domain::Pyramid { axis } => {
+                line_basis(a[0], t[0], n) * line_basis(a[1], t[1], n) * line_basis(a[2], t[2], axis)
             }
         }
     }
@@ -312,7 +328,7 @@ impl Space {
                     simplex(&[m02, m13, m12, m01]),
                 ]
             }
-            (Domain::Box, dim) => (0..1usize << dim)
+            (Domain::Box | Domain::Pyramid { .. }, dim) => (0..1usize << dim)
                 .map(|bits| {
                     let mut r = Region {
                         origin: [0.0; 3],
@@ -395,6 +411,8 @@ mod tests {
             (Domain::Prism { axis: 2 }, 3, 2),
             (Domain::Prism { axis: 5 }, 3, 4),
             (Domain::Prism { axis: 2 }, 3, 1),
+            (Domain::Pyramid { axis: 5 }, 3, 3),
+            (Domain::Pyramid { axis: 2 }, 3, 2),
         ] {
             check_reproduction(domain, dim, n);
         }
@@ -408,6 +426,7 @@ mod tests {
             (Domain::Box, 2, 1.0),
             (Domain::Box, 3, 1.0),
             (Domain::Prism { axis: 1 }, 3, 0.5),
+            (Domain::Pyramid { axis: 1 }, 3, 1.0),
         ] {
             let space = Space::new(domain, dim, 1);
             let measure = |r: &Region| {
@@ -417,7 +436,10 @@ mod tests {
                 } else {
                     crate::jacobian::det3(&a)
                 };
-                let unit = if domain == Domain::Box { 1.0 } else { whole };
+                let unit = match domain {
+                    Domain::Box | Domain::Pyramid { .. } => 1.0,
+                    _ => whole,
+                };
                 d.abs() * unit
             };
             let total: f64 = space.children.iter().map(|(r, _)| measure(r)).sum();

@@ -7,7 +7,9 @@
 //! hexahedron 3p − 1 per direction, of a P_p prism 3p − 2 on the triangle and 3p − 1 along
 //! its axis; the linear pyramid's, rational in the reference coordinates, is a biquadratic
 //! in the coordinates of the rays from the apex (see `determinant_space`: the approach of
-//! Johnen & Geuzaine for pyramids, 2015, at order 1). It is sampled at the lattice points of that degree and
+//! Johnen & Geuzaine for pyramids, 2015, at order 1); the 14-node pyramid's is a polynomial
+//! of degree 5, 5, 3 in the collapsed coordinates (ξ̂, η̂, ζ) of the box [−1, 1]² × [0, 1]
+//! (the `pyramid` module). It is sampled at the lattice points of that degree and
 //! turned into Bernstein coefficients by a per-type matrix. The coefficients bound the
 //! determinant (convex hull property) and the corner coefficients equal it at the corners:
 //! all coefficients > 0 proves validity, a corner coefficient ≤ 0 proves invalidity,
@@ -15,9 +17,8 @@
 //! a region still undecided there makes the cell [`Certificate::Undecided`].
 //!
 //! Certified: triangles and quadrilaterals of order 1–3, tetrahedra, prisms and hexahedra of
-//! order 1–2, the linear pyramid, and the straight-sided 14-node pyramid (as its linear
-//! pyramid). A curved 14-node pyramid has neither shape functions nor a certificate here
-//! ([`JacobianError::Unsupported`]).
+//! order 1–2, the linear pyramid, and the 14-node pyramid (a straight-sided one as its
+//! linear pyramid).
 //! This module does not move nodes or repair cells.
 
 use std::sync::OnceLock;
@@ -144,7 +145,9 @@ fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
         Shape::Quad => (Domain::Box, 2, 2 * p - 1),
         Shape::Tet => (Domain::Simplex, 3, 3 * (p - 1)),
         Shape::Prism => (Domain::Prism { axis: 3 * p - 1 }, 3, 3 * p - 2),
-        Shape::Pyramid => (Domain::Box, 2, 2),
+        Shape::Pyramid if p == 1 => (Domain::Box, 2, 2),
+        // the 14-node pyramid: degree 5 in (ξ̂, η̂), 3 in ζ (see `crate::pyramid`)
+        Shape::Pyramid => (Domain::Pyramid { axis: 3 }, 3, 5),
         _ => (Domain::Box, 3, 3 * p - 1),
     }
 }
@@ -160,7 +163,13 @@ fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
         let nodes = ty.node_count();
         let mut grads = vec![[0.0; 3]; space.len() * nodes];
         for (k, t) in space.lattice_unit.iter().enumerate() {
-            b.gradients(root.apply(*t), &mut grads[k * nodes..(k + 1) * nodes]);
+            let g = &mut grads[k * nodes..(k + 1) * nodes];
+            if let Domain::Pyramid { .. } = domain {
+                // the lattice is in collapsed coordinates: ζ = 1 holds the apex's limits
+                crate::pyramid::bergot2().collapsed_gradients(root.apply(*t), g);
+            } else {
+                b.gradients(root.apply(*t), g);
+            }
         }
         CertTable {
             space,
@@ -262,14 +271,13 @@ fn certify_coefficients(
 }
 
 /// The certified validity of a cell of dimension `D` (triangles and quadrilaterals of order
-/// 1 to 3, tetrahedra, prisms and hexahedra of order 1 and 2, the linear pyramid) with node
+/// 1 to 3, tetrahedra, prisms and hexahedra of order 1 and 2, the 5- and 14-node pyramids) with node
 /// coordinates `nodes` in Gmsh
 /// order. Valid means the Jacobian determinant is > 0 everywhere in the cell: the cell is
 /// not folded and is positively oriented (counter-clockwise in 2D).
 ///
 /// # Errors
-/// Unsupported type (a curved 14-node pyramid — a straight-sided one is certified as its
-/// linear pyramid —, 3D cells of order 3), wrong dimension, wrong node count, non-finite
+/// Unsupported type (3D cells of order 3), wrong dimension, wrong node count, non-finite
 /// node, bad parameter.
 pub fn certify_cell<const D: usize>(
     ty: CellType,
@@ -311,7 +319,12 @@ pub fn certify_cell<const D: usize>(
                 min_coeff,
                 max_coeff,
             },
-            Certificate::Invalid { at } => Certificate::Invalid { at: to_point(at) },
+            Certificate::Invalid { at } => Certificate::Invalid {
+                at: to_point(match table.space.domain {
+                    Domain::Pyramid { .. } => crate::pyramid::to_reference(at),
+                    _ => at,
+                }),
+            },
             Certificate::Undecided => Certificate::Undecided,
         },
     )
@@ -560,10 +573,6 @@ fn judge<const D: usize>(
     }) = certificate
     {
         return Ok((min_coeff / max_coeff, min_coeff, Verdict::Valid));
-    }
-    if crate::straight::is_pyramid14(ty) {
-        // straight-sided (else `certify_cell` refused it): judged as its linear pyramid
-        return judge(CellType::new(Shape::Pyramid, 1), &nodes[..5], params);
     }
     let sampled = sampled_check(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();

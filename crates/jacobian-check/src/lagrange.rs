@@ -4,10 +4,10 @@
 //! [−1, 1]² with the apex at (0, 0, 1).
 //!
 //! Supported: triangles and quadrilaterals of order 1 to 3; tetrahedra, prisms and
-//! hexahedra of order 1 and 2; the linear pyramid (its classical rational shape functions).
-//! The 14-node pyramid of Gmsh uses a rational (Bergot) basis and is reported as
-//! [`JacobianError::Unsupported`]. Polynomial bases are built once per type from their
-//! monomial space and reference nodes (the inverse of the Vandermonde matrix) and cached.
+//! hexahedra of order 1 and 2; the linear pyramid (its classical rational shape functions)
+//! and Gmsh's 14-node pyramid (its rational Bergot basis, the `pyramid` module). Polynomial
+//! bases are built once per type from their monomial space and reference nodes (the
+//! inverse of the Vandermonde matrix) and cached.
 //!
 //! This module owns the reference cells only; mapping to physical space is
 //! [`mod@crate::jacobian`].
@@ -81,12 +81,18 @@ pub(crate) enum Basis {
     },
     /// The linear pyramid's rational shape functions.
     Pyramid1,
+    /// The 14-node pyramid's (Bergot's space, the `pyramid` module).
+    Pyramid2,
 }
 
 impl Basis {
     fn build(ty: CellType) -> Basis {
         if ty.shape == Shape::Pyramid {
-            return Basis::Pyramid1;
+            return if ty.order == 1 {
+                Basis::Pyramid1
+            } else {
+                Basis::Pyramid2
+            };
         }
         let nodes = reference_nodes(ty).expect("supported type");
         let monomials = monomials(ty);
@@ -129,6 +135,7 @@ impl Basis {
                 }
                 values[4] = w;
             }
+            Basis::Pyramid2 => crate::pyramid::bergot2().values(xi, values),
         }
     }
 
@@ -183,6 +190,7 @@ impl Basis {
                 }
                 grads[4] = [0.0, 0.0, 1.0];
             }
+            Basis::Pyramid2 => crate::pyramid::bergot2().gradients(xi, grads),
         }
     }
 }

@@ -51,10 +51,11 @@
 //! node coordinates (`[f64; 2]` or `[f64; 3]`), and [`types`] is the one table of the cell
 //! types the crate knows and what it offers for each ([`capabilities`]): every type with
 //! shape functions is certified — triangles and quadrilaterals of order 1–3; tetrahedra,
-//! prisms (6 and 18 nodes) and hexahedra of order 1–2; the linear pyramid. A straight-sided
-//! 14-node pyramid (edge nodes at the edge midpoints, the base node at the base's centre)
-//! *is* its linear pyramid and is certified (and integrated) as one; a curved 14-node
-//! pyramid is [`JacobianError::Unsupported`].
+//! prisms (6 and 18 nodes) and hexahedra of order 1–2; the 5- and 14-node pyramids. A
+//! straight-sided 14-node pyramid (edge nodes at the edge midpoints, the base node at the
+//! base's centre) *is* its linear pyramid and is certified (and integrated) as one; a curved
+//! one in Gmsh's own (Bergot) space, its determinant expanded in the pyramid's collapsed
+//! coordinates (Johnen & Geuzaine 2015).
 //!
 //! ```
 //! use jacobian_check::{CertifyParams, certify_cell, reference_nodes};
@@ -81,6 +82,7 @@ pub mod error;
 pub mod jacobian;
 pub mod lagrange;
 mod linalg;
+mod pyramid;
 mod straight;
 pub mod types;
 

@@ -23,10 +23,8 @@ pub struct Capabilities {
 
 /// Every type with Lagrange shape functions, and whether it has a certificate (all of them
 /// now; the column stays for a type that would come with shape functions first). The 14-node
-/// pyramid of Gmsh has a rational (Bergot) basis and is not here: neither its shape
-/// functions nor the pyramidal Bernstein space of its determinant (Johnen & Geuzaine 2015)
-/// are implemented.
-const TABLE: [(Shape, u8, bool); 13] = [
+/// pyramid of Gmsh has a rational (Bergot) basis (the `pyramid` module).
+const TABLE: [(Shape, u8, bool); 14] = [
     (Shape::Tri, 1, true),
     (Shape::Tri, 2, true),
     (Shape::Tri, 3, true),
@@ -40,6 +38,7 @@ const TABLE: [(Shape, u8, bool); 13] = [
     (Shape::Hex, 1, true),
     (Shape::Hex, 2, true),
     (Shape::Pyramid, 1, true),
+    (Shape::Pyramid, 2, true),
 ];
 
 /// The number of slots: the length of every per-type cache.
@@ -105,13 +104,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_type_with_shape_functions_is_certified_but_the_p2_pyramid_is_absent() {
+    fn every_type_with_shape_functions_is_certified() {
         assert!(supported_types().all(|t| capabilities(t).unwrap().certified));
-        assert_eq!(supported_types().count(), 13);
+        assert_eq!(supported_types().count(), 14);
         let p2_pyramid = CellType::new(Shape::Pyramid, 2);
-        assert!(capabilities(p2_pyramid).is_none());
-        assert!(slot(p2_pyramid, Feature::ShapeFunctions).is_err());
-        assert!(slot(p2_pyramid, Feature::Certified).is_err());
+        assert!(capabilities(p2_pyramid).unwrap().straight_shortcut);
+        assert!(slot(p2_pyramid, Feature::Certified).is_ok());
+        let p3_pyramid = CellType::new(Shape::Pyramid, 3);
+        assert!(capabilities(p3_pyramid).is_none());
+        assert!(slot(p3_pyramid, Feature::ShapeFunctions).is_err());
         let prism = CellType::new(Shape::Prism, 2);
         assert!(slot(prism, Feature::Certified).is_ok());
         assert!(capabilities(prism).unwrap().straight_shortcut);

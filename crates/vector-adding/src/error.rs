@@ -20,8 +20,7 @@ pub enum CurvingError {
     #[error("curving needs a linear 2D mesh of triangles and quadrilaterals: {0}")]
     NotLinear2d(String),
     /// The input of the 3D curving is not a linear 3D mesh of tetrahedra, pyramids, prisms
-    /// and hexahedra, or a pyramid has an edge on a curved wall (a P2 pyramid is certified
-    /// only straight-sided).
+    /// and hexahedra.
     #[error("3D curving: {0}")]
     Unsupported3d(String),
     /// The input mesh breaks a structural invariant of the data model (a node index out of

@@ -26,7 +26,7 @@
 //! layers is curved to P2 the same way (dissertation §5.3): wall mid-edge nodes on the true
 //! surface through a [`SurfaceProjector`], their displacement added up the columns edge by
 //! edge, with the 2D stops, every decision certified (tetrahedra, prisms, hexahedra;
-//! pyramids kept straight-sided, refused on a curved wall).
+//! pyramids curved on the wall only).
 //!
 //! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
 //! IO, and does not certify the final mesh as a whole (the caller runs

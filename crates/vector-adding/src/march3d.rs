@@ -137,24 +137,6 @@ impl<'a> March<'a> {
         }
     }
 
-    /// Refuses a pyramid with a curved wall edge (placed by `place_wall`): a 14-node pyramid
-    /// is certified only straight-sided.
-    pub(crate) fn check_pyramids_on_wall(&self) -> Result<(), CurvingError> {
-        let curved = (0..self.edges.len()).find(|&e| self.of_pyramid[e] && self.dev[e] != [0.0; 3]);
-        let Some(e) = curved else { return Ok(()) };
-        let c = self
-            .edges
-            .cells(e as u32)
-            .iter()
-            .map(|u| u.cell)
-            .find(|&c| self.mesh.cells.get(c as usize).ty.shape == Shape::Pyramid);
-        Err(CurvingError::Unsupported3d(format!(
-            "cell {} is a pyramid with an edge on the curved wall: P2 pyramids are certified \
-             only straight-sided; cut to tetrahedra instead",
-            c.unwrap_or_default()
-        )))
-    }
-
     fn ends(&self, e: u32) -> [u32; 2] {
         let k = self.edges.nodes(e);
         [k[0], k[1]]

@@ -145,12 +145,6 @@ fn bad_input_is_refused_with_a_clear_error() {
         curve_mesh_3d(&linear, &bad, &SPHERE, &p2()),
         Err(CurvingError::BadLayers(_))
     ));
-    // a pyramid on the curved wall: refused, a P2 pyramid is certified only straight-sided
-    let pyramid = one_pyramid();
-    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
-    let e = curve_mesh_3d(&pyramid, &columns, &SPHERE, &p2()).unwrap_err();
-    assert!(matches!(e, CurvingError::Unsupported3d(_)), "{e}");
-    assert!(e.to_string().contains("pyramid"), "{e}");
     // a 2D mesh
     let flat = Mesh::new(Dim::Two, 1);
     assert!(matches!(
@@ -187,6 +181,36 @@ fn a_pyramid_on_a_flat_wall_stays_straight_and_is_certified() {
         mesh.nodes[mesh.cells.get(0).nodes[13] as usize],
         [0.5, 0.5, 0.0]
     );
+}
+
+/// A wall bulging out of the cell below the plane z = 0: a parabolic cylinder along y.
+struct Bulge;
+
+impl vector_adding::SurfaceProjector for Bulge {
+    fn project(&self, p: [f64; 3], _facet: usize) -> [f64; 3] {
+        [p[0], p[1], -0.4 * p[0] * (1.0 - p[0])]
+    }
+}
+
+#[test]
+fn a_pyramid_on_a_curved_wall_is_curved_and_certified() {
+    let pyramid = one_pyramid();
+    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
+    let curved = curve_mesh_3d(&pyramid, &columns, &Bulge, &p2()).unwrap();
+    let mesh = &curved.mesh;
+    let cell = mesh.cells.get(0);
+    // the wall edges 0-1 and 2-3 bow down, the base's centre follows (Coons point)
+    assert_eq!(mesh.nodes[cell.nodes[5] as usize], [0.5, 0.0, -0.1]);
+    assert_eq!(mesh.nodes[cell.nodes[10] as usize], [0.5, 1.0, -0.1]);
+    assert_eq!(mesh.nodes[cell.nodes[13] as usize], [0.5, 0.5, -0.1]);
+    let v = check_mesh(mesh, &CertifyParams::default()).unwrap();
+    assert!(
+        v.invalid_cells.is_empty() && v.undecided.is_empty() && v.min_scaled_jacobian > 0.0,
+        "{v:?}"
+    );
+    // the bulge adds to the straight pyramid's third
+    let volume = integrate_volume(mesh).unwrap();
+    assert!(volume > 1.0 / 3.0 + 0.01, "{volume}");
 }
 
 /// A unit-square pyramid in layer 0 on wall facet 0 (its apex in layer 1).
