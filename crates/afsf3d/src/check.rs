@@ -6,6 +6,7 @@ use mesh_model::is_positive_tet;
 use mesh_model::measure3d::corner_determinants;
 use rayon::prelude::*;
 
+use crate::front::{max_min_direction, turn_towards};
 use crate::layer::{Layer, strictly_convex};
 use crate::{GrowError, GrowStats};
 
@@ -136,6 +137,74 @@ pub(crate) fn shrink_until_valid(
         }
         stats.shrinks += 1;
     }
+}
+
+/// The smallest cosine between a turned step and the normal of each of its node's bottom
+/// corner triangles that [`turned_steps`] aims for (or half the best there is, if lower).
+const TURN_FLOOR: f64 = 0.2;
+
+/// The balanced children `balanced` of the front (`front`, `facets`) with the steps turned
+/// of the nodes of the failing facets `bad` whose bottom corner fails: a corner triangle
+/// of the front at the node (the node, its next and previous neighbours on a facet) that
+/// its step does not stand off. No shrinking mends such a corner (the check depends on the
+/// step's direction only): a node on a ridge beside a pit the shrinks of earlier layers
+/// left (the quad wing far out, `docs/3d.md`). The step keeps its length and turns towards
+/// the direction standing most steeply off all the node's corner triangles
+/// ([`max_min_direction`]), just far enough that it stands off each at a cosine of
+/// [`TURN_FLOOR`] (or half the best, if lower). `None` if no node turns.
+pub(crate) fn turned_steps(
+    front: &[[f64; 3]],
+    facets: &[Facet],
+    balanced: &[[f64; 3]],
+    bad: &[usize],
+) -> Option<Vec<[f64; 3]>> {
+    use geom_predicates::vector::{cross3, dist, dot, sub};
+    let corner = |f: &Facet, i: usize| {
+        let k = f.nodes();
+        let m = k.len();
+        let x = |j: usize| front[k[j % m] as usize];
+        geom_surface::unit(cross3(sub(x(i + 1), x(i)), sub(x(i + m - 1), x(i))))
+    };
+    let step = |v: usize| geom_surface::unit(sub(balanced[v], front[v]));
+    let mut failing: Vec<u32> = Vec::new();
+    for &f in bad {
+        let facet = &facets[f];
+        for (i, &v) in facet.nodes().iter().enumerate() {
+            if dot(corner(facet, i), step(v as usize)) <= 0.0 {
+                failing.push(v);
+            }
+        }
+    }
+    failing.sort_unstable();
+    failing.dedup();
+    if failing.is_empty() {
+        return None;
+    }
+    let mut normals: Vec<Vec<[f64; 3]>> = vec![Vec::new(); failing.len()];
+    for facet in facets {
+        for (i, v) in facet.nodes().iter().enumerate() {
+            if let Ok(slot) = failing.binary_search(v) {
+                normals[slot].push(corner(facet, i));
+            }
+        }
+    }
+    let mut out = balanced.to_vec();
+    let mut turned = false;
+    for (&v, n) in failing.iter().zip(&normals) {
+        let v = v as usize;
+        let d = step(v);
+        let worst = |d: [f64; 3]| n.iter().map(|&m| dot(d, m)).fold(f64::INFINITY, f64::min);
+        let best = max_min_direction(n, d);
+        let target = TURN_FLOOR.min(0.5 * worst(best));
+        if target <= 0.0 {
+            continue;
+        }
+        let d = turn_towards(d, best, |d| worst(d) >= target);
+        let len = dist(balanced[v], front[v]);
+        out[v] = std::array::from_fn(|k| front[v][k] + len * d[k]);
+        turned = true;
+    }
+    turned.then_some(out)
 }
 
 #[cfg(test)]
