@@ -4,6 +4,9 @@
 //! tips: over the caps, or over side facets within 0.05 of a tip; the rest) and layer band,
 //! with the worst cell's wall facet:
 //! `cargo run --release -p xtask --example wing_corners -- <case.toml> [layers]`.
+//! With `WING_CORNERS_DETAIL` set it also prints each region's worst cell corner by corner
+//! (its scaled Jacobian, face angle and extrusion tilt); with `WING_CORNERS_CAP` the root
+//! cap's facets at the trailing edge (x > 0.97).
 
 use anyhow::{Result, bail};
 use mesh_model::measure3d;

@@ -364,6 +364,69 @@ mod tests {
     }
 
     #[test]
+    fn the_triangles_of_a_chord_pair_into_squares_not_into_slanted_quads() {
+        // a 2 × 1 strip, its six nodes all on the rim: two squares, each cut by a chord
+        // (0–4, 1–3), and the chord 1–4 between them, whose quad has 45° corners
+        let nodes = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [0.0, 1.0],
+        ];
+        let tris = [
+            Facet::tri(0, 1, 4),
+            Facet::tri(0, 4, 5),
+            Facet::tri(1, 2, 3),
+            Facet::tri(1, 3, 4),
+        ];
+        let out = pair_rim_triangles(&nodes, &tris, 6);
+        assert_eq!(out.len(), 2, "{out:?}");
+        for f in &out {
+            let k = f.nodes();
+            assert_eq!(k.len(), 4);
+            let p = [0, 1, 2, 3].map(|i| nodes[k[i] as usize]);
+            assert!((convex_min_angle(p).unwrap() - 90.0).abs() < 1e-9, "{f:?}");
+        }
+        // an inner node makes no chord: nothing paired
+        let inner = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.4, 0.4]];
+        let fan = [
+            Facet::tri(0, 1, 3),
+            Facet::tri(1, 2, 3),
+            Facet::tri(2, 0, 3),
+        ];
+        assert_eq!(pair_rim_triangles(&inner, &fan, 3), fan.to_vec());
+    }
+
+    #[test]
+    fn the_quad_sides_caps_pair_the_triangles_across_the_trailing_edges_strip() {
+        let mut case = crate::case::load("naca0012").unwrap();
+        case.layers.first_height = 1e-3;
+        let (s, _) = wing_surface(&case, 2.0, false).unwrap();
+        s.check().unwrap();
+        let cap = s.patches.iter().position(|p| p.name == "tip-root").unwrap() as u32;
+        let quads: Vec<&Facet> = s
+            .facets
+            .iter()
+            .zip(&s.facet_patch)
+            .filter(|(f, p)| **p == cap && f.nodes().len() == 4)
+            .map(|(f, _)| f)
+            .collect();
+        // the ladder across the strip (x > 0.97) and the quads around its end
+        assert!(quads.len() >= 6, "{} quads", quads.len());
+        assert!(
+            quads
+                .iter()
+                .all(|f| f.nodes().iter().all(|&v| s.nodes[v as usize][0] > 0.96))
+        );
+        assert!(smallest_angle(&s, "tip-root") >= 20.0);
+        // a triangulated wing keeps its triangles
+        let (t, _) = wing_surface(&case, 2.0, true).unwrap();
+        assert!(t.facets.iter().all(|f| f.nodes().len() == 3));
+    }
+
+    #[test]
     fn a_case_with_two_walls_is_refused() {
         let case = crate::case::load("two-element").unwrap();
         let err = wing_surface(&case, 2.0, false).unwrap_err().to_string();

@@ -213,6 +213,43 @@ mod tests {
     use crate::layer::Ideal;
 
     #[test]
+    fn a_step_under_its_corner_triangle_is_turned_off_it_keeping_its_length() {
+        // two unit squares side by side in z = 0 (facing +z); node 1's step lies below the
+        // plane: no shrinking mends that corner
+        let front = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+        ];
+        let facets = [Facet::quad(0, 1, 2, 3), Facet::quad(1, 4, 5, 2)];
+        let mut balanced: Vec<[f64; 3]> = front.iter().map(|p| [p[0], p[1], 0.5]).collect();
+        balanced[1] = [1.8, 0.0, -0.1];
+        let ok = |children: &[[f64; 3]]| {
+            let ideal = Ideal {
+                nodes: &front,
+                dir: &[],
+                len: &[],
+                balanced: children,
+            };
+            let layer = Layer::new(&ideal, &facets, &[]);
+            facets.iter().all(|f| layer_cell_ok(&front, &layer, f))
+        };
+        assert!(!ok(&balanced));
+        let turned = turned_steps(&front, &facets, &balanced, &[0, 1]).unwrap();
+        assert!(ok(&turned));
+        let step: [f64; 3] = std::array::from_fn(|d| turned[1][d] - front[1][d]);
+        let len = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((len(step) - (0.64f64 + 0.01).sqrt()).abs() < 1e-12);
+        assert!(step[2] / len(step) >= TURN_FLOOR - 1e-9);
+        // the other steps stay to the bit; nothing to turn without a failing corner
+        assert!((0..6).filter(|&v| v != 1).all(|v| turned[v] == balanced[v]));
+        assert_eq!(turned_steps(&front, &facets, &turned, &[0, 1]), None);
+    }
+
+    #[test]
     fn a_prism_over_a_counter_clockwise_triangle_is_valid_and_upside_down_is_not() {
         let bottom = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let up = bottom.map(|p| [p[0], p[1], 0.2]);
