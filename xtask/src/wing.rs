@@ -179,9 +179,10 @@ const RIM_QUAD_MIN_ANGLE_DEG: f64 = 50.0;
 /// order around it) with the two triangles of each chord of the section — an edge between
 /// two rim nodes that are not neighbours on the rim, across the section — joined into a quad
 /// where every corner of the quad is at least [`RIM_QUAD_MIN_ANGLE_DEG`] (the squarest
-/// first, each triangle in one pair). Chords are edges of the cap only where the section is
-/// thin: the ladder of triangles across the trailing edge's strip, each bridging the upper
-/// and lower rims. There the rims' columns lean apart as the layers grow, the strip's front
+/// first, each triangle in one pair). Chords are edges of the cap where the section is as
+/// thin as its rim's spacing (no inner node between the rims): on the `naca0012` wing a
+/// ladder of 24 quads per cap from x ≈ 0.14 to the trailing edge's strip, each bridging the
+/// upper and lower rims. There the rims' columns lean apart as the layers grow, the strip's front
 /// widens many times over while its cells keep their length along the chord, and a
 /// triangle's corner shrinks to a sliver (corner scaled Jacobian 0.18 in layers 3–5,
 /// `docs/3d.md`), where a near-rectangle across the strip stays one. For the quad side only:
@@ -413,13 +414,19 @@ mod tests {
             .filter(|(f, p)| **p == cap && f.nodes().len() == 4)
             .map(|(f, _)| f)
             .collect();
-        // the ladder across the strip (x > 0.97) and the quads around its end
+        // the ladder across the section, down to the trailing edge's strip, every quad's
+        // corners at 50° or more
         assert!(quads.len() >= 6, "{} quads", quads.len());
-        assert!(
-            quads
-                .iter()
-                .all(|f| f.nodes().iter().all(|&v| s.nodes[v as usize][0] > 0.96))
-        );
+        let x = |v: u32| s.nodes[v as usize][0];
+        assert!(quads.iter().any(|f| f.nodes().iter().all(|&v| x(v) > 0.99)));
+        for f in &quads {
+            let p = [0, 1, 2, 3].map(|i| {
+                let q = s.nodes[f.nodes()[i] as usize];
+                [q[0], -q[1]] // the root cap faces −z: its quads run clockwise in (x, y)
+            });
+            let angle = convex_min_angle(p).expect("convex");
+            assert!(angle >= RIM_QUAD_MIN_ANGLE_DEG, "{f:?}: {angle}");
+        }
         assert!(smallest_angle(&s, "tip-root") >= 20.0);
         // a triangulated wing keeps its triangles
         let (t, _) = wing_surface(&case, 2.0, true).unwrap();

@@ -227,6 +227,7 @@ mod tests {
         let facets = [Facet::quad(0, 1, 2, 3), Facet::quad(1, 4, 5, 2)];
         let mut balanced: Vec<[f64; 3]> = front.iter().map(|p| [p[0], p[1], 0.5]).collect();
         balanced[1] = [1.8, 0.0, -0.1];
+        // valid after at most eight shrinks
         let ok = |children: &[[f64; 3]]| {
             let ideal = Ideal {
                 nodes: &front,
@@ -234,8 +235,9 @@ mod tests {
                 len: &[],
                 balanced: children,
             };
-            let layer = Layer::new(&ideal, &facets, &[]);
-            facets.iter().all(|f| layer_cell_ok(&front, &layer, f))
+            let mut layer = Layer::new(&ideal, &facets, &[]);
+            let mut stats = GrowStats::default();
+            shrink_until_valid(&front, &facets, &mut layer, 8, &mut stats).is_ok()
         };
         assert!(!ok(&balanced));
         let turned = turned_steps(&front, &facets, &balanced, &[0, 1]).unwrap();
