@@ -219,10 +219,9 @@ fn pair_rim_triangles(nodes: &[[f64; 2]], facets: &[Facet], rim: usize) -> Vec<F
         let i = k.iter().position(|&v| v == a).expect("shared");
         let (u0, v0) = if k[(i + 1) % 3] == b { (a, b) } else { (b, a) };
         let q = [v0, third(t, a, b), u0, third(u, a, b)];
-        if let Some(angle) = convex_min_angle(q.map(|v| nodes[v as usize])) {
-            if angle >= RIM_QUAD_MIN_ANGLE_DEG {
-                pairs.push((angle, t, u, Facet::quad(q[0], q[1], q[2], q[3])));
-            }
+        let angle = convex_min_angle(q.map(|v| nodes[v as usize]));
+        if let Some(angle) = angle.filter(|&a| a >= RIM_QUAD_MIN_ANGLE_DEG) {
+            pairs.push((angle, t, u, Facet::quad(q[0], q[1], q[2], q[3])));
         }
     }
     pairs.sort_by(|x, y| y.0.total_cmp(&x.0).then((x.1, x.2).cmp(&(y.1, y.2))));
