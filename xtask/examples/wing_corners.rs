@@ -4,6 +4,9 @@
 //! tips: over the caps, or over side facets within 0.05 of a tip; the rest) and layer band,
 //! with the worst cell's wall facet:
 //! `cargo run --release -p xtask --example wing_corners -- <case.toml> [layers]`.
+//! With `WING_CORNERS_DETAIL` set it also prints each region's worst cell corner by corner
+//! (its scaled Jacobian, face angle and extrusion tilt); with `WING_CORNERS_CAP` the root
+//! cap's facets at the trailing edge (x > 0.97).
 
 use anyhow::{Result, bail};
 use mesh_model::measure3d;
@@ -84,6 +87,23 @@ fn main() -> Result<()> {
             below(20.0)
         );
     }
+    if std::env::var_os("WING_CORNERS_CAP").is_some() {
+        for f in 0..surface.facets.len() {
+            if surface.patches[surface.facet_patch[f] as usize].name == "tip-root"
+                && centre(f)[0] > 0.97
+            {
+                let k = surface.facets[f].nodes();
+                let p: Vec<String> = k
+                    .iter()
+                    .map(|&v| {
+                        let x = surface.nodes[v as usize];
+                        format!("{v}:({:.5},{:.5})", x[0], x[1])
+                    })
+                    .collect();
+                println!("cap facet {f}: {} angle {:.1}", p.join(" "), min_angle(f));
+            }
+        }
+    }
     let grown = match pipeline3d::grow(&case, &surface) {
         Ok(g) => g,
         Err(e) => {
@@ -143,5 +163,48 @@ fn main() -> Result<()> {
             min_angle(f)
         );
     }
+    // the worst cell of each region over all layers: its corners (bottom, then top), each
+    // corner's scaled Jacobian, its face angle and its extrusion edge's angle off the face's
+    // normal (the corner SJ is the sine of the one times the cosine of the other)
+    if std::env::var_os("WING_CORNERS_DETAIL").is_some() {
+        for ((r, b), (_, i)) in worst.iter().filter(|((_, b), _)| *b == 99) {
+            let _ = b;
+            detail(&mesh, r, *i);
+        }
+    }
     Ok(())
+}
+
+fn detail(mesh: &mesh_model::Mesh, region: &str, i: usize) {
+    let c = mesh.cells.get(i);
+    let k = c.corners();
+    let p: Vec<[f64; 3]> = k.iter().map(|&v| mesh.nodes[v as usize]).collect();
+    let q = measure3d::corner_determinants(&p, true);
+    let m = p.len() / 2;
+    println!("{region}: cell {i} layer {}", mesh.cell_layer[i]);
+    for (j, qj) in q.iter().enumerate() {
+        let (face, i) = (j / m * m, j % m);
+        let o = p[face + i];
+        let a = p[face + (i + 1) % m];
+        let b = p[face + (i + m - 1) % m];
+        let e: [f64; 3] = std::array::from_fn(|d| p[m + i][d] - p[i][d]);
+        let u: [f64; 3] = std::array::from_fn(|d| a[d] - o[d]);
+        let v: [f64; 3] = std::array::from_fn(|d| b[d] - o[d]);
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let z = [0.0; 3];
+        let tilt = angle(n, z, e);
+        println!(
+            "  corner {j} at [{:.5}, {:.5}, {:.5}]: SJ {qj:.3}, face angle {:.1}°, extrusion {:.1}° off the face normal, edge {:.2e}",
+            o[0],
+            o[1],
+            o[2],
+            angle(a, o, b),
+            tilt,
+            e.iter().map(|x| x * x).sum::<f64>().sqrt()
+        );
+    }
 }

@@ -121,7 +121,12 @@ pub fn wing_surface_with(
     let (curve, section) = (curves.swap_remove(w), nodes.swap_remove(w));
     let points: Vec<[f64; 2]> = section.points.iter().map(|p| [p.x, p.y]).collect();
     let (cap_nodes, cap_facets) = match cap {
-        CapMesh::Fill => cap_fill(&points)?,
+        CapMesh::Fill if triangles => cap_fill(&points)?,
+        CapMesh::Fill => {
+            let (nodes, facets) = cap_fill(&points)?;
+            let facets = pair_rim_triangles(&nodes, &facets, points.len());
+            (nodes, facets)
+        }
         CapMesh::Layers => cap_mesh(case, w, &section)?,
     };
     let longest = (0..points.len())
@@ -165,6 +170,93 @@ fn cap_fill(points: &[[f64; 2]]) -> Result<(Vec<[f64; 2]>, Vec<Facet>)> {
         .map_err(|e| anyhow::anyhow!("the wing's tip cap: {e}"))?;
     let facets = tris.iter().map(|&[a, b, c]| Facet::tri(a, b, c)).collect();
     Ok((nodes, facets))
+}
+
+/// The smallest corner angle (degrees) of a quad [`pair_rim_triangles`] makes.
+const RIM_QUAD_MIN_ANGLE_DEG: f64 = 50.0;
+
+/// The cap's triangles `facets` (nodes `nodes`, the first `rim` of them the section's, in
+/// order around it) with the two triangles of each chord of the section — an edge between
+/// two rim nodes that are not neighbours on the rim, across the section — joined into a quad
+/// where every corner of the quad is at least [`RIM_QUAD_MIN_ANGLE_DEG`] (the squarest
+/// first, each triangle in one pair). Chords are edges of the cap where the section is as
+/// thin as its rim's spacing (no inner node between the rims): on the `naca0012` wing a
+/// ladder of 24 quads per cap from x ≈ 0.14 to the trailing edge's strip, each bridging the
+/// upper and lower rims. There the rims' columns lean apart as the layers grow, the strip's front
+/// widens many times over while its cells keep their length along the chord, and a
+/// triangle's corner shrinks to a sliver (corner scaled Jacobian 0.18 in layers 3–5,
+/// `docs/3d.md`), where a near-rectangle across the strip stays one. For the quad side only:
+/// hexahedra grow over these quads.
+fn pair_rim_triangles(nodes: &[[f64; 2]], facets: &[Facet], rim: usize) -> Vec<Facet> {
+    let chord = |a: u32, b: u32| {
+        let (a, b) = (a as usize, b as usize);
+        a < rim && b < rim && (a + 1) % rim != b && (b + 1) % rim != a
+    };
+    // each chord with the triangle on each side
+    let mut edges: Vec<([u32; 2], usize)> = Vec::new();
+    for (t, f) in facets.iter().enumerate() {
+        let k = f.nodes();
+        for i in 0..k.len() {
+            let (a, b) = (k[i], k[(i + 1) % k.len()]);
+            if k.len() == 3 && chord(a, b) {
+                edges.push(([a.min(b), a.max(b)], t));
+            }
+        }
+    }
+    edges.sort_unstable();
+    let third = |t: usize, a: u32, b: u32| {
+        *facets[t]
+            .nodes()
+            .iter()
+            .find(|&&v| v != a && v != b)
+            .expect("a triangle has a third node")
+    };
+    let mut pairs: Vec<(f64, usize, usize, Facet)> = Vec::new();
+    for w in edges.windows(2).filter(|w| w[0].0 == w[1].0) {
+        let ([a, b], t, u) = (w[0].0, w[0].1, w[1].1);
+        // t runs u0 → v0 → third: the quad is v0, third(t), u0, third(u)
+        let k = facets[t].nodes();
+        let i = k.iter().position(|&v| v == a).expect("shared");
+        let (u0, v0) = if k[(i + 1) % 3] == b { (a, b) } else { (b, a) };
+        let q = [v0, third(t, a, b), u0, third(u, a, b)];
+        let angle = convex_min_angle(q.map(|v| nodes[v as usize]));
+        if let Some(angle) = angle.filter(|&a| a >= RIM_QUAD_MIN_ANGLE_DEG) {
+            pairs.push((angle, t, u, Facet::quad(q[0], q[1], q[2], q[3])));
+        }
+    }
+    pairs.sort_by(|x, y| y.0.total_cmp(&x.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+    let mut used = vec![false; facets.len()];
+    let mut quads = Vec::new();
+    for (_, t, u, q) in pairs {
+        if !used[t] && !used[u] {
+            used[t] = true;
+            used[u] = true;
+            quads.push(q);
+        }
+    }
+    let mut out: Vec<Facet> = (0..facets.len())
+        .filter(|&t| !used[t])
+        .map(|t| facets[t])
+        .collect();
+    out.extend(quads);
+    out
+}
+
+/// The smallest corner angle (degrees) of the quad `p` (counter-clockwise), if it is strictly
+/// convex.
+fn convex_min_angle(p: [[f64; 2]; 4]) -> Option<f64> {
+    let mut smallest = 180.0f64;
+    for i in 0..4 {
+        let (o, a, b) = (p[i], p[(i + 1) % 4], p[(i + 3) % 4]);
+        let (u, v) = ([a[0] - o[0], a[1] - o[1]], [b[0] - o[0], b[1] - o[1]]);
+        let cross = u[0] * v[1] - u[1] * v[0];
+        if cross <= 0.0 {
+            return None;
+        }
+        let dot = u[0] * v[0] + u[1] * v[1];
+        smallest = smallest.min(cross.atan2(dot).to_degrees());
+    }
+    Some(smallest)
 }
 
 /// The 2D mesh of the inside of wall loop `w` from its boundary nodes: the nodes (the
@@ -269,6 +361,75 @@ mod tests {
 
     fn nalgebra_point(p: [f64; 3]) -> geom_curve::Point2<f64> {
         geom_curve::Point2::new(p[0], p[1])
+    }
+
+    #[test]
+    fn the_triangles_of_a_chord_pair_into_squares_not_into_slanted_quads() {
+        // a 2 × 1 strip, its six nodes all on the rim: two squares, each cut by a chord
+        // (0–4, 1–3), and the chord 1–4 between them, whose quad has 45° corners
+        let nodes = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [0.0, 1.0],
+        ];
+        let tris = [
+            Facet::tri(0, 1, 4),
+            Facet::tri(0, 4, 5),
+            Facet::tri(1, 2, 3),
+            Facet::tri(1, 3, 4),
+        ];
+        let out = pair_rim_triangles(&nodes, &tris, 6);
+        assert_eq!(out.len(), 2, "{out:?}");
+        for f in &out {
+            let k = f.nodes();
+            assert_eq!(k.len(), 4);
+            let p = [0, 1, 2, 3].map(|i| nodes[k[i] as usize]);
+            assert!((convex_min_angle(p).unwrap() - 90.0).abs() < 1e-9, "{f:?}");
+        }
+        // an inner node makes no chord: nothing paired
+        let inner = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.4, 0.4]];
+        let fan = [
+            Facet::tri(0, 1, 3),
+            Facet::tri(1, 2, 3),
+            Facet::tri(2, 0, 3),
+        ];
+        assert_eq!(pair_rim_triangles(&inner, &fan, 3), fan.to_vec());
+    }
+
+    #[test]
+    fn the_quad_sides_caps_pair_the_triangles_across_the_trailing_edges_strip() {
+        let mut case = crate::case::load("naca0012").unwrap();
+        case.layers.first_height = 1e-3;
+        let (s, _) = wing_surface(&case, 2.0, false).unwrap();
+        s.check().unwrap();
+        let cap = s.patches.iter().position(|p| p.name == "tip-root").unwrap() as u32;
+        let quads: Vec<&Facet> = s
+            .facets
+            .iter()
+            .zip(&s.facet_patch)
+            .filter(|(f, p)| **p == cap && f.nodes().len() == 4)
+            .map(|(f, _)| f)
+            .collect();
+        // the ladder across the section, down to the trailing edge's strip, every quad's
+        // corners at 50° or more
+        assert!(quads.len() >= 6, "{} quads", quads.len());
+        let x = |v: u32| s.nodes[v as usize][0];
+        assert!(quads.iter().any(|f| f.nodes().iter().all(|&v| x(v) > 0.99)));
+        for f in &quads {
+            let p = [0, 1, 2, 3].map(|i| {
+                let q = s.nodes[f.nodes()[i] as usize];
+                [q[0], -q[1]] // the root cap faces −z: its quads run clockwise in (x, y)
+            });
+            let angle = convex_min_angle(p).expect("convex");
+            assert!(angle >= RIM_QUAD_MIN_ANGLE_DEG, "{f:?}: {angle}");
+        }
+        assert!(smallest_angle(&s, "tip-root") >= 20.0);
+        // a triangulated wing keeps its triangles
+        let (t, _) = wing_surface(&case, 2.0, true).unwrap();
+        assert!(t.facets.iter().all(|f| f.nodes().len() == 3));
     }
 
     #[test]

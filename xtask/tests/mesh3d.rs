@@ -351,6 +351,19 @@ fn the_wing_mixed_over_quads_has_corner_sj_above_0_2_at_tips_and_trailing_edge()
     }
 }
 
+/// The wing's tip caps over a quad side keep a corner scaled Jacobian of 0.2 in the layers
+/// where the cap's cells across the trailing edge's thin strip are stretched most (layers
+/// 3–4: 0.178 before the strip's triangles were paired into quads, `docs/3d.md`).
+#[test]
+fn the_wing_caps_over_a_quad_side_keep_corner_sj_above_0_2_in_five_layers() {
+    let tmp = tempfile::tempdir().unwrap();
+    let r = mesh_wing(tmp.path(), "span = 2.0\ntriangles = false", 5, "mixed");
+    let sj = &r["quality"]["min_corner_scaled_jacobian"];
+    for patch in ["wall", "tip-root", "tip-far"] {
+        assert!(sj["by_wall_patch"][patch].as_f64().unwrap() >= 0.2, "{sj}");
+    }
+}
+
 /// The wing with quads on its side grows far past the layer where it failed (11, before each
 /// wall patch's normal was weighted alike and a layer still invalid dropped the merges of
 /// its failing cells, `docs/3d.md`): 25 layers, every column full, the mixed cut conforming

@@ -6,6 +6,7 @@ use mesh_model::is_positive_tet;
 use mesh_model::measure3d::corner_determinants;
 use rayon::prelude::*;
 
+use crate::front::{max_min_direction, turn_towards};
 use crate::layer::{Layer, strictly_convex};
 use crate::{GrowError, GrowStats};
 
@@ -138,10 +139,117 @@ pub(crate) fn shrink_until_valid(
     }
 }
 
+/// The smallest cosine between a turned step and the normal of each of its node's bottom
+/// corner triangles that [`turned_steps`] aims for (or half the best there is, if lower).
+const TURN_FLOOR: f64 = 0.2;
+
+/// The balanced children `balanced` of the front (`front`, `facets`) with the steps turned
+/// of the nodes of the failing facets `bad` whose bottom corner fails: a corner triangle
+/// of the front at the node (the node, its next and previous neighbours on a facet) that
+/// its step does not stand off. No shrinking mends such a corner (the check depends on the
+/// step's direction only): a node on a ridge beside a pit the shrinks of earlier layers
+/// left (the quad wing far out, `docs/3d.md`). The step keeps its length and turns towards
+/// the direction standing most steeply off all the node's corner triangles
+/// ([`max_min_direction`]), just far enough that it stands off each at a cosine of
+/// [`TURN_FLOOR`] (or half the best, if lower). `None` if no node turns.
+pub(crate) fn turned_steps(
+    front: &[[f64; 3]],
+    facets: &[Facet],
+    balanced: &[[f64; 3]],
+    bad: &[usize],
+) -> Option<Vec<[f64; 3]>> {
+    use geom_predicates::vector::{cross3, dist, dot, sub};
+    let corner = |f: &Facet, i: usize| {
+        let k = f.nodes();
+        let m = k.len();
+        let x = |j: usize| front[k[j % m] as usize];
+        geom_surface::unit(cross3(sub(x(i + 1), x(i)), sub(x(i + m - 1), x(i))))
+    };
+    let step = |v: usize| geom_surface::unit(sub(balanced[v], front[v]));
+    let mut failing: Vec<u32> = Vec::new();
+    for &f in bad {
+        let facet = &facets[f];
+        for (i, &v) in facet.nodes().iter().enumerate() {
+            if dot(corner(facet, i), step(v as usize)) <= 0.0 {
+                failing.push(v);
+            }
+        }
+    }
+    failing.sort_unstable();
+    failing.dedup();
+    if failing.is_empty() {
+        return None;
+    }
+    let mut normals: Vec<Vec<[f64; 3]>> = vec![Vec::new(); failing.len()];
+    for facet in facets {
+        for (i, v) in facet.nodes().iter().enumerate() {
+            if let Ok(slot) = failing.binary_search(v) {
+                normals[slot].push(corner(facet, i));
+            }
+        }
+    }
+    let mut out = balanced.to_vec();
+    let mut turned = false;
+    for (&v, n) in failing.iter().zip(&normals) {
+        let v = v as usize;
+        let d = step(v);
+        let worst = |d: [f64; 3]| n.iter().map(|&m| dot(d, m)).fold(f64::INFINITY, f64::min);
+        let best = max_min_direction(n, d);
+        let target = TURN_FLOOR.min(0.5 * worst(best));
+        if target <= 0.0 {
+            continue;
+        }
+        let d = turn_towards(d, best, |d| worst(d) >= target);
+        let len = dist(balanced[v], front[v]);
+        out[v] = std::array::from_fn(|k| front[v][k] + len * d[k]);
+        turned = true;
+    }
+    turned.then_some(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::layer::Ideal;
+
+    #[test]
+    fn a_step_under_its_corner_triangle_is_turned_off_it_keeping_its_length() {
+        // two unit squares side by side in z = 0 (facing +z); node 1's step lies below the
+        // plane: no shrinking mends that corner
+        let front = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+        ];
+        let facets = [Facet::quad(0, 1, 2, 3), Facet::quad(1, 4, 5, 2)];
+        let mut balanced: Vec<[f64; 3]> = front.iter().map(|p| [p[0], p[1], 0.5]).collect();
+        balanced[1] = [1.8, 0.0, -0.1];
+        // valid after at most eight shrinks
+        let ok = |children: &[[f64; 3]]| {
+            let ideal = Ideal {
+                nodes: &front,
+                dir: &[],
+                len: &[],
+                balanced: children,
+            };
+            let mut layer = Layer::new(&ideal, &facets, &[]);
+            let mut stats = GrowStats::default();
+            shrink_until_valid(&front, &facets, &mut layer, 8, &mut stats).is_ok()
+        };
+        assert!(!ok(&balanced));
+        let turned = turned_steps(&front, &facets, &balanced, &[0, 1]).unwrap();
+        assert!(ok(&turned));
+        let step: [f64; 3] = std::array::from_fn(|d| turned[1][d] - front[1][d]);
+        let len = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((len(step) - (0.64f64 + 0.01).sqrt()).abs() < 1e-12);
+        assert!(step[2] / len(step) >= TURN_FLOOR - 1e-9);
+        // the other steps stay to the bit; nothing to turn without a failing corner
+        assert!((0..6).filter(|&v| v != 1).all(|v| turned[v] == balanced[v]));
+        assert_eq!(turned_steps(&front, &facets, &turned, &[0, 1]), None);
+    }
 
     #[test]
     fn a_prism_over_a_counter_clockwise_triangle_is_valid_and_upside_down_is_not() {

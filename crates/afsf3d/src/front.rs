@@ -217,19 +217,28 @@ fn stand_off(front: &Surface, floor: f64, dir: &mut [[f64; 3]]) {
         }
         let best = max_min_direction(n, *d);
         let target = floor.min(worst(best, n));
-        let at = |t: f64| unit(std::array::from_fn(|k| (1.0 - t) * d[k] + t * best[k]));
-        // the least blend that reaches the target, by bisection
-        let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..30 {
-            let mid = 0.5 * (lo + hi);
-            if worst(at(mid), n) >= target {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        *d = at(hi);
+        *d = turn_towards(*d, best, |d| worst(d, n) >= target);
     }
+}
+
+/// The unit blend of `d` and `best` nearest `d` (by bisection on the blend's weight) that
+/// is `enough` (which `best` is).
+pub(crate) fn turn_towards(
+    d: [f64; 3],
+    best: [f64; 3],
+    enough: impl Fn([f64; 3]) -> bool,
+) -> [f64; 3] {
+    let at = |t: f64| unit(std::array::from_fn(|k| (1.0 - t) * d[k] + t * best[k]));
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..30 {
+        let mid = 0.5 * (lo + hi);
+        if enough(at(mid)) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    at(hi)
 }
 
 /// The unit vector maximising the smallest dot product with the unit vectors `normals` (the

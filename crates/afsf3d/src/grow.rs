@@ -10,7 +10,7 @@ use springfield::{
     solve_model,
 };
 
-use crate::check::{Failed, bad_cells, shrink_until_valid};
+use crate::check::{Failed, bad_cells, shrink_until_valid, turned_steps};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
 use crate::repair::{CUT_LIMIT, repair_layer};
@@ -100,6 +100,7 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
             &front.facets,
             &mut next,
             params.max_shrinks,
+            params.patch_normals,
             &mut state.stats,
         )
         .map_err(|failed| failed.error(&state.pipes, layer))?;
@@ -123,6 +124,10 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
 /// checked again.
 const UNMERGE_TRIES: usize = 4;
 
+/// How many times a layer that stays invalid turns the steps of its failing bottom corners
+/// ([`turned_steps`]).
+const TURN_TRIES: usize = 3;
+
 /// Shrinks `next` (the layer over the front of `ideal`, its facets `facets`) until valid
 /// ([`shrink_until_valid`]). Where it stays invalid and children of its failing cells are
 /// merged, the layer is built again from the balanced children without those merges
@@ -130,12 +135,16 @@ const UNMERGE_TRIES: usize = 4;
 /// a merged child stands over the middle of its two parents, half an edge off each
 /// parent's column, and the halving moves it towards that middle, so an unmerged cell
 /// next to it that it shears stays inverted however far it is shrunk (the quad wing's
-/// side near a tip, `docs/3d.md`).
+/// side near a tip, `docs/3d.md`). With `turn` (the wing's quad side, with
+/// [`LayerParams::patch_normals`]), the first time it stays invalid the steps of the nodes
+/// whose bottom corners fail are turned first ([`turned_steps`]) and the layer built again
+/// from them.
 fn settle_layer(
     ideal: &Ideal<'_>,
     facets: &[Facet],
     next: &mut Layer,
     max_shrinks: usize,
+    turn: bool,
     stats: &mut GrowStats,
 ) -> Result<(), Failed> {
     let mut merges: Vec<[u32; 2]> = next
@@ -145,11 +154,26 @@ fn settle_layer(
         .copied()
         .collect();
     let mut tries = 0;
+    // the balanced children with the steps of failing bottom corners turned, once turned
+    let mut turned: Option<Vec<[f64; 3]>> = None;
+    let mut turns = 0;
     loop {
         let failed = match shrink_until_valid(ideal.nodes, facets, next, max_shrinks, stats) {
             Ok(()) => return Ok(()),
             Err(failed) => failed,
         };
+        if turn && turns < TURN_TRIES {
+            turns += 1;
+            let from = turned.as_deref().unwrap_or(ideal.balanced);
+            if let Some(balanced) = turned_steps(ideal.nodes, facets, from, &failed.bad) {
+                turned = Some(balanced);
+                let balanced = turned.as_deref().expect("just set");
+                *next = merged_layer(&Ideal { balanced, ..*ideal }, facets, merges.clone());
+                continue;
+            }
+            // nothing to turn: never try again
+            turns = TURN_TRIES;
+        }
         let mut drop: Vec<u32> = failed
             .bad
             .iter()
@@ -162,7 +186,8 @@ fn settle_layer(
             return Err(failed);
         }
         tries += 1;
-        *next = merged_layer(ideal, facets, merges.clone());
+        let balanced = turned.as_deref().unwrap_or(ideal.balanced);
+        *next = merged_layer(&Ideal { balanced, ..*ideal }, facets, merges.clone());
     }
 }
 

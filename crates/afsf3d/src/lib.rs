@@ -38,7 +38,9 @@
 //! then drops the merges of its failing cells' nodes (a merged child stands half an edge off
 //! its parents' columns and shrinks towards their middle, so a neighbour it shears stays
 //! inverted) and is built and shrunk again, at most four times; then the growth fails with
-//! the layer and wall facet.
+//! the layer and wall facet. With [`LayerParams::patch_normals`] such a layer first turns
+//! the steps of the nodes whose bottom corners fail (a step that does not stand off a
+//! corner triangle of the front, which no shrink mends) and is built again.
 //!
 //! Then, from the second layer on, where a cell over a front triangle has no cone cut (any
 //! apex, any diagonals) with every tetrahedron under 140° — a cap on its top, one child
@@ -130,7 +132,9 @@ pub struct LayerParams {
     /// the wing's quad side meets its tip cap, the plain weights feed back: a side quad
     /// sheared by the growth has a smaller angle at the rim node, which then leans to the
     /// cap, which shears the quad more, until the front's quads twist and a cell inverts
-    /// (layer 11 of the quad wing; with this, layer 21, `docs/3d.md`). Default false.
+    /// (layer 11 of the quad wing; with this, layer 21, `docs/3d.md`). Also turns, in a
+    /// layer that stays invalid after its shrinks, the steps of failing bottom corners
+    /// (see the crate's doc). Default false.
     pub patch_normals: bool,
 }
 
