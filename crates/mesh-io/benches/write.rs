@@ -1,6 +1,8 @@
 //! Writing a ~100k-cell mesh (a P2 annulus of quadrilaterals and triangles, built in memory)
-//! to `.msh`, `.vtu` and `.su2`, into memory and into a file (atomic write included), on
-//! rayon's default pool (all cores; `RAYON_NUM_THREADS=1` for one).
+//! to `.msh`, `.vtu` and `.su2`, into memory and into a file (atomic write included), and a
+//! 267k-cell P3 annulus (116 MB of `.msh`: large enough for the file to be synced behind the
+//! writer) into memory and into a file over an existing one, on rayon's default pool (all
+//! cores; `RAYON_NUM_THREADS=1` for one).
 //!
 //! Run: `cargo bench -p mesh-io --features testkit --bench write`.
 // `criterion_group!` generates an undocumented public function.
@@ -63,5 +65,33 @@ fn writers(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, writers);
+/// The P3 `.msh` of 266 667 cells, into memory and into a file that replaces the last one
+/// (the final sync and the rename included, as in a run of `cargo xtask mesh`).
+fn large_p3(c: &mut Criterion) {
+    let mesh = annulus(&AnnulusParams {
+        order: 3,
+        radial_cells: 200,
+        angular_cells: 1000,
+        inner_radius: 1.0,
+        outer_radius: 30.0,
+        triangle_mask: vec![true, false, false],
+    });
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let mut g = c.benchmark_group("write_267k_p3");
+    g.sample_size(10);
+    g.bench_function("msh_to_memory", |b| {
+        b.iter(|| {
+            let mut out = Vec::with_capacity(128 << 20);
+            mesh_io::msh::write_to(&mut out, black_box(&mesh), "m.msh".as_ref()).unwrap();
+            out.len()
+        })
+    });
+    let msh = dir.path().join("m.msh");
+    g.bench_function("msh_file", |b| {
+        b.iter(|| mesh_io::write(&msh, black_box(&mesh)).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, writers, large_p3);
 criterion_main!(benches);
