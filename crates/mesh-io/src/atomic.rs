@@ -4,10 +4,11 @@
 //! Every output first goes to a fresh temporary file `.NAME.tmp-PID-N` in the target's
 //! directory (so the final rename never crosses a file system). A [`Transaction`] creates the
 //! temporary files of *all* its outputs first — which proves every directory writable before
-//! any work is spent on content — then fills, flushes and syncs each one, and only when every
-//! one is complete renames them over their targets, one after the other. On any error, or when
-//! the transaction is dropped uncommitted, every temporary file is removed (and every folder
-//! the transaction created, when empty), and no target is touched.
+//! any work is spent on content — then fills, flushes and syncs each one (synced behind the
+//! writer as it fills: `sync_behind`), and only when every one is complete renames them over
+//! their targets, one after the other. On any error, or when the transaction is dropped
+//! uncommitted, every temporary file is removed (and every folder the transaction created,
+//! when empty), and no target is touched.
 //!
 //! Interruptions. Every live temporary file of the process is registered here; a signal
 //! handler calls [`on_interrupt`], which removes them all and runs its closure (which should
@@ -37,8 +38,13 @@ use std::sync::{Mutex, MutexGuard};
 
 use crate::IoError;
 
-/// Size of the write buffer in front of each temporary file, in bytes.
-const BUFFER_BYTES: usize = 1 << 20;
+mod sync_behind;
+use sync_behind::SyncBehind;
+
+/// Size of the write buffer in front of each temporary file, in bytes: small writes are
+/// gathered, and the writers' chunks of formatted records (larger) go to the file directly,
+/// not copied through it.
+const BUFFER_BYTES: usize = 64 << 10;
 
 /// The live temporary files of this process, and whether an interruption closed the door.
 struct Registry {
@@ -202,6 +208,20 @@ impl Transaction {
     where
         F: FnOnce(&mut dyn Write) -> Result<(), IoError>,
     {
+        self.write_via(id, fill, SyncBehind::new)
+    }
+
+    /// [`Transaction::write`] through the file made by `behind` (which syncs it behind the
+    /// writer): the final sync finds little left, and a failed sync behind fails the output.
+    fn write_via<F>(
+        &mut self,
+        id: OutputId,
+        fill: F,
+        behind: fn(File) -> SyncBehind,
+    ) -> Result<(), IoError>
+    where
+        F: FnOnce(&mut dyn Write) -> Result<(), IoError>,
+    {
         let pending = &mut self.outputs[id.0];
         let target = pending.target.clone();
         let file = pending.file.take().ok_or_else(|| {
@@ -211,11 +231,13 @@ impl Transaction {
                 "this output was already written",
             )
         })?;
-        let mut out = BufWriter::with_capacity(BUFFER_BYTES, file);
+        let mut out = BufWriter::with_capacity(BUFFER_BYTES, behind(file));
         fill(&mut out)?;
         let file = out
             .into_inner()
-            .map_err(|e| IoError::io(&target, e.into_error()))?;
+            .map_err(|e| IoError::io(&target, e.into_error()))?
+            .finish()
+            .map_err(|e| IoError::io(&target, e))?;
         file.sync_all().map_err(|e| IoError::io(&target, e))?;
         pending.written = true;
         Ok(())
@@ -246,10 +268,11 @@ impl Transaction {
         let outputs = std::mem::take(&mut self.outputs);
         let mut failure = None;
         for p in &outputs {
-            if failure.is_none()
-                && let Err(e) = fs::rename(&p.temporary, &p.target)
-            {
-                failure = Some(IoError::io(&p.target, e));
+            if failure.is_none() {
+                // (no let-chain: the MSRV is 1.85)
+                failure = fs::rename(&p.temporary, &p.target)
+                    .err()
+                    .map(|e| IoError::io(&p.target, e));
             }
             if failure.is_some() {
                 let _ = fs::remove_file(&p.temporary);

@@ -215,22 +215,22 @@ pub(crate) fn write_points(w: &mut dyn Write, nodes: &[[f64; 3]]) -> io::Result<
 
 /// Records per chunk of [`write_records`].
 const CHUNK: usize = 8192;
-/// Chunks formatted at once (in parallel) before they are written: enough for the cores of a
-/// small machine, few enough that the buffers (about 1 MiB a chunk of P3 cells, twice that
-/// in capacity) stay small next to the mesh (at 1M cells the writer runs at the memory peak).
-const BATCH: usize = 8;
+/// Chunks formatted at once (in parallel) into one of two sets of buffers, while the other
+/// set is written: enough for the cores of a small machine, few enough that the buffers
+/// (about 0.5 MiB a chunk of P3 cells, up to twice that in capacity) stay small next to the
+/// mesh (at 1M cells the writer runs at the memory peak).
+const BATCH: usize = 4;
 
 /// Writes records `0..n`, each formatted by `record(i, buffer)`: chunks of records are
-/// formatted in parallel into their own buffers, a batch at a time, and written in order.
+/// formatted in parallel into their own buffers, a batch at a time, and written in order;
+/// batch k+1 is formatted (by the other threads, or by this one after the write) while
+/// batch k is written.
 pub(crate) fn write_records<F>(w: &mut dyn Write, n: usize, record: F) -> io::Result<()>
 where
     F: Fn(usize, &mut Vec<u8>) + Sync,
 {
     let chunks = n.div_ceil(CHUNK);
-    // one buffer per chunk of a batch, kept from batch to batch
-    let mut buffers: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(chunks)];
-    for first in (0..chunks).step_by(BATCH) {
-        let batch = &mut buffers[..BATCH.min(chunks - first)];
+    let format = |first: usize, batch: &mut [Vec<u8>]| {
         batch.par_iter_mut().enumerate().for_each(|(j, buffer)| {
             let c = first + j;
             buffer.clear();
@@ -238,9 +238,27 @@ where
                 record(i, buffer);
             }
         });
-        for b in batch.iter() {
-            w.write_all(b)?;
+    };
+    let len = |first: usize| BATCH.min(chunks - first);
+    // two sets of buffers, kept from batch to batch: one written, the other formatted
+    let mut ready: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(chunks)];
+    let mut next: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(chunks.saturating_sub(BATCH))];
+    if chunks > 0 {
+        format(0, &mut ready);
+    }
+    for first in (0..chunks).step_by(BATCH) {
+        let (batch, after) = (&ready[..len(first)], first + BATCH);
+        let write_batch = |w: &mut dyn Write| batch.iter().try_for_each(|b| w.write_all(b));
+        if after < chunks {
+            let upcoming = &mut next[..len(after)];
+            rayon::in_place_scope(|s| {
+                s.spawn(|_| format(after, upcoming));
+                write_batch(w)
+            })?;
+        } else {
+            write_batch(w)?;
         }
+        std::mem::swap(&mut ready, &mut next);
     }
     Ok(())
 }
@@ -309,7 +327,14 @@ mod tests {
 
     #[test]
     fn records_are_written_in_order_whatever_the_chunks() {
-        for n in [0, 1, CHUNK - 1, CHUNK, CHUNK * BATCH + 3] {
+        for n in [
+            0,
+            1,
+            CHUNK - 1,
+            CHUNK,
+            CHUNK * BATCH + 3,
+            3 * CHUNK * BATCH - 1,
+        ] {
             let mut fast = Vec::new();
             write_records(&mut fast, n, |i, b| {
                 push_int(b, i);

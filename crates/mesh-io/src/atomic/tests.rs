@@ -202,3 +202,24 @@ fn stale_temporaries_of_dead_processes_are_removed() {
         assert!(left.contains(&".m.msh.tmp-99999999-3".to_string()));
     }
 }
+
+#[test]
+fn a_failed_sync_behind_the_writer_leaves_the_old_file_and_no_temporary() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("m.msh");
+    fs::write(&target, b"old").unwrap();
+    let mut t = Transaction::new();
+    let id = t.reserve(&target).unwrap();
+    let err = t
+        .write_via(
+            id,
+            text(&target, "new content, longer than one step"),
+            |f| SyncBehind::with_step(f, 8, |_| Err(io::Error::other("the disk refused"))),
+        )
+        .unwrap_err();
+    assert!(err.to_string().contains("m.msh"), "{err}");
+    assert!(err.to_string().contains("the disk refused"), "{err}");
+    assert!(matches!(t.commit(), Err(IoError::Unwritten { .. })));
+    assert_eq!(fs::read(&target).unwrap(), b"old");
+    assert_eq!(entries(dir.path()), vec!["m.msh"]);
+}
