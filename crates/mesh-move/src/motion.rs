@@ -387,9 +387,13 @@ impl Motion {
     /// 3 points with bumps is returned unmoved by them.
     pub fn apply(&self, points: &[[f64; 2]]) -> Vec<[f64; 2]> {
         let mut out = points.to_vec();
-        if !self.bumps.is_empty()
-            && let Some(section) = Section::of_loop(points)
-        {
+        // (no let-chain: the MSRV is 1.85)
+        let section = if self.bumps.is_empty() {
+            None
+        } else {
+            Section::of_loop(points)
+        };
+        if let Some(section) = section {
             for (i, q) in out.iter_mut().enumerate() {
                 for bump in &self.bumps {
                     let d = section.bump_displacement(bump, i, points[i]);
