@@ -6,7 +6,7 @@ use mesh_model::is_positive_tet;
 use mesh_model::measure3d::corner_determinants;
 use rayon::prelude::*;
 
-use crate::front::{max_min_direction, turn_towards};
+use crate::front::turn_off;
 use crate::layer::{Layer, strictly_convex};
 use crate::{GrowError, GrowStats};
 
@@ -192,14 +192,10 @@ pub(crate) fn turned_steps(
     let mut turned = false;
     for (&v, n) in failing.iter().zip(&normals) {
         let v = v as usize;
-        let d = step(v);
-        let worst = |d: [f64; 3]| n.iter().map(|&m| dot(d, m)).fold(f64::INFINITY, f64::min);
-        let best = max_min_direction(n, d);
-        let target = TURN_FLOOR.min(0.5 * worst(best));
+        let (d, target) = turn_off(step(v), n, TURN_FLOOR, 0.5);
         if target <= 0.0 {
             continue;
         }
-        let d = turn_towards(d, best, |d| worst(d) >= target);
         let len = dist(balanced[v], front[v]);
         out[v] = std::array::from_fn(|k| front[v][k] + len * d[k]);
         turned = true;

@@ -206,28 +206,42 @@ fn stand_off(front: &Surface, floor: f64, dir: &mut [[f64; 3]]) {
             normals[v as usize].push(normal);
         }
     }
-    let worst = |d: [f64; 3], n: &[[f64; 3]]| {
-        n.iter()
-            .map(|&m| geom_predicates::vector::dot(d, m))
-            .fold(f64::INFINITY, f64::min)
-    };
     for (d, n) in dir.iter_mut().zip(&normals) {
-        if worst(*d, n) >= floor {
-            continue;
+        if stand(*d, n) < floor {
+            *d = turn_off(*d, n, floor, 1.0).0;
         }
-        let best = max_min_direction(n, *d);
-        let target = floor.min(worst(best, n));
-        *d = turn_towards(*d, best, |d| worst(d, n) >= target);
     }
+}
+
+/// How steeply the unit vector `d` stands off the unit vectors `normals`: its smallest dot
+/// product with them.
+pub(crate) fn stand(d: [f64; 3], normals: &[[f64; 3]]) -> f64 {
+    normals
+        .iter()
+        .map(|&n| geom_predicates::vector::dot(d, n))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The unit vector `d` turned towards the direction standing most steeply off all of
+/// `normals` ([`max_min_direction`]), just far enough to stand off each at the target:
+/// `floor`, or `share` of that best direction's stand where that is lower. Returns the
+/// turned vector and the target; where the target is not positive no direction stands off
+/// every normal, and the caller decides whether the turn is worth having.
+pub(crate) fn turn_off(
+    d: [f64; 3],
+    normals: &[[f64; 3]],
+    floor: f64,
+    share: f64,
+) -> ([f64; 3], f64) {
+    let best = max_min_direction(normals, d);
+    let target = floor.min(share * stand(best, normals));
+    let turned = turn_towards(d, best, |d| stand(d, normals) >= target);
+    (turned, target)
 }
 
 /// The unit blend of `d` and `best` nearest `d` (by bisection on the blend's weight) that
 /// is `enough` (which `best` is).
-pub(crate) fn turn_towards(
-    d: [f64; 3],
-    best: [f64; 3],
-    enough: impl Fn([f64; 3]) -> bool,
-) -> [f64; 3] {
+fn turn_towards(d: [f64; 3], best: [f64; 3], enough: impl Fn([f64; 3]) -> bool) -> [f64; 3] {
     let at = |t: f64| unit(std::array::from_fn(|k| (1.0 - t) * d[k] + t * best[k]));
     let (mut lo, mut hi) = (0.0, 1.0);
     for _ in 0..30 {
@@ -246,12 +260,7 @@ pub(crate) fn turn_towards(
 /// normalised sum of each pair and the vector at equal dot products with each triple.
 pub(crate) fn max_min_direction(normals: &[[f64; 3]], start: [f64; 3]) -> [f64; 3] {
     use geom_predicates::vector::{cross3, dot};
-    let worst = |d: [f64; 3]| {
-        normals
-            .iter()
-            .map(|&n| dot(d, n))
-            .fold(f64::INFINITY, f64::min)
-    };
+    let worst = |d: [f64; 3]| stand(d, normals);
     let mut best = (worst(start), start);
     let mut consider = |d: [f64; 3]| {
         let d = unit(d);

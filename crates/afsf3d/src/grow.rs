@@ -166,8 +166,7 @@ fn settle_layer(
             turns += 1;
             let from = turned.as_deref().unwrap_or(ideal.balanced);
             if let Some(balanced) = turned_steps(ideal.nodes, facets, from, &failed.bad) {
-                turned = Some(balanced);
-                let balanced = turned.as_deref().expect("just set");
+                let balanced = turned.insert(balanced).as_slice();
                 *next = merged_layer(&Ideal { balanced, ..*ideal }, facets, merges.clone());
                 continue;
             }
