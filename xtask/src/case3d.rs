@@ -129,9 +129,10 @@ struct CurvingKeys3d {
 }
 
 /// A wing with a quad side: each layer at most this many times the front's mean edge high
-/// ([`afsf3d::LayerParams::max_aspect`]; without it the growth fails in layer 28, with 2 in
-/// layer 27, `docs/3d.md`).
-pub const QUAD_WING_MAX_ASPECT: f64 = 1.0;
+/// ([`afsf3d::LayerParams::max_aspect`], from layer 9 on for the built-in section): the 45
+/// layers grow (without a limit the growth fails in layer 28, with 2 in layer 27) and their
+/// corners keep a scaled Jacobian near 0.2 (0.0145 with 1, 0.148 with 0.35; `docs/3d.md`).
+pub const QUAD_WING_MAX_ASPECT: f64 = 0.25;
 
 /// The most layers a 3D case may ask for.
 pub const MAX_LAYERS_3D: u32 = 1000;
@@ -185,10 +186,6 @@ pub(crate) fn parse(
     // and its far layers, geometric, outrun the front's coarsening near the far tip
     if layers.patch_normals {
         layers.max_aspect = QUAD_WING_MAX_ASPECT;
-    }
-    // TEMP experiment
-    if let Ok(a) = std::env::var("AFSF3D_MAX_ASPECT") {
-        layers.max_aspect = a.parse().expect("aspect");
     }
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
