@@ -55,8 +55,8 @@ mod tests {
     /// stays exactly 1.
     #[test]
     fn heights_stay_monotone_within_growth_and_meet_the_limit() {
-        let (first, growth, aspect) = (1e-3, 1.3, 2.0);
-        for coarsening in [1.0, 1.05, 1.2, 1.5] {
+        let (first, growth, aspect): (f64, f64, f64) = (1e-3, 1.3, 2.0);
+        for coarsening in [1.0f64, 1.05, 1.2, 1.5] {
             let mut ratio = 1.0;
             let mut previous = 0.0f64;
             for k in 0..45 {
