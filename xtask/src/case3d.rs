@@ -128,6 +128,12 @@ struct CurvingKeys3d {
     order: Option<u8>,
 }
 
+/// A wing with a quad side: each layer at most this many times the front's mean edge high
+/// ([`afsf3d::LayerParams::max_aspect`], from layer 9 on for the built-in section): the 45
+/// layers grow (without a limit the growth fails in layer 28, with 2 in layer 27) and their
+/// corners keep a scaled Jacobian near 0.2 (0.0145 with 1, 0.148 with 0.35; `docs/3d.md`).
+pub const QUAD_WING_MAX_ASPECT: f64 = 0.25;
+
 /// The most layers a 3D case may ask for.
 pub const MAX_LAYERS_3D: u32 = 1000;
 
@@ -177,6 +183,10 @@ pub(crate) fn parse(
             ..
         }
     );
+    // and its far layers, geometric, outrun the front's coarsening near the far tip
+    if layers.patch_normals {
+        layers.max_aspect = QUAD_WING_MAX_ASPECT;
+    }
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
     Ok(Case3d {

@@ -81,6 +81,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     })?;
     report.layers = Some(case.layers.layers as u32);
     push_notes(&mut report, curved.is_none(), grown.stats.converged);
+    push_height_note(&mut report, &case.layers, &grown);
     timed(&mut report, quiet, ("write", "writing"), |r| {
         write_and_record(&mut plan, out, r)
     })?;
@@ -121,6 +122,23 @@ fn push_notes(report: &mut Report, linear: bool, converged: bool) {
                 .into(),
         );
     }
+}
+
+/// The report's note on layers whose height [`afsf3d::LayerParams::max_aspect`] held below
+/// `first_height × growth^k`: from which layer, and the stack's thickness with and without.
+fn push_height_note(report: &mut Report, params: &afsf3d::LayerParams, grown: &afsf3d::Grown3d) {
+    let Some(first) = grown.stats.first_capped else {
+        return;
+    };
+    let grown_to: f64 = grown.layer_heights.iter().sum();
+    let geometric: f64 = (0..grown.layer_heights.len())
+        .map(|k| params.first_height * params.growth.powi(k as i32))
+        .sum();
+    report.notes.push(format!(
+        "layer heights held to {} × the front's mean edge from layer {first} on ({} layers): \
+         the layers' heights sum to {grown_to:.4} (geometric first_height × growth^k: {geometric:.4})",
+        params.max_aspect, grown.stats.capped_layers
+    ));
 }
 
 /// Refuses the flags of 2D runs that mean nothing in 3D, and the linear-only `.su2` output,

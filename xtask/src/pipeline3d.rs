@@ -476,6 +476,7 @@ mod tests {
             node_layer: vec![],
             node_parents: vec![],
             layer_merges: vec![0, 1, 0],
+            layer_heights: vec![1.0; 3],
             stats: Default::default(),
         };
         (wall, grown)

@@ -364,16 +364,28 @@ fn the_wing_caps_over_a_quad_side_keep_corner_sj_above_0_2_in_five_layers() {
     }
 }
 
-/// The wing with quads on its side grows far past the layer where it failed (11, before each
+/// The wing with quads on its side grows past the layers where it failed (11, before each
 /// wall patch's normal was weighted alike and a layer still invalid dropped the merges of
-/// its failing cells, `docs/3d.md`): 25 layers, every column full, the mixed cut conforming
-/// with the volume kept and its tets under 160°.
+/// its failing cells; 28, before its layers' heights were held to a quarter of the front's
+/// mean edge, `docs/3d.md`): 30 layers, every column full, the mixed cut conforming with the
+/// volume kept, its tets under 160°, every prism and hexahedron corner at a scaled Jacobian
+/// of 0.2 over every wall patch, and the report saying where the heights were held.
 #[test]
-fn the_wing_with_quads_on_its_side_grows_25_layers() {
+fn the_wing_with_quads_on_its_side_grows_30_layers() {
     let tmp = tempfile::tempdir().unwrap();
-    let r = mesh_wing(tmp.path(), "span = 2.0\ntriangles = false", 25, "mixed");
+    let r = mesh_wing(tmp.path(), "span = 2.0\ntriangles = false", 30, "mixed");
     let max = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
     assert!(max <= 160.0, "max dihedral {max}");
+    let sj = &r["quality"]["min_corner_scaled_jacobian"];
+    for patch in ["wall", "tip-root", "tip-far"] {
+        assert!(sj["by_wall_patch"][patch].as_f64().unwrap() >= 0.2, "{sj}");
+    }
+    let notes = r["notes"].as_array().unwrap();
+    let held = notes
+        .iter()
+        .filter_map(|n| n.as_str())
+        .find(|n| n.starts_with("layer heights held to 0.25"));
+    assert!(held.is_some(), "{r}");
 }
 
 /// The built-in step (15 layers) cut into tetrahedra keeps every dihedral angle under 160°

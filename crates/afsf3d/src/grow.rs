@@ -10,6 +10,7 @@ use springfield::{
     solve_model,
 };
 
+use crate::aspect::{limit_ratio, mean_edge};
 use crate::check::{Failed, bad_cells, shrink_until_valid, turned_steps};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
@@ -44,8 +45,20 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
     let mut state = State::new(surface);
     let mut thickness = 0.0;
     for layer in 0..params.layers {
-        let height = params.first_height * params.growth.powi(layer as i32);
+        let mut height = params.first_height * params.growth.powi(layer as i32);
+        if layer > 0 && params.max_aspect > 0.0 {
+            // the layer no higher than max_aspect × the front's mean edge (`aspect`)
+            let spacing = mean_edge(&topo, &state.front.nodes);
+            let (g, a) = (params.growth, params.max_aspect);
+            state.height_ratio = limit_ratio(state.height_ratio, spacing, height, g, a);
+            if state.height_ratio < 1.0 {
+                height *= state.height_ratio;
+                state.stats.capped_layers += 1;
+                state.stats.first_capped.get_or_insert(layer);
+            }
+        }
         thickness += height;
+        state.layer_heights.push(height);
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
         let front = &state.front;
         let (dir, len) = ideal_steps(
@@ -206,6 +219,10 @@ struct State {
     node_layer: Vec<u32>,
     node_parents: Vec<[u32; 2]>,
     layer_merges: Vec<usize>,
+    /// The last layer's height over `first_height × growth^k` (`aspect`; 1 unless limited).
+    height_ratio: f64,
+    /// Each layer's height.
+    layer_heights: Vec<f64>,
     stats: GrowStats,
 }
 
@@ -230,6 +247,8 @@ impl State {
             node_layer: vec![0; n],
             node_parents: vec![[NONE; 2]; n],
             layer_merges: Vec::new(),
+            height_ratio: 1.0,
+            layer_heights: Vec::new(),
             stats: GrowStats {
                 converged: true,
                 ..GrowStats::default()
@@ -349,6 +368,7 @@ impl State {
             node_layer: self.node_layer,
             node_parents: self.node_parents,
             layer_merges: self.layer_merges,
+            layer_heights: self.layer_heights,
             stats: self.stats,
         }
     }
@@ -379,6 +399,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.squeeze >= 0.0 && p.squeeze < 1.0) {
         return bad("squeeze must be in [0, 1)");
+    }
+    if !(p.max_aspect >= 0.0 && p.max_aspect.is_finite()) {
+        return bad("max_aspect must be finite and at least 0");
     }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
         return bad("tension_ratio must be in (0, 1]");

@@ -4,7 +4,9 @@
 //! children merged where the front shrinks (Coe_shrink), every layer checked and shrunk where
 //! it fails.
 //!
-//! Layer k (from 0) has the height `first_height × growth^k`. Each front node's ideal
+//! Layer k (from 0) has the height `first_height × growth^k` (with
+//! [`LayerParams::max_aspect`], at most that many times the front's local spacing from the
+//! second layer on, never below the node's previous height). Each front node's ideal
 //! direction is the angle-weighted normal of the front facets around it (with
 //! [`LayerParams::patch_normals`], each wall patch's apart, the patches weighted alike); its ideal length is
 //! the layer height, divided, at a concave node, by the smallest cosine between the direction
@@ -75,6 +77,7 @@
 //! # Ok::<(), afsf3d::GrowError>(())
 //! ```
 
+mod aspect;
 mod check;
 mod front;
 mod grow;
@@ -136,6 +139,13 @@ pub struct LayerParams {
     /// layer that stays invalid after its shrinks, the steps of failing bottom corners
     /// (see the crate's doc). Default false.
     pub patch_normals: bool,
+    /// The most a layer's height may be relative to the front's spacing (the mean length of
+    /// its edges), from the second layer on: a layer that would be higher is held to it, but
+    /// never below the previous layer's height (the layers turn isotropic far from the wall,
+    /// where Coe_shrink coarsens the front too slowly for the geometric heights; the wing with
+    /// a quad side fails in layer 28 without it and grows its 45 layers with 1, `docs/3d.md`).
+    /// Default 0: no limit, layer k is `first_height × growth^k` high.
+    pub max_aspect: f64,
 }
 
 impl Default for LayerParams {
@@ -156,6 +166,7 @@ impl Default for LayerParams {
             stand_off: 0.0,
             squeeze: 0.0,
             patch_normals: false,
+            max_aspect: 0.0,
         }
     }
 }
@@ -208,6 +219,11 @@ pub struct GrowStats {
     pub merges: usize,
     /// Children moved by the repair of cells without a good cone cut (`docs/3d.md`).
     pub repaired: usize,
+    /// Layers whose height the limit of [`LayerParams::max_aspect`] held below
+    /// `first_height × growth^k`.
+    pub capped_layers: usize,
+    /// The first layer (from 0) with such a child.
+    pub first_capped: Option<usize>,
 }
 
 /// Grown layers.
@@ -234,6 +250,9 @@ pub struct Grown3d {
     pub node_parents: Vec<[u32; 2]>,
     /// Merged children in each layer.
     pub layer_merges: Vec<usize>,
+    /// Each layer's height: `first_height × growth^k`, or less where
+    /// [`LayerParams::max_aspect`] limits it.
+    pub layer_heights: Vec<f64>,
     /// Measures of the growth.
     pub stats: GrowStats,
 }
