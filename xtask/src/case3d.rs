@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use anyhow::{Result, bail, ensure};
 use serde::Deserialize;
 
-use crate::case::{FileSource, LayerKeys};
+use crate::case::FileSource;
 
 /// A parsed and checked 3D case.
 #[derive(Debug, Clone)]
@@ -93,7 +93,7 @@ struct CaseFile3d {
     dimension: u8,
     surface: Option<SurfaceKeys>,
     #[serde(default)]
-    layers: LayerKeys,
+    layers: LayerKeys3d,
     #[serde(default)]
     cut: CutKeys,
     #[serde(default)]
@@ -114,6 +114,18 @@ struct SurfaceKeys {
     divisions: Option<usize>,
     triangles: Option<bool>,
     cap: Option<crate::wing::CapMesh>,
+}
+
+/// `[layers]` of a 3D case: the 2D keys and `max_aspect`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LayerKeys3d {
+    first_height: Option<f64>,
+    growth: Option<f64>,
+    max_layers: Option<u32>,
+    /// [`afsf3d::LayerParams::max_aspect`]; default 0 (no limit), or
+    /// [`QUAD_WING_MAX_ASPECT`] for a wing with a quad side.
+    max_aspect: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -186,6 +198,13 @@ pub(crate) fn parse(
     // and its far layers, geometric, outrun the front's coarsening near the far tip
     if layers.patch_normals {
         layers.max_aspect = QUAD_WING_MAX_ASPECT;
+    }
+    if let Some(a) = l.max_aspect {
+        ensure!(
+            a.is_finite() && a >= 0.0,
+            "{origin}: [layers] max_aspect = {a}: must be 0 (no limit) or positive"
+        );
+        layers.max_aspect = a;
     }
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;

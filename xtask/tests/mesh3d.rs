@@ -294,6 +294,49 @@ fn what_3d_does_not_do_yet_is_refused_in_one_line() {
     }
 }
 
+/// `[layers] max_aspect` holds the layers' heights (the report says so, the front stays
+/// nearer the wall than without it); a negative or non-finite value is refused by name.
+#[test]
+fn a_layer_height_limit_from_the_case_file_holds_the_heights() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let surface = "builtin = \"sphere\"\nrefinement = 1";
+    let layers = "first_height = 0.05\ngrowth = 1.3\nmax_layers = 6";
+    let free = case(d, "free", surface, layers, "mixed");
+    let held = case(
+        d,
+        "held",
+        surface,
+        &format!("{layers}\nmax_aspect = 0.1"),
+        "mixed",
+    );
+    let volume = |r: &serde_json::Value| r["volume"].as_f64().unwrap();
+    let notes = |r: &serde_json::Value| r["notes"].to_string();
+    let r_free = mesh_case(d, &free, "free", 6);
+    let r_held = mesh_case(d, &held, "held", 6);
+    assert!(!notes(&r_free).contains("held to"), "{}", notes(&r_free));
+    assert!(notes(&r_held).contains("held to 0.1"), "{}", notes(&r_held));
+    assert!(
+        volume(&r_held) < 0.8 * volume(&r_free),
+        "{} {}",
+        volume(&r_held),
+        volume(&r_free)
+    );
+    for bad in ["-1.0", "nan", "inf"] {
+        let text = std::fs::read_to_string(d.join(&held))
+            .unwrap()
+            .replace("max_aspect = 0.1", &format!("max_aspect = {bad}"));
+        std::fs::write(d.join("bad.toml"), text).unwrap();
+        let o = run(d, &["bad.toml"]);
+        assert_eq!(o.status.code(), Some(1), "{bad}");
+        assert!(
+            stderr(&o).contains("[layers] max_aspect"),
+            "{bad}: {}",
+            stderr(&o)
+        );
+    }
+}
+
 /// The `naca0012` wing (surface and layers from 1e-3, growth 1.3) with the `[surface]` keys
 /// `surface`, `layers` layers and the cut `cut`, meshed by [`mesh_case`].
 fn mesh_wing(d: &Path, surface: &str, layers: u64, cut: &str) -> serde_json::Value {
