@@ -81,6 +81,7 @@ mod grow;
 mod layer;
 mod repair;
 mod squeeze;
+mod upright;
 
 pub use grow::grow_layers;
 
