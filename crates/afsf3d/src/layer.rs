@@ -9,7 +9,7 @@ use mesh_model::{NONE, is_positive_tet};
 
 use crate::check::layer_cell_ok;
 use crate::front::Topo;
-use crate::upright::upright_place;
+use crate::upright::{Around, upright_place};
 
 /// A front with its ideal steps and its balanced children.
 #[derive(Debug, Clone, Copy)]
@@ -370,8 +370,11 @@ fn place_merged(
         match best {
             Some((ok, p)) => {
                 layer.children[c] = p;
-                if let Some(q) = upright_place(front, normals, facets, around, c, ok, &fits, layer)
-                {
+                let cells = Around {
+                    facets,
+                    cells: around,
+                };
+                if let Some(q) = upright_place(front, normals, cells, c, ok, fits, layer) {
                     layer.children[c] = q;
                 }
             }

@@ -82,15 +82,23 @@ fn candidates(
         .collect()
 }
 
+/// The front facets whose cells hold a merged child.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Around<'a> {
+    /// The front's facets.
+    pub facets: &'a [Facet],
+    /// The facets (indices into `facets`) whose cells hold the child.
+    pub cells: &'a [u32],
+}
+
 /// A better place for merged child `c` of `layer` (parents `a`, `b`, placed first where
-/// `ok` of the cells over `around` pass; `fits` tells for the layer as it stands whether
+/// `ok` of the cells `around` pass; `fits` tells for the layer as it stands whether
 /// every cell that must pass does, and how many pass), or `None` to keep the first place
 /// (see the module's doc). Leaves `layer.children[c]` at the first place.
 pub(crate) fn upright_place(
     front: &Ideal<'_>,
     normals: &[[f64; 3]],
-    facets: &[Facet],
-    around: &[u32],
+    around: Around<'_>,
     c: usize,
     ok: usize,
     fits: impl Fn(&Layer) -> (bool, usize),
@@ -114,7 +122,7 @@ pub(crate) fn upright_place(
         if !needed || passing < ok {
             continue;
         }
-        let cut = worst_cut(front.nodes, facets, around, layer);
+        let cut = worst_cut(front.nodes, around.facets, around.cells, layer);
         if cut > CUT_LIMIT {
             continue;
         }
@@ -192,7 +200,11 @@ mod tests {
         // a child within 30° stays where it was placed
         first.children = layer.children.clone();
         let fits = |_: &Layer| (true, 6);
-        let again = upright_place(&ideal, &normals, &facets, &around, 0, 6, fits, &mut first);
+        let cells = Around {
+            facets: &facets,
+            cells: &around,
+        };
+        let again = upright_place(&ideal, &normals, cells, 0, 6, fits, &mut first);
         assert_eq!(again, None);
     }
 }
