@@ -9,6 +9,7 @@ use mesh_model::{NONE, is_positive_tet};
 
 use crate::check::layer_cell_ok;
 use crate::front::Topo;
+use crate::upright::{Around, upright_place};
 
 /// A front with its ideal steps and its balanced children.
 #[derive(Debug, Clone, Copy)]
@@ -28,7 +29,7 @@ impl Ideal<'_> {
     /// middle of their two children: children merge where the front shrinks, and there
     /// the balance drives them towards each other along the front, so their middle can lie
     /// almost on the front.)
-    fn merged_child(&self, a: usize, b: usize) -> [f64; 3] {
+    pub(crate) fn merged_child(&self, a: usize, b: usize) -> [f64; 3] {
         let (p, q) = (self.nodes[a], self.nodes[b]);
         let dir = geom_surface::unit(std::array::from_fn(|d| self.dir[a][d] + self.dir[b][d]));
         let len = (self.len[a] + self.len[b]) / 2.0;
@@ -318,6 +319,7 @@ pub(crate) fn tangled_children(layer: &Layer) -> Vec<u32> {
 /// nowhere.
 fn place_merged(
     front: &Ideal<'_>,
+    normals: &[[f64; 3]],
     facets: &[Facet],
     unmerged_ok: &[bool],
     layer: &mut Layer,
@@ -366,7 +368,16 @@ fn place_merged(
             }
         }
         match best {
-            Some((_, p)) => layer.children[c] = p,
+            Some((ok, p)) => {
+                layer.children[c] = p;
+                let cells = Around {
+                    facets,
+                    cells: around,
+                };
+                if let Some(q) = upright_place(front, normals, cells, c, ok, fits, layer) {
+                    layer.children[c] = q;
+                }
+            }
             None => bad.push(c as u32),
         }
     }
@@ -382,6 +393,7 @@ pub(crate) fn merged_layer(
     mut merges: Vec<[u32; 2]>,
 ) -> Layer {
     let mut unmerged_ok: Vec<bool> = Vec::new();
+    let mut normals: Vec<[f64; 3]> = Vec::new();
     loop {
         let mut layer = Layer::new(front, facets, &merges);
         if merges.is_empty() {
@@ -395,8 +407,9 @@ pub(crate) fn merged_layer(
                     .iter()
                     .map(|f| layer_cell_ok(front.nodes, &plain, f))
                     .collect();
+                normals = geom_surface::node_normals(front.nodes, facets);
             }
-            bad = place_merged(front, facets, &unmerged_ok, &mut layer);
+            bad = place_merged(front, &normals, facets, &unmerged_ok, &mut layer);
             if bad.is_empty() {
                 return layer;
             }

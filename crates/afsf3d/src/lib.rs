@@ -26,7 +26,10 @@
 //! middle of the two children, either child, or over the middle of the edge) where every
 //! merged cell around it is strictly convex (every cone from a node of the cell over its
 //! other faces positive, so every cut of `topo-cut` is) and every cell around it that was
-//! valid without merges stays valid. A cell still failing then merges the children of its
+//! valid without merges stays valid; where that place leans the child's extrusion edges over
+//! 30° off their parents' normals, places nearer upright over the edge's middle are tried and
+//! the least leaning kept whose cells around still pass and keep a cone cut under 140°
+//! (table 6, `docs/3d.md`). A cell still failing then merges the children of its
 //! shortest edge if that edge is shorter than its ideal extrusion (the dissertation's second
 //! trigger, "a cell twisted to a negative volume").
 //!
@@ -84,6 +87,7 @@ mod grow;
 mod layer;
 mod repair;
 mod squeeze;
+mod upright;
 
 pub use grow::grow_layers;
 
