@@ -221,7 +221,8 @@ fn decide_checked(
     let p = params.order as usize;
     let mut clock = Clock::default();
     let interiors = cellmap::Interiors::new(p);
-    let mut edges = edges::EdgeTable::new(mesh, p);
+    let room = assembly_room(mesh, &interiors, params);
+    let mut edges = edges::EdgeTable::with_room(mesh, p, room);
     let sorted_edges = edges.len();
     clock.lap("edges");
     boundary::place_on_curves(mesh, loops, &mut edges)?;
@@ -282,6 +283,28 @@ fn decide_checked(
         stats,
         clock,
     })
+}
+
+/// The nodes the cut and the assembly add to the edge table's node array: each cell's
+/// interior nodes, and when cutting, each quadrilateral's diagonal and its two triangles'
+/// interior nodes instead of its own.
+fn assembly_room(mesh: &Mesh, interiors: &cellmap::Interiors, params: &CurvingParams) -> usize {
+    let p = params.order as usize;
+    let quad = if params.triangles {
+        (p - 1) + 2 * interiors.count(3, p)
+    } else {
+        interiors.count(4, p)
+    };
+    mesh.cells
+        .shapes_and_corners()
+        .map(|(_, corners)| {
+            if corners.len() == 4 {
+                quad
+            } else {
+                interiors.count(corners.len(), p)
+            }
+        })
+        .sum()
 }
 
 /// The curved mesh of `decided` over the linear mesh `linear` (its nodes and cells are not
