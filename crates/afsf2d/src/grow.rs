@@ -986,9 +986,7 @@ impl<'p> Work<'p> {
     }
 
     /// Checks the cells that may have moved and the new front edges. Returns the front edges
-    /// (loop, edge of the old front) to freeze, and whether an old cell failed. Both tests
-    /// run at once and each on every thread: what they find is a set of edges to freeze and a
-    /// flag, the same in any order.
+    /// (loop, edge of the old front) to freeze, and whether an old cell failed.
     fn verify(&self, step: u32, mode: Mode) -> (Vec<(u32, u32)>, bool) {
         let depth = match mode {
             Mode::Full => self.params.moving_layers.min(step),
@@ -996,48 +994,39 @@ impl<'p> Work<'p> {
         };
         let first_cell = self.cell_step[(step + 1 - depth) as usize];
         let new_cell = self.cell_step[step as usize];
-        let ((mut bad, old_bad), hit_cells) = rayon::join(
-            || self.failed_cells(first_cell, new_cell),
-            || self.front_hits(step, new_cell),
-        );
-        for cell in hit_cells {
-            mark(&self.cells[cell as usize], &mut bad);
-        }
-        (bad, old_bad)
-    }
-
-    /// The cells from `first_cell` on that fail [`Work::cell_ok`] or, above the first layer,
-    /// cut into a triangle with an angle of `cell_max_angle_deg` or more: the front edges that
-    /// begot the new ones (from `new_cell` on), and whether an older one failed.
-    fn failed_cells(&self, first_cell: usize, new_cell: usize) -> (Vec<(u32, u32)>, bool) {
-        use rayon::prelude::*;
-        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
-        // a cell above the first layer must also cut into triangles with no angle of
-        // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill takes
-        // over; an old one makes the step retry with fewer moving layers)
-        let fails = |c: &Cell| {
-            c.len != 0 && !(self.cell_ok(c) && (c.layer == 0 || self.cell_cut_below(c, limit)))
+        let mut bad: Vec<(u32, u32)> = Vec::new();
+        let mut old_bad = false;
+        let mark = |c: &Cell, bad: &mut Vec<(u32, u32)>| {
+            let [l, e1, e2] = c.origin;
+            bad.push((l, e1));
+            if e2 != NONE {
+                bad.push((l, e2));
+            }
         };
-        let (old, new) = self.cells[first_cell..].split_at(new_cell - first_cell);
-        let old_bad = old.par_iter().with_min_len(CHECK_CHUNK).any(fails);
-        let mut bad = Vec::new();
-        let failed: Vec<&Cell> = new
-            .par_iter()
-            .with_min_len(CHECK_CHUNK)
-            .filter(|c| fails(c))
-            .collect();
-        for c in failed {
-            mark(c, &mut bad);
+        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
+        for ci in first_cell..self.cells.len() {
+            let c = &self.cells[ci];
+            if c.len == 0 {
+                continue;
+            }
+            // a cell above the first layer must also cut into triangles with no angle of
+            // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill
+            // takes over; an old one makes the step retry with fewer moving layers)
+            let shape_ok = c.layer == 0 || self.cell_cut_below(c, limit);
+            if self.cell_ok(c) && shape_ok {
+                continue;
+            }
+            if ci >= new_cell {
+                mark(c, &mut bad);
+            } else {
+                old_bad = true;
+            }
         }
-        (bad, old_bad)
-    }
-
-    /// The new cells (from `new_cell` on) whose new front edge touches another front edge.
-    fn front_hits(&self, step: u32, new_cell: usize) -> Vec<u32> {
+        // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
         // tested on every thread: the edges to freeze are a set, the same in any order
-        par_overlapping(&boxes, |x, y, out: &mut Vec<u32>| {
+        let hit_cells = par_overlapping(&boxes, |x, y, out: &mut Vec<u32>| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;
@@ -1056,7 +1045,11 @@ impl<'p> Work<'p> {
                     out.push(cell);
                 }
             }
-        })
+        });
+        for cell in hit_cells {
+            mark(&self.cells[cell as usize], &mut bad);
+        }
+        (bad, old_bad)
     }
 
     /// Whether the largest angle of the triangles of a cell, a quad being cut along its
@@ -1086,19 +1079,6 @@ impl<'p> Work<'p> {
             let o = orient2d(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
-    }
-}
-
-/// Cells a task of the cell checks takes at least: the check is cheap, a task's scheduling
-/// is not.
-const CHECK_CHUNK: usize = 4096;
-
-/// Lists the front edges that begot cell `c` in `bad`.
-fn mark(c: &Cell, bad: &mut Vec<(u32, u32)>) {
-    let [l, e1, e2] = c.origin;
-    bad.push((l, e1));
-    if e2 != NONE {
-        bad.push((l, e2));
     }
 }
 
