@@ -446,3 +446,38 @@ impl Clock {
         self.last = now;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The edge table's node array is reserved at the curved mesh's final node count, for
+    /// every order and with or without the cut: the assembly never moves it to grow it.
+    #[test]
+    fn the_node_array_is_reserved_at_its_final_size() {
+        let g = test_cases::grow(&test_cases::real_case("naca0012"));
+        let loops: Vec<LoopCurve<'_>> = g
+            .curves
+            .iter()
+            .zip(&g.nodes)
+            .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
+            .collect();
+        for (order, triangles) in [(2, false), (3, false), (2, true), (3, true)] {
+            let params = CurvingParams {
+                order,
+                triangles,
+                ..CurvingParams::default()
+            };
+            let decided = decide(&g.output.layered, &loops, &params).unwrap();
+            let (reserved, at) = (decided.edges.nodes.capacity(), decided.edges.nodes.as_ptr());
+            let curved = build(decided, &g.output.layered.mesh, &params, None);
+            let nodes = &curved.mesh.nodes;
+            assert_eq!(reserved, nodes.len(), "P{order}, cut {triangles}");
+            assert_eq!(
+                at,
+                nodes.as_ptr(),
+                "P{order}, cut {triangles}: the array moved"
+            );
+        }
+    }
+}
