@@ -327,6 +327,13 @@ const PARALLEL_MIN_ACTIVE: usize = 4096;
 /// that a local active set is split about evenly too.
 const HALF_BLOCK: usize = 256;
 
+thread_local! {
+    /// The second half's force and stiffness arrays, kept between the iterations of a solve
+    /// (and the solves of a run) on the thread that last used them.
+    static HALF_SCRATCH: std::cell::RefCell<(Vec<[f64; 2]>, Vec<f64>)> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
 /// The nodes of a 2D solve in two halves such that every spring is evaluated and pushes
 /// within one half: a spring is evaluated from one of the nodes it pushes (an extrusion spring
 /// from its upper or lower node, an angle spring from its child or centre, a neighbour spring
@@ -595,7 +602,15 @@ impl ActiveEval<'_> {
         let ((), (force_1, stiffness_1)) = rayon::join(
             || self.springs_of_where(nodes, |i| half[i] == 0, &mut direct(force, stiffness)),
             || {
-                let (mut f, mut s) = (vec![[0.0; 2]; n], vec![0.0; n]);
+                // the arrays of the last call on this thread, their active entries zeroed as
+                // the solver zeroes its own (the others may hold anything: they are not read)
+                let (mut f, mut s) = HALF_SCRATCH.with(|c| std::mem::take(&mut *c.borrow_mut()));
+                f.resize(n, [0.0; 2]);
+                s.resize(n, 0.0);
+                for &i in nodes.iter().filter(|&&i| half[i as usize] == 1) {
+                    f[i as usize] = [0.0; 2];
+                    s[i as usize] = 0.0;
+                }
                 self.springs_of_where(nodes, |i| half[i] == 1, &mut direct(&mut f, &mut s));
                 (f, s)
             },
@@ -607,6 +622,7 @@ impl ActiveEval<'_> {
                 stiffness[i] = stiffness_1[i];
             }
         }
+        HALF_SCRATCH.with(|c| *c.borrow_mut() = (force_1, stiffness_1));
     }
 
     /// The contributions of the springs that the active `nodes` for which `take` holds
