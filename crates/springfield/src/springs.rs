@@ -992,7 +992,7 @@ pub(crate) mod tests {
         }
         let at = |k: usize, i: usize| (k * n + i % n) as u32;
         let mut set = SpringSet2d::default();
-        let mut child_of = |set: &mut SpringSet2d, parent: u32, child: u32, l: u32, r: u32| {
+        let child_of = |set: &mut SpringSet2d, parent: u32, child: u32, l: u32, r: u32| {
             set.extrusion.push(ExtrusionSpring {
                 lower: parent,
                 upper: child,
