@@ -518,7 +518,14 @@ impl<'p> Work<'p> {
     /// fan edges) and the length of each loop.
     fn closing_segments(&self, plans: &[Plan]) -> (Vec<Seg>, Vec<f64>) {
         let factor = self.params.closing_factor;
-        let mut segs: Vec<Seg> = Vec::new();
+        // a front edge and the three sides of its planned cell, and a fan's edges
+        let capacity = self
+            .loops
+            .iter()
+            .zip(plans)
+            .map(|(lp, plan)| 4 * lp.items.len() + plan.pos.len())
+            .sum();
+        let mut segs: Vec<Seg> = Vec::with_capacity(capacity);
         let mut loop_len = Vec::with_capacity(self.loops.len());
         for (li, (lp, plan)) in self.loops.iter().zip(plans).enumerate() {
             let m = lp.items.len();

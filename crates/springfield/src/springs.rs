@@ -300,16 +300,91 @@ pub struct SpringField2d<'a> {
     set: &'a SpringSet2d,
     params: &'a SpringParams,
     index: SpringIndex2d,
+    /// With more than one thread, the half of every node for the parallel assembly
+    /// ([`Halves`]); `None` with one thread or a small solve.
+    halves: Option<Halves>,
 }
 
 impl<'a> SpringField2d<'a> {
     /// Binds `set` and `params` for a solve over `n` nodes.
     pub fn new(set: &'a SpringSet2d, params: &'a SpringParams, n: usize) -> Self {
+        let parallel = rayon::current_num_threads() > 1 && n >= PARALLEL_MIN_ACTIVE;
         SpringField2d {
             set,
             params,
             index: set.index(n),
+            halves: parallel.then(|| Halves::new(set, n)),
         }
+    }
+}
+
+/// Active nodes from which an iteration's assembly is split between two threads: below, a
+/// fork-join costs more than half the work saves (on the layers of a large 2D mesh, the few
+/// iterations with this many active nodes carry some 95 % of the assembly's work).
+const PARALLEL_MIN_ACTIVE: usize = 4096;
+
+/// Components of the springs' push graph dealt out to this many at a time to each half, so
+/// that a local active set is split about evenly too.
+const HALF_BLOCK: usize = 256;
+
+thread_local! {
+    /// The second half's force and stiffness arrays, kept between the iterations of a solve
+    /// (and the solves of a run) on the thread that last used them.
+    static HALF_SCRATCH: std::cell::RefCell<(Vec<[f64; 2]>, Vec<f64>)> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
+/// The nodes of a 2D solve in two halves such that every spring is evaluated and pushes
+/// within one half: a spring is evaluated from one of the nodes it pushes (an extrusion spring
+/// from its upper or lower node, an angle spring from its child or centre, a neighbour spring
+/// from its centre, which is all it pushes), so the connected components of the graph joining
+/// the nodes each spring pushes are never split. Each half then sums its nodes' forces in the
+/// order of the sequential assembly restricted to it — which is that assembly's order for
+/// each of its nodes: the same sums to the last bit.
+#[derive(Debug, Clone)]
+struct Halves {
+    /// 0 or 1 per node.
+    half: Vec<u8>,
+}
+
+impl Halves {
+    fn new(set: &SpringSet2d, n: usize) -> Self {
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        let find = |parent: &mut [u32], mut x: u32| {
+            while parent[x as usize] != x {
+                let up = parent[parent[x as usize] as usize];
+                parent[x as usize] = up;
+                x = up;
+            }
+            x
+        };
+        let mut join = |a: u32, b: u32| {
+            if (a as usize) < n && (b as usize) < n {
+                let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                if ra != rb {
+                    parent[ra.max(rb) as usize] = ra.min(rb);
+                }
+            }
+        };
+        for s in &set.extrusion {
+            join(s.lower, s.upper);
+        }
+        for s in &set.angle {
+            join(s.centre, s.child);
+        }
+        // components numbered in the order of their first node, dealt out in blocks
+        let mut rank = vec![u32::MAX; n];
+        let mut next = 0u32;
+        let mut half = vec![0u8; n];
+        for i in 0..n as u32 {
+            let root = find(&mut parent, i) as usize;
+            if rank[root] == u32::MAX {
+                rank[root] = next;
+                next += 1;
+            }
+            half[i as usize] = ((rank[root] as usize / HALF_BLOCK) % 2) as u8;
+        }
+        Halves { half }
     }
 }
 
@@ -339,15 +414,27 @@ impl ForceModel<2> for SpringField2d<'_> {
         force: &mut [[f64; 2]],
         stiffness: &mut [f64],
     ) {
-        assemble_2d_active(
-            self.set,
-            &self.index,
-            self.params,
-            positions,
-            active,
-            force,
-            stiffness,
-        );
+        match &self.halves {
+            Some(halves) if active.nodes.len() >= PARALLEL_MIN_ACTIVE => {
+                let eval = ActiveEval {
+                    set: self.set,
+                    index: &self.index,
+                    params: self.params,
+                    positions,
+                    flags: active.flags,
+                };
+                eval.in_halves(&halves.half, active.nodes, force, stiffness);
+            }
+            _ => assemble_2d_active(
+                self.set,
+                &self.index,
+                self.params,
+                positions,
+                active,
+                force,
+                stiffness,
+            ),
+        }
     }
 
     fn influence(&self, n: usize) -> crate::Influence {
@@ -504,9 +591,55 @@ impl ActiveEval<'_> {
     /// pushing it that no other active node evaluates first), handed to `add` in order.
     #[inline(always)]
     fn springs_of(&self, nodes: &[u32], add: &mut impl FnMut(u32, [f64; 2], f64)) {
+        self.springs_of_where(nodes, |_| true, add);
+    }
+
+    /// [`ActiveEval::springs_of`] on two threads, each evaluating the active nodes of one of
+    /// the `half`s ([`Halves`]): the first adds into `force` and `stiffness`, the second into
+    /// arrays of its own whose sums are then copied to its active nodes.
+    fn in_halves(&self, half: &[u8], nodes: &[u32], force: &mut [[f64; 2]], stiffness: &mut [f64]) {
+        let n = force.len();
+        let ((), (force_1, stiffness_1)) = rayon::join(
+            || self.springs_of_where(nodes, |i| half[i] == 0, &mut direct(force, stiffness)),
+            || {
+                // the arrays of the last call on this thread, their active entries zeroed as
+                // the solver zeroes its own (the others may hold anything: they are not read)
+                let (mut f, mut s) = HALF_SCRATCH.with(|c| std::mem::take(&mut *c.borrow_mut()));
+                f.resize(n, [0.0; 2]);
+                s.resize(n, 0.0);
+                for &i in nodes.iter().filter(|&&i| half[i as usize] == 1) {
+                    f[i as usize] = [0.0; 2];
+                    s[i as usize] = 0.0;
+                }
+                self.springs_of_where(nodes, |i| half[i] == 1, &mut direct(&mut f, &mut s));
+                (f, s)
+            },
+        );
+        for &i in nodes {
+            let i = i as usize;
+            if half[i] == 1 {
+                force[i] = force_1[i];
+                stiffness[i] = stiffness_1[i];
+            }
+        }
+        HALF_SCRATCH.with(|c| *c.borrow_mut() = (force_1, stiffness_1));
+    }
+
+    /// The contributions of the springs that the active `nodes` for which `take` holds
+    /// evaluate, handed to `add` in order.
+    #[inline(always)]
+    fn springs_of_where(
+        &self,
+        nodes: &[u32],
+        take: impl Fn(usize) -> bool,
+        add: &mut impl FnMut(u32, [f64; 2], f64),
+    ) {
         let (set, params, positions, flags) = (self.set, self.params, self.positions, self.flags);
         for &node in nodes {
             let n = node as usize;
+            if !take(n) {
+                continue;
+            }
             let range = self.index.offsets[n] as usize..self.index.offsets[n + 1] as usize;
             for &id in &self.index.springs[range] {
                 let i = (id & INDEX_MASK) as usize;
@@ -828,6 +961,164 @@ pub(crate) mod tests {
                 let i = i as usize;
                 proptest::prop_assert!((f[i][0] - f_full[i][0]).abs() < 1e-12 && (f[i][1] - f_full[i][1]).abs() < 1e-12, "node {i}: {:?} vs {:?}", f[i], f_full[i]);
                 proptest::prop_assert!((s[i] - s_full[i]).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// A ring of `n` fixed wall nodes under two moving layers, jittered, with every fifth
+    /// node of the second layer also the child of its first layer's right neighbour (a merge,
+    /// which joins two columns of the push graph) and every seventh first-layer node also the
+    /// parent of the second-layer node two columns on (two children, as a fan's).
+    fn big_ring(n: usize) -> (Vec<[f64; 2]>, Vec<bool>, Vec<f64>, SpringSet2d) {
+        let mut seed = 11u64;
+        let mut noise = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2e-3
+        };
+        let mut pos = Vec::new();
+        for k in 0..3 {
+            for i in 0..n {
+                let t = -std::f64::consts::TAU * i as f64 / n as f64;
+                let r = 1.0 + 0.004 * k as f64;
+                let (dx, dy) = if k == 0 {
+                    (0.0, 0.0)
+                } else {
+                    (noise(), noise())
+                };
+                pos.push([r * t.cos() + dx, r * t.sin() + dy]);
+            }
+        }
+        let at = |k: usize, i: usize| (k * n + i % n) as u32;
+        let mut set = SpringSet2d::default();
+        let child_of = |set: &mut SpringSet2d, parent: u32, child: u32, l: u32, r: u32| {
+            set.extrusion.push(ExtrusionSpring {
+                lower: parent,
+                upper: child,
+                ideal_length: 0.004,
+                lower_share: 0.8,
+            });
+            set.angle.push(AngleSpring {
+                left: l,
+                centre: parent,
+                right: r,
+                child,
+                offset_rad: 0.05,
+                ideal_length: 0.004,
+            });
+        };
+        for k in 1..3 {
+            for i in 0..n {
+                let (parent, child) = (at(k - 1, i), at(k, i));
+                child_of(
+                    &mut set,
+                    parent,
+                    child,
+                    at(k - 1, i + n - 1),
+                    at(k - 1, i + 1),
+                );
+                if k == 2 && i % 5 == 0 {
+                    let other = at(1, i + 1);
+                    child_of(&mut set, other, child, at(1, i), at(1, i + 2));
+                }
+                set.neighbour.push(NeighbourSpring {
+                    left: at(k, i + n - 1),
+                    centre: child,
+                    right: at(k, i + 1),
+                    parent,
+                    left_share: 0.5,
+                });
+            }
+        }
+        for i in (0..n).step_by(7) {
+            child_of(
+                &mut set,
+                at(1, i),
+                at(2, i + 2),
+                at(1, i + n - 1),
+                at(1, i + 1),
+            );
+        }
+        let movable: Vec<bool> = (0..3 * n).map(|g| g >= n).collect();
+        let scale = vec![0.004; 3 * n];
+        (pos, movable, scale, set)
+    }
+
+    #[test]
+    fn two_threads_solve_to_the_same_bits_as_one() {
+        let (pos, movable, scale, set) = big_ring(3000);
+        let params = SpringParams::default();
+        let solver = crate::SolverParams::default();
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let model = SpringField2d::new(&set, &params, pos.len());
+                assert_eq!(model.halves.is_some(), threads > 1);
+                let mut x = pos.clone();
+                let outcome =
+                    crate::solve_model_active(&mut x, &scale, &movable, &model, &solver).unwrap();
+                (x, outcome)
+            })
+        };
+        let (one, one_outcome) = run(1);
+        let (two, two_outcome) = run(2);
+        assert!(one_outcome.iterations > 10);
+        assert_eq!(one_outcome, two_outcome);
+        assert!(
+            one.iter()
+                .zip(&two)
+                .all(|(a, b)| a[0].to_bits() == b[0].to_bits() && a[1].to_bits() == b[1].to_bits())
+        );
+    }
+
+    #[test]
+    fn the_halves_keep_every_spring_whole_and_split_the_nodes_about_evenly() {
+        let (pos, _, _, set) = big_ring(3000);
+        let half = Halves::new(&set, pos.len()).half;
+        for s in &set.extrusion {
+            assert_eq!(half[s.lower as usize], half[s.upper as usize]);
+        }
+        for s in &set.angle {
+            assert_eq!(half[s.centre as usize], half[s.child as usize]);
+        }
+        let ones = half.iter().filter(|&&h| h == 1).count();
+        assert!(
+            ones > pos.len() / 3 && ones < 2 * pos.len() / 3,
+            "{ones} of {}",
+            pos.len()
+        );
+    }
+
+    proptest::proptest! {
+        /// The assembly in halves gives every active node the forces and stiffnesses of the
+        /// sequential one, to the last bit, whichever nodes are active.
+        #[test]
+        fn the_assembly_in_halves_matches_the_sequential_one_to_the_bit(
+            active_mod in 1usize..5,
+            offset in 0usize..5,
+        ) {
+            let (x, _, _, set) = big_ring(3000);
+            let params = SpringParams::default();
+            let n = x.len();
+            let index = set.index(n);
+            let flags: Vec<bool> = (0..n).map(|i| i >= 3000 && (i + offset) % active_mod == 0).collect();
+            let nodes: Vec<u32> = (0..n as u32).rev().filter(|&i| flags[i as usize]).collect();
+            let active = crate::Active { flags: &flags, nodes: &nodes };
+            let (mut f, mut s) = (vec![[0.0; 2]; n], vec![0.0; n]);
+            assemble_2d_active(&set, &index, &params, &x, active, &mut f, &mut s);
+            let eval = ActiveEval { set: &set, index: &index, params: &params, positions: &x, flags: &flags };
+            let (mut f2, mut s2) = (vec![[0.0; 2]; n], vec![0.0; n]);
+            let half = Halves::new(&set, n).half;
+            eval.in_halves(&half, &nodes, &mut f2, &mut s2);
+            for &i in &nodes {
+                let i = i as usize;
+                proptest::prop_assert_eq!(f[i][0].to_bits(), f2[i][0].to_bits());
+                proptest::prop_assert_eq!(f[i][1].to_bits(), f2[i][1].to_bits());
+                proptest::prop_assert_eq!(s[i].to_bits(), s2[i].to_bits());
             }
         }
     }

@@ -36,6 +36,14 @@ pub(crate) struct EdgeTable {
 impl EdgeTable {
     /// The edges of the linear mesh `mesh`, every one straight, for order `p`.
     pub fn new(mesh: &Mesh, p: usize) -> Self {
+        Self::with_room(mesh, p, 0)
+    }
+
+    /// [`EdgeTable::new`], its node array reserved for `room` more nodes than the edges need
+    /// (the cells' interior nodes and any diagonals the assembly and the cut will add), so that
+    /// it is never moved as it grows: a move of the array, then some 5M nodes, cost a copy and
+    /// the faulting-in of a second array at the run's memory peak.
+    pub fn with_room(mesh: &Mesh, p: usize, room: usize) -> Self {
         // the mesh's unique edges in the topology's order (sorted by their end nodes), which
         // the high-order node numbering follows; a 2D cell has at most four edges
         let (ends, cells, cell_edges) = edge_table_2d(mesh.cells.shapes_and_corners());
@@ -49,7 +57,7 @@ impl EdgeTable {
             curved: Vec::new(),
             rules: EdgeRules::default(),
         };
-        table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1));
+        table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1) + room);
         table.nodes.extend_from_slice(&mesh.nodes);
         for e in 0..table.ends.len() {
             let [a, b] = table.ends[e];

@@ -221,7 +221,8 @@ fn decide_checked(
     let p = params.order as usize;
     let mut clock = Clock::default();
     let interiors = cellmap::Interiors::new(p);
-    let mut edges = edges::EdgeTable::new(mesh, p);
+    let room = assembly_room(mesh, &interiors, params);
+    let mut edges = edges::EdgeTable::with_room(mesh, p, room);
     let sorted_edges = edges.len();
     clock.lap("edges");
     boundary::place_on_curves(mesh, loops, &mut edges)?;
@@ -282,6 +283,28 @@ fn decide_checked(
         stats,
         clock,
     })
+}
+
+/// The nodes the cut and the assembly add to the edge table's node array: each cell's
+/// interior nodes, and when cutting, each quadrilateral's diagonal and its two triangles'
+/// interior nodes instead of its own.
+fn assembly_room(mesh: &Mesh, interiors: &cellmap::Interiors, params: &CurvingParams) -> usize {
+    let p = params.order as usize;
+    let quad = if params.triangles {
+        (p - 1) + 2 * interiors.count(3, p)
+    } else {
+        interiors.count(4, p)
+    };
+    mesh.cells
+        .shapes_and_corners()
+        .map(|(_, corners)| {
+            if corners.len() == 4 {
+                quad
+            } else {
+                interiors.count(corners.len(), p)
+            }
+        })
+        .sum()
 }
 
 /// The curved mesh of `decided` over the linear mesh `linear` (its nodes and cells are not
@@ -421,5 +444,40 @@ impl Clock {
         self.laps
             .push((phase, now.duration_since(self.last).as_secs_f64()));
         self.last = now;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The edge table's node array is reserved at the curved mesh's final node count, for
+    /// every order and with or without the cut: the assembly never moves it to grow it.
+    #[test]
+    fn the_node_array_is_reserved_at_its_final_size() {
+        let g = test_cases::grow(&test_cases::real_case("naca0012"));
+        let loops: Vec<LoopCurve<'_>> = g
+            .curves
+            .iter()
+            .zip(&g.nodes)
+            .map(|(curve, bn)| LoopCurve { curve, t: &bn.t })
+            .collect();
+        for (order, triangles) in [(2, false), (3, false), (2, true), (3, true)] {
+            let params = CurvingParams {
+                order,
+                triangles,
+                ..CurvingParams::default()
+            };
+            let decided = decide(&g.output.layered, &loops, &params).unwrap();
+            let (reserved, at) = (decided.edges.nodes.capacity(), decided.edges.nodes.as_ptr());
+            let curved = build(decided, &g.output.layered.mesh, &params, None);
+            let nodes = &curved.mesh.nodes;
+            assert_eq!(reserved, nodes.len(), "P{order}, cut {triangles}");
+            assert_eq!(
+                at,
+                nodes.as_ptr(),
+                "P{order}, cut {triangles}: the array moved"
+            );
+        }
     }
 }
