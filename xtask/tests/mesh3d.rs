@@ -427,7 +427,7 @@ fn the_wing_with_quads_on_its_side_grows_30_layers() {
     let held = notes
         .iter()
         .filter_map(|n| n.as_str())
-        .find(|n| n.starts_with("layer heights held to 0.25"));
+        .find(|n| n.starts_with("layer heights held to 0.26"));
     assert!(held.is_some(), "{r}");
 }
 
