@@ -150,7 +150,7 @@ const TURN_FLOOR: f64 = 0.2;
 /// step's direction only): a node on a ridge beside a pit the shrinks of earlier layers
 /// left (the quad wing far out, `docs/3d.md`). The step keeps its length and turns towards
 /// the direction standing most steeply off all the node's corner triangles
-/// ([`max_min_direction`]), just far enough that it stands off each at a cosine of
+/// ([`max_min_direction`](crate::front::max_min_direction)), just far enough that it stands off each at a cosine of
 /// [`TURN_FLOOR`] (or half the best, if lower). `None` if no node turns.
 pub(crate) fn turned_steps(
     front: &[[f64; 3]],

@@ -44,15 +44,17 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         / topo.edges.len() as f64;
     let mut state = State::new(surface);
     let mut thickness = 0.0;
+    // the last layer's height over `first_height × growth^k` (`aspect`; 1 unless limited)
+    let mut height_ratio = 1.0;
     for layer in 0..params.layers {
         let mut height = params.first_height * params.growth.powi(layer as i32);
         if layer > 0 && params.max_aspect > 0.0 {
             // the layer no higher than max_aspect × the front's mean edge (`aspect`)
             let spacing = mean_edge(&topo, &state.front.nodes);
             let (g, a) = (params.growth, params.max_aspect);
-            state.height_ratio = limit_ratio(state.height_ratio, spacing, height, g, a);
-            if state.height_ratio < 1.0 {
-                height *= state.height_ratio;
+            height_ratio = limit_ratio(height_ratio, spacing, height, g, a);
+            if height_ratio < 1.0 {
+                height *= height_ratio;
                 state.stats.capped_layers += 1;
                 state.stats.first_capped.get_or_insert(layer);
             }
@@ -219,8 +221,6 @@ struct State {
     node_layer: Vec<u32>,
     node_parents: Vec<[u32; 2]>,
     layer_merges: Vec<usize>,
-    /// The last layer's height over `first_height × growth^k` (`aspect`; 1 unless limited).
-    height_ratio: f64,
     /// Each layer's height.
     layer_heights: Vec<f64>,
     stats: GrowStats,
@@ -247,7 +247,6 @@ impl State {
             node_layer: vec![0; n],
             node_parents: vec![[NONE; 2]; n],
             layer_merges: Vec::new(),
-            height_ratio: 1.0,
             layer_heights: Vec::new(),
             stats: GrowStats {
                 converged: true,

@@ -74,7 +74,7 @@ impl Layer {
     /// The layer of the balanced children `balanced` (one per front node) over the front
     /// (`front`, `facets`), with the children of each pair in `merges` (front nodes joined by
     /// a front edge, each node in one pair at most) merged into one over the middle of their
-    /// edge (see [`merged_child`]). Without merges each front node's child keeps its index.
+    /// edge (see [`merged_child`](Ideal::merged_child)). Without merges each front node's child keeps its index.
     pub fn new(front: &Ideal<'_>, facets: &[Facet], merges: &[[u32; 2]]) -> Layer {
         let balanced = front.balanced;
         let n = balanced.len();

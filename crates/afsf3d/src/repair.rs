@@ -85,7 +85,7 @@ pub(crate) fn best_cone_cut(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3], e
 
 /// The best cone cut ([`best_cone_cut`]) of the cell of `layer` over `facet` (front nodes
 /// `front`).
-fn cell_cut(front: &[[f64; 3]], layer: &Layer, facet: &Facet, enough: f64) -> f64 {
+pub(crate) fn cell_cut(front: &[[f64; 3]], layer: &Layer, facet: &Facet, enough: f64) -> f64 {
     best_cone_cut(
         &layer.cell_faces(facet),
         |v| cell_node(front, layer, v),

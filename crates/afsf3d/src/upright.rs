@@ -8,7 +8,7 @@
 //! mean ideal step, and at the first place's own height) are tried; among those leaning less
 //! where as many cells around the child pass their check, every merged cell and every cell
 //! valid without merges among them, and where every cell around keeps a cone cut
-//! ([`best_cone_cut`], the cut `topo-cut` can choose for a cell alone) under the repair's
+//! ([`best_cone_cut`](crate::repair::best_cone_cut), the cut `topo-cut` can choose for a cell alone) under the repair's
 //! [`CUT_LIMIT`] (140°), the one leaning least (any within 30° alike) with the best such
 //! cut is kept. The bound keeps the cut (table 7): upright places chosen on their lean alone
 //! pushed the wing's tetrahedra to 164.6°, and a bound relative to the first place's cut
@@ -19,9 +19,8 @@ use geom_predicates::vector::sub;
 use geom_surface::{Facet, unit};
 use mesh_model::measure3d::angle_deg;
 
-use crate::check::cell_node;
 use crate::layer::{Ideal, Layer};
-use crate::repair::{CUT_LIMIT, best_cone_cut};
+use crate::repair::{CUT_LIMIT, cell_cut};
 
 /// Table 6's last bin: a merged child leaning this much or less off its parents' normals
 /// stays where it is.
@@ -41,17 +40,11 @@ pub(crate) fn tilt_deg(
     angle_deg(sub(p, nodes[a]), normals[a]).max(angle_deg(sub(p, nodes[b]), normals[b]))
 }
 
-/// The worst best cone cut ([`best_cone_cut`]) of the cells of `layer` over `around`.
+/// The worst best cone cut ([`best_cone_cut`](crate::repair::best_cone_cut)) of the cells of `layer` over `around`.
 fn worst_cut(nodes: &[[f64; 3]], facets: &[Facet], around: &[u32], layer: &Layer) -> f64 {
     around
         .iter()
-        .map(|&f| {
-            best_cone_cut(
-                &layer.cell_faces(&facets[f as usize]),
-                |v| cell_node(nodes, layer, v),
-                0.0,
-            )
-        })
+        .map(|&f| cell_cut(nodes, layer, &facets[f as usize], 0.0))
         .fold(0.0, f64::max)
 }
 
