@@ -473,10 +473,15 @@ fn the_step_keeps_its_corners_above_one_half() {
         let deviation = &q["histograms"][1];
         assert_eq!(deviation["name"], "extrusion edge deviation", "{r}");
         let over = deviation["counts"][3].as_u64().unwrap();
-        assert!(over < over_30_before, "first height {first}: {over} over 30°");
+        assert!(
+            over < over_30_before,
+            "first height {first}: {over} over 30°"
+        );
         assert!(deviation["max_deg"].as_f64().unwrap() < 35.0, "{r}");
         assert!(
-            r["notes"].to_string().contains("layer heights held to 0.03"),
+            r["notes"]
+                .to_string()
+                .contains("layer heights held to 0.03"),
             "{r}"
         );
     }
