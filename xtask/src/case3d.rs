@@ -124,7 +124,8 @@ struct LayerKeys3d {
     growth: Option<f64>,
     max_layers: Option<u32>,
     /// [`afsf3d::LayerParams::max_aspect`]; default 0 (no limit), or
-    /// [`QUAD_WING_MAX_ASPECT`] for a wing with a quad side.
+    /// [`QUAD_WING_MAX_ASPECT`] for a wing with a quad side, [`STEP_MAX_ASPECT`] for the
+    /// built-in step.
     max_aspect: Option<f64>,
 }
 
