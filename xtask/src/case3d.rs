@@ -116,7 +116,7 @@ struct SurfaceKeys {
     cap: Option<crate::wing::CapMesh>,
 }
 
-/// `[layers]` of a 3D case: the 2D keys and `max_aspect`.
+/// `[layers]` of a 3D case: the 2D keys, `max_aspect`, `stand_off` and `smoothing`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LayerKeys3d {
@@ -124,9 +124,14 @@ struct LayerKeys3d {
     growth: Option<f64>,
     max_layers: Option<u32>,
     /// [`afsf3d::LayerParams::max_aspect`]; default 0 (no limit), or
-    /// [`QUAD_WING_MAX_ASPECT`] for a wing with a quad side, [`STEP_MAX_ASPECT`] for the
-    /// built-in step.
+    /// [`QUAD_WING_MAX_ASPECT`] for a wing with a quad side.
     max_aspect: Option<f64>,
+    /// [`afsf3d::LayerParams::stand_off`]: the smallest cosine wanted between a node's
+    /// direction and each facet's normal around it; default 0 (none turned).
+    stand_off: Option<f64>,
+    /// [`afsf3d::LayerParams::smoothing`]: rounds of direction smoothing; default 8.
+    /// (signed, so that a negative count is refused by name, not by the TOML reader)
+    smoothing: Option<i64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -148,28 +153,8 @@ struct CurvingKeys3d {
 /// with 0.25; `docs/3d.md`).
 pub const QUAD_WING_MAX_ASPECT: f64 = 0.26;
 
-/// The built-in step: each node's direction turned until it stands off every facet around
-/// it at a cosine of at least this ([`afsf3d::LayerParams::stand_off`]; the tower's foot
-/// corners: 0.30 without), with [`STEP_MAX_ASPECT`] and [`STEP_SMOOTHING`]. The smallest
-/// corner scaled Jacobian of the prisms and hexahedra is then 0.560 at a first height of 2e-3
-/// (0.549 at 3e-3, 0.567 at 1e-3; 0.087 without the three), and every extrusion edge stays
-/// within 29.3° of the wall's normal (table 6; 168 edges over 30° without, the worst 42.1°);
-/// `docs/3d.md`.
-pub const STEP_STAND_OFF: f64 = 0.6;
-
-/// The built-in step: each layer at most this many times the front's mean edge high
-/// ([`afsf3d::LayerParams::max_aspect`]; 0.003 over quads of 0.1, from layer 3 on at a first
-/// height of 2e-3): an offset of a 90° concave edge by t swallows a band of width t on both
-/// sides, and the geometric stack (0.144 after 15 layers) outgrows the wall's spacing of 0.1
-/// and squeezes the cells next to the tower's foot. 0.035 gives 0.529, 0.04 0.501; a limit
-/// only near the concave edges (tried, `docs/3d.md`) dents the front there and does worse.
-pub const STEP_MAX_ASPECT: f64 = 0.03;
-
-/// The built-in step: rounds of direction smoothing ([`afsf3d::LayerParams::smoothing`],
-/// default 8): with the stack held thin, 8 fan the extrusion edges next to the concave edges
-/// up to 32.1° off the wall's normal (36 over 30°), 6 up to 29.0° at the same corners, 5 to
-/// 27.4° but the corners fall to 0.540.
-pub const STEP_SMOOTHING: usize = 6;
+/// The most rounds of direction smoothing a 3D case may ask for.
+pub const MAX_SMOOTHING: u32 = 100;
 
 /// The most layers a 3D case may ask for.
 pub const MAX_LAYERS_3D: u32 = 1000;
@@ -224,19 +209,26 @@ pub(crate) fn parse(
     if layers.patch_normals {
         layers.max_aspect = QUAD_WING_MAX_ASPECT;
     }
-    // the step's concave edges: the foot corners' directions turned, the stack held thin, the
-    // directions fanned less
-    if matches!(surface, SurfaceSource::Step { .. }) {
-        layers.stand_off = STEP_STAND_OFF;
-        layers.max_aspect = STEP_MAX_ASPECT;
-        layers.smoothing = STEP_SMOOTHING;
-    }
     if let Some(a) = l.max_aspect {
         ensure!(
             a.is_finite() && a >= 0.0,
             "{origin}: [layers] max_aspect = {a}: must be 0 (no limit) or positive"
         );
         layers.max_aspect = a;
+    }
+    if let Some(c) = l.stand_off {
+        ensure!(
+            c.is_finite() && (0.0..1.0).contains(&c),
+            "{origin}: [layers] stand_off = {c}: must be 0 (none turned) up to below 1 (a cosine)"
+        );
+        layers.stand_off = c;
+    }
+    if let Some(n) = l.smoothing {
+        ensure!(
+            (0..=i64::from(MAX_SMOOTHING)).contains(&n),
+            "{origin}: [layers] smoothing = {n}: must be 0 to {MAX_SMOOTHING} rounds"
+        );
+        layers.smoothing = n as usize;
     }
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
