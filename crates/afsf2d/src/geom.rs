@@ -2,8 +2,9 @@
 //! themselves (exact orientation, segment crossing and distance, projection, sort-and-sweep)
 //! and the polygon area are the shared ones of `geom-predicates`; [`par_overlapping`] runs
 //! the same sort-and-sweep on every thread, for the tests whose result is a set;
-//! [`par_overlapping_grid`] finds the same pairs through a uniform grid, for sets of boxes
-//! where many boxes share a range of x without meeting (the fronts of a far-field circle).
+//! [`par_overlapping_strips`] finds the same pairs by a sweep within horizontal strips, for
+//! sets of boxes where many share a range of x without meeting (the fronts of a far-field
+//! circle).
 
 use rayon::prelude::*;
 
@@ -56,35 +57,44 @@ pub(crate) fn par_overlapping<T: Send>(
     found.into_iter().flatten().collect()
 }
 
-/// Grid cells per box at most: a grid finer than this costs more to fill than it saves.
-const GRID_CELLS_PER_BOX: usize = 2;
-
-/// Grid entries per box at most before [`par_overlapping_grid`] falls back to the sweep
-/// (boxes much larger than the typical one, covering many cells each).
-const GRID_ENTRIES_PER_BOX: usize = 12;
+/// Strip entries per box at most before [`par_overlapping_strips`] falls back to the sweep
+/// (boxes much taller than the typical one, crossing many strips each).
+const STRIP_ENTRIES_PER_BOX: usize = 8;
 
 /// The pairs of [`par_overlapping`], each visited as `visit(i, j, out)` with the same `i` and
-/// `j` (`i` the first of the two in the sweep's order: by low x, ties by index), found through
-/// a uniform grid instead of the sweep: each box is listed in every grid cell it covers and a
-/// pair is visited in the first cell both cover. The findings come back in grid order
-/// (deterministic, whatever the number of threads), not in the sweep's: for set results
-/// only. Falls back to [`par_overlapping`] when a coordinate is not finite or the boxes are
-/// too unequal for one cell size.
-pub(crate) fn par_overlapping_grid<T: Send>(
+/// `j` (`i` the first of the two in the sweep's order: by low x, ties by index), found by a
+/// sweep within horizontal strips: each box is listed in every strip (of the median box's
+/// larger side) it crosses, and a pair is visited in the first strip both cross. Where many
+/// boxes share a range of x far apart in y (the fronts of a far-field circle: the whole sweep
+/// met the far side of the circle), a strip holds only the near ones. The findings come back
+/// in strip order (deterministic, whatever the number of threads), not in the sweep's: for
+/// set results only. Falls back to [`par_overlapping`] when a coordinate is not finite or
+/// the boxes are too unequal in height.
+pub(crate) fn par_overlapping_strips<T: Send>(
     boxes: &[Aabb],
     visit: impl Fn(usize, usize, &mut Vec<T>) + Sync,
 ) -> Vec<T> {
-    let Some(grid) = Grid::new(boxes) else {
+    let Some(strips) = Strips::new(boxes) else {
         return par_overlapping(boxes, visit);
     };
-    let rows_per_task = (SWEEP_CHUNK / grid.nx.max(1)).max(1);
-    let found: Vec<Vec<T>> = (0..grid.ny.div_ceil(rows_per_task))
-        .into_par_iter()
-        .map(|task| {
+    // tasks of about SWEEP_CHUNK entries, whole strips each
+    let mut tasks = vec![0usize];
+    for row in 0..strips.rows() {
+        if strips.start[row + 1] as usize - strips.start[*tasks.last().unwrap()] as usize
+            >= SWEEP_CHUNK
+        {
+            tasks.push(row + 1);
+        }
+    }
+    if *tasks.last().unwrap() != strips.rows() {
+        tasks.push(strips.rows());
+    }
+    let found: Vec<Vec<T>> = tasks
+        .par_windows(2)
+        .map(|rows| {
             let mut out = Vec::new();
-            let rows = task * rows_per_task..((task + 1) * rows_per_task).min(grid.ny);
-            for cell in rows.start * grid.nx..rows.end * grid.nx {
-                grid.pairs_in(cell, boxes, &visit, &mut out);
+            for row in rows[0]..rows[1] {
+                strips.sweep(row, boxes, &visit, &mut out);
             }
             out
         })
@@ -92,47 +102,38 @@ pub(crate) fn par_overlapping_grid<T: Send>(
     found.into_iter().flatten().collect()
 }
 
-/// Whether box `i` comes before box `j` in the sweep's order (low x, ties by index).
-#[inline]
-fn sweeps_first(boxes: &[Aabb], i: usize, j: usize) -> bool {
-    boxes[i].lo[0].total_cmp(&boxes[j].lo[0]).then(i.cmp(&j)) == std::cmp::Ordering::Less
-}
-
-/// A uniform grid over boxes: `entries[start[c]..start[c + 1]]` are the boxes covering cell
-/// `c` (row-major, `nx` cells a row), by increasing index.
-struct Grid {
-    nx: usize,
-    ny: usize,
+/// Boxes by horizontal strip: `entries[start[r]..start[r + 1]]` are the boxes crossing strip
+/// `r`, in the sweep's order (low x, ties by index).
+struct Strips {
     start: Vec<u32>,
     entries: Vec<Entry>,
 }
 
-/// A box listed in a grid cell, with the first cell it covers.
+/// A box listed in a strip: its low and high x, index and first strip.
 #[derive(Clone, Copy, Default)]
 struct Entry {
+    lo: f64,
+    hi: f64,
     index: u32,
-    first: [u32; 2],
+    first: u32,
 }
 
-impl Grid {
-    /// The grid of `boxes`, its cell the median of their larger sides (at most
-    /// [`GRID_CELLS_PER_BOX`] cells a box); `None` when a coordinate is not finite, there are
-    /// fewer than two boxes or more than [`GRID_ENTRIES_PER_BOX`] entries a box.
+impl Strips {
+    /// The strips of `boxes`, as tall as the median larger side of the boxes (of 1024 spread
+    /// through the list; at most as many strips as boxes); `None` when a coordinate is not
+    /// finite, there are fewer than two boxes, or more than [`STRIP_ENTRIES_PER_BOX`]
+    /// entries a box.
     fn new(boxes: &[Aabb]) -> Option<Self> {
         let n = boxes.len();
         let finite = |b: &Aabb| b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
         if n < 2 || n >= u32::MAX as usize || !boxes.iter().all(finite) {
             return None;
         }
-        let mut lo = boxes[0].lo;
-        let mut hi = boxes[0].hi;
+        let (mut y0, mut y1) = (boxes[0].lo[1], boxes[0].hi[1]);
         for b in boxes {
-            for k in 0..2 {
-                lo[k] = lo[k].min(b.lo[k]);
-                hi[k] = hi[k].max(b.hi[k]);
-            }
+            y0 = y0.min(b.lo[1]);
+            y1 = y1.max(b.hi[1]);
         }
-        // the median larger side of (at most) 1024 boxes spread through the list
         let samples = n.min(1024);
         let mut sides: Vec<f64> = (0..samples)
             .map(|k| {
@@ -140,92 +141,87 @@ impl Grid {
                 (b.hi[0] - b.lo[0]).max(b.hi[1] - b.lo[1])
             })
             .collect();
-        let mid = samples / 2;
-        let (_, &mut median, _) = sides.select_nth_unstable_by(mid, f64::total_cmp);
-        let (w, h) = (hi[0] - lo[0], hi[1] - lo[1]);
-        let most = (GRID_CELLS_PER_BOX * n) as f64;
-        let mut side = median.max(f64::MIN_POSITIVE);
-        if (w / side + 1.0) * (h / side + 1.0) > most {
-            side = side.max(((w * h) / most).sqrt()).max(w.max(h) / most);
-        }
-        let nx = ((w / side) as usize + 1).min(n * GRID_CELLS_PER_BOX);
-        let ny = ((h / side) as usize + 1).min(n * GRID_CELLS_PER_BOX);
-        let at = |v: f64, k: usize, cells: usize| (((v - lo[k]) / side) as usize).min(cells - 1);
-        let span = |b: &Aabb| {
-            (
-                [at(b.lo[0], 0, nx), at(b.lo[1], 1, ny)],
-                [at(b.hi[0], 0, nx), at(b.hi[1], 1, ny)],
-            )
-        };
-        let mut start = vec![0u32; nx * ny + 1];
+        let (_, &mut median, _) = sides.select_nth_unstable_by(samples / 2, f64::total_cmp);
+        let side = median.max((y1 - y0) / n as f64).max(f64::MIN_POSITIVE);
+        let rows = (((y1 - y0) / side) as usize + 1).min(n);
+        let at = |y: f64| (((y - y0) / side) as usize).min(rows - 1);
+        let mut start = vec![0u32; rows + 1];
         let mut total = 0usize;
         for b in boxes {
-            let (a, z) = span(b);
-            total += (z[0] - a[0] + 1) * (z[1] - a[1] + 1);
-            if total > GRID_ENTRIES_PER_BOX * n {
+            let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
+            total += r1 - r0 + 1;
+            if total > STRIP_ENTRIES_PER_BOX * n {
                 return None;
             }
-            for y in a[1]..=z[1] {
-                for x in a[0]..=z[0] {
-                    start[y * nx + x + 1] += 1;
-                }
+            for r in r0..=r1 {
+                start[r + 1] += 1;
             }
         }
-        for c in 0..nx * ny {
-            start[c + 1] += start[c];
+        for r in 0..rows {
+            start[r + 1] += start[r];
         }
         let mut fill = start.clone();
         let mut entries = vec![Entry::default(); total];
         for (i, b) in boxes.iter().enumerate() {
-            let (a, z) = span(b);
-            let entry = Entry {
-                index: i as u32,
-                first: [a[0] as u32, a[1] as u32],
-            };
-            for y in a[1]..=z[1] {
-                for x in a[0]..=z[0] {
-                    let c = y * nx + x;
-                    entries[fill[c] as usize] = entry;
-                    fill[c] += 1;
-                }
+            let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
+            for r in r0..=r1 {
+                entries[fill[r] as usize] = Entry {
+                    lo: b.lo[0],
+                    hi: b.hi[0],
+                    index: i as u32,
+                    first: r0 as u32,
+                };
+                fill[r] += 1;
             }
         }
-        Some(Grid {
-            nx,
-            ny,
-            start,
-            entries,
-        })
+        // each strip in the sweep's order (the entries of a strip come by increasing index:
+        // a stable sort on low x)
+        let mut strips = Strips { start, entries };
+        strips.sort_rows();
+        Some(strips)
     }
 
-    /// Visits the overlapping pairs whose first common cell is `cell`.
-    fn pairs_in<T>(
+    fn rows(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// Sorts every strip by low x, stably (ties keep the index order), on every thread.
+    fn sort_rows(&mut self) {
+        let mut rest: &mut [Entry] = &mut self.entries;
+        let mut rows: Vec<&mut [Entry]> = Vec::with_capacity(self.start.len() - 1);
+        for w in self.start.windows(2) {
+            let (row, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
+            rows.push(row);
+            rest = tail;
+        }
+        rows.par_iter_mut()
+            .with_min_len(64)
+            .for_each(|row| row.sort_by(|a, b| a.lo.total_cmp(&b.lo)));
+    }
+
+    /// Visits the overlapping pairs whose first common strip is `row`, by a sweep in x.
+    fn sweep<T>(
         &self,
-        cell: usize,
+        row: usize,
         boxes: &[Aabb],
         visit: &impl Fn(usize, usize, &mut Vec<T>),
         out: &mut Vec<T>,
     ) {
-        let here = [(cell % self.nx) as u32, (cell / self.nx) as u32];
-        let list = &self.entries[self.start[cell] as usize..self.start[cell + 1] as usize];
+        let list = &self.entries[self.start[row] as usize..self.start[row + 1] as usize];
+        let row = row as u32;
         for (k, ea) in list.iter().enumerate() {
-            let a = ea.index as usize;
-            let ba = &boxes[a];
+            let ba = &boxes[ea.index as usize];
             for eb in &list[k + 1..] {
-                // the first cell both cover: the larger of their first cells on each axis
-                if ea.first[0].max(eb.first[0]) != here[0]
-                    || ea.first[1].max(eb.first[1]) != here[1]
-                {
+                if eb.lo > ea.hi {
+                    break;
+                }
+                // the first strip both cross: the later of their first strips
+                if ea.first.max(eb.first) != row {
                     continue;
                 }
-                let b = eb.index as usize;
-                if !ba.overlaps(&boxes[b]) {
-                    continue;
-                }
-                if sweeps_first(boxes, a, b) {
-                    visit(a, b, out);
-                } else {
-                    visit(b, a, out);
+                let bb = &boxes[eb.index as usize];
+                if bb.lo[1] <= ba.hi[1] && bb.hi[1] >= ba.lo[1] {
+                    visit(ea.index as usize, eb.index as usize, out);
                 }
             }
         }
@@ -268,11 +264,11 @@ mod tests {
         }
     }
 
-    /// The grid finds exactly the sweep's pairs, each the same way round, for boxes of very
+    /// The strips find exactly the sweep's pairs, each the same way round, for boxes of very
     /// different sizes (a ring of small boxes, some large ones, some equal low x), with one
     /// thread and with several.
     #[test]
-    fn the_grid_finds_the_sweeps_pairs_the_same_way_round() {
+    fn the_strips_find_the_sweeps_pairs_the_same_way_round() {
         let mut rng = testkit::layered::Rng(7);
         let mut next = || rng.unit();
         let mut boxes: Vec<Aabb> = (0..5000)
@@ -301,14 +297,17 @@ mod tests {
         geom_predicates::for_each_overlapping_pair(&boxes, |i, j| expected.push((i, j)));
         expected.sort_unstable();
         assert!(expected.len() > 3000, "{} pairs", expected.len());
-        assert!(Grid::new(&boxes).is_some(), "the grid, not the fallback");
+        assert!(
+            Strips::new(&boxes).is_some(),
+            "the strips, not the fallback"
+        );
         for threads in [1, 2] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
             let mut found = pool.install(|| {
-                par_overlapping_grid(&boxes, |i, j, out: &mut Vec<(usize, usize)>| {
+                par_overlapping_strips(&boxes, |i, j, out: &mut Vec<(usize, usize)>| {
                     out.push((i, j))
                 })
             });
@@ -316,9 +315,9 @@ mod tests {
             assert_eq!(found, expected, "{threads} threads");
         }
         // too few boxes, or a coordinate not finite: the sweep's pairs all the same
-        assert!(Grid::new(&boxes[..1]).is_none());
+        assert!(Strips::new(&boxes[..1]).is_none());
         let mut odd = boxes[..100].to_vec();
         odd[3].hi[0] = f64::INFINITY;
-        assert!(Grid::new(&odd).is_none());
+        assert!(Strips::new(&odd).is_none());
     }
 }

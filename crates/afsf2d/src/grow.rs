@@ -30,7 +30,7 @@ use springfield::{
 use geom_predicates::vector::{cross2, dist, dot};
 use geom_predicates::{orient2d, segment_distance};
 
-use crate::geom::{Aabb, P2, par_overlapping, par_overlapping_grid};
+use crate::geom::{Aabb, P2, par_overlapping_strips};
 use crate::input::AfsfParams;
 use crate::nodes::{NewNode, NodeStore};
 use crate::sanity::front_edges_meet;
@@ -469,9 +469,9 @@ impl<'p> Work<'p> {
             .collect();
         let path_ratio = 2.5;
         // the pairs are tested on every thread; what they freeze is a set of flags, the same
-        // whatever the order (the grid: the fronts of a far-field circle share ranges of x
+        // whatever the order (the strips: the fronts of a far-field circle share ranges of x
         // with the far side of the circle, which the sweep would meet)
-        let freezes = par_overlapping_grid(&boxes, |x, y, out: &mut Vec<(u32, [u32; 2])>| {
+        let freezes = par_overlapping_strips(&boxes, |x, y, out: &mut Vec<(u32, [u32; 2])>| {
             let (sx, sy) = (&segs[x], &segs[y]);
             if sx.owner[0] == NONE && sy.owner[0] == NONE {
                 return;
@@ -1043,7 +1043,7 @@ impl<'p> Work<'p> {
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
         // tested on every thread: the edges to freeze are a set, the same in any order
-        let hit_cells = par_overlapping(&boxes, |x, y, out: &mut Vec<u32>| {
+        let hit_cells = par_overlapping_strips(&boxes, |x, y, out: &mut Vec<u32>| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;
