@@ -1,7 +1,9 @@
 //! Criterion benches of the linear mesher: NACA0012 in a 20-chord far field at about 30k
 //! triangles (after cutting quads), first height 5e-5, growth 1.3: the whole mesher, and its
 //! fill stage alone (the fill's own timer, `AfsfStats::timings.fill`), and the obtuse-angle
-//! histogram of the mesh it makes (`max_angle_histogram`, the report's figure).
+//! histogram of the mesh it makes (`max_angle_histogram`, the report's figure); and in a far
+//! field of 2000 nodes, the fill, the closing test (with the planning) and the verification
+//! (their broad phase, docs/performance.md's session 27).
 //!
 //! Measured (release, one thread, this machine): see docs/afsf.md.
 
@@ -40,6 +42,12 @@ fn naca0012_30k(c: &mut Criterion) {
     let big = afsf2d::grow_mesh(&far, &params).expect("NACA0012 meshes");
     eprintln!("far-field fill: {} triangles", big.stats.fill_triangles);
     bench_fill(c, "naca0012_far2000_fill", &far, &params);
+    // the closing test (with the planning) and the verification of every layer step: their
+    // broad phase over the fronts of the far-field circle
+    bench_timer(c, "naca0012_far2000_closing", &far, &params, |t| {
+        t.plan_and_closing
+    });
+    bench_timer(c, "naca0012_far2000_verify", &far, &params, |t| t.verify);
     // the report's obtuse-angle figure of that mesh (quads cut along the shorter diagonal)
     let mesh = &out.layered.mesh;
     c.bench_function("naca0012_30k_angle_histogram", |b| {
@@ -56,12 +64,23 @@ fn bench_fill(
     loops: &[afsf2d::FrontLoop],
     params: &afsf2d::AfsfParams,
 ) {
+    bench_timer(c, name, loops, params, |t| t.fill);
+}
+
+/// A phase of meshing `loops`, as timed by the mesher itself (`phase` picks its timer).
+fn bench_timer(
+    c: &mut Criterion,
+    name: &str,
+    loops: &[afsf2d::FrontLoop],
+    params: &afsf2d::AfsfParams,
+    phase: fn(&afsf2d::Timings) -> f64,
+) {
     c.bench_function(name, |b| {
         b.iter_custom(|iters| {
             (0..iters)
                 .map(|_| {
                     let out = afsf2d::grow_mesh(loops, params).expect("NACA0012 meshes");
-                    Duration::from_secs_f64(out.stats.timings.fill)
+                    Duration::from_secs_f64(phase(&out.stats.timings))
                 })
                 .sum()
         })

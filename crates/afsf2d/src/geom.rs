@@ -1,7 +1,10 @@
 //! Planar names used across afsf2d: a point is `[f64; 2]` and a box is 2D. The predicates
 //! themselves (exact orientation, segment crossing and distance, projection, sort-and-sweep)
 //! and the polygon area are the shared ones of `geom-predicates`; [`par_overlapping`] runs
-//! the same sort-and-sweep on every thread, for the tests whose result is a set.
+//! the same sort-and-sweep on every thread, for the tests whose result is a set;
+//! [`par_overlapping_strips`] finds the same pairs by a sweep within horizontal strips, for
+//! sets of boxes where many share a range of x without meeting (the fronts of a far-field
+//! circle).
 
 use rayon::prelude::*;
 
@@ -54,6 +57,177 @@ pub(crate) fn par_overlapping<T: Send>(
     found.into_iter().flatten().collect()
 }
 
+/// Strip entries per box at most before [`par_overlapping_strips`] falls back to the sweep
+/// (boxes much taller than the typical one, crossing many strips each).
+const STRIP_ENTRIES_PER_BOX: usize = 8;
+
+/// The pairs of [`par_overlapping`], each visited as `visit(i, j, out)` with the same `i` and
+/// `j` (`i` the first of the two in the sweep's order: by low x, ties by index), found by a
+/// sweep within horizontal strips: each box is listed in every strip (of the median box's
+/// larger side) it crosses, and a pair is visited in the first strip both cross. Where many
+/// boxes share a range of x far apart in y (the fronts of a far-field circle: the whole sweep
+/// met the far side of the circle), a strip holds only the near ones. The findings come back
+/// in strip order (deterministic, whatever the number of threads), not in the sweep's: for
+/// set results only. Falls back to [`par_overlapping`] when a coordinate is not finite or
+/// the boxes are too unequal in height.
+pub(crate) fn par_overlapping_strips<T: Send>(
+    boxes: &[Aabb],
+    visit: impl Fn(usize, usize, &mut Vec<T>) + Sync,
+) -> Vec<T> {
+    let Some(strips) = Strips::new(boxes) else {
+        return par_overlapping(boxes, visit);
+    };
+    // tasks of about SWEEP_CHUNK entries, whole strips each
+    let mut tasks = vec![0usize];
+    for row in 0..strips.rows() {
+        if strips.start[row + 1] as usize - strips.start[*tasks.last().unwrap()] as usize
+            >= SWEEP_CHUNK
+        {
+            tasks.push(row + 1);
+        }
+    }
+    if *tasks.last().unwrap() != strips.rows() {
+        tasks.push(strips.rows());
+    }
+    let found: Vec<Vec<T>> = tasks
+        .par_windows(2)
+        .map(|rows| {
+            let mut out = Vec::new();
+            for row in rows[0]..rows[1] {
+                strips.sweep(row, boxes, &visit, &mut out);
+            }
+            out
+        })
+        .collect();
+    found.into_iter().flatten().collect()
+}
+
+/// Boxes by horizontal strip: `entries[start[r]..start[r + 1]]` are the boxes crossing strip
+/// `r`, in the sweep's order (low x, ties by index).
+struct Strips {
+    start: Vec<u32>,
+    entries: Vec<Entry>,
+}
+
+/// A box listed in a strip: its low and high x, index and first strip.
+#[derive(Clone, Copy, Default)]
+struct Entry {
+    lo: f64,
+    hi: f64,
+    index: u32,
+    first: u32,
+}
+
+impl Strips {
+    /// The strips of `boxes`, as tall as the median larger side of the boxes (of 1024 spread
+    /// through the list; at most as many strips as boxes); `None` when a coordinate is not
+    /// finite, there are fewer than two boxes, or more than [`STRIP_ENTRIES_PER_BOX`]
+    /// entries a box.
+    fn new(boxes: &[Aabb]) -> Option<Self> {
+        let n = boxes.len();
+        let finite = |b: &Aabb| b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
+        if n < 2 || n >= u32::MAX as usize || !boxes.iter().all(finite) {
+            return None;
+        }
+        let (mut y0, mut y1) = (boxes[0].lo[1], boxes[0].hi[1]);
+        for b in boxes {
+            y0 = y0.min(b.lo[1]);
+            y1 = y1.max(b.hi[1]);
+        }
+        let samples = n.min(1024);
+        let mut sides: Vec<f64> = (0..samples)
+            .map(|k| {
+                let b = &boxes[k * n / samples];
+                (b.hi[0] - b.lo[0]).max(b.hi[1] - b.lo[1])
+            })
+            .collect();
+        let (_, &mut median, _) = sides.select_nth_unstable_by(samples / 2, f64::total_cmp);
+        let side = median.max((y1 - y0) / n as f64).max(f64::MIN_POSITIVE);
+        let rows = (((y1 - y0) / side) as usize + 1).min(n);
+        let at = |y: f64| (((y - y0) / side) as usize).min(rows - 1);
+        let mut start = vec![0u32; rows + 1];
+        let mut total = 0usize;
+        for b in boxes {
+            let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
+            total += r1 - r0 + 1;
+            if total > STRIP_ENTRIES_PER_BOX * n {
+                return None;
+            }
+            for r in r0..=r1 {
+                start[r + 1] += 1;
+            }
+        }
+        for r in 0..rows {
+            start[r + 1] += start[r];
+        }
+        let mut fill = start.clone();
+        let mut entries = vec![Entry::default(); total];
+        for (i, b) in boxes.iter().enumerate() {
+            let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
+            for r in r0..=r1 {
+                entries[fill[r] as usize] = Entry {
+                    lo: b.lo[0],
+                    hi: b.hi[0],
+                    index: i as u32,
+                    first: r0 as u32,
+                };
+                fill[r] += 1;
+            }
+        }
+        // each strip in the sweep's order (the entries of a strip come by increasing index:
+        // a stable sort on low x)
+        let mut strips = Strips { start, entries };
+        strips.sort_rows();
+        Some(strips)
+    }
+
+    fn rows(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// Sorts every strip by low x, stably (ties keep the index order), on every thread.
+    fn sort_rows(&mut self) {
+        let mut rest: &mut [Entry] = &mut self.entries;
+        let mut rows: Vec<&mut [Entry]> = Vec::with_capacity(self.start.len() - 1);
+        for w in self.start.windows(2) {
+            let (row, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
+            rows.push(row);
+            rest = tail;
+        }
+        rows.par_iter_mut()
+            .with_min_len(64)
+            .for_each(|row| row.sort_by(|a, b| a.lo.total_cmp(&b.lo)));
+    }
+
+    /// Visits the overlapping pairs whose first common strip is `row`, by a sweep in x.
+    fn sweep<T>(
+        &self,
+        row: usize,
+        boxes: &[Aabb],
+        visit: &impl Fn(usize, usize, &mut Vec<T>),
+        out: &mut Vec<T>,
+    ) {
+        let list = &self.entries[self.start[row] as usize..self.start[row + 1] as usize];
+        let row = row as u32;
+        for (k, ea) in list.iter().enumerate() {
+            let ba = &boxes[ea.index as usize];
+            for eb in &list[k + 1..] {
+                if eb.lo > ea.hi {
+                    break;
+                }
+                // the first strip both cross: the later of their first strips
+                if ea.first.max(eb.first) != row {
+                    continue;
+                }
+                let bb = &boxes[eb.index as usize];
+                if bb.lo[1] <= ba.hi[1] && bb.hi[1] >= ba.lo[1] {
+                    visit(ea.index as usize, eb.index as usize, out);
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -88,5 +262,62 @@ mod tests {
             });
             assert_eq!(found, expected, "{threads} threads");
         }
+    }
+
+    /// The strips find exactly the sweep's pairs, each the same way round, for boxes of very
+    /// different sizes (a ring of small boxes, some large ones, some equal low x), with one
+    /// thread and with several.
+    #[test]
+    fn the_strips_find_the_sweeps_pairs_the_same_way_round() {
+        let mut rng = testkit::layered::Rng(7);
+        let mut next = || rng.unit();
+        let mut boxes: Vec<Aabb> = (0..5000)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / 5000.0;
+                let (p, r) = ([20.0 * t.cos(), 20.0 * t.sin()], 0.08 * next());
+                let q = [p[0] + r * (t + 1.0).cos(), p[1] + r * (t + 1.0).sin()];
+                Aabb::of_segment(p, q, 0.02 * next())
+            })
+            .collect();
+        for k in 0..300 {
+            let x = if k % 5 == 0 {
+                3.0
+            } else {
+                40.0 * next() - 20.0
+            };
+            let p = [x, 40.0 * next() - 20.0];
+            let s = if k % 50 == 0 { 5.0 } else { 0.1 };
+            boxes.push(Aabb::of_segment(
+                p,
+                [x + s * next(), p[1] + s * next()],
+                0.0,
+            ));
+        }
+        let mut expected = Vec::new();
+        geom_predicates::for_each_overlapping_pair(&boxes, |i, j| expected.push((i, j)));
+        expected.sort_unstable();
+        assert!(expected.len() > 3000, "{} pairs", expected.len());
+        assert!(
+            Strips::new(&boxes).is_some(),
+            "the strips, not the fallback"
+        );
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut found = pool.install(|| {
+                par_overlapping_strips(&boxes, |i, j, out: &mut Vec<(usize, usize)>| {
+                    out.push((i, j))
+                })
+            });
+            found.sort_unstable();
+            assert_eq!(found, expected, "{threads} threads");
+        }
+        // too few boxes, or a coordinate not finite: the sweep's pairs all the same
+        assert!(Strips::new(&boxes[..1]).is_none());
+        let mut odd = boxes[..100].to_vec();
+        odd[3].hi[0] = f64::INFINITY;
+        assert!(Strips::new(&odd).is_none());
     }
 }
