@@ -86,7 +86,7 @@ pub enum CutError {
 /// `farfield` boundary facets, each tetrahedron with its cell's layer and pipe.
 pub fn cut_to_tets(poly: &PolyMesh) -> Result<Mesh, CutError> {
     check(poly)?;
-    finish(poly, order::sweep_ranks(poly))
+    finish(poly, order::sweep_ranks(poly), false)
 }
 
 /// The largest tetrahedron dihedral angle the sweep tries to stay under, in degrees.
@@ -98,17 +98,17 @@ pub const TARGET_DIHEDRAL_DEG: f64 = 150.0;
 pub fn cut_to_mixed(poly: &PolyMesh) -> Result<Mesh, CutError> {
     check(poly)?;
     let rank = order::sweep_ranks(poly);
-    finish(poly, order::round_cut_ranks(poly, &rank)?)
+    finish(poly, order::round_cut_ranks(poly, &rank)?, true)
 }
 
 /// The cut of the ranks, refined cell by cell where it is worse than the target
 /// ([`refine`]), assembled. Should a piece stay inverted, the ranks are first improved by
 /// swaps ([`improve`]) and refined again, and the better of the two kept.
-fn finish(poly: &PolyMesh, mut rank: Vec<u32>) -> Result<Mesh, CutError> {
-    let mut cut = refined(poly, &rank);
+fn finish(poly: &PolyMesh, mut rank: Vec<u32>, mixed: bool) -> Result<Mesh, CutError> {
+    let mut cut = refined(poly, &rank, mixed);
     if cut.1 >= improve::INVERTED {
         improve::improve(poly, &mut rank, TARGET_DIHEDRAL_DEG, 4);
-        let second = refined(poly, &rank);
+        let second = refined(poly, &rank, mixed);
         if second.1 < cut.1 {
             cut = second;
         }
@@ -122,10 +122,15 @@ fn finish(poly: &PolyMesh, mut rank: Vec<u32>) -> Result<Mesh, CutError> {
 /// layer of prisms the side quadrilaterals' diagonals are shared along chains of cells, and
 /// one level left the wing's case 2 a tetrahedron of 160.8° in a cell whose best cut alone
 /// is 93° (case 1: 154.6° → 151.7°, case 2: 160.8° → 157.6°, case 3: 159.6° → 157.4°).
-fn refined(poly: &PolyMesh, rank: &[u32]) -> (refine::Cut, f64) {
+fn refined(poly: &PolyMesh, rank: &[u32], mixed: bool) -> (refine::Cut, f64) {
     let mut cut = refine::Cut::from_ranks(poly, rank);
-    refine::refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 2);
-    let worst = refine::refine(poly, &mut cut, BAR_DIHEDRAL_DEG, REFINE_PASSES, 3);
+    let refine = if mixed {
+        refine::refine_mixed
+    } else {
+        refine::refine
+    };
+    refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 2);
+    let worst = refine(poly, &mut cut, BAR_DIHEDRAL_DEG, REFINE_PASSES, 3);
     (cut, worst)
 }
 
