@@ -169,7 +169,11 @@ fn cell_cuts(
                 (Some(_), None) if k.len() == 4 && !through(k, current[i], a) => continue 'apex,
                 (Some(_), _) => {}
                 (None, Some(b)) => {
-                    let kept = if whole { worst(k, None, a) } else { f64::INFINITY };
+                    let kept = if whole {
+                        worst(k, None, a)
+                    } else {
+                        f64::INFINITY
+                    };
                     far.push((b, [worst(k, Some(k[0]), a), worst(k, Some(k[1]), a), kept]))
                 }
                 (None, None) => {
