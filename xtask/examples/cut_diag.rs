@@ -125,6 +125,9 @@ fn main() {
     if let Ok(deep) = std::env::var("DEEP") {
         refine(&p, &mut cut, 160.0, passes, deep.parse().unwrap());
     }
+    if let Ok(extra) = std::env::var("EXTRA") {
+        refine(&p, &mut cut, 150.0, passes, extra.parse().unwrap());
+    }
     println!(
         "after refine ({passes} passes, depth {depth}) +{:.3}s:",
         t.elapsed().as_secs_f64()

@@ -35,6 +35,9 @@
 //!   the target dihedral angle and disturbs the fewest standard cells.
 //!   Standard cells without such a node (prisms, hexahedra, pyramids, tetrahedra) are kept,
 //!   and a quadrilateral they share stays a quadrilateral on the other side (a pyramid's base).
+//!   Its refining ([`refine::refine_mixed`]) may also keep a quadrilateral between two cut
+//!   cells whole, a pyramid's base on both sides (a prism cut into a pyramid and a
+//!   tetrahedron), which breaks the chains of diagonals neighbours force on a cell.
 //!
 //! Every output cell keeps the layer and pipe of the cell it comes from. The boundary facets
 //! are the bottoms of layer-0 cells (patch `wall`) and the other faces of one cell (the outer

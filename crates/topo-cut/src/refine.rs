@@ -10,7 +10,10 @@
 //! re-cuts every cell around both nodes, this changes one cell and its face neighbours only,
 //! and reaches the diagonal patterns no single order gives around it. A change is kept when it
 //! lowers the largest dihedral angle over the cell and its neighbours (then the cell's own).
-//! Faces kept whole (a kept cell's quadrilateral in the mixed cut) stay whole.
+//! Faces kept whole (a kept cell's quadrilateral in the mixed cut) stay whole. In the mixed
+//! cut ([`refine_mixed`]) a quadrilateral between two cut cells (or on the boundary) may be
+//! kept whole as well, or split where it was whole: each cell then cones it from an apex off
+//! it (a pyramid), so the two cells no longer have to agree on a diagonal.
 
 use mesh_model::poly::PolyMesh;
 
