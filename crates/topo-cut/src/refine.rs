@@ -445,10 +445,11 @@ fn refine_cut(
             // a hexahedron's re-cut lists 48 cuts against a prism's 12: two levels from it
             // cost too much (16 s for the bench's 26k merged hexahedra), so one; the bar's
             // deep pass (three levels, few cells) is left as asked
-            let deep = if poly.cell(c as usize).len() > 5 && depth == 2 {
-                1
-            } else {
-                depth
+            // (and more than three levels from one neither)
+            let deep = match (poly.cell(c as usize).len() > 5, depth) {
+                (true, 2) => 1,
+                (true, d) => d.min(3),
+                (false, d) => d,
             };
             if let Some(x) = r.recut(c, &mut Change::default(), deep, bound) {
                 for &(d, _, _) in &x.cells {
