@@ -24,7 +24,8 @@
 //!
 //! Where a cell is cut worse than [`TARGET_DIHEDRAL_DEG`], it is re-cut on its own
 //! ([`refine`]): any apex and any diagonals of its quadrilaterals, the neighbours across the
-//! changed faces re-cut in turn (two levels, three above [`BAR_DIHEDRAL_DEG`]), kept when the largest dihedral angle around it
+//! changed faces re-cut in turn (two levels, three above [`BAR_DIHEDRAL_DEG`], then four for
+//! the cells still above the target), kept when the largest dihedral angle around it
 //! drops — the dissertation's switching of extrusion edges, face by face rather than by
 //! swapping two nodes in the global order ([`improve`], now only the fallback when a piece
 //! stays inverted).
