@@ -4,6 +4,9 @@
 //! sizes, the worst piece of the cut and the best worst piece over every cone cut of the cell
 //! alone (every apex, every diagonal of the quadrilaterals away from it): when even the best
 //! is over 160°, the raw cell's geometry is the cause, not the order of the cuts.
+//! Environment: `DEPTH`, `DEEP`, `EXTRA` (the refining passes' depths: over 150°, over 160°,
+//! then over 150° again), `OLD` (a mixed cut refined without whole sides), `CELL` (print that
+//! cell, its sides' diagonals and the cells across, two levels), `DIAG` (every bad cell).
 
 use mesh_model::poly::{CellFace, PolyMesh};
 use mesh_model::{Shape, validate};
@@ -134,9 +137,6 @@ fn main() {
     );
     let after = topo_cut::assemble_cut(&p, &cut).expect("cut");
     report(&p, &after);
-    if let (Ok(c), Ok(k)) = (std::env::var("CELL"), std::env::var("SUB")) {
-        sub(&p, c.parse().unwrap(), k.parse().unwrap());
-    }
     if let Ok(c) = std::env::var("CELL") {
         explain(&p, &cut, c.parse().unwrap(), 2);
     }
@@ -354,103 +354,4 @@ fn pyramids(mesh: &mesh_model::Mesh) {
     println!(
         "pyramids {n}: min base-corner SJ {min_sj:.4} (under 0.1: {low}), worst best split {worst_split:.2}, over 130/150/160: {over:?}"
     );
-}
-
-/// The cells within `steps` face steps of cell `c` as a mesh of their own, cut both ways,
-/// printed as Rust arrays when the old rule leaves a tetrahedron over 160 degrees there.
-fn sub(p: &PolyMesh, c: usize, steps: usize) {
-    let mut across = vec![Vec::new(); p.face_count()];
-    for d in 0..p.cell_count() {
-        for cf in p.cell(d) {
-            across[cf.face as usize].push(d);
-        }
-    }
-    let mut cells = vec![c];
-    let mut front = vec![c];
-    for _ in 0..steps {
-        let mut next = Vec::new();
-        for &d in &front {
-            for cf in p.cell(d) {
-                for &o in &across[cf.face as usize] {
-                    if !cells.contains(&o) {
-                        cells.push(o);
-                        next.push(o);
-                    }
-                }
-            }
-        }
-        front = next;
-    }
-    cells.sort();
-    let mut node_map = std::collections::BTreeMap::new();
-    let mut face_map = std::collections::BTreeMap::new();
-    let mut q = PolyMesh::new();
-    let mut out_faces: Vec<Vec<u32>> = Vec::new();
-    let mut out_cells: Vec<(Vec<(u32, bool)>, u32)> = Vec::new();
-    for &d in &cells {
-        let mut fs = Vec::new();
-        for cf in p.cell(d) {
-            let f = cf.face as usize;
-            let id = *face_map.entry(f).or_insert_with(|| {
-                let k: Vec<u32> = p
-                    .face(f)
-                    .iter()
-                    .map(|&v| {
-                        let n = node_map.len() as u32;
-                        *node_map.entry(v).or_insert(n)
-                    })
-                    .collect();
-                out_faces.push(k.clone());
-                q.push_face(&k)
-            });
-            fs.push(CellFace {
-                face: id,
-                reversed: cf.reversed,
-            });
-        }
-        out_cells.push((
-            fs.iter().map(|x| (x.face, x.reversed)).collect(),
-            p.cell_layer[d],
-        ));
-        q.push_cell(&fs, p.cell_layer[d], d as u32);
-    }
-    let mut nodes = vec![[0.0; 3]; node_map.len()];
-    for (&v, &n) in &node_map {
-        nodes[n as usize] = p.nodes[v as usize];
-    }
-    q.nodes = nodes.clone();
-    let sweep = topo_cut::order::sweep_ranks(&q);
-    let rank = topo_cut::order::round_cut_ranks(&q, &sweep).expect("ranks");
-    let mut worst = [0.0; 2];
-    for (j, refine) in [topo_cut::refine::refine, topo_cut::refine::refine_mixed]
-        .into_iter()
-        .enumerate()
-    {
-        let mut cut = topo_cut::refine::Cut::from_ranks(&q, &rank);
-        refine(&q, &mut cut, 150.0, 8, 2);
-        refine(&q, &mut cut, 160.0, 8, 3);
-        let m = topo_cut::assemble_cut(&q, &cut).expect("cut");
-        worst[j] = mesh_model::measure3d::max_dihedral_deg(&m);
-    }
-    println!(
-        "sub of {} cells, {} nodes: old {:.2} new {:.2}",
-        cells.len(),
-        nodes.len(),
-        worst[0],
-        worst[1]
-    );
-    if std::env::var("PRINT").is_ok() {
-        let lo = p.cell_layer[c];
-        println!("const NODES: [[f64; 3]; {}] = {nodes:?};", nodes.len());
-        println!(
-            "const FACES: [&[u32]; {}] = {out_faces:?};",
-            out_faces.len()
-        );
-        let cs: Vec<(Vec<(u32, bool)>, u32)> =
-            out_cells.iter().map(|(f, l)| (f.clone(), l - lo)).collect();
-        println!(
-            "const CELLS: [(&[(u32, bool)], u32); {}] = {cs:?};",
-            cs.len()
-        );
-    }
 }
