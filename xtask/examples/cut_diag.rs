@@ -4,6 +4,9 @@
 //! sizes, the worst piece of the cut and the best worst piece over every cone cut of the cell
 //! alone (every apex, every diagonal of the quadrilaterals away from it): when even the best
 //! is over 160°, the raw cell's geometry is the cause, not the order of the cuts.
+//! Environment: `DEPTH`, `DEEP`, `EXTRA` (the refining passes' depths: over 150°, over 160°,
+//! then over 150° again), `OLD` (a mixed cut refined without whole sides), `CELL` (print that
+//! cell, its sides' diagonals and the cells across, two levels), `DIAG` (every bad cell).
 
 use mesh_model::poly::{CellFace, PolyMesh};
 use mesh_model::{Shape, validate};
@@ -116,9 +119,17 @@ fn main() {
     let t = std::time::Instant::now();
     let passes = std::env::var("PASSES").map_or(8, |s| s.parse().unwrap());
     let depth = std::env::var("DEPTH").map_or(2, |s| s.parse().unwrap());
-    topo_cut::refine::refine(&p, &mut cut, 150.0, passes, depth);
+    let refine = if mixed && std::env::var("OLD").is_err() {
+        topo_cut::refine::refine_mixed
+    } else {
+        topo_cut::refine::refine
+    };
+    refine(&p, &mut cut, 150.0, passes, depth);
     if let Ok(deep) = std::env::var("DEEP") {
-        topo_cut::refine::refine(&p, &mut cut, 160.0, passes, deep.parse().unwrap());
+        refine(&p, &mut cut, 160.0, passes, deep.parse().unwrap());
+    }
+    if let Ok(extra) = std::env::var("EXTRA") {
+        refine(&p, &mut cut, 150.0, passes, extra.parse().unwrap());
     }
     println!(
         "after refine ({passes} passes, depth {depth}) +{:.3}s:",
@@ -126,6 +137,59 @@ fn main() {
     );
     let after = topo_cut::assemble_cut(&p, &cut).expect("cut");
     report(&p, &after);
+    if let Ok(c) = std::env::var("CELL") {
+        explain(&p, &cut, c.parse().unwrap(), 2);
+    }
+}
+
+/// Prints cell `c`'s faces, their diagonals and the cells across (two levels).
+fn explain(p: &PolyMesh, cut: &topo_cut::refine::Cut, c: usize, depth: usize) {
+    let mut across = vec![Vec::new(); p.face_count()];
+    for d in 0..p.cell_count() {
+        for cf in p.cell(d) {
+            across[cf.face as usize].push(d);
+        }
+    }
+    let mut seen = vec![c];
+    let mut todo = vec![(c, 0)];
+    while let Some((d, lvl)) = todo.pop() {
+        let mut f = CellFaces::default();
+        f.load(p, d);
+        let mut nodes = Vec::new();
+        f.distinct_nodes(&mut nodes);
+        let mut pieces = Vec::new();
+        cut.pieces(&f, d, &mut pieces);
+        let q: Vec<String> = pieces
+            .iter()
+            .map(|x| format!("{:?}{:.1}", x.0, piece_quality(&p.nodes, x)))
+            .collect();
+        println!(
+            "{}cell {d} layer {} nodes {nodes:?} apex {} best alone {:.1} pieces {q:?}",
+            "  ".repeat(lvl),
+            p.cell_layer[d],
+            cut.apex[d] as i64,
+            best_cone(p, &f)
+        );
+        for i in 0..f.len() {
+            let id = f.id(i) as usize;
+            let other: Vec<usize> = across[id].iter().copied().filter(|&x| x != d).collect();
+            println!(
+                "{}  face {i} id {id} {:?} split {} across {:?}",
+                "  ".repeat(lvl),
+                f.face(i),
+                cut.split[id] as i64,
+                other
+            );
+            if lvl < depth && f.face(i).len() == 4 {
+                for o in other {
+                    if !seen.contains(&o) {
+                        seen.push(o);
+                        todo.push((o, lvl + 1));
+                    }
+                }
+            }
+        }
+    }
 }
 
 fn report(p: &PolyMesh, mesh: &mesh_model::Mesh) {
@@ -187,6 +251,7 @@ fn report(p: &PolyMesh, mesh: &mesh_model::Mesh) {
         bins[4],
         problems.len()
     );
+    pyramids(mesh);
     let verbose = std::env::var("DIAG").is_ok();
     let (mut order_fault, mut geom_fault) = (0, 0);
     let mut summary: std::collections::BTreeMap<String, (usize, usize)> = Default::default();
@@ -239,4 +304,54 @@ fn report(p: &PolyMesh, mesh: &mesh_model::Mesh) {
     for (k, v) in summary {
         println!("  {k}: order {} geometry {}", v.0, v.1);
     }
+}
+
+/// The pyramids' smallest base-corner scaled Jacobian and the worst of their best splits.
+fn pyramids(mesh: &mesh_model::Mesh) {
+    let (mut n, mut min_sj, mut worst_split, mut low, mut over) =
+        (0, f64::INFINITY, 0.0f64, 0, [0; 3]);
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    for c in mesh.cells.iter() {
+        if c.ty.shape != Shape::Pyramid {
+            continue;
+        }
+        n += 1;
+        let k = c.corners();
+        let p: Vec<[f64; 3]> = k.iter().map(|&v| mesh.nodes[v as usize]).collect();
+        let mut sj = f64::INFINITY;
+        for i in 0..4 {
+            let o = p[i];
+            let (a, b, e) = (sub(p[(i + 1) % 4], o), sub(p[(i + 3) % 4], o), sub(p[4], o));
+            let cr = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            let d = cr[0] * e[0] + cr[1] * e[1] + cr[2] * e[2];
+            let l = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            sj = sj.min(d / (l(a) * l(b) * l(e)));
+        }
+        if sj < 0.1 {
+            low += 1;
+        }
+        min_sj = min_sj.min(sj);
+        let split = |s: usize| {
+            let t = |x: usize, y: usize, z: usize| {
+                topo_cut::tet_dihedral_angles_deg([p[x], p[y], p[z], p[4]])
+                    .into_iter()
+                    .fold(0.0, f64::max)
+            };
+            t(s, (s + 1) % 4, (s + 2) % 4).max(t(s, (s + 2) % 4, (s + 3) % 4))
+        };
+        let q = split(0).min(split(1));
+        worst_split = worst_split.max(q);
+        for (j, e) in [130.0, 150.0, 160.0].iter().enumerate() {
+            if q > *e {
+                over[j] += 1;
+            }
+        }
+    }
+    println!(
+        "pyramids {n}: min base-corner SJ {min_sj:.4} (under 0.1: {low}), worst best split {worst_split:.2}, over 130/150/160: {over:?}"
+    );
 }

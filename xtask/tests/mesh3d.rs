@@ -709,18 +709,19 @@ fn front_volume(msh: &Path) -> f64 {
 }
 
 /// The built-in wing (case 1 of tables 5–7, 45 layers, tets) keeps every dihedral angle
-/// under 152° (issue 13's bar is 160°, its aim 150°; 179.7° before the growth's repair of
+/// under 150°, issue 13's aim (its bar is 160°; 179.7° before the growth's repair of
 /// capped cells, `afsf3d::repair`, 154.6° before `topo-cut`'s first refining pass went two
-/// levels deep, now 151.7°), with every wall node's full column, and almost every extrusion
+/// levels deep, 151.7° before its third pass, four levels deep over the cells still over
+/// 150°), with every wall node's full column, and almost every extrusion
 /// edge within table 6's 30° of its front's normal (7 over 30°; 139 before merged children
-/// leaning over 30° were stood upright, `afsf3d`'s `upright`). Cases 2 and 3 (156.96°,
-/// 158.9°) take too long for a debug test; `docs/3d.md` gives their commands.
+/// leaning over 30° were stood upright, `afsf3d`'s `upright`). Cases 2 and 3 (152.3°,
+/// 153.2°) take too long for a debug test; `docs/3d.md` gives their commands.
 #[test]
-fn the_built_in_wing_cut_into_tets_stays_under_152_degrees() {
+fn the_built_in_wing_cut_into_tets_stays_under_150_degrees() {
     let dir = tempfile::tempdir().unwrap();
     let r = mesh_case(dir.path(), "wing", "wing", 45);
     let max = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
-    assert!(max <= 152.0, "max dihedral {max}");
+    assert!(max <= 150.0, "max dihedral {max}");
     let table6 = r["quality"]["histograms"]
         .as_array()
         .unwrap()
@@ -737,4 +738,25 @@ fn the_built_in_wing_cut_into_tets_stays_under_152_degrees() {
         over_30 <= 15,
         "{over_30} extrusion edges over 30°: {table6}"
     );
+}
+
+/// The built-in wing (case 1, 45 layers) cut into mixed cells keeps its tetrahedra under
+/// 150°, the issue's aim: `topo-cut`'s mixed refining may keep a side between two cut cells
+/// whole (157.0° before, one tetrahedron over 150°; cases 2 and 3: 154.4° and 163.3° before,
+/// 150.0° now, `docs/3d.md`).
+#[test]
+fn the_built_in_wing_cut_into_mixed_cells_stays_under_150_degrees() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let file = case(
+        d,
+        "wingmix45",
+        "wing = \"naca0012\"\nspan = 2.0\nfirst_height = 1e-3\ntriangles = true",
+        "first_height = 1e-3\ngrowth = 1.3\nmax_layers = 45",
+        "mixed",
+    );
+    let r = mesh_case(d, &file, "wingmix45", 45);
+    let max = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
+    assert!(max <= 150.0, "max dihedral {max}");
+    assert!(r["cells"]["pyramid"].as_u64().unwrap() > 0, "{r}");
 }

@@ -24,7 +24,8 @@
 //!
 //! Where a cell is cut worse than [`TARGET_DIHEDRAL_DEG`], it is re-cut on its own
 //! ([`refine`]): any apex and any diagonals of its quadrilaterals, the neighbours across the
-//! changed faces re-cut in turn (two levels, three above [`BAR_DIHEDRAL_DEG`]), kept when the largest dihedral angle around it
+//! changed faces re-cut in turn (two levels, three above [`BAR_DIHEDRAL_DEG`], then four for
+//! the cells still above the target), kept when the largest dihedral angle around it
 //! drops — the dissertation's switching of extrusion edges, face by face rather than by
 //! swapping two nodes in the global order ([`improve`], now only the fallback when a piece
 //! stays inverted).
@@ -35,6 +36,9 @@
 //!   the target dihedral angle and disturbs the fewest standard cells.
 //!   Standard cells without such a node (prisms, hexahedra, pyramids, tetrahedra) are kept,
 //!   and a quadrilateral they share stays a quadrilateral on the other side (a pyramid's base).
+//!   Its refining ([`refine::refine_mixed`]) may also keep a quadrilateral between two cut
+//!   cells whole, a pyramid's base on both sides (a prism cut into a pyramid and a
+//!   tetrahedron), which breaks the chains of diagonals neighbours force on a cell.
 //!
 //! Every output cell keeps the layer and pipe of the cell it comes from. The boundary facets
 //! are the bottoms of layer-0 cells (patch `wall`) and the other faces of one cell (the outer
@@ -86,7 +90,7 @@ pub enum CutError {
 /// `farfield` boundary facets, each tetrahedron with its cell's layer and pipe.
 pub fn cut_to_tets(poly: &PolyMesh) -> Result<Mesh, CutError> {
     check(poly)?;
-    finish(poly, order::sweep_ranks(poly))
+    finish(poly, order::sweep_ranks(poly), false)
 }
 
 /// The largest tetrahedron dihedral angle the sweep tries to stay under, in degrees.
@@ -98,17 +102,17 @@ pub const TARGET_DIHEDRAL_DEG: f64 = 150.0;
 pub fn cut_to_mixed(poly: &PolyMesh) -> Result<Mesh, CutError> {
     check(poly)?;
     let rank = order::sweep_ranks(poly);
-    finish(poly, order::round_cut_ranks(poly, &rank)?)
+    finish(poly, order::round_cut_ranks(poly, &rank)?, true)
 }
 
 /// The cut of the ranks, refined cell by cell where it is worse than the target
 /// ([`refine`]), assembled. Should a piece stay inverted, the ranks are first improved by
 /// swaps ([`improve`]) and refined again, and the better of the two kept.
-fn finish(poly: &PolyMesh, mut rank: Vec<u32>) -> Result<Mesh, CutError> {
-    let mut cut = refined(poly, &rank);
+fn finish(poly: &PolyMesh, mut rank: Vec<u32>, mixed: bool) -> Result<Mesh, CutError> {
+    let mut cut = refined(poly, &rank, mixed);
     if cut.1 >= improve::INVERTED {
         improve::improve(poly, &mut rank, TARGET_DIHEDRAL_DEG, 4);
-        let second = refined(poly, &rank);
+        let second = refined(poly, &rank, mixed);
         if second.1 < cut.1 {
             cut = second;
         }
@@ -117,15 +121,25 @@ fn finish(poly: &PolyMesh, mut rank: Vec<u32>) -> Result<Mesh, CutError> {
 }
 
 /// The cut of the ranks refined: every cell worse than the target with its neighbours two
-/// levels deep, then the cells still worse than [`BAR_DIHEDRAL_DEG`] three levels deep (a deep
-/// search costs, so only where it is needed); and its worst piece. Two levels, not one: in a
+/// levels deep, then the cells still worse than [`BAR_DIHEDRAL_DEG`] three levels deep, then
+/// those still worse than the target four levels deep (a deep search costs, so only where it
+/// is needed); and its worst piece. Two levels, not one: in a
 /// layer of prisms the side quadrilaterals' diagonals are shared along chains of cells, and
 /// one level left the wing's case 2 a tetrahedron of 160.8° in a cell whose best cut alone
 /// is 93° (case 1: 154.6° → 151.7°, case 2: 160.8° → 157.6°, case 3: 159.6° → 157.4°).
-fn refined(poly: &PolyMesh, rank: &[u32]) -> (refine::Cut, f64) {
+fn refined(poly: &PolyMesh, rank: &[u32], mixed: bool) -> (refine::Cut, f64) {
     let mut cut = refine::Cut::from_ranks(poly, rank);
-    refine::refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 2);
-    let worst = refine::refine(poly, &mut cut, BAR_DIHEDRAL_DEG, REFINE_PASSES, 3);
+    let refine = if mixed {
+        refine::refine_mixed
+    } else {
+        refine::refine
+    };
+    refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 2);
+    refine(poly, &mut cut, BAR_DIHEDRAL_DEG, REFINE_PASSES, 3);
+    // the few cells still over the target, four levels deep: the wing's tets cut of case 2
+    // has 42 tetrahedra in (150°, 160°] after the two passes, 8 after this one (case 3: 44,
+    // 15), for about a second
+    let worst = refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 4);
     (cut, worst)
 }
 

@@ -10,7 +10,10 @@
 //! re-cuts every cell around both nodes, this changes one cell and its face neighbours only,
 //! and reaches the diagonal patterns no single order gives around it. A change is kept when it
 //! lowers the largest dihedral angle over the cell and its neighbours (then the cell's own).
-//! Faces kept whole (a kept cell's quadrilateral in the mixed cut) stay whole.
+//! Faces kept whole (a kept cell's quadrilateral in the mixed cut) stay whole. In the mixed
+//! cut ([`refine_mixed`]) a quadrilateral between two cut cells (or on the boundary) may be
+//! kept whole as well, or split where it was whole: each cell then cones it from an apex off
+//! it (a pyramid), so the two cells no longer have to agree on a diagonal.
 
 use mesh_model::poly::PolyMesh;
 
@@ -128,17 +131,23 @@ fn best_apex(
     best
 }
 
-/// The cone cuts of the loaded cell under `bound` into `out`, as (worst piece, apex, bits):
+/// How face `free[b]` is cut under the code `bits` of [`cell_cuts`]: split through its first
+/// node (0), its second (1), or kept whole (2).
+fn face_code(bits: u32, b: usize) -> u32 {
+    (bits >> (2 * b)) & 3
+}
+
+/// The cone cuts of the loaded cell under `bound` into `out`, as (worst piece, apex, code):
 /// every apex, and the diagonals of the faces `free` (by face of the cell; the others keep
-/// `current`) set by the bits (bit `b` set: face `free[b]` split through its second node,
-/// else its first). Only the admissible cuts are listed (each quadrilateral through the apex
-/// split through it: 8 of a hexahedron's 64 diagonal sets per apex, 2 of a prism's 8), in
-/// the order of apex, then bits; each face's pieces are measured once per apex, a cut's
-/// worst piece being the worst of its faces'.
+/// `current`) set by the code ([`face_code`]; kept whole only when `whole`, and never a face
+/// through the apex). Only the admissible cuts are listed (each quadrilateral through the
+/// apex split through it: 8 of a hexahedron's 64 diagonal sets per apex, 2 of a prism's 8),
+/// in the order of apex, then the far faces' choices; each face's pieces are measured once
+/// per apex, a cut's worst piece being the worst of its faces'.
 fn cell_cuts(
     nodes: &[[f64; 3]],
     faces: &CellFaces,
-    (free, current): (&[usize], &[u32]),
+    (free, current, whole): (&[usize], &[u32], bool),
     bound: f64,
     pieces: &mut Vec<Piece>,
     out: &mut Vec<(f64, u32, u32)>,
@@ -150,19 +159,25 @@ fn cell_cuts(
         face_cone(k, w, a, pieces);
         worst_piece(nodes, pieces)
     };
-    // the free faces away from the apex: (bit, worst piece with each diagonal)
-    let mut far: Vec<(usize, [f64; 2])> = Vec::new();
+    // the free faces away from the apex: (face, worst piece with each diagonal, kept whole)
+    let mut far: Vec<(usize, [f64; 3])> = Vec::new();
+    let choices: u32 = if whole { 3 } else { 2 };
     'apex: for &a in &apices {
         far.clear();
         let (mut forced, mut fixed) = (0u32, 0.0f64);
         for (i, k) in faces.faces().enumerate() {
             let bit = free.iter().position(|&j| j == i);
             match (k.iter().position(|&x| x == a), bit) {
-                (Some(at), Some(b)) if k.len() == 4 => forced |= ((at % 2) as u32) << b,
+                (Some(at), Some(b)) if k.len() == 4 => forced |= ((at % 2) as u32) << (2 * b),
                 (Some(_), None) if k.len() == 4 && !through(k, current[i], a) => continue 'apex,
                 (Some(_), _) => {}
                 (None, Some(b)) => {
-                    far.push((b, [worst(k, Some(k[0]), a), worst(k, Some(k[1]), a)]))
+                    let kept = if whole {
+                        worst(k, None, a)
+                    } else {
+                        f64::INFINITY
+                    };
+                    far.push((b, [worst(k, Some(k[0]), a), worst(k, Some(k[1]), a), kept]))
                 }
                 (None, None) => {
                     let w = Some(current[i]).filter(|&s| s != UNRANKED);
@@ -173,12 +188,13 @@ fn cell_cuts(
                 continue 'apex;
             }
         }
-        for m in 0..1u32 << far.len() {
-            let (mut bits, mut q) = (forced, fixed);
-            for (j, &(b, x)) in far.iter().enumerate() {
-                let s = ((m >> j) & 1) as usize;
-                bits |= (s as u32) << b;
-                q = q.max(x[s]);
+        for m in 0..choices.pow(far.len() as u32) {
+            let (mut bits, mut q, mut rest) = (forced, fixed, m);
+            for &(b, x) in &far {
+                let s = rest % choices;
+                rest /= choices;
+                bits |= s << (2 * b);
+                q = q.max(x[s as usize]);
             }
             if q < bound {
                 out.push((q, a, bits));
@@ -220,6 +236,8 @@ struct Refiner<'a> {
     q: Vec<f64>,
     across: Vec<[u32; 2]>,
     buf: (Vec<u32>, Vec<Piece>),
+    /// Whether a quadrilateral between two cut cells may be kept whole (the mixed cut).
+    whole: bool,
 }
 
 /// A re-cut of a few cells: the new diagonals by face (with the faces of the re-cut cells that
@@ -261,14 +279,24 @@ impl Refiner<'_> {
         let ids: Vec<u32> = (0..faces.len()).map(|i| faces.id(i)).collect();
         let current: Vec<u32> = ids.iter().map(|&f| change.split(self.cut, f)).collect();
         let fixed = |f: u32, change: &Change| change.faces.iter().any(|x| x.0 == f);
+        // a face free to change: split, or (mixed) a quadrilateral whose cells are both cut
+        let open = |i: usize| {
+            let cut_across = self
+                .neighbour(c, ids[i])
+                .is_none_or(|n| self.cut.apex[n as usize] != UNRANKED);
+            self.whole && faces.face(i).len() == 4 && cut_across
+        };
         let free: Vec<usize> = (0..ids.len())
-            .filter(|&i| current[i] != UNRANKED && !fixed(ids[i], change))
+            .filter(|&i| (current[i] != UNRANKED || open(i)) && !fixed(ids[i], change))
             .collect();
         let mut split = current.clone();
         let set = |split: &mut [u32], bits: u32| {
             for (b, &i) in free.iter().enumerate() {
                 let k = faces.face(i);
-                split[i] = normal_split(k, k[((bits >> b) & 1) as usize]);
+                split[i] = match face_code(bits, b) {
+                    2 => UNRANKED,
+                    s => normal_split(k, k[s as usize]),
+                };
             }
         };
         // the cuts of the cell alone under the bound, best first: the neighbours only make
@@ -277,7 +305,7 @@ impl Refiner<'_> {
         cell_cuts(
             &self.poly.nodes,
             &faces,
-            (&free, &current),
+            (&free, &current, self.whole),
             bound,
             &mut self.buf.1,
             &mut candidates,
@@ -361,12 +389,36 @@ impl Refiner<'_> {
 /// than five faces when `depth` is 2). Every cell must have faces
 /// of three or four nodes. Returns the worst piece of the cut (an inverted one counts 360°).
 pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth: usize) -> f64 {
+    refine_cut(poly, cut, (target, passes, depth), false)
+}
+
+/// [`refine`] for a mixed cut: a quadrilateral between two cut cells may also be kept whole,
+/// a pyramid's base on both sides (or split where it was whole), which breaks the chains of
+/// diagonals a prism's neighbours force on it (a prism cut into a pyramid and a tetrahedron
+/// keeps the side away from its apex whole).
+pub fn refine_mixed(
+    poly: &PolyMesh,
+    cut: &mut Cut,
+    target: f64,
+    passes: usize,
+    depth: usize,
+) -> f64 {
+    refine_cut(poly, cut, (target, passes, depth), true)
+}
+
+fn refine_cut(
+    poly: &PolyMesh,
+    cut: &mut Cut,
+    (target, passes, depth): (f64, usize, usize),
+    whole: bool,
+) -> f64 {
     let mut r = Refiner {
         poly,
         cut,
         q: Vec::new(),
         across: face_cells(poly),
         buf: Default::default(),
+        whole,
     };
     let mut faces = CellFaces::default();
     r.q = (0..poly.cell_count())
@@ -393,10 +445,11 @@ pub fn refine(poly: &PolyMesh, cut: &mut Cut, target: f64, passes: usize, depth:
             // a hexahedron's re-cut lists 48 cuts against a prism's 12: two levels from it
             // cost too much (16 s for the bench's 26k merged hexahedra), so one; the bar's
             // deep pass (three levels, few cells) is left as asked
-            let deep = if poly.cell(c as usize).len() > 5 && depth == 2 {
-                1
-            } else {
-                depth
+            // (and the third pass, four levels from a prism, one from a hexahedron: three
+            // took `cut_to_tets/hex` 1.1 s → 3.6 s)
+            let deep = match (poly.cell(c as usize).len() > 5, depth) {
+                (true, 2) | (true, 4..) => 1,
+                (_, d) => d,
             };
             if let Some(x) = r.recut(c, &mut Change::default(), deep, bound) {
                 for &(d, _, _) in &x.cells {

@@ -351,10 +351,83 @@ proptest! {
         rng.shuffle(&mut rank);
         let mut cut = topo_cut::refine::Cut::from_ranks(&poly, &rank);
         let before = topo_cut::max_dihedral_deg(&topo_cut::assemble_cut(&poly, &cut).unwrap());
+        let start = cut.clone();
         let worst = topo_cut::refine::refine(&poly, &mut cut, 120.0, 4, 1);
         let mesh = topo_cut::assemble_cut(&poly, &cut).unwrap();
         let s = check(&poly, &mesh);
         prop_assert!(s.max_dihedral <= before + 1e-9, "{} > {before}", s.max_dihedral);
         prop_assert!((s.max_dihedral - worst).abs() < 1e-9 || worst == 0.0, "{s} vs {worst}");
+        // the mixed cut's refining (sides may be kept whole) too
+        let mut cut = start;
+        let worst = topo_cut::refine::refine_mixed(&poly, &mut cut, 120.0, 4, 1);
+        let mesh = topo_cut::assemble_cut(&poly, &cut).unwrap();
+        let s = check(&poly, &mesh);
+        prop_assert!(s.max_dihedral <= before + 1e-9, "{} > {before}", s.max_dihedral);
+        prop_assert!((s.max_dihedral - worst).abs() < 1e-9 || worst == 0.0, "{s} vs {worst}");
     }
+}
+
+/// Two right prisms over the equilateral triangles (0, 1, 2) and (1, 3, 2) of a rhombus,
+/// `h` high, children `i + 4`; they share the side (1, 2, 6, 5).
+fn prism_pair(h: f64) -> PolyMesh {
+    let mut p = PolyMesh::new();
+    let y = 0.75f64.sqrt();
+    let base = [[0.0, 0.0], [1.0, 0.0], [0.5, y], [1.5, y]];
+    p.nodes = [0.0, h]
+        .iter()
+        .flat_map(|&z| base.iter().map(move |b| [b[0], b[1], z]))
+        .collect();
+    let face = |p: &mut PolyMesh, k: &[u32]| CellFace {
+        face: p.push_face(k),
+        reversed: false,
+    };
+    let shared = face(&mut p, &[1, 2, 6, 5]);
+    let a = [
+        face(&mut p, &[0, 2, 1]),
+        face(&mut p, &[4, 5, 6]),
+        face(&mut p, &[0, 1, 5, 4]),
+        shared,
+        face(&mut p, &[2, 0, 4, 6]),
+    ];
+    p.push_cell(&a, 0, 0);
+    let b = [
+        face(&mut p, &[1, 2, 3]),
+        face(&mut p, &[5, 7, 6]),
+        face(&mut p, &[1, 3, 7, 5]),
+        face(&mut p, &[3, 2, 6, 7]),
+        CellFace {
+            reversed: true,
+            ..shared
+        },
+    ];
+    p.push_cell(&b, 0, 1);
+    p
+}
+
+/// The mixed cut's refining may keep a side between two cut cells whole (a pyramid's base on
+/// both sides): two right prisms cut into tetrahedra, refined towards 91°, become a
+/// tetrahedron and a pyramid each (the tetrahedron a right corner, 90°), the shared side
+/// whole on both sides, conforming and the volume kept; refined as the tetrahedral cut is
+/// (every side split), each stays three tetrahedra over 91°.
+#[test]
+fn the_mixed_refining_keeps_a_shared_side_whole_where_every_tet_cut_is_worse() {
+    let poly = prism_pair(0.5);
+    assert!(poly.validate().is_empty(), "{:?}", poly.validate());
+    let rank: Vec<u32> = (0..poly.nodes.len() as u32).collect();
+    let start = topo_cut::refine::Cut::from_ranks(&poly, &rank);
+    let mut tets = start.clone();
+    let old = topo_cut::refine::refine(&poly, &mut tets, 91.0, 4, 2);
+    let t = check(&poly, &topo_cut::assemble_cut(&poly, &tets).unwrap());
+    let mut mixed = start;
+    let new = topo_cut::refine::refine_mixed(&poly, &mut mixed, 91.0, 4, 2);
+    let m = check(&poly, &topo_cut::assemble_cut(&poly, &mixed).unwrap());
+    println!("tets: {t} ({old:.2}); mixed: {m} ({new:.2})");
+    assert!(old > 91.0 && t.tets == 6, "{t}");
+    assert!(new <= 90.0 + 1e-9 && m.max_dihedral <= 90.0 + 1e-9, "{m}");
+    assert_eq!((m.tets, m.pyramids), (2, 2), "{m}");
+    assert_eq!(
+        mixed.split[0],
+        topo_cut::cone::UNRANKED,
+        "the shared side is whole"
+    );
 }
