@@ -78,15 +78,14 @@ pub(crate) fn par_overlapping_strips<T: Send>(
         return par_overlapping(boxes, visit);
     };
     // tasks of about SWEEP_CHUNK entries, whole strips each
-    let mut tasks = vec![0usize];
+    let (mut tasks, mut first) = (vec![0usize], 0usize);
     for row in 0..strips.rows() {
-        if strips.start[row + 1] as usize - strips.start[*tasks.last().unwrap()] as usize
-            >= SWEEP_CHUNK
-        {
-            tasks.push(row + 1);
+        if (strips.start[row + 1] - strips.start[first]) as usize >= SWEEP_CHUNK {
+            first = row + 1;
+            tasks.push(first);
         }
     }
-    if *tasks.last().unwrap() != strips.rows() {
+    if first != strips.rows() {
         tasks.push(strips.rows());
     }
     let found: Vec<Vec<T>> = tasks
