@@ -235,8 +235,9 @@ pub struct Measures3d {
     pub max_dihedral_deg: f64,
     /// Fraction of the wall nodes with their full column of layers.
     pub coverage: f64,
-    /// Tables 5, 6 and 7.
-    pub histograms: [Histogram; 3],
+    /// Tables 5, 6 and 7, then table 6 over the extrusion edges of the prisms and
+    /// hexahedra alone when the mesh has any (the mixed cut's layers).
+    pub histograms: Vec<Histogram>,
     /// The smallest corner scaled Jacobian of the prisms and hexahedra (`None` without any).
     pub min_corner_sj: Option<CornerJacobian>,
 }
@@ -316,6 +317,7 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
         .filter(|c| c.len() == layers + 1)
         .count();
     let (front_angles, deviations) = front_measures(wall, grown);
+    let layered = layered_deviations(mesh, &deviations);
     let count = |s| mesh.count(s);
     Measures3d {
         cells: [
@@ -346,7 +348,7 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
                      front it grew from (dissertation table 6)",
                 ),
                 &DEVIATION_EDGES,
-                &deviations,
+                &deviations.iter().map(|d| d.1).collect::<Vec<_>>(),
             ),
             Histogram::new(
                 (
@@ -356,9 +358,50 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
                 &DIHEDRAL_EDGES,
                 &dihedral,
             ),
-        ],
+        ]
+        .into_iter()
+        .chain(layered.map(|values| {
+            Histogram::new(
+                (
+                    "layer extrusion edge deviation",
+                    "table 6 over the extrusion edges of the prisms and hexahedra alone (the \
+                     mixed cut's layers; the extrusion edges of merged children are cut into \
+                     tetrahedra and pyramids)",
+                ),
+                &DEVIATION_EDGES,
+                &values,
+            )
+        }))
+        .collect(),
         min_corner_sj: min_corner_sj(wall, mesh),
     }
+}
+
+/// The deviations (of [`front_measures`]) of the extrusion edges that are side edges of a
+/// prism or a hexahedron of the cut `mesh` (bottom corner `i` to top corner `m + i`, the cut
+/// keeping the grown nodes); `None` when the mesh has no prism or hexahedron.
+fn layered_deviations(mesh: &Mesh, deviations: &[((u32, u32), f64)]) -> Option<Vec<f64>> {
+    let mut sides: Vec<(u32, u32)> = (0..mesh.cells.len())
+        .map(|i| mesh.cells.get(i))
+        .filter(|c| matches!(c.ty.shape, Shape::Prism | Shape::Hex))
+        .flat_map(|c| {
+            let k = c.corners();
+            let m = k.len() / 2;
+            (0..m).map(move |i| (k[i], k[m + i]))
+        })
+        .collect();
+    if sides.is_empty() {
+        return None;
+    }
+    sides.sort_unstable();
+    sides.dedup();
+    Some(
+        deviations
+            .iter()
+            .filter(|(e, _)| sides.binary_search(e).is_ok())
+            .map(|d| d.1)
+            .collect(),
+    )
 }
 
 /// The volume the boundary facets of `role` enclose, by the divergence theorem (facets turned
@@ -383,7 +426,8 @@ fn enclosed(mesh: &Mesh, role: Role) -> f64 {
 /// its repeated corner (a quad becomes a triangle) or, left with two corners, is no facet of
 /// that front (it collapsed to an edge) and is not counted; an extrusion edge two merged
 /// columns share is counted once.
-fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64>) {
+#[allow(clippy::type_complexity)]
+fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<((u32, u32), f64)>) {
     let depth = grown.columns.iter().map(Vec::len).min().unwrap_or(0);
     let mut angles = Vec::new();
     let mut deviations = Vec::new();
@@ -402,9 +446,9 @@ fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<f64
         edges.dedup();
         for (a, b) in edges {
             let (p, q) = (nodes[a as usize], nodes[b as usize]);
-            deviations.push(measure3d::angle_deg(
-                std::array::from_fn(|d| q[d] - p[d]),
-                normals[a as usize],
+            deviations.push((
+                (a, b),
+                measure3d::angle_deg(std::array::from_fn(|d| q[d] - p[d]), normals[a as usize]),
             ));
         }
         let above = layer_front(wall, grown, k + 1);
@@ -493,7 +537,32 @@ mod tests {
         assert!(angles.iter().all(|&a| a < 90.0), "{angles:?}");
         // layer 0 to 1: four edges; layer 1 to 2: three (5 -> 8 once)
         assert_eq!(deviations.len(), 7, "{deviations:?}");
-        assert!(deviations[..4].iter().all(|&d| d < 60.0), "{deviations:?}");
-        assert!(deviations[4..].iter().all(|&d| d < 1e-9), "{deviations:?}");
+        assert!(deviations[..4].iter().all(|d| d.1 < 60.0), "{deviations:?}");
+        assert!(deviations[4..].iter().all(|d| d.1 < 1e-9), "{deviations:?}");
+    }
+
+    #[test]
+    fn the_layers_table_6_counts_only_the_side_edges_of_prisms_and_hexahedra() {
+        use mesh_model::{CellType, Dim};
+        let mut mesh = Mesh::new(Dim::Three, 1);
+        mesh.nodes = vec![[0.0; 3]; 8];
+        // a prism 0 1 2 | 3 4 5 and a tetrahedron 0 2 6 7 (its edge 6-7 is no prism's)
+        mesh.cells
+            .push(CellType::new(Shape::Prism, 1), &[0, 1, 2, 3, 4, 5]);
+        mesh.cells.push(CellType::new(Shape::Tet, 1), &[0, 2, 6, 7]);
+        let deviations = [
+            ((0, 3), 5.0),
+            ((1, 4), 35.0),
+            ((6, 7), 40.0),
+            ((0, 1), 50.0),
+        ];
+        assert_eq!(
+            layered_deviations(&mesh, &deviations),
+            Some(vec![5.0, 35.0])
+        );
+        let mut tets = Mesh::new(Dim::Three, 1);
+        tets.nodes = vec![[0.0; 3]; 4];
+        tets.cells.push(CellType::new(Shape::Tet, 1), &[0, 1, 2, 3]);
+        assert_eq!(layered_deviations(&tets, &deviations), None);
     }
 }
