@@ -105,7 +105,7 @@ fn main() {
     let t = std::time::Instant::now();
     let rank = topo_cut::order::sweep_ranks(&p);
     let mut rank = if mixed {
-        topo_cut::order::round_cut_ranks(&p, &rank).expect("ranks")
+        topo_cut::order::round_cut_ranks(&p, &rank, &[]).expect("ranks")
     } else {
         rank
     };

@@ -25,6 +25,10 @@ pub struct Case3d {
     pub layers: afsf3d::LayerParams,
     /// `[cut] cells`.
     pub cells: CutCells,
+    /// `[cut] max_lean_deg`: in the mixed cut, a layer cell with an extrusion edge leaning
+    /// more than this off its front's normal (table 6's angle) is cut into tetrahedra and
+    /// pyramids, not kept as a prism or hexahedron (default [`MAX_LEAN_DEG`]; 180 keeps all).
+    pub max_lean_deg: f64,
     /// `[curving] order` (1 or 2).
     pub order: u8,
 }
@@ -138,6 +142,7 @@ struct LayerKeys3d {
 #[serde(deny_unknown_fields)]
 struct CutKeys {
     cells: Option<CutCells>,
+    max_lean_deg: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -152,6 +157,11 @@ struct CurvingKeys3d {
 /// corners keep a scaled Jacobian above 0.2 (0.206; 0.0145 with 1, 0.148 with 0.35, 0.1975
 /// with 0.25; `docs/3d.md`).
 pub const QUAD_WING_MAX_ASPECT: f64 = 0.26;
+
+/// The default `[cut] max_lean_deg`: the mixed mesh's prisms and hexahedra keep their side
+/// edges within table 6's 30° of the wall normal (the bar); the few layer cells over
+/// an edge leaning more (merged children over parents far apart) are cut instead.
+pub const MAX_LEAN_DEG: f64 = 30.0;
 
 /// The most rounds of direction smoothing a 3D case may ask for.
 pub const MAX_SMOOTHING: u32 = 100;
@@ -230,6 +240,11 @@ pub(crate) fn parse(
         );
         layers.smoothing = n as usize;
     }
+    let max_lean_deg = file.cut.max_lean_deg.unwrap_or(MAX_LEAN_DEG);
+    ensure!(
+        max_lean_deg.is_finite() && max_lean_deg > 0.0 && max_lean_deg <= 180.0,
+        "{origin}: [cut] max_lean_deg = {max_lean_deg}: must be above 0 and at most 180 (degrees)"
+    );
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
     Ok(Case3d {
@@ -238,6 +253,7 @@ pub(crate) fn parse(
         surface,
         layers,
         cells: file.cut.cells.unwrap_or(CutCells::Mixed),
+        max_lean_deg,
         order,
     })
 }

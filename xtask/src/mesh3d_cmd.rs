@@ -55,7 +55,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
         pipeline3d::grow(case, &surface)
     })?;
     let mesh = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
-        pipeline3d::cut(case, &grown)
+        pipeline3d::cut(case, &surface, &grown)
     })?;
     let mut measures = timed(r, quiet, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &mesh, case.layers.layers)

@@ -175,13 +175,48 @@ fn facet_centre(surface: &Surface, f: usize) -> Option<[f64; 3]> {
     Some(c)
 }
 
-/// The layer cells cut into tetrahedra or mixed standard cells.
-pub fn cut(case: &Case3d, grown: &afsf3d::Grown3d) -> Result<Mesh> {
+/// The layer cells cut into tetrahedra or mixed standard cells; in the mixed cut, the cells
+/// with an extrusion edge leaning more than `[cut] max_lean_deg` off the normal of the front
+/// it grew from ([`leaning_cells`]) are cut too.
+pub fn cut(case: &Case3d, wall: &Surface, grown: &afsf3d::Grown3d) -> Result<Mesh> {
     match case.cells {
         CutCells::Tets => topo_cut::cut_to_tets(&grown.mesh),
-        CutCells::Mixed => topo_cut::cut_to_mixed(&grown.mesh),
+        CutCells::Mixed => topo_cut::cut_to_mixed_cutting(
+            &grown.mesh,
+            &leaning_cells(wall, grown, case.max_lean_deg),
+        ),
     }
     .map_err(|e| anyhow::anyhow!("{}: cutting the layer cells: {e}", case.origin))
+}
+
+/// One flag per layer cell: whether both ends of an extrusion edge leaning more than
+/// `limit_deg` off its front's normal (table 6's angle, [`front_measures`]) are nodes of it
+/// (so, in a prism or hexahedron, one of its side edges). None flagged at 180°.
+pub fn leaning_cells(wall: &Surface, grown: &afsf3d::Grown3d, limit_deg: f64) -> Vec<bool> {
+    if limit_deg >= 180.0 {
+        return Vec::new();
+    }
+    let (_, deviations) = front_measures(wall, grown);
+    let mut leaning: Vec<(u32, u32)> = deviations
+        .iter()
+        .filter(|d| d.1 > limit_deg)
+        .map(|d| d.0)
+        .collect();
+    leaning.sort_unstable();
+    let poly = &grown.mesh;
+    let mut nodes = Vec::new();
+    (0..poly.cell_count())
+        .map(|c| {
+            nodes.clear();
+            for f in poly.cell(c) {
+                nodes.extend_from_slice(poly.face(f.face as usize));
+            }
+            nodes.sort_unstable();
+            nodes.dedup();
+            let has = |v: u32| nodes.binary_search(&v).is_ok();
+            leaning.iter().any(|&(a, b)| has(a) && has(b))
+        })
+        .collect()
 }
 
 /// The upper bin edges of table 5 (largest angle of the front facets), degrees.

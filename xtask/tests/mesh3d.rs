@@ -363,6 +363,67 @@ fn a_layer_height_limit_from_the_case_file_holds_the_heights() {
     }
 }
 
+/// `[cut] max_lean_deg`: the mixed cut keeps no prism whose side edge leans more than that
+/// off its front's normal (table 6 over the kept layers stays under it), cutting those cells
+/// into tetrahedra and pyramids; 180 keeps every prism; a bad value is refused by name.
+#[test]
+fn the_mixed_cut_keeps_no_prism_leaning_over_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let surface = "builtin = \"sphere\"\nrefinement = 2";
+    let layers = "first_height = 0.01\ngrowth = 1.2\nmax_layers = 4";
+    let plain = case(d, "plain", surface, layers, "mixed");
+    let with_limit = |name: &str, limit: &str| {
+        let file = case(d, name, surface, layers, "mixed");
+        let text = std::fs::read_to_string(d.join(&file)).unwrap();
+        let text = text.replace("\"mixed\"", &format!("\"mixed\"\nmax_lean_deg = {limit}"));
+        std::fs::write(d.join(&file), text).unwrap();
+        file
+    };
+    let (lean, all) = (with_limit("lean", "0.3"), with_limit("all", "180"));
+    let r_plain = mesh_case(d, &plain, "plain", 4);
+    let r_lean = mesh_case(d, &lean, "lean", 4);
+    mesh_case(d, &all, "all", 4);
+    let read = |f: &str| std::fs::read(d.join(f)).unwrap();
+    assert!(
+        read("all.msh") == read("plain.msh"),
+        "180 keeps every prism"
+    );
+    let cells = |r: &serde_json::Value, k: &str| r["cells"][k].as_u64().unwrap();
+    let hs = |r: &serde_json::Value| r["quality"]["histograms"].as_array().unwrap().clone();
+    // the plain cut (the default limit, 30 degrees): every cell a prism, some side edges
+    // over 0.3 degrees
+    assert_eq!(
+        cells(&r_plain, "tet") + cells(&r_plain, "pyramid"),
+        0,
+        "{r_plain}"
+    );
+    assert!(
+        hs(&r_plain)[3]["max_deg"].as_f64().unwrap() > 0.3,
+        "{r_plain}"
+    );
+    // the limit at 0.3 degrees: those cells cut, the prisms left within it
+    assert!(cells(&r_lean, "tet") > 0, "{r_lean}");
+    assert!(
+        cells(&r_lean, "prism") < cells(&r_plain, "prism"),
+        "{r_lean}"
+    );
+    if let Some(h) = hs(&r_lean).get(3) {
+        assert!(h["max_deg"].as_f64().unwrap() <= 0.3, "{r_lean}");
+    }
+    for bad in ["0.0", "-5.0", "181.0", "nan"] {
+        let text = std::fs::read_to_string(d.join(&lean))
+            .unwrap()
+            .replace("max_lean_deg = 0.3", &format!("max_lean_deg = {bad}"));
+        std::fs::write(d.join("bad.toml"), text).unwrap();
+        let o = run(d, &["bad.toml"]);
+        assert_eq!(o.status.code(), Some(1), "max_lean_deg = {bad}");
+        let e = stderr(&o);
+        assert_eq!(e.trim().lines().count(), 1, "{bad}: {e}");
+        assert!(e.contains("[cut] max_lean_deg"), "{bad}: {e}");
+    }
+}
+
 /// The `naca0012` wing (surface and layers from 1e-3, growth 1.3) with the `[surface]` keys
 /// `surface`, `layers` layers and the cut `cut`, meshed by [`mesh_case`].
 fn mesh_wing(d: &Path, surface: &str, layers: u64, cut: &str) -> serde_json::Value {

@@ -39,6 +39,8 @@
 //!   Its refining ([`refine::refine_mixed`]) may also keep a quadrilateral between two cut
 //!   cells whole, a pyramid's base on both sides (a prism cut into a pyramid and a
 //!   tetrahedron), which breaks the chains of diagonals neighbours force on a cell.
+//!   [`cut_to_mixed_cutting`] round-cuts the standard cells a caller flags as well (a
+//!   judgement this crate cannot make, e.g. prisms leaning too far off the wall's normal).
 //!
 //! Every output cell keeps the layer and pipe of the cell it comes from. The boundary facets
 //! are the bottoms of layer-0 cells (patch `wall`) and the other faces of one cell (the outer
@@ -100,9 +102,16 @@ pub const TARGET_DIHEDRAL_DEG: f64 = 150.0;
 /// (dissertation §5.2.5), conforming: a quadrilateral face of a kept cell stays a
 /// quadrilateral (a pyramid's base) on the other side.
 pub fn cut_to_mixed(poly: &PolyMesh) -> Result<Mesh, CutError> {
+    cut_to_mixed_cutting(poly, &[])
+}
+
+/// [`cut_to_mixed`], with the cells `cut_anyway` flags (one flag per cell, or none) round-cut
+/// as well even where they are standard cells: a caller's judgement this crate cannot make,
+/// e.g. a prism whose side edges lean too far off the wall's normal.
+pub fn cut_to_mixed_cutting(poly: &PolyMesh, cut_anyway: &[bool]) -> Result<Mesh, CutError> {
     check(poly)?;
     let rank = order::sweep_ranks(poly);
-    finish(poly, order::round_cut_ranks(poly, &rank)?, true)
+    finish(poly, order::round_cut_ranks(poly, &rank, cut_anyway)?, true)
 }
 
 /// The cut of the ranks, refined cell by cell where it is worse than the target

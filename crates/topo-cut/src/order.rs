@@ -119,8 +119,12 @@ pub fn sweep_ranks(poly: &PolyMesh) -> Vec<u32> {
 /// layer order, that has no such node yet, the
 /// node of it whose cut keeps the cells around it under the target dihedral angle, then
 /// touches the fewest standard cells still untouched, then cuts best (ties: first in the
-/// sweep).
-pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutError> {
+/// sweep). The cells `cut_anyway` flags (one flag per cell, or none) count as non-standard.
+pub fn round_cut_ranks(
+    poly: &PolyMesh,
+    sweep: &[u32],
+    cut_anyway: &[bool],
+) -> Result<Vec<u32>, CutError> {
     let cc = poly.cell_count();
     let mut faces = CellFaces::default();
     let mut cell_nodes: Vec<Vec<u32>> = Vec::with_capacity(cc);
@@ -128,9 +132,10 @@ pub fn round_cut_ranks(poly: &PolyMesh, sweep: &[u32]) -> Result<Vec<u32>, CutEr
     for (c, is_standard) in standard.iter_mut().enumerate() {
         crate::load_checked(&mut faces, poly, c)?;
         // a standard cell with a corner not positive (a warped merged cell) is cut as well
-        *is_standard = faces
-            .standard()
-            .is_some_and(|p| piece_quality(&poly.nodes, &p) < INVERTED);
+        *is_standard = !cut_anyway.get(c).copied().unwrap_or(false)
+            && faces
+                .standard()
+                .is_some_and(|p| piece_quality(&poly.nodes, &p) < INVERTED);
         let mut nodes = Vec::new();
         faces.distinct_nodes(&mut nodes);
         cell_nodes.push(nodes);

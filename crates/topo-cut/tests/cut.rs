@@ -196,6 +196,43 @@ fn plain_prisms_and_hexes_are_kept_or_cut_in_three_and_six() {
     }
 }
 
+/// Cells the caller flags are cut even though they are standard; the others stay prisms
+/// (pyramids over their sides towards the cut cells), the whole conforming and positive.
+#[test]
+fn flagged_standard_cells_are_cut_and_the_rest_kept() {
+    for quads in [false, true] {
+        let spec = Spec::new(3, quads, 4);
+        let poly = fixture::poly(&spec);
+        let cells = poly.cell_count();
+        let flags: Vec<bool> = (0..cells).map(|c| c % 7 == 3).collect();
+        let flagged = flags.iter().filter(|&&f| f).count();
+        let mesh = topo_cut::cut_to_mixed_cutting(&poly, &flags).expect("mixed");
+        let m = check(&poly, &mesh);
+        let kept = if quads { m.hexes } else { m.prisms };
+        assert!(kept < cells - flagged + 1, "quads {quads}: {m}");
+        // a node cut around takes the standard cells around it with it, not every one
+        assert!(kept > 0, "quads {quads}: {m}");
+        for (i, &c) in mesh.cell_pipe.iter().enumerate() {
+            let shape = mesh.cells.get(i).ty.shape;
+            let standard = matches!(shape, Shape::Prism | Shape::Hex);
+            let parent = (0..cells)
+                .find(|&p| poly.cell_pipe[p] == c && poly.cell_layer[p] == mesh.cell_layer[i]);
+            if let Some(p) = parent {
+                assert!(
+                    !(flags[p] && standard),
+                    "quads {quads}: flagged cell {p} kept as {shape:?}"
+                );
+            }
+        }
+        // no flags: the plain mixed cut
+        assert_eq!(
+            topo_cut::cut_to_mixed_cutting(&poly, &[]).expect("mixed"),
+            topo_cut::cut_to_mixed(&poly).expect("mixed")
+        );
+        println!("quads {quads}: {flagged} of {cells} flagged: {m}");
+    }
+}
+
 #[test]
 fn merged_children_are_cut_conforming() {
     for quads in [false, true] {
