@@ -288,11 +288,10 @@ impl Report {
         };
         self.notes.push(format!(
             "P2 by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
-             {} pyramid edges above the wall kept straight (a pyramid's wall edges are \
-             curved); validity: every cell certified by the Bernstein Jacobian check; \
-             volume: the curved cells' (integrated) against the volume the curved boundary \
-             encloses",
-            s.curved_edges, s.edges, s.deepest_curved_layer, s.pyramid_edges_kept_straight
+             {} cells the marching left invalid mended by the repair ({} not); validity: \
+             every cell certified by the Bernstein Jacobian check; volume: the curved cells' \
+             (integrated) against the volume the curved boundary encloses",
+            s.curved_edges, s.edges, s.deepest_curved_layer, s.repaired, s.unrepaired
         ));
         Ok(())
     }

@@ -19,13 +19,12 @@
 //! certificate. Quadrilateral faces get their centre node from their four edges
 //! (the Coons patch: ½ Σ edge nodes − ¼ Σ corners), a hexahedron its centre likewise.
 //!
-//! Pyramids: an edge of a pyramid on the wall goes onto the true surface like any wall edge
-//! (the 14-node pyramid is certified in Gmsh's Bergot space by `jacobian_check`, its base
-//! node the Coons point of its base's edges); every edge of a pyramid above the wall is kept
-//! straight (counted in `pyramid_edges_kept_straight`; its neighbours' shared faces are then
-//! straight too), as before curved pyramids were certified, which keeps the meshes of the
-//! cases that had pyramids only above the wall unchanged. The final certification judges
-//! every cell.
+//! Pyramids are curved like every other cell (the 14-node pyramid is certified in Gmsh's
+//! Bergot space by `jacobian_check`, its base node the Coons point of its base's edges).
+//! Until 2026-12-02 every edge of a pyramid above the wall was kept straight, and with it
+//! its neighbours' shared faces: in the mixed cut of the finer wing cases the cells next to
+//! those straight faces, over curved edges below, were left invalid (153 cells in case 2).
+//! The final certification judges every cell.
 //! This module does no IO and does not certify the final mesh as a whole (the caller runs
 //! `jacobian_check::check_mesh`).
 
@@ -94,8 +93,10 @@ pub struct Curving3dStats {
     pub reduced: usize,
     /// The highest layer of nodes with a curved edge (the wall is layer 0).
     pub deepest_curved_layer: u32,
-    /// Edges above the wall kept straight because they are edges of a pyramid.
-    pub pyramid_edges_kept_straight: usize,
+    /// Cells the marching left invalid that the repair mended (`march3d`'s `repair`).
+    pub repaired: usize,
+    /// Cells still invalid after the repair (the caller's certification reports them).
+    pub unrepaired: usize,
 }
 
 /// Curves the linear 3D mesh `mesh` to P2. `columns[i]` lists a wall node and its children
@@ -127,6 +128,7 @@ pub fn curve_mesh_3d(
     let mut m = crate::march3d::March::new(mesh, &edges, &layers, params);
     let wall_edges = m.place_wall(surface);
     m.march(&outer)?;
+    let (repaired, unrepaired) = m.repair()?;
     let curved_edges = m.dev.iter().filter(|d| d.iter().any(|&v| v != 0.0)).count();
     let stats = Curving3dStats {
         wall_edges,
@@ -136,7 +138,8 @@ pub fn curve_mesh_3d(
         stops: m.stops,
         reduced: m.reduced,
         deepest_curved_layer: m.deepest,
-        pyramid_edges_kept_straight: m.pyramid_straight,
+        repaired,
+        unrepaired,
     };
     let out = assemble(mesh, &edges, &faces, &m);
     Ok(Curved3d { mesh: out, stats })

@@ -90,10 +90,6 @@ pub(crate) struct March<'a> {
     pub stops: StopCounts,
     pub reduced: usize,
     pub deepest: u32,
-    /// Edges kept straight because they belong to a pyramid.
-    pub pyramid_straight: usize,
-    /// Per edge: whether it is an edge of a pyramid.
-    of_pyramid: Vec<bool>,
     scratch: Vec<[f64; 3]>,
 }
 
@@ -125,14 +121,6 @@ impl<'a> March<'a> {
             stops: StopCounts::default(),
             reduced: 0,
             deepest: 0,
-            pyramid_straight: 0,
-            of_pyramid: (0..edges.len() as u32)
-                .map(|e| {
-                    let shape =
-                        |u: &mesh_model::topology::Use| mesh.cells.get(u.cell as usize).ty.shape;
-                    edges.cells(e).iter().any(|u| shape(u) == Shape::Pyramid)
-                })
-                .collect(),
             scratch: Vec::new(),
         }
     }
@@ -282,12 +270,6 @@ impl<'a> March<'a> {
                 if self.layers.parents(a).contains(&b) || self.layers.parents(b).contains(&a) {
                     continue; // an extrusion edge stays straight
                 }
-                if self.of_pyramid[e as usize] {
-                    // a pyramid stays straight-sided (the final certification judges its
-                    // neighbours)
-                    self.pyramid_straight += 1;
-                    continue;
-                }
                 let Some(source) = self.source_below(e, level) else {
                     self.stops.collapsed += 1;
                     continue;
@@ -404,6 +386,116 @@ impl<'a> March<'a> {
             return Ok(true);
         }
         self.dev[ei] = source;
+        Ok(false)
+    }
+
+    /// Whether cell `c` is certified valid as the edges stand now.
+    fn valid(&mut self, c: usize) -> Result<bool, CurvingError> {
+        Ok(self
+            .certify(c)?
+            .scaled_jacobian_lower_bound()
+            .is_some_and(|q| q > 0.0))
+    }
+
+    /// Mends the cells the marching left invalid — thin cells at the wing's tip rims, where
+    /// the side's layers turn onto the flat cap's and edges of one cell took displacements
+    /// from different pipes. As the 2D repair: an edge of the cell above the wall takes the
+    /// displacement of the cell's most curved edge (Vector-Adding from the cell itself rather
+    /// than up a pipe), or goes straight; the first such choice (edge by edge, then every edge
+    /// above the wall at once) that leaves the cell valid and no cell of the changed edges
+    /// newly invalid is kept. Pass after pass while a pass mends a cell. Returns the cells
+    /// mended and those left invalid.
+    pub(crate) fn repair(&mut self) -> Result<(usize, usize), CurvingError> {
+        let mut bad = Vec::new();
+        for c in 0..self.mesh.cells.len() {
+            let curved = self
+                .edges
+                .of_cell(c)
+                .iter()
+                .any(|&e| self.dev[e as usize] != [0.0; 3]);
+            if curved && !self.valid(c)? {
+                bad.push(c);
+            }
+        }
+        let mut repaired = 0;
+        for _ in 0..4 {
+            let before = bad.len();
+            let mut still = Vec::new();
+            for &c in &bad {
+                if self.valid(c)? || self.mend(c)? {
+                    repaired += 1;
+                } else {
+                    still.push(c);
+                }
+            }
+            bad = still;
+            if bad.len() == before {
+                break;
+            }
+        }
+        Ok((repaired, bad.len()))
+    }
+
+    /// One invalid cell's repair ([`March::repair`]); whether it is valid after.
+    fn mend(&mut self, c: usize) -> Result<bool, CurvingError> {
+        let layer = &self.layers.layer;
+        let own: Vec<u32> = self.edges.of_cell(c).to_vec();
+        let above: Vec<u32> = own
+            .iter()
+            .copied()
+            .filter(|&e| self.ends(e).iter().any(|&n| layer[n as usize] > 0))
+            .collect();
+        let size = |d: [f64; 3]| d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let Some(most) = own
+            .iter()
+            .copied()
+            .max_by(|&a, &b| size(self.dev[a as usize]).total_cmp(&size(self.dev[b as usize])))
+        else {
+            return Ok(false);
+        };
+        let target = self.dev[most as usize];
+        let mut choices: Vec<Vec<(u32, [f64; 3])>> = Vec::new();
+        for &e in &above {
+            choices.push(vec![(e, target)]);
+            choices.push(vec![(e, [0.0; 3])]);
+        }
+        choices.push(above.iter().map(|&e| (e, target)).collect());
+        for choice in choices {
+            if choice.iter().all(|&(e, d)| self.dev[e as usize] == d) {
+                continue;
+            }
+            let mut around: Vec<usize> = choice
+                .iter()
+                .flat_map(|&(e, _)| self.edges.cells(e).iter().map(|u| u.cell as usize))
+                .collect();
+            around.sort_unstable();
+            around.dedup();
+            let mut was = Vec::with_capacity(around.len());
+            for &d in &around {
+                was.push(self.valid(d)?);
+            }
+            let saved: Vec<(u32, [f64; 3])> = choice
+                .iter()
+                .map(|&(e, _)| (e, self.dev[e as usize]))
+                .collect();
+            for &(e, d) in &choice {
+                self.dev[e as usize] = d;
+            }
+            let mut ok = true;
+            for (&d, &w) in around.iter().zip(&was) {
+                let now = self.valid(d)?;
+                if !now && (d == c || w) {
+                    ok = false;
+                    break;
+                }
+            }
+            if ok {
+                return Ok(true);
+            }
+            for &(e, d) in &saved {
+                self.dev[e as usize] = d;
+            }
+        }
         Ok(false)
     }
 }
