@@ -153,7 +153,7 @@ struct CurvingKeys3d {
 /// ([`afsf3d::LayerParams::max_aspect`], from layer 9 on for the built-in section): the 45
 /// layers grow (without a limit the growth fails in layer 28, with 2 in layer 27) and their
 /// corners keep a scaled Jacobian above 0.2 (0.206; 0.0145 with 1, 0.148 with 0.35, 0.1975
-/// with 0.25; `docs/3d.md`).
+/// with 0.25; 0.2006 with [`QUAD_WING_MERGE_ROWS`]; `docs/3d.md`).
 pub const QUAD_WING_MAX_ASPECT: f64 = 0.26;
 
 /// A wing with a quad side: merges carried along its rows of quads up to this ratio
