@@ -332,6 +332,8 @@ fn a_layer_height_limit_from_the_case_file_holds_the_heights() {
         ("stand_off", "nan"),
         ("smoothing", "101"),
         ("smoothing", "-1"),
+        ("merge_rows", "-0.5"),
+        ("merge_rows", "nan"),
     ];
     for (key, bad) in bad_values {
         let text = std::fs::read_to_string(d.join(&held))
@@ -449,16 +451,32 @@ fn the_wing_with_quads_on_its_side_grows_30_layers() {
 /// side only (the pairs taken edge by edge, not along their rows) they left 1° triangles:
 /// case 2 failed in layer 16 (an inverted cell at the trailing edge next to the root tip),
 /// case 3 kept a prism corner of 0.016 there (`docs/3d.md`). Now both grow, every column
-/// full, the tets under 150° and every prism and hexahedron corner at 0.2 over every patch.
+/// full, the tets under 150° and every prism and hexahedron corner at 0.2 over every patch;
+/// with the rows off (`merge_rows = 0`) case 2 still fails in layer 16.
 #[test]
 fn the_finer_quad_wings_merge_their_trailing_edge_along_its_rows() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
+    let wing = "wing = \"naca0012\"\nfirst_height = 1e-4\nspan = 2.0\ntriangles = false";
+    let off = case(
+        d,
+        "off",
+        wing,
+        "first_height = 1e-4\ngrowth = 1.4\nmax_layers = 17\nmerge_rows = 0",
+        "mixed",
+    );
+    let o = run(d, &[&off, "--quiet"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("layer 16 cannot be grown"),
+        "{}",
+        stderr(&o)
+    );
     for (n, first) in [(2, "1e-4"), (3, "1e-5")] {
         let file = case(
             d,
             &format!("quad{n}"),
-            "wing = \"naca0012\"\nfirst_height = 1e-4\nspan = 2.0\ntriangles = false",
+            wing,
             &format!("first_height = {first}\ngrowth = 1.4\nmax_layers = 17"),
             "mixed",
         );
