@@ -130,6 +130,9 @@ struct LayerKeys3d {
     /// [`afsf3d::LayerParams::max_aspect`]; default 0 (no limit), or
     /// [`QUAD_WING_MAX_ASPECT`] for a wing with a quad side.
     max_aspect: Option<f64>,
+    /// [`afsf3d::LayerParams::merge_rows`]; default 0 (each edge merged by itself), or
+    /// [`QUAD_WING_MERGE_ROWS`] for a wing with a quad side.
+    merge_rows: Option<f64>,
     /// [`afsf3d::LayerParams::stand_off`]: the smallest cosine wanted between a node's
     /// direction and each facet's normal around it; default 0 (none turned).
     stand_off: Option<f64>,
@@ -155,13 +158,21 @@ struct CurvingKeys3d {
 /// ([`afsf3d::LayerParams::max_aspect`], from layer 9 on for the built-in section): the 45
 /// layers grow (without a limit the growth fails in layer 28, with 2 in layer 27) and their
 /// corners keep a scaled Jacobian above 0.2 (0.206; 0.0145 with 1, 0.148 with 0.35, 0.1975
-/// with 0.25; `docs/3d.md`).
+/// with 0.25; 0.2006 with [`QUAD_WING_MERGE_ROWS`]; `docs/3d.md`).
 pub const QUAD_WING_MAX_ASPECT: f64 = 0.26;
 
 /// The default `[cut] max_lean_deg`: the mixed mesh's prisms and hexahedra keep their side
 /// edges within table 6's 30° of the wall normal (the bar); the few layer cells over
 /// an edge leaning more (merged children over parents far apart) are cut instead.
 pub const MAX_LEAN_DEG: f64 = 30.0;
+
+/// A wing with a quad side: merges carried along its rows of quads up to this ratio
+/// ([`afsf3d::LayerParams::merge_rows`]): at the finer cases (first heights 1e-4) the
+/// trailing edge's thin quads merge one side where the layers reach their 0.00084 width, and
+/// the 1° triangles left fail layer 16 (case 2) or keep a corner scaled Jacobian of 0.016
+/// (case 3); carried along the rows, cases 2 and 3 grow their 45 layers (0.65: the corners
+/// 0.028 / 0.022; 1.3: case 2 fails in layer 40; `docs/3d.md`).
+pub const QUAD_WING_MERGE_ROWS: f64 = 1.0;
 
 /// The most rounds of direction smoothing a 3D case may ask for.
 pub const MAX_SMOOTHING: u32 = 100;
@@ -218,6 +229,8 @@ pub(crate) fn parse(
     // and its far layers, geometric, outrun the front's coarsening near the far tip
     if layers.patch_normals {
         layers.max_aspect = QUAD_WING_MAX_ASPECT;
+        // and its thin quads merge one side only unless carried along their rows
+        layers.merge_rows = QUAD_WING_MERGE_ROWS;
     }
     if let Some(a) = l.max_aspect {
         ensure!(
@@ -225,6 +238,13 @@ pub(crate) fn parse(
             "{origin}: [layers] max_aspect = {a}: must be 0 (no limit) or positive"
         );
         layers.max_aspect = a;
+    }
+    if let Some(r) = l.merge_rows {
+        ensure!(
+            r.is_finite() && (0.0..=10.0).contains(&r),
+            "{origin}: [layers] merge_rows = {r}: must be 0 (off) to 10"
+        );
+        layers.merge_rows = r;
     }
     if let Some(c) = l.stand_off {
         ensure!(

@@ -80,8 +80,9 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         };
         let balanced = balance(&step, &topo, &mut state.stats)?;
         // the first layer stays whole: its height is what the wall resolution needs
+        let rows = (params.merge_rows > 0.0).then_some(params.merge_rows);
         let merges = if layer > 0 && params.coe_shrink > 0.0 {
-            choose_merges(&topo, &balanced, &len, params.coe_shrink)
+            choose_merges(&topo, &balanced, &len, params.coe_shrink, rows)
         } else {
             Vec::new()
         };
@@ -401,6 +402,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.max_aspect >= 0.0 && p.max_aspect.is_finite()) {
         return bad("max_aspect must be finite and at least 0");
+    }
+    if !(p.merge_rows >= 0.0 && p.merge_rows.is_finite()) {
+        return bad("merge_rows must be finite and at least 0");
     }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
         return bad("tension_ratio must be in (0, 1]");

@@ -172,29 +172,80 @@ impl Layer {
 /// The pairs of front nodes whose children merge (Coe_shrink): the children of a front edge
 /// closer than `coe` times the mean of the two nodes' ideal extrusion lengths `len`, the
 /// shortest (relative to that length) first, each node in one pair at most.
+///
+/// With `rows` (a ratio, [`LayerParams::merge_rows`](crate::LayerParams::merge_rows)), each
+/// pair taken is carried across the front's quads: the opposite side of each quad on a taken
+/// edge merges too where its ratio is below `rows` and both its nodes are free, and so on
+/// along the row of quads. Taken edge by edge, a row of thin quads (the quad wing's trailing
+/// edge, 0.00084 × 0.05) pairs its nodes one way at one span station and the other way at
+/// the next, and the quad between them keeps one merged side: a triangle of 1° whose prism
+/// has a corner scaled Jacobian of 0.016 (`docs/3d.md`). Carried along the row, both sides
+/// of each quad merge and it leaves the front as an edge.
 pub(crate) fn choose_merges(
     topo: &Topo,
     children: &[[f64; 3]],
     len: &[f64],
     coe: f64,
+    rows: Option<f64>,
 ) -> Vec<[u32; 2]> {
-    let mut short: Vec<(f64, [u32; 2])> = topo
+    let ratio = |[a, b]: [u32; 2]| {
+        let (a, b) = (a as usize, b as usize);
+        dist(children[a], children[b]) / ((len[a] + len[b]) / 2.0)
+    };
+    let mut short: Vec<(f64, u32)> = topo
         .edges
         .iter()
-        .filter_map(|e| {
-            let [a, b] = e.nodes.map(|v| v as usize);
-            let ratio = dist(children[a], children[b]) / ((len[a] + len[b]) / 2.0);
-            (ratio < coe).then_some((ratio, e.nodes))
+        .enumerate()
+        .filter_map(|(i, e)| {
+            let r = ratio(e.nodes);
+            (r < coe).then_some((r, i as u32))
         })
         .collect();
-    short.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    short.sort_by(|x, y| {
+        let key = |e: u32| topo.edges[e as usize].nodes;
+        x.0.total_cmp(&y.0).then(key(x.1).cmp(&key(y.1)))
+    });
+    // the edges by their sorted nodes, to find a quad's opposite side
+    let mut by_nodes: Vec<([u32; 2], u32)> = Vec::new();
+    if rows.is_some() {
+        by_nodes = topo
+            .edges
+            .iter()
+            .enumerate()
+            .map(|(i, e)| {
+                let [a, b] = e.nodes;
+                ([a.min(b), a.max(b)], i as u32)
+            })
+            .collect();
+        by_nodes.sort_unstable();
+    }
     let mut used = vec![false; children.len()];
     let mut merges = Vec::new();
-    for (_, [a, b]) in short {
-        if !used[a as usize] && !used[b as usize] {
-            used[a as usize] = true;
-            used[b as usize] = true;
-            merges.push([a, b]);
+    let mut stack = Vec::new();
+    for (_, e) in short {
+        let [a, b] = topo.edges[e as usize].nodes;
+        if used[a as usize] || used[b as usize] {
+            continue;
+        }
+        used[a as usize] = true;
+        used[b as usize] = true;
+        merges.push([a, b]);
+        let Some(limit) = rows else { continue };
+        stack.push(e);
+        while let Some(e) = stack.pop() {
+            for [p, q] in topo.edges[e as usize].far {
+                // a triangle's far side is its opposite node, twice
+                if p == q || used[p as usize] || used[q as usize] || ratio([p, q]) >= limit {
+                    continue;
+                }
+                let Ok(i) = by_nodes.binary_search_by(|x| x.0.cmp(&[p.min(q), p.max(q)])) else {
+                    continue;
+                };
+                used[p as usize] = true;
+                used[q as usize] = true;
+                merges.push(topo.edges[by_nodes[i].1 as usize].nodes);
+                stack.push(by_nodes[i].1);
+            }
         }
     }
     merges
@@ -466,6 +517,43 @@ mod tests {
         // the merged child pushed below the front folds the cells
         layer.children[1] = [1.0, 0.5, -0.5];
         assert!(!convex(&layer, &facets[0]));
+    }
+
+    /// A row of thin quads (three nodes across, 1 apart, four stations 10 apart) whose
+    /// short sides' lengths alternate from station to station: taken edge by edge, the
+    /// stations pair their nodes alternately one way and the other, so every quad keeps
+    /// one merged side (a 6° triangle); carried along the row, each quad merges both sides
+    /// or neither, the same pair at every station.
+    #[test]
+    fn merges_carried_along_a_row_of_thin_quads_pair_every_station_alike() {
+        let middle = [0.99, 1.01, 0.995, 1.005];
+        let nodes: Vec<[f64; 3]> = (0..4)
+            .flat_map(|j| [0.0, middle[j], 2.0].map(|x| [x, 0.0, 10.0 * j as f64]))
+            .collect();
+        let facets: Vec<Facet> = (0..3u32)
+            .flat_map(|j| (0..2u32).map(move |i| (j, i)))
+            .map(|(j, i)| Facet::quad(3 * j + i, 3 * j + i + 1, 3 * j + i + 4, 3 * j + i + 3))
+            .collect();
+        let topo = Topo::from_facets(&facets);
+        let len = vec![2.0; nodes.len()];
+        let one_side_merged = |merges: &[[u32; 2]]| {
+            let merged = |a: u32, b: u32| merges.iter().any(|m| m == &[a, b] || m == &[b, a]);
+            facets.iter().any(|f| {
+                let k = f.nodes();
+                merged(k[0], k[1]) != merged(k[3], k[2])
+            })
+        };
+        let plain = choose_merges(&topo, &nodes, &len, 0.65, None);
+        assert_eq!(plain.len(), 4);
+        assert!(one_side_merged(&plain), "{plain:?}");
+        let rows = choose_merges(&topo, &nodes, &len, 0.65, Some(1.0));
+        assert_eq!(rows.len(), 4);
+        assert!(!one_side_merged(&rows), "{rows:?}");
+        // the shortest pair (station 0, nodes 0-1) seeds the row
+        assert!(rows.iter().all(|m| m[0] % 3 + m[1] % 3 == 1), "{rows:?}");
+        // a row stops where the opposite side is not short enough
+        let far = choose_merges(&topo, &nodes, &len, 0.65, Some(0.5));
+        assert_eq!(far, plain);
     }
 
     #[test]

@@ -150,6 +150,12 @@ pub struct LayerParams {
     /// a quad side fails in layer 28 without it and grows its 45 layers with 1, `docs/3d.md`).
     /// Default 0: no limit, layer k is `first_height × growth^k` high.
     pub max_aspect: f64,
+    /// Merges carried along rows of quads: each pair of children merged by Coe_shrink merges
+    /// the opposite side of each quad on its edge too where that side's ratio (its children's
+    /// distance over their mean ideal extrusion length) is below this, and so on along the row
+    /// (a thin quad merged on one side only becomes a triangle of about 1° on the quad
+    /// wing's trailing edge; `docs/3d.md`). Default 0: each edge by itself.
+    pub merge_rows: f64,
 }
 
 impl Default for LayerParams {
@@ -171,6 +177,7 @@ impl Default for LayerParams {
             squeeze: 0.0,
             patch_normals: false,
             max_aspect: 0.0,
+            merge_rows: 0.0,
         }
     }
 }
