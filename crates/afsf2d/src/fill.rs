@@ -316,8 +316,11 @@ fn flip_min_max_angle(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u3
         let before_sweep = std::mem::replace(&mut flipped, vec![false; tris.len()]);
         let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
         let mut flips = 0;
+        // the constraints at or after the edge, walked along with the edges (both increasing)
+        let mut constraint = constraints.iter().peekable();
         // in a fixed order: the same input makes the same mesh
         for ((a, b), (t1, c1)) in owner.ascending() {
+            while constraint.next_if(|&&e| e < (a, b)).is_some() {}
             // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
             // (b, a) when every directed edge has one owner
             let t2 = tried[3 * t1 + c1];
@@ -327,7 +330,7 @@ fn flip_min_max_angle(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u3
                 }
                 continue;
             }
-            if constraints.binary_search(&(a, b)).is_ok() {
+            if constraint.peek() == Some(&&(a, b)) {
                 continue;
             }
             let Some((t2, c2)) = owner.get((b, a)) else {
@@ -503,17 +506,25 @@ fn smooth_steiner(tris: &[[u32; 3]], pts: &mut [P2], front: usize) {
 /// nodes first, added node `s` is `front + s`), each added node's triangles, and the largest
 /// angle of each triangle where its corners are (infinite when it is not positive), kept
 /// until one of its corners moves (`None` when not measured since).
-struct Smoother<'a> {
-    tris: &'a [[u32; 3]],
+struct Smoother {
     front: usize,
-    /// `incident[start[s]..start[s + 1]]`: the triangles of added node `s`, increasing.
+    /// `incident[start[s]..start[s + 1]]`: the triangles of added node `s`, increasing, each
+    /// with its corners (the triangles do not change here: a copy beside the node reads
+    /// faster than the triangle list).
     start: Vec<u32>,
-    incident: Vec<u32>,
+    incident: Vec<Incident>,
     figure: Vec<Option<f64>>,
 }
 
-impl<'a> Smoother<'a> {
-    fn new(tris: &'a [[u32; 3]], front: usize, added: usize) -> Self {
+/// A triangle of an added node: its index and its corners.
+#[derive(Clone, Copy, Default)]
+struct Incident {
+    t: u32,
+    tri: [u32; 3],
+}
+
+impl Smoother {
+    fn new(tris: &[[u32; 3]], front: usize, added: usize) -> Self {
         let mut start = vec![0u32; added + 1];
         for tri in tris {
             for &g in tri {
@@ -526,18 +537,17 @@ impl<'a> Smoother<'a> {
             start[s + 1] += start[s];
         }
         let mut next = start.clone();
-        let mut incident = vec![0u32; start[added] as usize];
-        for (t, tri) in tris.iter().enumerate() {
-            for &g in tri {
+        let mut incident = vec![Incident::default(); start[added] as usize];
+        for (t, &tri) in tris.iter().enumerate() {
+            for &g in &tri {
                 if g as usize >= front {
                     let slot = &mut next[g as usize - front];
-                    incident[*slot as usize] = t as u32;
+                    incident[*slot as usize] = Incident { t: t as u32, tri };
                     *slot += 1;
                 }
             }
         }
         Smoother {
-            tris,
             front,
             start,
             incident,
@@ -546,21 +556,21 @@ impl<'a> Smoother<'a> {
     }
 
     /// The triangles of added node `s`.
-    fn of(&self, s: usize) -> &[u32] {
+    fn of(&self, s: usize) -> &[Incident] {
         &self.incident[self.start[s] as usize..self.start[s + 1] as usize]
     }
 
-    /// Triangle `t`'s corners with added node `s` at `p`.
-    fn corners(&self, s: usize, t: u32, p: P2, pts: &[P2]) -> [P2; 3] {
+    /// Triangle `tri`'s corners with added node `s` at `p`.
+    fn corners(&self, s: usize, tri: [u32; 3], p: P2, pts: &[P2]) -> [P2; 3] {
         let g = (self.front + s) as u32;
-        self.tris[t as usize].map(|v| if v == g { p } else { pts[v as usize] })
+        tri.map(|v| if v == g { p } else { pts[v as usize] })
     }
 
     /// Whether no corner of `s`'s triangles but `s` moved since `s` was left (`settled`).
     fn still(&self, s: usize, moved: &[u64], settled: u64) -> bool {
         let g = (self.front + s) as u32;
-        self.of(s).iter().all(|&t| {
-            self.tris[t as usize].iter().all(|&v| {
+        self.of(s).iter().all(|i| {
+            i.tri.iter().all(|&v| {
                 (v as usize) < self.front || v == g || moved[v as usize - self.front] < settled
             })
         })
@@ -570,8 +580,8 @@ impl<'a> Smoother<'a> {
     fn centroid(&self, s: usize, pts: &[P2]) -> Option<P2> {
         let g = (self.front + s) as u32;
         let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
-        for &t in self.of(s) {
-            for &v in &self.tris[t as usize] {
+        for i in self.of(s) {
+            for &v in &i.tri {
                 if v != g {
                     let q = pts[v as usize];
                     sx += q[0];
@@ -588,17 +598,17 @@ impl<'a> Smoother<'a> {
     fn worst(&mut self, s: usize, pts: &[P2]) -> f64 {
         let mut w = 0.0f64;
         for k in self.start[s] as usize..self.start[s + 1] as usize {
-            let t = self.incident[k] as usize;
-            let f = match self.figure[t] {
+            let Incident { t, tri } = self.incident[k];
+            let f = match self.figure[t as usize] {
                 Some(f) => f,
                 None => {
-                    let c = self.tris[t].map(|v| pts[v as usize]);
+                    let c = tri.map(|v| pts[v as usize]);
                     let f = if orient2d(c[0], c[1], c[2]) <= 0.0 {
                         f64::INFINITY
                     } else {
                         crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
                     };
-                    self.figure[t] = Some(f);
+                    self.figure[t as usize] = Some(f);
                     f
                 }
             };
@@ -614,8 +624,8 @@ impl<'a> Smoother<'a> {
     /// mostly compared by their cosines.
     fn improves(&self, s: usize, p: P2, pts: &[P2], before: f64) -> bool {
         let limit = crate::quality::AngleLimit::new(before);
-        for &t in self.of(s) {
-            let c = self.corners(s, t, p, pts);
+        for i in self.of(s) {
+            let c = self.corners(s, i.tri, p, pts);
             if orient2d(c[0], c[1], c[2]) <= 0.0 {
                 return false;
             }
@@ -635,7 +645,7 @@ impl<'a> Smoother<'a> {
     fn place(&mut self, s: usize, p: P2, pts: &mut [P2]) {
         pts[self.front + s] = p;
         for k in self.start[s] as usize..self.start[s + 1] as usize {
-            self.figure[self.incident[k] as usize] = None;
+            self.figure[self.incident[k].t as usize] = None;
         }
     }
 }
