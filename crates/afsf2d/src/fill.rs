@@ -62,6 +62,19 @@ pub(crate) fn fill_region(
     pos: &[P2],
     min_angle_deg: f64,
 ) -> Result<(Vec<[u32; 3]>, Vec<P2>), AfsfError> {
+    let (mut local, constraints) = triangulate(directed_edges, free, pos, min_angle_deg)?;
+    local.improve(&constraints);
+    Ok(local.into_global(pos.len()))
+}
+
+/// The refined constrained triangulation of [`fill_region`] before its flips and smoothing,
+/// in local numbers, with the front edges in local numbers (lower end first, sorted).
+fn triangulate(
+    directed_edges: &[(u32, u32)],
+    free: &[u32],
+    pos: &[P2],
+    min_angle_deg: f64,
+) -> Result<(Local, Vec<(u32, u32)>), AfsfError> {
     let mut cdt: Cdt = ConstrainedDelaunayTriangulation::new();
     let handle_of = insert_nodes(&mut cdt, directed_edges, free, pos)?;
     let directed = add_front_edges(&mut cdt, directed_edges, &handle_of)?;
@@ -76,7 +89,7 @@ pub(crate) fn fill_region(
         );
     }
     let faces = faces_inside(&cdt, directed)?;
-    let mut local = Local::new(&cdt, &faces);
+    let local = Local::new(&cdt, &faces);
     let mut constraints: Vec<(u32, u32)> = directed_edges
         .iter()
         .map(|&(a, b)| {
@@ -85,11 +98,7 @@ pub(crate) fn fill_region(
         })
         .collect();
     constraints.sort_unstable();
-    let front = local.front.len();
-    flip_min_max_angle(&mut local.tris, &local.pts, &constraints);
-    smooth_steiner(&local.tris, &mut local.pts, front);
-    flip_min_max_angle(&mut local.tris, &local.pts, &constraints);
-    Ok(local.into_global(pos.len()))
+    Ok((local, constraints))
 }
 
 /// Inserts the ends of the front edges, then the free nodes, once each; two nodes at one
@@ -210,6 +219,7 @@ fn faces_inside(
 /// by the faces. The map is increasing on the mesh nodes and puts the added vertices after
 /// them, as their final indices (from `pos.len()` on) do: every order by node index is
 /// the same in either numbering.
+#[derive(Clone)]
 struct Local {
     /// The mesh node of each local node below `front.len()`, increasing.
     front: Vec<u32>,
@@ -263,6 +273,15 @@ impl Local {
     /// The local number of mesh node `g` (inserted).
     fn of_node(&self, handle_of: &[Option<VertexHandle>], g: u32) -> u32 {
         handle_of[g as usize].map_or(NONE, |h| self.of_vertex[h.index()])
+    }
+
+    /// Flips, smooths the added nodes, flips again (`constraints`: the front edges, lower
+    /// end first, sorted).
+    fn improve(&mut self, constraints: &[(u32, u32)]) {
+        let front = self.front.len();
+        flip_min_max_angle(&mut self.tris, &self.pts, constraints);
+        smooth_steiner(&self.tris, &mut self.pts, front);
+        flip_min_max_angle(&mut self.tris, &self.pts, constraints);
     }
 
     /// The triangles in mesh numbers, the added nodes numbered from `n0` on in local order,
@@ -1068,6 +1087,196 @@ mod tests {
             }
         }
         directed
+    }
+
+    /// The largest angle of a triangle, infinite when it is not positive.
+    fn naive_worst(c: [P2; 3]) -> f64 {
+        if orient2d(c[0], c[1], c[2]) <= 0.0 {
+            return f64::INFINITY;
+        }
+        crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
+    }
+
+    /// The flips as specified, in mesh numbers, measuring every pair each sweep (no pair
+    /// kept from the last sweep, no cosines, no table of owners but a map).
+    fn naive_flips(tris: &mut [[u32; 3]], at: &dyn Fn(u32) -> P2, constraints: &[(u32, u32)]) {
+        let worst = |t: [u32; 3]| naive_worst(t.map(at));
+        for _ in 0..FLIP_SWEEPS {
+            let mut owner = std::collections::BTreeMap::new();
+            for (t, tri) in tris.iter().enumerate() {
+                for i in 0..3 {
+                    owner.insert((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3));
+                }
+            }
+            let mut flipped = vec![false; tris.len()];
+            let mut flips = 0;
+            for (&(a, b), &(t1, c1)) in owner.iter().filter(|(e, _)| e.0 < e.1) {
+                let Some(&(t2, c2)) = owner.get(&(b, a)) else {
+                    continue;
+                };
+                if constraints.contains(&(a, b)) || flipped[t1] || flipped[t2] {
+                    continue;
+                }
+                let (c, d) = (tris[t1][c1], tris[t2][c2]);
+                let before = worst(tris[t1]).max(worst(tris[t2]));
+                let (n1, n2) = ([c, a, d], [d, b, c]);
+                if worst(n1).max(worst(n2)) < before - 1e-6 {
+                    tris[t1] = n1;
+                    tris[t2] = n2;
+                    flipped[t1] = true;
+                    flipped[t2] = true;
+                    flips += 1;
+                }
+            }
+            if flips == 0 {
+                break;
+            }
+        }
+    }
+
+    /// The smoothing as specified, in mesh numbers (added node `s` is `n0 + s`): every node
+    /// tried in every sweep, every angle measured.
+    fn naive_smoothing(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
+        let n0 = pos.len();
+        for _ in 0..SMOOTHING_SWEEPS {
+            for s in 0..steiner.len() {
+                let g = (n0 + s) as u32;
+                let at = |v: u32, p: P2, steiner: &[P2]| {
+                    if v == g {
+                        p
+                    } else if (v as usize) < n0 {
+                        pos[v as usize]
+                    } else {
+                        steiner[v as usize - n0]
+                    }
+                };
+                let own: Vec<[u32; 3]> = tris.iter().copied().filter(|t| t.contains(&g)).collect();
+                if own.is_empty() {
+                    continue;
+                }
+                let old = steiner[s];
+                let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
+                for t in &own {
+                    for &v in t.iter().filter(|&&v| v != g) {
+                        let q = at(v, old, steiner);
+                        sx += q[0];
+                        sy += q[1];
+                        k += 1.0;
+                    }
+                }
+                let centroid = [sx / k, sy / k];
+                let figures = own
+                    .iter()
+                    .map(|t| naive_worst(t.map(|v| at(v, old, steiner))));
+                let before = figures.fold(0.0f64, |w, f| {
+                    if w == f64::INFINITY || f == f64::INFINITY {
+                        f64::INFINITY
+                    } else {
+                        w.max(f)
+                    }
+                });
+                for f in [1.0, 0.5, 0.25] {
+                    let p = [
+                        old[0] + f * (centroid[0] - old[0]),
+                        old[1] + f * (centroid[1] - old[1]),
+                    ];
+                    let better = own.iter().all(|t| {
+                        let c = t.map(|v| at(v, p, steiner));
+                        let angle = crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]);
+                        orient2d(c[0], c[1], c[2]) > 0.0 && (angle < before || angle.is_nan())
+                    });
+                    if better && 0.0 < before {
+                        steiner[s] = p;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The flips and smoothing on the fill's own numbering give the triangles and added
+    /// nodes of flipping and smoothing as specified in the mesh's numbering, to the last
+    /// bit: annuli whose nodes have shuffled indices among unrelated nodes (so that no order
+    /// of insertion or of position stands in for the order of the indices).
+    #[test]
+    fn the_local_flips_and_smoothing_are_those_of_the_mesh_numbering() {
+        let mut rng = testkit::layered::Rng(28);
+        for case in 0..4 {
+            let (outer, inner) = (60 + 60 * case, 40 + 30 * case);
+            let ring = |n: usize, r: f64, rng: &mut testkit::layered::Rng| -> Vec<P2> {
+                (0..n)
+                    .map(|i| {
+                        let a = std::f64::consts::TAU * (i as f64 + 0.3 * rng.unit()) / n as f64;
+                        let r = r * (1.0 + 0.3 * rng.unit());
+                        [r * a.cos(), 0.7 * r * a.sin()]
+                    })
+                    .collect()
+            };
+            let mut points = ring(outer, 10.0, &mut rng);
+            let mut hole = ring(inner, 3.0, &mut rng);
+            hole.reverse(); // clockwise: the region on the left of its edges
+            points.extend(hole);
+            // a few free nodes in the region
+            points.extend((0..3).map(|i| [6.0 + i as f64 * 0.2, 0.1 * i as f64]));
+            let n = points.len();
+            // node k of the region is mesh node `id[k]` among 4n nodes
+            let mut id: Vec<u32> = (0..4 * n as u32).collect();
+            rng.shuffle(&mut id);
+            id.truncate(n);
+            let mut pos: Vec<P2> = (0..4 * n).map(|i| [1e3 + i as f64, -7.0]).collect();
+            for (k, &g) in id.iter().enumerate() {
+                pos[g as usize] = points[k];
+            }
+            let loop_edges =
+                |from: usize, len: usize| (0..len).map(move |i| (from + i, from + (i + 1) % len));
+            let directed: Vec<(u32, u32)> = loop_edges(0, outer)
+                .chain(loop_edges(outer, inner))
+                .map(|(a, b)| (id[a], id[b]))
+                .collect();
+            let free: Vec<u32> = id[outer + inner..].to_vec();
+            let (local, constraints) = triangulate(&directed, &free, &pos, 30.0).unwrap();
+            assert!(
+                local.pts.len() > local.front.len() + 100,
+                "the refinement adds nodes"
+            );
+            let (mut want, mut steiner) = local.clone().into_global(pos.len());
+            let mut sorted: Vec<(u32, u32)> = directed
+                .iter()
+                .map(|&(a, b)| (a.min(b), a.max(b)))
+                .collect();
+            sorted.sort_unstable();
+            {
+                let at = |g: u32| {
+                    let g = g as usize;
+                    if g < pos.len() {
+                        pos[g]
+                    } else {
+                        steiner[g - pos.len()]
+                    }
+                };
+                naive_flips(&mut want, &at, &sorted);
+            }
+            naive_smoothing(&want, &pos, &mut steiner);
+            let at = |g: u32| {
+                let g = g as usize;
+                if g < pos.len() {
+                    pos[g]
+                } else {
+                    steiner[g - pos.len()]
+                }
+            };
+            naive_flips(&mut want, &at, &sorted);
+            let mut local = local;
+            local.improve(&constraints);
+            let (got, got_steiner) = local.into_global(pos.len());
+            assert_eq!(got, want, "case {case}: the triangles");
+            let bits = |p: &[P2]| p.iter().map(|q| q.map(f64::to_bits)).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&got_steiner),
+                bits(&steiner),
+                "case {case}: the added nodes"
+            );
+        }
     }
 
     /// The edge owners by the counting sort on the first node are those of a stable sort by
