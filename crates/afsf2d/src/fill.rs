@@ -52,12 +52,29 @@ type InnerFace = FixedFaceHandle<spade::handles::InnerTag>;
 /// inside it, and the positions of the nodes added inside it (numbered from `pos.len()` on).
 /// With `min_angle_deg` > 0 the triangulation is refined (Ruppert/Chew, boundary edges never
 /// split) toward that smallest angle, which also bounds the largest angle.
+///
+/// The flips and the smoothing work on the fill's own nodes ([`Local`]), numbered in the
+/// order of their indices: the same arithmetic in the same order on a few compact arrays
+/// instead of lookups across every node of the mesh.
 pub(crate) fn fill_region(
     directed_edges: &[(u32, u32)],
     free: &[u32],
     pos: &[P2],
     min_angle_deg: f64,
 ) -> Result<(Vec<[u32; 3]>, Vec<P2>), AfsfError> {
+    let (mut local, constraints) = triangulate(directed_edges, free, pos, min_angle_deg)?;
+    local.improve(&constraints);
+    Ok(local.into_global(pos.len()))
+}
+
+/// The refined constrained triangulation of [`fill_region`] before its flips and smoothing,
+/// in local numbers, with the front edges in local numbers (lower end first, sorted).
+fn triangulate(
+    directed_edges: &[(u32, u32)],
+    free: &[u32],
+    pos: &[P2],
+    min_angle_deg: f64,
+) -> Result<(Local, Vec<(u32, u32)>), AfsfError> {
     let mut cdt: Cdt = ConstrainedDelaunayTriangulation::new();
     let handle_of = insert_nodes(&mut cdt, directed_edges, free, pos)?;
     let directed = add_front_edges(&mut cdt, directed_edges, &handle_of)?;
@@ -72,16 +89,16 @@ pub(crate) fn fill_region(
         );
     }
     let faces = faces_inside(&cdt, directed)?;
-    let (mut tris, mut steiner) = triangles_of(&cdt, &faces, pos);
+    let local = Local::new(&cdt, &faces);
     let mut constraints: Vec<(u32, u32)> = directed_edges
         .iter()
-        .map(|&(a, b)| if a < b { (a, b) } else { (b, a) })
+        .map(|&(a, b)| {
+            let (a, b) = (local.of_node(&handle_of, a), local.of_node(&handle_of, b));
+            if a < b { (a, b) } else { (b, a) }
+        })
         .collect();
     constraints.sort_unstable();
-    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
-    smooth_steiner(&tris, pos, &mut steiner);
-    flip_min_max_angle(&mut tris, pos, &steiner, &constraints);
-    Ok((tris, steiner))
+    Ok((local, constraints))
 }
 
 /// Inserts the ends of the front edges, then the free nodes, once each; two nodes at one
@@ -197,31 +214,94 @@ fn faces_inside(
     Ok(faces)
 }
 
-/// The triangles of `faces` as node indices; the vertices the refinement added become new
-/// nodes, numbered from `pos.len()` in order of first use, with their positions.
-fn triangles_of(cdt: &Cdt, faces: &[InnerFace], pos: &[P2]) -> (Vec<[u32; 3]>, Vec<P2>) {
-    let mut added: Vec<u32> = vec![NONE; cdt.num_vertices()];
-    let mut steiner = Vec::new();
-    let tris: Vec<[u32; 3]> = faces
-        .iter()
-        .map(|&f| {
-            let v = cdt.face(f).vertices();
-            v.map(|h| {
-                let node = h.data().node;
-                if node != NONE {
-                    return node;
-                }
-                let slot = &mut added[h.fix().index()];
-                if *slot == NONE {
-                    let p = h.position();
-                    steiner.push([p.x, p.y]);
-                    *slot = (pos.len() + steiner.len() - 1) as u32;
-                }
-                *slot
+/// The fill triangles in a numbering of their own: the mesh nodes inserted (`front`, by
+/// increasing index) first, then the vertices the refinement added, in order of first use
+/// by the faces. The map is increasing on the mesh nodes and puts the added vertices after
+/// them, as their final indices (from `pos.len()` on) do: every order by node index is
+/// the same in either numbering.
+#[derive(Clone)]
+struct Local {
+    /// The mesh node of each local node below `front.len()`, increasing.
+    front: Vec<u32>,
+    /// The local number of each vertex of the triangulation (by handle index).
+    of_vertex: Vec<u32>,
+    /// The positions of the local nodes: the mesh nodes', then the added ones'.
+    pts: Vec<P2>,
+    /// The triangles of the faces, counter-clockwise, in local numbers.
+    tris: Vec<[u32; 3]>,
+}
+
+impl Local {
+    fn new(cdt: &Cdt, faces: &[InnerFace]) -> Self {
+        let mut front: Vec<(u32, usize)> = cdt
+            .vertices()
+            .filter(|v| v.data().node != NONE)
+            .map(|v| (v.data().node, v.fix().index()))
+            .collect();
+        front.sort_unstable();
+        let mut of_vertex = vec![NONE; cdt.num_vertices()];
+        let mut pts = Vec::with_capacity(cdt.num_vertices());
+        for (l, &(_, h)) in front.iter().enumerate() {
+            of_vertex[h] = l as u32;
+            let p = cdt
+                .vertex(spade::handles::FixedVertexHandle::from_index(h))
+                .position();
+            pts.push([p.x, p.y]);
+        }
+        let tris: Vec<[u32; 3]> = faces
+            .iter()
+            .map(|&f| {
+                cdt.face(f).vertices().map(|h| {
+                    let slot = &mut of_vertex[h.fix().index()];
+                    if *slot == NONE {
+                        let p = h.position();
+                        pts.push([p.x, p.y]);
+                        *slot = (pts.len() - 1) as u32;
+                    }
+                    *slot
+                })
             })
-        })
-        .collect();
-    (tris, steiner)
+            .collect();
+        Local {
+            front: front.into_iter().map(|(g, _)| g).collect(),
+            of_vertex,
+            pts,
+            tris,
+        }
+    }
+
+    /// The local number of mesh node `g` (inserted).
+    fn of_node(&self, handle_of: &[Option<VertexHandle>], g: u32) -> u32 {
+        handle_of[g as usize].map_or(NONE, |h| self.of_vertex[h.index()])
+    }
+
+    /// Flips, smooths the added nodes, flips again (`constraints`: the front edges, lower
+    /// end first, sorted).
+    fn improve(&mut self, constraints: &[(u32, u32)]) {
+        let front = self.front.len();
+        flip_min_max_angle(&mut self.tris, &self.pts, constraints);
+        smooth_steiner(&self.tris, &mut self.pts, front);
+        flip_min_max_angle(&mut self.tris, &self.pts, constraints);
+    }
+
+    /// The triangles in mesh numbers, the added nodes numbered from `n0` on in local order,
+    /// and the added nodes' positions.
+    fn into_global(self, n0: usize) -> (Vec<[u32; 3]>, Vec<P2>) {
+        let m = self.front.len();
+        let front = &self.front;
+        let tris = self
+            .tris
+            .iter()
+            .map(|t| {
+                t.map(|l| {
+                    let l = l as usize;
+                    if l < m { front[l] } else { (n0 + l - m) as u32 }
+                })
+            })
+            .collect();
+        let mut pts = self.pts;
+        (tris, pts.split_off(m))
+    }
 }
 
 /// Sweeps of the largest-angle edge flips.
@@ -232,22 +312,9 @@ const FLIP_SWEEPS: usize = 16;
 /// Delaunay triangulation maximises the smallest angle, which is not the figure a solver
 /// needs, and next to long front edges it keeps flat triangles whose other diagonal is
 /// fine. Both new triangles must be positive (the pair forms a convex quadrilateral).
-fn flip_min_max_angle(
-    tris: &mut [[u32; 3]],
-    pos: &[P2],
-    steiner: &[P2],
-    constraints: &[(u32, u32)],
-) {
-    let n0 = pos.len();
-    let at = |g: u32| {
-        if (g as usize) < n0 {
-            pos[g as usize]
-        } else {
-            steiner[g as usize - n0]
-        }
-    };
+fn flip_min_max_angle(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)]) {
     let worst = |t: [u32; 3]| {
-        let (a, b, c) = (at(t[0]), at(t[1]), at(t[2]));
+        let (a, b, c) = (pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]);
         if orient2d(a, b, c) <= 0.0 {
             return f64::INFINITY;
         }
@@ -264,12 +331,15 @@ fn flip_min_max_angle(
     let mut kept = vec![NONE; 3 * tris.len()];
     let mut flipped = vec![false; tris.len()];
     for _ in 0..FLIP_SWEEPS {
-        let owner = Owners::new(tris, n0 + steiner.len());
+        let owner = Owners::new(tris, pts.len());
         let before_sweep = std::mem::replace(&mut flipped, vec![false; tris.len()]);
         let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
         let mut flips = 0;
+        // the constraints at or after the edge, walked along with the edges (both increasing)
+        let mut constraint = constraints.iter().peekable();
         // in a fixed order: the same input makes the same mesh
         for ((a, b), (t1, c1)) in owner.ascending() {
+            while constraint.next_if(|&&e| e < (a, b)).is_some() {}
             // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
             // (b, a) when every directed edge has one owner
             let t2 = tried[3 * t1 + c1];
@@ -279,7 +349,7 @@ fn flip_min_max_angle(
                 }
                 continue;
             }
-            if constraints.binary_search(&(a, b)).is_ok() {
+            if constraint.peek() == Some(&&(a, b)) {
                 continue;
             }
             let Some((t2, c2)) = owner.get((b, a)) else {
@@ -409,38 +479,38 @@ fn split(at: u32) -> (usize, usize) {
 /// Sweeps of the Steiner-node smoothing.
 const SMOOTHING_SWEEPS: usize = 6;
 
-/// Moves each added node toward the centroid of its triangles' other corners when that
-/// lowers the largest angle of its triangles (and keeps them positive): the refinement
-/// leaves obtuse triangles where it may not split a front edge, and these moves mend most
-/// of them. Front nodes never move.
-fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
-    if steiner.is_empty() {
+/// Moves each added node (the local nodes from `front` on) toward the centroid of its
+/// triangles' other corners when that lowers the largest angle of its triangles (and keeps
+/// them positive): the refinement leaves obtuse triangles where it may not split a front
+/// edge, and these moves mend most of them. Front nodes never move.
+fn smooth_steiner(tris: &[[u32; 3]], pts: &mut [P2], front: usize) {
+    let added = pts.len() - front;
+    if added == 0 {
         return;
     }
-    let mut smoother = Smoother::new(tris, pos, steiner.len());
+    let mut smoother = Smoother::new(tris, front, added);
     // a node tried and left where it was is tried again only once one of its neighbours
     // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
     // `settled[s]` the moves before s was last left (plus one; 0: not settled)
-    let (mut moves, mut moved, mut settled) =
-        (0u64, vec![0u64; steiner.len()], vec![0u64; steiner.len()]);
+    let (mut moves, mut moved, mut settled) = (0u64, vec![0u64; added], vec![0u64; added]);
     for _ in 0..SMOOTHING_SWEEPS {
-        for s in 0..steiner.len() {
+        for s in 0..added {
             if settled[s] != 0 && smoother.still(s, &moved, settled[s]) {
                 continue;
             }
-            let Some(centroid) = smoother.centroid(s, steiner) else {
+            let Some(centroid) = smoother.centroid(s, pts) else {
                 continue;
             };
-            let old = steiner[s];
-            let before = smoother.worst(s, steiner);
+            let old = pts[front + s];
+            let before = smoother.worst(s, pts);
             settled[s] = moves + 1;
             for f in [1.0, 0.5, 0.25] {
                 let p = [
                     old[0] + f * (centroid[0] - old[0]),
                     old[1] + f * (centroid[1] - old[1]),
                 ];
-                if smoother.improves(s, p, steiner, before) {
-                    smoother.place(s, p, steiner);
+                if smoother.improves(s, p, pts, before) {
+                    smoother.place(s, p, pts);
                     moves += 1;
                     moved[s] = moves;
                     settled[s] = 0;
@@ -451,70 +521,88 @@ fn smooth_steiner(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
     }
 }
 
-/// The Steiner-node smoothing's tables: the fill triangles, the front nodes (numbered
-/// first; added node `s` is `n0 + s`), each added node's triangles, and the largest angle of
-/// each triangle where its corners are (infinite when it is not positive), kept until one
-/// of its corners moves (`None` when not measured since).
-struct Smoother<'a> {
-    tris: &'a [[u32; 3]],
-    pos: &'a [P2],
-    n0: usize,
-    incident: Vec<Vec<u32>>,
+/// The Steiner-node smoothing's tables: the fill triangles (in local numbers: the front
+/// nodes first, added node `s` is `front + s`), each added node's triangles, and the largest
+/// angle of each triangle where its corners are (infinite when it is not positive), kept
+/// until one of its corners moves (`None` when not measured since).
+struct Smoother {
+    front: usize,
+    /// `incident[start[s]..start[s + 1]]`: the triangles of added node `s`, increasing, each
+    /// with its corners (the triangles do not change here: a copy beside the node reads
+    /// faster than the triangle list).
+    start: Vec<u32>,
+    incident: Vec<Incident>,
     figure: Vec<Option<f64>>,
 }
 
-impl<'a> Smoother<'a> {
-    fn new(tris: &'a [[u32; 3]], pos: &'a [P2], added: usize) -> Self {
-        let n0 = pos.len();
-        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); added];
-        for (t, tri) in tris.iter().enumerate() {
+/// A triangle of an added node: its index and its corners.
+#[derive(Clone, Copy, Default)]
+struct Incident {
+    t: u32,
+    tri: [u32; 3],
+}
+
+impl Smoother {
+    fn new(tris: &[[u32; 3]], front: usize, added: usize) -> Self {
+        let mut start = vec![0u32; added + 1];
+        for tri in tris {
             for &g in tri {
-                if g as usize >= n0 {
-                    incident[g as usize - n0].push(t as u32);
+                if g as usize >= front {
+                    start[g as usize - front + 1] += 1;
+                }
+            }
+        }
+        for s in 0..added {
+            start[s + 1] += start[s];
+        }
+        let mut next = start.clone();
+        let mut incident = vec![Incident::default(); start[added] as usize];
+        for (t, &tri) in tris.iter().enumerate() {
+            for &g in &tri {
+                if g as usize >= front {
+                    let slot = &mut next[g as usize - front];
+                    incident[*slot as usize] = Incident { t: t as u32, tri };
+                    *slot += 1;
                 }
             }
         }
         Smoother {
-            tris,
-            pos,
-            n0,
+            front,
+            start,
             incident,
             figure: vec![None; tris.len()],
         }
     }
 
-    fn at(&self, g: u32, steiner: &[P2]) -> P2 {
-        if (g as usize) < self.n0 {
-            self.pos[g as usize]
-        } else {
-            steiner[g as usize - self.n0]
-        }
+    /// The triangles of added node `s`.
+    fn of(&self, s: usize) -> &[Incident] {
+        &self.incident[self.start[s] as usize..self.start[s + 1] as usize]
     }
 
-    /// Triangle `t`'s corners with added node `s` at `p`.
-    fn corners(&self, s: usize, t: u32, p: P2, steiner: &[P2]) -> [P2; 3] {
-        let g = (self.n0 + s) as u32;
-        self.tris[t as usize].map(|v| if v == g { p } else { self.at(v, steiner) })
+    /// Triangle `tri`'s corners with added node `s` at `p`.
+    fn corners(&self, s: usize, tri: [u32; 3], p: P2, pts: &[P2]) -> [P2; 3] {
+        let g = (self.front + s) as u32;
+        tri.map(|v| if v == g { p } else { pts[v as usize] })
     }
 
     /// Whether no corner of `s`'s triangles but `s` moved since `s` was left (`settled`).
     fn still(&self, s: usize, moved: &[u64], settled: u64) -> bool {
-        let g = (self.n0 + s) as u32;
-        self.incident[s].iter().all(|&t| {
-            self.tris[t as usize]
-                .iter()
-                .all(|&v| (v as usize) < self.n0 || v == g || moved[v as usize - self.n0] < settled)
+        let g = (self.front + s) as u32;
+        self.of(s).iter().all(|i| {
+            i.tri.iter().all(|&v| {
+                (v as usize) < self.front || v == g || moved[v as usize - self.front] < settled
+            })
         })
     }
 
     /// The centroid of the other corners of `s`'s triangles (none without triangles).
-    fn centroid(&self, s: usize, steiner: &[P2]) -> Option<P2> {
-        let g = (self.n0 + s) as u32;
+    fn centroid(&self, s: usize, pts: &[P2]) -> Option<P2> {
+        let g = (self.front + s) as u32;
         let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
-        for &t in &self.incident[s] {
-            for &v in &self.tris[t as usize] {
+        for i in self.of(s) {
+            for &v in &i.tri {
                 if v != g {
-                    let q = self.at(v, steiner);
+                    let q = pts[v as usize];
                     sx += q[0];
                     sy += q[1];
                     k += 1.0;
@@ -526,13 +614,14 @@ impl<'a> Smoother<'a> {
 
     /// The largest angle of node `s`'s triangles where they are (infinite when one is not
     /// positive), from the kept figures.
-    fn worst(&mut self, s: usize, steiner: &[P2]) -> f64 {
+    fn worst(&mut self, s: usize, pts: &[P2]) -> f64 {
         let mut w = 0.0f64;
-        for &t in &self.incident[s] {
+        for k in self.start[s] as usize..self.start[s + 1] as usize {
+            let Incident { t, tri } = self.incident[k];
             let f = match self.figure[t as usize] {
                 Some(f) => f,
                 None => {
-                    let c = self.tris[t as usize].map(|v| self.at(v, steiner));
+                    let c = tri.map(|v| pts[v as usize]);
                     let f = if orient2d(c[0], c[1], c[2]) <= 0.0 {
                         f64::INFINITY
                     } else {
@@ -552,16 +641,18 @@ impl<'a> Smoother<'a> {
 
     /// Exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles
     /// mostly compared by their cosines.
-    fn improves(&self, s: usize, p: P2, steiner: &[P2], before: f64) -> bool {
+    fn improves(&self, s: usize, p: P2, pts: &[P2], before: f64) -> bool {
         let limit = crate::quality::AngleLimit::new(before);
-        for &t in &self.incident[s] {
-            let c = self.corners(s, t, p, steiner);
+        for i in self.of(s) {
+            let c = self.corners(s, i.tri, p, pts);
             if orient2d(c[0], c[1], c[2]) <= 0.0 {
                 return false;
             }
-            // (a NaN angle is passed over by the maximum in `worst`)
+            // (a NaN angle is passed over by the maximum in `worst`; corners of moderate
+            // size have none)
             if !limit.triangle_below(c[0], c[1], c[2])
-                && !crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]).is_nan()
+                && (moderate(c)
+                    || !crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]).is_nan())
             {
                 return false;
             }
@@ -570,12 +661,19 @@ impl<'a> Smoother<'a> {
     }
 
     /// Moves `s` to `p`, forgetting its triangles' figures.
-    fn place(&mut self, s: usize, p: P2, steiner: &mut [P2]) {
-        steiner[s] = p;
-        for &t in &self.incident[s] {
-            self.figure[t as usize] = None;
+    fn place(&mut self, s: usize, p: P2, pts: &mut [P2]) {
+        pts[self.front + s] = p;
+        for k in self.start[s] as usize..self.start[s + 1] as usize {
+            self.figure[self.incident[k].t as usize] = None;
         }
     }
+}
+
+/// Whether every coordinate of `c` is finite and below 1e150 in size: then the differences,
+/// their squares and products and the sums of two of these are finite, and the largest
+/// angle of the triangle (`atan2` of finite numbers) is not NaN.
+fn moderate(c: [P2; 3]) -> bool {
+    c.iter().flatten().all(|x| x.abs() < 1e150)
 }
 
 /// The fill triangles, the added nodes and the number of cells peeled.
@@ -614,8 +712,8 @@ pub(crate) fn fill_with_peeling(
     pos: &[P2],
     angles: FillAngles,
 ) -> Result<PeeledFill, AfsfError> {
-    let mut region = Region::new(cells, facets, fronts, pos.len());
-    let mut peelable: Option<Peelable> = None;
+    let mut region = Region::new(cells, facets, fronts);
+    let mut incidence: Option<CellsOfNode> = None;
     let max_angle_deg = angles.peel_max_angle_deg;
     let limit = crate::quality::AngleLimit::new(max_angle_deg);
     let mut peeled: Vec<u32> = Vec::new();
@@ -632,17 +730,8 @@ pub(crate) fn fill_with_peeling(
         {
             // what a peel round needs is built on the other thread while the first fill runs
             let start: &[Cell] = cells;
-            let (filled, (table, cells_of_node)) = rayon::join(fill, || {
-                let table = match region.table {
-                    None => Some(EdgeTable::new(start, &region.live, facets, pos.len())),
-                    Some(_) => None,
-                };
-                (table, Peelable::new(start, pos))
-            });
-            if table.is_some() {
-                region.table = table;
-            }
-            peelable = Some(cells_of_node);
+            let (filled, of_node) = rayon::join(fill, || CellsOfNode::new(start, pos.len()));
+            incidence = Some(of_node);
             filled?
         } else {
             fill()?
@@ -673,22 +762,19 @@ pub(crate) fn fill_with_peeling(
         if bad_nodes.is_empty() {
             return Ok((tris, steiner, peeled.len()));
         }
-        // (built before the first peel: both describe the cells alive at the start)
-        region.ensure_table(cells, pos.len());
-        let peelable = peelable.get_or_insert_with(|| Peelable::new(cells, pos));
-        let before = peeled.len();
-        for ci in peelable.touching(&bad_nodes) {
+        // (built before the first peel: it lists the cells alive at the start)
+        let of_node = incidence.get_or_insert_with(|| CellsOfNode::new(cells, pos.len()));
+        let mut now: Vec<(u32, u8)> = Vec::new();
+        for ci in of_node.peelable(&bad_nodes, cells, pos) {
             let c = &mut cells[ci as usize];
-            if c.len == 0 {
-                continue;
-            }
+            now.push((ci, c.len));
             peeled.push(ci);
             c.len = 0;
         }
-        if peeled.len() == before {
+        if now.is_empty() {
             return Ok((tris, steiner, peeled.len()));
         }
-        region.peel(cells, &peeled[before..]);
+        region.peel(cells, &now, of_node);
     }
 }
 
@@ -701,148 +787,138 @@ pub(crate) struct FillAngles {
     pub rounds: u32,
 }
 
-/// The cells a peel round may take (alive at the start, above the first layer, edge ratio at
-/// most [`PEEL_MAX_EDGE_RATIO`]), by corner node: a round looks only at the cells around the
-/// nodes of its bad triangles instead of every cell.
-struct Peelable {
-    /// `cells[start[g]..start[g + 1]]` are the peelable cells with corner `g`, increasing.
+/// The cells alive at the start of the fill by corner node: what a peel round needs to
+/// find the cells around the nodes of its bad triangles, and the cells beside those it
+/// peels, without counting the edges of every layered cell.
+struct CellsOfNode {
+    /// `cells[start[g]..start[g + 1]]` are the cells with corner `g`, increasing (a cell
+    /// with `g` twice among its corners is listed twice).
     start: Vec<u32>,
     cells: Vec<u32>,
 }
 
-impl Peelable {
-    fn new(cells: &[Cell], pos: &[P2]) -> Self {
-        let ok = |c: &Cell| c.len > 0 && c.layer != 0 && edge_ratio(c, pos) <= PEEL_MAX_EDGE_RATIO;
-        let mut start = vec![0u32; pos.len() + 1];
-        for c in cells.iter().filter(|c| ok(c)) {
+impl CellsOfNode {
+    fn new(cells: &[Cell], n_nodes: usize) -> Self {
+        let mut start = vec![0u32; n_nodes + 1];
+        for c in cells {
             for &g in c.corners() {
                 start[g as usize + 1] += 1;
             }
         }
-        for g in 0..pos.len() {
+        for g in 0..n_nodes {
             start[g + 1] += start[g];
         }
-        let mut fill = start.clone();
-        let mut of_node = vec![0u32; start[pos.len()] as usize];
-        for (ci, c) in cells.iter().enumerate().filter(|(_, c)| ok(c)) {
+        let mut next = start.clone();
+        let mut of_node = vec![0u32; start[n_nodes] as usize];
+        for (ci, c) in cells.iter().enumerate() {
             for &g in c.corners() {
-                of_node[fill[g as usize] as usize] = ci as u32;
-                fill[g as usize] += 1;
+                of_node[next[g as usize] as usize] = ci as u32;
+                next[g as usize] += 1;
             }
         }
-        Peelable {
+        CellsOfNode {
             start,
             cells: of_node,
         }
     }
 
-    /// The peelable cells with a corner among `nodes`, increasing, once each.
-    fn touching(&self, nodes: &[u32]) -> Vec<u32> {
+    /// The cells listed with corner `g`.
+    fn of(&self, g: u32) -> &[u32] {
+        &self.cells[self.start[g as usize] as usize..self.start[g as usize + 1] as usize]
+    }
+
+    /// The cells a peel round may take with a corner among `nodes`, increasing, once each:
+    /// alive, above the first layer, edge ratio at most [`PEEL_MAX_EDGE_RATIO`].
+    fn peelable(&self, nodes: &[u32], cells: &[Cell], pos: &[P2]) -> Vec<u32> {
         let mut found: Vec<u32> = Vec::new();
         for &g in nodes {
-            let g = g as usize;
-            found.extend(&self.cells[self.start[g] as usize..self.start[g + 1] as usize]);
+            found.extend(self.of(g));
         }
         found.sort_unstable();
         found.dedup();
+        found.retain(|&ci| {
+            let c = &cells[ci as usize];
+            c.len > 0 && c.layer != 0 && edge_ratio(c, pos) <= PEEL_MAX_EDGE_RATIO
+        });
+        found
+    }
+
+    /// The alive cells with the edge `{a, b}` as a side, with that side's index (a cell
+    /// with it twice, twice).
+    fn sides(&self, cells: &[Cell], a: u32, b: u32) -> Vec<(u32, u32)> {
+        let mut found = Vec::new();
+        let list = self.of(a);
+        for (i, &d) in list.iter().enumerate() {
+            if i > 0 && list[i - 1] == d {
+                continue; // a cell listed twice is looked at once
+            }
+            let k = cells[d as usize].corners();
+            for j in 0..k.len() {
+                let (p, q) = (k[j], k[(j + 1) % k.len()]);
+                if (p, q) == (a, b) || (p, q) == (b, a) {
+                    found.push((d, j as u32));
+                }
+            }
+        }
         found
     }
 }
 
 /// The boundary of the region left to the fill, kept up to date as cells are peeled. At the
-/// start it is read off the final fronts (each front edge knows its cell); the edge table of
-/// the cells alive at the start (by `mesh_model::topology`) is built only when a round peels,
-/// and then each peel round only updates the counts of the peeled cells' edges and corners,
-/// instead of counting the edges of every layered cell again.
+/// start it is read off the final fronts (each front edge knows its cell); a peel round then
+/// looks only at the sides of the cells it peels, and at the cells beside them
+/// ([`CellsOfNode`]), instead of counting the edges of every layered cell again.
 struct Region {
-    /// The cells alive at the start, by index; their position in this list is their index in
-    /// the edge table.
-    live: Vec<u32>,
-    /// Position in `live` of each cell (`NONE` for a cell not alive at the start).
-    position: Vec<u32>,
-    /// The cell edges on the region's boundary (alive in one cell, no facet on it), as
-    /// (position in `live`, local edge), sorted.
+    /// The cell sides on the region's boundary (in one alive cell, no facet on them), as
+    /// (cell, side: corners `j` and `j + 1`), sorted.
     open: Vec<(u32, u32)>,
     /// The boundary facets, domain on their left.
     facets: Vec<(u32, u32)>,
-    /// Before the edge table: whether each facet has no cell on it (a front edge).
+    /// The facets by their nodes (lower first), with their index, sorted.
+    facet_keys: Vec<((u32, u32), u32)>,
+    /// Whether each facet has no alive cell on it (a front edge).
     bare: Vec<bool>,
-    /// The edge table, once built.
-    table: Option<EdgeTable>,
+    /// The nodes of peeled cells that no alive cell has as a corner, sorted.
+    unused: Vec<u32>,
 }
 
-/// The open cell edges of a region, sorted, and whether each facet is bare.
+/// The open cell sides of a region, sorted, and whether each facet is bare.
 type OpenAndBare = (Vec<(u32, u32)>, Vec<bool>);
-
-/// The edges of the cells alive at the start and their uses by the cells still alive.
-struct EdgeTable {
-    /// The edges of the cells in `Region::live`, with the boundary facets on theirs.
-    edges: Edges,
-    /// Whether each cell of `live` is still alive (not peeled).
-    alive: Vec<bool>,
-    /// Cells still alive on each edge.
-    edge_uses: Vec<u32>,
-    /// Cells still alive with each node as a corner.
-    node_uses: Vec<u32>,
-    /// The edge of each boundary facet (`NONE` when no cell has it).
-    facet_edge: Vec<u32>,
-}
 
 fn cell_shape(c: &Cell) -> Shape {
     if c.len == 3 { Shape::Tri } else { Shape::Quad }
 }
 
-impl EdgeTable {
-    /// The table of the cells `live` (all alive) and the boundary facets.
-    fn new(cells: &[Cell], live: &[u32], facets: &[(u32, u32)], n_nodes: usize) -> Self {
-        let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
-        let edges = Edges::build(
-            live.iter().map(|&c| {
-                let c = &cells[c as usize];
-                (cell_shape(c), c.corners())
-            }),
-            facet_nodes.iter().map(|f| &f[..]),
-        );
-        let edge_uses: Vec<u32> = (0..edges.len() as u32)
-            .map(|e| edges.cells(e).len() as u32)
-            .collect();
-        let mut node_uses = vec![0u32; n_nodes];
-        for &c in live {
-            for &g in cells[c as usize].corners() {
-                node_uses[g as usize] += 1;
+/// The open sides and the bare facets of the alive cells, counted from their edge table.
+fn open_and_bare_by_table(cells: &[Cell], facets: &[(u32, u32)]) -> OpenAndBare {
+    let live: Vec<u32> = (0..cells.len() as u32)
+        .filter(|&c| cells[c as usize].len > 0)
+        .collect();
+    let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
+    let edges = Edges::build(
+        live.iter().map(|&c| {
+            let c = &cells[c as usize];
+            (cell_shape(c), c.corners())
+        }),
+        facet_nodes.iter().map(|f| &f[..]),
+    );
+    let mut open = Vec::new();
+    for (i, &c) in live.iter().enumerate() {
+        for (j, &e) in edges.of_cell(i).iter().enumerate() {
+            if edges.cells(e).len() == 1 && !edges.is_boundary(e) {
+                open.push((c, j as u32));
             }
         }
-        let facet_edge = facets
-            .iter()
-            .map(|&(a, b)| edges.find(&[a, b]).unwrap_or(NONE))
-            .collect();
-        EdgeTable {
-            alive: vec![true; live.len()],
-            edges,
-            edge_uses,
-            node_uses,
-            facet_edge,
-        }
     }
-
-    /// Whether no alive cell stands on facet `f`.
-    fn bare(&self, f: usize) -> bool {
-        let e = self.facet_edge[f];
-        e == NONE || self.edge_uses[e as usize] == 0
-    }
-
-    /// The open cell edges (alive in one cell, no facet on it), sorted.
-    fn open(&self) -> Vec<(u32, u32)> {
-        let mut open = Vec::new();
-        for i in 0..self.alive.len() {
-            for (j, &e) in self.edges.of_cell(i).iter().enumerate() {
-                if self.edge_uses[e as usize] == 1 && !self.edges.is_boundary(e) {
-                    open.push((i as u32, j as u32));
-                }
-            }
-        }
-        open
-    }
+    let bare = facets
+        .iter()
+        .map(|&(a, b)| {
+            edges
+                .find(&[a, b])
+                .is_none_or(|e| edges.cells(e).is_empty())
+        })
+        .collect();
+    (open, bare)
 }
 
 impl Region {
@@ -850,154 +926,134 @@ impl Region {
     /// `fronts` (`(a, b, cell)`: the region on the left, the cell on the right or `NONE` on a
     /// bare facet). When the fronts do not match the cells edge for edge, the boundary is
     /// counted from the edge table instead.
-    fn new(
-        cells: &[Cell],
-        facets: &[(u32, u32)],
-        fronts: &[(u32, u32, u32)],
-        n_nodes: usize,
-    ) -> Self {
-        let live: Vec<u32> = (0..cells.len() as u32)
-            .filter(|&c| cells[c as usize].len > 0)
-            .collect();
-        let mut position = vec![NONE; cells.len()];
-        for (i, &c) in live.iter().enumerate() {
-            position[c as usize] = i as u32;
-        }
-        let mut region = Region {
-            live,
-            position,
-            open: Vec::new(),
-            facets: facets.to_vec(),
-            bare: Vec::new(),
-            table: None,
-        };
-        match region.open_from_fronts(cells, fronts) {
-            Some((open, bare)) => {
-                region.open = open;
-                region.bare = bare;
+    fn new(cells: &[Cell], facets: &[(u32, u32)], fronts: &[(u32, u32, u32)]) -> Self {
+        let (open, bare) = match open_from_fronts(cells, facets, fronts) {
+            Some(found) => {
                 if cfg!(debug_assertions) {
-                    let table = EdgeTable::new(cells, &region.live, facets, n_nodes);
-                    assert_eq!(region.open, table.open(), "the fronts' open edges");
-                    let bare: Vec<bool> = (0..facets.len()).map(|f| table.bare(f)).collect();
-                    assert_eq!(region.bare, bare, "the fronts' bare facets");
+                    let counted = open_and_bare_by_table(cells, facets);
+                    assert_eq!(found.0, counted.0, "the fronts' open edges");
+                    assert_eq!(found.1, counted.1, "the fronts' bare facets");
                 }
+                found
             }
-            None => {
-                let table = EdgeTable::new(cells, &region.live, facets, n_nodes);
-                region.open = table.open();
-                region.table = Some(table);
-            }
-        }
-        region
-    }
-
-    /// The open cell edges (sorted) and the bare facets, from the fronts: every front edge
-    /// with a cell is a side of that alive cell, met once; every front edge without one is a
-    /// facet, met once; else `None`.
-    fn open_from_fronts(&self, cells: &[Cell], fronts: &[(u32, u32, u32)]) -> Option<OpenAndBare> {
-        let mut open = Vec::with_capacity(fronts.len());
-        let mut bare_edges = Vec::new();
-        for &(a, b, c) in fronts {
-            if c == NONE {
-                bare_edges.push((a, b));
-                continue;
-            }
-            let i = *self.position.get(c as usize)?;
-            if i == NONE {
-                return None;
-            }
-            let k = cells[c as usize].corners();
-            // the cell is on the right of the front edge: its side (b, a)
-            let j = (0..k.len()).find(|&j| k[j] == b && k[(j + 1) % k.len()] == a)?;
-            open.push((i, j as u32));
-        }
-        open.sort_unstable();
-        if open.windows(2).any(|w| w[0] == w[1]) {
-            return None;
-        }
-        bare_edges.sort_unstable();
-        let bare: Vec<bool> = self
-            .facets
+            None => open_and_bare_by_table(cells, facets),
+        };
+        let mut facet_keys: Vec<((u32, u32), u32)> = facets
             .iter()
-            .map(|f| bare_edges.binary_search(f).is_ok())
+            .enumerate()
+            .map(|(f, &(a, b))| ((a.min(b), a.max(b)), f as u32))
             .collect();
-        let n_bare = bare.iter().filter(|&&b| b).count();
-        if n_bare != bare_edges.len() || bare_edges.windows(2).any(|w| w[0] == w[1]) {
-            return None;
-        }
-        Some((open, bare))
-    }
-
-    /// Builds the edge table now (before any cell of `live` is peeled) if it is not yet.
-    fn ensure_table(&mut self, cells: &[Cell], n_nodes: usize) {
-        if self.table.is_none() {
-            self.table = Some(EdgeTable::new(cells, &self.live, &self.facets, n_nodes));
+        facet_keys.sort_unstable();
+        Region {
+            open,
+            facets: facets.to_vec(),
+            facet_keys,
+            bare,
+            unused: Vec::new(),
         }
     }
 
-    /// Whether node `g` is a corner of no alive cell (only after a peel).
+    /// Whether node `g` is a node of a peeled cell that no alive cell has as a corner.
     fn unused(&self, g: u32) -> bool {
-        self.table
-            .as_ref()
-            .is_some_and(|t| t.node_uses[g as usize] == 0)
+        self.unused.binary_search(&g).is_ok()
     }
 
     /// The region's boundary as directed edges with the region on their left: the open cell
-    /// edges reversed, in cell order, then the facets no alive cell stands on.
+    /// sides reversed, in cell order, then the facets no alive cell stands on.
     fn directed(&self, cells: &[Cell]) -> Vec<(u32, u32)> {
         let mut directed: Vec<(u32, u32)> = self
             .open
             .iter()
-            .map(|&(i, j)| {
-                let k = cells[self.live[i as usize] as usize].corners();
+            .map(|&(c, j)| {
+                let k = cells[c as usize].corners();
                 let j = j as usize;
                 (k[(j + 1) % k.len()], k[j])
             })
             .collect();
-        let bare = |f: usize| match &self.table {
-            Some(t) => t.bare(f),
-            None => self.bare[f],
-        };
         directed.extend(
             (0..self.facets.len())
-                .filter(|&f| bare(f))
+                .filter(|&f| self.bare[f])
                 .map(|f| self.facets[f]),
         );
         directed
     }
 
-    /// Takes the cells `peeled` (alive until now, their `len` already 0) out of the region's
-    /// walls: the edges they shared with alive cells open. The edge table must be built.
-    fn peel(&mut self, cells: &[Cell], peeled: &[u32]) {
-        let t = self
-            .table
-            .as_mut()
-            .expect("the edge table is built before a peel");
-        let mut touched = Vec::new();
-        for &c in peeled {
-            let i = self.position[c as usize] as usize;
-            t.alive[i] = false;
-            let of_cell = t.edges.of_cell(i);
-            for &g in &cells[c as usize].nodes[..of_cell.len()] {
-                t.node_uses[g as usize] -= 1;
+    /// Takes the cells `peeled` (cell, its number of corners; alive until now, their `len`
+    /// already 0) out of the region's walls: the sides they shared with one alive cell open,
+    /// the facets under them are laid bare, and their nodes no alive cell keeps are unused.
+    /// `of_node` lists the cells alive before any peel.
+    fn peel(&mut self, cells: &[Cell], peeled: &[(u32, u8)], of_node: &CellsOfNode) {
+        self.open.retain(|&(c, _)| cells[c as usize].len > 0);
+        for &(c, len) in peeled {
+            let nodes = &cells[c as usize].nodes;
+            let k = &nodes[..len as usize];
+            for j in 0..k.len() {
+                let (a, b) = (k[j], k[(j + 1) % k.len()]);
+                let sides = of_node.sides(cells, a, b);
+                let key = (a.min(b), a.max(b));
+                let from = self.facet_keys.partition_point(|f| f.0 < key);
+                let on = self.facet_keys[from..]
+                    .iter()
+                    .take_while(|f| f.0 == key)
+                    .map(|f| f.1 as usize);
+                let mut facet = false;
+                for f in on {
+                    facet = true;
+                    self.bare[f] = sides.is_empty();
+                }
+                if sides.len() == 1 && !facet {
+                    self.open.push(sides[0]);
+                }
             }
-            for &e in of_cell {
-                t.edge_uses[e as usize] -= 1;
-                touched.push(e);
+            for &g in nodes.iter().filter(|&&g| g != NONE) {
+                let kept = of_node.of(g).iter().any(|&d| cells[d as usize].len > 0);
+                if !kept {
+                    self.unused.push(g);
+                }
             }
-        }
-        let alive = &t.alive;
-        self.open.retain(|&(i, _)| alive[i as usize]);
-        for e in touched {
-            if t.edge_uses[e as usize] != 1 || t.edges.is_boundary(e) {
-                continue;
-            }
-            let open = t.edges.cells(e).iter().filter(|u| alive[u.cell as usize]);
-            self.open.extend(open.map(|u| (u.cell, u32::from(u.local))));
         }
         self.open.sort_unstable();
         self.open.dedup();
+        self.unused.sort_unstable();
+        self.unused.dedup();
     }
+}
+
+/// The open cell sides (sorted) and the bare facets, from the fronts: every front edge with
+/// a cell is a side of that alive cell, met once; every front edge without one is a facet,
+/// met once; else `None`.
+fn open_from_fronts(
+    cells: &[Cell],
+    facets: &[(u32, u32)],
+    fronts: &[(u32, u32, u32)],
+) -> Option<OpenAndBare> {
+    let mut open = Vec::with_capacity(fronts.len());
+    let mut bare_edges = Vec::new();
+    for &(a, b, c) in fronts {
+        if c == NONE {
+            bare_edges.push((a, b));
+            continue;
+        }
+        let cell = cells.get(c as usize)?;
+        let k = cell.corners();
+        // the cell is on the right of the front edge: its side (b, a)
+        let j = (0..k.len()).find(|&j| k[j] == b && k[(j + 1) % k.len()] == a)?;
+        open.push((c, j as u32));
+    }
+    open.sort_unstable();
+    if open.windows(2).any(|w| w[0] == w[1]) {
+        return None;
+    }
+    bare_edges.sort_unstable();
+    let bare: Vec<bool> = facets
+        .iter()
+        .map(|f| bare_edges.binary_search(f).is_ok())
+        .collect();
+    let n_bare = bare.iter().filter(|&&b| b).count();
+    if n_bare != bare_edges.len() || bare_edges.windows(2).any(|w| w[0] == w[1]) {
+        return None;
+    }
+    Some((open, bare))
 }
 
 #[cfg(test)]
@@ -1031,6 +1087,196 @@ mod tests {
             }
         }
         directed
+    }
+
+    /// The largest angle of a triangle, infinite when it is not positive.
+    fn naive_worst(c: [P2; 3]) -> f64 {
+        if orient2d(c[0], c[1], c[2]) <= 0.0 {
+            return f64::INFINITY;
+        }
+        crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
+    }
+
+    /// The flips as specified, in mesh numbers, measuring every pair each sweep (no pair
+    /// kept from the last sweep, no cosines, no table of owners but a map).
+    fn naive_flips(tris: &mut [[u32; 3]], at: &dyn Fn(u32) -> P2, constraints: &[(u32, u32)]) {
+        let worst = |t: [u32; 3]| naive_worst(t.map(at));
+        for _ in 0..FLIP_SWEEPS {
+            let mut owner = std::collections::BTreeMap::new();
+            for (t, tri) in tris.iter().enumerate() {
+                for i in 0..3 {
+                    owner.insert((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3));
+                }
+            }
+            let mut flipped = vec![false; tris.len()];
+            let mut flips = 0;
+            for (&(a, b), &(t1, c1)) in owner.iter().filter(|(e, _)| e.0 < e.1) {
+                let Some(&(t2, c2)) = owner.get(&(b, a)) else {
+                    continue;
+                };
+                if constraints.contains(&(a, b)) || flipped[t1] || flipped[t2] {
+                    continue;
+                }
+                let (c, d) = (tris[t1][c1], tris[t2][c2]);
+                let before = worst(tris[t1]).max(worst(tris[t2]));
+                let (n1, n2) = ([c, a, d], [d, b, c]);
+                if worst(n1).max(worst(n2)) < before - 1e-6 {
+                    tris[t1] = n1;
+                    tris[t2] = n2;
+                    flipped[t1] = true;
+                    flipped[t2] = true;
+                    flips += 1;
+                }
+            }
+            if flips == 0 {
+                break;
+            }
+        }
+    }
+
+    /// The smoothing as specified, in mesh numbers (added node `s` is `n0 + s`): every node
+    /// tried in every sweep, every angle measured.
+    fn naive_smoothing(tris: &[[u32; 3]], pos: &[P2], steiner: &mut [P2]) {
+        let n0 = pos.len();
+        for _ in 0..SMOOTHING_SWEEPS {
+            for s in 0..steiner.len() {
+                let g = (n0 + s) as u32;
+                let at = |v: u32, p: P2, steiner: &[P2]| {
+                    if v == g {
+                        p
+                    } else if (v as usize) < n0 {
+                        pos[v as usize]
+                    } else {
+                        steiner[v as usize - n0]
+                    }
+                };
+                let own: Vec<[u32; 3]> = tris.iter().copied().filter(|t| t.contains(&g)).collect();
+                if own.is_empty() {
+                    continue;
+                }
+                let old = steiner[s];
+                let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
+                for t in &own {
+                    for &v in t.iter().filter(|&&v| v != g) {
+                        let q = at(v, old, steiner);
+                        sx += q[0];
+                        sy += q[1];
+                        k += 1.0;
+                    }
+                }
+                let centroid = [sx / k, sy / k];
+                let figures = own
+                    .iter()
+                    .map(|t| naive_worst(t.map(|v| at(v, old, steiner))));
+                let before = figures.fold(0.0f64, |w, f| {
+                    if w == f64::INFINITY || f == f64::INFINITY {
+                        f64::INFINITY
+                    } else {
+                        w.max(f)
+                    }
+                });
+                for f in [1.0, 0.5, 0.25] {
+                    let p = [
+                        old[0] + f * (centroid[0] - old[0]),
+                        old[1] + f * (centroid[1] - old[1]),
+                    ];
+                    let better = own.iter().all(|t| {
+                        let c = t.map(|v| at(v, p, steiner));
+                        let angle = crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]);
+                        orient2d(c[0], c[1], c[2]) > 0.0 && (angle < before || angle.is_nan())
+                    });
+                    if better && 0.0 < before {
+                        steiner[s] = p;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The flips and smoothing on the fill's own numbering give the triangles and added
+    /// nodes of flipping and smoothing as specified in the mesh's numbering, to the last
+    /// bit: annuli whose nodes have shuffled indices among unrelated nodes (so that no order
+    /// of insertion or of position stands in for the order of the indices).
+    #[test]
+    fn the_local_flips_and_smoothing_are_those_of_the_mesh_numbering() {
+        let mut rng = testkit::layered::Rng(28);
+        for case in 0..4 {
+            let (outer, inner) = (60 + 60 * case, 40 + 30 * case);
+            let ring = |n: usize, r: f64, rng: &mut testkit::layered::Rng| -> Vec<P2> {
+                (0..n)
+                    .map(|i| {
+                        let a = std::f64::consts::TAU * (i as f64 + 0.3 * rng.unit()) / n as f64;
+                        let r = r * (1.0 + 0.3 * rng.unit());
+                        [r * a.cos(), 0.7 * r * a.sin()]
+                    })
+                    .collect()
+            };
+            let mut points = ring(outer, 10.0, &mut rng);
+            let mut hole = ring(inner, 3.0, &mut rng);
+            hole.reverse(); // clockwise: the region on the left of its edges
+            points.extend(hole);
+            // a few free nodes in the region
+            points.extend((0..3).map(|i| [6.0 + i as f64 * 0.2, 0.1 * i as f64]));
+            let n = points.len();
+            // node k of the region is mesh node `id[k]` among 4n nodes
+            let mut id: Vec<u32> = (0..4 * n as u32).collect();
+            rng.shuffle(&mut id);
+            id.truncate(n);
+            let mut pos: Vec<P2> = (0..4 * n).map(|i| [1e3 + i as f64, -7.0]).collect();
+            for (k, &g) in id.iter().enumerate() {
+                pos[g as usize] = points[k];
+            }
+            let loop_edges =
+                |from: usize, len: usize| (0..len).map(move |i| (from + i, from + (i + 1) % len));
+            let directed: Vec<(u32, u32)> = loop_edges(0, outer)
+                .chain(loop_edges(outer, inner))
+                .map(|(a, b)| (id[a], id[b]))
+                .collect();
+            let free: Vec<u32> = id[outer + inner..].to_vec();
+            let (local, constraints) = triangulate(&directed, &free, &pos, 30.0).unwrap();
+            assert!(
+                local.pts.len() > local.front.len() + 100,
+                "the refinement adds nodes"
+            );
+            let (mut want, mut steiner) = local.clone().into_global(pos.len());
+            let mut sorted: Vec<(u32, u32)> = directed
+                .iter()
+                .map(|&(a, b)| (a.min(b), a.max(b)))
+                .collect();
+            sorted.sort_unstable();
+            {
+                let at = |g: u32| {
+                    let g = g as usize;
+                    if g < pos.len() {
+                        pos[g]
+                    } else {
+                        steiner[g - pos.len()]
+                    }
+                };
+                naive_flips(&mut want, &at, &sorted);
+            }
+            naive_smoothing(&want, &pos, &mut steiner);
+            let at = |g: u32| {
+                let g = g as usize;
+                if g < pos.len() {
+                    pos[g]
+                } else {
+                    steiner[g - pos.len()]
+                }
+            };
+            naive_flips(&mut want, &at, &sorted);
+            let mut local = local;
+            local.improve(&constraints);
+            let (got, got_steiner) = local.into_global(pos.len());
+            assert_eq!(got, want, "case {case}: the triangles");
+            let bits = |p: &[P2]| p.iter().map(|q| q.map(f64::to_bits)).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&got_steiner),
+                bits(&steiner),
+                "case {case}: the added nodes"
+            );
+        }
     }
 
     /// The edge owners by the counting sort on the first node are those of a stable sort by
@@ -1121,39 +1367,47 @@ mod tests {
         // a front edge on no cell side: the boundary is counted from the edge table instead
         let wrong = [(at(0, 0), at(7, 7), 3)];
         let n_nodes = (n * n) as usize;
+        assert!(open_from_fronts(&cells, &facets, &fronts).is_some());
+        assert!(open_from_fronts(&cells, &facets, &wrong).is_none());
         let mut regions = [
-            Region::new(&cells, &facets, &fronts, n_nodes),
-            Region::new(&cells, &facets, &wrong, n_nodes),
+            Region::new(&cells, &facets, &fronts),
+            Region::new(&cells, &facets, &wrong),
         ];
-        assert!(regions[0].table.is_none() && regions[1].table.is_some());
-        for region in &mut regions {
+        for region in &regions {
             assert_eq!(
                 region.directed(&cells),
                 directed_from_scratch(&cells, &facets)
             );
-            region.ensure_table(&cells, n_nodes);
         }
+        // (before any peel: the cells alive at the start)
+        let of_node = CellsOfNode::new(&cells, n_nodes);
         let mut seed = 12345u64;
+        let mut gone: Vec<u32> = Vec::new();
         for _round in 0..6 {
-            let mut peeled = Vec::new();
+            let mut now = Vec::new();
             for (ci, c) in cells.iter_mut().enumerate() {
                 seed = seed
                     .wrapping_mul(6364136223846793005)
                     .wrapping_add(1442695040888963407);
                 if c.len > 0 && (seed >> 33) % 5 == 1 {
+                    now.push((ci as u32, c.len));
+                    gone.push(ci as u32);
                     c.len = 0;
-                    peeled.push(ci as u32);
                 }
             }
             for region in &mut regions {
-                region.peel(&cells, &peeled);
+                region.peel(&cells, &now, &of_node);
                 assert_eq!(
                     region.directed(&cells),
                     directed_from_scratch(&cells, &facets)
                 );
-                for g in 0..n * n {
-                    let used = cells.iter().any(|c| c.corners().contains(&g));
-                    assert_eq!(!region.unused(g), used, "node {g}");
+                // the nodes of the cells peeled so far: unused exactly when no alive cell has
+                // them
+                for &c in &gone {
+                    for g in cells[c as usize].nodes.into_iter().filter(|&g| g != NONE) {
+                        let used = cells.iter().any(|c| c.corners().contains(&g));
+                        assert_eq!(!region.unused(g), used, "node {g}");
+                    }
                 }
             }
         }

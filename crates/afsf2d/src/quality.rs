@@ -85,13 +85,23 @@ impl AngleLimit {
     /// where the angles themselves decide.
     pub(crate) fn triangle_below(&self, a: P2, b: P2, c: P2) -> bool {
         let corners = [a, b, c];
+        // each side's length once (a side's square is the same bits either way round); the
+        // side from corner i to i + 1 is `side[i]`, the third measured only at corner 1
+        let length = |p: P2, q: P2| {
+            let u = [q[0] - p[0], q[1] - p[1]];
+            (u[0] * u[0] + u[1] * u[1]).sqrt()
+        };
+        let mut side = [length(a, b), f64::NAN, length(c, a)];
         let mut all_below = true;
         for i in 0..3 {
             let (p, q, r) = (corners[i], corners[(i + 1) % 3], corners[(i + 2) % 3]);
+            if i == 1 {
+                side[1] = length(b, c);
+            }
             let u = [q[0] - p[0], q[1] - p[1]];
             let v = [r[0] - p[0], r[1] - p[1]];
-            let (uu, vv) = (u[0] * u[0] + u[1] * u[1], v[0] * v[0] + v[1] * v[1]);
-            let cos = (u[0] * v[0] + u[1] * v[1]) / (uu.sqrt() * vv.sqrt());
+            // |u| |v|: the sides from p to q and from r to p
+            let cos = (u[0] * v[0] + u[1] * v[1]) / (side[i] * side[(i + 2) % 3]);
             if cos < self.cos - COS_MARGIN {
                 return false; // this corner's angle is above the limit
             }
