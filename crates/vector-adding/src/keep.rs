@@ -141,7 +141,8 @@ fn assemble_laid(mesh: &Mesh, mut laid: Laid) -> Mesh {
         &laid.edges,
         nodes,
         laid.sorted_edges,
-        laid.cells.iter().copied(),
+        &|i| laid.cells[i],
+        laid.cells.len(),
         &laid.interiors,
     )
 }

@@ -97,6 +97,7 @@ pub mod params;
 mod repair;
 mod split;
 pub mod stats;
+mod table;
 
 use geom_curve::ClosedCurve;
 use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
@@ -338,12 +339,23 @@ fn build(
             &edges,
             nodes,
             sorted_edges,
-            cells.into_iter(),
+            &|i| cells[i],
+            cells.len(),
             &interiors,
         ),
         None => {
-            let kept = split::keep(&edges.cell_edges, &edges.ends);
-            assemble::assemble(linear, &edges, nodes, sorted_edges, kept, &interiors)
+            let (cell_edges, ends) = (&edges.cell_edges, &edges.ends);
+            let kept = |i| split::kept(cell_edges, ends, i);
+            let count = cell_edges.len();
+            assemble::assemble(
+                linear,
+                &edges,
+                nodes,
+                sorted_edges,
+                &kept,
+                count,
+                &interiors,
+            )
         }
     };
     if let Some((cell_layer, cell_pipe)) = records {
