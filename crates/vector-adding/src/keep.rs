@@ -141,8 +141,7 @@ fn assemble_laid(mesh: &Mesh, mut laid: Laid) -> Mesh {
         &laid.edges,
         nodes,
         laid.sorted_edges,
-        &|i| laid.cells[i],
-        laid.cells.len(),
+        laid.cells.iter().copied(),
         &laid.interiors,
     )
 }

@@ -359,23 +359,12 @@ fn build(
             &edges,
             nodes,
             sorted_edges,
-            &|i| cells[i],
-            cells.len(),
+            cells.into_iter(),
             &interiors,
         ),
         None => {
-            let (cell_edges, ends) = (&edges.cell_edges, &edges.ends);
-            let kept = |i| split::kept(cell_edges, ends, i);
-            let count = cell_edges.len();
-            assemble::assemble(
-                linear,
-                &edges,
-                nodes,
-                sorted_edges,
-                &kept,
-                count,
-                &interiors,
-            )
+            let kept = split::keep(&edges.cell_edges, &edges.ends);
+            assemble::assemble(linear, &edges, nodes, sorted_edges, kept, &interiors)
         }
     };
     if let Some((cell_layer, cell_pipe)) = records {

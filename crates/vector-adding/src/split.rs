@@ -44,33 +44,29 @@ pub(crate) fn keep<'a>(
     cell_edges: &'a [[u32; 4]],
     ends: &'a [[u32; 2]],
 ) -> impl Iterator<Item = OutCell> + Clone + 'a {
-    (0..cell_edges.len()).map(move |i| kept(cell_edges, ends, i))
-}
-
-/// Output cell `i` without cutting ([`keep`]), read off the edge table.
-pub(crate) fn kept(cell_edges: &[[u32; 4]], ends: &[[u32; 2]], i: usize) -> OutCell {
-    let edges = cell_edges[i];
-    let (shape, n) = if edges[3] == NONE {
-        (Shape::Tri, 3)
-    } else {
-        (Shape::Quad, 4)
-    };
-    let mut corners = [0; 4];
-    for (j, corner) in corners.iter_mut().enumerate().take(n) {
-        let [a, b] = ends[edges[(j + n - 1) % n] as usize];
-        *corner = if ends[edges[j] as usize].contains(&a) {
-            a
+    cell_edges.iter().enumerate().map(move |(i, &edges)| {
+        let (shape, n) = if edges[3] == NONE {
+            (Shape::Tri, 3)
         } else {
-            b
+            (Shape::Quad, 4)
         };
-    }
-    OutCell {
-        shape,
-        corners,
-        edges,
-        source: i as u32,
-        interior: None,
-    }
+        let mut corners = [0; 4];
+        for (j, corner) in corners.iter_mut().enumerate().take(n) {
+            let [a, b] = ends[edges[(j + n - 1) % n] as usize];
+            *corner = if ends[edges[j] as usize].contains(&a) {
+                a
+            } else {
+                b
+            };
+        }
+        OutCell {
+            shape,
+            corners,
+            edges,
+            source: i as u32,
+            interior: None,
+        }
+    })
 }
 
 /// The two triangles of a quadrilateral cut along its shorter diagonal, and the verdict on

@@ -1,8 +1,8 @@
-//! The curving builds its edge table and assembles the curved mesh on every thread of the
-//! pool: the curved mesh (every node to the last bit, every cell, boundary line and per-cell
-//! record) and the record of its decisions are the same with 1, 2 and 3 threads, at P2 and
-//! P3, mixed and cut into triangles, and the same from `curve_mesh_owned` as from
-//! `curve_mesh`.
+//! The curving builds its edge table (and the edges' points) on every thread of the pool,
+//! and `curve_mesh_owned_with` runs a task beside its decisions: the curved mesh (every node
+//! to the last bit, every cell, boundary line and per-cell record) and the record of its
+//! decisions are the same with 1, 2 and 3 threads, at P2 and P3, mixed and cut into
+//! triangles, and the same from `curve_mesh_owned` as from `curve_mesh`.
 
 use mesh_model::{CellType, Mesh};
 use test_cases::{Grown, grow, real_case};
