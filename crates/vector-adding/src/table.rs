@@ -7,7 +7,7 @@
 //! lower node it holds, sorted by their lower node and then in full within each node's few
 //! edges. The ranges are in node order, so their edges one after the other are the edges of
 //! the whole mesh in sorted order; each range then numbers its own edges from where the
-//! ranges before it end.
+//! ranges before it end, and writes them into its own part of the final arrays.
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -39,17 +39,22 @@ pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
     let of_cell: Vec<[AtomicU32; 4]> = (0..cells.len())
         .map(|_| [const { AtomicU32::new(NONE) }; 4])
         .collect();
-    let numbered: Vec<(Vec<[u32; 2]>, Vec<[u32; 2]>)> = sorted
-        .into_par_iter()
-        .zip(first.par_iter().zip(&unique))
-        .map(|(records, (&first, &unique))| number(records, first, unique, &of_cell))
-        .collect();
+    // each range writes its edges into its own part of the final arrays
     let total = unique.iter().sum();
-    let (mut ends, mut cells_of) = (Vec::with_capacity(total), Vec::with_capacity(total));
-    for (e, c) in numbered {
-        ends.extend_from_slice(&e);
-        cells_of.extend_from_slice(&c);
+    let (mut ends, mut cells_of) = (vec![[0; 2]; total], vec![[NONE; 2]; total]);
+    let mut parts_of: Vec<(&mut [[u32; 2]], &mut [[u32; 2]])> = Vec::with_capacity(parts);
+    let (mut ends_left, mut cells_left) = (&mut ends[..], &mut cells_of[..]);
+    for &u in &unique {
+        let (e, rest_e) = std::mem::take(&mut ends_left).split_at_mut(u);
+        let (c, rest_c) = std::mem::take(&mut cells_left).split_at_mut(u);
+        parts_of.push((e, c));
+        (ends_left, cells_left) = (rest_e, rest_c);
     }
+    sorted.into_par_iter().zip(parts_of).zip(first).for_each(
+        |((records, (ends, cells_of)), first)| {
+            number(&records, first, ends, cells_of, &of_cell);
+        },
+    );
     let of_cell = of_cell
         .into_iter()
         .map(|slots| slots.map(AtomicU32::into_inner))
@@ -99,27 +104,32 @@ fn count_unique(records: &[Record]) -> usize {
     records.windows(2).filter(|w| w[0].0 != w[1].0).count() + usize::from(!records.is_empty())
 }
 
-/// The ends and first two cells of the `unique` edges of the sorted `records`, numbered from
-/// `first`; each use's edge goes into `of_cell`.
+/// The ends and first two cells of the edges of the sorted `records` into `ends` and
+/// `cells_of` (as many as there are edges), the edges numbered from `first`; each use's edge
+/// goes into `of_cell`.
 fn number(
-    records: Vec<Record>,
+    records: &[Record],
     first: usize,
-    unique: usize,
+    ends: &mut [[u32; 2]],
+    cells_of: &mut [[u32; 2]],
     of_cell: &[[AtomicU32; 4]],
-) -> (Vec<[u32; 2]>, Vec<[u32; 2]>) {
-    let (mut ends, mut cells_of) = (Vec::with_capacity(unique), Vec::with_capacity(unique));
-    for (k, cell, local) in records {
-        if ends.last() != Some(&k) {
-            ends.push(k);
-            cells_of.push([NONE; 2]);
-        }
-        let e = ends.len() - 1;
-        if let Some(slot) = cells_of[e].iter_mut().find(|c| **c == NONE) {
+) {
+    let mut e: Option<usize> = None;
+    for &(k, cell, local) in records {
+        let at = match e {
+            Some(at) if ends[at] == k => at,
+            _ => {
+                let at = e.map_or(0, |at| at + 1);
+                ends[at] = k;
+                at
+            }
+        };
+        e = Some(at);
+        if let Some(slot) = cells_of[at].iter_mut().find(|c| **c == NONE) {
             *slot = cell;
         }
-        of_cell[cell as usize][usize::from(local)].store((first + e) as u32, Ordering::Relaxed);
+        of_cell[cell as usize][usize::from(local)].store((first + at) as u32, Ordering::Relaxed);
     }
-    (ends, cells_of)
 }
 
 #[cfg(test)]
