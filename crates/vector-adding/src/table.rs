@@ -18,6 +18,9 @@ use rayon::prelude::*;
 /// One edge use: the edge's ends (lower node first), the cell and its local edge.
 type Record = ([u32; 2], u32, u8);
 
+/// A range's part of the final arrays: its edges' ends and first two cells.
+type Part<'a> = (&'a mut [[u32; 2]], &'a mut [[u32; 2]]);
+
 /// The edge table of `cells`, whose nodes are all below `nodes`: as
 /// `mesh_model::topology::edge_table_2d`, built on every thread of the pool.
 pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
@@ -42,7 +45,7 @@ pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
     // each range writes its edges into its own part of the final arrays
     let total = unique.iter().sum();
     let (mut ends, mut cells_of) = (vec![[0; 2]; total], vec![[NONE; 2]; total]);
-    let mut parts_of: Vec<(&mut [[u32; 2]], &mut [[u32; 2]])> = Vec::with_capacity(parts);
+    let mut parts_of: Vec<Part<'_>> = Vec::with_capacity(parts);
     let (mut ends_left, mut cells_left) = (&mut ends[..], &mut cells_of[..]);
     for &u in &unique {
         let (e, rest_e) = std::mem::take(&mut ends_left).split_at_mut(u);
