@@ -356,9 +356,7 @@ fn make(
         args.quiet,
         report,
     )?;
-    // the figures took their time within the curving's (beside it) or before it, at order 1
-    let seconds = 0.0;
-    Ok((mesh, snapshot, LinearAngles::Given { angles, seconds }))
+    Ok((mesh, snapshot, angles))
 }
 
 /// The angle figures of the linear mesh `linear`.
@@ -414,7 +412,8 @@ pub(crate) fn grow(
 /// The mesh of the run at `order` (quads cut when `triangles`): `layered` curved by
 /// Vector-Adding with its boundary nodes on `curves` at the `t` of `nodes` (the curving
 /// takes it, to let go of what it no longer needs), or itself at order 1; with the angle
-/// figures of `layered` (taken beside the curving's decisions, within its time).
+/// figures of `layered`: taken beside the curving's decisions (within its time, so none of
+/// their own), or before the copy at order 1 (with their time, which goes to `describe`).
 fn at_order(
     case: &case::Case,
     (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
@@ -422,9 +421,11 @@ fn at_order(
     (order, triangles): (u8, bool),
     quiet: bool,
     report: &mut Report,
-) -> Result<(Mesh, afsf2d::AngleStats)> {
+) -> Result<(Mesh, LinearAngles<'static>)> {
     if order == 1 {
+        let t = Instant::now();
         let angles = angles_of(&layered.mesh);
+        let seconds = t.elapsed().as_secs_f64();
         return Ok((
             if triangles {
                 linear_at_order(&layered, triangles, report)
@@ -432,7 +433,7 @@ fn at_order(
                 report.curved_edge_fraction = Some(0.0);
                 layered.mesh
             },
-            angles,
+            LinearAngles::Given { angles, seconds },
         ));
     }
     let t = Instant::now();
@@ -450,7 +451,8 @@ fn at_order(
         .insert("curving", t.elapsed().as_secs_f64());
     report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
     report.curving = Some(curved.stats);
-    Ok((curved.mesh, angles))
+    let seconds = 0.0;
+    Ok((curved.mesh, LinearAngles::Given { angles, seconds }))
 }
 
 /// The mesh of the run at order 1: `layered`'s own (a copy), its quads cut when `triangles`.
