@@ -334,8 +334,8 @@ pub(crate) fn plan_with(
 /// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
 /// and the curving when `order` > 1. Returns the final mesh and, when `--snapshot` is given,
 /// the stages to save, and the angle figures of the linear layered mesh (its quads uncut),
-/// computed here, before the linear mesh goes into the curving (which lets go of what it
-/// does not need before it builds the curved mesh, the peak of the run's memory).
+/// computed beside the curving's decisions, before the curving lets go of the linear mesh
+/// (which it does before it builds the curved mesh, the peak of the run's memory).
 fn make(
     args: &MeshArgs,
     case: &case::Case,
@@ -348,10 +348,7 @@ fn make(
         boundary: nodes.clone(),
         layered: grown.layered.clone(),
     });
-    let t = Instant::now();
-    let angles = afsf2d::max_angle_histogram(&grown.layered.mesh);
-    let seconds = t.elapsed().as_secs_f64();
-    let mesh = at_order(
+    let (mesh, angles) = at_order(
         case,
         (&curves, &nodes),
         grown.layered,
@@ -359,7 +356,12 @@ fn make(
         args.quiet,
         report,
     )?;
-    Ok((mesh, snapshot, LinearAngles::Given { angles, seconds }))
+    Ok((mesh, snapshot, angles))
+}
+
+/// The angle figures of the linear mesh `linear`.
+fn angles_of(linear: &Mesh) -> afsf2d::AngleStats {
+    afsf2d::max_angle_histogram(linear)
 }
 
 /// The first stages: curves, boundary mesh (then the cell estimate, refused above
@@ -409,7 +411,9 @@ pub(crate) fn grow(
 
 /// The mesh of the run at `order` (quads cut when `triangles`): `layered` curved by
 /// Vector-Adding with its boundary nodes on `curves` at the `t` of `nodes` (the curving
-/// takes it, to let go of what it no longer needs), or itself at order 1.
+/// takes it, to let go of what it no longer needs), or itself at order 1; with the angle
+/// figures of `layered`: taken beside the curving's decisions (within its time, so none of
+/// their own), or before the copy at order 1 (with their time, which goes to `describe`).
 fn at_order(
     case: &case::Case,
     (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
@@ -417,26 +421,38 @@ fn at_order(
     (order, triangles): (u8, bool),
     quiet: bool,
     report: &mut Report,
-) -> Result<Mesh> {
+) -> Result<(Mesh, LinearAngles<'static>)> {
     if order == 1 {
-        return Ok(if triangles {
-            linear_at_order(&layered, triangles, report)
-        } else {
-            report.curved_edge_fraction = Some(0.0);
-            layered.mesh
-        });
+        let t = Instant::now();
+        let angles = angles_of(&layered.mesh);
+        let seconds = t.elapsed().as_secs_f64();
+        return Ok((
+            if triangles {
+                linear_at_order(&layered, triangles, report)
+            } else {
+                report.curved_edge_fraction = Some(0.0);
+                layered.mesh
+            },
+            LinearAngles::Given { angles, seconds },
+        ));
     }
     let t = Instant::now();
     let progress = stage(quiet, "curving (Vector-Adding)");
-    let layered = std::borrow::Cow::Owned(layered);
-    let curved = pipeline::curved_mesh(case, curves, nodes, layered, order, triangles)?;
+    let (curved, angles) = pipeline::curved_mesh_with(
+        case,
+        (curves, nodes),
+        layered,
+        (order, triangles),
+        angles_of,
+    )?;
     drop(progress);
     report
         .timings_s
         .insert("curving", t.elapsed().as_secs_f64());
     report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
     report.curving = Some(curved.stats);
-    Ok(curved.mesh)
+    let seconds = 0.0;
+    Ok((curved.mesh, LinearAngles::Given { angles, seconds }))
 }
 
 /// The mesh of the run at order 1: `layered`'s own (a copy), its quads cut when `triangles`.

@@ -186,6 +186,24 @@ pub fn curved_mesh(
     .map_err(|e| anyhow::anyhow!("curving: {e}"))
 }
 
+/// [`curved_mesh`] of a linear mesh given to keep, with `beside` run on the linear mesh while
+/// the curving takes its decisions (`vector_adding::curve_mesh_owned_with`: on another thread
+/// when there is one). Returns the curved mesh and what `beside` gave.
+pub fn curved_mesh_with<R: Send>(
+    case: &Case,
+    (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
+    layered: mesh_model::LayeredMesh,
+    (order, triangles): (u8, bool),
+    beside: impl FnOnce(&mesh_model::Mesh) -> R + Send,
+) -> Result<(vector_adding::Curved, R)> {
+    let (loops, params) = (
+        loop_curves(curves, nodes),
+        curving_params(case, order, triangles),
+    );
+    vector_adding::curve_mesh_owned_with(layered, &loops, &params, beside)
+        .map_err(|e| anyhow::anyhow!("curving: {e}"))
+}
+
 /// Where the boundary nodes of every loop sit on its curve, for the curving.
 pub fn loop_curves<'a>(
     curves: &'a [ClosedCurve],

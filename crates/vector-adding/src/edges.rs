@@ -2,8 +2,8 @@
 //! marching writes into and the assembly reads from, so that a curved edge is curved the same
 //! way in both cells that share it.
 
-use mesh_model::topology::edge_table_2d;
 use mesh_model::{Mesh, NONE};
+use rayon::prelude::*;
 
 use crate::decisions::{Carry, EdgeRule, EdgeRules, lay};
 
@@ -46,7 +46,7 @@ impl EdgeTable {
     pub fn with_room(mesh: &Mesh, p: usize, room: usize) -> Self {
         // the mesh's unique edges in the topology's order (sorted by their end nodes), which
         // the high-order node numbering follows; a 2D cell has at most four edges
-        let (ends, cells, cell_edges) = edge_table_2d(mesh.cells.shapes_and_corners());
+        let (ends, cells, cell_edges) = crate::table::edge_table_2d(&mesh.cells, mesh.nodes.len());
         let mut table = EdgeTable {
             p,
             ends,
@@ -59,13 +59,15 @@ impl EdgeTable {
         };
         table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1) + room);
         table.nodes.extend_from_slice(&mesh.nodes);
-        for e in 0..table.ends.len() {
-            let [a, b] = table.ends[e];
-            for i in 1..p {
-                let x = lerp(mesh.xy(a), mesh.xy(b), i as f64 / p as f64);
-                table.nodes.push([x[0], x[1], 0.0]);
-            }
-        }
+        // the edges' points, on every thread, straight into the reserved array
+        let (q, ends) = (p - 1, &table.ends);
+        table
+            .nodes
+            .par_extend((0..ends.len() * q).into_par_iter().map(|k| {
+                let [a, b] = ends[k / q];
+                let x = lerp(mesh.xy(a), mesh.xy(b), (k % q + 1) as f64 / p as f64);
+                [x[0], x[1], 0.0]
+            }));
         table.curved = vec![false; table.ends.len()];
         table.rules = EdgeRules::straight(table.ends.len());
         table

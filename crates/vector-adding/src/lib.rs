@@ -97,6 +97,7 @@ pub mod params;
 mod repair;
 mod split;
 pub mod stats;
+mod table;
 
 use geom_curve::ClosedCurve;
 use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
@@ -158,6 +159,22 @@ pub fn curve_mesh_owned(
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
 ) -> Result<Curved, CurvingError> {
+    curve_mesh_owned_with(input, loops, params, |_| ()).map(|(curved, ())| curved)
+}
+
+/// [`curve_mesh_owned`], with `beside` run on the linear mesh while the curving takes its
+/// decisions (on another thread of the pool when there is one): what a caller wants of the
+/// linear mesh before it is let go, off the critical path. Returns the curved mesh and what
+/// `beside` gave; `beside` is not run when the input or the parameters are refused.
+///
+/// # Errors
+/// As [`curve_mesh`].
+pub fn curve_mesh_owned_with<R: Send>(
+    input: LayeredMesh,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+    beside: impl FnOnce(&Mesh) -> R + Send,
+) -> Result<(Curved, R), CurvingError> {
     let mut input = input;
     params.check()?;
     check_input(&input)?;
@@ -167,7 +184,11 @@ pub fn curve_mesh_owned(
     layering.node_parents = Vec::new();
     layering.pipe_start = Vec::new();
     layering.pipe_cells = Vec::new();
-    let decided = decide_checked(&input, loops, params)?;
+    let (aside, decided) = rayon::join(
+        || beside(&input.mesh),
+        || decide_checked(&input, loops, params),
+    );
+    let decided = decided?;
     let LayeredMesh { mut mesh, layering } = input;
     drop(layering);
     mesh.nodes = Vec::new();
@@ -179,7 +200,7 @@ pub fn curve_mesh_owned(
             std::mem::take(&mut mesh.cell_pipe),
         )
     });
-    Ok(build(decided, &mesh, params, records))
+    Ok((build(decided, &mesh, params, records), aside))
 }
 
 /// What the curving decided, before the curved mesh is assembled.

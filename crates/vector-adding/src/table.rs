@@ -1,0 +1,158 @@
+//! The unique edges of a linear 2D mesh built on every thread: the same three arrays as
+//! `mesh_model::topology::edge_table_2d` (each edge's ends, its first two cells, each cell's
+//! edges), to the last entry, whatever the number of threads.
+//!
+//! The nodes are cut into as many ranges as there are threads; each range gathers, in two
+//! passes over the cells (a count, then a scatter straight from the cells), the edges whose
+//! lower node it holds, sorted by their lower node and then in full within each node's few
+//! edges. The ranges are in node order, so their edges one after the other are the edges of
+//! the whole mesh in sorted order; each range then numbers its own edges from where the
+//! ranges before it end, and writes them into its own part of the final arrays.
+
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use mesh_model::topology::EdgeTable2d;
+use mesh_model::{Cells, NONE};
+use rayon::prelude::*;
+
+/// One edge use: the edge's ends (lower node first), the cell and its local edge.
+type Record = ([u32; 2], u32, u8);
+
+/// A range's part of the final arrays: its edges' ends and first two cells.
+type Part<'a> = (&'a mut [[u32; 2]], &'a mut [[u32; 2]]);
+
+/// The edge table of `cells`, whose nodes are all below `nodes`: as
+/// `mesh_model::topology::edge_table_2d`, built on every thread of the pool.
+pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
+    let parts = rayon::current_num_threads().clamp(1, 64);
+    let range = |t: usize| (nodes * t / parts) as u32..(nodes * (t + 1) / parts) as u32;
+    let sorted: Vec<Vec<Record>> = (0..parts)
+        .into_par_iter()
+        .map(|t| records_from(cells, range(t)))
+        .collect();
+    let unique: Vec<usize> = sorted.par_iter().map(|r| count_unique(r)).collect();
+    let first: Vec<usize> = unique
+        .iter()
+        .scan(0, |sum, &u| {
+            let at = *sum;
+            *sum += u;
+            Some(at)
+        })
+        .collect();
+    let of_cell: Vec<[AtomicU32; 4]> = (0..cells.len())
+        .map(|_| [const { AtomicU32::new(NONE) }; 4])
+        .collect();
+    // each range writes its edges into its own part of the final arrays
+    let total = unique.iter().sum();
+    let (mut ends, mut cells_of) = (vec![[0; 2]; total], vec![[NONE; 2]; total]);
+    let mut parts_of: Vec<Part<'_>> = Vec::with_capacity(parts);
+    let (mut ends_left, mut cells_left) = (&mut ends[..], &mut cells_of[..]);
+    for &u in &unique {
+        let (e, rest_e) = std::mem::take(&mut ends_left).split_at_mut(u);
+        let (c, rest_c) = std::mem::take(&mut cells_left).split_at_mut(u);
+        parts_of.push((e, c));
+        (ends_left, cells_left) = (rest_e, rest_c);
+    }
+    sorted.into_par_iter().zip(parts_of).zip(first).for_each(
+        |((records, (ends, cells_of)), first)| {
+            number(&records, first, ends, cells_of, &of_cell);
+        },
+    );
+    let of_cell = of_cell
+        .into_iter()
+        .map(|slots| slots.map(AtomicU32::into_inner))
+        .collect();
+    (ends, cells_of, of_cell)
+}
+
+/// The edge uses of `cells` whose lower node is in `range`, sorted: counted by lower node,
+/// scattered into their buckets in cell order, then each bucket sorted in full.
+fn records_from(cells: &Cells, range: std::ops::Range<u32>) -> Vec<Record> {
+    let width = (range.end - range.start) as usize;
+    let mut start = vec![0u32; width + 1];
+    for_each_use(cells, &range, |r| {
+        start[(r.0[0] - range.start) as usize + 1] += 1
+    });
+    for v in 0..width {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut records: Vec<Record> = vec![([0; 2], 0, 0); start[width] as usize];
+    for_each_use(cells, &range, |r| {
+        let slot = &mut fill[(r.0[0] - range.start) as usize];
+        records[*slot as usize] = r;
+        *slot += 1;
+    });
+    for v in 0..width {
+        records[start[v] as usize..start[v + 1] as usize].sort_unstable();
+    }
+    records
+}
+
+/// Calls `f` with every edge use of `cells` whose lower node is in `range`, in cell order.
+fn for_each_use(cells: &Cells, range: &std::ops::Range<u32>, mut f: impl FnMut(Record)) {
+    for (i, (shape, nodes)) in cells.shapes_and_corners().enumerate() {
+        for (j, e) in shape.edges().iter().enumerate() {
+            let (a, b) = (nodes[e[0]], nodes[e[1]]);
+            let key = [a.min(b), a.max(b)];
+            if range.contains(&key[0]) {
+                f((key, i as u32, j as u8));
+            }
+        }
+    }
+}
+
+/// How many distinct edges the sorted `records` hold.
+fn count_unique(records: &[Record]) -> usize {
+    records.windows(2).filter(|w| w[0].0 != w[1].0).count() + usize::from(!records.is_empty())
+}
+
+/// The ends and first two cells of the edges of the sorted `records` into `ends` and
+/// `cells_of` (as many as there are edges), the edges numbered from `first`; each use's edge
+/// goes into `of_cell`.
+fn number(
+    records: &[Record],
+    first: usize,
+    ends: &mut [[u32; 2]],
+    cells_of: &mut [[u32; 2]],
+    of_cell: &[[AtomicU32; 4]],
+) {
+    let mut e: Option<usize> = None;
+    for &(k, cell, local) in records {
+        let at = match e {
+            Some(at) if ends[at] == k => at,
+            _ => {
+                let at = e.map_or(0, |at| at + 1);
+                ends[at] = k;
+                at
+            }
+        };
+        e = Some(at);
+        if let Some(slot) = cells_of[at].iter_mut().find(|c| **c == NONE) {
+            *slot = cell;
+        }
+        of_cell[cell as usize][usize::from(local)].store((first + at) as u32, Ordering::Relaxed);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The table is `mesh_model`'s, entry for entry, on a real layered mesh (quadrilaterals
+    /// and triangles) with 1, 2 and 3 threads.
+    #[test]
+    fn the_table_is_the_topology_one_whatever_the_threads() {
+        let g = test_cases::grow(&test_cases::real_case("naca0012"));
+        let mesh = &g.output.layered.mesh;
+        let want = mesh_model::topology::edge_table_2d(mesh.cells.shapes_and_corners());
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let got = pool.install(|| edge_table_2d(&mesh.cells, mesh.nodes.len()));
+            assert_eq!(got, want, "{threads} threads");
+        }
+    }
+}
