@@ -191,17 +191,22 @@ pub fn cut(case: &Case3d, wall: &Surface, grown: &afsf3d::Grown3d) -> Result<Mes
 
 /// One flag per layer cell: whether both ends of an extrusion edge leaning more than
 /// `limit_deg` off its front's normal (table 6's angle, [`front_measures`]) are nodes of it
-/// (so, in a prism or hexahedron, one of its side edges). None flagged at 180°.
+/// (so, in a prism or hexahedron, one of its side edges). Empty (none flagged) at 180° and
+/// where no edge leans more.
 pub fn leaning_cells(wall: &Surface, grown: &afsf3d::Grown3d, limit_deg: f64) -> Vec<bool> {
     if limit_deg >= 180.0 {
         return Vec::new();
     }
     let (_, deviations) = front_measures(wall, grown);
+    // each leaning edge by its two nodes, lower first
     let mut leaning: Vec<(u32, u32)> = deviations
         .iter()
         .filter(|d| d.1 > limit_deg)
-        .map(|d| d.0)
+        .map(|&((a, b), _)| (a.min(b), a.max(b)))
         .collect();
+    if leaning.is_empty() {
+        return Vec::new();
+    }
     leaning.sort_unstable();
     let poly = &grown.mesh;
     let mut nodes = Vec::new();
@@ -213,8 +218,12 @@ pub fn leaning_cells(wall: &Surface, grown: &afsf3d::Grown3d, limit_deg: f64) ->
             }
             nodes.sort_unstable();
             nodes.dedup();
-            let has = |v: u32| nodes.binary_search(&v).is_ok();
-            leaning.iter().any(|&(a, b)| has(a) && has(b))
+            // a cell's pairs of nodes (at most 28) looked up among the leaning edges
+            (0..nodes.len()).any(|i| {
+                nodes[i + 1..]
+                    .iter()
+                    .any(|&b| leaning.binary_search(&(nodes[i], b)).is_ok())
+            })
         })
         .collect()
 }
