@@ -123,7 +123,7 @@ fn main() -> Result<()> {
             bail!("{msg}");
         }
     };
-    let mesh = pipeline3d::cut(&case, &surface, &grown)?;
+    let (mesh, _) = pipeline3d::cut(&case, &surface, &grown)?;
     println!(
         "grown and cut in {:.1} s: {} cells",
         t.elapsed().as_secs_f64(),

@@ -29,6 +29,10 @@ pub struct Case3d {
     /// more than this off its front's normal (table 6's angle) is cut into tetrahedra and
     /// pyramids, not kept as a prism or hexahedron (default [`MAX_LEAN_DEG`]; 180 keeps all).
     pub max_lean_deg: f64,
+    /// `[cut] min_corner_sj`: in the mixed cut, a layer cell that would be kept as a prism or
+    /// hexahedron with a corner scaled Jacobian below this is cut into tetrahedra and
+    /// pyramids instead (default 0: every such cell kept).
+    pub min_corner_sj: f64,
     /// `[curving] order` (1 or 2).
     pub order: u8,
 }
@@ -146,6 +150,7 @@ struct LayerKeys3d {
 struct CutKeys {
     cells: Option<CutCells>,
     max_lean_deg: Option<f64>,
+    min_corner_sj: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -265,6 +270,11 @@ pub(crate) fn parse(
         max_lean_deg.is_finite() && max_lean_deg > 0.0 && max_lean_deg <= 180.0,
         "{origin}: [cut] max_lean_deg = {max_lean_deg}: must be above 0 and at most 180 (degrees)"
     );
+    let min_corner_sj = file.cut.min_corner_sj.unwrap_or(0.0);
+    ensure!(
+        (0.0..1.0).contains(&min_corner_sj),
+        "{origin}: [cut] min_corner_sj = {min_corner_sj}: must be at least 0 and below 1"
+    );
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
     Ok(Case3d {
@@ -274,6 +284,7 @@ pub(crate) fn parse(
         layers,
         cells: file.cut.cells.unwrap_or(CutCells::Mixed),
         max_lean_deg,
+        min_corner_sj,
         order,
     })
 }

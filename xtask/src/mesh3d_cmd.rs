@@ -54,7 +54,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     let grown = timed(r, quiet, ("grow", "layers (AFSF 3D)"), |_| {
         pipeline3d::grow(case, &surface)
     })?;
-    let mesh = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
+    let (mesh, cut_anyway) = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
         pipeline3d::cut(case, &surface, &grown)
     })?;
     let mut measures = timed(r, quiet, ("measure", "measures"), |_| {
@@ -82,6 +82,7 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     report.layers = Some(case.layers.layers as u32);
     push_notes(&mut report, curved.is_none(), grown.stats.converged);
     push_height_note(&mut report, &case.layers, &grown);
+    push_cut_note(&mut report, case, cut_anyway);
     timed(&mut report, quiet, ("write", "writing"), |r| {
         write_and_record(&mut plan, out, r)
     })?;
@@ -139,6 +140,31 @@ fn push_height_note(report: &mut Report, params: &afsf3d::LayerParams, grown: &a
          the layers' heights sum to {grown_to:.4} (geometric first_height × growth^k: {geometric:.4})",
         params.max_aspect, grown.stats.capped_layers
     ));
+}
+
+/// The report's note on the standard layer cells the mixed cut cut into tetrahedra and
+/// pyramids rather than keep ([`pipeline3d::cut_anyway`]), when there are any.
+fn push_cut_note(report: &mut Report, case: &Case3d, cut: pipeline3d::CutAnyway) {
+    let mut why = Vec::new();
+    if cut.leaning > 0 {
+        why.push(format!(
+            "{} over an extrusion edge leaning more than {}° off the front's normal",
+            cut.leaning, case.max_lean_deg
+        ));
+    }
+    if cut.low_corner > 0 {
+        why.push(format!(
+            "{} with a corner scaled Jacobian below {}",
+            cut.low_corner, case.min_corner_sj
+        ));
+    }
+    if !why.is_empty() {
+        report.notes.push(format!(
+            "layer cells cut into tetrahedra and pyramids rather than kept as prisms or \
+             hexahedra: {}",
+            why.join(", ")
+        ));
+    }
 }
 
 /// Refuses the flags of 2D runs that mean nothing in 3D, and the linear-only `.su2` output,

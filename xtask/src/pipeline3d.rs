@@ -175,18 +175,56 @@ fn facet_centre(surface: &Surface, f: usize) -> Option<[f64; 3]> {
     Some(c)
 }
 
-/// The layer cells cut into tetrahedra or mixed standard cells; in the mixed cut, the cells
-/// with an extrusion edge leaning more than `[cut] max_lean_deg` off the normal of the front
-/// it grew from ([`leaning_cells`]) are cut too.
-pub fn cut(case: &Case3d, wall: &Surface, grown: &afsf3d::Grown3d) -> Result<Mesh> {
-    match case.cells {
-        CutCells::Tets => topo_cut::cut_to_tets(&grown.mesh),
-        CutCells::Mixed => topo_cut::cut_to_mixed_cutting(
-            &grown.mesh,
-            &leaning_cells(wall, grown, case.max_lean_deg),
-        ),
-    }
-    .map_err(|e| anyhow::anyhow!("{}: cutting the layer cells: {e}", case.origin))
+/// The layer cells cut into tetrahedra or mixed standard cells; in the mixed cut, the
+/// standard cells [`cut_anyway`] flags are cut too (how many: the second value).
+pub fn cut(case: &Case3d, wall: &Surface, grown: &afsf3d::Grown3d) -> Result<(Mesh, CutAnyway)> {
+    let (mesh, flagged) = match case.cells {
+        CutCells::Tets => (topo_cut::cut_to_tets(&grown.mesh), CutAnyway::default()),
+        CutCells::Mixed => {
+            let (flags, flagged) = cut_anyway(case, wall, grown);
+            (topo_cut::cut_to_mixed_cutting(&grown.mesh, &flags), flagged)
+        }
+    };
+    let mesh =
+        mesh.map_err(|e| anyhow::anyhow!("{}: cutting the layer cells: {e}", case.origin))?;
+    Ok((mesh, flagged))
+}
+
+/// How many prisms and hexahedra the mixed cut was asked to cut rather than keep, by reason
+/// (a cell may have both).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct CutAnyway {
+    /// Over an extrusion edge leaning more than `[cut] max_lean_deg`.
+    pub leaning: usize,
+    /// With a corner scaled Jacobian below `[cut] min_corner_sj`.
+    pub low_corner: usize,
+}
+
+/// One flag per layer cell the mixed cut round-cuts though it is a standard cell (empty when
+/// none is): the leaning ones ([`leaning_cells`]) and the prisms and hexahedra with a corner
+/// scaled Jacobian below `[cut] min_corner_sj` ([`topo_cut::quality::low_corner_cells`]);
+/// and how many of each.
+pub fn cut_anyway(
+    case: &Case3d,
+    wall: &Surface,
+    grown: &afsf3d::Grown3d,
+) -> (Vec<bool>, CutAnyway) {
+    let leaning = leaning_cells(wall, grown, case.max_lean_deg);
+    let low = if case.min_corner_sj > 0.0 {
+        topo_cut::quality::low_corner_cells(&grown.mesh, case.min_corner_sj)
+    } else {
+        Vec::new()
+    };
+    let counts = CutAnyway {
+        leaning: topo_cut::quality::flagged_layer_shapes(&grown.mesh, &leaning),
+        low_corner: low.iter().filter(|&&x| x).count(),
+    };
+    let flags = match (leaning.is_empty(), low.is_empty()) {
+        (_, true) => leaning,
+        (true, false) => low,
+        (false, false) => leaning.iter().zip(&low).map(|(&a, &b)| a || b).collect(),
+    };
+    (flags, counts)
 }
 
 /// One flag per layer cell: whether both ends of an extrusion edge leaning more than

@@ -36,8 +36,13 @@ fn files(dir: &Path) -> Vec<String> {
 }
 
 fn case(dir: &Path, name: &str, surface: &str, layers: &str, cut: &str) -> String {
+    case_cut(dir, name, surface, layers, &format!("cells = \"{cut}\""))
+}
+
+/// [`case`] with the `[cut]` section's lines as given.
+fn case_cut(dir: &Path, name: &str, surface: &str, layers: &str, cut: &str) -> String {
     let text = format!(
-        "name = \"{name}\"\ndimension = 3\n\n[surface]\n{surface}\n\n[layers]\n{layers}\n\n[cut]\ncells = \"{cut}\"\n"
+        "name = \"{name}\"\ndimension = 3\n\n[surface]\n{surface}\n\n[layers]\n{layers}\n\n[cut]\n{cut}\n"
     );
     let file = format!("{name}.toml");
     std::fs::write(dir.join(&file), text).unwrap();
@@ -586,47 +591,74 @@ fn the_step_cut_into_tets_stays_under_160_degrees() {
     assert!(max <= 160.0, "max dihedral {max}: {r}");
 }
 
-/// The step (15 layers, mixed cells) with the layer keys of its case file
-/// (`fixtures/cases/step.toml`: `max_aspect = 0.03`, `stand_off = 0.6`, `smoothing = 6`)
-/// meets issue 13's two bars for its layers at first heights of 1e-3, 2e-3 and 3e-3: the
-/// smallest corner scaled Jacobian of its prisms and hexahedra above 0.5 (0.345, 0.087 and
-/// 0.008 without the three keys) and every extrusion edge within 30° of the wall's normal
-/// (table 6: 104, 168 and 256 over without, the worst 42.7°), with every wall node's full
-/// stack and the thinner stack stated in the report.
+/// The step (15 layers of the geometric stack, mixed cells) with the cut key of its case file
+/// (`fixtures/cases/step.toml`: `[cut] min_corner_sj = 0.5`) meets issue 13's two bars for
+/// the layer cells it keeps, at first heights of 1e-3, 2e-3 and 3e-3: the smallest corner
+/// scaled Jacobian of its prisms and hexahedra above 0.5 (0.345, 0.175 and 0.008 without the
+/// key) and every side edge of them within 30° of the wall's normal (table 6 over the kept
+/// cells), with every wall node's full stack, the squeezed cells by the tower's foot cut into
+/// tetrahedra and pyramids under 150° and the report saying how many.
 #[test]
 fn the_step_keeps_its_corners_above_one_half_and_its_edges_within_30_degrees() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // the keys as the built-in case file sets them
     let builtin = include_str!("../../fixtures/cases/step.toml");
-    for key in ["max_aspect = 0.03", "stand_off = 0.6", "smoothing = 6"] {
-        assert!(builtin.contains(key), "step.toml lost {key}");
-    }
+    assert!(builtin.contains("min_corner_sj = 0.5"), "{builtin}");
     for first in ["1e-3", "2e-3", "3e-3"] {
-        let step = case(
+        let layers = format!("first_height = {first}\ngrowth = 1.2\nmax_layers = 15");
+        let step = case_cut(
             d,
             "step",
             "builtin = \"step\"",
-            &format!(
-                "first_height = {first}\ngrowth = 1.2\nmax_layers = 15\n\
-                 max_aspect = 0.03\nstand_off = 0.6\nsmoothing = 6"
-            ),
-            "mixed",
+            &layers,
+            "cells = \"mixed\"\nmin_corner_sj = 0.5",
         );
         let r = mesh_case(d, &step, "step", 15);
         let q = &r["quality"];
         let sj = q["min_corner_scaled_jacobian"]["value"].as_f64().unwrap();
         assert!(sj >= 0.5, "first height {first}: corner SJ {sj}: {r}");
-        let deviation = &q["histograms"][1];
-        assert_eq!(deviation["name"], "extrusion edge deviation", "{r}");
-        assert_eq!(deviation["counts"][3], 0, "first height {first}: {r}");
-        assert!(deviation["max_deg"].as_f64().unwrap() <= 30.0, "{r}");
+        let kept = &q["histograms"][3];
+        assert_eq!(kept["name"], "layer extrusion edge deviation", "{r}");
+        assert_eq!(kept["counts"][3], 0, "first height {first}: {r}");
+        assert!(kept["max_deg"].as_f64().unwrap() <= 30.0, "{r}");
+        let max = q["max_dihedral_deg"].as_f64().unwrap();
+        assert!(
+            max <= 150.0,
+            "first height {first}: max dihedral {max}: {r}"
+        );
         assert!(
             r["notes"]
                 .to_string()
-                .contains("layer heights held to 0.03"),
+                .contains("corner scaled Jacobian below 0.5"),
             "{r}"
         );
+        // the geometric stack, not held: no note of held heights
+        assert!(
+            !r["notes"].to_string().contains("layer heights held"),
+            "{r}"
+        );
+    }
+    // without the key, the 2e-3 step keeps squeezed hexahedra
+    let layers = "first_height = 2e-3\ngrowth = 1.2\nmax_layers = 15";
+    let plain = case(d, "plain", "builtin = \"step\"", layers, "mixed");
+    let r = mesh_case(d, &plain, "plain", 15);
+    let sj = r["quality"]["min_corner_scaled_jacobian"]["value"]
+        .as_f64()
+        .unwrap();
+    assert!(sj < 0.5, "{r}");
+    // bad values are refused by name
+    for bad in ["-0.1", "1.0", "nan"] {
+        let k = case_cut(
+            d,
+            "k",
+            "builtin = \"step\"",
+            "max_layers = 2",
+            &format!("cells = \"mixed\"\nmin_corner_sj = {bad}"),
+        );
+        let o = run(d, &[&k, "--out", "k.msh"]);
+        assert_eq!(o.status.code(), Some(1), "{bad}");
+        assert!(stderr(&o).contains("[cut] min_corner_sj"), "{}", stderr(&o));
+        std::fs::remove_file(d.join(&k)).unwrap();
     }
 }
 
@@ -913,5 +945,40 @@ fn the_mixed_wing_of_case_2_is_certified_at_p2() {
     assert!(
         !note.contains("; 0 cells the marching left invalid"),
         "{note}"
+    );
+}
+
+/// The same triangulated wing of case 2 with `[cut] min_corner_sj = 0.2`: its sliver prisms
+/// (over the side's thin triangles at the trailing edge, corner scaled Jacobians down to
+/// 0.0006 at the wall) are cut, every prism kept has its corners at 0.2 or more on every wall
+/// patch, the tetrahedra stay under 150°, and at P2 every cell is certified.
+#[test]
+fn the_mixed_wing_cuts_its_sliver_prisms_below_the_corner_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let surface = "wing = \"naca0012\"\nspan = 0.5\nfirst_height = 1e-4";
+    let layers = "first_height = 1e-4\ngrowth = 1.4\nmax_layers = 8";
+    let wing = case_cut(
+        d,
+        "wing2",
+        surface,
+        layers,
+        "cells = \"mixed\"\nmin_corner_sj = 0.2",
+    );
+    let o = run(d, &[&wing, "--order", "2", "--report", "r.json", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("r.json")).unwrap()).unwrap();
+    let q = &r["quality"];
+    assert_eq!(q["certified"], true, "{r}");
+    assert!(q["max_dihedral_deg"].as_f64().unwrap() <= 150.0, "{r}");
+    let sj = &q["min_corner_scaled_jacobian"];
+    for patch in ["wall", "tip-root", "tip-far"] {
+        assert!(sj["by_wall_patch"][patch].as_f64().unwrap() >= 0.2, "{sj}");
+    }
+    assert!(r["cells"]["prism"].as_u64().unwrap() > 0, "{r}");
+    assert!(
+        r["notes"].to_string().contains("corner scaled Jacobian below 0.2"),
+        "{r}"
     );
 }

@@ -233,6 +233,43 @@ fn flagged_standard_cells_are_cut_and_the_rest_kept() {
     }
 }
 
+/// The prisms and hexahedra under a corner scaled Jacobian are flagged
+/// (`quality::low_corner_cells`) and cut: the mixed mesh keeps none below the limit, the
+/// rest as the plain cut keeps them, conforming and positive.
+#[test]
+fn cells_with_a_low_corner_are_flagged_and_none_is_kept() {
+    use mesh_model::measure3d::min_corner_scaled_jacobian;
+    for quads in [false, true] {
+        let spec = Spec::new(3, quads, 4);
+        let poly = fixture::poly(&spec);
+        let plain = topo_cut::cut_to_mixed(&poly).expect("mixed");
+        let mut corners: Vec<f64> = (0..plain.cells.len())
+            .filter_map(|i| min_corner_scaled_jacobian(&plain, i))
+            .collect();
+        corners.sort_by(f64::total_cmp);
+        let limit = corners[corners.len() / 2];
+        assert!(corners[0] < limit, "quads {quads}: the corners vary");
+        // below every corner: nothing flagged
+        assert!(topo_cut::quality::low_corner_cells(&poly, corners[0] * 0.99).is_empty());
+        let flags = topo_cut::quality::low_corner_cells(&poly, limit);
+        assert_eq!(flags.len(), poly.cell_count());
+        let flagged = flags.iter().filter(|&&f| f).count();
+        assert_eq!(topo_cut::quality::flagged_layer_shapes(&poly, &flags), flagged);
+        assert!(flagged > 0 && flagged < poly.cell_count(), "quads {quads}");
+        let mesh = topo_cut::cut_to_mixed_cutting(&poly, &flags).expect("mixed");
+        let m = check(&poly, &mesh);
+        let mut kept = 0;
+        for i in 0..mesh.cells.len() {
+            if let Some(q) = min_corner_scaled_jacobian(&mesh, i) {
+                assert!(q >= limit, "quads {quads}: cell {i} kept at {q} < {limit}");
+                kept += 1;
+            }
+        }
+        assert!(kept > 0, "quads {quads}: {m}");
+        println!("quads {quads}: limit {limit:.3}, {flagged} flagged: {m}");
+    }
+}
+
 #[test]
 fn merged_children_are_cut_conforming() {
     for quads in [false, true] {
