@@ -47,7 +47,7 @@ fn bench_vs_gmsh_and_scaling_work_on_a_tiny_configuration() {
         "<!-- scaling:end -->",
         "Fitted exponent",
         "<!-- 3d:begin -->",
-        "| step | 7200 hexes |",
+        "| step | 864 tets, 1512 pyramids, 6552 hexes |",
     ] {
         assert!(text.contains(needle), "no {needle:?} in {text}");
     }
