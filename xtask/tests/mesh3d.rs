@@ -978,7 +978,34 @@ fn the_mixed_wing_cuts_its_sliver_prisms_below_the_corner_limit() {
     }
     assert!(r["cells"]["prism"].as_u64().unwrap() > 0, "{r}");
     assert!(
-        r["notes"].to_string().contains("corner scaled Jacobian below 0.2"),
+        r["notes"]
+            .to_string()
+            .contains("corner scaled Jacobian below 0.2"),
         "{r}"
     );
+}
+
+/// The wing's case 2 cut mixed with only 4 layers (prisms at the tip rims one layer under the
+/// front) at P2: every cell certified. The single-cell repair left 2 cells invalid there
+/// (each choice for one broke its thin neighbour); the repair now mends such a neighbour in
+/// turn (a chain of two).
+#[test]
+fn the_mixed_wing_of_case_2_at_four_layers_is_certified_at_p2() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let wing = case(
+        d,
+        "wing4",
+        "wing = \"naca0012\"\nspan = 0.5\nfirst_height = 1e-4",
+        "first_height = 1e-4\ngrowth = 1.4\nmax_layers = 4",
+        "mixed",
+    );
+    let o = run(d, &[&wing, "--order", "2", "--report", "r.json", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("r.json")).unwrap()).unwrap();
+    assert_eq!(r["quality"]["certified"], true, "{r}");
+    assert_eq!(r["quality"]["invalid_cells"], 0, "{r}");
+    let note = r["notes"][0].as_str().unwrap();
+    assert!(note.contains("mended by the repair (0 not)"), "{note}");
 }

@@ -254,7 +254,10 @@ fn cells_with_a_low_corner_are_flagged_and_none_is_kept() {
         let flags = topo_cut::quality::low_corner_cells(&poly, limit);
         assert_eq!(flags.len(), poly.cell_count());
         let flagged = flags.iter().filter(|&&f| f).count();
-        assert_eq!(topo_cut::quality::flagged_layer_shapes(&poly, &flags), flagged);
+        assert_eq!(
+            topo_cut::quality::flagged_layer_shapes(&poly, &flags),
+            flagged
+        );
         assert!(flagged > 0 && flagged < poly.cell_count(), "quads {quads}");
         let mesh = topo_cut::cut_to_mixed_cutting(&poly, &flags).expect("mixed");
         let m = check(&poly, &mesh);

@@ -403,8 +403,9 @@ impl<'a> March<'a> {
     /// displacement of the cell's most curved edge (Vector-Adding from the cell itself rather
     /// than up a pipe), or goes straight; the first such choice (edge by edge, then every edge
     /// above the wall at once) that leaves the cell valid and no cell of the changed edges
-    /// newly invalid is kept. Pass after pass while a pass mends a cell. Returns the cells
-    /// mended and those left invalid.
+    /// newly invalid is kept. Pass after pass while a pass mends a cell; then the same for
+    /// the cells left, a choice also kept when the neighbours it breaks can each be mended
+    /// so. Returns the cells mended and those left invalid.
     pub(crate) fn repair(&mut self) -> Result<(usize, usize), CurvingError> {
         let mut bad = Vec::new();
         for c in 0..self.mesh.cells.len() {
@@ -418,49 +419,48 @@ impl<'a> March<'a> {
             }
         }
         let mut repaired = 0;
-        for _ in 0..4 {
-            let before = bad.len();
-            let mut still = Vec::new();
-            for &c in &bad {
-                if self.valid(c)? || self.mend(c)? {
-                    repaired += 1;
-                } else {
-                    still.push(c);
+        // single cells first; chains of two only for the cells that are left (so that every
+        // mesh the single-cell repair mends is as it was)
+        for depth in [0, 1] {
+            for _ in 0..4 {
+                let before = bad.len();
+                let mut still = Vec::new();
+                for &c in &bad {
+                    if self.valid(c)? || self.mend(c, depth)? {
+                        repaired += 1;
+                    } else {
+                        still.push(c);
+                    }
                 }
-            }
-            bad = still;
-            if bad.len() == before {
-                break;
+                bad = still;
+                if bad.len() == before {
+                    break;
+                }
             }
         }
         Ok((repaired, bad.len()))
     }
 
-    /// One invalid cell's repair ([`March::repair`]); whether it is valid after.
-    fn mend(&mut self, c: usize) -> Result<bool, CurvingError> {
-        let layer = &self.layers.layer;
-        let own: Vec<u32> = self.edges.of_cell(c).to_vec();
-        let above: Vec<u32> = own
-            .iter()
-            .copied()
-            .filter(|&e| self.ends(e).iter().any(|&n| layer[n as usize] > 0))
-            .collect();
-        let size = |d: [f64; 3]| d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        let Some(most) = own
-            .iter()
-            .copied()
-            .max_by(|&a, &b| size(self.dev[a as usize]).total_cmp(&size(self.dev[b as usize])))
-        else {
-            return Ok(false);
-        };
-        let target = self.dev[most as usize];
-        let mut choices: Vec<Vec<(u32, [f64; 3])>> = Vec::new();
-        for &e in &above {
-            choices.push(vec![(e, target)]);
-            choices.push(vec![(e, [0.0; 3])]);
-        }
-        choices.push(above.iter().map(|&e| (e, target)).collect());
-        for choice in choices {
+    /// One invalid cell's repair ([`March::repair`]); whether it is valid after. With
+    /// `depth` 1, a choice that leaves the cell valid but makes neighbours invalid is kept
+    /// when each of those can be mended in turn by a choice of its own that breaks nothing
+    /// ([`March::mend_to`] one level down): a chain of two cells, where every single-edge
+    /// choice at a tip rim breaks a thin neighbour.
+    fn mend(&mut self, c: usize, depth: usize) -> Result<bool, CurvingError> {
+        let mut journal = Vec::new();
+        self.mend_to(c, depth, &mut journal)
+    }
+
+    /// [`March::mend`] with `depth` levels of neighbours mended in turn; every edge changed
+    /// is recorded in `journal` (edge, previous displacement) when the cell ends valid, and
+    /// nothing is changed when it does not.
+    fn mend_to(
+        &mut self,
+        c: usize,
+        depth: usize,
+        journal: &mut Vec<(u32, [f64; 3])>,
+    ) -> Result<bool, CurvingError> {
+        for choice in self.choices(c) {
             if choice.iter().all(|&(e, d)| self.dev[e as usize] == d) {
                 continue;
             }
@@ -474,28 +474,71 @@ impl<'a> March<'a> {
             for &d in &around {
                 was.push(self.valid(d)?);
             }
-            let saved: Vec<(u32, [f64; 3])> = choice
+            let mut local: Vec<(u32, [f64; 3])> = choice
                 .iter()
                 .map(|&(e, _)| (e, self.dev[e as usize]))
                 .collect();
             for &(e, d) in &choice {
                 self.dev[e as usize] = d;
             }
-            let mut ok = true;
+            let mut broken = Vec::new();
+            let mut ok = self.valid(c)?;
             for (&d, &w) in around.iter().zip(&was) {
-                let now = self.valid(d)?;
-                if !now && (d == c || w) {
-                    ok = false;
+                if !ok {
                     break;
                 }
+                if d != c && w && !self.valid(d)? {
+                    if depth == 0 {
+                        ok = false;
+                    }
+                    broken.push(d);
+                }
             }
-            if ok {
+            // the neighbours this choice broke, mended one level down (each keeps `c` and
+            // every other valid cell valid, as this level does)
+            for &d in &broken {
+                if !ok {
+                    break;
+                }
+                ok = self.valid(d)? || (depth > 0 && self.mend_to(d, depth - 1, &mut local)?);
+            }
+            if ok && self.valid(c)? {
+                journal.extend(local);
                 return Ok(true);
             }
-            for &(e, d) in &saved {
+            for &(e, d) in local.iter().rev() {
                 self.dev[e as usize] = d;
             }
         }
         Ok(false)
+    }
+
+    /// The repair's choices for cell `c` ([`March::repair`]): each edge above the wall given
+    /// the displacement of the cell's most curved edge, or straight; then every such edge
+    /// given it at once.
+    fn choices(&self, c: usize) -> Vec<Vec<(u32, [f64; 3])>> {
+        let layer = &self.layers.layer;
+        let own = self.edges.of_cell(c);
+        let above: Vec<u32> = own
+            .iter()
+            .copied()
+            .filter(|&e| self.ends(e).iter().any(|&n| layer[n as usize] > 0))
+            .collect();
+        let size = |d: [f64; 3]| d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let Some(most) = own
+            .iter()
+            .copied()
+            .max_by(|&a, &b| size(self.dev[a as usize]).total_cmp(&size(self.dev[b as usize])))
+        else {
+            return Vec::new();
+        };
+        let target = self.dev[most as usize];
+        let mut choices: Vec<Vec<(u32, [f64; 3])>> = Vec::new();
+        for &e in &above {
+            choices.push(vec![(e, target)]);
+            choices.push(vec![(e, [0.0; 3])]);
+        }
+        choices.push(above.iter().map(|&e| (e, target)).collect());
+        choices
     }
 }
