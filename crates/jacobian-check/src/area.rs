@@ -52,9 +52,6 @@ struct AreaRule {
     /// `grads[q · nodes + i]`.
     grads: Vec<[f64; 3]>,
     nodes: usize,
-    /// The same gradients node by node, `by_node[2i + d][q]` (zero past the last point),
-    /// when there are at most [`MAX_POINTS`] points.
-    by_node: Vec<[f64; MAX_POINTS]>,
 }
 
 fn area_rule(ty: CellType) -> Result<&'static AreaRule, JacobianError> {
@@ -89,22 +86,10 @@ fn area_rule(ty: CellType) -> Result<&'static AreaRule, JacobianError> {
         for (q, p) in points.iter().enumerate() {
             b.gradients(*p, &mut grads[q * nodes..(q + 1) * nodes]);
         }
-        let mut by_node = Vec::new();
-        if weights.len() <= MAX_POINTS {
-            by_node = vec![[0.0; MAX_POINTS]; 2 * nodes];
-            for q in 0..weights.len() {
-                for i in 0..nodes {
-                    for d in 0..2 {
-                        by_node[2 * i + d][q] = grads[q * nodes + i][d];
-                    }
-                }
-            }
-        }
         AreaRule {
             weights,
             grads,
             nodes,
-            by_node,
         }
     }))
 }
@@ -117,44 +102,15 @@ fn area_rule(ty: CellType) -> Result<&'static AreaRule, JacobianError> {
 pub fn cell_area(ty: CellType, nodes: &[[f64; 2]]) -> Result<f64, JacobianError> {
     check_cell(ty, nodes)?;
     let rule = area_rule(ty)?;
-    if rule.weights.len() > MAX_POINTS {
-        return Ok(by_point(rule, nodes));
-    }
-    // The Jacobians of every point at once, node by node: each entry of each point's matrix
-    // is the same sum in the same node order as `matrix_from_gradients`'s (the same bits),
-    // but the points' sums are independent, side by side in the vector registers, instead
-    // of one chain of dependent additions per point.
-    let mut m = [[[0.0f64; MAX_POINTS]; 2]; 2];
-    for (x, g) in nodes.iter().zip(rule.by_node.chunks_exact(2)) {
-        for a in 0..2 {
-            for b in 0..2 {
-                for (mq, gq) in m[a][b].iter_mut().zip(&g[b]) {
-                    *mq += x[a] * gq;
-                }
-            }
-        }
-    }
     Ok(rule
         .weights
-        .iter()
-        .enumerate()
-        .map(|(q, w)| w * det(&[[m[0][0][q], m[0][1][q]], [m[1][0][q], m[1][1][q]]]))
-        .sum())
-}
-
-/// The most quadrature points [`cell_area`] takes all at once: a Q3 quadrilateral's 4 × 4.
-const MAX_POINTS: usize = 16;
-
-/// [`cell_area`] one point after the other (each point's Jacobian, then the next's).
-fn by_point(rule: &AreaRule, nodes: &[[f64; 2]]) -> f64 {
-    rule.weights
         .iter()
         .enumerate()
         .map(|(q, w)| {
             let g = &rule.grads[q * rule.nodes..(q + 1) * rule.nodes];
             w * det(&matrix_from_gradients(nodes, g))
         })
-        .sum()
+        .sum())
 }
 
 /// The signed area of a curved 2D mesh: the sum of [`cell_area`] over its cells.
@@ -379,37 +335,6 @@ mod tests {
                 };
                 let got: f64 = g.iter().map(|(x, w)| w * x.powi(d as i32)).sum();
                 assert!((got - exact).abs() < 1e-14, "m={m} d={d}: {got} vs {exact}");
-            }
-        }
-    }
-
-    #[test]
-    fn all_points_at_once_give_the_bits_of_one_point_after_the_other() {
-        // every 2D type of orders 1 to 3, its reference nodes scaled, moved and jiggled by a
-        // fixed pseudo-random sequence (curved cells, coordinates of every magnitude)
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            x = x
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
-        for shape in [Shape::Tri, Shape::Quad] {
-            for order in 1..=3 {
-                let ty = CellType::new(shape, order);
-                let rule = area_rule(ty).unwrap();
-                for round in 0..200 {
-                    let scale = [1e-6, 0.37, 1.0, 3e4][round % 4];
-                    let shift = [next() * 1e3, next()];
-                    let nodes: Vec<[f64; 2]> = crate::reference_nodes(ty)
-                        .unwrap()
-                        .iter()
-                        .map(|r| [0, 1].map(|d| (r[d] + 0.05 * next()) * scale + shift[d] * scale))
-                        .collect();
-                    let got = cell_area(ty, &nodes).unwrap();
-                    let want = by_point(rule, &nodes);
-                    assert_eq!(got.to_bits(), want.to_bits(), "{ty:?} round {round}");
-                }
             }
         }
     }
