@@ -445,12 +445,21 @@ fn gmsh_min_sj(mesh: &Mesh, min_det: &[f64]) -> Vec<f64> {
                 return f64::NAN;
             }
             let c = mesh.cells.get(i);
-            let corners: Vec<[f64; 2]> = c.corners().iter().map(|&v| mesh.xy(v)).collect();
+            // the corners on the stack (no allocation per cell)
+            let mut corners = [[0.0; 2]; 4];
+            let k = c.corners();
+            for (x, &v) in corners.iter_mut().zip(k) {
+                *x = mesh.xy(v);
+            }
             let centre = match c.ty.shape {
                 Shape::Quad => [0.0, 0.0],
                 _ => [1.0 / 3.0, 1.0 / 3.0],
             };
-            match jacobian(CellType::new(c.ty.shape, 1), &corners, centre) {
+            match jacobian(
+                CellType::new(c.ty.shape, 1),
+                &corners[..k.len().min(4)],
+                centre,
+            ) {
                 Ok(j) if j.det > 0.0 => min_det / j.det,
                 _ => f64::NAN,
             }

@@ -1,12 +1,15 @@
 //! Benchmarks of the certified check: 100 000 mildly curved P3 triangles (and P2 quads),
 //! certified one by one as the curving stage does; 10 000 mildly curved prisms (P1, P2),
-//! linear pyramids and P2 tets. Results in `benches/RESULTS.md`.
+//! linear pyramids and P2 tets; the areas of 100 000 P3 quadrilaterals and triangles by
+//! quadrature (`cell_area`, what the report's `area` sums). Results in `benches/RESULTS.md`.
 
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use jacobian_check::{Certificate, CertifyParams, certify_cell, reference_nodes, sampled_check};
+use jacobian_check::{
+    Certificate, CertifyParams, cell_area, certify_cell, reference_nodes, sampled_check,
+};
 use mesh_model::{CellType, Shape};
 use std::hint::black_box;
 
@@ -126,5 +129,24 @@ fn certify_10k_3d(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, certify_100k, certify_10k_3d);
+/// The area of 100k mildly curved P3 cells, one by one (the report's `area` at 1M cells).
+fn area_100k(c: &mut Criterion) {
+    let mut group = c.benchmark_group("area");
+    group.sample_size(10);
+    for (ty, name) in [
+        (CellType::new(Shape::Quad, 3), "100k_p3_quads"),
+        (CellType::new(Shape::Tri, 3), "100k_p3_triangles"),
+    ] {
+        let cells = curved_cells::<2>(ty, 100_000, 0.02, 0.0, SEED_2D);
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let area: f64 = cells.iter().map(|n| cell_area(ty, n).unwrap()).sum();
+                black_box(area)
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, certify_100k, certify_10k_3d, area_100k);
 criterion_main!(benches);

@@ -512,6 +512,14 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
                 return Err(JacobianError::NodeOutOfRange { cell: i, node });
             }
             match mesh.dim {
+                Dim::Two if cell.nodes.len() <= MAX_2D_NODES => {
+                    // on the stack: no allocation per cell (a Q3 quadrilateral has 16 nodes)
+                    let mut xy = [[0.0; 2]; MAX_2D_NODES];
+                    for (x, &n) in xy.iter_mut().zip(cell.nodes) {
+                        *x = mesh.xy(n);
+                    }
+                    judge(cell.ty, &xy[..cell.nodes.len()], params)
+                }
                 Dim::Two => {
                     let xy: Vec<[f64; 2]> = cell.nodes.iter().map(|&n| mesh.xy(n)).collect();
                     judge(cell.ty, &xy, params)
@@ -545,6 +553,9 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
     }
     Ok(out)
 }
+
+/// The most nodes of a 2D cell [`check_mesh`] gathers on the stack.
+const MAX_2D_NODES: usize = 16;
 
 /// How one cell was judged.
 #[derive(Debug, Clone, Copy)]

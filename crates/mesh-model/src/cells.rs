@@ -116,13 +116,15 @@ impl Cells {
     }
 
     /// All cells in order.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = CellRef<'_>> + '_ {
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = CellRef<'_>> + Clone + '_ {
         (0..self.len()).map(move |i| self.get(i))
     }
 
     /// The shape and the corner nodes of every cell, in order: the input of the
     /// [`crate::topology`] builders.
-    pub fn shapes_and_corners(&self) -> impl ExactSizeIterator<Item = (Shape, &[u32])> + '_ {
+    pub fn shapes_and_corners(
+        &self,
+    ) -> impl ExactSizeIterator<Item = (Shape, &[u32])> + Clone + '_ {
         self.iter().map(|c| (c.ty.shape, c.corners()))
     }
 

@@ -15,7 +15,7 @@ use std::ops::ControlFlow;
 
 use crate::cell::Shape;
 use crate::mesh::{Dim, Mesh, NONE};
-use crate::topology::for_each_use_count;
+use crate::topology::{for_each_edge_use_count, for_each_use_count};
 
 /// One thing wrong with a mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -365,13 +365,14 @@ pub fn is_positive_tet(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bo
 }
 
 /// Each edge (2D) or face (3D) in two cells, or in one cell and one boundary facet: only
-/// the counts of the uses ([`crate::topology::for_each_use_count`]), not the whole topology.
+/// the counts of the uses ([`crate::topology::for_each_edge_use_count`] in 2D,
+/// [`crate::topology::for_each_use_count`] in 3D), not the whole topology.
 fn conformity(mesh: &Mesh, sink: Sink<'_>) -> ControlFlow<Problem> {
     let cells = mesh.cells.shapes_and_corners();
     let facets = mesh.boundary.iter().map(|f| f.corners());
     let conforming = |cells: usize, facets: usize| matches!((cells, facets), (2, 0) | (1, 1));
     match mesh.dim {
-        Dim::Two => for_each_use_count::<2, _>(cells, facets, |e, cells, facets| {
+        Dim::Two => for_each_edge_use_count(cells, facets, |e, cells, facets| {
             if conforming(cells, facets) {
                 return ControlFlow::Continue(());
             }

@@ -145,7 +145,18 @@ proptest! {
             let expected: Vec<_> = (0..edges.len() as u32)
                 .map(|e| (edges.nodes(e).to_vec(), edges.cells(e).len(), edges.facets(e).len()))
                 .collect();
-            prop_assert_eq!(seen, expected);
+            prop_assert_eq!(&seen, &expected);
+            // the 2D scatter by lower node: the same calls in the same order
+            let mut by_node = Vec::new();
+            let _ = mesh_model::topology::for_each_edge_use_count::<()>(
+                mesh.cells.shapes_and_corners(),
+                mesh.boundary.iter().map(|f| f.corners()),
+                |k, cells, facets| {
+                    by_node.push((k.to_vec(), cells, facets));
+                    std::ops::ControlFlow::Continue(())
+                },
+            );
+            prop_assert_eq!(by_node, expected);
         }
     }
 
