@@ -1241,7 +1241,7 @@ pub(crate) mod tests {
             for (k, s) in set.angle.iter_mut().enumerate().filter(|(k, _)| k % degenerate_mod == 0) {
                 if k % 2 == 0 { s.left = s.child } else { s.right = s.centre }
             }
-            for (k, s) in set.extrusion.iter_mut().enumerate().filter(|(k, _)| k % degenerate_mod == 1) {
+            for (_, s) in set.extrusion.iter_mut().enumerate().filter(|(k, _)| k % degenerate_mod == 1) {
                 s.lower = s.upper;
             }
             for n in [x.len(), x.len() - cut] {
