@@ -317,13 +317,9 @@ impl<'a> SpringField2d<'a> {
 /// iterations with this many active nodes carry some 95 % of the assembly's work).
 const PARALLEL_MIN_ACTIVE: usize = 4096;
 
-/// Components of the springs' push graph dealt out to this many at a time to each group, so
+/// Components of the springs' push graph dealt out to this many at a time to each half, so
 /// that a local active set is split about evenly too.
 const HALF_BLOCK: usize = 256;
-
-/// Groups of components ([`Halves`]) that the two threads of a split assembly take one at a
-/// time as they come: a thread that starts late (woken late, or busy elsewhere) takes fewer.
-const GROUPS: usize = 16;
 
 thread_local! {
     /// The second half's force and stiffness arrays, kept between the iterations of a solve
@@ -332,16 +328,16 @@ thread_local! {
         const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
 }
 
-/// The nodes of a 2D solve in [`GROUPS`] groups, for two threads, such that every spring is
-/// evaluated and pushes within one group: a spring is evaluated from one of the nodes it pushes (an extrusion spring
+/// The nodes of a 2D solve in two halves such that every spring is evaluated and pushes
+/// within one half: a spring is evaluated from one of the nodes it pushes (an extrusion spring
 /// from its upper or lower node, an angle spring from its child or centre, a neighbour spring
 /// from its centre, which is all it pushes), so the connected components of the graph joining
-/// the nodes each spring pushes are never split. Each group then sums its nodes' forces in the
+/// the nodes each spring pushes are never split. Each half then sums its nodes' forces in the
 /// order of the sequential assembly restricted to it — which is that assembly's order for
-/// each of its nodes: the same sums to the last bit, whichever thread takes the group.
+/// each of its nodes: the same sums to the last bit.
 #[derive(Debug, Clone)]
 struct Halves {
-    /// The group of every node, below [`GROUPS`].
+    /// 0 or 1 per node.
     half: Vec<u8>,
 }
 
@@ -380,7 +376,7 @@ impl Halves {
                 rank[root] = next;
                 next += 1;
             }
-            half[i as usize] = ((rank[root] as usize / HALF_BLOCK) % GROUPS) as u8;
+            half[i as usize] = ((rank[root] as usize / HALF_BLOCK) % 2) as u8;
         }
         Halves { half }
     }
@@ -654,63 +650,37 @@ struct ActiveEval<'a> {
 }
 
 impl ActiveEval<'_> {
-    /// [`ActiveEval::springs_of`] on two threads: the active `nodes` are sorted by their
-    /// group (`half`, [`Halves`]; each group's nodes in their order), and each thread takes the
-    /// next group not yet taken until none is left. The calling thread adds into `force` and
-    /// `stiffness`, the other into arrays of its own whose sums are then copied to the active
-    /// nodes of the groups it took.
+    /// The contributions of the springs that the active `nodes` evaluate (for each node, those
+    /// pushing it that no other active node evaluates first), handed to `add` in order.
+    #[inline(always)]
+    fn springs_of(&self, nodes: &[u32], add: &mut impl FnMut(u32, [f64; 2], f64)) {
+        self.springs_of_where(nodes, |_| true, add);
+    }
+
+    /// [`ActiveEval::springs_of`] on two threads, each evaluating the active nodes of one of
+    /// the `half`s ([`Halves`]): the first adds into `force` and `stiffness`, the second into
+    /// arrays of its own whose sums are then copied to its active nodes.
     fn in_halves(&self, half: &[u8], nodes: &[u32], force: &mut [[f64; 2]], stiffness: &mut [f64]) {
         let n = force.len();
-        let mut start = [0u32; GROUPS + 1];
-        for &i in nodes {
-            start[half[i as usize] as usize + 1] += 1;
-        }
-        for g in 0..GROUPS {
-            start[g + 1] += start[g];
-        }
-        let mut at = start;
-        let mut sorted = vec![0u32; nodes.len()];
-        for &i in nodes {
-            let g = half[i as usize] as usize;
-            sorted[at[g] as usize] = i;
-            at[g] += 1;
-        }
-        let group = |g: usize| &sorted[start[g] as usize..start[g + 1] as usize];
-        let next = std::sync::atomic::AtomicUsize::new(0);
-        // the groups a thread takes, as a bit set
-        let take = |add: &mut dyn FnMut(&[u32])| {
-            let mut taken = 0u32;
-            loop {
-                let g = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                if g >= GROUPS {
-                    return taken;
-                }
-                taken |= 1 << g;
-                add(group(g));
-            }
-        };
-        let (_, (force_1, stiffness_1, taken_1)) = rayon::join(
-            || take(&mut |nodes| self.springs_of(nodes, &mut direct(force, stiffness))),
+        let ((), (force_1, stiffness_1)) = rayon::join(
+            || self.springs_of_where(nodes, |i| half[i] == 0, &mut direct(force, stiffness)),
             || {
-                // the arrays of the last call on this thread, the active entries of each group
-                // zeroed before it is summed, as the solver zeroes its own (the other entries
-                // may hold anything: they are not read)
+                // the arrays of the last call on this thread, their active entries zeroed as
+                // the solver zeroes its own (the others may hold anything: they are not read)
                 let (mut f, mut s) = HALF_SCRATCH.with(|c| std::mem::take(&mut *c.borrow_mut()));
                 f.resize(n, [0.0; 2]);
                 s.resize(n, 0.0);
-                let taken = take(&mut |nodes| {
-                    for &i in nodes {
-                        f[i as usize] = [0.0; 2];
-                        s[i as usize] = 0.0;
-                    }
-                    self.springs_of(nodes, &mut direct(&mut f, &mut s));
-                });
-                (f, s, taken)
+                for &i in nodes.iter().filter(|&&i| half[i as usize] == 1) {
+                    f[i as usize] = [0.0; 2];
+                    s[i as usize] = 0.0;
+                }
+                self.springs_of_where(nodes, |i| half[i] == 1, &mut direct(&mut f, &mut s));
+                (f, s)
             },
         );
-        for g in (0..GROUPS).filter(|g| taken_1 & (1 << g) != 0) {
-            for &i in group(g) {
-                let i = i as usize;
+        for &i in nodes {
+            let i = i as usize;
+            if half[i] == 1 {
                 force[i] = force_1[i];
                 stiffness[i] = stiffness_1[i];
             }
@@ -718,13 +688,21 @@ impl ActiveEval<'_> {
         HALF_SCRATCH.with(|c| *c.borrow_mut() = (force_1, stiffness_1));
     }
 
-    /// The contributions of the springs that the active `nodes` evaluate (for each node, those
-    /// pushing it that no other active node evaluates first), handed to `add` in order.
+    /// The contributions of the springs that the active `nodes` for which `take` holds
+    /// evaluate, handed to `add` in order.
     #[inline(always)]
-    fn springs_of(&self, nodes: &[u32], add: &mut impl FnMut(u32, [f64; 2], f64)) {
+    fn springs_of_where(
+        &self,
+        nodes: &[u32],
+        take: impl Fn(usize) -> bool,
+        add: &mut impl FnMut(u32, [f64; 2], f64),
+    ) {
         let (set, params, positions, flags) = (self.set, self.params, self.positions, self.flags);
         for &node in nodes {
             let n = node as usize;
+            if !take(n) {
+                continue;
+            }
             let range = self.index.offsets[n] as usize..self.index.offsets[n + 1] as usize;
             for &id in &self.index.springs[range] {
                 let i = (id & INDEX_MASK) as usize;
@@ -1161,7 +1139,7 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn the_groups_keep_every_spring_whole_and_split_the_nodes_about_evenly() {
+    fn the_halves_keep_every_spring_whole_and_split_the_nodes_about_evenly() {
         let (pos, _, _, set) = big_ring(3000);
         let half = Halves::new(&set, pos.len()).half;
         for s in &set.extrusion {
@@ -1170,16 +1148,17 @@ pub(crate) mod tests {
         for s in &set.angle {
             assert_eq!(half[s.centre as usize], half[s.child as usize]);
         }
-        let mut count = [0usize; GROUPS];
-        half.iter().for_each(|&g| count[g as usize] += 1);
-        let (used, largest) = (count.iter().filter(|&&c| c > 0).count(), count.iter().max());
-        assert!(used >= 8 && *largest.unwrap() <= pos.len() / 6, "{count:?}");
+        let ones = half.iter().filter(|&&h| h == 1).count();
+        assert!(
+            ones > pos.len() / 3 && ones < 2 * pos.len() / 3,
+            "{ones} of {}",
+            pos.len()
+        );
     }
 
     proptest::proptest! {
-        /// The assembly in groups taken by two threads gives every active node the forces and
-        /// stiffnesses of the sequential one, to the last bit, whichever nodes are active and
-        /// whichever thread takes which group.
+        /// The assembly in halves gives every active node the forces and stiffnesses of the
+        /// sequential one, to the last bit, whichever nodes are active.
         #[test]
         fn the_assembly_in_halves_matches_the_sequential_one_to_the_bit(
             active_mod in 1usize..5,
@@ -1197,13 +1176,7 @@ pub(crate) mod tests {
             let eval = ActiveEval { set: &set, index: &index, params: &params, positions: &x, flags: &flags };
             let (mut f2, mut s2) = (vec![[0.0; 2]; n], vec![0.0; n]);
             let half = Halves::new(&set, n).half;
-            // the second arrays of a thread hold the last call's sums: a leftover must not count
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
-            for _ in 0..2 {
-                f2.iter_mut().for_each(|f| *f = [0.0; 2]);
-                s2.iter_mut().for_each(|s| *s = 0.0);
-                pool.install(|| eval.in_halves(&half, &nodes, &mut f2, &mut s2));
-            }
+            eval.in_halves(&half, &nodes, &mut f2, &mut s2);
             for &i in &nodes {
                 let i = i as usize;
                 proptest::prop_assert_eq!(f[i][0].to_bits(), f2[i][0].to_bits());
