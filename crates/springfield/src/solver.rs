@@ -77,6 +77,15 @@ impl Influence {
         Influence { offsets, targets }
     }
 
+    /// The table of rows already sorted and free of repeats: row `j` is
+    /// `targets[offsets[j]..offsets[j + 1]]`.
+    pub(crate) fn from_rows(offsets: Vec<u32>, targets: Vec<u32>) -> Self {
+        debug_assert!(
+            offsets.first() == Some(&0) && offsets.last() == Some(&(targets.len() as u32))
+        );
+        Influence { offsets, targets }
+    }
+
     /// Number of nodes the table covers.
     pub fn len(&self) -> usize {
         self.offsets.len().saturating_sub(1)

@@ -15,7 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::model::{FiniteDifference, ForceModel, Spring, Triplet, influence_pairs, jacobian_of};
+use crate::model::{FiniteDifference, ForceModel, Spring, Triplet, jacobian_of};
 use crate::params::SpringParams;
 use crate::vec::{norm, sub};
 
@@ -88,13 +88,7 @@ impl SpringSet2d {
     /// The influence table of these springs over `n` nodes, for [`crate::solve_active()`]:
     /// each node pushed by a spring depends on every node of that spring.
     pub fn influence(&self, n: usize) -> crate::Influence {
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(
-            4 * self.extrusion.len() + 4 * self.neighbour.len() + 8 * self.angle.len(),
-        );
-        influence_pairs::<2, _>(&self.extrusion, &mut pairs);
-        influence_pairs(&self.neighbour, &mut pairs);
-        influence_pairs(&self.angle, &mut pairs);
-        crate::Influence::from_pairs(n, pairs)
+        self.index(n).influence(self, n)
     }
 
     /// Removes every spring.
@@ -438,7 +432,7 @@ impl ForceModel<2> for SpringField2d<'_> {
     }
 
     fn influence(&self, n: usize) -> crate::Influence {
-        self.set.influence(n)
+        self.index.influence(self.set, n)
     }
 
     fn jacobian(&self, positions: &[[f64; 2]], movable: &[bool], out: &mut Vec<Triplet>) {
@@ -551,6 +545,75 @@ impl SpringSet2d {
             fill[node as usize] += 1;
         }
         SpringIndex2d { offsets, springs }
+    }
+}
+
+impl SpringIndex2d {
+    /// Calls `dep(r)` for every node `r < n` that a spring pushing `node` reads, `node`
+    /// itself left out (repeats possible).
+    #[inline(always)]
+    fn reads_of(&self, set: &SpringSet2d, node: usize, n: usize, dep: &mut impl FnMut(u32)) {
+        let mut read = |r: u32| {
+            if r as usize != node && (r as usize) < n {
+                dep(r);
+            }
+        };
+        let range = self.offsets[node] as usize..self.offsets[node + 1] as usize;
+        for &id in &self.springs[range] {
+            let i = (id & INDEX_MASK) as usize;
+            match id >> KIND_SHIFT {
+                0 => {
+                    let s = &set.extrusion[i];
+                    read(s.lower);
+                    read(s.upper);
+                }
+                1 => {
+                    let s = &set.neighbour[i];
+                    [s.left, s.centre, s.right, s.parent]
+                        .into_iter()
+                        .for_each(&mut read);
+                }
+                _ => {
+                    let s = &set.angle[i];
+                    [s.left, s.centre, s.right, s.child]
+                        .into_iter()
+                        .for_each(&mut read);
+                }
+            }
+        }
+    }
+
+    /// The influence table of `set` over `n` nodes (this index being `set.index(n)`): the
+    /// same table as [`crate::Influence::from_pairs`] of every (pushed, read) pair, built by
+    /// walking the pushed nodes in increasing order, so that each row comes out sorted and
+    /// its repeats next to each other (no pair list, no sort).
+    fn influence(&self, set: &SpringSet2d, n: usize) -> crate::Influence {
+        // the last pushed node counted in each row, to count each pair once
+        let mut last = vec![u32::MAX; n];
+        let mut offsets = vec![0u32; n + 1];
+        for node in 0..n {
+            self.reads_of(set, node, n, &mut |r| {
+                if last[r as usize] != node as u32 {
+                    last[r as usize] = node as u32;
+                    offsets[r as usize + 1] += 1;
+                }
+            });
+        }
+        for i in 0..n {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut fill = offsets.clone();
+        let mut targets = vec![0u32; offsets[n] as usize];
+        for node in 0..n {
+            self.reads_of(set, node, n, &mut |r| {
+                let (start, at) = (offsets[r as usize], fill[r as usize]);
+                if at == start || targets[at as usize - 1] != node as u32 {
+                    targets[at as usize] = node as u32;
+                    fill[r as usize] = at + 1;
+                }
+            });
+        }
+        crate::Influence::from_rows(offsets, targets)
     }
 }
 
@@ -1119,6 +1182,45 @@ pub(crate) mod tests {
                 proptest::prop_assert_eq!(f[i][0].to_bits(), f2[i][0].to_bits());
                 proptest::prop_assert_eq!(f[i][1].to_bits(), f2[i][1].to_bits());
                 proptest::prop_assert_eq!(s[i].to_bits(), s2[i].to_bits());
+            }
+        }
+    }
+
+    /// The influence table from the (pushed, read) pairs of every spring, the plain way.
+    fn influence_by_pairs(set: &SpringSet2d, n: usize) -> crate::Influence {
+        let mut pairs = Vec::new();
+        crate::model::influence_pairs::<2, _>(&set.extrusion, &mut pairs);
+        crate::model::influence_pairs(&set.neighbour, &mut pairs);
+        crate::model::influence_pairs(&set.angle, &mut pairs);
+        crate::Influence::from_pairs(n, pairs)
+    }
+
+    proptest::proptest! {
+        /// The influence table walked from the spring index is the table of the pairs, row for
+        /// row, whatever springs are dropped or made degenerate (a node named twice), and over
+        /// fewer nodes than the springs name.
+        #[test]
+        fn the_influence_table_from_the_index_is_that_of_the_pairs(
+            drop_mod in 2usize..9,
+            degenerate_mod in 3usize..13,
+            cut in 0usize..200,
+        ) {
+            let (x, _, _, mut set) = big_ring(150);
+            let keep = |k: usize| k % drop_mod != 1;
+            let mut k = 0;
+            set.extrusion.retain(|_| { k += 1; keep(k) });
+            set.neighbour.retain(|_| { k += 1; keep(k) });
+            set.angle.retain(|_| { k += 1; keep(k) });
+            for (k, s) in set.angle.iter_mut().enumerate().filter(|(k, _)| k % degenerate_mod == 0) {
+                if k % 2 == 0 { s.left = s.child } else { s.right = s.centre }
+            }
+            for (_, s) in set.extrusion.iter_mut().enumerate().filter(|(k, _)| k % degenerate_mod == 1) {
+                s.lower = s.upper;
+            }
+            for n in [x.len(), x.len() - cut] {
+                let fast = SpringField2d::new(&set, &SpringParams::default(), n).influence(n);
+                proptest::prop_assert_eq!(&fast, &influence_by_pairs(&set, n));
+                proptest::prop_assert_eq!(&set.influence(n), &fast);
             }
         }
     }
