@@ -1,6 +1,7 @@
-//! The quality measure of the cut: dihedral angles of tetrahedra, kept in
+//! The quality measures of the cut: dihedral angles of tetrahedra, kept in
 //! `mesh_model::measure3d` (one copy for the cut, the report and the tests) and re-exported
-//! here.
+//! here; and the layer cells whose corners fall below a scaled Jacobian
+//! ([`low_corner_cells`]), which a mixed cut can be asked to cut rather than keep.
 
 pub use mesh_model::measure3d::{max_dihedral_deg, tet_dihedral_angles_deg};
 
