@@ -29,8 +29,11 @@ fn main() {
         let s = &out.stats.timings;
         let row = [wall, s.plan_and_closing, s.build, s.solve, s.verify, s.fill];
         println!(
-            "{spec} threads {threads}: {} cells, wall {:.3} s: plan+closing {:.3} build {:.3} solve {:.3} verify {:.3} fill {:.3}",
+            "{spec} threads {threads}: {} cells, {} iterations, fill {} triangles ({} peeled), wall {:.3} s: plan+closing {:.3} build {:.3} solve {:.3} verify {:.3} fill {:.3}",
             out.layered.mesh.cells.len(),
+            out.stats.iterations,
+            out.stats.fill_triangles,
+            out.stats.peeled_cells,
             row[0],
             row[1],
             row[2],
