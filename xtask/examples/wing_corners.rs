@@ -123,7 +123,8 @@ fn main() -> Result<()> {
             bail!("{msg}");
         }
     };
-    let (mesh, _) = pipeline3d::cut(&case, &surface, &grown)?;
+    let front = pipeline3d::front_measures(&surface, &grown);
+    let (mesh, _) = pipeline3d::cut(&case, &grown, &front)?;
     println!(
         "grown and cut in {:.1} s: {} cells",
         t.elapsed().as_secs_f64(),

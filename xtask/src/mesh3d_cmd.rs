@@ -54,11 +54,14 @@ pub fn run(args: &MeshArgs, case: &Case3d, total: Instant) -> Result<Finished> {
     let grown = timed(r, quiet, ("grow", "layers (AFSF 3D)"), |_| {
         pipeline3d::grow(case, &surface)
     })?;
-    let (mesh, cut_anyway) = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
-        pipeline3d::cut(case, &surface, &grown)
+    // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
+    let (mesh, cut_anyway, front) = timed(r, quiet, ("cut", "cut into standard cells"), |_| {
+        let front = pipeline3d::front_measures(&surface, &grown);
+        let (mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
+        anyhow::Ok((mesh, flagged, front))
     })?;
     let mut measures = timed(r, quiet, ("measure", "measures"), |_| {
-        pipeline3d::measure(&surface, &grown, &mesh, case.layers.layers)
+        pipeline3d::measure(&surface, &grown, &front, &mesh, case.layers.layers)
     });
     let curved = if order == 2 {
         let curved = timed(r, quiet, ("curving", "curving to P2"), |_| {

@@ -176,12 +176,17 @@ fn facet_centre(surface: &Surface, f: usize) -> Option<[f64; 3]> {
 }
 
 /// The layer cells cut into tetrahedra or mixed standard cells; in the mixed cut, the
-/// standard cells [`cut_anyway`] flags are cut too (how many: the second value).
-pub fn cut(case: &Case3d, wall: &Surface, grown: &afsf3d::Grown3d) -> Result<(Mesh, CutAnyway)> {
+/// standard cells [`cut_anyway`] flags are cut too (how many: the second value). `front` is
+/// the grown layers' [`front_measures`].
+pub fn cut(
+    case: &Case3d,
+    grown: &afsf3d::Grown3d,
+    front: &FrontMeasures,
+) -> Result<(Mesh, CutAnyway)> {
     let (mesh, flagged) = match case.cells {
         CutCells::Tets => (topo_cut::cut_to_tets(&grown.mesh), CutAnyway::default()),
         CutCells::Mixed => {
-            let (flags, flagged) = cut_anyway(case, wall, grown);
+            let (flags, flagged) = cut_anyway(case, grown, front);
             (topo_cut::cut_to_mixed_cutting(&grown.mesh, &flags), flagged)
         }
     };
@@ -206,10 +211,10 @@ pub struct CutAnyway {
 /// and how many of each.
 pub fn cut_anyway(
     case: &Case3d,
-    wall: &Surface,
     grown: &afsf3d::Grown3d,
+    front: &FrontMeasures,
 ) -> (Vec<bool>, CutAnyway) {
-    let leaning = leaning_cells(wall, grown, case.max_lean_deg);
+    let leaning = leaning_cells(grown, &front.deviations, case.max_lean_deg);
     let low = if case.min_corner_sj > 0.0 {
         topo_cut::quality::low_corner_cells(&grown.mesh, case.min_corner_sj)
     } else {
@@ -228,14 +233,17 @@ pub fn cut_anyway(
 }
 
 /// One flag per layer cell: whether both ends of an extrusion edge leaning more than
-/// `limit_deg` off its front's normal (table 6's angle, [`front_measures`]) are nodes of it
-/// (so, in a prism or hexahedron, one of its side edges). Empty (none flagged) at 180° and
-/// where no edge leans more.
-pub fn leaning_cells(wall: &Surface, grown: &afsf3d::Grown3d, limit_deg: f64) -> Vec<bool> {
+/// `limit_deg` off its front's normal (table 6's angle, `deviations` of [`front_measures`])
+/// are nodes of it (so, in a prism or hexahedron, one of its side edges). Empty (none
+/// flagged) at 180° and where no edge leans more.
+pub fn leaning_cells(
+    grown: &afsf3d::Grown3d,
+    deviations: &[((u32, u32), f64)],
+    limit_deg: f64,
+) -> Vec<bool> {
     if limit_deg >= 180.0 {
         return Vec::new();
     }
-    let (_, deviations) = front_measures(wall, grown);
     // each leaning edge by its two nodes, lower first
     let mut leaning: Vec<(u32, u32)> = deviations
         .iter()
@@ -381,8 +389,15 @@ fn min_corner_sj(wall: &Surface, mesh: &Mesh) -> Option<CornerJacobian> {
     })
 }
 
-/// Measures the cut `mesh` of the layers `grown` from `wall` ([`Measures3d`]).
-pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usize) -> Measures3d {
+/// Measures the cut `mesh` of the layers `grown` from `wall` ([`Measures3d`]); `front` is the
+/// grown layers' [`front_measures`] (tables 5 and 6).
+pub fn measure(
+    wall: &Surface,
+    grown: &afsf3d::Grown3d,
+    front: &FrontMeasures,
+    mesh: &Mesh,
+    layers: usize,
+) -> Measures3d {
     let n = mesh.cells.len();
     let volumes: Vec<f64> = (0..n)
         .into_par_iter()
@@ -398,8 +413,8 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
         .iter()
         .filter(|c| c.len() == layers + 1)
         .count();
-    let (front_angles, deviations) = front_measures(wall, grown);
-    let layered = layered_deviations(mesh, &deviations);
+    let (front_angles, deviations) = (&front.angles, &front.deviations);
+    let layered = layered_deviations(mesh, deviations);
     let count = |s| mesh.count(s);
     Measures3d {
         cells: [
@@ -421,7 +436,7 @@ pub fn measure(wall: &Surface, grown: &afsf3d::Grown3d, mesh: &Mesh, layers: usi
                      dissertation table 5)",
                 ),
                 &FRONT_ANGLE_EDGES,
-                &front_angles,
+                front_angles,
             ),
             Histogram::new(
                 (
@@ -508,8 +523,7 @@ fn enclosed(mesh: &Mesh, role: Role) -> f64 {
 /// its repeated corner (a quad becomes a triangle) or, left with two corners, is no facet of
 /// that front (it collapsed to an edge) and is not counted; an extrusion edge two merged
 /// columns share is counted once.
-#[allow(clippy::type_complexity)]
-fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<((u32, u32), f64)>) {
+pub fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> FrontMeasures {
     let depth = grown.columns.iter().map(Vec::len).min().unwrap_or(0);
     let mut angles = Vec::new();
     let mut deviations = Vec::new();
@@ -541,7 +555,18 @@ fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> (Vec<f64>, Vec<((u
         }
         below = above;
     }
-    (angles, deviations)
+    FrontMeasures { angles, deviations }
+}
+
+/// Tables 5 and 6 of the grown layers ([`front_measures`]): what the mixed cut's leaning test
+/// and the report's measures both read, measured once.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrontMeasures {
+    /// The largest corner angle of every facet of the fronts of layers 1 to n, degrees.
+    pub angles: Vec<f64>,
+    /// Every extrusion edge (its two nodes, lower layer first) and its deviation from the
+    /// normal of the front it grew from, degrees.
+    pub deviations: Vec<((u32, u32), f64)>,
 }
 
 /// The front of layer `k` as facets over the grown mesh's nodes: each wall facet over its
@@ -613,7 +638,7 @@ mod tests {
         let (wall, grown) = merged();
         let front = layer_front(&wall, &grown, 1);
         assert_eq!(front, vec![Facet::tri(4, 5, 6)]);
-        let (angles, deviations) = front_measures(&wall, &grown);
+        let FrontMeasures { angles, deviations } = front_measures(&wall, &grown);
         // layer 1: the one triangle left; layer 2: the same
         assert_eq!(angles.len(), 2, "{angles:?}");
         assert!(angles.iter().all(|&a| a < 90.0), "{angles:?}");

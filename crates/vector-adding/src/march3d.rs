@@ -502,7 +502,8 @@ impl<'a> March<'a> {
                 }
                 ok = self.valid(d)? || (depth > 0 && self.mend_to(d, depth - 1, &mut local)?);
             }
-            if ok && self.valid(c)? {
+            // (`c` was certified above; only a neighbour's mending can have changed it since)
+            if ok && (broken.is_empty() || self.valid(c)?) {
                 journal.extend(local);
                 return Ok(true);
             }
