@@ -4,6 +4,11 @@
 //! then improved by largest-angle edge flips and Steiner smoothing. Front edges are never
 //! split, so the fill conforms to the layered cells edge for edge.
 //!
+//! Where a fill triangle stays too obtuse, the layered cells around it are peeled into the
+//! region ([`fill_with_peeling`]); the region is filled whole once, and after each peel only
+//! the cavity around what changed is filled again ([`refill_cavity`]; whole again if that
+//! fails).
+//!
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.
 
