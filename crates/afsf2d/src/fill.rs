@@ -4,6 +4,11 @@
 //! then improved by largest-angle edge flips and Steiner smoothing. Front edges are never
 //! split, so the fill conforms to the layered cells edge for edge.
 //!
+//! Where a fill triangle stays too obtuse, the layered cells around it are peeled into the
+//! region ([`fill_with_peeling`]); the region is filled whole once, and after each peel only
+//! the cavity around what changed is filled again ([`refill_cavity`]; whole again if that
+//! fails).
+//!
 //! It owns nothing else: the fronts are kept simple and disjoint by `grow`, which is what
 //! makes this triangulation exact.
 
@@ -705,6 +710,9 @@ fn edge_ratio(c: &Cell, pos: &[P2]) -> f64 {
 /// boundary facets with the domain on their left, `fronts` the final fronts' edges
 /// ([`Region::new`]). Returns the triangles, the added nodes
 /// (numbered from `pos.len()` on) and the number of cells peeled.
+///
+/// The first round fills the whole region; a later round fills again only the cavity around
+/// what it changed ([`refill_cavity`]), or the whole region when that fails.
 pub(crate) fn fill_with_peeling(
     cells: &mut [Cell],
     facets: &[(u32, u32)],
@@ -712,56 +720,97 @@ pub(crate) fn fill_with_peeling(
     pos: &[P2],
     angles: FillAngles,
 ) -> Result<PeeledFill, AfsfError> {
+    peel_rounds(cells, facets, fronts, pos, angles, refill_cavity).map(|(fill, _)| fill)
+}
+
+/// A fill of the region: its triangles (counter-clockwise, in mesh numbers; the added nodes
+/// from `pos.len()` on), the added nodes' positions, and the first triangle this round made
+/// (the triangles before it were checked in an earlier round).
+struct Fill {
+    tris: Vec<[u32; 3]>,
+    steiner: Vec<P2>,
+    new_from: usize,
+}
+
+/// What a peel round changed: the corners of the bad triangles (added nodes among them) and
+/// the cells it peeled, each with its number of corners (their `len` is 0 by now).
+struct Change<'a> {
+    bad: &'a [u32],
+    peeled: &'a [(u32, u8)],
+}
+
+/// A fill again after a peel round, from the last one: [`refill_cavity`], or a stand-in in
+/// the tests.
+type Refill = fn(&Fill, &Change<'_>, &[Cell], &Region, &[P2], f64) -> Result<Fill, AfsfError>;
+
+/// How the rounds after the first were filled: around what changed, or whole (after the
+/// fill around what changed failed).
+#[derive(Debug, Default, Clone, Copy, PartialEq)]
+struct Refills {
+    local: u32,
+    whole: u32,
+}
+
+/// [`fill_with_peeling`] with the fill of a later round given (`refill`; the whole region is
+/// filled again when it fails).
+fn peel_rounds(
+    cells: &mut [Cell],
+    facets: &[(u32, u32)],
+    fronts: &[(u32, u32, u32)],
+    pos: &[P2],
+    angles: FillAngles,
+    refill: Refill,
+) -> Result<(PeeledFill, Refills), AfsfError> {
     let mut region = Region::new(cells, facets, fronts);
     let mut incidence: Option<CellsOfNode> = None;
     let max_angle_deg = angles.peel_max_angle_deg;
     let limit = crate::quality::AngleLimit::new(max_angle_deg);
     let mut peeled: Vec<u32> = Vec::new();
-    let mut round = 0;
-    loop {
+    let mut refills = Refills::default();
+    let whole = |region: &Region, cells: &[Cell], peeled: &[u32]| {
         let directed = region.directed(cells);
         let free: Vec<u32> = peeled
             .iter()
             .flat_map(|&c| cells[c as usize].nodes)
-            .filter(|&g| g != mesh_model::NONE && region.unused(g))
+            .filter(|&g| g != NONE && region.unused(g))
             .collect();
-        let fill = || fill_region(&directed, &free, pos, angles.min_angle_deg);
-        let (tris, steiner) = if round == 0 && angles.rounds > 0 && rayon::current_num_threads() > 1
-        {
-            // what a peel round needs is built on the other thread while the first fill runs
-            let start: &[Cell] = cells;
-            let (filled, of_node) = rayon::join(fill, || CellsOfNode::new(start, pos.len()));
-            incidence = Some(of_node);
-            filled?
-        } else {
-            fill()?
-        };
+        let (tris, steiner) = fill_region(&directed, &free, pos, angles.min_angle_deg)?;
+        Ok::<_, AfsfError>(Fill {
+            tris,
+            steiner,
+            new_from: 0,
+        })
+    };
+    let mut fill = if angles.rounds > 0 && rayon::current_num_threads() > 1 {
+        // what a peel round needs is built on the other thread while the first fill runs
+        let start: &[Cell] = cells;
+        let (filled, of_node) = rayon::join(
+            || whole(&region, start, &peeled),
+            || CellsOfNode::new(start, pos.len()),
+        );
+        incidence = Some(of_node);
+        filled?
+    } else {
+        whole(&region, cells, &peeled)?
+    };
+    let mut round = 0;
+    loop {
+        let done =
+            |fill: Fill, peeled: &[u32]| Ok(((fill.tris, fill.steiner, peeled.len()), refills));
         if round == angles.rounds {
-            return Ok((tris, steiner, peeled.len()));
+            return done(fill, &peeled);
         }
         round += 1;
-        let at = |g: u32| {
-            if (g as usize) < pos.len() {
-                pos[g as usize]
-            } else {
-                steiner[g as usize - pos.len()]
-            }
-        };
-        // (the cosines clear nearly every triangle; the angle decides the others)
-        let bad = |a, b, c| {
-            !limit.triangle_below(a, b, c)
-                && crate::quality::max_triangle_angle_deg(a, b, c) >= max_angle_deg
-        };
-        let bad_nodes: Vec<u32> = {
-            use rayon::prelude::*;
-            tris.par_iter()
-                .filter(|t| bad(at(t[0]), at(t[1]), at(t[2])))
-                .flat_map_iter(|t| t.iter().copied().filter(|&g| (g as usize) < pos.len()))
-                .collect()
-        };
-        if bad_nodes.is_empty() {
-            return Ok((tris, steiner, peeled.len()));
+        // (the triangles kept from the last round were not bad there, and are where they were)
+        let bad = bad_corners(&fill, pos, limit, max_angle_deg);
+        if bad.is_empty() {
+            return done(fill, &peeled);
         }
+        let bad_nodes: Vec<u32> = bad
+            .iter()
+            .copied()
+            .filter(|&g| (g as usize) < pos.len())
+            .collect();
         // (built before the first peel: it lists the cells alive at the start)
         let of_node = incidence.get_or_insert_with(|| CellsOfNode::new(cells, pos.len()));
         let mut now: Vec<(u32, u8)> = Vec::new();
@@ -772,9 +821,267 @@ pub(crate) fn fill_with_peeling(
             c.len = 0;
         }
         if now.is_empty() {
-            return Ok((tris, steiner, peeled.len()));
+            return done(fill, &peeled);
         }
         region.peel(cells, &now, of_node);
+        let change = Change {
+            bad: &bad,
+            peeled: &now,
+        };
+        fill = match refill(&fill, &change, cells, &region, pos, angles.min_angle_deg) {
+            Ok(local) => {
+                refills.local += 1;
+                local
+            }
+            Err(_) => {
+                refills.whole += 1;
+                whole(&region, cells, &peeled)?
+            }
+        };
+    }
+}
+
+/// The corners of the new triangles of `fill` with an angle of `max_angle_deg` or more
+/// (added nodes among them), sorted, once each.
+fn bad_corners(
+    fill: &Fill,
+    pos: &[P2],
+    limit: crate::quality::AngleLimit,
+    max_angle_deg: f64,
+) -> Vec<u32> {
+    use rayon::prelude::*;
+    let n = pos.len();
+    let at = |g: u32| {
+        if (g as usize) < n {
+            pos[g as usize]
+        } else {
+            fill.steiner[g as usize - n]
+        }
+    };
+    // (the cosines clear nearly every triangle; the angle decides the others)
+    let bad = |a, b, c| {
+        !limit.triangle_below(a, b, c)
+            && crate::quality::max_triangle_angle_deg(a, b, c) >= max_angle_deg
+    };
+    let mut corners: Vec<u32> = fill.tris[fill.new_from..]
+        .par_iter()
+        .filter(|t| bad(at(t[0]), at(t[1]), at(t[2])))
+        .flat_map_iter(|t| t.iter().copied())
+        .collect();
+    corners.sort_unstable();
+    corners.dedup();
+    corners
+}
+
+/// The fill of a peel round around what it changed: the last round's triangles with a corner
+/// at a node of a bad triangle or of a peeled cell and the
+/// peeled cells make a cavity, whose boundary (the sides met once) is filled anew by
+/// [`fill_region`] with the mesh nodes inside it as free nodes; the added nodes inside it are
+/// dropped (the refinement places its own, and moves them: kept ones would be held fixed)
+/// and the others renumbered in order. The other triangles stay as they are, and the
+/// cavity's boundary is never split, so the fill still conforms. The cavity is filled in a
+/// compact numbering of its own nodes, increasing as their mesh numbers are. Fails (the
+/// caller then fills the whole region) when the cavity's sides are met twice the same way, a
+/// node inside it is still a corner of a layered cell, the triangulation fails, or its
+/// triangles do not cover the cavity exactly with positive triangles using every node.
+fn refill_cavity(
+    prev: &Fill,
+    change: &Change<'_>,
+    cells: &[Cell],
+    region: &Region,
+    pos: &[P2],
+    min_angle_deg: f64,
+) -> Result<Fill, AfsfError> {
+    let n = pos.len();
+    let at = |g: u32| {
+        if (g as usize) < n {
+            pos[g as usize]
+        } else {
+            prev.steiner[g as usize - n]
+        }
+    };
+    let peeled_corners = |&(c, len): &(u32, u8)| &cells[c as usize].nodes[..len as usize];
+    let mut seeds: Vec<u32> = change.bad.to_vec();
+    seeds.extend(change.peeled.iter().flat_map(peeled_corners));
+    seeds.sort_unstable();
+    seeds.dedup();
+    // (one ring of triangles more made the built-in meshes' worst fill angles worse:
+    // docs/performance.md, session 30)
+    let in_cavity: Vec<bool> = prev
+        .tris
+        .iter()
+        .map(|t| t.iter().any(|g| seeds.binary_search(g).is_ok()))
+        .collect();
+    let elements: Vec<&[u32]> = (prev.tris.iter().zip(&in_cavity))
+        .filter(|&(_, &inside)| inside)
+        .map(|(t, _)| &t[..])
+        .chain(change.peeled.iter().map(peeled_corners))
+        .collect();
+    let boundary = cavity_boundary(&elements)?;
+    let mut on_boundary: Vec<u32> = boundary.iter().flat_map(|&(a, b)| [a, b]).collect();
+    on_boundary.sort_unstable();
+    on_boundary.dedup();
+    // the mesh nodes inside the cavity: nodes of peeled cells no layered cell keeps
+    let mut free: Vec<u32> = elements.iter().flat_map(|k| k.iter().copied()).collect();
+    free.sort_unstable();
+    free.dedup();
+    free.retain(|&g| (g as usize) < n && on_boundary.binary_search(&g).is_err());
+    if let Some(g) = free.iter().find(|&&g| !region.unused(g)) {
+        return Err(AfsfError::Fill(format!(
+            "node {g} inside the cavity is a corner of a layered cell"
+        )));
+    }
+    // the cavity's own numbering: its boundary and free nodes, increasing
+    let mut ids: Vec<u32> = on_boundary.iter().chain(&free).copied().collect();
+    ids.sort_unstable();
+    let local = |g: &u32| ids.binary_search(g).map_or(NONE, |l| l as u32);
+    let edges: Vec<(u32, u32)> = boundary.iter().map(|(a, b)| (local(a), local(b))).collect();
+    let local_free: Vec<u32> = free.iter().map(local).collect();
+    let local_pos: Vec<P2> = ids.iter().map(|&g| at(g)).collect();
+    let (tris, added) = fill_region(&edges, &local_free, &local_pos, min_angle_deg)?;
+    let cavity_area: f64 = elements
+        .iter()
+        .map(|k| polygon_area(k.iter().map(|&g| at(g))))
+        .sum();
+    check_cavity_fill(&tris, &local_pos, &added, cavity_area)?;
+    Ok(splice(prev, &in_cavity, &ids, &tris, added, n))
+}
+
+/// The sides of the counter-clockwise `elements` that no element has the other way, with the
+/// elements on their left, sorted; an error when a side is met twice the same way (the
+/// elements overlap) or none is left.
+fn cavity_boundary(elements: &[&[u32]]) -> Result<Vec<(u32, u32)>, AfsfError> {
+    let mut sides: Vec<(u32, u32)> = elements
+        .iter()
+        .flat_map(|k| (0..k.len()).map(|j| (k[j], k[(j + 1) % k.len()])))
+        .collect();
+    sides.sort_unstable();
+    if sides.windows(2).any(|w| w[0] == w[1]) {
+        return Err(AfsfError::Fill(
+            "two elements of the cavity share a side the same way".into(),
+        ));
+    }
+    let boundary: Vec<(u32, u32)> = sides
+        .iter()
+        .copied()
+        .filter(|&(a, b)| sides.binary_search(&(b, a)).is_err())
+        .collect();
+    if boundary.is_empty() {
+        return Err(AfsfError::Fill("the cavity has no boundary".into()));
+    }
+    Ok(boundary)
+}
+
+/// The area of a polygon (positive counter-clockwise).
+fn polygon_area(corners: impl Iterator<Item = P2> + Clone) -> f64 {
+    let first = corners.clone().next();
+    let next = corners.clone().skip(1).chain(first);
+    0.5 * corners
+        .zip(next)
+        .map(|(p, q)| p[0] * q[1] - p[1] * q[0])
+        .sum::<f64>()
+}
+
+/// Relative tolerance of the cavity fill's area against the cavity's.
+const CAVITY_AREA_TOLERANCE: f64 = 1e-9;
+
+/// Checks a cavity's fill (local numbers: the `pts.len()` cavity nodes, then the `added`
+/// ones): every triangle positive, every cavity node used, the area that of the cavity.
+fn check_cavity_fill(
+    tris: &[[u32; 3]],
+    pts: &[P2],
+    added: &[P2],
+    cavity_area: f64,
+) -> Result<(), AfsfError> {
+    let m = pts.len();
+    let at = |l: u32| {
+        if (l as usize) < m {
+            pts[l as usize]
+        } else {
+            added[l as usize - m]
+        }
+    };
+    let mut used = vec![false; m];
+    let mut area = 0.0;
+    for t in tris {
+        let c = t.map(at);
+        let twice = orient2d(c[0], c[1], c[2]);
+        if twice <= 0.0 {
+            return Err(AfsfError::Fill("a cavity triangle is not positive".into()));
+        }
+        area += polygon_area(c.into_iter());
+        for &l in t.iter().filter(|&&l| (l as usize) < m) {
+            used[l as usize] = true;
+        }
+    }
+    if used.contains(&false) {
+        return Err(AfsfError::Fill("a cavity node is left out".into()));
+    }
+    let off = (area - cavity_area).abs();
+    if off.is_nan() || off > CAVITY_AREA_TOLERANCE * cavity_area.abs() {
+        return Err(AfsfError::Fill(format!(
+            "the cavity's fill covers {area}, the cavity {cavity_area}"
+        )));
+    }
+    Ok(())
+}
+
+/// The last round's fill with the triangles in the cavity replaced by `tris` (in the cavity's
+/// numbering: node `l` is `ids[l]`, then the `added` nodes): the kept triangles in their
+/// order, then the new ones; the added nodes the kept triangles use in their order, then the
+/// new ones.
+fn splice(
+    prev: &Fill,
+    in_cavity: &[bool],
+    ids: &[u32],
+    tris: &[[u32; 3]],
+    added: Vec<P2>,
+    n: usize,
+) -> Fill {
+    let mut keep = vec![false; prev.steiner.len()];
+    for (t, _) in prev.tris.iter().zip(in_cavity).filter(|&(_, &c)| !c) {
+        for &g in t.iter().filter(|&&g| g as usize >= n) {
+            keep[g as usize - n] = true;
+        }
+    }
+    let mut steiner = Vec::with_capacity(prev.steiner.len() + added.len());
+    let mut new_id = vec![NONE; prev.steiner.len()];
+    for (s, &p) in prev.steiner.iter().enumerate() {
+        if keep[s] {
+            new_id[s] = (n + steiner.len()) as u32;
+            steiner.push(p);
+        }
+    }
+    let renumber = |g: u32| {
+        if (g as usize) < n {
+            g
+        } else {
+            new_id[g as usize - n]
+        }
+    };
+    let mut out: Vec<[u32; 3]> = Vec::with_capacity(prev.tris.len() + tris.len());
+    out.extend(
+        (prev.tris.iter().zip(in_cavity))
+            .filter(|&(_, &c)| !c)
+            .map(|(t, _)| t.map(renumber)),
+    );
+    let new_from = out.len();
+    let (m, base) = (ids.len(), n + steiner.len());
+    out.extend(tris.iter().map(|t| {
+        t.map(|l| {
+            let l = l as usize;
+            if l < m {
+                renumber(ids[l])
+            } else {
+                (base + l - m) as u32
+            }
+        })
+    }));
+    steiner.extend(added);
+    Fill {
+        tris: out,
+        steiner,
+        new_from,
     }
 }
 
@@ -1415,5 +1722,238 @@ mod tests {
             cells.iter().any(|c| c.len > 0),
             "some cells are left to test"
         );
+    }
+
+    /// A 10 × 9 grid of cells over unit columns, layer `j` in row `j`, the domain's boundary
+    /// its facets; row 4 is 0.15 high (its cells too thin to peel) and its cells 3 to 6 are
+    /// missing: a thin slot whose top nodes sit half a column off its bottom ones, so that
+    /// its triangles can only be flat and the fill peels the cells above and below it. The
+    /// cells, facets, fronts and node positions.
+    type Grid = (Vec<Cell>, Vec<(u32, u32)>, Vec<(u32, u32, u32)>, Vec<P2>);
+
+    fn slotted_grid() -> Grid {
+        let (nx, ny) = (10u32, 9u32);
+        let ys: Vec<f64> = (0..=ny)
+            .map(|j| if j <= 4 { j as f64 } else { j as f64 - 0.85 })
+            .collect();
+        let at = |i: u32, j: u32| j * (nx + 1) + i;
+        let pos: Vec<P2> = (0..=ny)
+            .flat_map(|j| (0..=nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let shift = if j == 5 && (4..=6).contains(&i) {
+                    0.5
+                } else {
+                    0.0
+                };
+                [i as f64 + shift, ys[j as usize]]
+            })
+            .collect();
+        let mut cells = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                if j == 4 && (3..7).contains(&i) {
+                    continue;
+                }
+                cells.push(Cell {
+                    nodes: [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+                    len: 4,
+                    layer: j,
+                    pipe: 0,
+                    origin: [0; 3],
+                });
+            }
+        }
+        // the grid's outline, counter-clockwise
+        let mut outline: Vec<u32> = (0..nx).map(|i| at(i, 0)).collect();
+        outline.extend((0..ny).map(|j| at(nx, j)));
+        outline.extend((1..=nx).rev().map(|i| at(i, ny)));
+        outline.extend((1..=ny).rev().map(|j| at(0, j)));
+        let facets: Vec<(u32, u32)> = (0..outline.len())
+            .map(|k| (outline[k], outline[(k + 1) % outline.len()]))
+            .collect();
+        // the slot's fronts: its cells' open sides, reversed
+        let mut fronts = Vec::new();
+        for (ci, c) in cells.iter().enumerate() {
+            let k = c.corners();
+            for j in 0..4 {
+                let (a, b) = (k[j], k[(j + 1) % 4]);
+                let shared = cells
+                    .iter()
+                    .any(|d| (0..4).any(|i| d.nodes[i] == b && d.nodes[(i + 1) % 4] == a));
+                if !shared && !facets.contains(&(a, b)) {
+                    fronts.push((b, a, ci as u32));
+                }
+            }
+        }
+        (cells, facets, fronts, pos)
+    }
+
+    /// Twice the signed area of a polygon.
+    fn twice_area(p: &[P2]) -> f64 {
+        (0..p.len())
+            .map(|i| {
+                let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum()
+    }
+
+    /// The layered cells left and the fill cover the domain (area `domain`) exactly and
+    /// conform: every fill triangle positive, every edge in two cells or in one cell and a
+    /// facet, every added node and every node of a peeled cell used.
+    fn assert_covers(cells: &[Cell], facets: &[(u32, u32)], fill: &PeeledFill, pos: &[P2]) {
+        let (tris, steiner, peeled) = fill;
+        let all: Vec<P2> = pos.iter().chain(steiner).copied().collect();
+        let corners = |k: &[u32]| k.iter().map(|&g| all[g as usize]).collect::<Vec<P2>>();
+        let live: Vec<&[u32]> = cells
+            .iter()
+            .filter(|c| c.len > 0)
+            .map(|c| c.corners())
+            .collect();
+        assert_eq!(cells.len() - live.len(), *peeled);
+        for t in tris {
+            let c = corners(t);
+            assert!(orient2d(c[0], c[1], c[2]) > 0.0, "triangle {t:?}");
+        }
+        let covered: f64 = live
+            .iter()
+            .copied()
+            .chain(tris.iter().map(|t| &t[..]))
+            .map(|k| twice_area(&corners(k)))
+            .sum();
+        let outline: Vec<P2> = facets.iter().map(|&(a, _)| pos[a as usize]).collect();
+        let domain = twice_area(&outline);
+        assert!(
+            (covered - domain).abs() < 1e-12 * domain,
+            "{covered} vs {domain}"
+        );
+        let shape = |k: &[u32]| {
+            if k.len() == 3 {
+                Shape::Tri
+            } else {
+                Shape::Quad
+            }
+        };
+        let facet_nodes: Vec<[u32; 2]> = facets.iter().map(|&(a, b)| [a, b]).collect();
+        let elements: Vec<&[u32]> = live
+            .iter()
+            .copied()
+            .chain(tris.iter().map(|t| &t[..]))
+            .collect();
+        let edges = Edges::build(
+            elements.iter().map(|&k| (shape(k), k)),
+            facet_nodes.iter().map(|f| &f[..]),
+        );
+        for e in 0..edges.len() as u32 {
+            let uses = edges.cells(e).len() + usize::from(edges.is_boundary(e));
+            assert_eq!(uses, 2, "edge {:?}", edges.nodes(e));
+        }
+        let mut used = vec![false; all.len()];
+        for k in &elements {
+            for &g in k.iter() {
+                used[g as usize] = true;
+            }
+        }
+        assert!(used.iter().all(|&u| u), "every node is a corner");
+    }
+
+    const SLOT_ANGLES: FillAngles = FillAngles {
+        min_angle_deg: 30.0,
+        peel_max_angle_deg: 120.0,
+        rounds: 16,
+    };
+
+    /// A peel round fills only the cavity around what it changed, and the result covers the
+    /// region exactly and conforms; the cavity's triangles are fewer than the region's.
+    #[test]
+    fn a_peel_round_fills_again_around_what_it_changed() {
+        let (mut cells, facets, fronts, pos) = slotted_grid();
+        let (fill, refills) = peel_rounds(
+            &mut cells,
+            &facets,
+            &fronts,
+            &pos,
+            SLOT_ANGLES,
+            refill_cavity,
+        )
+        .unwrap();
+        assert!(fill.2 > 0, "the slot peels");
+        assert!(refills.local > 0 && refills.whole == 0, "{refills:?}");
+        assert_covers(&cells, &facets, &fill, &pos);
+        // no triangle is left with an angle of 120° or more where a round could peel more
+        let (tris, steiner, _) = &fill;
+        let at = |g: u32| {
+            if (g as usize) < pos.len() {
+                pos[g as usize]
+            } else {
+                steiner[g as usize - pos.len()]
+            }
+        };
+        let worst = tris
+            .iter()
+            .map(|t| crate::quality::max_triangle_angle_deg(at(t[0]), at(t[1]), at(t[2])))
+            .fold(0.0f64, f64::max);
+        assert!(worst < 120.0, "worst fill angle {worst}");
+    }
+
+    /// When the fill around what changed fails, the round fills the whole region again, as
+    /// every round did before: the same cells peeled, the region covered.
+    #[test]
+    fn a_failed_cavity_fill_falls_back_to_the_whole_region() {
+        fn refuse(
+            _: &Fill,
+            _: &Change<'_>,
+            _: &[Cell],
+            _: &Region,
+            _: &[P2],
+            _: f64,
+        ) -> Result<Fill, AfsfError> {
+            Err(AfsfError::Fill("refused".into()))
+        }
+        let (mut cells, facets, fronts, pos) = slotted_grid();
+        let (fill, refills) =
+            peel_rounds(&mut cells, &facets, &fronts, &pos, SLOT_ANGLES, refuse).unwrap();
+        assert!(fill.2 > 0, "the slot peels");
+        assert!(refills.local == 0 && refills.whole > 0, "{refills:?}");
+        assert_covers(&cells, &facets, &fill, &pos);
+    }
+
+    /// The cavity fill refuses a cavity whose inside holds a node a layered cell still has,
+    /// and one whose elements overlap (a side met twice the same way).
+    #[test]
+    fn the_cavity_fill_refuses_what_it_cannot_fill() {
+        let (mut cells, facets, fronts, pos) = slotted_grid();
+        let region = Region::new(&cells, &facets, &fronts);
+        let directed = region.directed(&cells);
+        let (tris, steiner) = fill_region(&directed, &[], &pos, 30.0).unwrap();
+        let prev = Fill {
+            tris,
+            steiner,
+            new_from: 0,
+        };
+        // the four cells around node (5, 6), "peeled" without the region knowing: that
+        // node, inside the cavity, is still a node of the layered cells
+        let around: Vec<usize> = (0..cells.len())
+            .filter(|&c| cells[c].nodes.contains(&(6 * 11 + 5)))
+            .collect();
+        assert_eq!(around.len(), 4);
+        let peeled: Vec<(u32, u8)> = around.iter().map(|&c| (c as u32, 4)).collect();
+        for &c in &around {
+            cells[c].len = 0;
+        }
+        let change = Change {
+            bad: &[],
+            peeled: &peeled,
+        };
+        let got = refill_cavity(&prev, &change, &cells, &region, &pos, 30.0);
+        assert!(got.is_err());
+        // a layered cell taken into the cavity twice overlaps itself
+        let twice = [peeled[0], peeled[0]];
+        let change = Change {
+            bad: &[],
+            peeled: &twice,
+        };
+        let got = refill_cavity(&prev, &change, &cells, &region, &pos, 30.0);
+        assert!(got.is_err());
     }
 }
