@@ -35,6 +35,19 @@ use crate::input::AfsfParams;
 use crate::nodes::{NewNode, NodeStore};
 use crate::sanity::front_edges_meet;
 
+/// Cells from which `verify` tests them on every thread: below, a fork-join costs more than
+/// it saves (a cell's test takes some 50 ns).
+const PARALLEL_MIN_CELLS: usize = 8192;
+
+/// Cells per task of `verify`'s parallel test.
+const VERIFY_CHUNK: usize = 4096;
+
+/// Nodes from which the solve's springs are written on every thread.
+const PARALLEL_MIN_NODES: usize = 8192;
+
+/// Nodes per task of the parallel spring set-up.
+const SPRING_CHUNK: usize = 4096;
+
 /// How the ideal extrusion length of a front's layers is chosen.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Law {
@@ -286,10 +299,10 @@ impl<'p> Work<'p> {
         let cos_fan_threshold = fan_threshold.cos();
         let fan_max = self.params.fan_max_angle_deg.to_radians();
         // directions (and fan offsets) of every node on an active edge
-        let mut dirs: Vec<Vec<(P2, f64)>> = vec![Vec::new(); m];
-        for (v, dirs_v) in dirs.iter_mut().enumerate() {
+        let dirs_of = |v: usize| {
+            let mut dirs_v: Vec<(P2, f64)> = Vec::new();
             if !(lp.edges[(v + m - 1) % m].active || lp.edges[v].active) {
-                continue;
+                return dirs_v;
             }
             let g = lp.items[v] as usize;
             let p = self.nodes.pos[g];
@@ -326,7 +339,16 @@ impl<'p> Work<'p> {
                 (Some(a), None) | (None, Some(a)) => dirs_v.push((a, 0.0)),
                 (None, None) => {}
             }
-        }
+            dirs_v
+        };
+        // each node's directions on its own: on every thread for a long loop
+        let dirs: Vec<Vec<(P2, f64)>> =
+            if m >= PARALLEL_MIN_NODES && rayon::current_num_threads() > 1 {
+                use rayon::prelude::*;
+                (0..m).into_par_iter().map(dirs_of).collect()
+            } else {
+                (0..m).map(dirs_of).collect()
+            };
         let can = |v: usize| !dirs[v].is_empty();
         let mut plan = Plan {
             advancing: vec![false; m],
@@ -934,11 +956,7 @@ impl<'p> Work<'p> {
         );
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
-        for g in range_start..n {
-            if self.nodes.alive[g] {
-                self.springs_of(g as u32, &mut problem, &mut springs);
-            }
-        }
+        self.spring_set(range_start..n, &mut problem, &mut springs);
         let model = SpringField2d::new(&springs, &self.params.springs, problem.len());
         let result = problem.solve(
             &mut self.nodes.pos,
@@ -952,9 +970,61 @@ impl<'p> Work<'p> {
         result
     }
 
+    /// The springs of the alive nodes of `range` ([`Work::springs_of`], node after node), the
+    /// fixed nodes numbered in the problem on first use. A large range is written in chunks on
+    /// every thread, each naming its fixed nodes by global number ([`Deferred`]); the chunks
+    /// are then numbered in order and concatenated: the same springs and the same numbering
+    /// whatever the number of threads.
+    fn spring_set(
+        &self,
+        range: std::ops::Range<usize>,
+        problem: &mut LocalProblem<2>,
+        springs: &mut SpringSet2d,
+    ) {
+        if rayon::current_num_threads() == 1 || range.len() < PARALLEL_MIN_NODES {
+            for g in range.filter(|&g| self.nodes.alive[g]) {
+                self.springs_of(g as u32, problem, springs);
+            }
+            return;
+        }
+        use rayon::prelude::*;
+        let end = range.end;
+        let shared: &LocalProblem<2> = problem;
+        let mut chunks: Vec<(SpringSet2d, Vec<u32>)> = range
+            .into_par_iter()
+            .step_by(SPRING_CHUNK)
+            .map(|start| {
+                let mut deferred = Deferred {
+                    problem: shared,
+                    fixed: Vec::new(),
+                };
+                let mut set = SpringSet2d::default();
+                for g in (start..(start + SPRING_CHUNK).min(end)).filter(|&g| self.nodes.alive[g]) {
+                    self.springs_of(g as u32, &mut deferred, &mut set);
+                }
+                (set, deferred.fixed)
+            })
+            .collect();
+        // the fixed nodes in the order the sequential set-up first names them
+        for (_, fixed) in &chunks {
+            for &g in fixed {
+                problem.local(g);
+            }
+        }
+        let problem: &LocalProblem<2> = problem;
+        chunks
+            .par_iter_mut()
+            .for_each(|(set, _)| renumber_fixed(problem, set));
+        for (set, _) in &chunks {
+            springs.extrusion.extend_from_slice(&set.extrusion);
+            springs.neighbour.extend_from_slice(&set.neighbour);
+            springs.angle.extend_from_slice(&set.angle);
+        }
+    }
+
     /// Adds the springs of alive node `g` to the problem: its extrusion and angle springs
     /// (one per parent) when it or that parent moves, its neighbour spring when it moves.
-    fn springs_of(&self, gu: u32, problem: &mut LocalProblem<2>, springs: &mut SpringSet2d) {
+    fn springs_of(&self, gu: u32, problem: &mut impl Numbering, springs: &mut SpringSet2d) {
         let g = gu as usize;
         let me_moving = problem.is_moving(gu);
         for p in [self.nodes.parent[g], self.nodes.parent2[g]] {
@@ -1011,8 +1081,6 @@ impl<'p> Work<'p> {
         };
         let first_cell = self.cell_step[(step + 1 - depth) as usize];
         let new_cell = self.cell_step[step as usize];
-        let mut bad: Vec<(u32, u32)> = Vec::new();
-        let mut old_bad = false;
         let mark = |c: &Cell, bad: &mut Vec<(u32, u32)>| {
             let [l, e1, e2] = c.origin;
             bad.push((l, e1));
@@ -1020,25 +1088,7 @@ impl<'p> Work<'p> {
                 bad.push((l, e2));
             }
         };
-        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
-        for ci in first_cell..self.cells.len() {
-            let c = &self.cells[ci];
-            if c.len == 0 {
-                continue;
-            }
-            // a cell above the first layer must also cut into triangles with no angle of
-            // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill
-            // takes over; an old one makes the step retry with fewer moving layers)
-            let shape_ok = c.layer == 0 || self.cell_cut_below(c, limit);
-            if self.cell_ok(c) && shape_ok {
-                continue;
-            }
-            if ci >= new_cell {
-                mark(c, &mut bad);
-            } else {
-                old_bad = true;
-            }
-        }
+        let (mut bad, old_bad) = self.failed_cells(first_cell, new_cell, &mark);
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
@@ -1069,6 +1119,54 @@ impl<'p> Work<'p> {
         (bad, old_bad)
     }
 
+    /// The cells from `first_cell` on that fail (not convex and positive, or, above the first
+    /// layer, cut into triangles with an angle of `cell_max_angle_deg` or more): the front
+    /// edges of the failing new cells (from `new_cell` on), `mark`ed in cell order, and
+    /// whether an old cell failed. A large range is tested in chunks on every thread, the
+    /// chunks' edges concatenated in order: the same list whatever the number of threads.
+    fn failed_cells(
+        &self,
+        first_cell: usize,
+        new_cell: usize,
+        mark: &(impl Fn(&Cell, &mut Vec<(u32, u32)>) + Sync),
+    ) -> (Vec<(u32, u32)>, bool) {
+        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
+        // a cell above the first layer must also cut into triangles with no angle of
+        // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill takes
+        // over; an old one makes the step retry with fewer moving layers)
+        let test = |range: std::ops::Range<usize>| {
+            let (mut bad, mut old_bad) = (Vec::new(), false);
+            for ci in range {
+                let c = &self.cells[ci];
+                if c.len == 0 {
+                    continue;
+                }
+                let shape_ok = c.layer == 0 || self.cell_cut_below(c, limit);
+                if self.cell_ok(c) && shape_ok {
+                    continue;
+                }
+                if ci >= new_cell {
+                    mark(c, &mut bad);
+                } else {
+                    old_bad = true;
+                }
+            }
+            (bad, old_bad)
+        };
+        let end = self.cells.len();
+        if rayon::current_num_threads() == 1 || end - first_cell < PARALLEL_MIN_CELLS {
+            return test(first_cell..end);
+        }
+        use rayon::prelude::*;
+        let found: Vec<(Vec<(u32, u32)>, bool)> = (first_cell..end)
+            .into_par_iter()
+            .step_by(VERIFY_CHUNK)
+            .map(|start| test(start..(start + VERIFY_CHUNK).min(end)))
+            .collect();
+        let old_bad = found.iter().any(|f| f.1);
+        (found.into_iter().flat_map(|f| f.0).collect(), old_bad)
+    }
+
     /// Whether the largest angle of the triangles of a cell, a quad being cut along its
     /// shorter diagonal, is below `limit`.
     fn cell_cut_below(&self, c: &Cell, limit: crate::quality::AngleLimit) -> bool {
@@ -1096,6 +1194,73 @@ impl<'p> Work<'p> {
             let o = orient2d(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
+    }
+}
+
+/// The local numbers of a spring set-up: whether a global node moves, and its local number.
+trait Numbering {
+    fn is_moving(&self, g: u32) -> bool;
+    fn local(&mut self, g: u32) -> u32;
+}
+
+/// The problem itself: fixed nodes numbered on first use.
+impl Numbering for LocalProblem<2> {
+    fn is_moving(&self, g: u32) -> bool {
+        LocalProblem::is_moving(self, g)
+    }
+
+    fn local(&mut self, g: u32) -> u32 {
+        LocalProblem::local(self, g)
+    }
+}
+
+/// A global node not yet numbered, as a deferred set-up names it: its number with this bit.
+const FIXED_TAG: u32 = 1 << 31;
+
+/// A set-up beside others on a shared problem: a node already numbered (the moving ones) gets
+/// its number, any other its global number tagged with [`FIXED_TAG`], listed in `fixed` in
+/// the order named (repeats included), for [`renumber_fixed`] once the problem numbers them.
+struct Deferred<'a> {
+    problem: &'a LocalProblem<2>,
+    fixed: Vec<u32>,
+}
+
+impl Numbering for Deferred<'_> {
+    fn is_moving(&self, g: u32) -> bool {
+        self.problem.is_moving(g)
+    }
+
+    fn local(&mut self, g: u32) -> u32 {
+        if let Some(l) = self.problem.numbered(g) {
+            return l;
+        }
+        debug_assert!(g < FIXED_TAG, "node numbers below 2^31");
+        self.fixed.push(g);
+        g | FIXED_TAG
+    }
+}
+
+/// Replaces the tagged global numbers of a [`Deferred`] set-up by their local numbers.
+fn renumber_fixed(problem: &LocalProblem<2>, set: &mut SpringSet2d) {
+    let local = |x: &mut u32| {
+        if *x & FIXED_TAG != 0 {
+            *x = problem
+                .numbered(*x & !FIXED_TAG)
+                .expect("a named fixed node is numbered");
+        }
+    };
+    for s in &mut set.extrusion {
+        [&mut s.lower, &mut s.upper].into_iter().for_each(local);
+    }
+    for s in &mut set.neighbour {
+        [&mut s.left, &mut s.centre, &mut s.right, &mut s.parent]
+            .into_iter()
+            .for_each(local);
+    }
+    for s in &mut set.angle {
+        [&mut s.left, &mut s.centre, &mut s.right, &mut s.child]
+            .into_iter()
+            .for_each(local);
     }
 }
 
