@@ -461,19 +461,22 @@ struct StepChunk<const D: usize> {
     error: Option<SpringError>,
 }
 
+/// What an iteration's step reads: positions, mass schedule, forces, stiffnesses and scales.
+type StepState<'a, const D: usize> = (
+    &'a [[f64; D]],
+    &'a MassSchedule<D>,
+    &'a [[f64; D]],
+    &'a [f64],
+    &'a [f64],
+);
+
 /// The moves of the sequential step's loop (without a lateral limit) on every thread: each
 /// chunk of `active_nodes` computes its nodes' moves from the unchanged state, in order, up
 /// to its first error; the caller writes them in order. The largest step is a maximum, the
 /// heavy nodes a count and the moved nodes the chunks' lists concatenated in order: the same
 /// as the sequential loop's.
 fn par_step_moves<const D: usize>(
-    (positions, masses, force, stiffness, scale): (
-        &[[f64; D]],
-        &MassSchedule<D>,
-        &[[f64; D]],
-        &[f64],
-        &[f64],
-    ),
+    (positions, masses, force, stiffness, scale): StepState<'_, D>,
     active_nodes: &[u32],
     (params, iteration): (&SolverParams, usize),
 ) -> Vec<StepChunk<D>> {
