@@ -376,9 +376,7 @@ fn check_lengths(
 /// One iteration's moves: each active node steps by its force over its stiffness and mass
 /// (clamped), in the order of `active_nodes`; returns the largest step relative to its
 /// node's scale and how many nodes became heavy, and lists in `moved` the nodes that stepped
-/// past the wake threshold. Without a lateral limit (no node's move reads another's position)
-/// a large active set is stepped in chunks on every thread ([`par_step_active`]): the same
-/// moves, figures, `moved` list and error.
+/// past the wake threshold.
 fn step_active<const D: usize>(
     positions: &mut [[f64; D]],
     (force, stiffness): (&[[f64; D]], &[f64]),
@@ -388,28 +386,6 @@ fn step_active<const D: usize>(
     masses: &mut MassSchedule<D>,
     moved: &mut Vec<u32>,
 ) -> Result<(f64, usize), SpringError> {
-    if params.lateral_max_move.is_none()
-        && active_nodes.len() >= PARALLEL_MIN_STEP
-        && rayon::current_num_threads() > 1
-    {
-        let state = (&*positions, &*masses, force, stiffness, scale);
-        let chunks = par_step_moves(state, active_nodes, (params, iteration));
-        // the moves written in order, up to the first error (where the loop below stops too)
-        let (mut max_step, mut heavy) = (0.0f64, 0);
-        for chunk in chunks {
-            for (i, m) in chunk.moves {
-                positions[i as usize] = m.position;
-                masses.apply(i as usize, &m);
-            }
-            if let Some(error) = chunk.error {
-                return Err(error);
-            }
-            max_step = max_step.max(chunk.max_step);
-            heavy += chunk.heavy;
-            moved.extend_from_slice(&chunk.moved);
-        }
-        return Ok((max_step, heavy));
-    }
     let wake = params.wake_fraction * params.tolerance;
     let (mut max_step, mut heavy) = (0.0f64, 0);
     for &iu in active_nodes {
@@ -434,88 +410,11 @@ fn step_active<const D: usize>(
         if relative >= wake {
             moved.push(iu);
         }
-        let m = masses.judge(i, len, positions[i], scale[i], iteration, params);
-        masses.apply(i, &m);
-        if m.first_heavy {
+        if masses.record(i, len, positions[i], scale[i], iteration, params) {
             heavy += 1;
         }
     }
     Ok((max_step, heavy))
-}
-
-/// Active nodes from which an iteration's step runs on every thread: below, a fork-join
-/// costs more than it saves.
-const PARALLEL_MIN_STEP: usize = 4096;
-
-/// Active nodes per task of the parallel step.
-const STEP_CHUNK: usize = 2048;
-
-/// What a chunk of the parallel step found: its nodes' moves in order, its largest relative
-/// step, its new heavy nodes, its nodes past the wake threshold in order, and its first error
-/// (the chunk's moves stop there).
-struct StepChunk<const D: usize> {
-    moves: Vec<(u32, Move<D>)>,
-    max_step: f64,
-    heavy: usize,
-    moved: Vec<u32>,
-    error: Option<SpringError>,
-}
-
-/// What an iteration's step reads: positions, mass schedule, forces, stiffnesses and scales.
-type StepState<'a, const D: usize> = (
-    &'a [[f64; D]],
-    &'a MassSchedule<D>,
-    &'a [[f64; D]],
-    &'a [f64],
-    &'a [f64],
-);
-
-/// The moves of the sequential step's loop (without a lateral limit) on every thread: each
-/// chunk of `active_nodes` computes its nodes' moves from the unchanged state, in order, up
-/// to its first error; the caller writes them in order. The largest step is a maximum, the
-/// heavy nodes a count and the moved nodes the chunks' lists concatenated in order: the same
-/// as the sequential loop's.
-fn par_step_moves<const D: usize>(
-    (positions, masses, force, stiffness, scale): StepState<'_, D>,
-    active_nodes: &[u32],
-    (params, iteration): (&SolverParams, usize),
-) -> Vec<StepChunk<D>> {
-    use rayon::prelude::*;
-    let wake = params.wake_fraction * params.tolerance;
-    active_nodes
-        .par_chunks(STEP_CHUNK)
-        .map(|nodes| {
-            let mut out = StepChunk {
-                moves: Vec::with_capacity(nodes.len()),
-                max_step: 0.0,
-                heavy: 0,
-                moved: Vec::new(),
-                error: None,
-            };
-            for &iu in nodes {
-                let i = iu as usize;
-                let (f, s) = (force[i], stiffness[i]);
-                if !(s.is_finite() && f.iter().all(|c| c.is_finite())) {
-                    out.error = Some(SpringError::NonFiniteForce { node: i, iteration });
-                    break;
-                }
-                if s <= 0.0 {
-                    continue;
-                }
-                let (step, len) = clamped_step(&f, s, masses.mass[i], scale[i], params, None);
-                let position: [f64; D] = std::array::from_fn(|k| positions[i][k] + step[k]);
-                let relative = len / scale[i];
-                out.max_step = out.max_step.max(relative);
-                if relative >= wake {
-                    out.moved.push(iu);
-                }
-                let m = masses.judge(i, len, position, scale[i], iteration, params);
-                out.heavy += usize::from(m.first_heavy);
-                out.moves.push((iu, m));
-            }
-            out
-        })
-        .collect()
 }
 
 /// Updates the active set: after a full sweep's failure or at the start every movable node,
@@ -599,58 +498,33 @@ impl<const D: usize> MassSchedule<D> {
         }
     }
 
-    /// Judges a move of node `i` of length `len` to `position` (without writing it: see
-    /// [`MassSchedule::apply`]); once its travel exceeds `judge_travel × scale`, a node that
-    /// got less than half as far as it travelled (past the constant-mass iterations) gets
-    /// heavier, and `first_heavy` tells when it became heavy for the first time.
+    /// Records a move of node `i` of length `len` to `position`; once its travel exceeds
+    /// `judge_travel × scale`, a node that got less than half as far as it travelled (past
+    /// the constant-mass iterations) gets heavier. Returns true when the node became heavy
+    /// for the first time.
     #[inline]
-    fn judge(
-        &self,
+    fn record(
+        &mut self,
         i: usize,
         len: f64,
         position: [f64; D],
         scale: f64,
         iteration: usize,
         params: &SolverParams,
-    ) -> Move<D> {
-        let mut m = Move {
-            position,
-            travel: self.travel[i] + len,
-            mass: self.mass[i],
-            anchored: false,
-            first_heavy: false,
-        };
-        if m.travel > params.judge_travel * scale {
+    ) -> bool {
+        let mut first_heavy = false;
+        self.travel[i] += len;
+        if self.travel[i] > params.judge_travel * scale {
             let net = norm(&crate::vec::sub(&position, &self.anchor[i]));
-            if iteration >= params.constant_mass_iterations && net < 0.5 * m.travel {
-                m.first_heavy = m.mass == 1.0;
-                m.mass *= params.mass_factor;
+            if iteration >= params.constant_mass_iterations && net < 0.5 * self.travel[i] {
+                first_heavy = self.mass[i] == 1.0;
+                self.mass[i] *= params.mass_factor;
             }
-            m.travel = 0.0;
-            m.anchored = true;
+            self.travel[i] = 0.0;
+            self.anchor[i] = position;
         }
-        m
+        first_heavy
     }
-
-    /// Writes a judged move's schedule (the position is the caller's).
-    #[inline]
-    fn apply(&mut self, i: usize, m: &Move<D>) {
-        self.travel[i] = m.travel;
-        self.mass[i] = m.mass;
-        if m.anchored {
-            self.anchor[i] = m.position;
-        }
-    }
-}
-
-/// A node's judged move: its new position, travel since its anchor and mass, whether it is
-/// anchored at the new position, and whether it became heavy for the first time.
-struct Move<const D: usize> {
-    position: [f64; D],
-    travel: f64,
-    mass: f64,
-    anchored: bool,
-    first_heavy: bool,
 }
 
 #[cfg(test)]
@@ -777,112 +651,6 @@ mod tests {
                 prop_assert!((x_act[i][0] - x_full[i][0]).abs() < 1e-4);
             }
         }
-    }
-
-    /// A chain of `n` nodes (ends fixed) jittered by a fixed pseudo-random sequence, solved
-    /// with the active set in a pool of `threads` threads; `poison` = (iteration, nodes):
-    /// the assembly makes those nodes' forces non-finite at that iteration.
-    fn big_chain_in_pool(
-        threads: usize,
-        n: usize,
-        params: &SolverParams,
-        poison: Option<(usize, &[usize])>,
-    ) -> (Vec<[f64; 1]>, Result<SolveOutcome, SpringError>) {
-        let h = 1.0 / (n - 1) as f64;
-        let mut seed = 12345u64;
-        let mut x: Vec<[f64; 1]> = (0..n)
-            .map(|i| {
-                seed = seed
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                let j = ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.8;
-                [(i as f64 + if i == 0 || i == n - 1 { 0.0 } else { j }) * h]
-            })
-            .collect();
-        let movable: Vec<bool> = (0..n).map(|i| i != 0 && i != n - 1).collect();
-        let scale = vec![h; n];
-        let influence =
-            Influence::from_pairs(n, (0..n as u32 - 1).flat_map(|i| [(i, i + 1), (i + 1, i)]));
-        let mut calls = 0;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        let out = pool.install(|| {
-            solve_active(
-                &mut x,
-                &scale,
-                &movable,
-                &influence,
-                params,
-                |p, a, f, s| {
-                    for i in 0..n - 1 {
-                        if !(a.flags[i] || a.flags[i + 1]) {
-                            continue;
-                        }
-                        let d = p[i + 1][0] - p[i][0];
-                        f[i][0] += d;
-                        f[i + 1][0] -= d;
-                        s[i] += 1.0;
-                        s[i + 1] += 1.0;
-                    }
-                    if let Some((_, nodes)) = poison.filter(|&(at, _)| at == calls) {
-                        for &i in nodes {
-                            f[i][0] = f64::NAN;
-                        }
-                    }
-                    calls += 1;
-                },
-            )
-        });
-        (x, out)
-    }
-
-    fn same_bits(a: &[[f64; 1]], b: &[[f64; 1]]) -> bool {
-        a.len() == b.len()
-            && a.iter()
-                .zip(b)
-                .all(|(p, q)| p[0].to_bits() == q[0].to_bits())
-    }
-
-    #[test]
-    fn two_threads_step_to_the_same_bits_as_one() {
-        // large enough that every iteration's step runs in chunks on two threads; an
-        // overshooting relaxation makes nodes heavy, so the mass schedule is compared too
-        let params = SolverParams {
-            relaxation: 1.9,
-            constant_mass_iterations: 3,
-            max_iterations: 60,
-            ..SolverParams::default()
-        };
-        let n = 3 * PARALLEL_MIN_STEP + 17;
-        let (one, one_out) = big_chain_in_pool(1, n, &params, None);
-        let (two, two_out) = big_chain_in_pool(2, n, &params, None);
-        let (one_out, two_out) = (one_out.unwrap(), two_out.unwrap());
-        assert!(
-            one_out.heavy_nodes > 0 && one_out.iterations > 10,
-            "{one_out:?}"
-        );
-        assert_eq!(one_out, two_out);
-        assert!(same_bits(&one, &two));
-    }
-
-    #[test]
-    fn two_threads_stop_at_the_same_non_finite_force_as_one() {
-        // two poisoned nodes in different chunks: the first in the active order is reported,
-        // and the nodes before it have moved as with one thread
-        let params = SolverParams::default();
-        let n = 3 * PARALLEL_MIN_STEP + 17;
-        let poison = [STEP_CHUNK + 5, 2 * STEP_CHUNK + 9];
-        let (one, one_out) = big_chain_in_pool(1, n, &params, Some((2, &poison)));
-        let (two, two_out) = big_chain_in_pool(2, n, &params, Some((2, &poison)));
-        let expected = SpringError::NonFiniteForce {
-            node: poison[0],
-            iteration: 2,
-        };
-        assert_eq!(one_out.unwrap_err(), expected);
-        assert_eq!(two_out.unwrap_err(), expected);
-        assert!(same_bits(&one, &two));
     }
 
     #[test]
