@@ -42,11 +42,8 @@ const PARALLEL_MIN_CELLS: usize = 8192;
 /// Cells per task of `verify`'s parallel test.
 const VERIFY_CHUNK: usize = 4096;
 
-/// Nodes from which the solve's springs are written on every thread.
+/// Loop nodes from which the plan finds their directions on every thread.
 const PARALLEL_MIN_NODES: usize = 8192;
-
-/// Nodes per task of the parallel spring set-up.
-const SPRING_CHUNK: usize = 4096;
 
 /// How the ideal extrusion length of a front's layers is chosen.
 #[derive(Debug, Clone, Copy)]
@@ -956,7 +953,11 @@ impl<'p> Work<'p> {
         );
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
-        self.spring_set(range_start..n, &mut problem, &mut springs);
+        for g in range_start..n {
+            if self.nodes.alive[g] {
+                self.springs_of(g as u32, &mut problem, &mut springs);
+            }
+        }
         let model = SpringField2d::new(&springs, &self.params.springs, problem.len());
         let result = problem.solve(
             &mut self.nodes.pos,
@@ -970,61 +971,9 @@ impl<'p> Work<'p> {
         result
     }
 
-    /// The springs of the alive nodes of `range` ([`Work::springs_of`], node after node), the
-    /// fixed nodes numbered in the problem on first use. A large range is written in chunks on
-    /// every thread, each naming its fixed nodes by global number ([`Deferred`]); the chunks
-    /// are then numbered in order and concatenated: the same springs and the same numbering
-    /// whatever the number of threads.
-    fn spring_set(
-        &self,
-        range: std::ops::Range<usize>,
-        problem: &mut LocalProblem<2>,
-        springs: &mut SpringSet2d,
-    ) {
-        if rayon::current_num_threads() == 1 || range.len() < PARALLEL_MIN_NODES {
-            for g in range.filter(|&g| self.nodes.alive[g]) {
-                self.springs_of(g as u32, problem, springs);
-            }
-            return;
-        }
-        use rayon::prelude::*;
-        let end = range.end;
-        let shared: &LocalProblem<2> = problem;
-        let mut chunks: Vec<(SpringSet2d, Vec<u32>)> = range
-            .into_par_iter()
-            .step_by(SPRING_CHUNK)
-            .map(|start| {
-                let mut deferred = Deferred {
-                    problem: shared,
-                    fixed: Vec::new(),
-                };
-                let mut set = SpringSet2d::default();
-                for g in (start..(start + SPRING_CHUNK).min(end)).filter(|&g| self.nodes.alive[g]) {
-                    self.springs_of(g as u32, &mut deferred, &mut set);
-                }
-                (set, deferred.fixed)
-            })
-            .collect();
-        // the fixed nodes in the order the sequential set-up first names them
-        for (_, fixed) in &chunks {
-            for &g in fixed {
-                problem.local(g);
-            }
-        }
-        let problem: &LocalProblem<2> = problem;
-        chunks
-            .par_iter_mut()
-            .for_each(|(set, _)| renumber_fixed(problem, set));
-        for (set, _) in &chunks {
-            springs.extrusion.extend_from_slice(&set.extrusion);
-            springs.neighbour.extend_from_slice(&set.neighbour);
-            springs.angle.extend_from_slice(&set.angle);
-        }
-    }
-
     /// Adds the springs of alive node `g` to the problem: its extrusion and angle springs
     /// (one per parent) when it or that parent moves, its neighbour spring when it moves.
-    fn springs_of(&self, gu: u32, problem: &mut impl Numbering, springs: &mut SpringSet2d) {
+    fn springs_of(&self, gu: u32, problem: &mut LocalProblem<2>, springs: &mut SpringSet2d) {
         let g = gu as usize;
         let me_moving = problem.is_moving(gu);
         for p in [self.nodes.parent[g], self.nodes.parent2[g]] {
@@ -1194,73 +1143,6 @@ impl<'p> Work<'p> {
             let o = orient2d(a, b, d);
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
-    }
-}
-
-/// The local numbers of a spring set-up: whether a global node moves, and its local number.
-trait Numbering {
-    fn is_moving(&self, g: u32) -> bool;
-    fn local(&mut self, g: u32) -> u32;
-}
-
-/// The problem itself: fixed nodes numbered on first use.
-impl Numbering for LocalProblem<2> {
-    fn is_moving(&self, g: u32) -> bool {
-        LocalProblem::is_moving(self, g)
-    }
-
-    fn local(&mut self, g: u32) -> u32 {
-        LocalProblem::local(self, g)
-    }
-}
-
-/// A global node not yet numbered, as a deferred set-up names it: its number with this bit.
-const FIXED_TAG: u32 = 1 << 31;
-
-/// A set-up beside others on a shared problem: a node already numbered (the moving ones) gets
-/// its number, any other its global number tagged with [`FIXED_TAG`], listed in `fixed` in
-/// the order named (repeats included), for [`renumber_fixed`] once the problem numbers them.
-struct Deferred<'a> {
-    problem: &'a LocalProblem<2>,
-    fixed: Vec<u32>,
-}
-
-impl Numbering for Deferred<'_> {
-    fn is_moving(&self, g: u32) -> bool {
-        self.problem.is_moving(g)
-    }
-
-    fn local(&mut self, g: u32) -> u32 {
-        if let Some(l) = self.problem.numbered(g) {
-            return l;
-        }
-        debug_assert!(g < FIXED_TAG, "node numbers below 2^31");
-        self.fixed.push(g);
-        g | FIXED_TAG
-    }
-}
-
-/// Replaces the tagged global numbers of a [`Deferred`] set-up by their local numbers.
-fn renumber_fixed(problem: &LocalProblem<2>, set: &mut SpringSet2d) {
-    let local = |x: &mut u32| {
-        if *x & FIXED_TAG != 0 {
-            *x = problem
-                .numbered(*x & !FIXED_TAG)
-                .expect("a named fixed node is numbered");
-        }
-    };
-    for s in &mut set.extrusion {
-        [&mut s.lower, &mut s.upper].into_iter().for_each(local);
-    }
-    for s in &mut set.neighbour {
-        [&mut s.left, &mut s.centre, &mut s.right, &mut s.parent]
-            .into_iter()
-            .for_each(local);
-    }
-    for s in &mut set.angle {
-        [&mut s.left, &mut s.centre, &mut s.right, &mut s.child]
-            .into_iter()
-            .for_each(local);
     }
 }
 

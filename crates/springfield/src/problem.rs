@@ -128,16 +128,6 @@ impl<const D: usize> LocalProblem<D> {
         }
     }
 
-    /// The local number of global node `g` if it has one (the moving nodes, and the fixed
-    /// nodes numbered so far).
-    #[inline]
-    pub fn numbered(&self, g: u32) -> Option<u32> {
-        self.local_of
-            .get(g as usize)
-            .copied()
-            .filter(|&l| l != NO_NODE)
-    }
-
     /// The local number of global node `g`, numbering it as a fixed node on first use.
     #[inline]
     pub fn local(&mut self, g: u32) -> u32 {

@@ -303,18 +303,11 @@ impl<'a> SpringField2d<'a> {
     /// Binds `set` and `params` for a solve over `n` nodes.
     pub fn new(set: &'a SpringSet2d, params: &'a SpringParams, n: usize) -> Self {
         let parallel = rayon::current_num_threads() > 1 && n >= PARALLEL_MIN_ACTIVE;
-        // the halves need no index: both built at once with two threads
-        let (index, halves) = if parallel {
-            let (index, halves) = rayon::join(|| set.index(n), || Halves::new(set, n));
-            (index, Some(halves))
-        } else {
-            (set.index(n), None)
-        };
         SpringField2d {
             set,
             params,
-            index,
-            halves,
+            index: set.index(n),
+            halves: parallel.then(|| Halves::new(set, n)),
         }
     }
 }
