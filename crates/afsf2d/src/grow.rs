@@ -35,6 +35,16 @@ use crate::input::AfsfParams;
 use crate::nodes::{NewNode, NodeStore};
 use crate::sanity::front_edges_meet;
 
+/// Cells from which `verify` tests them on every thread: below, a fork-join costs more than
+/// it saves (a cell's test takes some 50 ns).
+const PARALLEL_MIN_CELLS: usize = 8192;
+
+/// Cells per task of `verify`'s parallel test.
+const VERIFY_CHUNK: usize = 4096;
+
+/// Loop nodes from which the plan finds their directions on every thread.
+const PARALLEL_MIN_NODES: usize = 8192;
+
 /// How the ideal extrusion length of a front's layers is chosen.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Law {
@@ -286,10 +296,10 @@ impl<'p> Work<'p> {
         let cos_fan_threshold = fan_threshold.cos();
         let fan_max = self.params.fan_max_angle_deg.to_radians();
         // directions (and fan offsets) of every node on an active edge
-        let mut dirs: Vec<Vec<(P2, f64)>> = vec![Vec::new(); m];
-        for (v, dirs_v) in dirs.iter_mut().enumerate() {
+        let dirs_of = |v: usize| {
+            let mut dirs_v: Vec<(P2, f64)> = Vec::new();
             if !(lp.edges[(v + m - 1) % m].active || lp.edges[v].active) {
-                continue;
+                return dirs_v;
             }
             let g = lp.items[v] as usize;
             let p = self.nodes.pos[g];
@@ -326,7 +336,16 @@ impl<'p> Work<'p> {
                 (Some(a), None) | (None, Some(a)) => dirs_v.push((a, 0.0)),
                 (None, None) => {}
             }
-        }
+            dirs_v
+        };
+        // each node's directions on its own: on every thread for a long loop
+        let dirs: Vec<Vec<(P2, f64)>> =
+            if m >= PARALLEL_MIN_NODES && rayon::current_num_threads() > 1 {
+                use rayon::prelude::*;
+                (0..m).into_par_iter().map(dirs_of).collect()
+            } else {
+                (0..m).map(dirs_of).collect()
+            };
         let can = |v: usize| !dirs[v].is_empty();
         let mut plan = Plan {
             advancing: vec![false; m],
@@ -1011,8 +1030,6 @@ impl<'p> Work<'p> {
         };
         let first_cell = self.cell_step[(step + 1 - depth) as usize];
         let new_cell = self.cell_step[step as usize];
-        let mut bad: Vec<(u32, u32)> = Vec::new();
-        let mut old_bad = false;
         let mark = |c: &Cell, bad: &mut Vec<(u32, u32)>| {
             let [l, e1, e2] = c.origin;
             bad.push((l, e1));
@@ -1020,25 +1037,7 @@ impl<'p> Work<'p> {
                 bad.push((l, e2));
             }
         };
-        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
-        for ci in first_cell..self.cells.len() {
-            let c = &self.cells[ci];
-            if c.len == 0 {
-                continue;
-            }
-            // a cell above the first layer must also cut into triangles with no angle of
-            // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill
-            // takes over; an old one makes the step retry with fewer moving layers)
-            let shape_ok = c.layer == 0 || self.cell_cut_below(c, limit);
-            if self.cell_ok(c) && shape_ok {
-                continue;
-            }
-            if ci >= new_cell {
-                mark(c, &mut bad);
-            } else {
-                old_bad = true;
-            }
-        }
+        let (mut bad, old_bad) = self.failed_cells(first_cell, new_cell, &mark);
         // new front edges must not touch other front edges
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
@@ -1067,6 +1066,54 @@ impl<'p> Work<'p> {
             mark(&self.cells[cell as usize], &mut bad);
         }
         (bad, old_bad)
+    }
+
+    /// The cells from `first_cell` on that fail (not convex and positive, or, above the first
+    /// layer, cut into triangles with an angle of `cell_max_angle_deg` or more): the front
+    /// edges of the failing new cells (from `new_cell` on), `mark`ed in cell order, and
+    /// whether an old cell failed. A large range is tested in chunks on every thread, the
+    /// chunks' edges concatenated in order: the same list whatever the number of threads.
+    fn failed_cells(
+        &self,
+        first_cell: usize,
+        new_cell: usize,
+        mark: &(impl Fn(&Cell, &mut Vec<(u32, u32)>) + Sync),
+    ) -> (Vec<(u32, u32)>, bool) {
+        let limit = crate::quality::AngleLimit::new(self.params.cell_max_angle_deg);
+        // a cell above the first layer must also cut into triangles with no angle of
+        // `cell_max_angle_deg` or more (else a new cell's edge freezes and the fill takes
+        // over; an old one makes the step retry with fewer moving layers)
+        let test = |range: std::ops::Range<usize>| {
+            let (mut bad, mut old_bad) = (Vec::new(), false);
+            for ci in range {
+                let c = &self.cells[ci];
+                if c.len == 0 {
+                    continue;
+                }
+                let shape_ok = c.layer == 0 || self.cell_cut_below(c, limit);
+                if self.cell_ok(c) && shape_ok {
+                    continue;
+                }
+                if ci >= new_cell {
+                    mark(c, &mut bad);
+                } else {
+                    old_bad = true;
+                }
+            }
+            (bad, old_bad)
+        };
+        let end = self.cells.len();
+        if rayon::current_num_threads() == 1 || end - first_cell < PARALLEL_MIN_CELLS {
+            return test(first_cell..end);
+        }
+        use rayon::prelude::*;
+        let found: Vec<(Vec<(u32, u32)>, bool)> = (first_cell..end)
+            .into_par_iter()
+            .step_by(VERIFY_CHUNK)
+            .map(|start| test(start..(start + VERIFY_CHUNK).min(end)))
+            .collect();
+        let old_bad = found.iter().any(|f| f.1);
+        (found.into_iter().flat_map(|f| f.0).collect(), old_bad)
     }
 
     /// Whether the largest angle of the triangles of a cell, a quad being cut along its
