@@ -732,6 +732,16 @@ struct Fill {
     new_from: usize,
 }
 
+impl Fill {
+    /// Where node `g` is: a mesh node (of `pos`), or an added node of this fill after them.
+    fn at(&self, pos: &[P2], g: u32) -> P2 {
+        match (g as usize).checked_sub(pos.len()) {
+            None => pos[g as usize],
+            Some(k) => self.steiner[k],
+        }
+    }
+}
+
 /// What a peel round changed: the corners of the bad triangles (added nodes among them) and
 /// the cells it peeled, each with its number of corners (their `len` is 0 by now).
 struct Change<'a> {
@@ -850,14 +860,7 @@ fn bad_corners(
     max_angle_deg: f64,
 ) -> Vec<u32> {
     use rayon::prelude::*;
-    let n = pos.len();
-    let at = |g: u32| {
-        if (g as usize) < n {
-            pos[g as usize]
-        } else {
-            fill.steiner[g as usize - n]
-        }
-    };
+    let at = |g: u32| fill.at(pos, g);
     // (the cosines clear nearly every triangle; the angle decides the others)
     let bad = |a, b, c| {
         !limit.triangle_below(a, b, c)
@@ -893,13 +896,7 @@ fn refill_cavity(
     min_angle_deg: f64,
 ) -> Result<Fill, AfsfError> {
     let n = pos.len();
-    let at = |g: u32| {
-        if (g as usize) < n {
-            pos[g as usize]
-        } else {
-            prev.steiner[g as usize - n]
-        }
-    };
+    let at = |g: u32| prev.at(pos, g);
     let peeled_corners = |&(c, len): &(u32, u8)| &cells[c as usize].nodes[..len as usize];
     let mut seeds: Vec<u32> = change.bad.to_vec();
     seeds.extend(change.peeled.iter().flat_map(peeled_corners));
