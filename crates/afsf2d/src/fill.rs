@@ -15,8 +15,8 @@
 use spade::handles::FixedFaceHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use geom_predicates::orient2d;
 use geom_predicates::vector::dist;
+use geom_predicates::{orient2d, polygon_area};
 use mesh_model::topology::Edges;
 use mesh_model::{NONE, Shape};
 use spade::{AngleLimit, RefinementParameters};
@@ -969,16 +969,6 @@ fn cavity_boundary(elements: &[&[u32]]) -> Result<Vec<(u32, u32)>, AfsfError> {
     Ok(boundary)
 }
 
-/// The area of a polygon (positive counter-clockwise).
-fn polygon_area(corners: impl Iterator<Item = P2> + Clone) -> f64 {
-    let first = corners.clone().next();
-    let next = corners.clone().skip(1).chain(first);
-    0.5 * corners
-        .zip(next)
-        .map(|(p, q)| p[0] * q[1] - p[1] * q[0])
-        .sum::<f64>()
-}
-
 /// Relative tolerance of the cavity fill's area against the cavity's.
 const CAVITY_AREA_TOLERANCE: f64 = 1e-9;
 
@@ -1006,7 +996,7 @@ fn check_cavity_fill(
         if twice <= 0.0 {
             return Err(AfsfError::Fill("a cavity triangle is not positive".into()));
         }
-        area += polygon_area(c.into_iter());
+        area += 0.5 * twice;
         for &l in t.iter().filter(|&&l| (l as usize) < m) {
             used[l as usize] = true;
         }
