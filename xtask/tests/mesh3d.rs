@@ -49,6 +49,17 @@ fn case_cut(dir: &Path, name: &str, surface: &str, layers: &str, cut: &str) -> S
     file
 }
 
+/// Meshes case `file` at P2 in `dir` (its report only), which must succeed, and reads the
+/// report.
+fn p2_report(dir: &Path, file: &str) -> serde_json::Value {
+    let o = run(
+        dir,
+        &[file, "--order", "2", "--report", "r.json", "--quiet"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    serde_json::from_slice(&std::fs::read(dir.join("r.json")).unwrap()).unwrap()
+}
+
 /// Runs a case to `.msh`, `.vtu`, a slice picture and the report; checks the report.
 fn mesh_case(dir: &Path, file: &str, stem: &str, layers: u64) -> serde_json::Value {
     let (msh, vtu, png, json) = (
@@ -932,10 +943,7 @@ fn the_mixed_wing_of_case_2_is_certified_at_p2() {
         "first_height = 1e-4\ngrowth = 1.4\nmax_layers = 8",
         "mixed",
     );
-    let o = run(d, &[&wing, "--order", "2", "--report", "r.json", "--quiet"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(d.join("r.json")).unwrap()).unwrap();
+    let r = p2_report(d, &wing);
     let q = &r["quality"];
     assert_eq!(q["invalid_cells"], 0, "{r}");
     assert_eq!(q["certified"], true, "{r}");
@@ -965,10 +973,7 @@ fn the_mixed_wing_cuts_its_sliver_prisms_below_the_corner_limit() {
         layers,
         "cells = \"mixed\"\nmin_corner_sj = 0.2",
     );
-    let o = run(d, &[&wing, "--order", "2", "--report", "r.json", "--quiet"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(d.join("r.json")).unwrap()).unwrap();
+    let r = p2_report(d, &wing);
     let q = &r["quality"];
     assert_eq!(q["certified"], true, "{r}");
     assert!(q["max_dihedral_deg"].as_f64().unwrap() <= 150.0, "{r}");
@@ -1000,10 +1005,7 @@ fn the_mixed_wing_of_case_2_at_four_layers_is_certified_at_p2() {
         "first_height = 1e-4\ngrowth = 1.4\nmax_layers = 4",
         "mixed",
     );
-    let o = run(d, &[&wing, "--order", "2", "--report", "r.json", "--quiet"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(d.join("r.json")).unwrap()).unwrap();
+    let r = p2_report(d, &wing);
     assert_eq!(r["quality"]["certified"], true, "{r}");
     assert_eq!(r["quality"]["invalid_cells"], 0, "{r}");
     let note = r["notes"][0].as_str().unwrap();
