@@ -329,23 +329,35 @@ pub fn for_each_use_count<'a, const N: usize, B>(
         facets.into_iter().map(|n| key(n.iter().copied())).collect(),
         |k: &[u32; N]| k[0],
     );
+    merged_counts(&of_cells, &of_facets, |k, cells, facets| {
+        let n = k.iter().position(|&v| v == NONE).unwrap_or(N);
+        f(&k[..n], cells, facets)
+    })
+}
+
+/// Walks the sorted lists `a` and `b` together: each value either holds, once and increasing,
+/// with how many times `a` and `b` hold it.
+fn merged_counts<T: Copy + Ord, B>(
+    a: &[T],
+    b: &[T],
+    mut f: impl FnMut(T, usize, usize) -> ControlFlow<B>,
+) -> ControlFlow<B> {
     let (mut i, mut j) = (0, 0);
-    while i < of_cells.len() || j < of_facets.len() {
-        let k = match (of_cells.get(i), of_facets.get(j)) {
-            (Some(a), Some(b)) => *a.min(b),
-            (Some(a), None) => *a,
-            (None, Some(b)) => *b,
-            (None, None) => unreachable!("one of the lists has keys left"),
+    while i < a.len() || j < b.len() {
+        let k = match (a.get(i), b.get(j)) {
+            (Some(&x), Some(&y)) => x.min(y),
+            (Some(&x), None) => x,
+            (None, Some(&y)) => y,
+            (None, None) => unreachable!("one of the lists has values left"),
         };
         let (i0, j0) = (i, j);
-        while of_cells.get(i) == Some(&k) {
+        while a.get(i) == Some(&k) {
             i += 1;
         }
-        while of_facets.get(j) == Some(&k) {
+        while b.get(j) == Some(&k) {
             j += 1;
         }
-        let n = k.iter().position(|&v| v == NONE).unwrap_or(N);
-        f(&k[..n], i - i0, j - j0)?;
+        f(k, i - i0, j - j0)?;
     }
     ControlFlow::Continue(())
 }
@@ -378,23 +390,9 @@ pub fn for_each_edge_use_count<'a, B>(
         let of_facets = &mut facet_hi[range(&facet_start, v)];
         of_cells.sort_unstable();
         of_facets.sort_unstable();
-        let (mut i, mut j) = (0, 0);
-        while i < of_cells.len() || j < of_facets.len() {
-            let w = match (of_cells.get(i), of_facets.get(j)) {
-                (Some(&a), Some(&b)) => a.min(b),
-                (Some(&a), None) => a,
-                (None, Some(&b)) => b,
-                (None, None) => unreachable!("one of the lists has neighbours left"),
-            };
-            let (i0, j0) = (i, j);
-            while of_cells.get(i) == Some(&w) {
-                i += 1;
-            }
-            while of_facets.get(j) == Some(&w) {
-                j += 1;
-            }
-            f(&[v as u32, w], i - i0, j - j0)?;
-        }
+        merged_counts(of_cells, of_facets, |w, cells, facets| {
+            f(&[v as u32, w], cells, facets)
+        })?;
     }
     ControlFlow::Continue(())
 }
