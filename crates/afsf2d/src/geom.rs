@@ -2,7 +2,7 @@
 //! themselves (exact orientation, segment crossing and distance, projection, sort-and-sweep)
 //! and the polygon area are the shared ones of `geom-predicates`; [`par_overlapping`] runs
 //! the same sort-and-sweep on every thread, for the tests whose result is a set;
-//! [`par_overlapping_strips`] finds the same pairs by a sweep within horizontal strips, for
+//! [`par_overlapping_strips_in`] finds the same pairs by a sweep within horizontal strips, for
 //! sets of boxes where many share a range of x without meeting (the fronts of a far-field
 //! circle).
 
@@ -57,9 +57,18 @@ pub(crate) fn par_overlapping<T: Send>(
     found.into_iter().flatten().collect()
 }
 
-/// Strip entries per box at most before [`par_overlapping_strips`] falls back to the sweep
+/// Strip entries per box at most before [`par_overlapping_strips_in`] falls back to the sweep
 /// (boxes much taller than the typical one, crossing many strips each).
 const STRIP_ENTRIES_PER_BOX: usize = 8;
+
+/// [`par_overlapping_strips_in`] with strips of its own.
+#[cfg(test)]
+pub(crate) fn par_overlapping_strips<T: Send>(
+    boxes: &[Aabb],
+    visit: impl Fn(usize, usize, &mut Vec<T>) + Sync,
+) -> Vec<T> {
+    par_overlapping_strips_in(&mut Strips::default(), boxes, visit)
+}
 
 /// The pairs of [`par_overlapping`], each visited as `visit(i, j, out)` with the same `i` and
 /// `j` (`i` the first of the two in the sweep's order: by low x, ties by index), found by a
@@ -70,13 +79,19 @@ const STRIP_ENTRIES_PER_BOX: usize = 8;
 /// in strip order (deterministic, whatever the number of threads), not in the sweep's: for
 /// set results only. Falls back to [`par_overlapping`] when a coordinate is not finite or
 /// the boxes are too unequal in height.
-pub(crate) fn par_overlapping_strips<T: Send>(
+///
+/// The strips are built in `strips`, whose memory a caller that runs this again and again
+/// keeps (the layer steps' closing and front tests: at 1M cells fresh buffers each step were
+/// a third of the run's page faults).
+pub(crate) fn par_overlapping_strips_in<T: Send>(
+    strips: &mut Strips,
     boxes: &[Aabb],
     visit: impl Fn(usize, usize, &mut Vec<T>) + Sync,
 ) -> Vec<T> {
-    let Some(strips) = Strips::new(boxes) else {
+    if !strips.rebuild(boxes) {
         return par_overlapping(boxes, visit);
-    };
+    }
+    let strips = &*strips;
     // tasks of about SWEEP_CHUNK entries, whole strips each
     let (mut tasks, mut first) = (vec![0usize], 0usize);
     for row in 0..strips.rows() {
@@ -102,10 +117,14 @@ pub(crate) fn par_overlapping_strips<T: Send>(
 }
 
 /// Boxes by horizontal strip: `entries[start[r]..start[r + 1]]` are the boxes crossing strip
-/// `r`, in the sweep's order (low x, ties by index).
-struct Strips {
+/// `r`, in the sweep's order (low x, ties by index). Built again in place for each set of
+/// boxes ([`Strips::rebuild`]).
+#[derive(Default)]
+pub(crate) struct Strips {
     start: Vec<u32>,
     entries: Vec<Entry>,
+    /// Where the next entry of each strip goes, while building.
+    fill: Vec<u32>,
 }
 
 /// A box listed in a strip: its low and high x, index and first strip.
@@ -118,15 +137,22 @@ struct Entry {
 }
 
 impl Strips {
-    /// The strips of `boxes`, as tall as the median larger side of the boxes (of 1024 spread
-    /// through the list; at most as many strips as boxes); `None` when a coordinate is not
-    /// finite, there are fewer than two boxes, or more than [`STRIP_ENTRIES_PER_BOX`]
-    /// entries a box.
+    /// The strips of `boxes`, or `None` where [`Strips::rebuild`] says false.
+    #[cfg(test)]
     fn new(boxes: &[Aabb]) -> Option<Self> {
+        let mut strips = Strips::default();
+        strips.rebuild(boxes).then_some(strips)
+    }
+
+    /// Makes these the strips of `boxes`, their memory reused: strips as tall as the median
+    /// larger side of the boxes (of 1024 spread through the list; at most as many strips as
+    /// boxes); false when a coordinate is not finite, there are fewer than two boxes, or more
+    /// than [`STRIP_ENTRIES_PER_BOX`] entries a box.
+    fn rebuild(&mut self, boxes: &[Aabb]) -> bool {
         let n = boxes.len();
         let finite = |b: &Aabb| b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
         if n < 2 || n >= u32::MAX as usize || !boxes.iter().all(finite) {
-            return None;
+            return false;
         }
         let (mut y0, mut y1) = (boxes[0].lo[1], boxes[0].hi[1]);
         for b in boxes {
@@ -144,13 +170,15 @@ impl Strips {
         let side = median.max((y1 - y0) / n as f64).max(f64::MIN_POSITIVE);
         let rows = (((y1 - y0) / side) as usize + 1).min(n);
         let at = |y: f64| (((y - y0) / side) as usize).min(rows - 1);
-        let mut start = vec![0u32; rows + 1];
+        let start = &mut self.start;
+        start.clear();
+        start.resize(rows + 1, 0);
         let mut total = 0usize;
         for b in boxes {
             let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
             total += r1 - r0 + 1;
             if total > STRIP_ENTRIES_PER_BOX * n {
-                return None;
+                return false;
             }
             for r in r0..=r1 {
                 start[r + 1] += 1;
@@ -159,8 +187,11 @@ impl Strips {
         for r in 0..rows {
             start[r + 1] += start[r];
         }
-        let mut fill = start.clone();
-        let mut entries = vec![Entry::default(); total];
+        let fill = &mut self.fill;
+        fill.clone_from(start);
+        let entries = &mut self.entries;
+        entries.clear();
+        entries.resize(total, Entry::default());
         for (i, b) in boxes.iter().enumerate() {
             let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
             for r in r0..=r1 {
@@ -175,9 +206,8 @@ impl Strips {
         }
         // each strip in the sweep's order (the entries of a strip come by increasing index:
         // a stable sort on low x)
-        let mut strips = Strips { start, entries };
-        strips.sort_rows();
-        Some(strips)
+        self.sort_rows();
+        true
     }
 
     fn rows(&self) -> usize {
@@ -313,10 +343,24 @@ mod tests {
             found.sort_unstable();
             assert_eq!(found, expected, "{threads} threads");
         }
-        // too few boxes, or a coordinate not finite: the sweep's pairs all the same
-        assert!(Strips::new(&boxes[..1]).is_none());
+        // strips kept from one set of boxes and built again for others (fewer, then more,
+        // then after a fallback) find each set's own pairs
+        let mut kept = Strips::default();
         let mut odd = boxes[..100].to_vec();
         odd[3].hi[0] = f64::INFINITY;
+        for set in [&boxes[..], &boxes[1000..2500], &odd[..], &boxes[..]] {
+            let mut expected = Vec::new();
+            geom_predicates::for_each_overlapping_pair(set, |i, j| expected.push((i, j)));
+            expected.sort_unstable();
+            let mut found =
+                par_overlapping_strips_in(&mut kept, set, |i, j, out: &mut Vec<(usize, usize)>| {
+                    out.push((i, j))
+                });
+            found.sort_unstable();
+            assert_eq!(found, expected, "{} boxes", set.len());
+        }
+        // too few boxes, or a coordinate not finite: the sweep's pairs all the same
+        assert!(Strips::new(&boxes[..1]).is_none());
         assert!(Strips::new(&odd).is_none());
     }
 }

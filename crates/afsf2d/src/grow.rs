@@ -30,7 +30,7 @@ use springfield::{
 use geom_predicates::vector::{cross2, dist, dot};
 use geom_predicates::{orient2d, segment_distance};
 
-use crate::geom::{Aabb, P2, par_overlapping_strips};
+use crate::geom::{Aabb, P2, Strips, par_overlapping_strips_in};
 use crate::input::AfsfParams;
 use crate::nodes::{NewNode, NodeStore};
 use crate::sanity::front_edges_meet;
@@ -143,6 +143,17 @@ pub(crate) struct Work<'p> {
     pub timings: Timings,
     springs: SpringSet2d,
     problem: LocalProblem<2>,
+    buffers: StepBuffers,
+}
+
+/// What the closing and front tests build again at every layer step, kept so that each step
+/// reuses the memory of the last: fresh buffers each step touched fresh pages (at 1M cells
+/// the closing's segments and strips were a third of the run's page faults).
+#[derive(Default)]
+struct StepBuffers {
+    segs: Vec<Seg>,
+    boxes: Vec<Aabb>,
+    strips: Strips,
 }
 
 /// Children planned for one loop.
@@ -218,6 +229,7 @@ impl<'p> Work<'p> {
             timings: Timings::default(),
             springs: SpringSet2d::default(),
             problem: LocalProblem::new(),
+            buffers: StepBuffers::default(),
         };
         for (items, pipes, law) in fronts {
             let m = items.len();
@@ -379,6 +391,7 @@ impl<'p> Work<'p> {
     /// One layer step, with undo and retry.
     fn step(&mut self, step: u32) -> Result<(), springfield::SpringError> {
         let t0 = std::time::Instant::now();
+        let mut buffers = std::mem::take(&mut self.buffers);
         let saved_loops = self.loops.clone();
         let mut frozen: Vec<Vec<bool>> = self
             .loops
@@ -388,7 +401,7 @@ impl<'p> Work<'p> {
         let initially_frozen: usize = frozen.iter().flatten().filter(|&&f| f).count();
         // plan on ideal positions and close
         let plans: Vec<Plan> = self.loops.iter().map(|l| self.plan_loop(l)).collect();
-        self.closing(&plans, &mut frozen);
+        self.closing(&plans, &mut frozen, &mut buffers);
         self.timings.plan_and_closing += t0.elapsed().as_secs_f64();
         let mut stats = LayerStats {
             layer: step,
@@ -432,7 +445,7 @@ impl<'p> Work<'p> {
             }
             self.timings.solve += t2.elapsed().as_secs_f64();
             let t3 = std::time::Instant::now();
-            let (bad_edges, old_cells_bad) = self.verify(step, mode);
+            let (bad_edges, old_cells_bad) = self.verify(step, mode, &mut buffers.strips);
             self.timings.verify += t3.elapsed().as_secs_f64();
             if bad_edges.is_empty() && !old_cells_bad {
                 stats.cells = self.cells.len() - cell_start;
@@ -451,6 +464,7 @@ impl<'p> Work<'p> {
         }
         stats.frozen_edges = frozen.iter().flatten().filter(|&&f| f).count() - initially_frozen;
         self.layer_stats.push(stats);
+        self.buffers = buffers;
         Ok(())
     }
 
@@ -480,67 +494,69 @@ impl<'p> Work<'p> {
     /// The closing test on the planned (ideal) positions: freezes every active edge whose
     /// planned cell comes nearer than its clearance to a part of the fronts that is not its
     /// neighbourhood along its own loop.
-    fn closing(&self, plans: &[Plan], frozen: &mut [Vec<bool>]) {
-        let (segs, loop_len) = self.closing_segments(plans);
-        let boxes: Vec<Aabb> = segs
-            .iter()
-            .map(|s| Aabb::of_segment(s.p, s.q, s.clearance))
-            .collect();
+    fn closing(&self, plans: &[Plan], frozen: &mut [Vec<bool>], buffers: &mut StepBuffers) {
+        let loop_len = self.closing_segments(plans, &mut buffers.segs);
+        let segs = &buffers.segs;
+        let boxes = &mut buffers.boxes;
+        boxes.clear();
+        boxes.extend(segs.iter().map(|s| Aabb::of_segment(s.p, s.q, s.clearance)));
         let path_ratio = 2.5;
         // the pairs are tested on every thread; what they freeze is a set of flags, the same
         // whatever the order (the strips: the fronts of a far-field circle share ranges of x
         // with the far side of the circle, which the sweep would meet)
-        let freezes = par_overlapping_strips(&boxes, |x, y, out: &mut Vec<(u32, [u32; 2])>| {
-            let (sx, sy) = (&segs[x], &segs[y]);
-            if sx.owner[0] == NONE && sy.owner[0] == NONE {
-                return;
-            }
-            if sx.ids.iter().any(|i| sy.ids.contains(i)) {
-                return;
-            }
-            // a segment whose owner is near the other along their loop (path shorter than
-            // path_ratio × its clearance) is never frozen by it, whatever their distance:
-            // when that holds both ways, skip the distance (most candidate pairs)
-            let never_frozen = |a: &Seg, b: &Seg| {
-                a.owner[0] == NONE
-                    || (a.lp == b.lp && {
-                        let total = loop_len[a.lp as usize];
-                        let delta = (a.arc - b.arc).abs();
-                        delta.min(total - delta) < path_ratio * a.clearance
-                    })
-            };
-            if never_frozen(sx, sy) && never_frozen(sy, sx) {
-                return;
-            }
-            let c = sx.clearance.max(sy.clearance);
-            if surely_apart(sx, sy, c) {
-                return;
-            }
-            let d = segment_distance(sx.p, sx.q, sy.p, sy.q);
-            if d >= c {
-                return;
-            }
-            // only what comes nearer than it was counts (fronts diverging at a convex corner
-            // are close but do not close)
-            let d_base = segment_distance(sx.base[0], sx.base[1], sy.base[0], sy.base[1]);
-            if d >= d_base {
-                return;
-            }
-            for (a, b) in [(sx, sy), (sy, sx)] {
-                if a.owner[0] == NONE || d >= a.clearance {
-                    continue;
+        let strips = &mut buffers.strips;
+        let freezes =
+            par_overlapping_strips_in(strips, boxes, |x, y, out: &mut Vec<(u32, [u32; 2])>| {
+                let (sx, sy) = (&segs[x], &segs[y]);
+                if sx.owner[0] == NONE && sy.owner[0] == NONE {
+                    return;
                 }
-                if a.lp == b.lp {
-                    let total = loop_len[a.lp as usize];
-                    let delta = (a.arc - b.arc).abs();
-                    let path = delta.min(total - delta);
-                    if path < path_ratio * (d + a.clearance) {
+                if sx.ids.iter().any(|i| sy.ids.contains(i)) {
+                    return;
+                }
+                // a segment whose owner is near the other along their loop (path shorter than
+                // path_ratio × its clearance) is never frozen by it, whatever their distance:
+                // when that holds both ways, skip the distance (most candidate pairs)
+                let never_frozen = |a: &Seg, b: &Seg| {
+                    a.owner[0] == NONE
+                        || (a.lp == b.lp && {
+                            let total = loop_len[a.lp as usize];
+                            let delta = (a.arc - b.arc).abs();
+                            delta.min(total - delta) < path_ratio * a.clearance
+                        })
+                };
+                if never_frozen(sx, sy) && never_frozen(sy, sx) {
+                    return;
+                }
+                let c = sx.clearance.max(sy.clearance);
+                if surely_apart(sx, sy, c) {
+                    return;
+                }
+                let d = segment_distance(sx.p, sx.q, sy.p, sy.q);
+                if d >= c {
+                    return;
+                }
+                // only what comes nearer than it was counts (fronts diverging at a convex corner
+                // are close but do not close)
+                let d_base = segment_distance(sx.base[0], sx.base[1], sy.base[0], sy.base[1]);
+                if d >= d_base {
+                    return;
+                }
+                for (a, b) in [(sx, sy), (sy, sx)] {
+                    if a.owner[0] == NONE || d >= a.clearance {
                         continue;
                     }
+                    if a.lp == b.lp {
+                        let total = loop_len[a.lp as usize];
+                        let delta = (a.arc - b.arc).abs();
+                        let path = delta.min(total - delta);
+                        if path < path_ratio * (d + a.clearance) {
+                            continue;
+                        }
+                    }
+                    out.push((a.lp, a.owner));
                 }
-                out.push((a.lp, a.owner));
-            }
-        });
+            });
         for (li, owner) in freezes {
             for e in owner {
                 if e != NONE {
@@ -551,8 +567,8 @@ impl<'p> Work<'p> {
     }
 
     /// The segments of the closing test (current front edges, planned cell sides and tops,
-    /// fan edges) and the length of each loop.
-    fn closing_segments(&self, plans: &[Plan]) -> (Vec<Seg>, Vec<f64>) {
+    /// fan edges), into `segs`; returns the length of each loop.
+    fn closing_segments(&self, plans: &[Plan], segs: &mut Vec<Seg>) -> Vec<f64> {
         let factor = self.params.closing_factor;
         // a front edge and the three sides of its planned cell, and a fan's edges
         let capacity = self
@@ -561,7 +577,8 @@ impl<'p> Work<'p> {
             .zip(plans)
             .map(|(lp, plan)| 4 * lp.items.len() + plan.pos.len())
             .sum();
-        let mut segs: Vec<Seg> = Vec::with_capacity(capacity);
+        segs.clear();
+        segs.reserve(capacity);
         let mut loop_len = Vec::with_capacity(self.loops.len());
         for (li, (lp, plan)) in self.loops.iter().zip(plans).enumerate() {
             let m = lp.items.len();
@@ -632,7 +649,7 @@ impl<'p> Work<'p> {
                 }
             }
         }
-        (segs, loop_len)
+        loop_len
     }
 
     /// Creates the planned nodes and cells, breaks short neighbour edges, and replaces the
@@ -1023,7 +1040,7 @@ impl<'p> Work<'p> {
 
     /// Checks the cells that may have moved and the new front edges. Returns the front edges
     /// (loop, edge of the old front) to freeze, and whether an old cell failed.
-    fn verify(&self, step: u32, mode: Mode) -> (Vec<(u32, u32)>, bool) {
+    fn verify(&self, step: u32, mode: Mode, strips: &mut Strips) -> (Vec<(u32, u32)>, bool) {
         let depth = match mode {
             Mode::Full => self.params.moving_layers.min(step),
             _ => 1,
@@ -1042,7 +1059,7 @@ impl<'p> Work<'p> {
         let new_node = self.node_step[step as usize] as u32;
         let (segs, boxes) = self.front_segments();
         // tested on every thread: the edges to freeze are a set, the same in any order
-        let hit_cells = par_overlapping_strips(&boxes, |x, y, out: &mut Vec<u32>| {
+        let hit_cells = par_overlapping_strips_in(strips, &boxes, |x, y, out: &mut Vec<u32>| {
             let (sx, sy) = (segs[x], segs[y]);
             let x_new = sx.0 >= new_node || sx.1 >= new_node;
             let y_new = sy.0 >= new_node || sy.1 >= new_node;
