@@ -1,12 +1,14 @@
 //! The area of curved 2D cells and meshes: the integral of the Jacobian determinant over
 //! the reference cell with a Gauss rule exact for its polynomial degree (2(p − 1) on a P_p
-//! triangle, 2p − 1 per direction on a Q_p quadrilateral). The curving stage reports it.
+//! triangle, 2p − 1 per direction on a Q_p quadrilateral): the independent check of the area
+//! `check_mesh` sums from the certificates' coefficients (`MeshValidity::measure`, what the
+//! tool's report gives).
 //!
 //! Triangles use the collapsed (Duffy) product of Gauss–Legendre rules; quadrilaterals the
 //! tensor product. The volume of 3D cells ([`cell_volume`]) needs no rule: it is the mean of
 //! the determinant's Bernstein coefficients. The volume a curved 3D mesh's boundary
-//! encloses ([`enclosed_volume`]) is its independent check. This module owns the quadrature
-//! only.
+//! encloses ([`enclosed_volume`]) is its independent check. This module owns the quadratures
+//! and the reference cells' measures.
 
 use std::sync::OnceLock;
 
