@@ -286,7 +286,7 @@ pub fn certify_cell<const D: usize>(
 ) -> Result<Certificate<[f64; D]>, JacobianError> {
     params.check()?;
     check_cell(ty, nodes)?;
-    Ok(certify_measured(ty, nodes, params)?.0)
+    Ok(certify_measured(ty, nodes, params, false)?.0)
 }
 
 /// [`certify_cell`] of a checked cell, with the cell's signed measure (area in 2D, volume in
@@ -294,6 +294,7 @@ pub fn certify_cell<const D: usize>(
 /// verdict. The mean of the undivided cell's coefficients times the reference measure
 /// (`measure_from_coefficients`), or, for a straight-sided cell the shortcut certifies,
 /// that of its order-1 cell, whose map it is; the curved 14-node pyramid by its own rule.
+/// NaN unless `measured` (the certificate alone: the pyramid's rule is not free).
 ///
 /// # Errors
 /// Unsupported type (3D cells of order 3).
@@ -301,13 +302,15 @@ fn certify_measured<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
     params: &CertifyParams,
+    measured: bool,
 ) -> Result<(Certificate<[f64; D]>, f64), JacobianError> {
     if let Some(tolerance) = crate::straight::is_straight(ty, nodes)? {
         // The cell is its corners' order-1 map up to `tolerance` per node; that moves the
         // determinant by far less than the margin asked for here (the nodes' shape
         // gradients are O(10) and the cell's extent bounds the other factor).
         let linear = CellType::new(ty.shape, 1);
-        let (c, measure) = certify_measured(linear, &nodes[..ty.shape.corners()], params)?;
+        let (c, measure) =
+            certify_measured(linear, &nodes[..ty.shape.corners()], params, measured)?;
         let extent = nodes
             .iter()
             .map(|x| {
@@ -326,6 +329,7 @@ fn certify_measured<const D: usize>(
     let table = cert_table(ty)?;
     let coeffs = coefficients(table, nodes);
     let measure = match table.space.domain {
+        _ if !measured => f64::NAN,
         Domain::Pyramid { .. } => {
             let x: Vec<[f64; 3]> = nodes
                 .iter()
@@ -619,7 +623,7 @@ fn judge<const D: usize>(
     params: &CertifyParams,
 ) -> Result<Judged, JacobianError> {
     check_cell(ty, nodes)?;
-    let (certificate, measure) = match certify_measured(ty, nodes, params) {
+    let (certificate, measure) = match certify_measured(ty, nodes, params, true) {
         Ok((c, measure)) => (Some(c), measure),
         Err(JacobianError::Unsupported { .. }) if D == 3 => (None, f64::NAN),
         Err(e) => return Err(e),
