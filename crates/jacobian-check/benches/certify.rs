@@ -1,14 +1,16 @@
 //! Benchmarks of the certified check: 100 000 mildly curved P3 triangles (and P2 quads),
 //! certified one by one as the curving stage does; 10 000 mildly curved prisms (P1, P2),
 //! linear pyramids and P2 tets; the areas of 100 000 P3 quadrilaterals and triangles by
-//! quadrature (`cell_area`, what the report's `area` sums). Results in `benches/RESULTS.md`.
+//! quadrature (`cell_area`, what the report's `area` summed until session 31); `check_mesh`
+//! and `integrate_area` of a 120 000-cell P3 annulus. Results in `benches/RESULTS.md`.
 
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use jacobian_check::{
-    Certificate, CertifyParams, cell_area, certify_cell, reference_nodes, sampled_check,
+    Certificate, CertifyParams, cell_area, certify_cell, check_mesh, integrate_area,
+    reference_nodes, sampled_check,
 };
 use mesh_model::{CellType, Shape};
 use std::hint::black_box;
@@ -148,5 +150,31 @@ fn area_100k(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, certify_100k, certify_10k_3d, area_100k);
+/// What the report's certification of a curved 2D mesh costs: `check_mesh` (which also sums
+/// the cells' areas from their certificates, `MeshValidity::measure`) and `integrate_area`
+/// (the same area by quadrature, which the report ran after it until session 31), on an
+/// annulus of 120 000 P3 cells (a third of the quadrilaterals cut into triangles; every cell
+/// curved, so none takes the straight-sided shortcut), on the threads rayon is given.
+fn mesh_area(c: &mut Criterion) {
+    let mesh = mesh_io::testkit::annulus(&mesh_io::testkit::AnnulusParams {
+        order: 3,
+        radial_cells: 10,
+        angular_cells: 9000,
+        inner_radius: 1.0,
+        outer_radius: 2.0,
+        triangle_mask: vec![false, false, true],
+    });
+    let mut group = c.benchmark_group("mesh_area");
+    group.sample_size(10);
+    let params = CertifyParams::default();
+    group.bench_function("check_mesh_120k_p3", |b| {
+        b.iter(|| black_box(check_mesh(&mesh, &params).unwrap()))
+    });
+    group.bench_function("integrate_area_120k_p3", |b| {
+        b.iter(|| black_box(integrate_area(&mesh).unwrap()))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, certify_100k, certify_10k_3d, area_100k, mesh_area);
 criterion_main!(benches);

@@ -1,12 +1,14 @@
 //! The area of curved 2D cells and meshes: the integral of the Jacobian determinant over
 //! the reference cell with a Gauss rule exact for its polynomial degree (2(p − 1) on a P_p
-//! triangle, 2p − 1 per direction on a Q_p quadrilateral). The curving stage reports it.
+//! triangle, 2p − 1 per direction on a Q_p quadrilateral): the independent check of the area
+//! `check_mesh` sums from the certificates' coefficients (`MeshValidity::measure`, what the
+//! tool's report gives).
 //!
 //! Triangles use the collapsed (Duffy) product of Gauss–Legendre rules; quadrilaterals the
 //! tensor product. The volume of 3D cells ([`cell_volume`]) needs no rule: it is the mean of
 //! the determinant's Bernstein coefficients. The volume a curved 3D mesh's boundary
-//! encloses ([`enclosed_volume`]) is its independent check. This module owns the quadrature
-//! only.
+//! encloses ([`enclosed_volume`]) is its independent check. This module owns the quadratures
+//! and the reference cells' measures.
 
 use std::sync::OnceLock;
 
@@ -210,23 +212,34 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
     Ok(total)
 }
 
-/// The reference volume of a 3D shape in Gmsh's reference coordinates.
-fn reference_volume(shape: Shape) -> f64 {
+/// The measure of a shape's reference cell in Gmsh's reference coordinates: its area in 2D,
+/// its volume in 3D.
+fn reference_measure(shape: Shape) -> f64 {
     match shape {
+        Shape::Tri => 0.5,
+        Shape::Quad => 4.0, // [−1, 1]²
         Shape::Tet => 1.0 / 6.0,
         Shape::Prism => 1.0, // the unit triangle (½) × [−1, 1]
         Shape::Hex => 8.0,
         Shape::Pyramid => 4.0 / 3.0,
-        Shape::Line | Shape::Tri | Shape::Quad => 0.0,
+        Shape::Line => 0.0,
     }
+}
+
+/// The integral of the Jacobian determinant over a cell of shape `shape` from its Bernstein
+/// coefficients `c` on the whole reference cell (triangle, quadrilateral, tetrahedron, prism,
+/// hexahedron, or the linear pyramid's base square): their mean times the reference measure,
+/// since every Bernstein polynomial of a degree has the same integral over the simplex, the
+/// box and the prism (and the linear pyramid's determinant, a biquadratic f(ξ, η) along the
+/// rays from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3).
+/// Not for the 14-node pyramid's coefficients, which live on its collapsed box.
+pub(crate) fn measure_from_coefficients(shape: Shape, c: &[f64]) -> f64 {
+    c.iter().sum::<f64>() / c.len() as f64 * reference_measure(shape)
 }
 
 /// The signed volume of a 3D cell, exact for its map up to rounding: the integral of the
 /// Jacobian determinant is the mean of its Bernstein coefficients times the reference
-/// volume (every Bernstein polynomial of a degree has the same integral over the simplex, the
-/// box and the prism; the linear pyramid's determinant, a biquadratic f(ξ, η) along the rays
-/// from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3). A
-/// straight-sided 14-node pyramid is its linear pyramid; a curved one is integrated by an
+/// volume (`measure_from_coefficients`). A straight-sided 14-node pyramid is its linear pyramid; a curved one is integrated by an
 /// exact Gauss rule on its collapsed box (the `pyramid` module).
 ///
 /// # Errors
@@ -240,7 +253,7 @@ pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianErro
         return Ok(crate::pyramid::volume(nodes));
     }
     let c = crate::certify::determinant_bernstein_coefficients(ty, nodes)?;
-    Ok(c.iter().sum::<f64>() / c.len() as f64 * reference_volume(ty.shape))
+    Ok(measure_from_coefficients(ty.shape, &c))
 }
 
 /// The signed volume of a curved 3D mesh: the sum of [`cell_volume`] over its cells.

@@ -286,12 +286,31 @@ pub fn certify_cell<const D: usize>(
 ) -> Result<Certificate<[f64; D]>, JacobianError> {
     params.check()?;
     check_cell(ty, nodes)?;
+    Ok(certify_measured(ty, nodes, params, false)?.0)
+}
+
+/// [`certify_cell`] of a checked cell, with the cell's signed measure (area in 2D, volume in
+/// 3D: the integral of det J) from the coefficients the certificate rests on — whatever the
+/// verdict. The mean of the undivided cell's coefficients times the reference measure
+/// (`measure_from_coefficients`), or, for a straight-sided cell the shortcut certifies,
+/// that of its order-1 cell, whose map it is; the curved 14-node pyramid by its own rule.
+/// NaN unless `measured` (the certificate alone: the pyramid's rule is not free).
+///
+/// # Errors
+/// Unsupported type (3D cells of order 3).
+fn certify_measured<const D: usize>(
+    ty: CellType,
+    nodes: &[[f64; D]],
+    params: &CertifyParams,
+    measured: bool,
+) -> Result<(Certificate<[f64; D]>, f64), JacobianError> {
     if let Some(tolerance) = crate::straight::is_straight(ty, nodes)? {
         // The cell is its corners' order-1 map up to `tolerance` per node; that moves the
         // determinant by far less than the margin asked for here (the nodes' shape
         // gradients are O(10) and the cell's extent bounds the other factor).
         let linear = CellType::new(ty.shape, 1);
-        let c = certify_cell(linear, &nodes[..ty.shape.corners()], params)?;
+        let (c, measure) =
+            certify_measured(linear, &nodes[..ty.shape.corners()], params, measured)?;
         let extent = nodes
             .iter()
             .map(|x| {
@@ -302,32 +321,42 @@ pub fn certify_cell<const D: usize>(
             .fold(0.0, f64::max);
         let margin = 1024.0 * tolerance * extent.powi(D as i32 - 1);
         match c {
-            Certificate::Valid { min_coeff, .. } if min_coeff > margin => return Ok(c),
-            Certificate::Invalid { .. } => return Ok(c),
+            Certificate::Valid { min_coeff, .. } if min_coeff > margin => return Ok((c, measure)),
+            Certificate::Invalid { .. } => return Ok((c, measure)),
             _ => {}
         }
     }
     let table = cert_table(ty)?;
     let coeffs = coefficients(table, nodes);
+    let measure = match table.space.domain {
+        _ if !measured => f64::NAN,
+        Domain::Pyramid { .. } => {
+            let x: Vec<[f64; 3]> = nodes
+                .iter()
+                .map(|p| std::array::from_fn(|k| p[k]))
+                .collect();
+            crate::pyramid::volume(&x)
+        }
+        _ => crate::area::measure_from_coefficients(ty.shape, &coeffs),
+    };
     let root = Region::root(table.space.domain, table.space.dim);
-    Ok(
-        match certify_coefficients(&table.space, root, coeffs, params.max_depth) {
-            Certificate::Valid {
-                min_coeff,
-                max_coeff,
-            } => Certificate::Valid {
-                min_coeff,
-                max_coeff,
-            },
-            Certificate::Invalid { at } => Certificate::Invalid {
-                at: to_point(match table.space.domain {
-                    Domain::Pyramid { .. } => crate::pyramid::to_reference(at),
-                    _ => at,
-                }),
-            },
-            Certificate::Undecided => Certificate::Undecided,
+    let certificate = match certify_coefficients(&table.space, root, coeffs, params.max_depth) {
+        Certificate::Valid {
+            min_coeff,
+            max_coeff,
+        } => Certificate::Valid {
+            min_coeff,
+            max_coeff,
         },
-    )
+        Certificate::Invalid { at } => Certificate::Invalid {
+            at: to_point(match table.space.domain {
+                Domain::Pyramid { .. } => crate::pyramid::to_reference(at),
+                _ => at,
+            }),
+        },
+        Certificate::Undecided => Certificate::Undecided,
+    };
+    Ok((certificate, measure))
 }
 
 /// The result of evaluating the determinant on a lattice of points in a cell.
@@ -491,6 +520,14 @@ pub struct MeshValidity {
     /// What a caller needs for other measures built on it (Gmsh's minSJ) without
     /// certifying the cells a second time.
     pub per_cell_min_det: Vec<f64>,
+    /// The signed measure of the mesh: the sum of its cells' areas (2D) or volumes (3D),
+    /// each the integral of its det J, added in cell order (the same bits whatever the
+    /// threads). Each cell's from the Bernstein coefficients its certificate starts from,
+    /// whatever the verdict (`crate::cell_volume`'s rule; the undivided cell's coefficients,
+    /// or its order-1 cell's when the cell is straight-sided): equal to
+    /// [`crate::integrate_area`] or [`crate::integrate_volume`] up to rounding. NaN when a
+    /// cell has no certificate (`uncertified`).
+    pub measure: f64,
 }
 
 /// Checks every cell of a 2D or 3D mesh: certified where a certificate exists, sampled
@@ -503,7 +540,7 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
     use rayon::prelude::*;
     params.check()?;
     // cells are judged in parallel, in chunks large enough to amortise the scheduling
-    let verdicts: Vec<(f64, f64, Verdict)> = (0..mesh.cells.len())
+    let verdicts: Vec<Judged> = (0..mesh.cells.len())
         .into_par_iter()
         .with_min_len(256)
         .map(|i| {
@@ -539,9 +576,12 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
         min_scaled_jacobian: 1.0,
         per_cell_scaled_jacobian: Vec::with_capacity(mesh.cells.len()),
         per_cell_min_det: Vec::with_capacity(mesh.cells.len()),
+        measure: 0.0,
     };
-    for (i, (scaled, min_det, verdict)) in verdicts.into_iter().enumerate() {
-        match verdict {
+    for (i, j) in verdicts.into_iter().enumerate() {
+        let (scaled, min_det) = (j.scaled, j.min_det);
+        out.measure += j.measure;
+        match j.verdict {
             Verdict::Valid => {}
             Verdict::Invalid => out.invalid_cells.push(i),
             Verdict::Undecided => out.undecided.push(i),
@@ -557,7 +597,17 @@ pub fn check_mesh(mesh: &Mesh, params: &CertifyParams) -> Result<MeshValidity, J
 /// The most nodes of a 2D cell [`check_mesh`] gathers on the stack.
 const MAX_2D_NODES: usize = 16;
 
-/// How one cell was judged.
+/// How one cell was judged: its scaled Jacobian, its certified lower bound of det J (NaN
+/// unless certified valid), its signed measure (NaN without a certificate) and verdict.
+#[derive(Debug, Clone, Copy)]
+struct Judged {
+    scaled: f64,
+    min_det: f64,
+    measure: f64,
+    verdict: Verdict,
+}
+
+/// The verdict on one cell.
 #[derive(Debug, Clone, Copy)]
 enum Verdict {
     Valid,
@@ -566,16 +616,16 @@ enum Verdict {
     Uncertified,
 }
 
-/// Certifies (or samples) one cell: its scaled Jacobian, its certified lower bound of det J
-/// (NaN unless certified valid) and verdict.
+/// Certifies (or samples) one cell of a mesh whose parameters are checked.
 fn judge<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
     params: &CertifyParams,
-) -> Result<(f64, f64, Verdict), JacobianError> {
-    let certificate = match certify_cell(ty, nodes, params) {
-        Ok(c) => Some(c),
-        Err(JacobianError::Unsupported { .. }) if D == 3 => None,
+) -> Result<Judged, JacobianError> {
+    check_cell(ty, nodes)?;
+    let (certificate, measure) = match certify_measured(ty, nodes, params, true) {
+        Ok((c, measure)) => (Some(c), measure),
+        Err(JacobianError::Unsupported { .. }) if D == 3 => (None, f64::NAN),
         Err(e) => return Err(e),
     };
     if let Some(Certificate::Valid {
@@ -583,7 +633,12 @@ fn judge<const D: usize>(
         max_coeff,
     }) = certificate
     {
-        return Ok((min_coeff / max_coeff, min_coeff, Verdict::Valid));
+        return Ok(Judged {
+            scaled: min_coeff / max_coeff,
+            min_det: min_coeff,
+            measure,
+            verdict: Verdict::Valid,
+        });
     }
     let sampled = sampled_check(ty, nodes, params.sample_points_per_edge)?;
     let mut scaled = sampled.scaled_jacobian();
@@ -604,5 +659,10 @@ fn judge<const D: usize>(
         None if sampled.all_positive() => Verdict::Uncertified,
         _ => Verdict::Invalid,
     };
-    Ok((scaled, f64::NAN, verdict))
+    Ok(Judged {
+        scaled,
+        min_det: f64::NAN,
+        measure,
+        verdict,
+    })
 }

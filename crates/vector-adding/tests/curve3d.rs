@@ -83,6 +83,15 @@ fn check_curved(linear: &Mesh, g: &afsf3d::Grown3d) {
     let exact = g.front.enclosed_volume() - 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
     let linear_volume = integrate_volume(linear).unwrap();
     let curved_volume = integrate_volume(mesh).unwrap();
+    // the volume `check_mesh` takes from the certificates' coefficients: the same integral
+    let measure = check_mesh(mesh, &CertifyParams::default()).unwrap().measure;
+    let enclosed = jacobian_check::enclosed_volume(mesh).unwrap();
+    for (of, other) in [("the cells", curved_volume), ("the boundary", enclosed)] {
+        assert!(
+            (measure - other).abs() <= 1e-12 * other.abs(),
+            "certified volume {measure} vs {of}' {other}"
+        );
+    }
     let (e1, e2) = ((linear_volume - exact).abs(), (curved_volume - exact).abs());
     println!("P1 volume error {e1:.3e}, P2 {e2:.3e}; {:?}", curved.stats);
     assert!(

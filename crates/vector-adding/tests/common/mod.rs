@@ -220,6 +220,14 @@ pub fn check_curved(what: &str, curved: &Curved, curves: &[ClosedCurve], order: 
     let area = jacobian_check::integrate_area(mesh).unwrap_or_else(|e| panic!("{what}: {e}"));
     let enclosed = jacobian_check::enclosed_area(mesh).unwrap_or_else(|e| panic!("{what}: {e}"));
     let area_error = checks::assert_area(what, area, enclosed, 1e-9);
+    // the area `check_mesh` takes from the certificates' coefficients: the same integral
+    for (of, other) in [("the cells", area), ("the boundary", enclosed)] {
+        assert!(
+            (validity.measure - other).abs() <= 1e-12 * other.abs(),
+            "{what}: certified area {} vs {of}' {other}",
+            validity.measure
+        );
+    }
     let fraction = jacobian_check::curved_edge_fraction(mesh);
     let s = &curved.stats;
     assert_eq!(
