@@ -216,10 +216,12 @@ pub(crate) fn write_points(w: &mut dyn Write, nodes: &[[f64; 3]]) -> io::Result<
 /// Records per chunk of [`write_records`].
 const CHUNK: usize = 8192;
 /// Chunks formatted at once (in parallel) into one of two sets of buffers, while the other
-/// set is written: enough for the cores of a small machine, few enough that the buffers
-/// (about 0.5 MiB a chunk of P3 cells, up to twice that in capacity) stay small next to the
-/// mesh (at 1M cells the writer runs at the memory peak).
-const BATCH: usize = 4;
+/// set is written: enough that the threads' chunks even out within a batch (with 4, a
+/// thread that had written the last batch then formatted one chunk and waited on the other's
+/// three: the 1M P3 run's `write` 1.23 → 1.05 s at two threads with 16), few enough that the
+/// buffers (about 0.5 MiB a chunk of P3 cells, up to twice that in capacity: 16–32 MiB in
+/// all) stay small next to the mesh (at 1M cells the writer runs at the memory peak).
+const BATCH: usize = 16;
 
 /// Writes records `0..n`, each formatted by `record(i, buffer)`: chunks of records are
 /// formatted in parallel into their own buffers, a batch at a time, and written in order;
