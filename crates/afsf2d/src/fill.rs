@@ -1593,6 +1593,59 @@ mod tests {
         }
     }
 
+    /// The smoothing's test of a position gives the same answer from whichever triangle it
+    /// starts, and when it refuses, it names a triangle that alone refuses: a fan of six
+    /// triangles around one added node, moved over a grid of positions in and out of the fan,
+    /// against limits from acute to flat.
+    #[test]
+    fn a_try_answers_the_same_from_any_first_triangle() {
+        let mut pts: Vec<P2> = (0..6)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 6.0;
+                [a.cos() * (1.0 + 0.1 * i as f64), a.sin()]
+            })
+            .collect();
+        pts.push([0.05, -0.02]);
+        let tris: Vec<[u32; 3]> = (0..6).map(|i| [i, (i + 1) % 6, 6]).collect();
+        let smoother = Smoother::new(&tris, 6, 1);
+        assert_eq!(smoother.of(0).len(), 6);
+        let (mut refused, mut passed) = (0, 0);
+        for before in [70.0, 95.0, 120.0, 150.0, 179.0] {
+            let limit = crate::quality::AngleLimit::new(before);
+            for i in -12..=12 {
+                for j in -12..=12 {
+                    let p = [0.1 * i as f64, 0.1 * j as f64];
+                    let mut answers = Vec::new();
+                    for first in 0..8u8 {
+                        let mut at = first;
+                        let ok = smoother.improves(0, p, &pts, before, &limit, &mut at);
+                        if !ok {
+                            // the named triangle refuses on its own
+                            let alone = Smoother {
+                                start: vec![0, 1],
+                                incident: vec![smoother.of(0)[at as usize]],
+                                ..Smoother::new(&tris, 6, 1)
+                            };
+                            let mut again = 0;
+                            assert!(!alone.improves(0, p, &pts, before, &limit, &mut again));
+                        }
+                        answers.push(ok);
+                    }
+                    assert!(answers.windows(2).all(|w| w[0] == w[1]), "{p:?} {before}");
+                    if answers[0] {
+                        passed += 1;
+                    } else {
+                        refused += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            passed > 0 && refused > 0,
+            "{passed} passed, {refused} refused"
+        );
+    }
+
     /// The edge owners by the counting sort on the first node are those of a stable sort by
     /// edge, where a directed edge met twice keeps its last triangle.
     #[test]
