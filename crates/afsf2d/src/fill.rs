@@ -498,6 +498,8 @@ fn smooth_steiner(tris: &[[u32; 3]], pts: &mut [P2], front: usize) {
     // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
     // `settled[s]` the moves before s was last left (plus one; 0: not settled)
     let (mut moves, mut moved, mut settled) = (0u64, vec![0u64; added], vec![0u64; added]);
+    // the position among its triangles of the one that last kept each node where it was
+    let mut failed = vec![0u8; added];
     for _ in 0..SMOOTHING_SWEEPS {
         for s in 0..added {
             if settled[s] != 0 && smoother.still(s, &moved, settled[s]) {
@@ -508,13 +510,15 @@ fn smooth_steiner(tris: &[[u32; 3]], pts: &mut [P2], front: usize) {
             };
             let old = pts[front + s];
             let before = smoother.worst(s, pts);
+            // (its cosine once for the three tries)
+            let limit = crate::quality::AngleLimit::new(before);
             settled[s] = moves + 1;
             for f in [1.0, 0.5, 0.25] {
                 let p = [
                     old[0] + f * (centroid[0] - old[0]),
                     old[1] + f * (centroid[1] - old[1]),
                 ];
-                if smoother.improves(s, p, pts, before) {
+                if smoother.improves(s, p, pts, before, &limit, &mut failed[s]) {
                     smoother.place(s, p, pts);
                     moves += 1;
                     moved[s] = moves;
@@ -645,20 +649,36 @@ impl Smoother {
     }
 
     /// Exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles
-    /// mostly compared by their cosines.
-    fn improves(&self, s: usize, p: P2, pts: &[P2], before: f64) -> bool {
-        let limit = crate::quality::AngleLimit::new(before);
-        for i in self.of(s) {
+    /// mostly compared by their cosines (`limit`: `before` and its cosine). The triangles
+    /// are looked at from position `first` among them on (round), the one that last kept
+    /// `s` where it was (and `first` becomes the one that does now): that one most likely
+    /// fails again, and the answer, all of them passing, is the same in any order.
+    fn improves(
+        &self,
+        s: usize,
+        p: P2,
+        pts: &[P2],
+        before: f64,
+        limit: &crate::quality::AngleLimit,
+        first: &mut u8,
+    ) -> bool {
+        let own = self.of(s);
+        let start = if (*first as usize) < own.len() {
+            *first as usize
+        } else {
+            0
+        };
+        let (head, tail) = own.split_at(start);
+        for (j, i) in tail.iter().chain(head).enumerate() {
             let c = self.corners(s, i.tri, p, pts);
-            if orient2d(c[0], c[1], c[2]) <= 0.0 {
-                return false;
-            }
             // (a NaN angle is passed over by the maximum in `worst`; corners of moderate
             // size have none)
-            if !limit.triangle_below(c[0], c[1], c[2])
-                && (moderate(c)
-                    || !crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]).is_nan())
+            if orient2d(c[0], c[1], c[2]) <= 0.0
+                || (!limit.triangle_below(c[0], c[1], c[2])
+                    && (moderate(c)
+                        || !crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]).is_nan()))
             {
+                *first = ((start + j) % own.len()).min(u8::MAX as usize) as u8;
                 return false;
             }
         }
@@ -1571,6 +1591,59 @@ mod tests {
                 "case {case}: the added nodes"
             );
         }
+    }
+
+    /// The smoothing's test of a position gives the same answer from whichever triangle it
+    /// starts, and when it refuses, it names a triangle that alone refuses: a fan of six
+    /// triangles around one added node, moved over a grid of positions in and out of the fan,
+    /// against limits from acute to flat.
+    #[test]
+    fn a_try_answers_the_same_from_any_first_triangle() {
+        let mut pts: Vec<P2> = (0..6)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 6.0;
+                [a.cos() * (1.0 + 0.1 * i as f64), a.sin()]
+            })
+            .collect();
+        pts.push([0.05, -0.02]);
+        let tris: Vec<[u32; 3]> = (0..6).map(|i| [i, (i + 1) % 6, 6]).collect();
+        let smoother = Smoother::new(&tris, 6, 1);
+        assert_eq!(smoother.of(0).len(), 6);
+        let (mut refused, mut passed) = (0, 0);
+        for before in [70.0, 95.0, 120.0, 150.0, 179.0] {
+            let limit = crate::quality::AngleLimit::new(before);
+            for i in -12..=12 {
+                for j in -12..=12 {
+                    let p = [0.1 * i as f64, 0.1 * j as f64];
+                    let mut answers = Vec::new();
+                    for first in 0..8u8 {
+                        let mut at = first;
+                        let ok = smoother.improves(0, p, &pts, before, &limit, &mut at);
+                        if !ok {
+                            // the named triangle refuses on its own
+                            let alone = Smoother {
+                                start: vec![0, 1],
+                                incident: vec![smoother.of(0)[at as usize]],
+                                ..Smoother::new(&tris, 6, 1)
+                            };
+                            let mut again = 0;
+                            assert!(!alone.improves(0, p, &pts, before, &limit, &mut again));
+                        }
+                        answers.push(ok);
+                    }
+                    assert!(answers.windows(2).all(|w| w[0] == w[1]), "{p:?} {before}");
+                    if answers[0] {
+                        passed += 1;
+                    } else {
+                        refused += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            passed > 0 && refused > 0,
+            "{passed} passed, {refused} refused"
+        );
     }
 
     /// The edge owners by the counting sort on the first node are those of a stable sort by
