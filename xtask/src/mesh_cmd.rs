@@ -101,7 +101,7 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
 /// Drops `value` on a thread of its own: the final mesh of a million P3 cells takes some
 /// 0.04 s to give its pages back, which the run need not wait for (when the process ends
 /// first, the system takes them back). When no thread can be started it is dropped here.
-pub(crate) fn free_beside<T: Send + 'static>(value: T) {
+fn free_beside<T: Send + 'static>(value: T) {
     let _ = std::thread::Builder::new()
         .name("free".into())
         .spawn(move || drop(value));

@@ -239,8 +239,9 @@ pub(crate) fn measure_from_coefficients(shape: Shape, c: &[f64]) -> f64 {
 
 /// The signed volume of a 3D cell, exact for its map up to rounding: the integral of the
 /// Jacobian determinant is the mean of its Bernstein coefficients times the reference
-/// volume (`measure_from_coefficients`). A straight-sided 14-node pyramid is its linear pyramid; a curved one is integrated by an
-/// exact Gauss rule on its collapsed box (the `pyramid` module).
+/// volume (`measure_from_coefficients`). A straight-sided 14-node pyramid is its linear
+/// pyramid; a curved one is integrated by an exact Gauss rule on its collapsed box (the
+/// `pyramid` module).
 ///
 /// # Errors
 /// Unsupported type, a 2D type, wrong node count, non-finite node.
