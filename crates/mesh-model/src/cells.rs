@@ -62,6 +62,39 @@ impl Cells {
         }
     }
 
+    /// The store of cells of `types`, the nodes of cell `i` at `nodes[offsets[i]..offsets[i +
+    /// 1]]`: the parts of a store filled other than by [`Cells::push`] (by several threads at
+    /// once, each into its own range).
+    ///
+    /// # Panics
+    /// If `offsets` does not start at 0, step by each type's node count and end at
+    /// `nodes.len()`: that is a bug in the caller, not bad input.
+    pub fn from_parts(types: Vec<CellType>, offsets: Vec<u32>, nodes: Vec<u32>) -> Self {
+        assert_eq!(
+            offsets.len(),
+            types.len() + 1,
+            "one offset per cell, and one more"
+        );
+        assert_eq!(offsets[0], 0, "the first cell's nodes start at 0");
+        assert_eq!(
+            offsets[types.len()] as usize,
+            nodes.len(),
+            "the last offset is the node count"
+        );
+        for (i, ty) in types.iter().enumerate() {
+            assert_eq!(
+                (offsets[i + 1] - offsets[i]) as usize,
+                ty.node_count(),
+                "cell {i} ({ty:?}) has the nodes of its type"
+            );
+        }
+        Cells {
+            types,
+            offsets,
+            nodes,
+        }
+    }
+
     /// Appends a cell and returns its index.
     ///
     /// # Panics
@@ -160,5 +193,22 @@ mod tests {
         assert_eq!(c.iter().len(), 2);
         let d = Cells::default();
         assert!(d.is_empty());
+    }
+
+    #[test]
+    fn a_store_from_its_parts_is_the_pushed_one() {
+        let (tri, quad) = (CellType::new(Shape::Tri, 1), CellType::new(Shape::Quad, 2));
+        let mut pushed = Cells::new();
+        pushed.push(tri, &[0, 1, 2]);
+        pushed.push(quad, &[3, 4, 5, 6, 7, 8, 9, 10, 11]);
+        let parts = Cells::from_parts(vec![tri, quad], vec![0, 3, 12], (0..12).collect());
+        assert_eq!(parts, pushed);
+    }
+
+    #[test]
+    #[should_panic(expected = "has the nodes of its type")]
+    fn parts_that_give_a_cell_too_few_nodes_are_refused() {
+        let tri = CellType::new(Shape::Tri, 1);
+        Cells::from_parts(vec![tri, tri], vec![0, 2, 6], (0..6).collect());
     }
 }

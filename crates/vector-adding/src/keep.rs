@@ -141,7 +141,7 @@ fn assemble_laid(mesh: &Mesh, mut laid: Laid) -> Mesh {
         &laid.edges,
         nodes,
         laid.sorted_edges,
-        laid.cells.iter().copied(),
+        (laid.cells.len(), |i| laid.cells[i]),
         &laid.interiors,
     )
 }

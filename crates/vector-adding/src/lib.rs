@@ -359,12 +359,21 @@ fn build(
             &edges,
             nodes,
             sorted_edges,
-            cells.into_iter(),
+            (cells.len(), |i| cells[i]),
             &interiors,
         ),
         None => {
-            let kept = split::keep(&edges.cell_edges, &edges.ends);
-            assemble::assemble(linear, &edges, nodes, sorted_edges, kept, &interiors)
+            let (cell_edges, ends) = (&edges.cell_edges, &edges.ends);
+            let kept = |i| split::keep_at(cell_edges, ends, i);
+            let count = cell_edges.len();
+            assemble::assemble(
+                linear,
+                &edges,
+                nodes,
+                sorted_edges,
+                (count, kept),
+                &interiors,
+            )
         }
     };
     if let Some((cell_layer, cell_pipe)) = records {

@@ -44,29 +44,34 @@ pub(crate) fn keep<'a>(
     cell_edges: &'a [[u32; 4]],
     ends: &'a [[u32; 2]],
 ) -> impl Iterator<Item = OutCell> + Clone + 'a {
-    cell_edges.iter().enumerate().map(move |(i, &edges)| {
-        let (shape, n) = if edges[3] == NONE {
-            (Shape::Tri, 3)
+    (0..cell_edges.len()).map(move |i| keep_at(cell_edges, ends, i))
+}
+
+/// Output cell `i` of [`keep`], on its own (the assembly takes the cells by index, from
+/// every thread).
+pub(crate) fn keep_at(cell_edges: &[[u32; 4]], ends: &[[u32; 2]], i: usize) -> OutCell {
+    let edges = cell_edges[i];
+    let (shape, n) = if edges[3] == NONE {
+        (Shape::Tri, 3)
+    } else {
+        (Shape::Quad, 4)
+    };
+    let mut corners = [0; 4];
+    for (j, corner) in corners.iter_mut().enumerate().take(n) {
+        let [a, b] = ends[edges[(j + n - 1) % n] as usize];
+        *corner = if ends[edges[j] as usize].contains(&a) {
+            a
         } else {
-            (Shape::Quad, 4)
+            b
         };
-        let mut corners = [0; 4];
-        for (j, corner) in corners.iter_mut().enumerate().take(n) {
-            let [a, b] = ends[edges[(j + n - 1) % n] as usize];
-            *corner = if ends[edges[j] as usize].contains(&a) {
-                a
-            } else {
-                b
-            };
-        }
-        OutCell {
-            shape,
-            corners,
-            edges,
-            source: i as u32,
-            interior: None,
-        }
-    })
+    }
+    OutCell {
+        shape,
+        corners,
+        edges,
+        source: i as u32,
+        interior: None,
+    }
 }
 
 /// The two triangles of a quadrilateral cut along its shorter diagonal, and the verdict on

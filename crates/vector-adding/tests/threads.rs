@@ -1,8 +1,9 @@
-//! The curving builds its edge table (and the edges' points) on every thread of the pool,
-//! and `curve_mesh_owned_with` runs a task beside its decisions: the curved mesh (every node
-//! to the last bit, every cell, boundary line and per-cell record) and the record of its
-//! decisions are the same with 1, 2 and 3 threads, at P2 and P3, mixed and cut into
-//! triangles, and the same from `curve_mesh_owned` as from `curve_mesh`.
+//! The curving builds its edge table (and the edges' points) and assembles its cells (in
+//! chunks of 8192) on every thread of the pool, and `curve_mesh_owned_with` runs a task beside
+//! its decisions: the curved mesh (every node to the last bit, every cell, boundary line and
+//! per-cell record) and the record of its decisions are the same with 1, 2 and 3 threads, at
+//! P2 and P3, mixed and cut into triangles, and the same from `curve_mesh_owned` as from
+//! `curve_mesh`.
 
 use mesh_model::{CellType, Mesh};
 use test_cases::{Grown, grow, real_case};
@@ -68,6 +69,8 @@ fn one_two_and_three_threads_curve_to_the_same_bits() {
                 ..g.curving_params(order, triangles)
             };
             let one = curved_on(1, &g, &params, false);
+            // more than one chunk of the assembly
+            assert!(one.mesh.cells.len() > 8192, "{name}: {}", one.mesh.cells.len());
             let want = bits(&one.mesh);
             for (threads, owned) in [(2, false), (3, false), (2, true), (1, true)] {
                 let other = curved_on(threads, &g, &params, owned);
