@@ -70,7 +70,11 @@ fn one_two_and_three_threads_curve_to_the_same_bits() {
             };
             let one = curved_on(1, &g, &params, false);
             // more than one chunk of the assembly
-            assert!(one.mesh.cells.len() > 8192, "{name}: {}", one.mesh.cells.len());
+            assert!(
+                one.mesh.cells.len() > 8192,
+                "{name}: {}",
+                one.mesh.cells.len()
+            );
             let want = bits(&one.mesh);
             for (threads, owned) in [(2, false), (3, false), (2, true), (1, true)] {
                 let other = curved_on(threads, &g, &params, owned);
