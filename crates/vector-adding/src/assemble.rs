@@ -60,9 +60,12 @@ where
     let mut flat = Vec::with_capacity(cell_nodes_count);
     flat.par_extend((0..cell_nodes_count).into_par_iter().map(|_| 0u32));
     let mut offsets = vec![0u32; count + 1];
+    // (each chunk sets its cells' types; the value here is only a start)
+    let mut types = vec![CellType::new(Shape::Tri, p as u8); count];
     {
         let (head, mut interior) = mesh.nodes.split_at_mut(first_interior);
         let (mut ids, mut ends) = (&mut flat[..], &mut offsets[1..]);
+        let mut kinds = &mut types[..];
         let (mut node, mut at) = (first_interior, 0);
         let mut jobs = Vec::with_capacity(sizes.len());
         for (k, &(n_interior, n_nodes)) in sizes.iter().enumerate() {
@@ -71,6 +74,7 @@ where
                 interior: take_front(&mut interior, n_interior),
                 ids: take_front(&mut ids, n_nodes),
                 ends: take_front(&mut ends, chunk(k).len()),
+                types: take_front(&mut kinds, chunk(k).len()),
                 first_node: node as u32,
                 first_id: at as u32,
             };
@@ -85,10 +89,6 @@ where
         };
         jobs.into_par_iter().for_each(|job| shared.fill(job, &cell));
     }
-    let types = (0..count)
-        .into_par_iter()
-        .map(|i| CellType::new(cell(i).shape, p as u8))
-        .collect();
     mesh.cells = Cells::from_parts(types, offsets, flat);
     let record = |of: &[u32]| -> Vec<u32> {
         (0..count)
@@ -131,6 +131,8 @@ struct Chunk<'a> {
     ids: &'a mut [u32],
     /// Where each of its cells' node list ends in the whole list.
     ends: &'a mut [u32],
+    /// Its cells' types.
+    types: &'a mut [CellType],
     /// The number of its first interior node.
     first_node: u32,
     /// Where its first cell's node list starts in the whole list.
@@ -175,6 +177,7 @@ impl Shared<'_> {
             job.ids[at..at + ids.len()].copy_from_slice(&ids);
             at += ids.len();
             job.ends[j] = job.first_id + at as u32;
+            job.types[j] = CellType::new(c.shape, p as u8);
         }
     }
 }
