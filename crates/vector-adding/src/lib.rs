@@ -163,8 +163,10 @@ pub fn curve_mesh_owned(
 }
 
 /// [`curve_mesh_owned`], with `beside` run on the linear mesh while the curving takes its
-/// decisions (on another thread of the pool when there is one): what a caller wants of the
-/// linear mesh before it is let go, off the critical path. Returns the curved mesh and what
+/// decisions after the edge table (on another thread of the pool when there is one): what a
+/// caller wants of the linear mesh before it is let go, off the critical path. The edge table
+/// is built first on every thread; the boundary, the marching and the repair, which are
+/// mostly one thread's work, then run beside `beside`. Returns the curved mesh and what
 /// `beside` gave; `beside` is not run when the input or the parameters are refused.
 ///
 /// # Errors
@@ -184,9 +186,10 @@ pub fn curve_mesh_owned_with<R: Send>(
     layering.node_parents = Vec::new();
     layering.pipe_start = Vec::new();
     layering.pipe_cells = Vec::new();
+    let table = EdgeTableStage::new(&input.mesh, params);
     let (aside, decided) = rayon::join(
         || beside(&input.mesh),
-        || decide_checked(&input, loops, params),
+        || decide_from(&input, loops, params, table),
     );
     let decided = decided?;
     let LayeredMesh { mut mesh, layering } = input;
@@ -238,14 +241,52 @@ fn decide_checked(
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
 ) -> Result<Decided, CurvingError> {
+    decide_from(
+        input,
+        loops,
+        params,
+        EdgeTableStage::new(&input.mesh, params),
+    )
+}
+
+/// The curving's first stage: the edge table of the linear mesh with room for the nodes the
+/// cut and the assembly add, and the interior-node maps.
+struct EdgeTableStage {
+    edges: edges::EdgeTable,
+    interiors: cellmap::Interiors,
+    clock: Clock,
+}
+
+impl EdgeTableStage {
+    fn new(mesh: &Mesh, params: &CurvingParams) -> Self {
+        let p = params.order as usize;
+        let mut clock = Clock::default();
+        let interiors = cellmap::Interiors::new(p);
+        let room = assembly_room(mesh, &interiors, params);
+        let edges = edges::EdgeTable::with_room(mesh, p, room);
+        clock.lap("edges");
+        EdgeTableStage {
+            edges,
+            interiors,
+            clock,
+        }
+    }
+}
+
+/// The decisions of [`decide`] after its edge table (`table`, of `input`'s mesh).
+fn decide_from(
+    input: &LayeredMesh,
+    loops: &[LoopCurve<'_>],
+    params: &CurvingParams,
+    table: EdgeTableStage,
+) -> Result<Decided, CurvingError> {
     let mesh = &input.mesh;
-    let p = params.order as usize;
-    let mut clock = Clock::default();
-    let interiors = cellmap::Interiors::new(p);
-    let room = assembly_room(mesh, &interiors, params);
-    let mut edges = edges::EdgeTable::with_room(mesh, p, room);
+    let EdgeTableStage {
+        mut edges,
+        interiors,
+        mut clock,
+    } = table;
     let sorted_edges = edges.len();
-    clock.lap("edges");
     boundary::place_on_curves(mesh, loops, &mut edges)?;
     let curved_boundary_edges = edges.curved.iter().filter(|&&c| c).count();
     clock.lap("boundary");
