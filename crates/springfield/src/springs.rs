@@ -300,14 +300,21 @@ pub struct SpringField2d<'a> {
 }
 
 impl<'a> SpringField2d<'a> {
-    /// Binds `set` and `params` for a solve over `n` nodes.
+    /// Binds `set` and `params` for a solve over `n` nodes (the springs' index and, on more
+    /// than one thread, the halves are made at once: neither reads the other).
     pub fn new(set: &'a SpringSet2d, params: &'a SpringParams, n: usize) -> Self {
         let parallel = rayon::current_num_threads() > 1 && n >= PARALLEL_MIN_ACTIVE;
+        let (index, halves) = if parallel {
+            let (index, halves) = rayon::join(|| set.index(n), || Halves::new(set, n));
+            (index, Some(halves))
+        } else {
+            (set.index(n), None)
+        };
         SpringField2d {
             set,
             params,
-            index: set.index(n),
-            halves: parallel.then(|| Halves::new(set, n)),
+            index,
+            halves,
         }
     }
 }
