@@ -689,12 +689,14 @@ impl<const D: usize> NodeMass<D> {
 #[cfg(test)]
 mod tests {
 
+    /// The positions' bits after the steps, each iteration's moved list, and each iteration's
+    /// largest relative step (its bits) and new heavy nodes.
+    type Stepped = (Vec<u64>, Vec<Vec<u32>>, Vec<(u64, usize)>);
+
     /// Steps a scrambled active list of 6000 of 9000 nodes for a few iterations, on one thread
     /// and then in two ranges; returns the positions' bits, the moved lists and the figures,
     /// or the error, of each.
-    fn steps_both_ways(
-        nan_at: &[usize],
-    ) -> [Result<(Vec<u64>, Vec<Vec<u32>>, Vec<(u64, usize)>), super::SpringError>; 2] {
+    fn steps_both_ways(nan_at: &[usize]) -> [Result<Stepped, super::SpringError>; 2] {
         let n = 9000;
         let params = SolverParams {
             judge_travel: 0.5,
