@@ -701,8 +701,9 @@ fn moderate(c: [P2; 3]) -> bool {
     c.iter().flatten().all(|x| x.abs() < 1e150)
 }
 
-/// The fill triangles, the added nodes and the number of cells peeled.
-pub(crate) type PeeledFill = (Vec<[u32; 3]>, Vec<P2>, usize);
+/// The fill triangles, the added nodes and the cells peeled (their indices, in the order
+/// they were peeled).
+pub(crate) type PeeledFill = (Vec<[u32; 3]>, Vec<P2>, Vec<u32>);
 
 /// Only cells whose longest edge is at most this many times their shortest are peeled:
 /// peeling a boundary-layer cell would lay bare the side of its neighbours' stack of thin
@@ -729,18 +730,22 @@ fn edge_ratio(c: &Cell, pos: &[P2]) -> f64 {
 /// region, as triangulation vertices, when no remaining cell uses them). `facets` are the
 /// boundary facets with the domain on their left, `fronts` the final fronts' edges
 /// ([`Region::new`]). Returns the triangles, the added nodes
-/// (numbered from `pos.len()` on) and the number of cells peeled.
+/// (numbered from `pos.len()` on) and the cells peeled, with what `beside` gave: it reads the
+/// cells as they are before any peel, beside the first fill (on another thread of the pool
+/// when there is one; before it otherwise).
 ///
 /// The first round fills the whole region; a later round fills again only the cavity around
 /// what it changed ([`refill_cavity`]), or the whole region when that fails.
-pub(crate) fn fill_with_peeling(
+pub(crate) fn fill_with_peeling<R: Send>(
     cells: &mut [Cell],
     facets: &[(u32, u32)],
     fronts: &[(u32, u32, u32)],
     pos: &[P2],
     angles: FillAngles,
-) -> Result<PeeledFill, AfsfError> {
-    peel_rounds(cells, facets, fronts, pos, angles, refill_cavity).map(|(fill, _)| fill)
+    beside: impl FnOnce(&[Cell]) -> R + Send,
+) -> Result<(PeeledFill, R), AfsfError> {
+    peel_rounds_with(cells, facets, fronts, pos, angles, refill_cavity, beside)
+        .map(|(fill, _, aside)| (fill, aside))
 }
 
 /// A fill of the region: its triangles (counter-clockwise, in mesh numbers; the added nodes
@@ -781,8 +786,8 @@ struct Refills {
     whole: u32,
 }
 
-/// [`fill_with_peeling`] with the fill of a later round given (`refill`; the whole region is
-/// filled again when it fails).
+/// [`peel_rounds_with`] with nothing beside the first fill.
+#[cfg(test)]
 fn peel_rounds(
     cells: &mut [Cell],
     facets: &[(u32, u32)],
@@ -791,6 +796,21 @@ fn peel_rounds(
     angles: FillAngles,
     refill: Refill,
 ) -> Result<(PeeledFill, Refills), AfsfError> {
+    peel_rounds_with(cells, facets, fronts, pos, angles, refill, |_| ())
+        .map(|(fill, refills, ())| (fill, refills))
+}
+
+/// [`fill_with_peeling`] with the fill of a later round given (`refill`; the whole region is
+/// filled again when it fails).
+fn peel_rounds_with<R: Send>(
+    cells: &mut [Cell],
+    facets: &[(u32, u32)],
+    fronts: &[(u32, u32, u32)],
+    pos: &[P2],
+    angles: FillAngles,
+    refill: Refill,
+    beside: impl FnOnce(&[Cell]) -> R + Send,
+) -> Result<(PeeledFill, Refills, R), AfsfError> {
     let mut region = Region::new(cells, facets, fronts);
     let mut incidence: Option<CellsOfNode> = None;
     let max_angle_deg = angles.peel_max_angle_deg;
@@ -811,30 +831,38 @@ fn peel_rounds(
             new_from: 0,
         })
     };
-    let mut fill = if angles.rounds > 0 && rayon::current_num_threads() > 1 {
-        // what a peel round needs is built on the other thread while the first fill runs
+    let (mut fill, aside) = if rayon::current_num_threads() > 1 {
+        // what a peel round needs, and `beside`, run on the other thread while the first
+        // fill runs
         let start: &[Cell] = cells;
-        let (filled, of_node) = rayon::join(
+        let (filled, (of_node, aside)) = rayon::join(
             || whole(&region, start, &peeled),
-            || CellsOfNode::new(start, pos.len()),
+            || {
+                rayon::join(
+                    || (angles.rounds > 0).then(|| CellsOfNode::new(start, pos.len())),
+                    || beside(start),
+                )
+            },
         );
-        incidence = Some(of_node);
-        filled?
+        incidence = of_node;
+        (filled?, aside)
     } else {
-        whole(&region, cells, &peeled)?
+        let aside = beside(cells);
+        (whole(&region, cells, &peeled)?, aside)
     };
     let mut round = 0;
     loop {
-        let done =
-            |fill: Fill, peeled: &[u32]| Ok(((fill.tris, fill.steiner, peeled.len()), refills));
+        let done = |fill: Fill, peeled: Vec<u32>, aside: R| {
+            Ok(((fill.tris, fill.steiner, peeled), refills, aside))
+        };
         if round == angles.rounds {
-            return done(fill, &peeled);
+            return done(fill, peeled, aside);
         }
         round += 1;
         // (the triangles kept from the last round were not bad there, and are where they were)
         let bad = bad_corners(&fill, pos, limit, max_angle_deg);
         if bad.is_empty() {
-            return done(fill, &peeled);
+            return done(fill, peeled, aside);
         }
         let bad_nodes: Vec<u32> = bad
             .iter()
@@ -851,7 +879,7 @@ fn peel_rounds(
             c.len = 0;
         }
         if now.is_empty() {
-            return done(fill, &peeled);
+            return done(fill, peeled, aside);
         }
         region.peel(cells, &now, of_node);
         let change = Change {
@@ -1870,7 +1898,7 @@ mod tests {
             .filter(|c| c.len > 0)
             .map(|c| c.corners())
             .collect();
-        assert_eq!(cells.len() - live.len(), *peeled);
+        assert_eq!(cells.len() - live.len(), peeled.len());
         for t in tris {
             let c = corners(t);
             assert!(orient2d(c[0], c[1], c[2]) > 0.0, "triangle {t:?}");
@@ -1937,7 +1965,7 @@ mod tests {
             refill_cavity,
         )
         .unwrap();
-        assert!(fill.2 > 0, "the slot peels");
+        assert!(!fill.2.is_empty(), "the slot peels");
         assert!(refills.local > 0 && refills.whole == 0, "{refills:?}");
         assert_covers(&cells, &facets, &fill, &pos);
         // no triangle is left with an angle of 120° or more where a round could peel more
@@ -1973,7 +2001,7 @@ mod tests {
         let (mut cells, facets, fronts, pos) = slotted_grid();
         let (fill, refills) =
             peel_rounds(&mut cells, &facets, &fronts, &pos, SLOT_ANGLES, refuse).unwrap();
-        assert!(fill.2 > 0, "the slot peels");
+        assert!(!fill.2.is_empty(), "the slot peels");
         assert!(refills.local == 0 && refills.whole > 0, "{refills:?}");
         assert_covers(&cells, &facets, &fill, &pos);
     }

@@ -60,10 +60,11 @@ mod geom;
 mod grow;
 mod input;
 mod nodes;
+mod output;
 mod quality;
 mod sanity;
 
-use mesh_model::{CellType, Cells, Dim, LayeredMesh, Layering, Mesh, NONE, Patch, Role, Shape};
+use mesh_model::{CellType, Dim, LayeredMesh, Layering, Mesh, Patch, Role, Shape};
 
 pub use error::AfsfError;
 pub use gaps::NarrowGap;
@@ -134,23 +135,33 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         .map(|f| (f.nodes[0], f.nodes[1]))
         .collect();
     let fronts = work.front_edges();
-    let (fill, steiner, peeled) = fill::fill_with_peeling(
+    // the layered part of the mesh is made beside the fill (the fill only peels a few of its
+    // cells, taken out again after it)
+    let (grown_nodes, n_boundary) = (&work.nodes, work.n_boundary);
+    let ((fill, steiner, peeled), part) = fill::fill_with_peeling(
         &mut work.cells,
         &facets,
         &fronts,
-        &work.nodes.pos,
+        &grown_nodes.pos,
         fill::FillAngles {
             min_angle_deg: params.fill_min_angle_deg,
             peel_max_angle_deg: params.peel_max_angle_deg,
             rounds: params.peel_rounds,
         },
+        |cells| output::LayeredPart::new(cells, grown_nodes, n_boundary),
     )?;
     for p in steiner {
         work.nodes.push_node(nodes::NewNode::unlayered(p));
     }
     work.timings.fill = tf.elapsed().as_secs_f64();
 
-    let (node_parents, node_layer, layered_cells) = output_cells(&mut mesh, &work, &fill, n_grown);
+    let (node_parents, node_layer, layered_cells) = output::output_cells(
+        &mut mesh,
+        part,
+        (&work.cells, &work.nodes, n_boundary),
+        &fill,
+        &peeled,
+    );
     let mut layered_on_facet = vec![false; mesh.boundary.len()];
     for c in &work.cells {
         if c.len > 0 && c.layer == 0 && (c.pipe as usize) < layered_on_facet.len() {
@@ -174,7 +185,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         all_converged: work.layer_stats.iter().all(|s| s.converged),
         layer_stats: std::mem::take(&mut work.layer_stats),
         fill_triangles: fill.len(),
-        peeled_cells: peeled,
+        peeled_cells: peeled.len(),
         timings: Timings {
             total: t0.elapsed().as_secs_f64(),
             ..work.timings
@@ -291,150 +302,6 @@ fn boundary_and_fronts(
         fronts.push((items, pipes, law));
     }
     (mesh, points, fronts)
-}
-
-/// Writes the nodes and cells of the grown and filled mesh into `mesh` (alive nodes only,
-/// boundary first; layered cells, then the fill triangles with the layer and pipe of a
-/// neighbour); returns both parents and the layer of every node, and the number of layered
-/// cells.
-fn output_cells(
-    mesh: &mut Mesh,
-    work: &Work<'_>,
-    fill: &[[u32; 3]],
-    n_grown: usize,
-) -> (Vec<[u32; 2]>, Vec<u32>, usize) {
-    // compact the nodes: boundary first (unchanged), then the alive layer nodes
-    let n_all = work.nodes.pos.len();
-    let mut new_index = vec![NONE; n_all];
-    let mut next = 0u32;
-    for (g, slot) in new_index.iter_mut().enumerate() {
-        if work.nodes.alive[g] {
-            *slot = next;
-            next += 1;
-        }
-    }
-    let mut node_parents = Vec::with_capacity(next as usize);
-    let mut node_layer = Vec::with_capacity(next as usize);
-    mesh.nodes.reserve_exact(next as usize);
-    for g in 0..n_all {
-        if !work.nodes.alive[g] {
-            continue;
-        }
-        let p = work.nodes.pos[g];
-        mesh.nodes.push([p[0], p[1], 0.0]);
-        node_parents.push(work.nodes.parents(g).map(|p| {
-            if p == NONE {
-                NONE
-            } else {
-                new_index[p as usize]
-            }
-        }));
-        node_layer.push(if g < n_grown {
-            work.nodes.layer[g]
-        } else {
-            NONE
-        });
-    }
-    // every node's pipe, for the fill triangles: boundary nodes take the facet that starts
-    // at them, layer nodes the pipe of the first cell they belong to (fill nodes none)
-    let mut node_pipe = vec![NONE; n_all];
-    for (g, slot) in node_pipe.iter_mut().enumerate().take(work.n_boundary) {
-        *slot = g as u32;
-    }
-    let quad = CellType::new(Shape::Quad, 1);
-    let tri = CellType::new(Shape::Tri, 1);
-    // every array of cells filled to its size without a move (at 1M cells, moves and their
-    // page faults were a tenth of this function)
-    let (mut cells, mut corners) = (fill.len(), 3 * fill.len());
-    for c in work.cells.iter().filter(|c| c.len > 0) {
-        (cells, corners) = (cells + 1, corners + c.len as usize);
-    }
-    debug_assert!(mesh.cells.is_empty(), "the mesh has no cell before this");
-    mesh.cells = Cells::with_capacity_for(cells, corners);
-    mesh.cell_layer.reserve_exact(cells);
-    mesh.cell_pipe.reserve_exact(cells);
-    for c in &work.cells {
-        if c.len == 0 {
-            continue;
-        }
-        let mut k = [0u32; 4];
-        for (slot, &g) in k.iter_mut().zip(c.corners()) {
-            *slot = new_index[g as usize];
-        }
-        let k = &k[..c.corners().len()];
-        mesh.cells.push(if c.len == 4 { quad } else { tri }, k);
-        mesh.cell_layer.push(c.layer);
-        mesh.cell_pipe.push(c.pipe);
-        for &g in c.corners() {
-            if node_pipe[g as usize] == NONE {
-                node_pipe[g as usize] = c.pipe;
-            }
-        }
-    }
-    // fill triangles take the layer and pipe of their highest grown corner; triangles whose
-    // corners are all fill nodes take them from a neighbour, pass after pass
-    let mut node_fill_layer: Vec<u32> = (0..n_all)
-        .map(|g| {
-            if g < n_grown {
-                work.nodes.layer[g]
-            } else {
-                NONE
-            }
-        })
-        .collect();
-    let layered_cells = mesh.cells.len();
-    let fill_tag = fill_tags(fill, &mut node_pipe, &mut node_fill_layer);
-    for (t, tag) in fill.iter().zip(&fill_tag) {
-        let k = [
-            new_index[t[0] as usize],
-            new_index[t[1] as usize],
-            new_index[t[2] as usize],
-        ];
-        mesh.cells.push(tri, &k);
-        mesh.cell_layer.push(tag.0);
-        mesh.cell_pipe.push(tag.1);
-    }
-    (node_parents, node_layer, layered_cells)
-}
-
-/// The (layer, pipe) of each fill triangle: those of its highest corner that has a pipe;
-/// corners without one take the triangle's, and triangles with no such corner wait for a
-/// later pass.
-fn fill_tags(
-    fill: &[[u32; 3]],
-    node_pipe: &mut [u32],
-    node_fill_layer: &mut [u32],
-) -> Vec<(u32, u32)> {
-    let mut fill_tag = vec![(NONE, NONE); fill.len()];
-    loop {
-        let mut changed = false;
-        let mut missing = false;
-        for (t, tag) in fill.iter().zip(fill_tag.iter_mut()) {
-            if tag.1 != NONE {
-                continue;
-            }
-            let best = t
-                .iter()
-                .filter(|&&g| node_pipe[g as usize] != NONE)
-                .max_by_key(|&&g| node_fill_layer[g as usize]);
-            let Some(&top) = best else {
-                missing = true;
-                continue;
-            };
-            *tag = (node_fill_layer[top as usize], node_pipe[top as usize]);
-            for &g in t {
-                if node_pipe[g as usize] == NONE {
-                    node_pipe[g as usize] = tag.1;
-                    node_fill_layer[g as usize] = tag.0;
-                }
-            }
-            changed = true;
-        }
-        if !missing || !changed {
-            break;
-        }
-    }
-    fill_tag
 }
 
 #[cfg(test)]

@@ -112,15 +112,24 @@ impl Cells {
         self.types.len() - 1
     }
 
-    /// Keeps only the cells for which `keep(index, cell)` is true, in order.
+    /// Keeps only the cells for which `keep(index, cell)` is true, in order (in place: the
+    /// kept cells move down over the others).
     pub fn retain(&mut self, mut keep: impl FnMut(usize, CellRef<'_>) -> bool) {
-        let mut kept = Cells::with_capacity(self.len(), 0);
-        for (i, c) in self.iter().enumerate() {
-            if keep(i, c) {
-                kept.push(c.ty, c.nodes);
+        let (mut cells, mut nodes) = (0, 0);
+        for i in 0..self.len() {
+            if !keep(i, self.get(i)) {
+                continue;
             }
+            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            self.nodes.copy_within(a..b, nodes);
+            self.types[cells] = self.types[i];
+            nodes += b - a;
+            cells += 1;
+            self.offsets[cells] = nodes as u32;
         }
-        *self = kept;
+        self.types.truncate(cells);
+        self.offsets.truncate(cells + 1);
+        self.nodes.truncate(nodes);
     }
 
     /// Number of cells.
@@ -193,6 +202,40 @@ mod tests {
         assert_eq!(c.iter().len(), 2);
         let d = Cells::default();
         assert!(d.is_empty());
+    }
+
+    #[test]
+    fn retained_cells_are_those_pushed_alone() {
+        let (tri, quad) = (CellType::new(Shape::Tri, 1), CellType::new(Shape::Quad, 3));
+        let all: Vec<(CellType, Vec<u32>)> = (0..9u32)
+            .map(|i| {
+                let ty = if i % 3 == 1 { quad } else { tri };
+                (
+                    ty,
+                    (0..ty.node_count() as u32).map(|k| 100 * i + k).collect(),
+                )
+            })
+            .collect();
+        for drop in [vec![], vec![0], vec![1, 2], vec![4, 8], (0..9).collect()] {
+            let mut cells = Cells::new();
+            for (ty, nodes) in &all {
+                cells.push(*ty, nodes);
+            }
+            let mut seen = Vec::new();
+            cells.retain(|i, c| {
+                seen.push(i);
+                assert_eq!(c.nodes, &all[i].1[..]);
+                !drop.contains(&i)
+            });
+            assert_eq!(seen, (0..9).collect::<Vec<_>>());
+            let mut kept = Cells::new();
+            for (i, (ty, nodes)) in all.iter().enumerate() {
+                if !drop.contains(&i) {
+                    kept.push(*ty, nodes);
+                }
+            }
+            assert_eq!(cells, kept, "dropping {drop:?}");
+        }
     }
 
     #[test]
