@@ -526,6 +526,9 @@ fn step_in_two_ranges<const D: usize>(
 /// is). Only the balance of the two ranges depends on it, not the moves.
 fn middle_node(active_nodes: &[u32]) -> usize {
     let len = active_nodes.len();
+    if len == 0 {
+        return 0;
+    }
     let mut sample: Vec<u32> = (0..33).map(|k| active_nodes[k * (len - 1) / 32]).collect();
     let (_, &mut median, _) = sample.select_nth_unstable(16);
     median as usize
