@@ -744,7 +744,7 @@ pub(crate) fn fill_with_peeling<R: Send>(
     angles: FillAngles,
     beside: impl FnOnce(&[Cell]) -> R + Send,
 ) -> Result<(PeeledFill, R), AfsfError> {
-    peel_rounds_with(cells, facets, fronts, pos, angles, refill_cavity, beside)
+    peel_rounds(cells, facets, fronts, pos, angles, refill_cavity, beside)
         .map(|(fill, _, aside)| (fill, aside))
 }
 
@@ -786,23 +786,9 @@ struct Refills {
     whole: u32,
 }
 
-/// [`peel_rounds_with`] with nothing beside the first fill.
-#[cfg(test)]
-fn peel_rounds(
-    cells: &mut [Cell],
-    facets: &[(u32, u32)],
-    fronts: &[(u32, u32, u32)],
-    pos: &[P2],
-    angles: FillAngles,
-    refill: Refill,
-) -> Result<(PeeledFill, Refills), AfsfError> {
-    peel_rounds_with(cells, facets, fronts, pos, angles, refill, |_| ())
-        .map(|(fill, refills, ())| (fill, refills))
-}
-
 /// [`fill_with_peeling`] with the fill of a later round given (`refill`; the whole region is
 /// filled again when it fails).
-fn peel_rounds_with<R: Send>(
+fn peel_rounds<R: Send>(
     cells: &mut [Cell],
     facets: &[(u32, u32)],
     fronts: &[(u32, u32, u32)],
@@ -1956,16 +1942,22 @@ mod tests {
     #[test]
     fn a_peel_round_fills_again_around_what_it_changed() {
         let (mut cells, facets, fronts, pos) = slotted_grid();
-        let (fill, refills) = peel_rounds(
+        let live = |cells: &[Cell]| cells.iter().filter(|c| c.len > 0).count();
+        let at_start = live(&cells);
+        let (fill, refills, seen) = peel_rounds(
             &mut cells,
             &facets,
             &fronts,
             &pos,
             SLOT_ANGLES,
             refill_cavity,
+            live,
         )
         .unwrap();
         assert!(!fill.2.is_empty(), "the slot peels");
+        // what runs beside the first fill reads the cells before any peel
+        assert_eq!(seen, at_start);
+        assert_eq!(live(&cells), at_start - fill.2.len());
         assert!(refills.local > 0 && refills.whole == 0, "{refills:?}");
         assert_covers(&cells, &facets, &fill, &pos);
         // no triangle is left with an angle of 120° or more where a round could peel more
@@ -1999,8 +1991,16 @@ mod tests {
             Err(AfsfError::Fill("refused".into()))
         }
         let (mut cells, facets, fronts, pos) = slotted_grid();
-        let (fill, refills) =
-            peel_rounds(&mut cells, &facets, &fronts, &pos, SLOT_ANGLES, refuse).unwrap();
+        let (fill, refills, ()) = peel_rounds(
+            &mut cells,
+            &facets,
+            &fronts,
+            &pos,
+            SLOT_ANGLES,
+            refuse,
+            |_| (),
+        )
+        .unwrap();
         assert!(!fill.2.is_empty(), "the slot peels");
         assert!(refills.local == 0 && refills.whole > 0, "{refills:?}");
         assert_covers(&cells, &facets, &fill, &pos);
