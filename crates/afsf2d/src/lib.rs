@@ -158,7 +158,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     let (node_parents, node_layer, layered_cells) = output::output_cells(
         &mut mesh,
         part,
-        (&work.cells, &work.nodes, n_boundary),
+        (&work.cells, &work.nodes),
         &fill,
         &peeled,
     );

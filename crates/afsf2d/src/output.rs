@@ -25,6 +25,8 @@ pub(crate) struct LayeredPart {
     /// Each node's pipe, for the fill triangles: a boundary node the facet that starts at it,
     /// a layer node that of the first cell it is a corner of (NONE: none).
     node_pipe: Vec<u32>,
+    /// The place among `cells` of the cell that gave each node its pipe (NONE: none did).
+    first: Vec<u32>,
     /// The cells with corners (`len` > 0), their layers and pipes.
     cells: Cells,
     cell_layer: Vec<u32>,
@@ -50,6 +52,7 @@ impl LayeredPart {
             node_parents: Vec::with_capacity(next as usize),
             node_layer: Vec::with_capacity(next as usize),
             node_pipe: vec![NONE; n],
+            first: vec![NONE; n],
             cells: Cells::new(),
             cell_layer: Vec::new(),
             cell_pipe: Vec::new(),
@@ -104,47 +107,70 @@ impl LayeredPart {
             self.cell_layer.push(c.layer);
             self.cell_pipe.push(c.pipe);
             self.source.push(i as u32);
+            let place = self.cells.len() as u32 - 1;
             for &g in c.corners() {
                 if self.node_pipe[g as usize] == NONE {
                     self.node_pipe[g as usize] = c.pipe;
+                    self.first[g as usize] = place;
                 }
             }
         }
     }
 
     /// Takes the cells `peeled` (the layer loop's indices, after this part was made) out,
-    /// and gives their corners the pipe of the first cell left that has them as a corner.
-    fn take_out(&mut self, peeled: &[u32], cells: &[Cell], n_boundary: usize) {
-        let mut gone = vec![false; self.cells.len()];
-        let mut touched = vec![false; self.node_pipe.len()];
+    /// and gives each corner whose first cell went the pipe of the next cell that has it as a
+    /// corner (the arrays after the first peeled cell move down; nothing else is read).
+    fn take_out(&mut self, peeled: &[u32], cells: &[Cell]) {
+        let mut at = Vec::with_capacity(peeled.len());
+        // the corners whose pipe came from a peeled cell, with where to look on from (a
+        // peeled cell's `len` is 0 by now; its corners are still in `nodes`)
+        let mut again: Vec<(u32, usize)> = Vec::new();
         for &c in peeled {
-            if let Ok(at) = self.source.binary_search(&c) {
-                gone[at] = true;
-            }
-            for &g in &cells[c as usize].nodes {
-                if g != NONE && (g as usize) >= n_boundary {
-                    touched[g as usize] = true;
-                    self.node_pipe[g as usize] = NONE;
+            let Ok(k) = self.source.binary_search(&c) else {
+                continue;
+            };
+            at.push(k);
+            for &g in cells[c as usize].nodes.iter().filter(|&&g| g != NONE) {
+                if self.first[g as usize] == k as u32 {
+                    again.push((g, k));
                 }
             }
         }
-        self.cells.retain(|i, _| !gone[i]);
-        let mut at = 0;
-        self.cell_layer.retain(|_| (!gone[at], at += 1).0);
-        at = 0;
-        self.cell_pipe.retain(|_| (!gone[at], at += 1).0);
-        at = 0;
-        self.source.retain(|_| (!gone[at], at += 1).0);
-        for &c in &self.source {
-            let c = &cells[c as usize];
-            for &g in c.corners() {
-                let g = g as usize;
-                if touched[g] && self.node_pipe[g] == NONE {
-                    self.node_pipe[g] = c.pipe;
-                }
-            }
+        at.sort_unstable();
+        at.dedup();
+        self.cells.remove_sorted(&at);
+        for list in [&mut self.cell_layer, &mut self.cell_pipe, &mut self.source] {
+            remove_sorted(list, &at);
+        }
+        for (g, k) in again {
+            // the cells after the k-th kept one are at k - (peeled before it) on
+            let from = k - at.partition_point(|&a| a < k);
+            let next = (from..self.cells.len()).find(|&i| {
+                self.cells
+                    .get(i)
+                    .corners()
+                    .contains(&self.new_index[g as usize])
+            });
+            self.node_pipe[g as usize] = next.map_or(NONE, |i| cells[self.source[i] as usize].pipe);
         }
     }
+}
+
+/// Removes the entries of `list` at the increasing indices `at`, in place.
+fn remove_sorted(list: &mut Vec<u32>, at: &[usize]) {
+    let Some(&first) = at.first() else {
+        return;
+    };
+    let mut gone = at.iter().peekable();
+    let mut kept = first;
+    for i in first..list.len() {
+        if gone.next_if_eq(&&i).is_some() {
+            continue;
+        }
+        list[kept] = list[i];
+        kept += 1;
+    }
+    list.truncate(kept);
 }
 
 /// Writes the nodes and cells of the grown and filled mesh into `mesh`: `part` (made before
@@ -155,13 +181,13 @@ impl LayeredPart {
 pub(crate) fn output_cells(
     mesh: &mut Mesh,
     mut part: LayeredPart,
-    (cells, nodes, n_boundary): (&[Cell], &NodeStore, usize),
+    (cells, nodes): (&[Cell], &NodeStore),
     fill: &[[u32; 3]],
     peeled: &[u32],
 ) -> (Vec<[u32; 2]>, Vec<u32>, usize) {
     let n_grown = part.new_index.len();
     if !peeled.is_empty() {
-        part.take_out(peeled, cells, n_boundary);
+        part.take_out(peeled, cells);
     }
     let mut next = part.nodes.len() as u32;
     for g in n_grown..nodes.pos.len() {
@@ -296,10 +322,14 @@ mod tests {
             for &c in &peeled {
                 cells[c as usize].len = 0;
             }
-            let after = LayeredPart::new(&cells, &nodes, 7);
+            let mut after = LayeredPart::new(&cells, &nodes, 7);
             if !peeled.is_empty() {
                 assert_ne!(before, after, "peeling {peeled:?} changes the part");
-                before.take_out(&peeled, &cells, 7);
+                before.take_out(&peeled, &cells);
+            }
+            // (the places of the cells that gave the pipes are bookkeeping of the take-out)
+            for part in [&mut before, &mut after] {
+                part.first.clear();
             }
             assert_eq!(before, after, "peeling {peeled:?}");
         }

@@ -132,6 +132,38 @@ impl Cells {
         self.nodes.truncate(nodes);
     }
 
+    /// Removes the cells at the increasing indices `at`, in place: the cells after the first
+    /// of them move down, the others are not touched.
+    ///
+    /// # Panics
+    /// If `at` is not increasing or names a cell past the end: a bug in the caller.
+    pub fn remove_sorted(&mut self, at: &[usize]) {
+        let Some(&first) = at.first() else {
+            return;
+        };
+        assert!(
+            at.windows(2).all(|w| w[0] < w[1]) && at[at.len() - 1] < self.len(),
+            "cells to remove: increasing, below {}",
+            self.len()
+        );
+        let (mut cells, mut nodes) = (first, self.offsets[first] as usize);
+        let mut gone = at.iter().peekable();
+        for i in first..self.len() {
+            if gone.next_if_eq(&&i).is_some() {
+                continue;
+            }
+            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            self.nodes.copy_within(a..b, nodes);
+            self.types[cells] = self.types[i];
+            nodes += b - a;
+            cells += 1;
+            self.offsets[cells] = nodes as u32;
+        }
+        self.types.truncate(cells);
+        self.offsets.truncate(cells + 1);
+        self.nodes.truncate(nodes);
+    }
+
     /// Number of cells.
     pub fn len(&self) -> usize {
         self.types.len()
@@ -235,6 +267,12 @@ mod tests {
                 }
             }
             assert_eq!(cells, kept, "dropping {drop:?}");
+            let mut removed = Cells::new();
+            for (ty, nodes) in &all {
+                removed.push(*ty, nodes);
+            }
+            removed.remove_sorted(&drop);
+            assert_eq!(removed, kept, "removing {drop:?}");
         }
     }
 
