@@ -155,13 +155,8 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     }
     work.timings.fill = tf.elapsed().as_secs_f64();
 
-    let (node_parents, node_layer, layered_cells) = output::output_cells(
-        &mut mesh,
-        part,
-        (&work.cells, &work.nodes),
-        &fill,
-        &peeled,
-    );
+    let (node_parents, node_layer, layered_cells) =
+        output::output_cells(&mut mesh, part, (&work.cells, &work.nodes), &fill, &peeled);
     let mut layered_on_facet = vec![false; mesh.boundary.len()];
     for c in &work.cells {
         if c.len > 0 && c.layer == 0 && (c.pipe as usize) < layered_on_facet.len() {
