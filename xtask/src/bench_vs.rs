@@ -41,6 +41,11 @@ const SCALING: [(f64, usize); 4] = [(1.0, usize::MAX), (0.1, usize::MAX), (0.01,
 /// `--tiny`: two small points.
 const TINY_SCALING: [(f64, usize); 2] = [(1.0, 1), (0.5, 1)];
 
+/// The scaling point timed at one thread and at two (the 1M point), and the most runs of each.
+const THREADS: (f64, usize) = (0.01, 3);
+/// `--tiny`: the second small point.
+const TINY_THREADS: (f64, usize) = (0.5, 1);
+
 /// One timed process.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Timed {
@@ -86,6 +91,14 @@ fn run_in(args: &BenchArgs, runs: usize, work: &Work) -> Result<()> {
             rows.push(row);
         }
         perf_doc::write_scaling(&args.doc, &rows)?;
+        let (spacing, most) = if args.tiny { TINY_THREADS } else { THREADS };
+        let case = work.case(
+            "naca0012",
+            &[("max_spacing = 1.0", &format!("max_spacing = {spacing}"))],
+        )?;
+        let row = threads_row(work, &case, spacing, runs.min(most))?;
+        println!("{}", perf_doc::threads_line(&row));
+        perf_doc::write_threads(&args.doc, &row)?;
     }
     if args.three_d {
         crate::bench3d::run(work, runs, args.tiny, &args.doc)?;
@@ -194,6 +207,10 @@ fn ours(work: &Work, case: &Path) -> Result<(Timed, Value)> {
 pub(crate) fn mesh_process(work: &Work, case: &Path, extra: &[&str]) -> Result<(Timed, Value)> {
     let msh = work.dir.join("ours.msh");
     let report = work.dir.join("ours.json");
+    // the last run's mesh removed first, untimed: writing over a file of some 500 MB costs
+    // system time, and its pages still being written back costs CPU, that a fresh file does
+    // not
+    let _ = std::fs::remove_file(&msh);
     let (time, out) = timed(
         Command::new(&work.exe)
             .arg("mesh")
@@ -361,6 +378,30 @@ fn scaling_row(work: &Work, case: &Path, spacing: f64, runs: usize) -> Result<Sc
         } else {
             median(&mut peaks)
         },
+    })
+}
+
+/// The threads point: our run on `case` at `--threads 1` and at `--threads 2`, alternating,
+/// `runs` times each.
+fn threads_row(
+    work: &Work,
+    case: &Path,
+    spacing: f64,
+    runs: usize,
+) -> Result<perf_doc::ThreadsRow> {
+    let (mut one, mut two, mut cells) = (Vec::new(), Vec::new(), 0);
+    for _ in 0..runs.max(1) {
+        let (time, report) = mesh_process(work, case, &["--order", "3", "--threads", "1"])?;
+        cells = cells_of(&report);
+        one.push(time);
+        two.push(mesh_process(work, case, &["--order", "3", "--threads", "2"])?.0);
+    }
+    Ok(perf_doc::ThreadsRow {
+        max_spacing: spacing,
+        cells,
+        runs: one.len(),
+        one: medians(&one),
+        two: medians(&two),
     })
 }
 

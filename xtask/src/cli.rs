@@ -283,7 +283,8 @@ pub struct BenchArgs {
 
     /// Whole runs of our P3 pipeline at about 10k, 100k, 1M and 4M cells (the 1M point at most
     /// 3 times, the 4M point once): wall and CPU time, peak memory, the fitted exponent and a
-    /// plot; writes them into --doc.
+    /// plot; then the 1M point at --threads 1 and 2, alternating (at most 3 runs each), and
+    /// two threads over one; writes them into --doc.
     #[arg(long)]
     pub scaling: bool,
 

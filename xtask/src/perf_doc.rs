@@ -66,8 +66,22 @@ pub struct ScalingRow {
     pub peak_bytes: f64,
 }
 
+/// One point of the scaling study at one thread and at two.
+pub struct ThreadsRow {
+    /// `[boundary] max_spacing` of the NACA0012.
+    pub max_spacing: f64,
+    /// Cells (P3).
+    pub cells: u64,
+    /// Runs at each thread count the medians are of.
+    pub runs: usize,
+    /// Median times at `--threads 1` and at `--threads 2`.
+    pub one: Times,
+    pub two: Times,
+}
+
 const VS: &str = "vs-gmsh";
 const SCALING: &str = "scaling";
+const THREADS: &str = "threads";
 const PLOT: &str = "figures/performance-scaling.svg";
 
 /// One printed line of the comparison.
@@ -99,6 +113,42 @@ pub fn scaling_line(r: &ScalingRow) -> String {
         r.time.cpu_s,
         r.peak_bytes / r.cells as f64,
         r.runs
+    )
+}
+
+/// The printed line of the threads point.
+pub fn threads_line(r: &ThreadsRow) -> String {
+    format!(
+        "threads  max_spacing {}: one {:.3} s wall, two {:.3} s wall: {:.2}x (median of {})",
+        r.max_spacing,
+        r.one.wall_s,
+        r.two.wall_s,
+        r.one.wall_s / r.two.wall_s,
+        r.runs
+    )
+}
+
+/// Writes the threads point into the document at `doc`.
+pub fn write_threads(doc: &Path, r: &ThreadsRow) -> Result<()> {
+    replace_part(doc, THREADS, &threads_markdown(r))
+}
+
+/// The threads point as Markdown.
+fn threads_markdown(r: &ThreadsRow) -> String {
+    format!(
+        "Measured by `cargo xtask bench --scaling`: the scaling study's NACA0012 at max_spacing \
+         {} ({} P3 cells), `cargo xtask mesh CASE --order 3 --threads 1` and `--threads 2` \
+         alternating, {} runs of each (medians).\n\n| threads | wall | CPU |\n|---|---|---|\n\
+         | 1 | {:.3} s | {:.3} s |\n| 2 | {:.3} s | {:.3} s |\n\nTwo threads over one: \
+         **{:.2}×** in wall time.\n",
+        r.max_spacing,
+        r.cells,
+        r.runs,
+        r.one.wall_s,
+        r.one.cpu_s,
+        r.two.wall_s,
+        r.two.cpu_s,
+        r.one.wall_s / r.two.wall_s
     )
 }
 

@@ -46,6 +46,9 @@ fn bench_vs_gmsh_and_scaling_work_on_a_tiny_configuration() {
         "Gmsh's side was skipped",
         "<!-- scaling:end -->",
         "Fitted exponent",
+        "<!-- threads:begin -->",
+        "| 2 |",
+        "Two threads over one",
         "<!-- 3d:begin -->",
         "| step | 864 tets, 1512 pyramids, 6552 hexes |",
     ] {
@@ -62,4 +65,5 @@ fn bench_vs_gmsh_and_scaling_work_on_a_tiny_configuration() {
     assert!(again.status.success());
     let text = std::fs::read_to_string(&doc).unwrap();
     assert_eq!(text.matches("<!-- scaling:begin -->").count(), 1, "{text}");
+    assert_eq!(text.matches("<!-- threads:begin -->").count(), 1, "{text}");
 }
