@@ -5,7 +5,8 @@
 //! ours (this binary's `mesh`) and Gmsh's (`tests/python/gmsh_bench.py`, embedded here and
 //! run by the checkers' Python, `CHECKERS_VENV`), the two alternating run by run. Gmsh's mesh
 //! size is first calibrated, untimed, to our cell count. `--scaling` times our P3 pipeline on
-//! the NACA0012 made finer by `[boundary] max_spacing`, from about 10k to about 4M cells.
+//! the NACA0012 made finer by `[boundary] max_spacing`, from about 10k to about 4M cells, and
+//! then its 1M point at one thread and at two, alternating (two threads over one).
 //! Both write their part of `docs/performance.md` (see [`crate::perf_doc`]). The case files
 //! and meshes go to a temporary folder, removed at the end; the runs are deterministic (same
 //! cases, same meshes, whatever the order).
