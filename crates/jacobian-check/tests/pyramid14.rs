@@ -215,8 +215,10 @@ proptest! {
         let x = pyramid(&a, &[]);
         let c = determinant_bernstein_coefficients(PYRAMID2, &x).unwrap();
         let d = det3(&a);
+        // (relative to the determinant: its coefficients come out of some twenty products of
+        // the corners, each rounded, and reach 12 where the case above failed at 1.1e-11)
         for v in &c {
-            prop_assert!((v - d).abs() < 1e-11, "{} vs {}", v, d);
+            prop_assert!((v - d).abs() < 1e-11 * d.abs().max(1.0), "{} vs {}", v, d);
         }
         let cert = certify_cell(PYRAMID2, &x, &CertifyParams::default()).unwrap();
         prop_assert_eq!(cert.is_valid(), d > 0.0);
