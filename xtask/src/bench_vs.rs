@@ -83,20 +83,14 @@ fn run_in(args: &BenchArgs, runs: usize, work: &Work) -> Result<()> {
         let points: &[(f64, usize)] = if args.tiny { &TINY_SCALING } else { &SCALING };
         let mut rows = Vec::new();
         for &(spacing, most) in points {
-            let case = work.case(
-                "naca0012",
-                &[("max_spacing = 1.0", &format!("max_spacing = {spacing}"))],
-            )?;
+            let case = work.naca0012_at(spacing)?;
             let row = scaling_row(work, &case, spacing, runs.min(most))?;
             println!("{}", perf_doc::scaling_line(&row));
             rows.push(row);
         }
         perf_doc::write_scaling(&args.doc, &rows)?;
         let (spacing, most) = if args.tiny { TINY_THREADS } else { THREADS };
-        let case = work.case(
-            "naca0012",
-            &[("max_spacing = 1.0", &format!("max_spacing = {spacing}"))],
-        )?;
+        let case = work.naca0012_at(spacing)?;
         let row = threads_row(work, &case, spacing, runs.min(most))?;
         println!("{}", perf_doc::threads_line(&row));
         perf_doc::write_threads(&args.doc, &row)?;
@@ -125,6 +119,12 @@ impl Work {
             dir,
             exe: std::env::current_exe().context("cannot find this program's path")?,
         })
+    }
+
+    /// The scaling study's case: the built-in NACA0012 with `[boundary] max_spacing` set.
+    fn naca0012_at(&self, spacing: f64) -> Result<PathBuf> {
+        let spacing = format!("max_spacing = {spacing}");
+        self.case("naca0012", &[("max_spacing = 1.0", &spacing)])
     }
 
     /// Writes built-in case `name` with each `(from, to)` line replaced (its data files

@@ -158,19 +158,11 @@ impl LayeredPart {
 
 /// Removes the entries of `list` at the increasing indices `at`, in place.
 fn remove_sorted(list: &mut Vec<u32>, at: &[usize]) {
-    let Some(&first) = at.first() else {
-        return;
-    };
-    let mut gone = at.iter().peekable();
-    let mut kept = first;
-    for i in first..list.len() {
-        if gone.next_if_eq(&&i).is_some() {
-            continue;
-        }
-        list[kept] = list[i];
-        kept += 1;
-    }
-    list.truncate(kept);
+    let (mut gone, mut i) = (at.iter().peekable(), 0);
+    list.retain(|_| {
+        i += 1;
+        gone.next_if_eq(&&(i - 1)).is_none()
+    });
 }
 
 /// Writes the nodes and cells of the grown and filled mesh into `mesh`: `part` (made before
