@@ -181,6 +181,18 @@ pub trait ForceModel<const D: usize> {
         let _ = active;
         self.assemble(positions, force, stiffness);
     }
+    /// [`ForceModel::assemble_active`] on the calling thread alone, to the same bits: what a
+    /// solve calls while another thread of the pool is busy with other work (the default is
+    /// `assemble_active`, for models that do not split their assembly).
+    fn assemble_active_here(
+        &self,
+        positions: &[[f64; D]],
+        active: Active<'_>,
+        force: &mut [[f64; D]],
+        stiffness: &mut [f64],
+    ) {
+        self.assemble_active(positions, active, force, stiffness);
+    }
     /// Which nodes' forces depend on which, over `n` nodes.
     fn influence(&self, n: usize) -> Influence;
     /// The unit direction of `node`'s extrusion edge (from its parent) at `positions`, for

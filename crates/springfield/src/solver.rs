@@ -199,8 +199,9 @@ pub fn solve_model<const D: usize, M: ForceModel<D> + ?Sized>(
 
 /// [`solve_active()`] with the forces and influence table of a [`ForceModel`]. The first
 /// iteration, a sweep over every movable node, needs no influence table: the table is built
-/// on another thread of the pool while that iteration's forces are assembled (the same
-/// table, the same iterations, whatever the number of threads).
+/// on another thread of the pool while that iteration's forces are assembled on this one
+/// ([`ForceModel::assemble_active_here`]; the same table, the same iterations, whatever the
+/// number of threads).
 pub fn solve_model_active<const D: usize, M: ForceModel<D> + Sync + ?Sized>(
     positions: &mut [[f64; D]],
     scale: &[f64],
@@ -222,9 +223,11 @@ pub fn solve_model_active<const D: usize, M: ForceModel<D> + Sync + ?Sized>(
                 model.assemble_active(p, active, f, s);
                 return;
             }
-            let (table, ()) = rayon::join(
+            // the assembly on this thread, which has just written the springs (they are in its
+            // cache), whole: the other thread is busy with the table until about when it ends
+            let ((), table) = rayon::join(
+                || model.assemble_active_here(p, active, f, s),
                 || model.influence(n),
-                || model.assemble_active(p, active, f, s),
             );
             // (set once: this is the first call)
             let _ = influence.set(table);

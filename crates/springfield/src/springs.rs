@@ -438,6 +438,24 @@ impl ForceModel<2> for SpringField2d<'_> {
         }
     }
 
+    fn assemble_active_here(
+        &self,
+        positions: &[[f64; 2]],
+        active: crate::Active<'_>,
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        assemble_2d_active(
+            self.set,
+            &self.index,
+            self.params,
+            positions,
+            active,
+            force,
+            stiffness,
+        );
+    }
+
     fn influence(&self, n: usize) -> crate::Influence {
         self.index.influence(self.set, n)
     }
