@@ -61,6 +61,9 @@ pub(crate) fn par_overlapping<T: Send>(
 /// (boxes much taller than the typical one, crossing many strips each).
 const STRIP_ENTRIES_PER_BOX: usize = 8;
 
+/// Boxes from which [`Strips::rebuild`] runs on two threads.
+const PARALLEL_STRIP_BOXES: usize = 4096;
+
 /// [`par_overlapping_strips_in`] with strips of its own.
 #[cfg(test)]
 pub(crate) fn par_overlapping_strips<T: Send>(
@@ -125,6 +128,8 @@ pub(crate) struct Strips {
     entries: Vec<Entry>,
     /// Where the next entry of each strip goes, while building.
     fill: Vec<u32>,
+    /// The first and last strip of each box, while building.
+    spans: Vec<[u32; 2]>,
 }
 
 /// A box listed in a strip: its low and high x, index and first strip.
@@ -147,17 +152,30 @@ impl Strips {
     /// Makes these the strips of `boxes`, their memory reused: strips as tall as the median
     /// larger side of the boxes (of 1024 spread through the list; at most as many strips as
     /// boxes); false when a coordinate is not finite, there are fewer than two boxes, or more
-    /// than [`STRIP_ENTRIES_PER_BOX`] entries a box.
+    /// than [`STRIP_ENTRIES_PER_BOX`] entries a box. From [`PARALLEL_STRIP_BOXES`] boxes on,
+    /// the strips are counted and filled on two threads, each for a range of strips (the
+    /// same entries in the same places).
     fn rebuild(&mut self, boxes: &[Aabb]) -> bool {
         let n = boxes.len();
-        let finite = |b: &Aabb| b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
-        if n < 2 || n >= u32::MAX as usize || !boxes.iter().all(finite) {
+        if n < 2 || n >= u32::MAX as usize {
             return false;
         }
-        let (mut y0, mut y1) = (boxes[0].lo[1], boxes[0].hi[1]);
-        for b in boxes {
-            y0 = y0.min(b.lo[1]);
-            y1 = y1.max(b.hi[1]);
+        let two = n >= PARALLEL_STRIP_BOXES && rayon::current_num_threads() > 1;
+        // whether every coordinate is finite, and the boxes' range of y (NaN when one is not)
+        let of_box = |b: &Aabb| {
+            let finite = b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
+            (finite, b.lo[1], b.hi[1])
+        };
+        let both =
+            |a: (bool, f64, f64), b: (bool, f64, f64)| (a.0 && b.0, a.1.min(b.1), a.2.max(b.2));
+        let none = (true, f64::INFINITY, f64::NEG_INFINITY);
+        let (finite, y0, y1) = if two {
+            boxes.par_iter().map(of_box).reduce(|| none, both)
+        } else {
+            boxes.iter().map(of_box).fold(none, both)
+        };
+        if !finite {
+            return false;
         }
         let samples = n.min(1024);
         let mut sides: Vec<f64> = (0..samples)
@@ -169,40 +187,77 @@ impl Strips {
         let (_, &mut median, _) = sides.select_nth_unstable_by(samples / 2, f64::total_cmp);
         let side = median.max((y1 - y0) / n as f64).max(f64::MIN_POSITIVE);
         let rows = (((y1 - y0) / side) as usize + 1).min(n);
-        let at = |y: f64| (((y - y0) / side) as usize).min(rows - 1);
+        let at = |y: f64| (((y - y0) / side) as usize).min(rows - 1) as u32;
+        // the first and last strip of each box
+        let span = |b: &Aabb| [at(b.lo[1]), at(b.hi[1])];
+        let spans = &mut self.spans;
+        if two {
+            boxes.par_iter().map(span).collect_into_vec(spans);
+        } else {
+            spans.clear();
+            spans.extend(boxes.iter().map(span));
+        }
+        let total: usize = spans.iter().map(|s| (s[1] - s[0]) as usize + 1).sum();
+        if total > STRIP_ENTRIES_PER_BOX * n {
+            return false;
+        }
+        let spans = &self.spans[..];
         let start = &mut self.start;
         start.clear();
         start.resize(rows + 1, 0);
-        let mut total = 0usize;
-        for b in boxes {
-            let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
-            total += r1 - r0 + 1;
-            if total > STRIP_ENTRIES_PER_BOX * n {
-                return false;
+        // `start[r + 1]`: the entries of strip r, for the strips from `first` on
+        let count = |first: usize, counts: &mut [u32]| {
+            let end = first + counts.len();
+            for s in spans {
+                for r in (s[0] as usize).max(first)..(s[1] as usize + 1).min(end) {
+                    counts[r - first] += 1;
+                }
             }
-            for r in r0..=r1 {
-                start[r + 1] += 1;
-            }
+        };
+        if two {
+            let (low, high) = start[1..].split_at_mut(rows / 2);
+            rayon::join(|| count(0, low), || count(rows / 2, high));
+        } else {
+            count(0, &mut start[1..]);
         }
         for r in 0..rows {
             start[r + 1] += start[r];
         }
-        let fill = &mut self.fill;
-        fill.clone_from(start);
         let entries = &mut self.entries;
         entries.clear();
         entries.resize(total, Entry::default());
-        for (i, b) in boxes.iter().enumerate() {
-            let (r0, r1) = (at(b.lo[1]), at(b.hi[1]));
-            for r in r0..=r1 {
-                entries[fill[r] as usize] = Entry {
-                    lo: b.lo[0],
-                    hi: b.hi[0],
-                    index: i as u32,
-                    first: r0 as u32,
-                };
-                fill[r] += 1;
+        let fill = &mut self.fill;
+        fill.clone_from(start);
+        // the entries of the strips from `first` on, which start at entry `base`
+        let scatter = |first: usize, base: u32, fill: &mut [u32], out: &mut [Entry]| {
+            let end = first + fill.len();
+            for (i, (s, b)) in spans.iter().zip(boxes).enumerate() {
+                for r in (s[0] as usize).max(first)..(s[1] as usize + 1).min(end) {
+                    let slot = &mut fill[r - first];
+                    out[(*slot - base) as usize] = Entry {
+                        lo: b.lo[0],
+                        hi: b.hi[0],
+                        index: i as u32,
+                        first: s[0],
+                    };
+                    *slot += 1;
+                }
             }
+        };
+        if two {
+            // two ranges of strips with about as many entries each
+            let mid = start
+                .partition_point(|&e| (e as usize) < total / 2)
+                .min(rows);
+            let (fill_low, fill_high) = fill[..rows].split_at_mut(mid);
+            let (low, high) = entries.split_at_mut(start[mid] as usize);
+            let base = start[mid];
+            rayon::join(
+                || scatter(0, 0, fill_low, low),
+                || scatter(mid, base, fill_high, high),
+            );
+        } else {
+            scatter(0, 0, &mut fill[..rows], entries);
         }
         // each strip in the sweep's order (the entries of a strip come by increasing index:
         // a stable sort on low x)
@@ -296,6 +351,55 @@ mod tests {
     /// The strips find exactly the sweep's pairs, each the same way round, for boxes of very
     /// different sizes (a ring of small boxes, some large ones, some equal low x), with one
     /// thread and with several.
+    /// The strips built on two threads hold the entries of those built on one, in the same
+    /// places: boxes spread over many strips, boxes in a single strip, and boxes of which
+    /// most crowd into a few strips (the two threads' ranges then very unequal in strips).
+    #[test]
+    fn strips_built_on_two_threads_are_those_built_on_one() {
+        let mut rng = testkit::layered::Rng(11);
+        let mut next = || rng.unit();
+        let n = 2 * PARALLEL_STRIP_BOXES;
+        let spread: Vec<Aabb> = (0..n)
+            .map(|_| {
+                let p = [next(), next()];
+                Aabb::of_segment(p, [p[0] + 0.01 * next(), p[1] + 0.01 * next()], 0.001)
+            })
+            .collect();
+        let flat: Vec<Aabb> = (0..n)
+            .map(|k| Aabb::of_segment([k as f64, 0.0], [k as f64 + 1.5, 0.0], 0.0))
+            .collect();
+        let crowded: Vec<Aabb> = (0..n)
+            .map(|k| {
+                let y = if k % 10 == 0 { 100.0 * next() } else { next() };
+                Aabb::of_segment([next(), y], [next(), y + 0.5], 0.0)
+            })
+            .collect();
+        let strips_of = |boxes: &[Aabb], threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut strips = Strips::default();
+            assert!(pool.install(|| strips.rebuild(boxes)));
+            let entries: Vec<(u64, u64, u32, u32)> = strips
+                .entries
+                .iter()
+                .map(|e| (e.lo.to_bits(), e.hi.to_bits(), e.index, e.first))
+                .collect();
+            (strips.start, entries)
+        };
+        for (name, boxes) in [("spread", &spread), ("flat", &flat), ("crowded", &crowded)] {
+            let one = strips_of(boxes, 1);
+            assert!(one.0.len() > 1 && !one.1.is_empty(), "{name}");
+            assert_eq!(strips_of(boxes, 2), one, "{name}");
+        }
+        assert_eq!(
+            strips_of(&flat, 1).0.len(),
+            2,
+            "the flat boxes share one strip"
+        );
+    }
+
     #[test]
     fn the_strips_find_the_sweeps_pairs_the_same_way_round() {
         let mut rng = testkit::layered::Rng(7);
