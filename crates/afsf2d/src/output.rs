@@ -39,7 +39,12 @@ impl LayeredPart {
     /// The part of `cells` over `nodes` (the first `n_boundary` of them the boundary's).
     pub(crate) fn new(cells: &[Cell], nodes: &NodeStore, n_boundary: usize) -> Self {
         let n = nodes.pos.len();
-        let mut new_index = vec![NONE; n];
+        // room for the nodes the fill adds too (about one for every sixteen layered nodes on
+        // the built-in cases): the arrays are not moved when they come, and room not filled
+        // is never touched
+        let room = |k: usize| k + k / 4;
+        let mut new_index = Vec::with_capacity(room(n));
+        new_index.resize(n, NONE);
         let mut next = 0u32;
         for (g, slot) in new_index.iter_mut().enumerate() {
             if nodes.alive[g] {
@@ -47,11 +52,13 @@ impl LayeredPart {
                 next += 1;
             }
         }
+        let mut node_pipe = Vec::with_capacity(room(n));
+        node_pipe.resize(n, NONE);
         let mut part = LayeredPart {
-            nodes: Vec::with_capacity(next as usize),
-            node_parents: Vec::with_capacity(next as usize),
-            node_layer: Vec::with_capacity(next as usize),
-            node_pipe: vec![NONE; n],
+            nodes: Vec::with_capacity(room(next as usize)),
+            node_parents: Vec::with_capacity(room(next as usize)),
+            node_layer: Vec::with_capacity(room(next as usize)),
+            node_pipe,
             first: vec![NONE; n],
             cells: Cells::new(),
             cell_layer: Vec::new(),
