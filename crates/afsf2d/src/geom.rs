@@ -141,6 +141,22 @@ struct Entry {
     first: u32,
 }
 
+/// The boxes' range of y, `None` when a coordinate is not finite; on `two` threads.
+fn range_of_y(boxes: &[Aabb], two: bool) -> Option<(f64, f64)> {
+    let of_box = |b: &Aabb| {
+        let finite = b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
+        (finite, b.lo[1], b.hi[1])
+    };
+    let both = |a: (bool, f64, f64), b: (bool, f64, f64)| (a.0 && b.0, a.1.min(b.1), a.2.max(b.2));
+    let none = (true, f64::INFINITY, f64::NEG_INFINITY);
+    let (finite, y0, y1) = if two {
+        boxes.par_iter().map(of_box).reduce(|| none, both)
+    } else {
+        boxes.iter().map(of_box).fold(none, both)
+    };
+    finite.then_some((y0, y1))
+}
+
 impl Strips {
     /// The strips of `boxes`, or `None` where [`Strips::rebuild`] says false.
     #[cfg(test)]
@@ -161,22 +177,9 @@ impl Strips {
             return false;
         }
         let two = n >= PARALLEL_STRIP_BOXES && rayon::current_num_threads() > 1;
-        // whether every coordinate is finite, and the boxes' range of y (NaN when one is not)
-        let of_box = |b: &Aabb| {
-            let finite = b.lo.iter().chain(&b.hi).all(|v| v.is_finite());
-            (finite, b.lo[1], b.hi[1])
-        };
-        let both =
-            |a: (bool, f64, f64), b: (bool, f64, f64)| (a.0 && b.0, a.1.min(b.1), a.2.max(b.2));
-        let none = (true, f64::INFINITY, f64::NEG_INFINITY);
-        let (finite, y0, y1) = if two {
-            boxes.par_iter().map(of_box).reduce(|| none, both)
-        } else {
-            boxes.iter().map(of_box).fold(none, both)
-        };
-        if !finite {
+        let Some((y0, y1)) = range_of_y(boxes, two) else {
             return false;
-        }
+        };
         let samples = n.min(1024);
         let mut sides: Vec<f64> = (0..samples)
             .map(|k| {
@@ -201,6 +204,17 @@ impl Strips {
         if total > STRIP_ENTRIES_PER_BOX * n {
             return false;
         }
+        self.fill_strips(boxes, rows, total, two);
+        // each strip in the sweep's order (the entries of a strip come by increasing index:
+        // a stable sort on low x)
+        self.sort_rows();
+        true
+    }
+
+    /// [`Strips::rebuild`]'s counting sort of the boxes' entries (`total` of them, the boxes'
+    /// spans made) into `rows` strips, each box's entries by increasing index; on `two`
+    /// threads, each for a range of strips.
+    fn fill_strips(&mut self, boxes: &[Aabb], rows: usize, total: usize, two: bool) {
         let spans = &self.spans[..];
         let start = &mut self.start;
         start.clear();
@@ -259,10 +273,6 @@ impl Strips {
         } else {
             scatter(0, 0, &mut fill[..rows], entries);
         }
-        // each strip in the sweep's order (the entries of a strip come by increasing index:
-        // a stable sort on low x)
-        self.sort_rows();
-        true
     }
 
     fn rows(&self) -> usize {
@@ -348,9 +358,6 @@ mod tests {
         }
     }
 
-    /// The strips find exactly the sweep's pairs, each the same way round, for boxes of very
-    /// different sizes (a ring of small boxes, some large ones, some equal low x), with one
-    /// thread and with several.
     /// The strips built on two threads hold the entries of those built on one, in the same
     /// places: boxes spread over many strips, boxes in a single strip, and boxes of which
     /// most crowd into a few strips (the two threads' ranges then very unequal in strips).
@@ -400,6 +407,9 @@ mod tests {
         );
     }
 
+    /// The strips find exactly the sweep's pairs, each the same way round, for boxes of very
+    /// different sizes (a ring of small boxes, some large ones, some equal low x), with one
+    /// thread and with several.
     #[test]
     fn the_strips_find_the_sweeps_pairs_the_same_way_round() {
         let mut rng = testkit::layered::Rng(7);
