@@ -426,15 +426,7 @@ impl ForceModel<2> for SpringField2d<'_> {
                 };
                 eval.in_halves(&halves.half, active.nodes, force, stiffness);
             }
-            _ => assemble_2d_active(
-                self.set,
-                &self.index,
-                self.params,
-                positions,
-                active,
-                force,
-                stiffness,
-            ),
+            _ => self.assemble_active_here(positions, active, force, stiffness),
         }
     }
 
