@@ -43,8 +43,12 @@ impl LayeredPart {
         // the built-in cases): the arrays are not moved when they come, and room not filled
         // is never touched
         let room = |k: usize| k + k / 4;
-        let mut new_index = Vec::with_capacity(room(n));
-        new_index.resize(n, NONE);
+        let unset = |k: usize| {
+            let mut v = Vec::with_capacity(room(k));
+            v.resize(k, NONE);
+            v
+        };
+        let mut new_index = unset(n);
         let mut next = 0u32;
         for (g, slot) in new_index.iter_mut().enumerate() {
             if nodes.alive[g] {
@@ -52,13 +56,11 @@ impl LayeredPart {
                 next += 1;
             }
         }
-        let mut node_pipe = Vec::with_capacity(room(n));
-        node_pipe.resize(n, NONE);
         let mut part = LayeredPart {
             nodes: Vec::with_capacity(room(next as usize)),
             node_parents: Vec::with_capacity(room(next as usize)),
             node_layer: Vec::with_capacity(room(next as usize)),
-            node_pipe,
+            node_pipe: unset(n),
             first: vec![NONE; n],
             cells: Cells::new(),
             cell_layer: Vec::new(),
