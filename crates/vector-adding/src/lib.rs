@@ -449,16 +449,24 @@ fn take_sorted<T>(v: &mut Vec<T>, sorted: usize) -> Vec<T> {
 }
 
 /// The mesh is structurally sound (`mesh_model`'s checks), linear 2D, with a layering that
-/// passes its checks.
+/// passes its checks. The two checks run side by side (the layering's reads only the lengths
+/// it checks first, and no cell's nodes, so it is safe on any mesh); a fault of the mesh is
+/// told before one of the layering.
 fn check_input(input: &LayeredMesh) -> Result<(), CurvingError> {
     let mesh = &input.mesh;
-    sound_linear(
-        mesh,
-        Dim::Two,
-        &[Shape::Tri, Shape::Quad],
-        CurvingError::NotLinear2d,
-    )?;
-    match input.layering.check(mesh) {
+    let (sound, layers) = rayon::join(
+        || {
+            sound_linear(
+                mesh,
+                Dim::Two,
+                &[Shape::Tri, Shape::Quad],
+                CurvingError::NotLinear2d,
+            )
+        },
+        || input.layering.check(mesh),
+    );
+    sound?;
+    match layers {
         Some(problem) => Err(CurvingError::BadLayers(problem)),
         None => Ok(()),
     }

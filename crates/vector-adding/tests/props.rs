@@ -269,6 +269,23 @@ fn a_cell_naming_a_missing_node_is_refused_not_panicked_on() {
     assert!(e.to_string().contains(&format!("node {}", n + 7)), "{e}");
 }
 
+/// A mesh with a fault of its own and a layering that does not fit it: the mesh's fault is
+/// told (the two checks run side by side; the layering's is safe on a broken mesh).
+#[test]
+fn a_fault_of_the_mesh_is_told_before_one_of_its_layering() {
+    let mut g = small().clone();
+    let n = g.output.layered.mesh.nodes.len() as u32;
+    g.output.layered.mesh.cells.nodes_mut(0)[1] = n + 7;
+    g.output.layered.layering.node_layer.pop();
+    let e = g.curve(&CurvingParams::default()).unwrap_err();
+    assert!(matches!(e, CurvingError::InvalidMesh(_)), "{e}");
+    // and alone, the layering's fault is named
+    let mut g = small().clone();
+    g.output.layered.layering.node_layer.pop();
+    let e = g.curve(&CurvingParams::default()).unwrap_err();
+    assert!(matches!(e, CurvingError::BadLayers(_)), "{e}");
+}
+
 /// The layering is checked as a whole (`Layering::check`) before any curving: a record that
 /// does not fit its mesh is a named error, never a panic.
 #[test]
