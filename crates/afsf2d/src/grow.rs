@@ -156,6 +156,15 @@ struct StepBuffers {
     strips: Strips,
 }
 
+/// The directions planned from one front node, each with its fan offset: none (the node
+/// cannot advance), one along its bisector or its one normal (offset 0: no allocation for
+/// nearly every node), or a fan at an outward corner.
+enum Dirs {
+    None,
+    One(P2),
+    Fan(Vec<(P2, f64)>),
+}
+
 /// Children planned for one loop.
 #[derive(Default)]
 struct Plan {
@@ -309,9 +318,8 @@ impl<'p> Work<'p> {
         let fan_max = self.params.fan_max_angle_deg.to_radians();
         // directions (and fan offsets) of every node on an active edge
         let dirs_of = |v: usize| {
-            let mut dirs_v: Vec<(P2, f64)> = Vec::new();
             if !(lp.edges[(v + m - 1) % m].active || lp.edges[v].active) {
-                return dirs_v;
+                return Dirs::None;
             }
             let g = lp.items[v] as usize;
             let p = self.nodes.pos[g];
@@ -333,32 +341,33 @@ impl<'p> Work<'p> {
                     };
                     if maybe_fan && -theta > fan_threshold {
                         let pieces = (-theta / fan_max).ceil().max(1.0) as usize;
-                        for j in 0..=pieces {
+                        let fan = (0..=pieces).map(|j| {
                             let phi = theta * j as f64 / pieces as f64;
-                            dirs_v.push((rotate(a, phi), phi - 0.5 * theta));
-                        }
+                            (rotate(a, phi), phi - 0.5 * theta)
+                        });
+                        Dirs::Fan(fan.collect())
                     } else if let Some(d) = bisector(
                         self.nodes.pos[self.nodes.left[g] as usize],
                         p,
                         self.nodes.pos[self.nodes.right[g] as usize],
                     ) {
-                        dirs_v.push((d, 0.0));
+                        Dirs::One(d)
+                    } else {
+                        Dirs::None
                     }
                 }
-                (Some(a), None) | (None, Some(a)) => dirs_v.push((a, 0.0)),
-                (None, None) => {}
+                (Some(a), None) | (None, Some(a)) => Dirs::One(a),
+                (None, None) => Dirs::None,
             }
-            dirs_v
         };
         // each node's directions on its own: on every thread for a long loop
-        let dirs: Vec<Vec<(P2, f64)>> =
-            if m >= PARALLEL_MIN_NODES && rayon::current_num_threads() > 1 {
-                use rayon::prelude::*;
-                (0..m).into_par_iter().map(dirs_of).collect()
-            } else {
-                (0..m).map(dirs_of).collect()
-            };
-        let can = |v: usize| !dirs[v].is_empty();
+        let dirs: Vec<Dirs> = if m >= PARALLEL_MIN_NODES && rayon::current_num_threads() > 1 {
+            use rayon::prelude::*;
+            (0..m).into_par_iter().map(dirs_of).collect()
+        } else {
+            (0..m).map(dirs_of).collect()
+        };
+        let can = |v: usize| !matches!(dirs[v], Dirs::None);
         let mut plan = Plan {
             advancing: vec![false; m],
             start: Vec::with_capacity(m + 1),
@@ -377,7 +386,16 @@ impl<'p> Work<'p> {
             let g = lp.items[v] as usize;
             let p = self.nodes.pos[g];
             let h = self.ideal_length(lp.law, g);
-            for &(d, offset) in &dirs[v] {
+            let one;
+            let each: &[(P2, f64)] = match &dirs[v] {
+                Dirs::One(d) => {
+                    one = [(*d, 0.0)];
+                    &one
+                }
+                Dirs::Fan(fan) => fan,
+                Dirs::None => &[],
+            };
+            for &(d, offset) in each {
                 plan.pos.push([p[0] + h * d[0], p[1] + h * d[1]]);
                 plan.ideal.push(h);
                 plan.offset.push(offset);
@@ -402,6 +420,9 @@ impl<'p> Work<'p> {
         // plan on ideal positions and close
         let plans: Vec<Plan> = self.loops.iter().map(|l| self.plan_loop(l)).collect();
         self.closing(&plans, &mut frozen, &mut buffers);
+        // a loop whose active edges the closing (and the runs' rule) leave as they were is
+        // planned again as it was: its plan is kept for the build (taken at most once)
+        let mut first_plans: Vec<Option<Plan>> = plans.into_iter().map(Some).collect();
         self.timings.plan_and_closing += t0.elapsed().as_secs_f64();
         let mut stats = LayerStats {
             layer: step,
@@ -426,7 +447,20 @@ impl<'p> Work<'p> {
             let cell_start = self.cells.len();
             self.node_step.push(node_start);
             self.cell_step.push(cell_start);
-            let plans: Vec<Plan> = self.loops.iter().map(|l| self.plan_loop(l)).collect();
+            let plans: Vec<Plan> = (self.loops.iter().zip(&saved_loops))
+                .zip(&mut first_plans)
+                .map(|((l, before), first)| {
+                    let same = l
+                        .edges
+                        .iter()
+                        .zip(&before.edges)
+                        .all(|(a, b)| a.active == b.active);
+                    match first.take() {
+                        Some(plan) if same => plan,
+                        _ => self.plan_loop(l),
+                    }
+                })
+                .collect();
             stats.merges = self.build(step, &plans);
             self.timings.build += t1.elapsed().as_secs_f64();
             let t2 = std::time::Instant::now();
