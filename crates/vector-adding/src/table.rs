@@ -26,9 +26,15 @@ type Part<'a> = (&'a mut [[u32; 2]], &'a mut [[u32; 2]]);
 pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
     let parts = rayon::current_num_threads().clamp(1, 64);
     let range = |t: usize| (nodes * t / parts) as u32..(nodes * (t + 1) / parts) as u32;
+    // (one range reads every cell: it needs no spans)
+    let spans = if parts > 1 {
+        chunk_spans(cells)
+    } else {
+        Vec::new()
+    };
     let sorted: Vec<Vec<Record>> = (0..parts)
         .into_par_iter()
-        .map(|t| records_from(cells, range(t)))
+        .map(|t| records_from(cells, &spans, range(t)))
         .collect();
     let unique: Vec<usize> = sorted.par_iter().map(|r| count_unique(r)).collect();
     let first: Vec<usize> = unique
@@ -40,6 +46,7 @@ pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
         })
         .collect();
     let of_cell: Vec<[AtomicU32; 4]> = (0..cells.len())
+        .into_par_iter()
         .map(|_| [const { AtomicU32::new(NONE) }; 4])
         .collect();
     // each range writes its edges into its own part of the final arrays
@@ -65,12 +72,35 @@ pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
     (ends, cells_of, of_cell)
 }
 
+/// Cells per chunk of [`chunk_spans`].
+const SPAN_CHUNK: usize = 4096;
+
+/// The lowest and the highest corner of the cells of each chunk of [`SPAN_CHUNK`] cells, on
+/// every thread: a range's passes skip the chunks with none of its nodes. The cells of a
+/// layered mesh come nearly in the order of their nodes, so each range reads little more than
+/// its share of the cells (every range read every cell twice before).
+fn chunk_spans(cells: &Cells) -> Vec<[u32; 2]> {
+    (0..cells.len().div_ceil(SPAN_CHUNK))
+        .into_par_iter()
+        .map(|k| {
+            let mut span = [u32::MAX, 0];
+            for i in k * SPAN_CHUNK..((k + 1) * SPAN_CHUNK).min(cells.len()) {
+                for &v in cells.get(i).corners() {
+                    span = [span[0].min(v), span[1].max(v)];
+                }
+            }
+            span
+        })
+        .collect()
+}
+
 /// The edge uses of `cells` whose lower node is in `range`, sorted: counted by lower node,
-/// scattered into their buckets in cell order, then each bucket sorted in full.
-fn records_from(cells: &Cells, range: std::ops::Range<u32>) -> Vec<Record> {
+/// scattered into their buckets in cell order, then each bucket sorted in full. `spans` are
+/// the chunks' spans ([`chunk_spans`]), or empty to read every cell.
+fn records_from(cells: &Cells, spans: &[[u32; 2]], range: std::ops::Range<u32>) -> Vec<Record> {
     let width = (range.end - range.start) as usize;
     let mut start = vec![0u32; width + 1];
-    for_each_use(cells, &range, |r| {
+    for_each_use(cells, spans, &range, |r| {
         start[(r.0[0] - range.start) as usize + 1] += 1
     });
     for v in 0..width {
@@ -78,7 +108,7 @@ fn records_from(cells: &Cells, range: std::ops::Range<u32>) -> Vec<Record> {
     }
     let mut fill = start.clone();
     let mut records: Vec<Record> = vec![([0; 2], 0, 0); start[width] as usize];
-    for_each_use(cells, &range, |r| {
+    for_each_use(cells, spans, &range, |r| {
         let slot = &mut fill[(r.0[0] - range.start) as usize];
         records[*slot as usize] = r;
         *slot += 1;
@@ -89,15 +119,32 @@ fn records_from(cells: &Cells, range: std::ops::Range<u32>) -> Vec<Record> {
     records
 }
 
-/// Calls `f` with every edge use of `cells` whose lower node is in `range`, in cell order.
-fn for_each_use(cells: &Cells, range: &std::ops::Range<u32>, mut f: impl FnMut(Record)) {
-    for (i, (shape, nodes)) in cells.shapes_and_corners().enumerate() {
-        for (j, e) in shape.edges().iter().enumerate() {
+/// Calls `f` with every edge use of `cells` whose lower node is in `range`, in cell order,
+/// reading only the chunks whose span (`spans`; empty: every cell) meets the range.
+fn for_each_use(
+    cells: &Cells,
+    spans: &[[u32; 2]],
+    range: &std::ops::Range<u32>,
+    mut f: impl FnMut(Record),
+) {
+    let mut uses_of = |i: usize| {
+        let c = cells.get(i);
+        let nodes = c.corners();
+        for (j, e) in c.ty.shape.edges().iter().enumerate() {
             let (a, b) = (nodes[e[0]], nodes[e[1]]);
             let key = [a.min(b), a.max(b)];
             if range.contains(&key[0]) {
                 f((key, i as u32, j as u8));
             }
+        }
+    };
+    if spans.is_empty() {
+        (0..cells.len()).for_each(&mut uses_of);
+        return;
+    }
+    for (k, span) in spans.iter().enumerate() {
+        if span[0] < range.end && span[1] >= range.start {
+            (k * SPAN_CHUNK..((k + 1) * SPAN_CHUNK).min(cells.len())).for_each(&mut uses_of);
         }
     }
 }
@@ -140,19 +187,37 @@ mod tests {
     use super::*;
 
     /// The table is `mesh_model`'s, entry for entry, on a real layered mesh (quadrilaterals
-    /// and triangles) with 1, 2 and 3 threads.
+    /// and triangles) with 1, 2 and 3 threads, its cells in their order (each range reads
+    /// few chunks), reversed, and dealt out from both ends (each chunk spans every range).
     #[test]
     fn the_table_is_the_topology_one_whatever_the_threads() {
         let g = test_cases::grow(&test_cases::real_case("naca0012"));
         let mesh = &g.output.layered.mesh;
-        let want = mesh_model::topology::edge_table_2d(mesh.cells.shapes_and_corners());
-        for threads in [1, 2, 3] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let got = pool.install(|| edge_table_2d(&mesh.cells, mesh.nodes.len()));
-            assert_eq!(got, want, "{threads} threads");
+        let n = mesh.cells.len();
+        assert!(n > 2 * SPAN_CHUNK, "{n} cells: several chunks");
+        let reordered = |order: &mut dyn Iterator<Item = usize>| {
+            let mut cells = Cells::new();
+            for i in order {
+                let c = mesh.cells.get(i);
+                cells.push(c.ty, c.nodes);
+            }
+            cells
+        };
+        let dealt = (0..n).map(|k| if k % 2 == 0 { k / 2 } else { n - 1 - k / 2 });
+        for cells in [
+            mesh.cells.clone(),
+            reordered(&mut (0..n).rev()),
+            reordered(&mut dealt.clone()),
+        ] {
+            let want = mesh_model::topology::edge_table_2d(cells.shapes_and_corners());
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let got = pool.install(|| edge_table_2d(&cells, mesh.nodes.len()));
+                assert_eq!(got, want, "{threads} threads");
+            }
         }
     }
 }
