@@ -312,31 +312,24 @@ impl Local {
 /// Sweeps of the largest-angle edge flips.
 const FLIP_SWEEPS: usize = 16;
 
-/// Fill triangles from which a sweep's tries are measured ahead on every thread.
-const PARALLEL_FLIP_TRIANGLES: usize = 4096;
-
 /// Flips the diagonal of two fill triangles that share an edge which is not a front edge,
 /// whenever the other diagonal lowers the larger of their largest angles: the constrained
 /// Delaunay triangulation maximises the smallest angle, which is not the figure a solver
 /// needs, and next to long front edges it keeps flat triangles whose other diagonal is
 /// fine. Both new triangles must be positive (the pair forms a convex quadrilateral).
-///
-/// A sweep walks the edges in increasing order and flips a pair only when neither of its
-/// triangles flipped earlier in the sweep: so every pair it tries is as it was at the
-/// sweep's start, and the tries ([`FlipTry`]) of a large fill are measured ahead, in
-/// parallel, from the sweep's start; the walk then only applies them in order. The flips
-/// are those of measuring each try in the walk (the same numbers, the same decisions).
 fn flip_min_max_angle(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)]) {
-    let ahead = tris.len() >= PARALLEL_FLIP_TRIANGLES && rayon::current_num_threads() > 1;
-    flip_sweeps(tris, pts, constraints, ahead);
-}
-
-/// The sweeps of [`flip_min_max_angle`], each sweep's tries measured `ahead` (in parallel)
-/// or in the walk.
-fn flip_sweeps(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)], ahead: bool) {
-    use rayon::prelude::*;
+    let worst = |t: [u32; 3]| {
+        let (a, b, c) = (pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]);
+        if orient2d(a, b, c) <= 0.0 {
+            return f64::INFINITY;
+        }
+        crate::quality::max_triangle_angle_deg(a, b, c)
+    };
     // each triangle's figure, kept up to date through the flips (the nodes do not move here)
-    let mut figure: Vec<f64> = tris.par_iter().map(|&t| worst_of(t, pts)).collect();
+    let mut figure: Vec<f64> = {
+        use rayon::prelude::*;
+        tris.par_iter().map(|&t| worst(t)).collect()
+    };
     // `kept[3 t + c]`: the other triangle of the edge opposite corner `c` of `t` when that pair
     // was tried in the last sweep and not flipped; a pair tried again unchanged (neither
     // triangle flipped since) would again not flip, so it is skipped
@@ -346,51 +339,44 @@ fn flip_sweeps(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)], ah
         let owner = Owners::new(tris, pts.len());
         let before_sweep = std::mem::replace(&mut flipped, vec![false; tris.len()]);
         let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
-        let sweep = Sweep {
-            owner: &owner,
-            tried: &tried,
-            before_sweep: &before_sweep,
-            constraints,
-        };
-        let measured: Vec<FlipTry> = if ahead {
-            let (tris, figure) = (&*tris, &figure);
-            (0..pts.len())
-                .into_par_iter()
-                .flat_map_iter(|a| {
-                    owner
-                        .leaving(a)
-                        .map(move |e| sweep.try_of(e).measured(e.1, tris, figure, pts))
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
         let mut flips = 0;
-        for (k, e) in owner.ascending().enumerate() {
-            let ((a, b), (t1, c1)) = e;
-            let found = match measured.get(k) {
-                Some(&found) => found,
-                None => sweep.try_of(e),
-            };
-            let (t2, c2, w) = match found {
-                FlipTry::None => continue,
-                FlipTry::Again(t2) => {
-                    if !flipped[t1] && !flipped[t2 as usize] {
-                        kept[3 * t1 + c1] = t2;
-                    }
-                    continue;
+        // the constraints at or after the edge, walked along with the edges (both increasing)
+        let mut constraint = constraints.iter().peekable();
+        // in a fixed order: the same input makes the same mesh
+        for ((a, b), (t1, c1)) in owner.ascending() {
+            while constraint.next_if(|&&e| e < (a, b)).is_some() {}
+            // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
+            // (b, a) when every directed edge has one owner
+            let t2 = tried[3 * t1 + c1];
+            if owner.unique && t2 != NONE && !before_sweep[t1] && !before_sweep[t2 as usize] {
+                if !flipped[t1] && !flipped[t2 as usize] {
+                    kept[3 * t1 + c1] = t2;
                 }
-                FlipTry::Pair { t2, c2, w } => (t2 as usize, c2 as usize, w),
+                continue;
+            }
+            if constraint.peek() == Some(&&(a, b)) {
+                continue;
+            }
+            let Some((t2, c2)) = owner.get((b, a)) else {
+                continue;
             };
             if flipped[t1] || flipped[t2] {
                 continue;
             }
-            let (w1, w2) = w.unwrap_or_else(|| measure((t1, c1), (t2, c2), tris, &figure, pts));
             let (c, d) = (tris[t1][c1], tris[t2][c2]);
+            // t1 = (a, b, c), t2 = (b, a, d), both counter-clockwise
             let before = figure[t1].max(figure[t2]);
+            let (n1, n2) = ([c, a, d], [d, b, c]);
+            // the second triangle is measured only when the first leaves the flip possible
+            let w1 = worst(n1);
+            let w2 = if w1 >= before - 1e-6 {
+                f64::INFINITY
+            } else {
+                worst(n2)
+            };
             if w1.max(w2) < before - 1e-6 {
-                tris[t1] = [c, a, d];
-                tris[t2] = [d, b, c];
+                tris[t1] = n1;
+                tris[t2] = n2;
                 figure[t1] = w1;
                 figure[t2] = w2;
                 flipped[t1] = true;
@@ -404,113 +390,6 @@ fn flip_sweeps(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)], ah
             break;
         }
     }
-}
-
-/// The largest angle of fill triangle `t` (infinite when it is not positive).
-fn worst_of(t: [u32; 3], pts: &[P2]) -> f64 {
-    let (a, b, c) = (pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]);
-    if orient2d(a, b, c) <= 0.0 {
-        return f64::INFINITY;
-    }
-    crate::quality::max_triangle_angle_deg(a, b, c)
-}
-
-/// What a flip sweep knows from its start: the edges' owners, the pairs tried in the last
-/// sweep and the triangles flipped in it, and the front edges.
-#[derive(Clone, Copy)]
-struct Sweep<'a> {
-    owner: &'a Owners,
-    tried: &'a [u32],
-    before_sweep: &'a [bool],
-    constraints: &'a [(u32, u32)],
-}
-
-/// A sweep's try of one edge, on the triangles as they were at its start.
-#[derive(Clone, Copy)]
-enum FlipTry {
-    /// A front edge, or an edge with one triangle: never flipped.
-    None,
-    /// A pair tried in the last sweep, neither triangle flipped since: not tried again (it
-    /// is kept as tried, with its other triangle, unless one of them flips in this sweep).
-    Again(u32),
-    /// The other triangle and its corner opposite the edge; once measured, the largest
-    /// angles of the two new triangles ([`measure`]).
-    Pair {
-        t2: u32,
-        c2: u8,
-        w: Option<(f64, f64)>,
-    },
-}
-
-impl FlipTry {
-    /// This try of the edge of triangle `t1` opposite its corner `c1`, its pair measured.
-    fn measured(
-        self,
-        t1c1: (usize, usize),
-        tris: &[[u32; 3]],
-        figure: &[f64],
-        pts: &[P2],
-    ) -> FlipTry {
-        match self {
-            FlipTry::Pair { t2, c2, w: None } => FlipTry::Pair {
-                t2,
-                c2,
-                w: Some(measure(t1c1, (t2 as usize, c2 as usize), tris, figure, pts)),
-            },
-            other => other,
-        }
-    }
-}
-
-impl Sweep<'_> {
-    /// The try of edge `(a, b)` of triangle `t1` (corner `c1` opposite), `a < b`, not yet
-    /// measured.
-    fn try_of(&self, ((a, b), (t1, c1)): ((u32, u32), (usize, usize))) -> FlipTry {
-        // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
-        // (b, a) when every directed edge has one owner
-        let t2 = self.tried[3 * t1 + c1];
-        if self.owner.unique
-            && t2 != NONE
-            && !self.before_sweep[t1]
-            && !self.before_sweep[t2 as usize]
-        {
-            return FlipTry::Again(t2);
-        }
-        if self.constraints.binary_search(&(a, b)).is_ok() {
-            return FlipTry::None;
-        }
-        match self.owner.get((b, a)) {
-            Some((t2, c2)) => FlipTry::Pair {
-                t2: t2 as u32,
-                c2: c2 as u8,
-                w: None,
-            },
-            None => FlipTry::None,
-        }
-    }
-}
-
-/// The largest angles of the two triangles that flipping the diagonal of `t1` (corner
-/// `c1` opposite the shared edge) and `t2` (corner `c2`) makes; the second is measured only
-/// when the first leaves the flip possible (infinite otherwise).
-fn measure(
-    (t1, c1): (usize, usize),
-    (t2, c2): (usize, usize),
-    tris: &[[u32; 3]],
-    figure: &[f64],
-    pts: &[P2],
-) -> (f64, f64) {
-    // t1 = (a, b, c), t2 = (b, a, d), both counter-clockwise
-    let (a, b) = (tris[t1][(c1 + 1) % 3], tris[t1][(c1 + 2) % 3]);
-    let (c, d) = (tris[t1][c1], tris[t2][c2]);
-    let before = figure[t1].max(figure[t2]);
-    let w1 = worst_of([c, a, d], pts);
-    let w2 = if w1 >= before - 1e-6 {
-        f64::INFINITY
-    } else {
-        worst_of([d, b, c], pts)
-    };
-    (w1, w2)
 }
 
 /// The triangle and the opposite corner of each directed edge (`tri[i] -> tri[i+1]`,
@@ -582,15 +461,12 @@ impl Owners {
     /// Every directed edge `(a, b)` with `a < b`, increasing, with its triangle and the
     /// triangle's corner opposite the edge.
     fn ascending(&self) -> impl Iterator<Item = ((u32, u32), (usize, usize))> + '_ {
-        (0..self.start.len() - 1).flat_map(move |a| self.leaving(a))
-    }
-
-    /// The edges `(a, b)` of [`Owners::ascending`] that leave node `a`.
-    fn leaving(&self, a: usize) -> impl Iterator<Item = ((u32, u32), (usize, usize))> + '_ {
-        self.edges[self.start[a] as usize..self.start[a + 1] as usize]
-            .iter()
-            .filter(move |e| e.0 > a as u32)
-            .map(move |&(b, at)| ((a as u32, b), split(at)))
+        (0..self.start.len() - 1).flat_map(move |a| {
+            self.edges[self.start[a] as usize..self.start[a + 1] as usize]
+                .iter()
+                .filter(move |e| e.0 > a as u32)
+                .map(move |&(b, at)| ((a as u32, b), split(at)))
+        })
     }
 
     fn get(&self, (a, b): (u32, u32)) -> Option<(usize, usize)> {
@@ -1728,42 +1604,6 @@ mod tests {
                 bits(&steiner),
                 "case {case}: the added nodes"
             );
-        }
-    }
-
-    /// A sweep's tries measured ahead (in parallel, from the sweep's start) flip what the
-    /// tries measured in the walk flip, which is what the plain flips (every pair measured
-    /// in turn) flip: the refined triangulation of an annulus of 400 and 300 nodes, so that
-    /// many pairs flip in each sweep and many pairs are measured ahead for triangles that
-    /// flip before the walk reaches them.
-    #[test]
-    fn flips_measured_ahead_are_the_flips_measured_in_the_walk() {
-        let n = |outer: usize, inner: usize| {
-            let mut points: Vec<P2> = (0..outer)
-                .map(|i| {
-                    let a = std::f64::consts::TAU * i as f64 / outer as f64;
-                    [10.0 * a.cos(), 6.0 * a.sin()]
-                })
-                .collect();
-            points.extend((0..inner).rev().map(|i| {
-                let a = std::f64::consts::TAU * (i as f64 + 0.5) / inner as f64;
-                [3.0 * a.cos() + 1.0, 2.0 * a.sin()]
-            }));
-            points
-        };
-        let pos = n(400, 300);
-        let ring = |from: usize, len: usize| {
-            (0..len).map(move |i| ((from + i) as u32, (from + (i + 1) % len) as u32))
-        };
-        let directed: Vec<(u32, u32)> = ring(0, 400).chain(ring(400, 300)).collect();
-        let (local, constraints) = triangulate(&directed, &[], &pos, 30.0).unwrap();
-        let mut want = local.tris.clone();
-        naive_flips(&mut want, &|g| local.pts[g as usize], &constraints);
-        assert_ne!(want, local.tris, "some pairs flip");
-        for ahead in [false, true] {
-            let mut got = local.tris.clone();
-            flip_sweeps(&mut got, &local.pts, &constraints, ahead);
-            assert_eq!(got, want, "measured ahead: {ahead}");
         }
     }
 
