@@ -5,9 +5,10 @@
 //! The nodes are cut into as many ranges as there are threads; each range gathers, in two
 //! passes over the cells (a count, then a scatter straight from the cells; only the chunks of
 //! cells whose nodes meet its range), the edges whose lower node it holds, sorted by their
-//! lower node and then in full within each node's few edges. The ranges are in node order, so their edges one after the other are the edges of
-//! the whole mesh in sorted order; each range then numbers its own edges from where the
-//! ranges before it end, and writes them into its own part of the final arrays.
+//! lower node and then in full within each node's few edges. The ranges are in node order, so
+//! their edges one after the other are the edges of the whole mesh in sorted order; each range
+//! then numbers its own edges from where the ranges before it end, and writes them into its
+//! own part of the final arrays.
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
