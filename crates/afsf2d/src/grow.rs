@@ -161,8 +161,19 @@ struct StepBuffers {
 /// nearly every node), or a fan at an outward corner.
 enum Dirs {
     None,
-    One(P2),
+    One([(P2, f64); 1]),
     Fan(Vec<(P2, f64)>),
+}
+
+impl Dirs {
+    /// Each direction with its fan offset.
+    fn each(&self) -> &[(P2, f64)] {
+        match self {
+            Dirs::None => &[],
+            Dirs::One(one) => one,
+            Dirs::Fan(fan) => fan,
+        }
+    }
 }
 
 /// Children planned for one loop.
@@ -351,12 +362,12 @@ impl<'p> Work<'p> {
                         p,
                         self.nodes.pos[self.nodes.right[g] as usize],
                     ) {
-                        Dirs::One(d)
+                        Dirs::One([(d, 0.0)])
                     } else {
                         Dirs::None
                     }
                 }
-                (Some(a), None) | (None, Some(a)) => Dirs::One(a),
+                (Some(a), None) | (None, Some(a)) => Dirs::One([(a, 0.0)]),
                 (None, None) => Dirs::None,
             }
         };
@@ -367,7 +378,7 @@ impl<'p> Work<'p> {
         } else {
             (0..m).map(dirs_of).collect()
         };
-        let can = |v: usize| !matches!(dirs[v], Dirs::None);
+        let can = |v: usize| !dirs[v].each().is_empty();
         let mut plan = Plan {
             advancing: vec![false; m],
             start: Vec::with_capacity(m + 1),
@@ -386,16 +397,7 @@ impl<'p> Work<'p> {
             let g = lp.items[v] as usize;
             let p = self.nodes.pos[g];
             let h = self.ideal_length(lp.law, g);
-            let one;
-            let each: &[(P2, f64)] = match &dirs[v] {
-                Dirs::One(d) => {
-                    one = [(*d, 0.0)];
-                    &one
-                }
-                Dirs::Fan(fan) => fan,
-                Dirs::None => &[],
-            };
-            for &(d, offset) in each {
+            for &(d, offset) in dirs[v].each() {
                 plan.pos.push([p[0] + h * d[0], p[1] + h * d[1]]);
                 plan.ideal.push(h);
                 plan.offset.push(offset);

@@ -204,11 +204,11 @@ mod tests {
             }
             cells
         };
-        let dealt = (0..n).map(|k| if k % 2 == 0 { k / 2 } else { n - 1 - k / 2 });
+        let mut dealt = (0..n).map(|k| if k % 2 == 0 { k / 2 } else { n - 1 - k / 2 });
         for cells in [
             mesh.cells.clone(),
             reordered(&mut (0..n).rev()),
-            reordered(&mut dealt.clone()),
+            reordered(&mut dealt),
         ] {
             let want = mesh_model::topology::edge_table_2d(cells.shapes_and_corners());
             for threads in [1, 2, 3] {
