@@ -16,6 +16,9 @@
 //!    touch another front edge; otherwise the step is undone, the offending edges are frozen
 //!    and the step is redone with fewer moving layers (finally with no solve at all).
 //!
+//! With more than one thread, steps 1 and 2 of the next layer, which read only the fronts and
+//! the nodes, are made beside step 5 (and dropped when it fails).
+//!
 //! Invariant after each step: all cells are positive and the fronts are disjoint simple
 //! loops, so the cells cover exactly the region between the boundary and the fronts.
 //!
@@ -115,13 +118,15 @@ pub struct LayerStats {
 /// Timings (seconds) of the phases of the growth.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Timings {
-    /// Planning children and the closing test.
+    /// Planning children and the closing test (with more than one thread, only the first
+    /// layer's: the others are made beside the verification, in its time).
     pub plan_and_closing: f64,
     /// Building nodes, cells, merges and the new fronts.
     pub build: f64,
     /// Spring solves.
     pub solve: f64,
-    /// Verification of the cells and fronts.
+    /// Verification of the cells and fronts (with more than one thread, and the next layer's
+    /// plan and closing made beside it).
     pub verify: f64,
     /// Filling the region left between the fronts.
     pub fill: f64,
@@ -144,6 +149,8 @@ pub(crate) struct Work<'p> {
     springs: SpringSet2d,
     problem: LocalProblem<2>,
     buffers: StepBuffers,
+    /// The buffers of the next step's closing made beside a verification.
+    ahead_buffers: StepBuffers,
 }
 
 /// What the closing and front tests build again at every layer step, kept so that each step
@@ -174,6 +181,17 @@ impl Dirs {
             Dirs::Fan(fan) => fan,
         }
     }
+}
+
+/// What a verification found: the front edges (loop, edge of the old front) to freeze, and
+/// whether an old cell failed.
+type Verdict = (Vec<(u32, u32)>, bool);
+
+/// The start of a layer step ([`Work::close`]): each loop's plan, and per loop and edge
+/// whether it is frozen.
+struct Closed {
+    plans: Vec<Plan>,
+    frozen: Vec<Vec<bool>>,
 }
 
 /// Children planned for one loop.
@@ -250,6 +268,7 @@ impl<'p> Work<'p> {
             springs: SpringSet2d::default(),
             problem: LocalProblem::new(),
             buffers: StepBuffers::default(),
+            ahead_buffers: StepBuffers::default(),
         };
         for (items, pipes, law) in fronts {
             let m = items.len();
@@ -272,11 +291,13 @@ impl<'p> Work<'p> {
 
     /// Grows layers until every front is closed or the layer budget is spent.
     pub(crate) fn grow(&mut self) -> Result<(), springfield::SpringError> {
+        // the next step's closing, made beside this step's verification
+        let mut ahead: Option<Closed> = None;
         for step in 1..=self.params.max_layers {
             if !self.loops.iter().any(|l| l.edges.iter().any(|e| e.active)) {
                 break;
             }
-            self.step(step)?;
+            ahead = self.step(step, ahead.take())?;
             // debug builds (and so every test) check the whole front state after each layer
             // and stop on a broken invariant, like a debug_assert; release skips the walk
             if cfg!(debug_assertions) {
@@ -408,20 +429,38 @@ impl<'p> Work<'p> {
         plan
     }
 
-    /// One layer step, with undo and retry.
-    fn step(&mut self, step: u32) -> Result<(), springfield::SpringError> {
-        let t0 = std::time::Instant::now();
-        let mut buffers = std::mem::take(&mut self.buffers);
-        let saved_loops = self.loops.clone();
+    /// The start of a layer step, which reads only the fronts and the nodes: every loop
+    /// planned on ideal positions, and the edges frozen (those already inactive, and those
+    /// the closing freezes).
+    fn close(&self, buffers: &mut StepBuffers) -> Closed {
         let mut frozen: Vec<Vec<bool>> = self
             .loops
             .iter()
             .map(|l| l.edges.iter().map(|e| !e.active).collect())
             .collect();
-        let initially_frozen: usize = frozen.iter().flatten().filter(|&&f| f).count();
-        // plan on ideal positions and close
         let plans: Vec<Plan> = self.loops.iter().map(|l| self.plan_loop(l)).collect();
-        self.closing(&plans, &mut frozen, &mut buffers);
+        self.closing(&plans, &mut frozen, buffers);
+        Closed { plans, frozen }
+    }
+
+    /// One layer step, with undo and retry; `ahead`: its start ([`Work::close`]) when it was
+    /// made beside the last step's verification. Returns the next step's start when it is
+    /// made beside this one's (with more than one thread).
+    fn step(
+        &mut self,
+        step: u32,
+        ahead: Option<Closed>,
+    ) -> Result<Option<Closed>, springfield::SpringError> {
+        let t0 = std::time::Instant::now();
+        let mut buffers = std::mem::take(&mut self.buffers);
+        let saved_loops = self.loops.clone();
+        let initially_frozen: usize = (self.loops.iter())
+            .map(|l| l.edges.iter().filter(|e| !e.active).count())
+            .sum();
+        let Closed { plans, mut frozen } = match ahead {
+            Some(closed) => closed,
+            None => self.close(&mut buffers),
+        };
         // a loop whose active edges the closing (and the runs' rule) leave as they were is
         // planned again as it was: its plan is kept for the build (taken at most once)
         let mut first_plans: Vec<Option<Plan>> = plans.into_iter().map(Some).collect();
@@ -431,6 +470,7 @@ impl<'p> Work<'p> {
             ..LayerStats::default()
         };
         let mut attempt = 0u32;
+        let next;
         loop {
             let mode = match attempt {
                 0 => Mode::Full,
@@ -481,10 +521,12 @@ impl<'p> Work<'p> {
             }
             self.timings.solve += t2.elapsed().as_secs_f64();
             let t3 = std::time::Instant::now();
-            let (bad_edges, old_cells_bad) = self.verify(step, mode, &mut buffers.strips);
+            let ((bad_edges, old_cells_bad), closed) =
+                self.verify_and_look_ahead(step, mode, &mut buffers.strips);
             self.timings.verify += t3.elapsed().as_secs_f64();
             if bad_edges.is_empty() && !old_cells_bad {
                 stats.cells = self.cells.len() - cell_start;
+                next = closed;
                 break;
             }
             // undo
@@ -501,7 +543,29 @@ impl<'p> Work<'p> {
         stats.frozen_edges = frozen.iter().flatten().filter(|&&f| f).count() - initially_frozen;
         self.layer_stats.push(stats);
         self.buffers = buffers;
-        Ok(())
+        Ok(next)
+    }
+
+    /// [`Work::verify`]; with more than one thread and a step to come, the next step's start
+    /// ([`Work::close`], of the fronts and nodes as this attempt leaves them, which a passed
+    /// verification keeps) is made beside it, on the spare buffers: the closing's pieces on
+    /// one thread fill the verification's gaps and the other way round.
+    fn verify_and_look_ahead(
+        &mut self,
+        step: u32,
+        mode: Mode,
+        strips: &mut Strips,
+    ) -> (Verdict, Option<Closed>) {
+        if rayon::current_num_threads() < 2 || step >= self.params.max_layers {
+            return (self.verify(step, mode, strips), None);
+        }
+        let mut spare = std::mem::take(&mut self.ahead_buffers);
+        let (verdict, closed) = rayon::join(
+            || self.verify(step, mode, strips),
+            || self.close(&mut spare),
+        );
+        self.ahead_buffers = spare;
+        (verdict, Some(closed))
     }
 
     /// The first layer's height is prescribed: after its solve, every first-layer node keeps
@@ -1076,7 +1140,7 @@ impl<'p> Work<'p> {
 
     /// Checks the cells that may have moved and the new front edges. Returns the front edges
     /// (loop, edge of the old front) to freeze, and whether an old cell failed.
-    fn verify(&self, step: u32, mode: Mode, strips: &mut Strips) -> (Vec<(u32, u32)>, bool) {
+    fn verify(&self, step: u32, mode: Mode, strips: &mut Strips) -> Verdict {
         let depth = match mode {
             Mode::Full => self.params.moving_layers.min(step),
             _ => 1,
