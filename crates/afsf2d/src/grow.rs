@@ -1075,12 +1075,14 @@ impl<'p> Work<'p> {
                 self.springs_of(g as u32, &mut problem, &mut springs);
             }
         }
-        let model = SpringField2d::new(&springs, &self.params.springs, problem.len());
-        let result = problem.solve(
+        // the springs' index is made beside the solver's set-up
+        let (set, n_local) = (&springs, problem.len());
+        let (spring_params, ideal) = (&self.params.springs, &self.nodes.ideal);
+        let result = problem.solve_making(
             &mut self.nodes.pos,
             new_start,
-            |g| self.nodes.ideal[g as usize],
-            &model,
+            |g| ideal[g as usize],
+            || SpringField2d::new(set, spring_params, n_local),
             &self.params.solver,
         );
         self.springs = springs;

@@ -9,7 +9,8 @@
 //! alive new nodes and their ancestors inside the window, except nodes the mesher pins);
 //! the mesher then writes its springs with [`LocalProblem::local`] (which numbers the fixed
 //! nodes on first use); [`LocalProblem::solve`] solves on local copies, writes the moving
-//! nodes back and returns an [`Undo`] of the older nodes it moved.
+//! nodes back and returns an [`Undo`] of the older nodes it moved
+//! ([`LocalProblem::solve_making`]: the same, the model made beside the solve's set-up).
 //!
 //! Local numbering: the moving nodes first, in ascending global order, then the fixed nodes
 //! in the order the springs first name them. The order is part of the result (it sets the
@@ -18,7 +19,10 @@
 use crate::error::SpringError;
 use crate::model::ForceModel;
 use crate::params::SolverParams;
-use crate::solver::SolveOutcome;
+use crate::solver::{SolveOutcome, Start};
+
+/// A solve's set-up: the local copies of the positions, the scales, and the solver's start.
+type SetUp<const D: usize> = (Vec<[f64; D]>, Vec<f64>, Result<Start<D>, SpringError>);
 
 /// "No node": the value of an absent parent (the same as `mesh_model::NONE`).
 pub const NO_NODE: u32 = u32::MAX;
@@ -169,14 +173,61 @@ impl<const D: usize> LocalProblem<D> {
         model: &M,
         params: &SolverParams,
     ) -> Result<(Undo<D>, SolveOutcome), SpringError> {
-        let mut x: Vec<[f64; D]> = self.nodes.iter().map(|&g| positions[g as usize]).collect();
+        let set_up = self.set_up(positions, &scale, params);
+        self.finish(positions, new_start, set_up, model, params)
+    }
+
+    /// [`LocalProblem::solve`] of the model `make` gives (its springs' index, say), made
+    /// beside the solve's set-up (the copies of the positions, the scales, the solver's arrays
+    /// and mass schedule), on another thread of the pool when there is one: the same solve.
+    pub fn solve_making<M, F>(
+        &mut self,
+        positions: &mut [[f64; D]],
+        new_start: usize,
+        scale: impl Fn(u32) -> f64 + Sync,
+        make: F,
+        params: &SolverParams,
+    ) -> Result<(Undo<D>, SolveOutcome), SpringError>
+    where
+        M: ForceModel<D> + Sync + Send,
+        F: FnOnce() -> M + Send,
+    {
+        let read: &[[f64; D]] = positions;
+        let (model, set_up) = rayon::join(make, || self.set_up(read, &scale, params));
+        self.finish(positions, new_start, set_up, &model, params)
+    }
+
+    /// The local copies of the positions and the scales, and the solver's set-up of them.
+    fn set_up(
+        &self,
+        positions: &[[f64; D]],
+        scale: &impl Fn(u32) -> f64,
+        params: &SolverParams,
+    ) -> SetUp<D> {
+        let x: Vec<[f64; D]> = self.nodes.iter().map(|&g| positions[g as usize]).collect();
         let scales: Vec<f64> = self
             .nodes
             .iter()
             .zip(&self.movable)
             .map(|(&g, &m)| if m { scale(g) } else { 1.0 })
             .collect();
-        let outcome = crate::solve_model_active(&mut x, &scales, &self.movable, model, params);
+        let start = Start::new(&x, &scales, &self.movable, None, params);
+        (x, scales, start)
+    }
+
+    /// The solve from its set-up, the moving nodes written back, the numbering forgotten.
+    fn finish<M: ForceModel<D> + Sync + ?Sized>(
+        &mut self,
+        positions: &mut [[f64; D]],
+        new_start: usize,
+        (mut x, scales, start): SetUp<D>,
+        model: &M,
+        params: &SolverParams,
+    ) -> Result<(Undo<D>, SolveOutcome), SpringError> {
+        let outcome = start.and_then(|start| {
+            let local = (&scales[..], &self.movable[..]);
+            crate::solver::solve_model_active_from(&mut x, local, start, model, params)
+        });
         let mut undo = Undo::default();
         for (l, &g) in self.nodes.iter().enumerate() {
             if outcome.is_ok() && self.movable[l] {
@@ -243,9 +294,27 @@ mod tests {
             springs: &springs,
             params: &params,
         };
+        // the same solve with the model made beside the set-up, on two threads
+        let (mut problem_2, mut pos_2) = (problem.clone(), pos.clone());
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build();
+        let made = pool.expect("a pool").install(|| {
+            problem_2.solve_making(
+                &mut pos_2,
+                4,
+                |_| 0.1,
+                || SpringList {
+                    springs: &springs,
+                    params: &params,
+                },
+                &SolverParams::default(),
+            )
+        });
         let (undo, outcome) = problem
             .solve(&mut pos, 4, |_| 0.1, &model, &SolverParams::default())
             .unwrap();
+        assert_eq!(made.unwrap(), (undo.clone(), outcome));
+        assert_eq!(pos_2, pos);
+        assert_eq!(problem_2.local_of, problem.local_of);
         assert!(outcome.converged);
         assert_eq!(undo.len(), 1); // node 2: the new nodes are not saved
         assert_eq!((pos[0], pos[1], pos[3]), (before[0], before[1], before[3]));

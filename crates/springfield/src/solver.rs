@@ -209,15 +209,28 @@ pub fn solve_model_active<const D: usize, M: ForceModel<D> + Sync + ?Sized>(
     model: &M,
     params: &SolverParams,
 ) -> Result<SolveOutcome, SpringError> {
+    let start = Start::new(positions, scale, movable, None, params)?;
+    solve_model_active_from(positions, (scale, movable), start, model, params)
+}
+
+/// [`solve_model_active()`] from its set-up `start` (of the same positions, scales and
+/// movable flags).
+pub(crate) fn solve_model_active_from<const D: usize, M: ForceModel<D> + Sync + ?Sized>(
+    positions: &mut [[f64; D]],
+    (scale, movable): (&[f64], &[bool]),
+    start: Start<D>,
+    model: &M,
+    params: &SolverParams,
+) -> Result<SolveOutcome, SpringError> {
     let n = positions.len();
     let influence = std::cell::OnceCell::new();
     let axis = |i: usize, p: &[[f64; D]]| model.extrusion_axis(i, p);
-    solve_core(
+    run(
         positions,
-        scale,
-        movable,
+        (scale, movable),
         Some(Table::Lazy(&influence)),
         params,
+        start,
         |p, active, f, s| {
             if influence.get().is_some() {
                 model.assemble_active(p, active, f, s);
@@ -267,21 +280,91 @@ fn solve_core<const D: usize, A>(
     movable: &[bool],
     influence: Option<Table<'_>>,
     params: &SolverParams,
+    assemble: A,
+    axis: &Axis<'_, D>,
+) -> Result<SolveOutcome, SpringError>
+where
+    A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
+{
+    let given = influence.as_ref().and_then(|t| match t {
+        Table::Given(t) => Some(*t),
+        Table::Lazy(_) => None,
+    });
+    let start = Start::new(positions, scale, movable, given, params)?;
+    run(
+        positions,
+        (scale, movable),
+        influence,
+        params,
+        start,
+        assemble,
+        axis,
+    )
+}
+
+/// What a solve sets up before its first iteration from the positions, the scales and the
+/// movable flags alone (no force is read): the inputs checked, the force and stiffness
+/// arrays, the mass schedule, and the first active set (every movable node).
+pub(crate) struct Start<const D: usize> {
+    force: Vec<[f64; D]>,
+    stiffness: Vec<f64>,
+    masses: MassSchedule<D>,
+    all_movable: Vec<u32>,
+    active: Vec<bool>,
+    active_nodes: Vec<u32>,
+}
+
+impl<const D: usize> Start<D> {
+    /// The set-up of a solve of `positions` (`influence`: a given table, whose length is
+    /// checked). The force arrays are written (not only allocated zeroed), so that their
+    /// pages are touched here, on the thread that makes the set-up.
+    pub(crate) fn new(
+        positions: &[[f64; D]],
+        scale: &[f64],
+        movable: &[bool],
+        influence: Option<&Influence>,
+        params: &SolverParams,
+    ) -> Result<Self, SpringError> {
+        params.check()?;
+        let n = positions.len();
+        check_lengths(n, scale, movable, influence)?;
+        let all_movable: Vec<u32> = (0..n as u32).filter(|&i| movable[i as usize]).collect();
+        let mut force = Vec::with_capacity(n);
+        force.resize(n, [0.0; D]);
+        let mut stiffness = Vec::with_capacity(n);
+        stiffness.resize(n, 0.0);
+        Ok(Start {
+            force,
+            stiffness,
+            masses: MassSchedule::new(positions),
+            active: movable.to_vec(),
+            active_nodes: all_movable.clone(),
+            all_movable,
+        })
+    }
+}
+
+/// The iterations of a solve from its set-up `start`.
+fn run<const D: usize, A>(
+    positions: &mut [[f64; D]],
+    (scale, movable): (&[f64], &[bool]),
+    influence: Option<Table<'_>>,
+    params: &SolverParams,
+    start: Start<D>,
     mut assemble: A,
     axis: &Axis<'_, D>,
 ) -> Result<SolveOutcome, SpringError>
 where
     A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
-    params.check()?;
-    let n = positions.len();
-    check_lengths(n, scale, movable, influence.as_ref())?;
-    let mut force = vec![[0.0; D]; n];
-    let mut stiffness = vec![0.0; n];
-    let mut masses = MassSchedule::new(positions);
-    let all_movable: Vec<u32> = (0..n as u32).filter(|&i| movable[i as usize]).collect();
-    let mut active: Vec<bool> = movable.to_vec();
-    let mut active_nodes: Vec<u32> = all_movable.clone();
+    let Start {
+        mut force,
+        mut stiffness,
+        mut masses,
+        all_movable,
+        mut active,
+        mut active_nodes,
+    } = start;
     // nodes that moved by at least the wake threshold in the last iteration
     let mut moved: Vec<u32> = Vec::new();
     let mut full_sweep = true;
@@ -345,13 +428,9 @@ fn check_lengths(
     n: usize,
     scale: &[f64],
     movable: &[bool],
-    influence: Option<&Table<'_>>,
+    influence: Option<&Influence>,
 ) -> Result<(), SpringError> {
-    let given = influence.and_then(|t| match t {
-        Table::Given(t) => Some(*t),
-        Table::Lazy(_) => None,
-    });
-    if let Some(influence) = given.filter(|i| i.len() != n) {
+    if let Some(influence) = influence.filter(|i| i.len() != n) {
         return Err(SpringError::LengthMismatch {
             positions: n,
             scales: scale.len(),
