@@ -8,14 +8,14 @@
 //!   solver ([`crate::solve_model`], [`crate::solve_model_active`]) uses its assembly and
 //!   influence table, a Newton solver (mesh movement) also its [`ForceModel::jacobian`];
 //! - [`SpringList`] makes a model of one kind of spring in any dimension (the extrusion
-//!   spring is generic over `D`), [`SpringField2d`] is the 2D set of the mesher.
+//!   spring is generic over `D`), [`crate::SpringField2d`] is the 2D set of the mesher.
 //!
 //! # Where the 3D set goes
 //!
 //! The 3D springs of the dissertation (§5: the neighbour spring weighted by facet area, the
 //! angle spring with f(a) = 8a³ + 0.2a, and the tension spring) will be three `Spring<3>`
 //! types in a `springs3d` module next to [`crate::springs`], gathered in a `SpringSet3d` with
-//! its `ForceModel<3>` binding like [`SpringField2d`]; the extrusion spring and everything in
+//! its `ForceModel<3>` binding like [`crate::SpringField2d`]; the extrusion spring and everything in
 //! this module are reused as they are. Nothing of it exists yet.
 
 use crate::params::SpringParams;
