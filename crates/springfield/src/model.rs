@@ -181,6 +181,20 @@ pub trait ForceModel<const D: usize> {
         let _ = active;
         self.assemble(positions, force, stiffness);
     }
+    /// Sets the force and stiffness of every node flagged in `active` to their complete sums,
+    /// whatever the two arrays held there: [`ForceModel::assemble_active`] into the active
+    /// entries zeroed. The default zeroes them, then adds; a model whose assembly is split
+    /// between threads zeroes each part on the thread that sums it.
+    fn assemble_active_fresh(
+        &self,
+        positions: &[[f64; D]],
+        active: Active<'_>,
+        force: &mut [[f64; D]],
+        stiffness: &mut [f64],
+    ) {
+        zero_active(active.nodes, force, stiffness);
+        self.assemble_active(positions, active, force, stiffness);
+    }
     /// [`ForceModel::assemble_active`] on the calling thread alone, to the same bits: what a
     /// solve calls while another thread of the pool is busy with other work (the default is
     /// `assemble_active`, for models that do not split their assembly).
@@ -205,6 +219,18 @@ pub trait ForceModel<const D: usize> {
     /// Appends ∂F/∂X at `positions` for the nodes flagged in `movable` (see [`Triplet`]).
     /// Its pattern lies within [`ForceModel::influence`] plus the diagonal blocks.
     fn jacobian(&self, positions: &[[f64; D]], movable: &[bool], out: &mut Vec<Triplet>);
+}
+
+/// Zeroes the force and stiffness of the `nodes`.
+pub(crate) fn zero_active<const D: usize>(
+    nodes: &[u32],
+    force: &mut [[f64; D]],
+    stiffness: &mut [f64],
+) {
+    for &i in nodes {
+        force[i as usize] = [0.0; D];
+        stiffness[i as usize] = 0.0;
+    }
 }
 
 /// Appends (pushed node, node read) pairs of `springs`, for [`Influence::from_pairs`].

@@ -9,7 +9,7 @@
 //! and its travel is reset. Convergence is judged on relative displacement, not on force.
 
 use crate::error::SpringError;
-use crate::model::ForceModel;
+use crate::model::{ForceModel, zero_active};
 use crate::params::SolverParams;
 use crate::vec::norm;
 
@@ -140,7 +140,10 @@ where
         movable,
         None,
         params,
-        |p, _, f, s| assemble(p, f, s),
+        |p, active: Active<'_>, f: &mut [[f64; D]], s: &mut [f64]| {
+            zero_active(active.nodes, f, s);
+            assemble(p, f, s);
+        },
         &no_axis,
     )
 }
@@ -166,13 +169,17 @@ pub fn solve_active<const D: usize, A>(
 where
     A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
+    let mut assemble = assemble;
     solve_core(
         positions,
         scale,
         movable,
         Some(Table::Given(influence)),
         params,
-        assemble,
+        |p, active: Active<'_>, f: &mut [[f64; D]], s: &mut [f64]| {
+            zero_active(active.nodes, f, s);
+            assemble(p, active, f, s);
+        },
         &no_axis,
     )
 }
@@ -192,7 +199,10 @@ pub fn solve_model<const D: usize, M: ForceModel<D> + ?Sized>(
         movable,
         None,
         params,
-        |p, _, f, s| model.assemble(p, f, s),
+        |p, active: Active<'_>, f: &mut [[f64; D]], s: &mut [f64]| {
+            zero_active(active.nodes, f, s);
+            model.assemble(p, f, s);
+        },
         &axis,
     )
 }
@@ -233,9 +243,10 @@ pub(crate) fn solve_model_active_from<const D: usize, M: ForceModel<D> + Sync + 
         start,
         |p, active, f, s| {
             if influence.get().is_some() {
-                model.assemble_active(p, active, f, s);
+                model.assemble_active_fresh(p, active, f, s);
                 return;
             }
+            zero_active(active.nodes, f, s);
             // the assembly on this thread, which has just written the springs (they are in its
             // cache), whole: the other thread is busy with the table until about when it ends
             let ((), table) = rayon::join(
@@ -384,10 +395,6 @@ where
             );
         }
         moved.clear();
-        for &i in &active_nodes {
-            force[i as usize] = [0.0; D];
-            stiffness[i as usize] = 0.0;
-        }
         assemble(
             positions,
             Active {

@@ -389,6 +389,44 @@ impl Halves {
     }
 }
 
+impl SpringField2d<'_> {
+    /// The active assembly, in halves on two threads when there are enough active nodes,
+    /// adding to the active entries or setting them (`sums`).
+    fn assemble_active_into(
+        &self,
+        positions: &[[f64; 2]],
+        active: crate::Active<'_>,
+        (force, stiffness): (&mut [[f64; 2]], &mut [f64]),
+        sums: Sums,
+    ) {
+        match &self.halves {
+            Some(halves) if active.nodes.len() >= PARALLEL_MIN_ACTIVE => {
+                let eval = ActiveEval {
+                    set: self.set,
+                    index: &self.index,
+                    params: self.params,
+                    positions,
+                    flags: active.flags,
+                };
+                eval.in_halves(&halves.half, active.nodes, (force, stiffness), sums);
+            }
+            _ => {
+                if sums == Sums::Set {
+                    crate::model::zero_active(active.nodes, force, stiffness);
+                }
+                self.assemble_active_here(positions, active, force, stiffness);
+            }
+        }
+    }
+}
+
+/// Whether an assembly adds to the active nodes' entries or sets them to the sums.
+#[derive(Clone, Copy, PartialEq)]
+enum Sums {
+    Add,
+    Set,
+}
+
 impl ForceModel<2> for SpringField2d<'_> {
     fn assemble(&self, positions: &[[f64; 2]], force: &mut [[f64; 2]], stiffness: &mut [f64]) {
         assemble_2d(self.set, self.params, positions, force, stiffness);
@@ -415,19 +453,17 @@ impl ForceModel<2> for SpringField2d<'_> {
         force: &mut [[f64; 2]],
         stiffness: &mut [f64],
     ) {
-        match &self.halves {
-            Some(halves) if active.nodes.len() >= PARALLEL_MIN_ACTIVE => {
-                let eval = ActiveEval {
-                    set: self.set,
-                    index: &self.index,
-                    params: self.params,
-                    positions,
-                    flags: active.flags,
-                };
-                eval.in_halves(&halves.half, active.nodes, force, stiffness);
-            }
-            _ => self.assemble_active_here(positions, active, force, stiffness),
-        }
+        self.assemble_active_into(positions, active, (force, stiffness), Sums::Add);
+    }
+
+    fn assemble_active_fresh(
+        &self,
+        positions: &[[f64; 2]],
+        active: crate::Active<'_>,
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        self.assemble_active_into(positions, active, (force, stiffness), Sums::Set);
     }
 
     fn assemble_active_here(
@@ -675,15 +711,30 @@ impl ActiveEval<'_> {
     }
 
     /// [`ActiveEval::springs_of`] on two threads, each evaluating the active nodes of one of
-    /// the `half`s ([`Halves`]): the first adds into `force` and `stiffness`, the second into
-    /// arrays of its own whose sums are then copied to its active nodes.
-    fn in_halves(&self, half: &[u8], nodes: &[u32], force: &mut [[f64; 2]], stiffness: &mut [f64]) {
+    /// the `half`s ([`Halves`]): the first into `force` and `stiffness` (its active entries
+    /// zeroed first on its thread when they are to be set), the second into arrays of its own
+    /// whose sums then go to its active nodes (set, or added).
+    fn in_halves(
+        &self,
+        half: &[u8],
+        nodes: &[u32],
+        (force, stiffness): (&mut [[f64; 2]], &mut [f64]),
+        sums: Sums,
+    ) {
         let n = force.len();
         let ((), (force_1, stiffness_1)) = rayon::join(
-            || self.springs_of_where(nodes, |i| half[i] == 0, &mut direct(force, stiffness)),
             || {
-                // the arrays of the last call on this thread, their active entries zeroed as
-                // the solver zeroes its own (the others may hold anything: they are not read)
+                if sums == Sums::Set {
+                    for &i in nodes.iter().filter(|&&i| half[i as usize] == 0) {
+                        force[i as usize] = [0.0; 2];
+                        stiffness[i as usize] = 0.0;
+                    }
+                }
+                self.springs_of_where(nodes, |i| half[i] == 0, &mut direct(force, stiffness));
+            },
+            || {
+                // the arrays of the last call on this thread, its active entries zeroed (the
+                // others may hold anything: they are not read)
                 let (mut f, mut s) = HALF_SCRATCH.with(|c| std::mem::take(&mut *c.borrow_mut()));
                 f.resize(n, [0.0; 2]);
                 s.resize(n, 0.0);
@@ -698,8 +749,16 @@ impl ActiveEval<'_> {
         for &i in nodes {
             let i = i as usize;
             if half[i] == 1 {
-                force[i] = force_1[i];
-                stiffness[i] = stiffness_1[i];
+                match sums {
+                    Sums::Set => {
+                        force[i] = force_1[i];
+                        stiffness[i] = stiffness_1[i];
+                    }
+                    Sums::Add => {
+                        force[i] = [force[i][0] + force_1[i][0], force[i][1] + force_1[i][1]];
+                        stiffness[i] += stiffness_1[i];
+                    }
+                }
             }
         }
         HALF_SCRATCH.with(|c| *c.borrow_mut() = (force_1, stiffness_1));
@@ -1175,7 +1234,8 @@ pub(crate) mod tests {
 
     proptest::proptest! {
         /// The assembly in halves gives every active node the forces and stiffnesses of the
-        /// sequential one, to the last bit, whichever nodes are active.
+        /// sequential one, to the last bit, whichever nodes are active: added to zeroed
+        /// arrays, or set over whatever the arrays held.
         #[test]
         fn the_assembly_in_halves_matches_the_sequential_one_to_the_bit(
             active_mod in 1usize..5,
@@ -1191,14 +1251,16 @@ pub(crate) mod tests {
             let (mut f, mut s) = (vec![[0.0; 2]; n], vec![0.0; n]);
             assemble_2d_active(&set, &index, &params, &x, active, &mut f, &mut s);
             let eval = ActiveEval { set: &set, index: &index, params: &params, positions: &x, flags: &flags };
-            let (mut f2, mut s2) = (vec![[0.0; 2]; n], vec![0.0; n]);
             let half = Halves::new(&set, n).half;
-            eval.in_halves(&half, &nodes, &mut f2, &mut s2);
-            for &i in &nodes {
-                let i = i as usize;
-                proptest::prop_assert_eq!(f[i][0].to_bits(), f2[i][0].to_bits());
-                proptest::prop_assert_eq!(f[i][1].to_bits(), f2[i][1].to_bits());
-                proptest::prop_assert_eq!(s[i].to_bits(), s2[i].to_bits());
+            for (start, sums) in [(0.0, Sums::Add), (7.5, Sums::Set)] {
+                let (mut f2, mut s2) = (vec![[start; 2]; n], vec![start; n]);
+                eval.in_halves(&half, &nodes, (&mut f2, &mut s2), sums);
+                for &i in &nodes {
+                    let i = i as usize;
+                    proptest::prop_assert_eq!(f[i][0].to_bits(), f2[i][0].to_bits());
+                    proptest::prop_assert_eq!(f[i][1].to_bits(), f2[i][1].to_bits());
+                    proptest::prop_assert_eq!(s[i].to_bits(), s2[i].to_bits());
+                }
             }
         }
     }
