@@ -353,7 +353,11 @@ fn make(
     order: u8,
     report: &mut Report,
 ) -> Result<(Mesh, Option<Snapshot>, LinearAngles<'static>)> {
-    let (curves, nodes, grown) = grow(case, args.quiet, args.max_cells, report)?;
+    // the layered part's edge table is made beside the fill when the curving will want it
+    // and there is a second thread to make it
+    let ahead = order > 1 && rayon::current_num_threads() > 1;
+    let (curves, nodes, (grown, ahead)) =
+        grow_ahead(case, (args.quiet, args.max_cells), ahead, report)?;
     let snapshot = args.snapshot.as_ref().map(|_| Snapshot {
         case: case.name.clone(),
         boundary: nodes.clone(),
@@ -362,7 +366,7 @@ fn make(
     let (mesh, angles) = at_order(
         case,
         (&curves, &nodes),
-        grown.layered,
+        (grown.layered, ahead),
         (order, args.output.triangles),
         args.quiet,
         report,
@@ -383,6 +387,26 @@ pub(crate) fn grow(
     max_cells: u64,
     report: &mut Report,
 ) -> Result<(Vec<ClosedCurve>, Vec<BoundaryNodes>, afsf2d::AfsfOutput)> {
+    grow_ahead(case, (quiet, max_cells), false, report)
+        .map(|(curves, nodes, (grown, _))| (curves, nodes, grown))
+}
+
+/// What [`grow_ahead`] makes: the curves, the boundary nodes, the linear mesh and, when
+/// asked for, its layered part's edge table made beside its fill.
+type Grown = (
+    Vec<ClosedCurve>,
+    Vec<BoundaryNodes>,
+    (afsf2d::AfsfOutput, Option<pipeline::Ahead>),
+);
+
+/// [`grow`]; with `ahead`, the layered part's edge table is made beside the fill, for the
+/// curving.
+fn grow_ahead(
+    case: &case::Case,
+    (quiet, max_cells): (bool, u64),
+    ahead: bool,
+    report: &mut Report,
+) -> Result<Grown> {
     let t = Instant::now();
     let progress = stage(quiet, "boundary curves and 1D mesh");
     let curves = pipeline::curves(case)?;
@@ -401,7 +425,7 @@ pub(crate) fn grow(
 
     let t = Instant::now();
     let progress = stage(quiet, "linear layered mesh (AFSF)");
-    let grown = pipeline::linear_mesh(case, &nodes)?;
+    let (grown, made_ahead) = pipeline::linear_mesh_ahead(case, &nodes, ahead)?;
     drop(progress);
     report.timings_s.insert("linear", t.elapsed().as_secs_f64());
     report.layers = Some(grown.stats.layers);
@@ -417,18 +441,19 @@ pub(crate) fn grow(
             grown.stats.bare_wall_facets
         ));
     }
-    Ok((curves, nodes, grown))
+    Ok((curves, nodes, (grown, made_ahead)))
 }
 
 /// The mesh of the run at `order` (quads cut when `triangles`): `layered` curved by
 /// Vector-Adding with its boundary nodes on `curves` at the `t` of `nodes` (the curving
-/// takes it, to let go of what it no longer needs), or itself at order 1; with the angle
+/// takes it, to let go of what it no longer needs; `ahead`: its layered part's edge table,
+/// made beside its fill), or itself at order 1; with the angle
 /// figures of `layered`: taken beside the curving's decisions (within its time, so none of
 /// their own), or before the copy at order 1 (with their time, which goes to `describe`).
 fn at_order(
     case: &case::Case,
     (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
-    layered: LayeredMesh,
+    (layered, ahead): (LayeredMesh, Option<pipeline::Ahead>),
     (order, triangles): (u8, bool),
     quiet: bool,
     report: &mut Report,
@@ -452,7 +477,7 @@ fn at_order(
     let (curved, angles) = pipeline::curved_mesh_with(
         case,
         (curves, nodes),
-        layered,
+        (layered, ahead),
         (order, triangles),
         angles_of,
     )?;

@@ -144,8 +144,27 @@ pub fn front_loops(case: &Case, nodes: &[BoundaryNodes]) -> Vec<afsf2d::FrontLoo
 
 /// The layered linear mesh grown from the boundary nodes of every loop.
 pub fn linear_mesh(case: &Case, nodes: &[BoundaryNodes]) -> Result<afsf2d::AfsfOutput> {
-    afsf2d::grow_mesh(&front_loops(case, nodes), &afsf_params(case))
-        .map_err(|e| anyhow::anyhow!("linear mesh: {e}"))
+    linear_mesh_ahead(case, nodes, false).map(|(out, _)| out)
+}
+
+/// The edge table of a linear mesh's layered cells, made while its fill was, and the
+/// positions among those cells of the ones the fill peeled back: for the curving
+/// ([`curved_mesh_with`]), which finishes it rather than building the whole table.
+pub type Ahead = (vector_adding::PartEdges, Vec<u32>);
+
+/// [`linear_mesh`]; with `ahead`, the layered cells' edge table is made beside the fill.
+pub fn linear_mesh_ahead(
+    case: &Case,
+    nodes: &[BoundaryNodes],
+    ahead: bool,
+) -> Result<(afsf2d::AfsfOutput, Option<Ahead>)> {
+    let part_edges = |cells: &mesh_model::Cells, n: usize| {
+        ahead.then(|| vector_adding::PartEdges::new(cells, n))
+    };
+    let (out, beside) =
+        afsf2d::grow_mesh_with(&front_loops(case, nodes), &afsf_params(case), part_edges)
+            .map_err(|e| anyhow::anyhow!("linear mesh: {e}"))?;
+    Ok((out, beside.made.map(|part| (part, beside.left_out))))
 }
 
 /// The curving parameters of a case at an order.
@@ -192,7 +211,7 @@ pub fn curved_mesh(
 pub fn curved_mesh_with<R: Send>(
     case: &Case,
     (curves, nodes): (&[ClosedCurve], &[BoundaryNodes]),
-    layered: mesh_model::LayeredMesh,
+    (layered, ahead): (mesh_model::LayeredMesh, Option<Ahead>),
     (order, triangles): (u8, bool),
     beside: impl FnOnce(&mesh_model::Mesh) -> R + Send,
 ) -> Result<(vector_adding::Curved, R)> {
@@ -200,7 +219,9 @@ pub fn curved_mesh_with<R: Send>(
         loop_curves(curves, nodes),
         curving_params(case, order, triangles),
     );
-    vector_adding::curve_mesh_owned_with(layered, &loops, &params, beside)
+    let (part, left_out) = ahead.map_or((None, Vec::new()), |(p, l)| (Some(p), l));
+    let ahead = part.map(|part| (part, &left_out[..]));
+    vector_adding::curve_mesh_owned_with(layered, &loops, &params, ahead, beside)
         .map_err(|e| anyhow::anyhow!("curving: {e}"))
 }
 

@@ -120,6 +120,31 @@ pub struct AfsfOutput {
 /// Grows the layered mesh from every loop at once and fills the region where the fronts
 /// meet, so that the cells cover the domain exactly.
 pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput, AfsfError> {
+    grow_mesh_with(loops, params, |_, _| ()).map(|(out, _)| out)
+}
+
+/// What the task given to [`grow_mesh_with`] made, and which of the cells it was given the
+/// mesh left out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MadeBeside<R> {
+    /// What the task returned.
+    pub made: R,
+    /// The positions, among the cells the task was given, of those the fill peeled back
+    /// (increasing): the mesh's cells are the others, in their order, then the fill's
+    /// triangles.
+    pub left_out: Vec<u32>,
+}
+
+/// [`grow_mesh`], with `beside` run on the layered cells and their node count (the mesh's
+/// numbers, its first nodes) as the layer growth leaves them, while the region between the
+/// fronts is filled (on another thread of the pool when there is one): work on the layered
+/// part that need not wait for the fill. The fill may peel a few of those cells back; the
+/// result tells which.
+pub fn grow_mesh_with<R: Send>(
+    loops: &[FrontLoop],
+    params: &AfsfParams,
+    beside: impl FnOnce(&mesh_model::Cells, usize) -> R + Send,
+) -> Result<(AfsfOutput, MadeBeside<R>), AfsfError> {
     let t0 = std::time::Instant::now();
     params.check()?;
     let checked = input::check_loops(loops, params)?;
@@ -138,7 +163,7 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
     // the layered part of the mesh is made beside the fill (the fill only peels a few of its
     // cells, taken out again after it)
     let (grown_nodes, n_boundary) = (&work.nodes, work.n_boundary);
-    let ((fill, steiner, peeled), part) = fill::fill_with_peeling(
+    let ((fill, steiner, peeled), (part, made)) = fill::fill_with_peeling(
         &mut work.cells,
         &facets,
         &fronts,
@@ -148,14 +173,18 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
             peel_max_angle_deg: params.peel_max_angle_deg,
             rounds: params.peel_rounds,
         },
-        |cells| output::LayeredPart::new(cells, grown_nodes, n_boundary),
+        |cells| {
+            let part = output::LayeredPart::new(cells, grown_nodes, n_boundary);
+            let made = beside(part.cells(), part.node_count());
+            (part, made)
+        },
     )?;
     for p in steiner {
         work.nodes.push_node(nodes::NewNode::unlayered(p));
     }
     work.timings.fill = tf.elapsed().as_secs_f64();
 
-    let (node_parents, node_layer, layered_cells) =
+    let (node_parents, node_layer, layered_cells, left_out) =
         output::output_cells(&mut mesh, part, (&work.cells, &work.nodes), &fill, &peeled);
     let mut layered_on_facet = vec![false; mesh.boundary.len()];
     for c in &work.cells {
@@ -187,10 +216,11 @@ pub fn grow_mesh(loops: &[FrontLoop], params: &AfsfParams) -> Result<AfsfOutput,
         },
     };
     let layering = Layering::new(&mesh, node_layer, node_parents, layered_cells);
-    Ok(AfsfOutput {
+    let out = AfsfOutput {
         layered: LayeredMesh { mesh, layering },
         stats,
-    })
+    };
+    Ok((out, MadeBeside { made, left_out }))
 }
 
 /// A filled loop: its nodes and its triangles ([`fill_loop`]).

@@ -78,6 +78,16 @@ impl LayeredPart {
         part
     }
 
+    /// The layered cells, in mesh numbers.
+    pub(crate) fn cells(&self) -> &Cells {
+        &self.cells
+    }
+
+    /// How many nodes the part has (the mesh's first nodes).
+    pub(crate) fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
     /// Appends alive node `g` of `nodes`, of layer `layer`.
     fn push_node(&mut self, nodes: &NodeStore, g: usize, layer: u32) {
         let p = nodes.pos[g];
@@ -129,7 +139,8 @@ impl LayeredPart {
     /// Takes the cells `peeled` (the layer loop's indices, after this part was made) out,
     /// and gives each corner whose first cell went the pipe of the next cell that has it as a
     /// corner (the arrays after the first peeled cell move down; nothing else is read).
-    fn take_out(&mut self, peeled: &[u32], cells: &[Cell]) {
+    /// Returns the positions of the cells taken out, increasing.
+    fn take_out(&mut self, peeled: &[u32], cells: &[Cell]) -> Vec<u32> {
         let mut at = Vec::with_capacity(peeled.len());
         // the corners whose pipe came from a peeled cell, with where to look on from (a
         // peeled cell's `len` is 0 by now; its corners are still in `nodes`)
@@ -162,6 +173,7 @@ impl LayeredPart {
             });
             self.node_pipe[g as usize] = next.map_or(NONE, |i| cells[self.source[i] as usize].pipe);
         }
+        at.into_iter().map(|k| k as u32).collect()
     }
 }
 
@@ -178,18 +190,21 @@ fn remove_sorted(list: &mut Vec<u32>, at: &[usize]) {
 /// the fill) without the cells `peeled`, then the nodes the fill added (those of `nodes` from
 /// `n_grown` on) and its triangles `fill`, each with the layer and pipe of its highest grown
 /// corner. `cells` are the layer loop's cells. Returns both parents and the layer of every
-/// node, and the number of layered cells.
+/// node, the number of layered cells, and the positions among `part`'s cells of those taken
+/// out (increasing).
 pub(crate) fn output_cells(
     mesh: &mut Mesh,
     mut part: LayeredPart,
     (cells, nodes): (&[Cell], &NodeStore),
     fill: &[[u32; 3]],
     peeled: &[u32],
-) -> (Vec<[u32; 2]>, Vec<u32>, usize) {
+) -> (Vec<[u32; 2]>, Vec<u32>, usize, Vec<u32>) {
     let n_grown = part.new_index.len();
-    if !peeled.is_empty() {
-        part.take_out(peeled, cells);
-    }
+    let left_out = if peeled.is_empty() {
+        Vec::new()
+    } else {
+        part.take_out(peeled, cells)
+    };
     let mut next = part.nodes.len() as u32;
     for g in n_grown..nodes.pos.len() {
         if nodes.alive[g] {
@@ -221,7 +236,7 @@ pub(crate) fn output_cells(
     mesh.cells = part.cells;
     mesh.cell_layer = part.cell_layer;
     mesh.cell_pipe = part.cell_pipe;
-    (part.node_parents, part.node_layer, layered_cells)
+    (part.node_parents, part.node_layer, layered_cells, left_out)
 }
 
 /// The (layer, pipe) of each fill triangle: those of its highest corner that has a pipe;

@@ -36,17 +36,24 @@ pub(crate) struct EdgeTable {
 impl EdgeTable {
     /// The edges of the linear mesh `mesh`, every one straight, for order `p`.
     pub fn new(mesh: &Mesh, p: usize) -> Self {
-        Self::with_room(mesh, p, 0)
+        Self::with_room(mesh, p, 0, None)
     }
 
     /// [`EdgeTable::new`], its node array reserved for `room` more nodes than the edges need
     /// (the cells' interior nodes and any diagonals the assembly and the cut will add), so that
     /// it is never moved as it grows: a move of the array, then some 5M nodes, cost a copy and
-    /// the faulting-in of a second array at the run's memory peak.
-    pub fn with_room(mesh: &Mesh, p: usize, room: usize) -> Self {
+    /// the faulting-in of a second array at the run's memory peak. `topology`: the mesh's
+    /// edge table when it is already made (`mesh_model::topology::edge_table_2d`'s arrays).
+    pub fn with_room(
+        mesh: &Mesh,
+        p: usize,
+        room: usize,
+        topology: Option<mesh_model::topology::EdgeTable2d>,
+    ) -> Self {
         // the mesh's unique edges in the topology's order (sorted by their end nodes), which
         // the high-order node numbering follows; a 2D cell has at most four edges
-        let (ends, cells, cell_edges) = crate::table::edge_table_2d(&mesh.cells, mesh.nodes.len());
+        let (ends, cells, cell_edges) =
+            topology.unwrap_or_else(|| crate::table::edge_table_2d(&mesh.cells, mesh.nodes.len()));
         let mut table = EdgeTable {
             p,
             ends,
@@ -58,7 +65,8 @@ impl EdgeTable {
             rules: EdgeRules::default(),
         };
         table.nodes = Vec::with_capacity(table.base + table.ends.len() * (p - 1) + room);
-        table.nodes.extend_from_slice(&mesh.nodes);
+        // (on every thread: the copy is the first touch of these pages of the array)
+        table.nodes.par_extend(mesh.nodes.par_iter().copied());
         // the edges' points, on every thread, straight into the reserved array
         let (q, ends) = (p - 1, &table.ends);
         table

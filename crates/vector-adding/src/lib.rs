@@ -28,6 +28,10 @@
 //! edge, with the 2D stops, every decision certified (tetrahedra, prisms, hexahedra;
 //! pyramids curved on the wall only).
 //!
+//! The mesh's edge table may be given half-made ([`PartEdges`]: the table of its layered
+//! cells, made while its fill was) to [`curve_mesh_owned_with`], which finishes it into the
+//! table it would have built.
+//!
 //! It owns the placement of high-order nodes. It does not grow the linear mesh, does no file
 //! IO, and does not certify the final mesh as a whole (the caller runs
 //! `jacobian_check::check_mesh` on the result).
@@ -94,6 +98,7 @@ mod keep;
 mod march;
 mod march3d;
 pub mod params;
+mod part;
 mod repair;
 mod split;
 pub mod stats;
@@ -107,6 +112,7 @@ pub use decisions::{Carry, DecisionChange, Decisions, Diagonal, EdgeRule, EdgeRu
 pub use error::CurvingError;
 pub use keep::{boundary_points, curve_mesh_keeping, replay, tangent};
 pub use params::{CurvingParams, Strategy};
+pub use part::PartEdges;
 pub use stats::{CurvingStats, StopCounts};
 
 /// The curve of one boundary loop and the parameters of its nodes, as `boundary1d` placed
@@ -159,15 +165,22 @@ pub fn curve_mesh_owned(
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
 ) -> Result<Curved, CurvingError> {
-    curve_mesh_owned_with(input, loops, params, |_| ()).map(|(curved, ())| curved)
+    curve_mesh_owned_with(input, loops, params, None, |_| ()).map(|(curved, ())| curved)
 }
+
+/// The edge table of a linear mesh's first cells made before the mesh was finished
+/// ([`PartEdges`]), with the positions among those cells of the ones the mesh left out
+/// (increasing; the mesh's cells are the others in their order, then the rest).
+pub type MadeAhead<'a> = (PartEdges, &'a [u32]);
 
 /// [`curve_mesh_owned`], with `beside` run on the linear mesh while the curving takes its
 /// decisions after the edge table (on another thread of the pool when there is one): what a
 /// caller wants of the linear mesh before it is let go, off the critical path. The edge table
-/// is built first on every thread; the boundary, the marching and the repair, which are
-/// mostly one thread's work, then run beside `beside`. Returns the curved mesh and what
-/// `beside` gave; `beside` is not run when the input or the parameters are refused.
+/// is built first on every thread — or finished from `ahead`, the table of the mesh's first
+/// cells made while the rest were (the same table) —; the boundary, the marching and the
+/// repair, which are mostly one thread's work, then run beside `beside`. Returns the curved
+/// mesh and what `beside` gave; `beside` is not run when the input or the parameters are
+/// refused.
 ///
 /// # Errors
 /// As [`curve_mesh`].
@@ -175,6 +188,7 @@ pub fn curve_mesh_owned_with<R: Send>(
     input: LayeredMesh,
     loops: &[LoopCurve<'_>],
     params: &CurvingParams,
+    ahead: Option<MadeAhead<'_>>,
     beside: impl FnOnce(&Mesh) -> R + Send,
 ) -> Result<(Curved, R), CurvingError> {
     let mut input = input;
@@ -186,7 +200,7 @@ pub fn curve_mesh_owned_with<R: Send>(
     layering.node_parents = Vec::new();
     layering.pipe_start = Vec::new();
     layering.pipe_cells = Vec::new();
-    let table = EdgeTableStage::new(&input.mesh, params);
+    let table = EdgeTableStage::new(&input.mesh, params, ahead);
     let (aside, decided) = rayon::join(
         || beside(&input.mesh),
         || decide_from(&input, loops, params, table),
@@ -245,7 +259,7 @@ fn decide_checked(
         input,
         loops,
         params,
-        EdgeTableStage::new(&input.mesh, params),
+        EdgeTableStage::new(&input.mesh, params, None),
     )
 }
 
@@ -258,12 +272,17 @@ struct EdgeTableStage {
 }
 
 impl EdgeTableStage {
-    fn new(mesh: &Mesh, params: &CurvingParams) -> Self {
+    /// The stage of `mesh`, its topology finished from `ahead` when it is given and can be.
+    fn new(mesh: &Mesh, params: &CurvingParams, ahead: Option<MadeAhead<'_>>) -> Self {
         let p = params.order as usize;
         let mut clock = Clock::default();
         let interiors = cellmap::Interiors::new(p);
         let room = assembly_room(mesh, &interiors, params);
-        let edges = edges::EdgeTable::with_room(mesh, p, room);
+        let topology = ahead.and_then(|(part, removed)| {
+            let cells = &mesh.cells;
+            part::finish(part, part::Changes { removed, cells })
+        });
+        let edges = edges::EdgeTable::with_room(mesh, p, room, topology);
         clock.lap("edges");
         EdgeTableStage {
             edges,

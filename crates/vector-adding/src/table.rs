@@ -25,6 +25,11 @@ type Part<'a> = (&'a mut [[u32; 2]], &'a mut [[u32; 2]]);
 /// The edge table of `cells`, whose nodes are all below `nodes`: as
 /// `mesh_model::topology::edge_table_2d`, built on every thread of the pool.
 pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
+    build(cells, nodes).0
+}
+
+/// [`edge_table_2d`], and whether no edge has more than two uses.
+pub(crate) fn build(cells: &Cells, nodes: usize) -> (EdgeTable2d, bool) {
     let parts = rayon::current_num_threads().clamp(1, 64);
     let range = |t: usize| (nodes * t / parts) as u32..(nodes * (t + 1) / parts) as u32;
     // (one range reads every cell: it needs no spans)
@@ -61,16 +66,19 @@ pub(crate) fn edge_table_2d(cells: &Cells, nodes: usize) -> EdgeTable2d {
         parts_of.push((e, c));
         (ends_left, cells_left) = (rest_e, rest_c);
     }
-    sorted.into_par_iter().zip(parts_of).zip(first).for_each(
-        |((records, (ends, cells_of)), first)| {
-            number(&records, first, ends, cells_of, &of_cell);
-        },
-    );
+    let manifold = sorted
+        .into_par_iter()
+        .zip(parts_of)
+        .zip(first)
+        .map(|((records, (ends, cells_of)), first)| {
+            number(&records, first, ends, cells_of, &of_cell)
+        })
+        .reduce(|| true, |a, b| a && b);
     let of_cell = of_cell
         .into_iter()
         .map(|slots| slots.map(AtomicU32::into_inner))
         .collect();
-    (ends, cells_of, of_cell)
+    ((ends, cells_of, of_cell), manifold)
 }
 
 /// Cells per chunk of [`chunk_spans`].
@@ -157,14 +165,15 @@ fn count_unique(records: &[Record]) -> usize {
 
 /// The ends and first two cells of the edges of the sorted `records` into `ends` and
 /// `cells_of` (as many as there are edges), the edges numbered from `first`; each use's edge
-/// goes into `of_cell`.
+/// goes into `of_cell`. Returns whether no edge has more than two uses.
 fn number(
     records: &[Record],
     first: usize,
     ends: &mut [[u32; 2]],
     cells_of: &mut [[u32; 2]],
     of_cell: &[[AtomicU32; 4]],
-) {
+) -> bool {
+    let mut manifold = true;
     let mut e: Option<usize> = None;
     for &(k, cell, local) in records {
         let at = match e {
@@ -176,11 +185,13 @@ fn number(
             }
         };
         e = Some(at);
-        if let Some(slot) = cells_of[at].iter_mut().find(|c| **c == NONE) {
-            *slot = cell;
+        match cells_of[at].iter_mut().find(|c| **c == NONE) {
+            Some(slot) => *slot = cell,
+            None => manifold = false,
         }
         of_cell[cell as usize][usize::from(local)].store((first + at) as u32, Ordering::Relaxed);
     }
+    manifold
 }
 
 #[cfg(test)]
