@@ -164,12 +164,11 @@ pub fn solve_active<const D: usize, A>(
     movable: &[bool],
     influence: &Influence,
     params: &SolverParams,
-    assemble: A,
+    mut assemble: A,
 ) -> Result<SolveOutcome, SpringError>
 where
     A: FnMut(&[[f64; D]], Active<'_>, &mut [[f64; D]], &mut [f64]),
 {
-    let mut assemble = assemble;
     solve_core(
         positions,
         scale,

@@ -177,7 +177,8 @@ pub type MadeAhead<'a> = (PartEdges, &'a [u32]);
 /// decisions after the edge table (on another thread of the pool when there is one): what a
 /// caller wants of the linear mesh before it is let go, off the critical path. The edge table
 /// is built first on every thread — or finished from `ahead`, the table of the mesh's first
-/// cells made while the rest were (the same table) —; the boundary, the marching and the
+/// cells made while the rest were (the same table; one that samples show to be of other
+/// cells is set aside and the table built) —; the boundary, the marching and the
 /// repair, which are mostly one thread's work, then run beside `beside`. Returns the curved
 /// mesh and what `beside` gave; `beside` is not run when the input or the parameters are
 /// refused.

@@ -51,15 +51,16 @@ pub(crate) struct Changes<'a> {
 
 /// The edge table of the mesh `changes.cells`: `part`'s table, the cells `removed` taken out
 /// of it and the new cells' edges added. `None` when it cannot be told from the part (an
-/// edge of it with more than two uses, or `changes` that do not fit the part): the caller
-/// builds the whole table.
+/// edge of it with more than two uses, `changes` that do not fit the part, or sampled cells
+/// whose edges are not the mesh's: a table of other cells): the caller builds the whole
+/// table.
 pub(crate) fn finish(part: PartEdges, changes: Changes<'_>) -> Option<EdgeTable2d> {
     let Changes { removed, cells } = changes;
     let (ends, cells_of, of_cell) = part.table;
     let fits = removed.windows(2).all(|w| w[0] < w[1])
         && removed.last().is_none_or(|&r| (r as usize) < of_cell.len())
         && of_cell.len() - removed.len() <= cells.len();
-    if !part.manifold || !fits {
+    if !part.manifold || !fits || !samples_agree(&ends, &of_cell, changes) {
         return None;
     }
     let kept = of_cell.len() - removed.len();
@@ -121,6 +122,41 @@ pub(crate) fn finish(part: PartEdges, changes: Changes<'_>) -> Option<EdgeTable2
         of_cell_out[cell as usize][usize::from(local)] = id;
     }
     Some((ends, cells_of, of_cell_out))
+}
+
+/// Cells of the part compared with the mesh's by [`samples_agree`].
+const SAMPLES: usize = 256;
+
+/// Whether some [`SAMPLES`] kept cells of the part, spread through it, have in the part's
+/// table the edges the mesh's cells at their new places have: a table of other cells (not
+/// this mesh's first ones) is told apart at little cost, and built again.
+fn samples_agree(ends: &[[u32; 2]], of_cell: &[[u32; 4]], changes: Changes<'_>) -> bool {
+    let Changes { removed, cells } = changes;
+    let kept = of_cell.len() - removed.len();
+    let step = (kept / SAMPLES).max(1);
+    let (mut c, mut gone) = (0usize, 0usize);
+    for at in (0..kept).step_by(step) {
+        // the part's cell that is the mesh's cell `at`
+        while c - gone < at || removed.get(gone) == Some(&(c as u32)) {
+            if removed.get(gone) == Some(&(c as u32)) {
+                gone += 1;
+            }
+            c += 1;
+        }
+        let cell = cells.get(at);
+        let (nodes, edges) = (cell.corners(), cell.ty.shape.edges());
+        for (j, &e) in of_cell[c].iter().enumerate() {
+            let want = edges.get(j).map(|e| {
+                let (a, b) = (nodes[e[0]], nodes[e[1]]);
+                [a.min(b), a.max(b)]
+            });
+            let have = (e != NONE).then(|| ends.get(e as usize).copied()).flatten();
+            if want != have {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// Part cell `c`'s number once the cells at `removed` (increasing) are out of the part,
@@ -377,8 +413,8 @@ mod tests {
         }
     }
 
-    /// A part with an edge of three uses, or changes that do not fit the part, is not
-    /// finished: the caller builds the whole table.
+    /// A part with an edge of three uses, the table of other cells, or changes that do not
+    /// fit the part, is not finished: the caller builds the whole table.
     #[test]
     fn a_part_it_cannot_tell_is_left_to_the_whole_build() {
         let (cells, nodes, layered) = naca0012();
@@ -398,6 +434,13 @@ mod tests {
         };
         assert!(finish(three_uses, changes).is_none());
         let part = PartEdges::new(&prefix(&cells, layered), nodes);
+        // the table of other cells: the mesh's layered cells one place on
+        let other = without_then(&cells, 0, &[], &(1..=layered).collect::<Vec<_>>());
+        let changes = Changes {
+            removed: &[],
+            cells: &whole,
+        };
+        assert!(finish(PartEdges::new(&other, nodes), changes).is_none());
         for removed in [&[3, 3][..], &[5, 2], &[layered as u32]] {
             let changes = Changes {
                 removed,
