@@ -7,6 +7,7 @@
 //! takes the peeled cells out of it and adds the fill's nodes and triangles. The mesh is the
 //! same, to the last entry, as one made after the fill from the cells left.
 
+use mesh_model::cells::remove_sorted;
 use mesh_model::{CellType, Cells, Mesh, NONE, Shape};
 
 use crate::grow::Cell;
@@ -175,15 +176,6 @@ impl LayeredPart {
         }
         at.into_iter().map(|k| k as u32).collect()
     }
-}
-
-/// Removes the entries of `list` at the increasing indices `at`, in place.
-fn remove_sorted(list: &mut Vec<u32>, at: &[usize]) {
-    let (mut gone, mut i) = (at.iter().peekable(), 0);
-    list.retain(|_| {
-        i += 1;
-        gone.next_if_eq(&&(i - 1)).is_none()
-    });
 }
 
 /// Writes the nodes and cells of the grown and filled mesh into `mesh`: `part` (made before

@@ -209,6 +209,16 @@ impl Cells {
     }
 }
 
+/// Removes the entries of `list` at the increasing positions `at`, in place, the others kept
+/// in their order (what [`Cells::remove_sorted`] does to cells, for a per-cell array).
+pub fn remove_sorted<T>(list: &mut Vec<T>, at: &[usize]) {
+    let (mut gone, mut i) = (at.iter().peekable(), 0);
+    list.retain(|_| {
+        i += 1;
+        gone.next_if_eq(&&(i - 1)).is_none()
+    });
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

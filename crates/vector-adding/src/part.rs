@@ -12,8 +12,7 @@ use mesh_model::topology::EdgeTable2d;
 use mesh_model::{Cells, NONE};
 use rayon::prelude::*;
 
-/// One edge use: the edge's ends (lower node first), the cell and its local edge.
-type Record = ([u32; 2], u32, u8);
+use crate::table::{Record, uses_of};
 
 /// The edge table of the first cells of a mesh not yet finished: the curving finishes it
 /// for the whole mesh ([`crate::curve_mesh_owned_with`]) instead of building the whole
@@ -104,7 +103,8 @@ pub(crate) fn finish(part: PartEdges, changes: Changes<'_>) -> Option<EdgeTable2
             *e = old_to_new[*e as usize];
         }
     });
-    remove_at(&mut of_cell_out, removed);
+    let removed_at: Vec<usize> = removed.iter().map(|&r| r as usize).collect();
+    mesh_model::cells::remove_sorted(&mut of_cell_out, &removed_at);
     of_cell_out.resize(cells.len(), [NONE; 4]);
     // the new cells' uses, in the table's order (every new cell after every kept one)
     let mut group = 0;
@@ -143,15 +143,10 @@ fn samples_agree(ends: &[[u32; 2]], of_cell: &[[u32; 4]], changes: Changes<'_>) 
             }
             c += 1;
         }
-        let cell = cells.get(at);
-        let (nodes, edges) = (cell.corners(), cell.ty.shape.edges());
-        for (j, &e) in of_cell[c].iter().enumerate() {
-            let want = edges.get(j).map(|e| {
-                let (a, b) = (nodes[e[0]], nodes[e[1]]);
-                [a.min(b), a.max(b)]
-            });
+        let mut want = uses_of(cells, at).map(|(key, _, _)| Some(key));
+        for &e in &of_cell[c] {
             let have = (e != NONE).then(|| ends.get(e as usize).copied()).flatten();
-            if want != have {
+            if want.next().flatten() != have {
                 return false;
             }
         }
@@ -184,33 +179,14 @@ enum Edge {
     New(u32),
 }
 
-/// Removes the entries of `list` at the increasing positions `at`, in place.
-fn remove_at<T: Copy>(list: &mut Vec<T>, at: &[u32]) {
-    let Some(&first) = at.first() else {
-        return;
-    };
-    // each kept entry after the first removed one moves down by the removed ones before it
-    let mut to = first as usize;
-    for from in first as usize + 1..list.len() {
-        if at.binary_search(&(from as u32)).is_err() {
-            list[to] = list[from];
-            to += 1;
-        }
-    }
-    list.truncate(to);
-}
-
 /// The edge uses of the cells from `first` on, sorted (on every thread).
 fn added_uses(cells: &Cells, first: usize) -> Vec<Record> {
     let mut added: Vec<Record> = Vec::with_capacity(4 * (cells.len() - first));
-    added.par_extend((first..cells.len()).into_par_iter().flat_map_iter(|i| {
-        let c = cells.get(i);
-        let nodes = c.corners();
-        c.ty.shape.edges().iter().enumerate().map(move |(j, e)| {
-            let (a, b) = (nodes[e[0]], nodes[e[1]]);
-            ([a.min(b), a.max(b)], i as u32, j as u8)
-        })
-    }));
+    added.par_extend(
+        (first..cells.len())
+            .into_par_iter()
+            .flat_map_iter(|i| uses_of(cells, i)),
+    );
     added.par_sort_unstable();
     added
 }

@@ -17,7 +17,7 @@ use mesh_model::{Cells, NONE};
 use rayon::prelude::*;
 
 /// One edge use: the edge's ends (lower node first), the cell and its local edge.
-type Record = ([u32; 2], u32, u8);
+pub(crate) type Record = ([u32; 2], u32, u8);
 
 /// A range's part of the final arrays: its edges' ends and first two cells.
 type Part<'a> = (&'a mut [[u32; 2]], &'a mut [[u32; 2]]);
@@ -136,26 +136,30 @@ fn for_each_use(
     range: &std::ops::Range<u32>,
     mut f: impl FnMut(Record),
 ) {
-    let mut uses_of = |i: usize| {
-        let c = cells.get(i);
-        let nodes = c.corners();
-        for (j, e) in c.ty.shape.edges().iter().enumerate() {
-            let (a, b) = (nodes[e[0]], nodes[e[1]]);
-            let key = [a.min(b), a.max(b)];
-            if range.contains(&key[0]) {
-                f((key, i as u32, j as u8));
-            }
-        }
+    let mut in_range = |i: usize| {
+        uses_of(cells, i)
+            .filter(|r| range.contains(&r.0[0]))
+            .for_each(&mut f);
     };
     if spans.is_empty() {
-        (0..cells.len()).for_each(&mut uses_of);
+        (0..cells.len()).for_each(&mut in_range);
         return;
     }
     for (k, span) in spans.iter().enumerate() {
         if span[0] < range.end && span[1] >= range.start {
-            (k * SPAN_CHUNK..((k + 1) * SPAN_CHUNK).min(cells.len())).for_each(&mut uses_of);
+            (k * SPAN_CHUNK..((k + 1) * SPAN_CHUNK).min(cells.len())).for_each(&mut in_range);
         }
     }
+}
+
+/// The edge uses of cell `i` of `cells`, in its local edges' order.
+pub(crate) fn uses_of(cells: &Cells, i: usize) -> impl Iterator<Item = Record> + '_ {
+    let c = cells.get(i);
+    let nodes = c.corners();
+    c.ty.shape.edges().iter().enumerate().map(move |(j, e)| {
+        let (a, b) = (nodes[e[0]], nodes[e[1]]);
+        ([a.min(b), a.max(b)], i as u32, j as u8)
+    })
 }
 
 /// How many distinct edges the sorted `records` hold.
