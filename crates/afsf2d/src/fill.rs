@@ -25,6 +25,9 @@ use crate::error::AfsfError;
 use crate::geom::P2;
 use crate::grow::Cell;
 
+mod smooth;
+use smooth::smooth_steiner;
+
 #[derive(Debug, Clone, Copy)]
 struct Vertex {
     position: Point2<f64>,
@@ -479,226 +482,6 @@ impl Owners {
 /// The triangle of edge position `3 t + i` and its corner opposite the edge.
 fn split(at: u32) -> (usize, usize) {
     (at as usize / 3, (at as usize % 3 + 2) % 3)
-}
-
-/// Sweeps of the Steiner-node smoothing.
-const SMOOTHING_SWEEPS: usize = 6;
-
-/// Moves each added node (the local nodes from `front` on) toward the centroid of its
-/// triangles' other corners when that lowers the largest angle of its triangles (and keeps
-/// them positive): the refinement leaves obtuse triangles where it may not split a front
-/// edge, and these moves mend most of them. Front nodes never move.
-fn smooth_steiner(tris: &[[u32; 3]], pts: &mut [P2], front: usize) {
-    let added = pts.len() - front;
-    if added == 0 {
-        return;
-    }
-    let mut smoother = Smoother::new(tris, front, added);
-    // a node tried and left where it was is tried again only once one of its neighbours
-    // moved (else it would stay again): `moved[v]` counts the moves up to v's last one,
-    // `settled[s]` the moves before s was last left (plus one; 0: not settled)
-    let (mut moves, mut moved, mut settled) = (0u64, vec![0u64; added], vec![0u64; added]);
-    // the position among its triangles of the one that last kept each node where it was
-    let mut failed = vec![0u8; added];
-    for _ in 0..SMOOTHING_SWEEPS {
-        for s in 0..added {
-            if settled[s] != 0 && smoother.still(s, &moved, settled[s]) {
-                continue;
-            }
-            let Some(centroid) = smoother.centroid(s, pts) else {
-                continue;
-            };
-            let old = pts[front + s];
-            let before = smoother.worst(s, pts);
-            // (its cosine once for the three tries)
-            let limit = crate::quality::AngleLimit::new(before);
-            settled[s] = moves + 1;
-            for f in [1.0, 0.5, 0.25] {
-                let p = [
-                    old[0] + f * (centroid[0] - old[0]),
-                    old[1] + f * (centroid[1] - old[1]),
-                ];
-                if smoother.improves(s, p, pts, before, &limit, &mut failed[s]) {
-                    smoother.place(s, p, pts);
-                    moves += 1;
-                    moved[s] = moves;
-                    settled[s] = 0;
-                    break;
-                }
-            }
-        }
-    }
-}
-
-/// The Steiner-node smoothing's tables: the fill triangles (in local numbers: the front
-/// nodes first, added node `s` is `front + s`), each added node's triangles, and the largest
-/// angle of each triangle where its corners are (infinite when it is not positive), kept
-/// until one of its corners moves (`None` when not measured since).
-struct Smoother {
-    front: usize,
-    /// `incident[start[s]..start[s + 1]]`: the triangles of added node `s`, increasing, each
-    /// with its corners (the triangles do not change here: a copy beside the node reads
-    /// faster than the triangle list).
-    start: Vec<u32>,
-    incident: Vec<Incident>,
-    figure: Vec<Option<f64>>,
-}
-
-/// A triangle of an added node: its index and its corners.
-#[derive(Clone, Copy, Default)]
-struct Incident {
-    t: u32,
-    tri: [u32; 3],
-}
-
-impl Smoother {
-    fn new(tris: &[[u32; 3]], front: usize, added: usize) -> Self {
-        let mut start = vec![0u32; added + 1];
-        for tri in tris {
-            for &g in tri {
-                if g as usize >= front {
-                    start[g as usize - front + 1] += 1;
-                }
-            }
-        }
-        for s in 0..added {
-            start[s + 1] += start[s];
-        }
-        let mut next = start.clone();
-        let mut incident = vec![Incident::default(); start[added] as usize];
-        for (t, &tri) in tris.iter().enumerate() {
-            for &g in &tri {
-                if g as usize >= front {
-                    let slot = &mut next[g as usize - front];
-                    incident[*slot as usize] = Incident { t: t as u32, tri };
-                    *slot += 1;
-                }
-            }
-        }
-        Smoother {
-            front,
-            start,
-            incident,
-            figure: vec![None; tris.len()],
-        }
-    }
-
-    /// The triangles of added node `s`.
-    fn of(&self, s: usize) -> &[Incident] {
-        &self.incident[self.start[s] as usize..self.start[s + 1] as usize]
-    }
-
-    /// Triangle `tri`'s corners with added node `s` at `p`.
-    fn corners(&self, s: usize, tri: [u32; 3], p: P2, pts: &[P2]) -> [P2; 3] {
-        let g = (self.front + s) as u32;
-        tri.map(|v| if v == g { p } else { pts[v as usize] })
-    }
-
-    /// Whether no corner of `s`'s triangles but `s` moved since `s` was left (`settled`).
-    fn still(&self, s: usize, moved: &[u64], settled: u64) -> bool {
-        let g = (self.front + s) as u32;
-        self.of(s).iter().all(|i| {
-            i.tri.iter().all(|&v| {
-                (v as usize) < self.front || v == g || moved[v as usize - self.front] < settled
-            })
-        })
-    }
-
-    /// The centroid of the other corners of `s`'s triangles (none without triangles).
-    fn centroid(&self, s: usize, pts: &[P2]) -> Option<P2> {
-        let g = (self.front + s) as u32;
-        let (mut sx, mut sy, mut k) = (0.0, 0.0, 0.0);
-        for i in self.of(s) {
-            for &v in &i.tri {
-                if v != g {
-                    let q = pts[v as usize];
-                    sx += q[0];
-                    sy += q[1];
-                    k += 1.0;
-                }
-            }
-        }
-        (k != 0.0).then(|| [sx / k, sy / k])
-    }
-
-    /// The largest angle of node `s`'s triangles where they are (infinite when one is not
-    /// positive), from the kept figures.
-    fn worst(&mut self, s: usize, pts: &[P2]) -> f64 {
-        let mut w = 0.0f64;
-        for k in self.start[s] as usize..self.start[s + 1] as usize {
-            let Incident { t, tri } = self.incident[k];
-            let f = match self.figure[t as usize] {
-                Some(f) => f,
-                None => {
-                    let c = tri.map(|v| pts[v as usize]);
-                    let f = if orient2d(c[0], c[1], c[2]) <= 0.0 {
-                        f64::INFINITY
-                    } else {
-                        crate::quality::max_triangle_angle_deg(c[0], c[1], c[2])
-                    };
-                    self.figure[t as usize] = Some(f);
-                    f
-                }
-            };
-            if f == f64::INFINITY {
-                return f64::INFINITY;
-            }
-            w = w.max(f);
-        }
-        w
-    }
-
-    /// Exactly "the largest angle of `s`'s triangles with `s` at `p` < before", the angles
-    /// mostly compared by their cosines (`limit`: `before` and its cosine). The triangles
-    /// are looked at from position `first` among them on (round), the one that last kept
-    /// `s` where it was (and `first` becomes the one that does now): that one most likely
-    /// fails again, and the answer, all of them passing, is the same in any order.
-    fn improves(
-        &self,
-        s: usize,
-        p: P2,
-        pts: &[P2],
-        before: f64,
-        limit: &crate::quality::AngleLimit,
-        first: &mut u8,
-    ) -> bool {
-        let own = self.of(s);
-        let start = if (*first as usize) < own.len() {
-            *first as usize
-        } else {
-            0
-        };
-        let (head, tail) = own.split_at(start);
-        for (j, i) in tail.iter().chain(head).enumerate() {
-            let c = self.corners(s, i.tri, p, pts);
-            // (a NaN angle is passed over by the maximum in `worst`; corners of moderate
-            // size have none)
-            if orient2d(c[0], c[1], c[2]) <= 0.0
-                || (!limit.triangle_below(c[0], c[1], c[2])
-                    && (moderate(c)
-                        || !crate::quality::max_triangle_angle_deg(c[0], c[1], c[2]).is_nan()))
-            {
-                *first = ((start + j) % own.len()).min(u8::MAX as usize) as u8;
-                return false;
-            }
-        }
-        0.0 < before
-    }
-
-    /// Moves `s` to `p`, forgetting its triangles' figures.
-    fn place(&mut self, s: usize, p: P2, pts: &mut [P2]) {
-        pts[self.front + s] = p;
-        for k in self.start[s] as usize..self.start[s + 1] as usize {
-            self.figure[self.incident[k].t as usize] = None;
-        }
-    }
-}
-
-/// Whether every coordinate of `c` is finite and below 1e150 in size: then the differences,
-/// their squares and products and the sums of two of these are finite, and the largest
-/// angle of the triangle (`atan2` of finite numbers) is not NaN.
-fn moderate(c: [P2; 3]) -> bool {
-    c.iter().flatten().all(|x| x.abs() < 1e150)
 }
 
 /// The fill triangles, the added nodes and the cells peeled (their indices, in the order
@@ -1387,6 +1170,7 @@ fn open_from_fronts(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use smooth::SMOOTHING_SWEEPS;
 
     /// The region's boundary counted from scratch, as every peel round did before `Region`.
     fn directed_from_scratch(cells: &[Cell], facets: &[(u32, u32)]) -> Vec<(u32, u32)> {
@@ -1605,59 +1389,6 @@ mod tests {
                 "case {case}: the added nodes"
             );
         }
-    }
-
-    /// The smoothing's test of a position gives the same answer from whichever triangle it
-    /// starts, and when it refuses, it names a triangle that alone refuses: a fan of six
-    /// triangles around one added node, moved over a grid of positions in and out of the fan,
-    /// against limits from acute to flat.
-    #[test]
-    fn a_try_answers_the_same_from_any_first_triangle() {
-        let mut pts: Vec<P2> = (0..6)
-            .map(|i| {
-                let a = std::f64::consts::TAU * i as f64 / 6.0;
-                [a.cos() * (1.0 + 0.1 * i as f64), a.sin()]
-            })
-            .collect();
-        pts.push([0.05, -0.02]);
-        let tris: Vec<[u32; 3]> = (0..6).map(|i| [i, (i + 1) % 6, 6]).collect();
-        let smoother = Smoother::new(&tris, 6, 1);
-        assert_eq!(smoother.of(0).len(), 6);
-        let (mut refused, mut passed) = (0, 0);
-        for before in [70.0, 95.0, 120.0, 150.0, 179.0] {
-            let limit = crate::quality::AngleLimit::new(before);
-            for i in -12..=12 {
-                for j in -12..=12 {
-                    let p = [0.1 * i as f64, 0.1 * j as f64];
-                    let mut answers = Vec::new();
-                    for first in 0..8u8 {
-                        let mut at = first;
-                        let ok = smoother.improves(0, p, &pts, before, &limit, &mut at);
-                        if !ok {
-                            // the named triangle refuses on its own
-                            let alone = Smoother {
-                                start: vec![0, 1],
-                                incident: vec![smoother.of(0)[at as usize]],
-                                ..Smoother::new(&tris, 6, 1)
-                            };
-                            let mut again = 0;
-                            assert!(!alone.improves(0, p, &pts, before, &limit, &mut again));
-                        }
-                        answers.push(ok);
-                    }
-                    assert!(answers.windows(2).all(|w| w[0] == w[1]), "{p:?} {before}");
-                    if answers[0] {
-                        passed += 1;
-                    } else {
-                        refused += 1;
-                    }
-                }
-            }
-        }
-        assert!(
-            passed > 0 && refused > 0,
-            "{passed} passed, {refused} refused"
-        );
     }
 
     /// The edge owners by the counting sort on the first node are those of a stable sort by
