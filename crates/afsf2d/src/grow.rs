@@ -1060,19 +1060,28 @@ impl<'p> Work<'p> {
             }
         }
         let mut problem = std::mem::take(&mut self.problem);
-        problem.select_layered(
-            n,
-            range_start,
-            new_start,
-            &fixed_front,
-            |g| self.nodes.alive[g],
-            |g| self.nodes.parents(g),
+        // the neighbour springs' shares (scattered reads of the node store) are found on the
+        // other thread while the problem's nodes are chosen
+        let nodes = &self.nodes;
+        let ((), shares) = rayon::join(
+            || {
+                problem.select_layered(
+                    n,
+                    range_start,
+                    new_start,
+                    &fixed_front,
+                    |g| nodes.alive[g],
+                    |g| nodes.parents(g),
+                )
+            },
+            || nodes.neighbour_shares(range_start..n),
         );
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
         for g in range_start..n {
             if self.nodes.alive[g] {
-                self.springs_of(g as u32, &mut problem, &mut springs);
+                let share = shares[g - range_start];
+                self.springs_of(g as u32, share, &mut problem, &mut springs);
             }
         }
         // the springs' index is made beside the solver's set-up
@@ -1091,8 +1100,15 @@ impl<'p> Work<'p> {
     }
 
     /// Adds the springs of alive node `g` to the problem: its extrusion and angle springs
-    /// (one per parent) when it or that parent moves, its neighbour spring when it moves.
-    fn springs_of(&self, gu: u32, problem: &mut LocalProblem<2>, springs: &mut SpringSet2d) {
+    /// (one per parent) when it or that parent moves, its neighbour spring (whose left share
+    /// is `left_share`, see [`NodeStore::neighbour_shares`]) when it moves.
+    fn springs_of(
+        &self,
+        gu: u32,
+        left_share: f64,
+        problem: &mut LocalProblem<2>,
+        springs: &mut SpringSet2d,
+    ) {
         let g = gu as usize;
         let me_moving = problem.is_moving(gu);
         for p in [self.nodes.parent[g], self.nodes.parent2[g]] {
@@ -1128,7 +1144,6 @@ impl<'p> Work<'p> {
                 self.nodes.parent[g],
             );
             if a != NONE && b != NONE && p != NONE {
-                let left_share = parent_share(&self.nodes.pos, &self.nodes.parent, a, p, b);
                 springs.neighbour.push(NeighbourSpring {
                     left: problem.local(a),
                     centre: problem.local(gu),
@@ -1263,23 +1278,6 @@ impl<'p> Work<'p> {
             o > 1e-9 * dist(a, b) * dist(b, d)
         })
     }
-}
-
-/// The share of |AK| + |KB| that |AK| should take for the neighbour spring of K (parent
-/// P): the share of the parents' spacing |A'P| / (|A'P| + |PB'|), so that a wall's
-/// graded spacing carries up the layers; ½ where a neighbour shares K's parent (fan
-/// children) or has none. Clamped to [0.2, 0.8].
-fn parent_share(pos: &[P2], parent: &[u32], a: u32, p: u32, b: u32) -> f64 {
-    let (pa, pb) = (parent[a as usize], parent[b as usize]);
-    if pa == NONE || pb == NONE || pa == p || pb == p {
-        return 0.5;
-    }
-    let pp = pos[p as usize];
-    let (la, lb) = (dist(pos[pa as usize], pp), dist(pp, pos[pb as usize]));
-    if la + lb <= 0.0 {
-        return 0.5;
-    }
-    (la / (la + lb)).clamp(0.2, 0.8)
 }
 
 /// Removes repeated corners of a cell after a merge; a cell left with fewer than three

@@ -5,9 +5,14 @@
 //! Nodes are kept in creation order: the boundary nodes first, then layer after layer, then
 //! the nodes the hole filling adds. A node's parents are older than the node.
 
+use geom_predicates::vector::dist;
 use mesh_model::NONE;
+use rayon::prelude::*;
 
 use crate::geom::P2;
+
+/// Nodes from which [`NodeStore::neighbour_shares`] splits its range between threads.
+const PARALLEL_SHARES_MIN: usize = 4096;
 
 /// One new node (see the fields of [`NodeStore`]).
 #[derive(Debug, Clone, Copy)]
@@ -105,6 +110,46 @@ impl NodeStore {
     /// Both parents of node `g`.
     pub(crate) fn parents(&self, g: usize) -> [u32; 2] {
         [self.parent[g], self.parent2[g]]
+    }
+
+    /// The left share of the neighbour spring of each node of `range` (its place in the
+    /// range): the share of |AK| + |KB| that |AK| should take for node K (parent P, layer
+    /// neighbours A and B) is the share of the parents' spacing |A'P| / (|A'P| + |PB'|), so
+    /// that a wall's graded spacing carries up the layers; ½ where a neighbour shares K's
+    /// parent (fan children) or has none. Clamped to [0.2, 0.8]. NaN for a node without a
+    /// neighbour spring (dead, or a neighbour or the parent missing). Made on every thread
+    /// for a large range.
+    pub(crate) fn neighbour_shares(&self, range: std::ops::Range<usize>) -> Vec<f64> {
+        let share = |g: usize| {
+            let (a, b, p) = (self.left[g], self.right[g], self.parent[g]);
+            let n = self.len() as u32;
+            // (a dead node's neighbours may be gone: it has no spring)
+            if !self.alive[g] || a >= n || b >= n || p >= n {
+                return f64::NAN;
+            }
+            let (pa, pb) = (self.parent[a as usize], self.parent[b as usize]);
+            if pa == NONE || pb == NONE || pa == p || pb == p {
+                return 0.5;
+            }
+            let pp = self.pos[p as usize];
+            let (la, lb) = (
+                dist(self.pos[pa as usize], pp),
+                dist(pp, self.pos[pb as usize]),
+            );
+            if la + lb <= 0.0 {
+                return 0.5;
+            }
+            (la / (la + lb)).clamp(0.2, 0.8)
+        };
+        if range.len() >= PARALLEL_SHARES_MIN {
+            range
+                .into_par_iter()
+                .with_min_len(1024)
+                .map(share)
+                .collect()
+        } else {
+            range.map(share).collect()
+        }
     }
 
     /// The first inconsistency of the store: arrays of different lengths, a parent that is
