@@ -215,6 +215,7 @@ pub fn grow_mesh_with<R: Send>(
             ..work.timings
         },
     };
+    work.let_go();
     let layering = Layering::new(&mesh, node_layer, node_parents, layered_cells);
     let out = AfsfOutput {
         layered: LayeredMesh { mesh, layering },
