@@ -611,8 +611,9 @@ fn step_in_two_ranges<const D: usize>(
 
 /// A node number that about half the active nodes are below: the median of 33 of them spread
 /// through the list (the exact median when the list is sorted and long, as a full sweep's
-/// is). Only the balance of the two ranges depends on it, not the moves.
-fn middle_node(active_nodes: &[u32]) -> usize {
+/// is). Only the balance of the two ranges depends on it, not the moves (nor, in the 2D
+/// springs' assembly in halves, the sums).
+pub(crate) fn middle_node(active_nodes: &[u32]) -> usize {
     let len = active_nodes.len();
     if len == 0 {
         return 0;

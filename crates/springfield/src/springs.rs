@@ -746,21 +746,35 @@ impl ActiveEval<'_> {
                 (f, s)
             },
         );
-        for &i in nodes {
-            let i = i as usize;
-            if half[i] == 1 {
-                match sums {
-                    Sums::Set => {
-                        force[i] = force_1[i];
-                        stiffness[i] = stiffness_1[i];
+        // the second half's sums into the arrays, on both threads: each takes the nodes of
+        // one range of numbers (the entries are written apart, so the same bits either way)
+        let mid = crate::solver::middle_node(nodes);
+        let (force_low, force_high) = force.split_at_mut(mid);
+        let (stiffness_low, stiffness_high) = stiffness.split_at_mut(mid);
+        let merge =
+            |range: std::ops::Range<usize>, force: &mut [[f64; 2]], stiffness: &mut [f64]| {
+                for &i in nodes {
+                    let i = i as usize;
+                    if half[i] != 1 || !range.contains(&i) {
+                        continue;
                     }
-                    Sums::Add => {
-                        force[i] = [force[i][0] + force_1[i][0], force[i][1] + force_1[i][1]];
-                        stiffness[i] += stiffness_1[i];
+                    let (f, s) = (&mut force[i - range.start], &mut stiffness[i - range.start]);
+                    match sums {
+                        Sums::Set => {
+                            *f = force_1[i];
+                            *s = stiffness_1[i];
+                        }
+                        Sums::Add => {
+                            *f = [f[0] + force_1[i][0], f[1] + force_1[i][1]];
+                            *s += stiffness_1[i];
+                        }
                     }
                 }
-            }
-        }
+            };
+        rayon::join(
+            || merge(0..mid, force_low, stiffness_low),
+            || merge(mid..n, force_high, stiffness_high),
+        );
         HALF_SCRATCH.with(|c| *c.borrow_mut() = (force_1, stiffness_1));
     }
 
