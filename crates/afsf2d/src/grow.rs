@@ -787,8 +787,21 @@ impl<'p> Work<'p> {
         let old_loops = std::mem::take(&mut self.loops);
         let mut new_loops = Vec::with_capacity(old_loops.len());
         for (li, (lp, plan)) in old_loops.iter().zip(plans).enumerate() {
-            let child_ids = self.create_children(step, lp, plan);
-            let (edge_cell, fan_cells) = self.create_cells(li, lp, plan, &child_ids);
+            // the children are numbered in plan order from the store's end, so the cells over
+            // them are made beside the nodes (each side grows its own arrays)
+            let n0 = self.nodes.len() as u32;
+            let child_ids: Vec<u32> = (n0..n0 + plan.pos.len() as u32).collect();
+            let layers: Vec<u32> = lp
+                .items
+                .iter()
+                .map(|&g| self.nodes.layer[g as usize])
+                .collect();
+            let (nodes, cells) = (&mut self.nodes, &mut self.cells);
+            let ((), (edge_cell, fan_cells)) = rayon::join(
+                || create_children(nodes, step, lp, plan),
+                || create_cells(cells, (li, lp, &layers), plan, &child_ids),
+            );
+            debug_assert_eq!(self.nodes.len(), (n0 as usize) + plan.pos.len());
             let (mut items, mut edges) =
                 self.new_front(lp, plan, &child_ids, &edge_cell, &fan_cells);
             debug_assert_eq!(items.len(), edges.len());
@@ -802,91 +815,6 @@ impl<'p> Work<'p> {
         }
         self.loops = new_loops;
         merges
-    }
-
-    /// Creates the planned children of one loop; returns their global ids (by plan index).
-    fn create_children(&mut self, step: u32, lp: &Loop, plan: &Plan) -> Vec<u32> {
-        let m = lp.items.len();
-        // global ids of the children
-        let mut child_ids = vec![NONE; plan.pos.len()];
-        for v in 0..m {
-            let g = lp.items[v];
-            for c in plan.children(v) {
-                child_ids[c] = self.nodes.push_node(NewNode {
-                    pos: plan.pos[c],
-                    layer: step,
-                    parent: g,
-                    ideal: plan.ideal[c],
-                    share: match lp.law {
-                        Law::Geometric { growth, .. } => 1.0 / growth,
-                        Law::Isotropic { .. } => 1.0,
-                    },
-                    offset: plan.offset[c],
-                });
-            }
-        }
-        child_ids
-    }
-
-    /// Creates the quads over the loop's advancing active edges and the fan triangles;
-    /// returns the cell of each edge and of each fan child (NONE where there is none).
-    fn create_cells(
-        &mut self,
-        li: usize,
-        lp: &Loop,
-        plan: &Plan,
-        child_ids: &[u32],
-    ) -> (Vec<u32>, Vec<u32>) {
-        let m = lp.items.len();
-        // cells: quads over active edges, fan triangles
-        let mut edge_cell = vec![NONE; m];
-        for i in 0..m {
-            let j = (i + 1) % m;
-            if !(lp.edges[i].active && plan.advancing[i] && plan.advancing[j]) {
-                continue;
-            }
-            let (a, b) = (lp.items[i], lp.items[j]);
-            let ca = child_ids[plan.children(i).end - 1];
-            let cb = child_ids[plan.children(j).start];
-            edge_cell[i] = self.cells.len() as u32;
-            self.cells.push(Cell {
-                nodes: [a, b, cb, ca],
-                len: 4,
-                layer: self.nodes.layer[a as usize],
-                pipe: lp.edges[i].pipe,
-                origin: [li as u32, i as u32, NONE],
-            });
-        }
-        let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
-        for v in 0..m {
-            let r = plan.children(v);
-            if r.len() < 2 {
-                continue;
-            }
-            let ein = lp.edges[(v + m - 1) % m];
-            let eout = lp.edges[v];
-            let pieces = r.len() - 1;
-            for (k, c) in (r.start..r.end - 1).enumerate() {
-                let mut pipe = if 2 * k < pieces { ein.pipe } else { eout.pipe };
-                if pipe == NONE {
-                    pipe = if ein.pipe != NONE {
-                        ein.pipe
-                    } else {
-                        eout.pipe
-                    };
-                }
-                fan_cells[c] = self.cells.len() as u32;
-                let g = lp.items[v];
-                self.cells.push(Cell {
-                    nodes: [g, child_ids[c + 1], child_ids[c], NONE],
-                    len: 3,
-                    layer: self.nodes.layer[g as usize],
-                    pipe,
-                    origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
-                });
-            }
-        }
-        (edge_cell, fan_cells)
     }
 
     /// The new front of one loop: the children where the loop advanced (with steps up and
@@ -1348,6 +1276,87 @@ fn min_runs(loops: &mut [Loop]) {
             l.edges[i].active = false;
         }
     }
+}
+
+/// Adds the planned children of one loop to `nodes`, in plan order.
+fn create_children(nodes: &mut NodeStore, step: u32, lp: &Loop, plan: &Plan) {
+    for v in 0..lp.items.len() {
+        let g = lp.items[v];
+        for c in plan.children(v) {
+            nodes.push_node(NewNode {
+                pos: plan.pos[c],
+                layer: step,
+                parent: g,
+                ideal: plan.ideal[c],
+                share: match lp.law {
+                    Law::Geometric { growth, .. } => 1.0 / growth,
+                    Law::Isotropic { .. } => 1.0,
+                },
+                offset: plan.offset[c],
+            });
+        }
+    }
+}
+
+/// Adds to `cells` the quads over loop `li`'s advancing active edges and the fan
+/// triangles (`layers`: those of the loop's nodes; `child_ids`: the children's node ids);
+/// returns the cell of each edge and of each fan child (NONE where there is none).
+fn create_cells(
+    cells: &mut Vec<Cell>,
+    (li, lp, layers): (usize, &Loop, &[u32]),
+    plan: &Plan,
+    child_ids: &[u32],
+) -> (Vec<u32>, Vec<u32>) {
+    let m = lp.items.len();
+    // cells: quads over active edges, fan triangles
+    let mut edge_cell = vec![NONE; m];
+    for i in 0..m {
+        let j = (i + 1) % m;
+        if !(lp.edges[i].active && plan.advancing[i] && plan.advancing[j]) {
+            continue;
+        }
+        let (a, b) = (lp.items[i], lp.items[j]);
+        let ca = child_ids[plan.children(i).end - 1];
+        let cb = child_ids[plan.children(j).start];
+        edge_cell[i] = cells.len() as u32;
+        cells.push(Cell {
+            nodes: [a, b, cb, ca],
+            len: 4,
+            layer: layers[i],
+            pipe: lp.edges[i].pipe,
+            origin: [li as u32, i as u32, NONE],
+        });
+    }
+    let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
+    for v in 0..m {
+        let r = plan.children(v);
+        if r.len() < 2 {
+            continue;
+        }
+        let ein = lp.edges[(v + m - 1) % m];
+        let eout = lp.edges[v];
+        let pieces = r.len() - 1;
+        for (k, c) in (r.start..r.end - 1).enumerate() {
+            let mut pipe = if 2 * k < pieces { ein.pipe } else { eout.pipe };
+            if pipe == NONE {
+                pipe = if ein.pipe != NONE {
+                    ein.pipe
+                } else {
+                    eout.pipe
+                };
+            }
+            fan_cells[c] = cells.len() as u32;
+            let g = lp.items[v];
+            cells.push(Cell {
+                nodes: [g, child_ids[c + 1], child_ids[c], NONE],
+                len: 3,
+                layer: layers[v],
+                pipe,
+                origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
+            });
+        }
+    }
+    (edge_cell, fan_cells)
 }
 
 #[cfg(test)]
