@@ -1328,7 +1328,7 @@ fn create_cells(
         });
     }
     let mut fan_cells: Vec<u32> = vec![NONE; plan.pos.len()];
-    for v in 0..m {
+    for (v, &layer) in layers.iter().enumerate() {
         let r = plan.children(v);
         if r.len() < 2 {
             continue;
@@ -1350,7 +1350,7 @@ fn create_cells(
             cells.push(Cell {
                 nodes: [g, child_ids[c + 1], child_ids[c], NONE],
                 len: 3,
-                layer: layers[v],
+                layer,
                 pipe,
                 origin: [li as u32, ((v + m - 1) % m) as u32, v as u32],
             });
