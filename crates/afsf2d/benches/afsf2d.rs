@@ -50,6 +50,8 @@ fn naca0012_30k(c: &mut Criterion) {
     bench_timer(c, "naca0012_far2000_verify", &far, &params, |t| t.verify);
     // the building of each layer's nodes, cells and fronts from its plans
     bench_timer(c, "naca0012_far2000_build", &far, &params, |t| t.build);
+    // the spring balances of every layer step (their set-up included)
+    bench_timer(c, "naca0012_far2000_solve", &far, &params, |t| t.solve);
     // the report's obtuse-angle figure of that mesh (quads cut along the shorter diagonal)
     let mesh = &out.layered.mesh;
     c.bench_function("naca0012_30k_angle_histogram", |b| {

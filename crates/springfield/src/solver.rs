@@ -377,6 +377,7 @@ where
     } = start;
     // nodes that moved by at least the wake threshold in the last iteration
     let mut moved: Vec<u32> = Vec::new();
+    let mut selection = Selection::default();
     let mut full_sweep = true;
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
@@ -385,12 +386,11 @@ where
         if let Some(influence) = influence.as_ref().and_then(|t| t.get()) {
             let woken = if full_sweep { None } else { Some(&moved[..]) };
             select_active(
-                influence,
-                movable,
+                (influence, movable),
                 &all_movable,
                 woken,
-                &mut active,
-                &mut active_nodes,
+                (&mut active, &mut active_nodes),
+                (&mut selection, PARALLEL_SELECT_MIN),
             );
         }
         moved.clear();
@@ -669,15 +669,29 @@ impl<const D: usize> NodeStep<D> {
     }
 }
 
+/// Moved nodes from which the active set is selected on two threads (see [`select_active`]):
+/// below, the fork costs more than the half it saves.
+const PARALLEL_SELECT_MIN: usize = 4096;
+
+/// The second thread's flags and list of a selection in two halves, kept through a solve (the
+/// flags all false between selections).
+#[derive(Default)]
+struct Selection {
+    seen: Vec<bool>,
+    later: Vec<u32>,
+}
+
 /// Updates the active set: after a full sweep's failure or at the start every movable node,
-/// else (`woken` = the nodes that moved) the nodes that moved and their dependents.
+/// else (`woken` = the nodes that moved) the nodes that moved and their dependents, in the
+/// order first met. With at least `parallel_min` moved nodes and two threads, the second half
+/// of them is walked on the other thread with flags of its own; its list, less the nodes the
+/// first half met, then follows the first half's: the order first met over the whole list.
 fn select_active(
-    influence: &Influence,
-    movable: &[bool],
+    (influence, movable): (&Influence, &[bool]),
     all_movable: &[u32],
     woken: Option<&[u32]>,
-    active: &mut [bool],
-    active_nodes: &mut Vec<u32>,
+    (active, active_nodes): (&mut [bool], &mut Vec<u32>),
+    (selection, parallel_min): (&mut Selection, usize),
 ) {
     for &i in active_nodes.iter() {
         active[i as usize] = false;
@@ -690,11 +704,40 @@ fn select_active(
         }
         return;
     };
+    if moved.len() < parallel_min || rayon::current_num_threads() < 2 {
+        wake((influence, movable), moved, active, active_nodes);
+        return;
+    }
+    let (first, second) = moved.split_at(moved.len() / 2);
+    let Selection { seen, later } = selection;
+    seen.resize(active.len(), false);
+    later.clear();
+    rayon::join(
+        || wake((influence, movable), first, active, active_nodes),
+        || wake((influence, movable), second, seen, later),
+    );
+    for &i in later.iter() {
+        seen[i as usize] = false;
+        if !active[i as usize] {
+            active[i as usize] = true;
+            active_nodes.push(i);
+        }
+    }
+}
+
+/// Marks in `marked` and lists, in the order first met, the movable nodes among `moved` and
+/// their dependents that are not marked yet.
+fn wake(
+    (influence, movable): (&Influence, &[bool]),
+    moved: &[u32],
+    marked: &mut [bool],
+    list: &mut Vec<u32>,
+) {
     for &j in moved {
         for &i in std::iter::once(&j).chain(influence.dependents(j as usize)) {
-            if movable[i as usize] && !active[i as usize] {
-                active[i as usize] = true;
-                active_nodes.push(i);
+            if movable[i as usize] && !marked[i as usize] {
+                marked[i as usize] = true;
+                list.push(i);
             }
         }
     }
@@ -1030,6 +1073,52 @@ mod tests {
         assert!(out.converged, "{out:?}");
         assert!((x[100][0] - 100.0 * h).abs() < 0.05 * h, "{:?}", x[100]);
         assert!((x[0][0], x[n - 1][0]) == (0.0, 1.0));
+    }
+
+    proptest! {
+        /// The selection in two halves (forked from two moved nodes on) lists the nodes of the
+        /// selection on one thread, in the same order, and leaves the same flags, whatever the
+        /// moved nodes (repeated or not) and the dependencies.
+        #[test]
+        fn the_selection_in_two_halves_is_the_selection_on_one_thread(
+            pairs in proptest::collection::vec((0u32..300, 0u32..300), 0..1500),
+            moved in proptest::collection::vec(0u32..300, 0..400),
+            fixed in proptest::collection::vec(0usize..300, 0..40),
+            before in proptest::collection::vec(0u32..300, 0..50),
+        ) {
+            let n = 300;
+            let influence = Influence::from_pairs(n, pairs);
+            let mut movable = vec![true; n];
+            for i in fixed {
+                movable[i] = false;
+            }
+            let all: Vec<u32> = (0..n as u32).filter(|&i| movable[i as usize]).collect();
+            let select = |threads: usize, parallel_min: usize| {
+                let (mut active, mut nodes) = (vec![false; n], Vec::new());
+                for &i in &before {
+                    if !active[i as usize] {
+                        active[i as usize] = true;
+                        nodes.push(i);
+                    }
+                }
+                let mut selection = Selection::default();
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| {
+                    select_active(
+                        (&influence, &movable),
+                        &all,
+                        Some(&moved),
+                        (&mut active, &mut nodes),
+                        (&mut selection, parallel_min),
+                    )
+                });
+                prop_assert!(selection.seen.iter().all(|&b| !b), "the second flags left clear");
+                Ok((active, nodes))
+            };
+            let one = select(1, usize::MAX)?;
+            prop_assert_eq!(&select(2, 2)?, &one);
+            prop_assert_eq!(&select(3, 2)?, &one);
+        }
     }
 
     #[test]
