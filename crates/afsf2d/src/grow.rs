@@ -35,7 +35,7 @@ use geom_predicates::{orient2d, segment_distance};
 
 use crate::geom::{Aabb, P2, Strips, par_overlapping_strips_in};
 use crate::input::AfsfParams;
-use crate::nodes::{NewNode, NodeStore};
+use crate::nodes::{NewNode, NodeStore, PARALLEL_SHARES_MIN};
 use crate::sanity::front_edges_meet;
 
 /// Cells from which `verify` tests them on every thread: below, a fork-join costs more than
@@ -152,6 +152,10 @@ pub(crate) struct Work<'p> {
     /// The buffers of the next step's closing made beside a verification.
     ahead_buffers: StepBuffers,
 }
+
+/// A loop's children from which its cells are made beside its nodes (on two threads when
+/// there are two): below, the fork costs more than it saves.
+const PARALLEL_BUILD_MIN: usize = 4096;
 
 /// What the closing and front tests build again at every layer step, kept so that each step
 /// reuses the memory of the last: fresh buffers each step touched fresh pages (at 1M cells
@@ -797,10 +801,17 @@ impl<'p> Work<'p> {
                 .map(|&g| self.nodes.layer[g as usize])
                 .collect();
             let (nodes, cells) = (&mut self.nodes, &mut self.cells);
-            let ((), (edge_cell, fan_cells)) = rayon::join(
-                || create_children(nodes, step, lp, plan),
-                || create_cells(cells, (li, lp, &layers), plan, &child_ids),
-            );
+            let edges = (li, lp, &layers[..]);
+            let (edge_cell, fan_cells) = if plan.pos.len() >= PARALLEL_BUILD_MIN {
+                rayon::join(
+                    || create_children(nodes, step, lp, plan),
+                    || create_cells(cells, edges, plan, &child_ids),
+                )
+                .1
+            } else {
+                create_children(nodes, step, lp, plan);
+                create_cells(cells, edges, plan, &child_ids)
+            };
             debug_assert_eq!(self.nodes.len(), (n0 as usize) + plan.pos.len());
             let (mut items, mut edges) =
                 self.new_front(lp, plan, &child_ids, &edge_cell, &fan_cells);
@@ -1017,21 +1028,28 @@ impl<'p> Work<'p> {
         }
         let mut problem = std::mem::take(&mut self.problem);
         // the neighbour springs' shares (scattered reads of the node store) are found on the
-        // other thread while the problem's nodes are chosen
+        // other thread while the problem's nodes are chosen, in a large window
         let nodes = &self.nodes;
-        let ((), shares) = rayon::join(
-            || {
-                problem.select_layered(
-                    n,
-                    range_start,
-                    new_start,
-                    &fixed_front,
-                    |g| nodes.alive[g],
-                    |g| nodes.parents(g),
-                )
-            },
-            || nodes.neighbour_shares(range_start..n),
-        );
+        let select = |problem: &mut LocalProblem<2>| {
+            problem.select_layered(
+                n,
+                range_start,
+                new_start,
+                &fixed_front,
+                |g| nodes.alive[g],
+                |g| nodes.parents(g),
+            )
+        };
+        let shares = if n - range_start >= PARALLEL_SHARES_MIN && rayon::current_num_threads() > 1 {
+            rayon::join(
+                || select(&mut problem),
+                || nodes.neighbour_shares(range_start..n),
+            )
+            .1
+        } else {
+            select(&mut problem);
+            nodes.neighbour_shares(range_start..n)
+        };
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
         for g in range_start..n {

@@ -11,8 +11,9 @@ use rayon::prelude::*;
 
 use crate::geom::P2;
 
-/// Nodes from which [`NodeStore::neighbour_shares`] splits its range between threads.
-const PARALLEL_SHARES_MIN: usize = 4096;
+/// Nodes from which [`NodeStore::neighbour_shares`] splits its range between threads (and the
+/// layer step finds them beside the choice of the problem's nodes).
+pub(crate) const PARALLEL_SHARES_MIN: usize = 4096;
 
 /// One new node (see the fields of [`NodeStore`]).
 #[derive(Debug, Clone, Copy)]

@@ -36,25 +36,32 @@ pub(super) fn smooth_steiner(tris: &[[u32; 3]], pts: &mut [P2], front: usize) {
     smooth_steiner_from(tris, pts, front, PARALLEL_LEVEL_MIN);
 }
 
-/// [`smooth_steiner`], levels of at least `parallel_min` nodes run on every thread.
+/// [`smooth_steiner`], levels of at least `parallel_min` nodes run on every thread (with
+/// fewer added nodes than that, or one thread, the nodes are tried in node order: the same
+/// moves).
 fn smooth_steiner_from(tris: &[[u32; 3]], pts: &mut [P2], front: usize, parallel_min: usize) {
     let added = pts.len() - front;
     if added == 0 {
         return;
     }
     let smoother = Smoother::new(tris, front, added);
-    let levels = smoother.levels();
+    let levels =
+        (rayon::current_num_threads() > 1 && added >= parallel_min).then(|| smoother.levels());
     let state = State::new(pts, added, tris.len());
-    let parallel = rayon::current_num_threads() > 1;
     for sweep in 0..SMOOTHING_SWEEPS {
         // the time of a node's try in this sweep: its place in the sweeps in node order
         let base = (sweep * added) as u64;
-        for level in levels.iter() {
-            let try_node = |&s: &u32| smoother.try_node(s as usize, base, &state);
-            if parallel && level.len() >= parallel_min {
-                level.par_iter().with_min_len(32).for_each(try_node);
-            } else {
-                level.iter().for_each(try_node);
+        let try_node = |&s: &u32| smoother.try_node(s as usize, base, &state);
+        match &levels {
+            None => (0..added as u32).for_each(|s| try_node(&s)),
+            Some(levels) => {
+                for level in levels.iter() {
+                    if level.len() >= parallel_min {
+                        level.par_iter().with_min_len(32).for_each(try_node);
+                    } else {
+                        level.iter().for_each(try_node);
+                    }
+                }
             }
         }
     }
@@ -70,6 +77,21 @@ pub(super) struct Smoother {
     /// faster than the triangle list).
     start: Vec<u32>,
     incident: Vec<Incident>,
+}
+
+/// The added nodes by level: `nodes[start[l]..start[l + 1]]` are level `l`'s.
+struct Levels {
+    start: Vec<u32>,
+    nodes: Vec<u32>,
+}
+
+impl Levels {
+    /// Each level's nodes, level after level.
+    fn iter(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.start
+            .windows(2)
+            .map(|w| &self.nodes[w[0] as usize..w[1] as usize])
+    }
 }
 
 /// A triangle of an added node: its index and its corners.
@@ -181,25 +203,34 @@ impl Smoother {
     }
 
     /// The added nodes by level (see the module's note), each level's in increasing order.
-    fn levels(&self) -> Vec<Vec<u32>> {
+    fn levels(&self) -> Levels {
         let added = self.start.len() - 1;
         let mut level = vec![0u32; added];
-        let mut levels: Vec<Vec<u32>> = Vec::new();
         for s in 0..added {
             let g = self.front + s;
-            let l = self
+            level[s] = self
                 .neighbours(s)
                 .filter(|&v| v < g)
                 .map(|v| level[v - self.front] + 1)
                 .max()
                 .unwrap_or(0);
-            level[s] = l;
-            if levels.len() <= l as usize {
-                levels.resize_with(l as usize + 1, Vec::new);
-            }
-            levels[l as usize].push(s as u32);
         }
-        levels
+        // by a counting sort on the level
+        let depth = level.iter().max().map_or(0, |&l| l as usize + 1);
+        let mut start = vec![0u32; depth + 1];
+        for &l in &level {
+            start[l as usize + 1] += 1;
+        }
+        for l in 0..depth {
+            start[l + 1] += start[l];
+        }
+        let mut next = start.clone();
+        let mut nodes = vec![0u32; added];
+        for (s, &l) in level.iter().enumerate() {
+            nodes[next[l as usize] as usize] = s as u32;
+            next[l as usize] += 1;
+        }
+        Levels { start, nodes }
     }
 
     /// Tries added node `s` in the sweep whose tries start after time `base`: skipped when
@@ -404,7 +435,8 @@ mod tests {
         let (tris, pts, front) = refined_annulus(3);
         let smoother = Smoother::new(&tris, front, pts.len() - front);
         let levels = smoother.levels();
-        assert!(levels.len() > 3, "{} levels", levels.len());
+        let depth = levels.iter().count();
+        assert!(depth > 3, "{depth} levels");
         let mut level_of = vec![usize::MAX; pts.len() - front];
         for (l, nodes) in levels.iter().enumerate() {
             assert!(nodes.windows(2).all(|w| w[0] < w[1]));
