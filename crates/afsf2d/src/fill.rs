@@ -1306,6 +1306,24 @@ mod tests {
         }
     }
 
+    /// `n` points around an ellipse of radius `r` (its height `squash` × its width),
+    /// counter-clockwise, each moved along the ellipse by up to 0.3 of its step and out by up
+    /// to `radial` × `r`.
+    pub(super) fn jittered_ring(
+        n: usize,
+        r: f64,
+        (radial, squash): (f64, f64),
+        rng: &mut testkit::layered::Rng,
+    ) -> Vec<P2> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * (i as f64 + 0.3 * rng.unit()) / n as f64;
+                let r = r * (1.0 + radial * rng.unit());
+                [r * a.cos(), squash * r * a.sin()]
+            })
+            .collect()
+    }
+
     /// The flips and smoothing on the fill's own numbering give the triangles and added
     /// nodes of flipping and smoothing as specified in the mesh's numbering, to the last
     /// bit: annuli whose nodes have shuffled indices among unrelated nodes (so that no order
@@ -1315,17 +1333,8 @@ mod tests {
         let mut rng = testkit::layered::Rng(28);
         for case in 0..4 {
             let (outer, inner) = (60 + 60 * case, 40 + 30 * case);
-            let ring = |n: usize, r: f64, rng: &mut testkit::layered::Rng| -> Vec<P2> {
-                (0..n)
-                    .map(|i| {
-                        let a = std::f64::consts::TAU * (i as f64 + 0.3 * rng.unit()) / n as f64;
-                        let r = r * (1.0 + 0.3 * rng.unit());
-                        [r * a.cos(), 0.7 * r * a.sin()]
-                    })
-                    .collect()
-            };
-            let mut points = ring(outer, 10.0, &mut rng);
-            let mut hole = ring(inner, 3.0, &mut rng);
+            let mut points = jittered_ring(outer, 10.0, (0.3, 0.7), &mut rng);
+            let mut hole = jittered_ring(inner, 3.0, (0.3, 0.7), &mut rng);
             hole.reverse(); // clockwise: the region on the left of its edges
             points.extend(hole);
             // a few free nodes in the region

@@ -8,7 +8,8 @@
 //! share no triangle, and when a level is run every neighbour of its nodes stands where the
 //! sweep in node order would have it: the lower ones already moved in this sweep (a lower
 //! level), the higher ones not yet (a higher level). A large level is run on every thread;
-//! the moves are those of the sweep in node order, whatever the threads. What the nodes of
+//! the moves are those of the sweep in node order, whatever the threads (on one thread, or
+//! in a small fill, the nodes are simply tried in node order). What the nodes of
 //! one level write (their positions, their triangles' figures, their own records) no other
 //! node of that level reads, so the shared tables are relaxed atomics: plain loads and
 //! stores, ordered from level to level by rayon's joins.
@@ -504,17 +505,9 @@ mod tests {
     fn refined_annulus(case: u64) -> (Vec<[u32; 3]>, Vec<P2>, usize) {
         let mut rng = testkit::layered::Rng(40 + case);
         let (outer, inner) = (80 + 40 * case as usize, 50 + 20 * case as usize);
-        let ring = |n: usize, r: f64, rng: &mut testkit::layered::Rng| -> Vec<P2> {
-            (0..n)
-                .map(|i| {
-                    let a = std::f64::consts::TAU * (i as f64 + 0.3 * rng.unit()) / n as f64;
-                    let r = r * (1.0 + 0.2 * rng.unit());
-                    [r * a.cos(), 0.8 * r * a.sin()]
-                })
-                .collect()
-        };
-        let mut pos = ring(outer, 10.0, &mut rng);
-        let mut hole = ring(inner, 3.0, &mut rng);
+        let ring = super::super::tests::jittered_ring;
+        let mut pos = ring(outer, 10.0, (0.2, 0.8), &mut rng);
+        let mut hole = ring(inner, 3.0, (0.2, 0.8), &mut rng);
         hole.reverse(); // clockwise: the region on the left of its edges
         pos.extend(hole);
         let loop_edges = |from: usize, len: usize| {
