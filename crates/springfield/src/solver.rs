@@ -381,6 +381,8 @@ where
     let mut full_sweep = true;
     let mut outcome = SolveOutcome::default();
     for iteration in 0..params.max_iterations {
+        // a full sweep's active list is every movable node, in increasing order
+        let in_order = full_sweep;
         // (a lazy table is not built before the first iteration, whose active set, every
         // movable node, is already selected)
         if let Some(influence) = influence.as_ref().and_then(|t| t.get()) {
@@ -407,7 +409,7 @@ where
             positions,
             (&force, &stiffness),
             scale,
-            &active_nodes,
+            (&active_nodes, in_order),
             (params, axis, iteration),
             &mut masses,
             &mut moved,
@@ -477,7 +479,7 @@ fn step_active<const D: usize>(
     positions: &mut [[f64; D]],
     (force, stiffness): (&[[f64; D]], &[f64]),
     scale: &[f64],
-    active_nodes: &[u32],
+    (active_nodes, in_order): (&[u32], bool),
     (params, axis, iteration): (&SolverParams, &Axis<'_, D>, usize),
     masses: &mut MassSchedule<D>,
     moved: &mut Vec<u32>,
@@ -491,7 +493,7 @@ fn step_active<const D: usize>(
         return step_in_two_ranges(
             positions,
             forces,
-            active_nodes,
+            (active_nodes, in_order),
             (params, iteration),
             masses,
             moved,
@@ -531,7 +533,7 @@ fn step_active<const D: usize>(
 fn step_in_two_ranges<const D: usize>(
     positions: &mut [[f64; D]],
     (force, stiffness, scale): (&[[f64; D]], &[f64], &[f64]),
-    active_nodes: &[u32],
+    (active_nodes, in_order): (&[u32], bool),
     (params, iteration): (&SolverParams, usize),
     masses: &mut MassSchedule<D>,
     moved: &mut Vec<u32>,
@@ -540,15 +542,24 @@ fn step_in_two_ranges<const D: usize>(
     let (n, mid) = (positions.len(), middle_node(active_nodes));
     let (pos_low, pos_high) = positions.split_at_mut(mid);
     let (mass_low, mass_high) = masses.nodes.split_at_mut(mid);
+    // a list in increasing order is cut where the high range starts: each part then walks
+    // its own nodes only (else each walks the whole list for them)
+    let (low_list, high_list) = if in_order {
+        let cut = active_nodes.partition_point(|&i| (i as usize) < mid);
+        ((0, &active_nodes[..cut]), (cut, &active_nodes[cut..]))
+    } else {
+        ((0, active_nodes), (0, active_nodes))
+    };
     let part = |range: std::ops::Range<usize>,
+                (from, list): (usize, &[u32]),
                 pos: &mut [[f64; D]],
                 mass: &mut [NodeMass<D>]|
      -> RangeSteps {
         let mut out = RangeSteps {
-            moved: Vec::with_capacity(active_nodes.len() / 2),
+            moved: Vec::with_capacity(list.len() / 2),
             ..RangeSteps::default()
         };
-        for (k, &iu) in active_nodes.iter().enumerate() {
+        for (k, &iu) in (from..).zip(list) {
             let i = iu as usize;
             if !range.contains(&i) {
                 continue;
@@ -577,8 +588,8 @@ fn step_in_two_ranges<const D: usize>(
         out
     };
     let (low, high) = rayon::join(
-        || part(0..mid, pos_low, mass_low),
-        || part(mid..n, pos_high, mass_high),
+        || part(0..mid, low_list, pos_low, mass_low),
+        || part(mid..n, high_list, pos_high, mass_high),
     );
     let failed = match (low.failed, high.failed) {
         (Some(a), Some(b)) => Some(a.min(b)),
@@ -588,9 +599,14 @@ fn step_in_two_ranges<const D: usize>(
         let node = active_nodes[k] as usize;
         return Err(SpringError::NonFiniteForce { node, iteration });
     }
-    // both lists are in the active list's order: merge them
-    let (mut a, mut b) = (low.moved.iter().peekable(), high.moved.iter().peekable());
+    // both lists are in the active list's order: merge them (one after the other when the
+    // active list is in increasing order)
     moved.reserve(low.moved.len() + high.moved.len());
+    if in_order {
+        moved.extend(low.moved.iter().chain(&high.moved).map(|&(_, node)| node));
+        return Ok((low.max_step.max(high.max_step), low.heavy + high.heavy));
+    }
+    let (mut a, mut b) = (low.moved.iter().peekable(), high.moved.iter().peekable());
     loop {
         let next = match (a.peek(), b.peek()) {
             (Some(x), Some(y)) => {
@@ -845,13 +861,25 @@ mod tests {
     /// and then in two ranges; returns the positions' bits, the moved lists and the figures,
     /// or the error, of each.
     fn steps_both_ways(nan_at: &[usize]) -> [Result<Stepped, super::SpringError>; 2] {
+        steps_both_ways_of(nan_at, false)
+    }
+
+    /// [`steps_both_ways`], the active list in increasing order (and said to be) when
+    /// `in_order`.
+    fn steps_both_ways_of(
+        nan_at: &[usize],
+        in_order: bool,
+    ) -> [Result<Stepped, super::SpringError>; 2] {
         let n = 9000;
         let params = SolverParams {
             judge_travel: 0.5,
             constant_mass_iterations: 1,
             ..SolverParams::default()
         };
-        let active: Vec<u32> = (0..6000u32).map(|k| (k * 7919) % n as u32).collect();
+        let mut active: Vec<u32> = (0..6000u32).map(|k| (k * 7919) % n as u32).collect();
+        if in_order {
+            active.sort_unstable();
+        }
         let scale: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64 * 0.1).collect();
         let stiffness: Vec<f64> = (0..n)
             .map(|i| {
@@ -883,7 +911,7 @@ mod tests {
                     super::step_in_two_ranges(
                         &mut positions,
                         (&force, &stiffness, &scale),
-                        &active,
+                        (&active, in_order),
                         (&params, iteration),
                         &mut masses,
                         &mut moved,
@@ -894,7 +922,7 @@ mod tests {
                         &mut positions,
                         forces,
                         &scale,
-                        &active,
+                        (&active, false),
                         (&params, &axis, iteration),
                         &mut masses,
                         &mut moved,
@@ -911,11 +939,29 @@ mod tests {
 
     #[test]
     fn the_moves_in_two_ranges_are_the_moves_of_one_thread() {
-        let [one, two] = steps_both_ways(&[]);
-        let (one, two) = (one.unwrap(), two.unwrap());
-        assert!(one.1.iter().all(|m| m.len() > 1000), "most nodes move");
-        assert!(one.2.iter().any(|f| f.1 > 0), "some nodes become heavy");
-        assert!(one == two);
+        for in_order in [false, true] {
+            let [one, two] = steps_both_ways_of(&[], in_order);
+            let (one, two) = (one.unwrap(), two.unwrap());
+            assert!(one.1.iter().all(|m| m.len() > 1000), "most nodes move");
+            assert!(one.2.iter().any(|f| f.1 > 0), "some nodes become heavy");
+            assert!(one == two, "in order: {in_order}");
+        }
+    }
+
+    /// In an active list in increasing order, a non-finite force is told at its lowest node
+    /// whichever range it is in.
+    #[test]
+    fn a_non_finite_force_in_an_ordered_list_is_told_at_its_first_node() {
+        for nan_at in [&[10, 8000][..], &[8000][..], &[4500, 20][..]] {
+            let [one, two] = steps_both_ways_of(nan_at, true);
+            let node = |r: Result<Stepped, super::SpringError>| match r {
+                Err(super::SpringError::NonFiniteForce { node, .. }) => node,
+                other => panic!("{:?}", other.map(|_| ())),
+            };
+            let want = *nan_at.iter().min().unwrap();
+            assert_eq!(node(one), want);
+            assert_eq!(node(two), want);
+        }
     }
 
     #[test]
