@@ -318,8 +318,9 @@ impl<'p> Work<'p> {
 
     /// Lets go of the layer loop's arrays (the node store, the cells, the fronts, the spring
     /// problem and the step buffers: some 150 MB at 1M cells) on another thread when there
-    /// is one: jemalloc hands such large blocks back to the system at once, 9 ms of the
-    /// 1M-cell run spent alone on the thread that goes on to the output and the curving.
+    /// is one: allocators hand such large blocks back to the system at once (jemalloc, the
+    /// xtask binaries', as glibc's mapped blocks), 9 ms of the 1M-cell run spent alone on the
+    /// thread that goes on to the output and the curving.
     pub(crate) fn let_go(self) {
         let Work {
             nodes,
