@@ -25,7 +25,9 @@ use crate::error::AfsfError;
 use crate::geom::P2;
 use crate::grow::Cell;
 
+mod flips;
 mod smooth;
+use flips::flip_min_max_angle;
 use smooth::smooth_steiner;
 
 #[derive(Debug, Clone, Copy)]
@@ -310,178 +312,6 @@ impl Local {
         let mut pts = self.pts;
         (tris, pts.split_off(m))
     }
-}
-
-/// Sweeps of the largest-angle edge flips.
-const FLIP_SWEEPS: usize = 16;
-
-/// Flips the diagonal of two fill triangles that share an edge which is not a front edge,
-/// whenever the other diagonal lowers the larger of their largest angles: the constrained
-/// Delaunay triangulation maximises the smallest angle, which is not the figure a solver
-/// needs, and next to long front edges it keeps flat triangles whose other diagonal is
-/// fine. Both new triangles must be positive (the pair forms a convex quadrilateral).
-fn flip_min_max_angle(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)]) {
-    let worst = |t: [u32; 3]| {
-        let (a, b, c) = (pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]);
-        if orient2d(a, b, c) <= 0.0 {
-            return f64::INFINITY;
-        }
-        crate::quality::max_triangle_angle_deg(a, b, c)
-    };
-    // each triangle's figure, kept up to date through the flips (the nodes do not move here)
-    let mut figure: Vec<f64> = {
-        use rayon::prelude::*;
-        tris.par_iter().map(|&t| worst(t)).collect()
-    };
-    // `kept[3 t + c]`: the other triangle of the edge opposite corner `c` of `t` when that pair
-    // was tried in the last sweep and not flipped; a pair tried again unchanged (neither
-    // triangle flipped since) would again not flip, so it is skipped
-    let mut kept = vec![NONE; 3 * tris.len()];
-    let mut flipped = vec![false; tris.len()];
-    for _ in 0..FLIP_SWEEPS {
-        let owner = Owners::new(tris, pts.len());
-        let before_sweep = std::mem::replace(&mut flipped, vec![false; tris.len()]);
-        let tried = std::mem::replace(&mut kept, vec![NONE; 3 * tris.len()]);
-        let mut flips = 0;
-        // the constraints at or after the edge, walked along with the edges (both increasing)
-        let mut constraint = constraints.iter().peekable();
-        // in a fixed order: the same input makes the same mesh
-        for ((a, b), (t1, c1)) in owner.ascending() {
-            while constraint.next_if(|&&e| e < (a, b)).is_some() {}
-            // a pair tried in the last sweep, neither triangle flipped since: `t2` still owns
-            // (b, a) when every directed edge has one owner
-            let t2 = tried[3 * t1 + c1];
-            if owner.unique && t2 != NONE && !before_sweep[t1] && !before_sweep[t2 as usize] {
-                if !flipped[t1] && !flipped[t2 as usize] {
-                    kept[3 * t1 + c1] = t2;
-                }
-                continue;
-            }
-            if constraint.peek() == Some(&&(a, b)) {
-                continue;
-            }
-            let Some((t2, c2)) = owner.get((b, a)) else {
-                continue;
-            };
-            if flipped[t1] || flipped[t2] {
-                continue;
-            }
-            let (c, d) = (tris[t1][c1], tris[t2][c2]);
-            // t1 = (a, b, c), t2 = (b, a, d), both counter-clockwise
-            let before = figure[t1].max(figure[t2]);
-            let (n1, n2) = ([c, a, d], [d, b, c]);
-            // the second triangle is measured only when the first leaves the flip possible
-            let w1 = worst(n1);
-            let w2 = if w1 >= before - 1e-6 {
-                f64::INFINITY
-            } else {
-                worst(n2)
-            };
-            if w1.max(w2) < before - 1e-6 {
-                tris[t1] = n1;
-                tris[t2] = n2;
-                figure[t1] = w1;
-                figure[t2] = w2;
-                flipped[t1] = true;
-                flipped[t2] = true;
-                flips += 1;
-            } else {
-                kept[3 * t1 + c1] = t2 as u32;
-            }
-        }
-        if flips == 0 {
-            break;
-        }
-    }
-}
-
-/// The triangle and the opposite corner of each directed edge (`tri[i] -> tri[i+1]`,
-/// opposite corner `i+2`), by first node and then second node (the order of a sort by edge):
-/// a directed edge met twice keeps its last triangle. Built by a counting sort on the first
-/// node, each node's few edges then sorted by their second node and position.
-struct Owners {
-    /// `edges[start[a]..start[a + 1]]`: the edges leaving node `a`, as (second node, position
-    /// `3 t + i` of the edge in the triangles), increasing.
-    start: Vec<u32>,
-    edges: Vec<(u32, u32)>,
-    /// Whether no directed edge was met twice.
-    unique: bool,
-}
-
-impl Owners {
-    fn new(tris: &[[u32; 3]], n_nodes: usize) -> Self {
-        let mut start = vec![0u32; n_nodes + 1];
-        for tri in tris {
-            for &a in tri {
-                start[a as usize + 1] += 1;
-            }
-        }
-        for a in 0..n_nodes {
-            start[a + 1] += start[a];
-        }
-        let mut next = start.clone();
-        let mut edges = vec![(0u32, 0u32); 3 * tris.len()];
-        for (t, tri) in tris.iter().enumerate() {
-            for i in 0..3 {
-                let slot = &mut next[tri[i] as usize];
-                edges[*slot as usize] = (tri[(i + 1) % 3], (3 * t + i) as u32);
-                *slot += 1;
-            }
-        }
-        let mut unique = true;
-        for a in 0..n_nodes {
-            let run = &mut edges[start[a] as usize..start[a + 1] as usize];
-            // (the keys are distinct: a run of a few edges, in position order already)
-            run.sort_unstable();
-            unique &= run.windows(2).all(|w| w[0].0 != w[1].0);
-        }
-        if !unique {
-            // among equal edges the last position is kept
-            let mut kept = Vec::with_capacity(edges.len());
-            let mut kept_start = vec![0u32; n_nodes + 1];
-            for a in 0..n_nodes {
-                let run = &edges[start[a] as usize..start[a + 1] as usize];
-                for (k, e) in run.iter().enumerate() {
-                    if run.get(k + 1).is_none_or(|f| f.0 != e.0) {
-                        kept.push(*e);
-                    }
-                }
-                kept_start[a + 1] = kept.len() as u32;
-            }
-            return Owners {
-                start: kept_start,
-                edges: kept,
-                unique,
-            };
-        }
-        Owners {
-            start,
-            edges,
-            unique,
-        }
-    }
-
-    /// Every directed edge `(a, b)` with `a < b`, increasing, with its triangle and the
-    /// triangle's corner opposite the edge.
-    fn ascending(&self) -> impl Iterator<Item = ((u32, u32), (usize, usize))> + '_ {
-        (0..self.start.len() - 1).flat_map(move |a| {
-            self.edges[self.start[a] as usize..self.start[a + 1] as usize]
-                .iter()
-                .filter(move |e| e.0 > a as u32)
-                .map(move |&(b, at)| ((a as u32, b), split(at)))
-        })
-    }
-
-    fn get(&self, (a, b): (u32, u32)) -> Option<(usize, usize)> {
-        let a = a as usize;
-        let run = &self.edges[self.start[a] as usize..self.start[a + 1] as usize];
-        run.iter().find(|e| e.0 == b).map(|e| split(e.1))
-    }
-}
-
-/// The triangle of edge position `3 t + i` and its corner opposite the edge.
-fn split(at: u32) -> (usize, usize) {
-    (at as usize / 3, (at as usize % 3 + 2) % 3)
 }
 
 /// The fill triangles, the added nodes and the cells peeled (their indices, in the order
@@ -1170,6 +1000,7 @@ fn open_from_fronts(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use flips::FLIP_SWEEPS;
     use smooth::SMOOTHING_SWEEPS;
 
     /// The region's boundary counted from scratch, as every peel round did before `Region`.
@@ -1211,7 +1042,11 @@ mod tests {
 
     /// The flips as specified, in mesh numbers, measuring every pair each sweep (no pair
     /// kept from the last sweep, no cosines, no table of owners but a map).
-    fn naive_flips(tris: &mut [[u32; 3]], at: &dyn Fn(u32) -> P2, constraints: &[(u32, u32)]) {
+    pub(super) fn naive_flips(
+        tris: &mut [[u32; 3]],
+        at: &dyn Fn(u32) -> P2,
+        constraints: &[(u32, u32)],
+    ) {
         let worst = |t: [u32; 3]| naive_worst(t.map(at));
         for _ in 0..FLIP_SWEEPS {
             let mut owner = std::collections::BTreeMap::new();
@@ -1324,6 +1159,26 @@ mod tests {
             .collect()
     }
 
+    /// The refined fill of an annulus of `outer` and `inner` jittered nodes before its flips
+    /// and smoothing, in its own numbering: triangles, nodes, front edges (lower end first,
+    /// sorted).
+    pub(super) fn refined_annulus(
+        outer: usize,
+        inner: usize,
+        rng: &mut testkit::layered::Rng,
+    ) -> (Vec<[u32; 3]>, Vec<P2>, Vec<(u32, u32)>) {
+        let mut points = jittered_ring(outer, 10.0, (0.3, 0.7), rng);
+        let mut hole = jittered_ring(inner, 3.0, (0.3, 0.7), rng);
+        hole.reverse(); // clockwise: the region on the left of its edges
+        points.extend(hole);
+        let ring = |from: usize, len: usize| {
+            (0..len).map(move |i| ((from + i) as u32, (from + (i + 1) % len) as u32))
+        };
+        let directed: Vec<(u32, u32)> = ring(0, outer).chain(ring(outer, inner)).collect();
+        let (local, constraints) = triangulate(&directed, &[], &points, 30.0).unwrap();
+        (local.tris, local.pts, constraints)
+    }
+
     /// The flips and smoothing on the fill's own numbering give the triangles and added
     /// nodes of flipping and smoothing as specified in the mesh's numbering, to the last
     /// bit: annuli whose nodes have shuffled indices among unrelated nodes (so that no order
@@ -1398,49 +1253,6 @@ mod tests {
                 "case {case}: the added nodes"
             );
         }
-    }
-
-    /// The edge owners by the counting sort on the first node are those of a stable sort by
-    /// edge, where a directed edge met twice keeps its last triangle.
-    #[test]
-    fn the_edge_owners_are_those_of_a_stable_sort() {
-        let mut rng = testkit::layered::Rng(5);
-        let mut node = || rng.below(40) as u32;
-        // random triangles over few nodes: many directed edges are met twice or more
-        let tris: Vec<[u32; 3]> = (0..3000).map(|_| [node(), node(), node()]).collect();
-        let mut owner: Vec<((u32, u32), (usize, usize))> = tris
-            .iter()
-            .enumerate()
-            .flat_map(|(t, tri)| {
-                (0..3).map(move |i| ((tri[i], tri[(i + 1) % 3]), (t, (i + 2) % 3)))
-            })
-            .collect();
-        owner.sort_by_key(|&(k, _)| k);
-        let mut kept: Vec<((u32, u32), (usize, usize))> = Vec::new();
-        for o in owner {
-            match kept.last_mut() {
-                Some(last) if last.0 == o.0 => *last = o,
-                _ => kept.push(o),
-            }
-        }
-        let owners = Owners::new(&tris, 40);
-        assert!(!owners.unique);
-        let listed: Vec<((u32, u32), (usize, usize))> = (0..40usize)
-            .flat_map(|a| {
-                let run = &owners.edges[owners.start[a] as usize..owners.start[a + 1] as usize];
-                run.iter().map(move |&(b, at)| ((a as u32, b), split(at)))
-            })
-            .collect();
-        assert_eq!(listed, kept);
-        let ascending: Vec<_> = kept.iter().copied().filter(|o| o.0.0 < o.0.1).collect();
-        assert_eq!(owners.ascending().collect::<Vec<_>>(), ascending);
-        for &(edge, owner) in &kept {
-            assert_eq!(owners.get(edge), Some(owner));
-        }
-        // a triangulation's edges are met once each
-        let grid = [[0, 1, 2], [2, 1, 3]];
-        assert!(Owners::new(&grid, 4).unique);
-        assert_eq!(Owners::new(&grid, 4).get((2, 1)), Some((1, 2)));
     }
 
     #[test]
