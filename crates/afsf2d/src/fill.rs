@@ -1160,13 +1160,12 @@ mod tests {
     }
 
     /// The refined fill of an annulus of `outer` and `inner` jittered nodes before its flips
-    /// and smoothing, in its own numbering: triangles, nodes, front edges (lower end first,
-    /// sorted).
+    /// and smoothing, in its own numbering, with its front edges (lower end first, sorted).
     pub(super) fn refined_annulus(
         outer: usize,
         inner: usize,
         rng: &mut testkit::layered::Rng,
-    ) -> (Vec<[u32; 3]>, Vec<P2>, Vec<(u32, u32)>) {
+    ) -> (Local, Vec<(u32, u32)>) {
         let mut points = jittered_ring(outer, 10.0, (0.3, 0.7), rng);
         let mut hole = jittered_ring(inner, 3.0, (0.3, 0.7), rng);
         hole.reverse(); // clockwise: the region on the left of its edges
@@ -1175,8 +1174,7 @@ mod tests {
             (0..len).map(move |i| ((from + i) as u32, (from + (i + 1) % len) as u32))
         };
         let directed: Vec<(u32, u32)> = ring(0, outer).chain(ring(outer, inner)).collect();
-        let (local, constraints) = triangulate(&directed, &[], &points, 30.0).unwrap();
-        (local.tris, local.pts, constraints)
+        triangulate(&directed, &[], &points, 30.0).unwrap()
     }
 
     /// The flips and smoothing on the fill's own numbering give the triangles and added

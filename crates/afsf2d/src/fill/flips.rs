@@ -327,8 +327,8 @@ mod tests {
         let mut rng = testkit::layered::Rng(39);
         for case in 0..3 {
             let (outer, inner) = (80 + 70 * case, 50 + 40 * case);
-            let (tris, pts, constraints) =
-                super::super::tests::refined_annulus(outer, inner, &mut rng);
+            let (fill, constraints) = super::super::tests::refined_annulus(outer, inner, &mut rng);
+            let (tris, pts) = (fill.tris, fill.pts);
             let mut want = tris.clone();
             super::super::tests::naive_flips(&mut want, &|g| pts[g as usize], &constraints);
             assert_ne!(want, tris, "case {case}: some pairs flip");
