@@ -722,7 +722,10 @@ impl ActiveEval<'_> {
         sums: Sums,
     ) {
         let n = force.len();
-        let ((), (force_1, stiffness_1)) = rayon::join(
+        // the second half's sums go to the arrays on both threads, each taking the nodes of
+        // one range of numbers (the entries are written apart, so the same bits either way)
+        let mid = crate::solver::middle_node(nodes);
+        let ((), (force_1, stiffness_1, [low, high])) = rayon::join(
             || {
                 if sums == Sums::Set {
                     for &i in nodes.iter().filter(|&&i| half[i as usize] == 0) {
@@ -734,46 +737,42 @@ impl ActiveEval<'_> {
             },
             || {
                 // the arrays of the last call on this thread, its active entries zeroed (the
-                // others may hold anything: they are not read)
+                // others may hold anything: they are not read); its active nodes listed by
+                // range for the merge
                 let (mut f, mut s) = HALF_SCRATCH.with(|c| std::mem::take(&mut *c.borrow_mut()));
                 f.resize(n, [0.0; 2]);
                 s.resize(n, 0.0);
+                let mut ranges = [Vec::new(), Vec::new()];
                 for &i in nodes.iter().filter(|&&i| half[i as usize] == 1) {
                     f[i as usize] = [0.0; 2];
                     s[i as usize] = 0.0;
+                    ranges[usize::from(i as usize >= mid)].push(i);
                 }
                 self.springs_of_where(nodes, |i| half[i] == 1, &mut direct(&mut f, &mut s));
-                (f, s)
+                (f, s, ranges)
             },
         );
-        // the second half's sums into the arrays, on both threads: each takes the nodes of
-        // one range of numbers (the entries are written apart, so the same bits either way)
-        let mid = crate::solver::middle_node(nodes);
         let (force_low, force_high) = force.split_at_mut(mid);
         let (stiffness_low, stiffness_high) = stiffness.split_at_mut(mid);
-        let merge =
-            |range: std::ops::Range<usize>, force: &mut [[f64; 2]], stiffness: &mut [f64]| {
-                for &i in nodes {
-                    let i = i as usize;
-                    if half[i] != 1 || !range.contains(&i) {
-                        continue;
+        let merge = |from: usize, own: &[u32], force: &mut [[f64; 2]], stiffness: &mut [f64]| {
+            for &i in own {
+                let i = i as usize;
+                let (f, s) = (&mut force[i - from], &mut stiffness[i - from]);
+                match sums {
+                    Sums::Set => {
+                        *f = force_1[i];
+                        *s = stiffness_1[i];
                     }
-                    let (f, s) = (&mut force[i - range.start], &mut stiffness[i - range.start]);
-                    match sums {
-                        Sums::Set => {
-                            *f = force_1[i];
-                            *s = stiffness_1[i];
-                        }
-                        Sums::Add => {
-                            *f = [f[0] + force_1[i][0], f[1] + force_1[i][1]];
-                            *s += stiffness_1[i];
-                        }
+                    Sums::Add => {
+                        *f = [f[0] + force_1[i][0], f[1] + force_1[i][1]];
+                        *s += stiffness_1[i];
                     }
                 }
-            };
+            }
+        };
         rayon::join(
-            || merge(0..mid, force_low, stiffness_low),
-            || merge(mid..n, force_high, stiffness_high),
+            || merge(0, &low, force_low, stiffness_low),
+            || merge(mid, &high, force_high, stiffness_high),
         );
         HALF_SCRATCH.with(|c| *c.borrow_mut() = (force_1, stiffness_1));
     }
