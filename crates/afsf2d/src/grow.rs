@@ -35,7 +35,7 @@ use geom_predicates::{orient2d, segment_distance};
 
 use crate::geom::{Aabb, P2, Strips, par_overlapping_strips_in};
 use crate::input::AfsfParams;
-use crate::nodes::{NewNode, NodeStore, PARALLEL_SHARES_MIN};
+use crate::nodes::{NodeStore, PARALLEL_SHARES_MIN};
 
 /// Nodes of a solve's window from which its springs are written in two parts at once
 /// ([`LocalProblem::number_in_two`]): below, the fork costs more than the half it saves.
@@ -1333,22 +1333,13 @@ fn min_runs(loops: &mut [Loop]) {
 
 /// Adds the planned children of one loop to `nodes`, in plan order.
 fn create_children(nodes: &mut NodeStore, step: u32, lp: &Loop, plan: &Plan) {
-    for v in 0..lp.items.len() {
-        let g = lp.items[v];
-        for c in plan.children(v) {
-            nodes.push_node(NewNode {
-                pos: plan.pos[c],
-                layer: step,
-                parent: g,
-                ideal: plan.ideal[c],
-                share: match lp.law {
-                    Law::Geometric { growth, .. } => 1.0 / growth,
-                    Law::Isotropic { .. } => 1.0,
-                },
-                offset: plan.offset[c],
-            });
-        }
-    }
+    let share = match lp.law {
+        Law::Geometric { growth, .. } => 1.0 / growth,
+        Law::Isotropic { .. } => 1.0,
+    };
+    let parents = (lp.items.iter().enumerate())
+        .flat_map(|(v, &g)| std::iter::repeat_n(g, plan.children(v).len()));
+    nodes.push_layer(step, share, (&plan.pos, &plan.ideal, &plan.offset), parents);
 }
 
 /// Adds to `cells` the quads over loop `li`'s advancing active edges and the fan

@@ -1,6 +1,6 @@
 //! The per-node data of the growing mesh in one store (struct of arrays): every node is
-//! added by [`NodeStore::push_node`] and removed by [`NodeStore::truncate`], so the arrays
-//! always have one entry per node.
+//! added by [`NodeStore::push_node`] (or a layer step's at once, [`NodeStore::push_layer`])
+//! and removed by [`NodeStore::truncate`], so the arrays always have one entry per node.
 //!
 //! Nodes are kept in creation order: the boundary nodes first, then layer after layer, then
 //! the nodes the hole filling adds. A node's parents are older than the node.
@@ -92,6 +92,31 @@ impl NodeStore {
         self.offset.push(n.offset);
         self.alive.push(true);
         g
+    }
+
+    /// Pushes the children of one loop's layer step at once, array by array (the store of
+    /// a [`NodeStore::push_node`] each): their positions, ideal lengths and fan offsets, and
+    /// their `parents` (one each, in order), all on `layer` with the parent's `share`.
+    pub(crate) fn push_layer(
+        &mut self,
+        layer: u32,
+        share: f64,
+        (pos, ideal, offset): (&[P2], &[f64], &[f64]),
+        parents: impl Iterator<Item = u32>,
+    ) {
+        let n = pos.len();
+        debug_assert!(ideal.len() == n && offset.len() == n);
+        self.pos.extend_from_slice(pos);
+        self.layer.extend(std::iter::repeat_n(layer, n));
+        self.parent.extend(parents);
+        debug_assert_eq!(self.parent.len(), self.pos.len());
+        for list in [&mut self.parent2, &mut self.left, &mut self.right] {
+            list.extend(std::iter::repeat_n(NONE, n));
+        }
+        self.ideal.extend_from_slice(ideal);
+        self.share.extend(std::iter::repeat_n(share, n));
+        self.offset.extend_from_slice(offset);
+        self.alive.extend(std::iter::repeat_n(true, n));
     }
 
     /// Keeps the first `n` nodes.
