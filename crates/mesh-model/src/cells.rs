@@ -119,7 +119,8 @@ impl Cells {
     }
 
     /// Removes the cells at the increasing indices `at`, in place: the cells after the first
-    /// of them move down, the others are not touched.
+    /// of them move down, run by run (the cells between two removed ones in one move), the
+    /// others are not touched.
     ///
     /// # Panics
     /// If `at` is not increasing or names a cell past the end: a bug in the caller.
@@ -132,8 +133,28 @@ impl Cells {
             "cells to remove: increasing, below {}",
             self.len()
         );
-        let mut gone = at.iter().peekable();
-        self.retain_from(first, |i, _| gone.next_if_eq(&&i).is_none());
+        let len = self.len();
+        let (mut cells, mut nodes) = (first, self.offsets[first] as usize);
+        for (k, &gone) in at.iter().enumerate() {
+            // the run of kept cells after this removed one
+            let run = gone + 1..at.get(k + 1).copied().unwrap_or(len);
+            let (a, b) = (
+                self.offsets[run.start] as usize,
+                self.offsets[run.end] as usize,
+            );
+            self.nodes.copy_within(a..b, nodes);
+            self.types.copy_within(run.clone(), cells);
+            // (each offset is read before the one written over it: cells < run.start)
+            let shift = (a - nodes) as u32;
+            for i in run.clone() {
+                self.offsets[cells + 1 + i - run.start] = self.offsets[i + 1] - shift;
+            }
+            nodes += b - a;
+            cells += run.len();
+        }
+        self.types.truncate(cells);
+        self.offsets.truncate(cells + 1);
+        self.nodes.truncate(nodes);
     }
 
     /// [`Cells::retain`] of the cells from `start` on (those before it are kept, unread).
@@ -210,13 +231,27 @@ impl Cells {
 }
 
 /// Removes the entries of `list` at the increasing positions `at`, in place, the others kept
-/// in their order (what [`Cells::remove_sorted`] does to cells, for a per-cell array).
-pub fn remove_sorted<T>(list: &mut Vec<T>, at: &[usize]) {
-    let (mut gone, mut i) = (at.iter().peekable(), 0);
-    list.retain(|_| {
-        i += 1;
-        gone.next_if_eq(&&(i - 1)).is_none()
-    });
+/// in their order, run by run (what [`Cells::remove_sorted`] does to cells, for a per-cell
+/// array).
+///
+/// # Panics
+/// If `at` is not increasing or names an entry past the end: a bug in the caller.
+pub fn remove_sorted<T: Copy>(list: &mut Vec<T>, at: &[usize]) {
+    let Some(&first) = at.first() else {
+        return;
+    };
+    assert!(
+        at.windows(2).all(|w| w[0] < w[1]) && at[at.len() - 1] < list.len(),
+        "entries to remove: increasing, below {}",
+        list.len()
+    );
+    let mut kept = first;
+    for (k, &gone) in at.iter().enumerate() {
+        let run = gone + 1..at.get(k + 1).copied().unwrap_or(list.len());
+        list.copy_within(run.clone(), kept);
+        kept += run.len();
+    }
+    list.truncate(kept);
 }
 
 #[cfg(test)]
@@ -274,6 +309,32 @@ mod tests {
             }
             removed.remove_sorted(&drop);
             assert_eq!(removed, kept, "removing {drop:?}");
+        }
+    }
+
+    proptest::proptest! {
+        /// Cells and a per-cell list with some removed run by run are those kept one by one.
+        #[test]
+        fn removing_runs_keeps_the_others_in_order(
+            sizes in proptest::collection::vec(0usize..3, 0..40),
+            drop in proptest::collection::vec(proptest::prelude::any::<bool>(), 40),
+        ) {
+            let shapes = [(Shape::Tri, 1), (Shape::Quad, 1), (Shape::Quad, 3)];
+            let mut cells = Cells::new();
+            for (i, &k) in sizes.iter().enumerate() {
+                let ty = CellType::new(shapes[k].0, shapes[k].1);
+                let nodes: Vec<u32> = (0..ty.node_count() as u32).map(|n| 100 * i as u32 + n).collect();
+                cells.push(ty, &nodes);
+            }
+            let at: Vec<usize> = (0..sizes.len()).filter(|&i| drop[i]).collect();
+            let mut want = cells.clone();
+            want.retain(|i, _| !drop[i]);
+            let mut list: Vec<usize> = (0..sizes.len()).collect();
+            let want_list: Vec<usize> = (0..sizes.len()).filter(|&i| !drop[i]).collect();
+            cells.remove_sorted(&at);
+            remove_sorted(&mut list, &at);
+            proptest::prop_assert_eq!(cells, want);
+            proptest::prop_assert_eq!(list, want_list);
         }
     }
 
