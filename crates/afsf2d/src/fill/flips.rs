@@ -197,6 +197,11 @@ pub(super) struct Owners {
 
 impl Owners {
     pub(super) fn new(tris: &[[u32; 3]], n_nodes: usize) -> Self {
+        Owners::in_blocks(tris, n_nodes, SORT_BLOCK)
+    }
+
+    /// [`Owners::new`], the runs sorted in blocks of `block` nodes.
+    fn in_blocks(tris: &[[u32; 3]], n_nodes: usize, block: usize) -> Self {
         let mut start = vec![0u32; n_nodes + 1];
         for tri in tris {
             for &a in tri {
@@ -215,13 +220,7 @@ impl Owners {
                 *slot += 1;
             }
         }
-        let mut unique = true;
-        for a in 0..n_nodes {
-            let run = &mut edges[start[a] as usize..start[a + 1] as usize];
-            // (the keys are distinct: a run of a few edges, in position order already)
-            run.sort_unstable();
-            unique &= run.windows(2).all(|w| w[0].0 != w[1].0);
-        }
+        let unique = sort_runs(&mut edges, &start, block);
         if !unique {
             // among equal edges the last position is kept
             let mut kept = Vec::with_capacity(edges.len());
@@ -264,6 +263,47 @@ impl Owners {
     }
 }
 
+/// Nodes per block of [`sort_runs`] (the blocks sorted in parallel): some 20k edges.
+const SORT_BLOCK: usize = 4096;
+
+/// Sorts each node's run of edges `edges[start[a]..start[a + 1]]` by second node, stably
+/// (the runs come in position order: among equal edges the positions stay increasing, the
+/// order of a sort by (second node, position)), blocks of nodes on every thread. Returns
+/// whether no run holds an edge twice. `block`: nodes per block.
+fn sort_runs(edges: &mut [(u32, u32)], start: &[u32], block: usize) -> bool {
+    let n_nodes = start.len() - 1;
+    // each block of nodes with its stretch of the edges
+    let mut blocks = Vec::with_capacity(n_nodes.div_ceil(block));
+    let mut rest = edges;
+    for a0 in (0..n_nodes).step_by(block) {
+        let a1 = (a0 + block).min(n_nodes);
+        let len = (start[a1] - start[a0]) as usize;
+        let (block, after) = std::mem::take(&mut rest).split_at_mut(len);
+        blocks.push((a0..a1, block));
+        rest = after;
+    }
+    blocks
+        .into_par_iter()
+        .map(|(nodes, block)| {
+            let base = start[nodes.start] as usize;
+            let mut unique = true;
+            for a in nodes {
+                let run = &mut block[start[a] as usize - base..start[a + 1] as usize - base];
+                // a run of a few edges: insertion by second node keeps equal ones in order
+                for k in 1..run.len() {
+                    let mut j = k;
+                    while j > 0 && run[j - 1].0 > run[j].0 {
+                        run.swap(j - 1, j);
+                        j -= 1;
+                    }
+                }
+                unique &= run.windows(2).all(|w| w[0].0 != w[1].0);
+            }
+            unique
+        })
+        .reduce(|| true, |a, b| a && b)
+}
+
 /// The triangle of edge position `3 t + i` and its corner opposite the edge.
 pub(super) fn split(at: u32) -> (usize, usize) {
     (at as usize / 3, (at as usize % 3 + 2) % 3)
@@ -294,6 +334,19 @@ mod tests {
             match kept.last_mut() {
                 Some(last) if last.0 == o.0 => *last = o,
                 _ => kept.push(o),
+            }
+        }
+        for threads in 1..=3 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for block in [1, 7, SORT_BLOCK] {
+                let owners = pool.install(|| Owners::in_blocks(&tris, 40, block));
+                let listed: Vec<((u32, u32), (usize, usize))> =
+                    (0..40).flat_map(|a| owners.leaving(a)).collect();
+                let ascending: Vec<_> = kept.iter().copied().filter(|o| o.0.0 < o.0.1).collect();
+                assert_eq!(listed, ascending, "{threads} threads, blocks of {block}");
             }
         }
         let owners = Owners::new(&tris, 40);
