@@ -65,20 +65,20 @@ pub(crate) fn finish(part: PartEdges, changes: Changes<'_>) -> Option<EdgeTable2
     let kept = of_cell.len() - removed.len();
     let added = added_uses(cells, kept);
     // each key of the new cells' uses: a part edge, or the next new edge
+    // (the keys increase: each is looked for from where the last one was)
     let (mut groups, mut reused, mut new_keys) = (Vec::new(), Vec::new(), Vec::new());
+    let mut from = 0;
     for (k, r) in added.iter().enumerate() {
         if k > 0 && added[k - 1].0 == r.0 {
             continue;
         }
-        groups.push(match ends.binary_search(&r.0) {
-            Ok(e) => {
-                reused.push(e as u32);
-                Edge::Part(e as u32)
-            }
-            Err(_) => {
-                new_keys.push(r.0);
-                Edge::New(new_keys.len() as u32 - 1)
-            }
+        from = first_not_below(&ends, from, &r.0);
+        groups.push(if ends.get(from) == Some(&r.0) {
+            reused.push(from as u32);
+            Edge::Part(from as u32)
+        } else {
+            new_keys.push(r.0);
+            Edge::New(new_keys.len() as u32 - 1)
         });
     }
     let dropped = dropped_edges(&of_cell, &cells_of, removed, &reused);
@@ -122,6 +122,22 @@ pub(crate) fn finish(part: PartEdges, changes: Changes<'_>) -> Option<EdgeTable2
         of_cell_out[cell as usize][usize::from(local)] = id;
     }
     Some((ends, cells_of, of_cell_out))
+}
+
+/// The first place at or after `from` in `sorted` whose entry is not below `key` (the
+/// length when there is none), found by steps doubling from `from`, then halving: a few
+/// reads when it is near, as the next of many increasing keys is.
+fn first_not_below<T: Ord>(sorted: &[T], from: usize, key: &T) -> usize {
+    let (mut lo, mut step) = (from, 1);
+    // `sorted[..lo]` is below `key`; find an end not below it
+    let mut hi = from;
+    while hi < sorted.len() && sorted[hi] < *key {
+        lo = hi + 1;
+        hi += step;
+        step *= 2;
+    }
+    let hi = hi.min(sorted.len());
+    lo + sorted[lo..hi].partition_point(|e| e < key)
 }
 
 /// Cells of the part compared with the mesh's by [`samples_agree`].
@@ -386,6 +402,21 @@ mod tests {
             let finished = pool.install(|| finish(part, changes));
             let want = edge_table_2d(whole.shapes_and_corners());
             prop_assert!(finished == Some(want));
+        }
+    }
+
+    proptest! {
+        /// The doubling search finds what a binary search of the rest finds.
+        #[test]
+        fn the_doubling_search_is_a_search_of_the_rest(
+            mut sorted in proptest::collection::vec(0u32..200, 0..120),
+            from in 0usize..130,
+            key in 0u32..210,
+        ) {
+            sorted.sort_unstable();
+            let from = from.min(sorted.len());
+            let want = from + sorted[from..].partition_point(|&e| e < key);
+            prop_assert_eq!(first_not_below(&sorted, from, &key), want);
         }
     }
 
