@@ -594,37 +594,47 @@ const KIND_SHIFT: u32 = 30;
 const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
 
 impl SpringSet2d {
-    /// The per-node spring index over `n` nodes, for [`assemble_2d_active`].
+    /// The per-node spring index over `n` nodes, for [`assemble_2d_active`]: for each node
+    /// the springs that push it, in the order extrusion springs (each pushing its upper then
+    /// its lower node), neighbour springs, angle springs (child then centre), each kind in
+    /// its order. Counted, then placed, straight from the springs (a counting sort).
     pub fn index(&self, n: usize) -> SpringIndex2d {
-        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(
-            2 * self.extrusion.len() + self.neighbour.len() + 2 * self.angle.len(),
-        );
-        for (i, s) in self.extrusion.iter().enumerate() {
-            entries.push((s.upper, i as u32));
-            entries.push((s.lower, i as u32));
-        }
-        for (i, s) in self.neighbour.iter().enumerate() {
-            entries.push((s.centre, (1 << KIND_SHIFT) | i as u32));
-        }
-        for (i, s) in self.angle.iter().enumerate() {
-            entries.push((s.child, (2 << KIND_SHIFT) | i as u32));
-            entries.push((s.centre, (2 << KIND_SHIFT) | i as u32));
-        }
-        entries.retain(|&(node, _)| (node as usize) < n);
         let mut offsets = vec![0u32; n + 1];
-        for &(node, _) in &entries {
-            offsets[node as usize + 1] += 1;
-        }
+        self.each_push(|node, _| {
+            if (node as usize) < n {
+                offsets[node as usize + 1] += 1;
+            }
+        });
         for i in 0..n {
             offsets[i + 1] += offsets[i];
         }
         let mut fill = offsets.clone();
-        let mut springs = vec![0u32; entries.len()];
-        for (node, id) in entries {
-            springs[fill[node as usize] as usize] = id;
-            fill[node as usize] += 1;
-        }
+        let mut springs = vec![0u32; offsets[n] as usize];
+        self.each_push(|node, id| {
+            let node = node as usize;
+            if node < n {
+                springs[fill[node] as usize] = id;
+                fill[node] += 1;
+            }
+        });
         SpringIndex2d { offsets, springs }
+    }
+
+    /// Calls `push(node, id)` for every node each spring pushes, in the index's order, `id`
+    /// being the spring's kind (top bits) and its place.
+    #[inline(always)]
+    fn each_push(&self, mut push: impl FnMut(u32, u32)) {
+        for (i, s) in self.extrusion.iter().enumerate() {
+            push(s.upper, i as u32);
+            push(s.lower, i as u32);
+        }
+        for (i, s) in self.neighbour.iter().enumerate() {
+            push(s.centre, (1 << KIND_SHIFT) | i as u32);
+        }
+        for (i, s) in self.angle.iter().enumerate() {
+            push(s.child, (2 << KIND_SHIFT) | i as u32);
+            push(s.centre, (2 << KIND_SHIFT) | i as u32);
+        }
     }
 }
 
@@ -1301,6 +1311,40 @@ pub(crate) mod tests {
                     proptest::prop_assert_eq!(f[i][1].to_bits(), f2[i][1].to_bits());
                     proptest::prop_assert_eq!(s[i].to_bits(), s2[i].to_bits());
                 }
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// The index lists for each node the springs that push it, in the order they are
+        /// met kind by kind (a stable sort by node of every push), nodes past `n` left out.
+        #[test]
+        fn the_index_is_a_stable_sort_of_the_pushes_by_node(
+            nodes in 8usize..200,
+            cut in 0usize..6,
+        ) {
+            let (positions, _, _, set) = big_ring(nodes);
+            let n = positions.len().saturating_sub(cut);
+            let mut pushes: Vec<(u32, u32)> = Vec::new();
+            for (i, e) in set.extrusion.iter().enumerate() {
+                pushes.extend([(e.upper, i as u32), (e.lower, i as u32)]);
+            }
+            for (i, e) in set.neighbour.iter().enumerate() {
+                pushes.push((e.centre, (1 << KIND_SHIFT) | i as u32));
+            }
+            for (i, e) in set.angle.iter().enumerate() {
+                let id = (2 << KIND_SHIFT) | i as u32;
+                pushes.extend([(e.child, id), (e.centre, id)]);
+            }
+            pushes.retain(|&(node, _)| (node as usize) < n);
+            pushes.sort_by_key(|&(node, _)| node);
+            let index = set.index(n);
+            proptest::prop_assert_eq!(index.offsets.len(), n + 1);
+            for node in 0..n {
+                let want: Vec<u32> =
+                    pushes.iter().filter(|p| p.0 as usize == node).map(|p| p.1).collect();
+                let got = &index.springs[index.offsets[node] as usize..index.offsets[node + 1] as usize];
+                proptest::prop_assert_eq!(got, &want[..]);
             }
         }
     }
