@@ -26,8 +26,8 @@
 
 use mesh_model::NONE;
 use springfield::{
-    AngleSpring, Deferred, ExtrusionSpring, LocalProblem, NeighbourSpring, Numbering,
-    SpringField2d, SpringSet2d, Undo, bisector, left_normal,
+    AngleSpring, ExtrusionSpring, LocalProblem, NeighbourSpring, SpringField2d, SpringSet2d, Undo,
+    bisector, left_normal,
 };
 
 use geom_predicates::vector::{cross2, dist, dot};
@@ -36,10 +36,6 @@ use geom_predicates::{orient2d, segment_distance};
 use crate::geom::{Aabb, P2, Strips, par_overlapping_strips_in};
 use crate::input::AfsfParams;
 use crate::nodes::{NodeStore, PARALLEL_SHARES_MIN};
-
-/// Nodes of a solve's window from which its springs are written in two parts at once
-/// ([`LocalProblem::number_in_two`]): below, the fork costs more than the half it saves.
-const PARALLEL_SPRINGS_MIN: usize = 4096;
 use crate::sanity::front_edges_meet;
 
 /// Cells from which `verify` tests them on every thread: below, a fork-join costs more than
@@ -151,9 +147,6 @@ pub(crate) struct Work<'p> {
     pub layer_stats: Vec<LayerStats>,
     pub timings: Timings,
     springs: SpringSet2d,
-    /// The second part of a large window's springs, written beside the first (kept for its
-    /// capacity).
-    springs_later: SpringSet2d,
     problem: LocalProblem<2>,
     buffers: StepBuffers,
     /// The buffers of the next step's closing made beside a verification.
@@ -277,7 +270,6 @@ impl<'p> Work<'p> {
             layer_stats: Vec::new(),
             timings: Timings::default(),
             springs: SpringSet2d::default(),
-            springs_later: SpringSet2d::default(),
             problem: LocalProblem::new(),
             buffers: StepBuffers::default(),
             ahead_buffers: StepBuffers::default(),
@@ -335,7 +327,6 @@ impl<'p> Work<'p> {
             cells,
             loops,
             springs,
-            springs_later,
             problem,
             buffers,
             ahead_buffers,
@@ -345,7 +336,7 @@ impl<'p> Work<'p> {
             nodes,
             cells,
             loops,
-            (springs, springs_later),
+            springs,
             problem,
             (buffers, ahead_buffers),
         );
@@ -1062,20 +1053,11 @@ impl<'p> Work<'p> {
         };
         let mut springs = std::mem::take(&mut self.springs);
         springs.clear();
-        let shares = (&shares[..], range_start);
-        if n - range_start >= PARALLEL_SPRINGS_MIN && rayon::current_num_threads() > 1 {
-            // the window's upper half written beside its lower half, then appended
-            let mut later = std::mem::take(&mut self.springs_later);
-            later.clear();
-            let mid = range_start + (n - range_start) / 2;
-            let ((), (), numbers) = problem.number_in_two(
-                |p| self.springs_over(range_start..mid, shares, p, &mut springs),
-                |d| self.springs_over(mid..n, shares, d, &mut later),
-            );
-            springs.append_numbered(&later, |l| Deferred::resolve(l, &numbers));
-            self.springs_later = later;
-        } else {
-            self.springs_over(range_start..n, shares, &mut problem, &mut springs);
+        for g in range_start..n {
+            if self.nodes.alive[g] {
+                let share = shares[g - range_start];
+                self.springs_of(g as u32, share, &mut problem, &mut springs);
+            }
         }
         // the springs' index is made beside the solver's set-up
         let (set, n_local) = (&springs, problem.len());
@@ -1092,22 +1074,6 @@ impl<'p> Work<'p> {
         result
     }
 
-    /// Adds the springs of the alive nodes of `nodes` ([`Work::springs_of`]), each with its
-    /// share in `shares` (indexed from `from`).
-    fn springs_over(
-        &self,
-        nodes: std::ops::Range<usize>,
-        (shares, from): (&[f64], usize),
-        numbering: &mut impl Numbering,
-        springs: &mut SpringSet2d,
-    ) {
-        for g in nodes {
-            if self.nodes.alive[g] {
-                self.springs_of(g as u32, shares[g - from], numbering, springs);
-            }
-        }
-    }
-
     /// Adds the springs of alive node `g` to the problem: its extrusion and angle springs
     /// (one per parent) when it or that parent moves, its neighbour spring (whose left share
     /// is `left_share`, see [`NodeStore::neighbour_shares`]) when it moves.
@@ -1115,7 +1081,7 @@ impl<'p> Work<'p> {
         &self,
         gu: u32,
         left_share: f64,
-        problem: &mut impl Numbering,
+        problem: &mut LocalProblem<2>,
         springs: &mut SpringSet2d,
     ) {
         let g = gu as usize;

@@ -1,9 +1,8 @@
 //! The mesher on two threads gives the mesh of one thread to the last bit, on fronts long
 //! enough that every per-layer part with a parallel path takes it: the plan's directions
 //! (8192 nodes or more in a loop), the verification (8192 cells or more, some failing) with
-//! the next step's closing made beside it (and dropped when the verification fails), the
-//! solve's springs written in two parts (windows of 4096 nodes or more) and its assembly
-//! (4096 active nodes or more).
+//! the next step's closing made beside it (and dropped when the verification fails), and the
+//! solve's assembly (4096 active nodes or more).
 
 mod common;
 

@@ -74,7 +74,7 @@ pub use length::{BalanceSpring, LengthSpring};
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 pub use newton::{EnergyModel, Linearised, NewtonOutcome, NewtonParams, solve_newton};
 pub use params::{SolverParams, SpringParams};
-pub use problem::{Deferred, LocalProblem, NO_NODE, Numbering, Undo};
+pub use problem::{LocalProblem, NO_NODE, Undo};
 pub use shape::{ShapeLaw, ShapeSpring, shape_springs};
 pub use solver::{
     Active, Influence, SolveOutcome, solve, solve_active, solve_model, solve_model_active,

@@ -14,11 +14,7 @@
 //!
 //! Local numbering: the moving nodes first, in ascending global order, then the fixed nodes
 //! in the order the springs first name them. The order is part of the result (it sets the
-//! order of the floating-point sums), so it is kept as documented. A mesher may write its
-//! springs in two parts at once ([`LocalProblem::number_in_two`]): the second part names
-//! its fixed nodes by [`Deferred`] numbers, numbered after the first part has named its own,
-//! in the order the second named them: the numbering of the springs written one after the
-//! other.
+//! order of the floating-point sums), so it is kept as documented.
 
 use crate::error::SpringError;
 use crate::model::ForceModel;
@@ -67,87 +63,6 @@ pub struct LocalProblem<const D: usize> {
     movable: Vec<bool>,
     /// Scratch: moving flags over the window.
     moving: Vec<bool>,
-    /// The local numbers of the window's moving nodes ([`NO_NODE`] for the others), from
-    /// `window_start` on: read by a [`Deferred`] numbering beside the problem's own.
-    window_local: Vec<u32>,
-    window_start: usize,
-}
-
-/// What names the nodes of the springs a mesher writes: whether a node moves, and its local
-/// number. [`LocalProblem`] numbers a fixed node on first use; [`Deferred`] defers it.
-pub trait Numbering {
-    /// True when global node `g` moves in this problem.
-    fn is_moving(&self, g: u32) -> bool;
-    /// The local number of global node `g` (for [`Deferred`], of a fixed node, a deferred
-    /// number: see [`Deferred::resolve`]).
-    fn local(&mut self, g: u32) -> u32;
-}
-
-impl<const D: usize> Numbering for LocalProblem<D> {
-    #[inline]
-    fn is_moving(&self, g: u32) -> bool {
-        LocalProblem::is_moving(self, g)
-    }
-    #[inline]
-    fn local(&mut self, g: u32) -> u32 {
-        LocalProblem::local(self, g)
-    }
-}
-
-/// The numbering of the second part of springs written in two parts at once
-/// ([`LocalProblem::number_in_two`]): the moving nodes by their local numbers, the fixed
-/// nodes by deferred numbers ([`DEFERRED`] and the place of their first naming here), which
-/// [`Deferred::resolve`] turns into local numbers once the first part is numbered.
-#[derive(Debug)]
-pub struct Deferred<'a> {
-    window_start: usize,
-    window_local: &'a [u32],
-    /// The fixed nodes named, in the order first named.
-    named: Vec<u32>,
-    /// Global → place in `named`, for the nodes named so far.
-    place: std::collections::HashMap<u32, u32>,
-}
-
-/// The mark of a deferred number ([`Deferred`]).
-pub const DEFERRED: u32 = 1 << 31;
-
-impl Numbering for Deferred<'_> {
-    #[inline]
-    fn is_moving(&self, g: u32) -> bool {
-        (g as usize)
-            .checked_sub(self.window_start)
-            .and_then(|w| self.window_local.get(w))
-            .is_some_and(|&l| l != NO_NODE)
-    }
-    #[inline]
-    fn local(&mut self, g: u32) -> u32 {
-        if let Some(&l) = (g as usize)
-            .checked_sub(self.window_start)
-            .and_then(|w| self.window_local.get(w))
-            .filter(|&&l| l != NO_NODE)
-        {
-            return l;
-        }
-        let next = self.named.len() as u32;
-        let at = *self.place.entry(g).or_insert(next);
-        if at == next {
-            self.named.push(g);
-        }
-        DEFERRED | at
-    }
-}
-
-impl Deferred<'_> {
-    /// The local number of `l`, a number given by this numbering, in `numbers` (what
-    /// [`LocalProblem::number_in_two`] returns).
-    #[inline]
-    pub fn resolve(l: u32, numbers: &[u32]) -> u32 {
-        if l & DEFERRED != 0 {
-            numbers[(l & !DEFERRED) as usize]
-        } else {
-            l
-        }
-    }
 }
 
 impl<const D: usize> LocalProblem<D> {
@@ -199,46 +114,13 @@ impl<const D: usize> LocalProblem<D> {
         }
         self.nodes.clear();
         self.movable.clear();
-        self.window_start = window_start;
-        self.window_local.clear();
         for g in window_start..n {
-            let l = if self.moving[g - window_start] {
-                let l = self.nodes.len() as u32;
-                self.local_of[g] = l;
+            if self.moving[g - window_start] {
+                self.local_of[g] = self.nodes.len() as u32;
                 self.nodes.push(g as u32);
                 self.movable.push(true);
-                l
-            } else {
-                NO_NODE
-            };
-            self.window_local.push(l);
+            }
         }
-    }
-
-    /// Numbers the nodes of springs written in two parts at once (after
-    /// [`LocalProblem::select_layered`]), on two threads when the pool has them: `first`
-    /// writes with this problem's numbering, `second` with a [`Deferred`] one. Returns both
-    /// results and the local numbers of the second part's deferred numbers (for
-    /// [`Deferred::resolve`]): its fixed nodes numbered after every one the first part named,
-    /// in the order the second part named them, so that the numbering is that of the first
-    /// part's springs written before the second's.
-    pub fn number_in_two<A: Send, B: Send>(
-        &mut self,
-        first: impl FnOnce(&mut Self) -> A + Send,
-        second: impl FnOnce(&mut Deferred<'_>) -> B + Send,
-    ) -> (A, B, Vec<u32>) {
-        // the moving nodes' numbers are read beside the numbering, which never changes them
-        let window_local = std::mem::take(&mut self.window_local);
-        let mut deferred = Deferred {
-            window_start: self.window_start,
-            window_local: &window_local,
-            named: Vec::new(),
-            place: std::collections::HashMap::new(),
-        };
-        let (a, b) = rayon::join(|| first(self), || second(&mut deferred));
-        let numbers = deferred.named.iter().map(|&g| self.local(g)).collect();
-        self.window_local = window_local;
-        (a, b, numbers)
     }
 
     /// True when global node `g` moves in this problem.
@@ -448,70 +330,5 @@ mod tests {
         // the numbering is forgotten: a second problem starts clean
         problem.select_layered(6, 2, 4, &[false; 4], |g| g != 5, |g| parents[g]);
         assert_eq!(problem.nodes(), &[2, 4]);
-    }
-
-    /// A problem over random layered nodes (a window of `n - window` nodes, some dead, some
-    /// pinned), and the nodes its springs name in turn: movable ones, fixed ones in the
-    /// window and below it, each named again now and then.
-    fn layered_problem(seed: u64, n: usize) -> (LocalProblem<2>, Vec<u32>) {
-        let mut x = seed | 1;
-        let mut next = move |m: usize| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % m as u64) as usize
-        };
-        let window = n / 3;
-        let parents: Vec<[u32; 2]> = (0..n)
-            .map(|g| match g {
-                0..4 => [NO_NODE; 2],
-                _ => [
-                    next(g) as u32,
-                    if next(4) == 0 {
-                        next(g) as u32
-                    } else {
-                        NO_NODE
-                    },
-                ],
-            })
-            .collect();
-        let dead: Vec<bool> = (0..n).map(|_| next(9) == 0).collect();
-        let pinned: Vec<bool> = (window..n).map(|_| next(7) == 0).collect();
-        let mut problem = LocalProblem::<2>::new();
-        problem.select_layered(n, window, n - n / 6, &pinned, |g| !dead[g], |g| parents[g]);
-        let named = (0..4 * n).map(|_| next(n) as u32).collect();
-        (problem, named)
-    }
-
-    proptest::proptest! {
-        /// Springs written in two parts at once, on one to three threads, number the nodes
-        /// as springs written one after the other: the same local numbers, the same order of
-        /// the problem's nodes.
-        #[test]
-        fn two_parts_number_the_nodes_as_one_after_the_other(
-            seed in proptest::prelude::any::<u64>(),
-            n in 8usize..300,
-            cut in 0.0f64..=1.0,
-            threads in 1usize..=3,
-        ) {
-            let (mut problem, named) = layered_problem(seed, n);
-            let mut one = problem.clone();
-            let want: Vec<(bool, u32)> =
-                named.iter().map(|&g| (one.is_moving(g), one.local(g))).collect();
-            let mid = (cut * named.len() as f64) as usize;
-            let write = |part: &[u32], numbering: &mut dyn Numbering| -> Vec<(bool, u32)> {
-                part.iter().map(|&g| (numbering.is_moving(g), numbering.local(g))).collect()
-            };
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
-            let (first, second, numbers) = pool.expect("a pool").install(|| {
-                problem.number_in_two(|p| write(&named[..mid], p), |d| write(&named[mid..], d))
-            });
-            let got: Vec<(bool, u32)> = first
-                .into_iter()
-                .chain(second.into_iter().map(|(m, l)| (m, Deferred::resolve(l, &numbers))))
-                .collect();
-            proptest::prop_assert_eq!(got, want);
-            proptest::prop_assert_eq!(problem.nodes(), one.nodes());
-        }
     }
 }

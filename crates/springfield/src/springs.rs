@@ -85,33 +85,6 @@ pub struct SpringSet2d {
 }
 
 impl SpringSet2d {
-    /// Appends the springs of `other`, each node number `l` written as `number(l)`: the
-    /// second part of springs written in two parts ([`crate::LocalProblem::number_in_two`]),
-    /// its deferred numbers resolved.
-    pub fn append_numbered(&mut self, other: &SpringSet2d, number: impl Fn(u32) -> u32) {
-        self.extrusion
-            .extend(other.extrusion.iter().map(|s| ExtrusionSpring {
-                lower: number(s.lower),
-                upper: number(s.upper),
-                ..*s
-            }));
-        self.neighbour
-            .extend(other.neighbour.iter().map(|s| NeighbourSpring {
-                left: number(s.left),
-                centre: number(s.centre),
-                right: number(s.right),
-                parent: number(s.parent),
-                ..*s
-            }));
-        self.angle.extend(other.angle.iter().map(|s| AngleSpring {
-            left: number(s.left),
-            centre: number(s.centre),
-            right: number(s.right),
-            child: number(s.child),
-            ..*s
-        }));
-    }
-
     /// The influence table of these springs over `n` nodes, for [`crate::solve_active()`]:
     /// each node pushed by a spring depends on every node of that spring.
     pub fn influence(&self, n: usize) -> crate::Influence {
