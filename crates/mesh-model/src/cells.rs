@@ -125,19 +125,12 @@ impl Cells {
     /// # Panics
     /// If `at` is not increasing or names a cell past the end: a bug in the caller.
     pub fn remove_sorted(&mut self, at: &[usize]) {
+        let runs = kept_runs(at, self.len(), "cells");
         let Some(&first) = at.first() else {
             return;
         };
-        assert!(
-            at.windows(2).all(|w| w[0] < w[1]) && at[at.len() - 1] < self.len(),
-            "cells to remove: increasing, below {}",
-            self.len()
-        );
-        let len = self.len();
         let (mut cells, mut nodes) = (first, self.offsets[first] as usize);
-        for (k, &gone) in at.iter().enumerate() {
-            // the run of kept cells after this removed one
-            let run = gone + 1..at.get(k + 1).copied().unwrap_or(len);
+        for run in runs {
             let (a, b) = (
                 self.offsets[run.start] as usize,
                 self.offsets[run.end] as usize,
@@ -237,21 +230,36 @@ impl Cells {
 /// # Panics
 /// If `at` is not increasing or names an entry past the end: a bug in the caller.
 pub fn remove_sorted<T: Copy>(list: &mut Vec<T>, at: &[usize]) {
+    let runs = kept_runs(at, list.len(), "entries");
     let Some(&first) = at.first() else {
         return;
     };
-    assert!(
-        at.windows(2).all(|w| w[0] < w[1]) && at[at.len() - 1] < list.len(),
-        "entries to remove: increasing, below {}",
-        list.len()
-    );
     let mut kept = first;
-    for (k, &gone) in at.iter().enumerate() {
-        let run = gone + 1..at.get(k + 1).copied().unwrap_or(list.len());
+    for run in runs {
         list.copy_within(run.clone(), kept);
         kept += run.len();
     }
     list.truncate(kept);
+}
+
+/// The run of entries kept after each of the positions `at` removed from `len` entries, in
+/// order: what the removals move down, one run at a time.
+///
+/// # Panics
+/// If `at` is not increasing or names a position past the end (`what`: what is removed).
+fn kept_runs<'a>(
+    at: &'a [usize],
+    len: usize,
+    what: &str,
+) -> impl Iterator<Item = std::ops::Range<usize>> + 'a {
+    assert!(
+        at.windows(2).all(|w| w[0] < w[1]) && at.last().is_none_or(|&l| l < len),
+        "{what} to remove: increasing, below {len}"
+    );
+    let next = move |k: usize| at.get(k + 1).copied().unwrap_or(len);
+    at.iter()
+        .enumerate()
+        .map(move |(k, &gone)| gone + 1..next(k))
 }
 
 #[cfg(test)]
