@@ -114,8 +114,22 @@ impl Cells {
 
     /// Keeps only the cells for which `keep(index, cell)` is true, in order (in place: the
     /// kept cells move down over the others).
-    pub fn retain(&mut self, keep: impl FnMut(usize, CellRef<'_>) -> bool) {
-        self.retain_from(0, keep);
+    pub fn retain(&mut self, mut keep: impl FnMut(usize, CellRef<'_>) -> bool) {
+        let (mut cells, mut nodes) = (0, 0);
+        for i in 0..self.len() {
+            if !keep(i, self.get(i)) {
+                continue;
+            }
+            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            self.nodes.copy_within(a..b, nodes);
+            self.types[cells] = self.types[i];
+            nodes += b - a;
+            cells += 1;
+            self.offsets[cells] = nodes as u32;
+        }
+        self.types.truncate(cells);
+        self.offsets.truncate(cells + 1);
+        self.nodes.truncate(nodes);
     }
 
     /// Removes the cells at the increasing indices `at`, in place: the cells after the first
@@ -144,25 +158,6 @@ impl Cells {
             }
             nodes += b - a;
             cells += run.len();
-        }
-        self.types.truncate(cells);
-        self.offsets.truncate(cells + 1);
-        self.nodes.truncate(nodes);
-    }
-
-    /// [`Cells::retain`] of the cells from `start` on (those before it are kept, unread).
-    fn retain_from(&mut self, start: usize, mut keep: impl FnMut(usize, CellRef<'_>) -> bool) {
-        let (mut cells, mut nodes) = (start, self.offsets[start] as usize);
-        for i in start..self.len() {
-            if !keep(i, self.get(i)) {
-                continue;
-            }
-            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
-            self.nodes.copy_within(a..b, nodes);
-            self.types[cells] = self.types[i];
-            nodes += b - a;
-            cells += 1;
-            self.offsets[cells] = nodes as u32;
         }
         self.types.truncate(cells);
         self.offsets.truncate(cells + 1);
