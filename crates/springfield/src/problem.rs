@@ -21,6 +21,10 @@ use crate::model::ForceModel;
 use crate::params::SolverParams;
 use crate::solver::{SolveOutcome, Start};
 
+/// Nodes from which a solve writes its moving nodes back on one thread while the other
+/// forgets the numbering.
+const PARALLEL_FINISH_MIN: usize = 4096;
+
 /// A solve's set-up: the local copies of the positions, the scales, and the solver's start.
 type SetUp<const D: usize> = (Vec<[f64; D]>, Vec<f64>, Result<Start<D>, SpringError>);
 
@@ -228,16 +232,29 @@ impl<const D: usize> LocalProblem<D> {
             let local = (&scales[..], &self.movable[..]);
             crate::solver::solve_model_active_from(&mut x, local, start, model, params)
         });
-        let mut undo = Undo::default();
-        for (l, &g) in self.nodes.iter().enumerate() {
-            if outcome.is_ok() && self.movable[l] {
-                if (g as usize) < new_start {
-                    undo.saved.push((g, positions[g as usize]));
+        let (nodes, movable, local_of) = (&self.nodes, &self.movable, &mut self.local_of);
+        let mut write_back = || {
+            let mut undo = Undo::default();
+            if outcome.is_ok() {
+                for ((&g, &m), &p) in nodes.iter().zip(movable).zip(&x) {
+                    if m {
+                        if (g as usize) < new_start {
+                            undo.saved.push((g, positions[g as usize]));
+                        }
+                        positions[g as usize] = p;
+                    }
                 }
-                positions[g as usize] = x[l];
             }
-            self.local_of[g as usize] = NO_NODE;
-        }
+            undo
+        };
+        let mut forget = || nodes.iter().for_each(|&g| local_of[g as usize] = NO_NODE);
+        // (two walks of scattered writes: on two threads for a large problem)
+        let undo = if nodes.len() >= PARALLEL_FINISH_MIN && rayon::current_num_threads() > 1 {
+            rayon::join(write_back, forget).0
+        } else {
+            forget();
+            write_back()
+        };
         Ok((undo, outcome?))
     }
 }

@@ -13,6 +13,8 @@
 //! The extrusion spring is generic over the dimension, for reuse in 3D; the neighbour and
 //! angle springs here are the 2D ones.
 
+use std::sync::OnceLock;
+
 use serde::{Deserialize, Serialize};
 
 use crate::model::{FiniteDifference, ForceModel, Spring, Triplet, jacobian_of};
@@ -294,28 +296,34 @@ pub struct SpringField2d<'a> {
     set: &'a SpringSet2d,
     params: &'a SpringParams,
     index: SpringIndex2d,
-    /// With more than one thread, the half of every node for the parallel assembly
-    /// ([`Halves`]); `None` with one thread or a small solve.
-    halves: Option<Halves>,
+    /// With more than one thread and a large solve, the half of every node for the parallel
+    /// assembly ([`Halves`]), made when first needed: beside the influence table, which the
+    /// first iteration builds beside its assembly on one thread (the halves are not needed
+    /// before the second), or by the first assembly in halves. `None` with one thread or a
+    /// small solve.
+    halves: Option<OnceLock<Halves>>,
+    /// The nodes of the solve.
+    n: usize,
 }
 
 impl<'a> SpringField2d<'a> {
-    /// Binds `set` and `params` for a solve over `n` nodes (the springs' index and, on more
-    /// than one thread, the halves are made at once: neither reads the other).
+    /// Binds `set` and `params` for a solve over `n` nodes (the springs' index made now, the
+    /// halves when first needed).
     pub fn new(set: &'a SpringSet2d, params: &'a SpringParams, n: usize) -> Self {
         let parallel = rayon::current_num_threads() > 1 && n >= PARALLEL_MIN_ACTIVE;
-        let (index, halves) = if parallel {
-            let (index, halves) = rayon::join(|| set.index(n), || Halves::new(set, n));
-            (index, Some(halves))
-        } else {
-            (set.index(n), None)
-        };
         SpringField2d {
             set,
             params,
-            index,
-            halves,
+            index: set.index(n),
+            halves: parallel.then(OnceLock::new),
+            n,
         }
+    }
+
+    /// The halves, made now if they were not yet; `None` when the assembly is not split.
+    fn halves(&self) -> Option<&Halves> {
+        let cell = self.halves.as_ref()?;
+        Some(cell.get_or_init(|| Halves::new(self.set, self.n)))
     }
 }
 
@@ -399,8 +407,14 @@ impl SpringField2d<'_> {
         (force, stiffness): (&mut [[f64; 2]], &mut [f64]),
         sums: Sums,
     ) {
-        match &self.halves {
-            Some(halves) if active.nodes.len() >= PARALLEL_MIN_ACTIVE => {
+        // (a small iteration does not make the halves)
+        let halves = if active.nodes.len() >= PARALLEL_MIN_ACTIVE {
+            self.halves()
+        } else {
+            None
+        };
+        match halves {
+            Some(halves) => {
                 let eval = ActiveEval {
                     set: self.set,
                     index: &self.index,
@@ -410,7 +424,7 @@ impl SpringField2d<'_> {
                 };
                 eval.in_halves(&halves.half, active.nodes, (force, stiffness), sums);
             }
-            _ => {
+            None => {
                 if sums == Sums::Set {
                     crate::model::zero_active(active.nodes, force, stiffness);
                 }
@@ -485,6 +499,12 @@ impl ForceModel<2> for SpringField2d<'_> {
     }
 
     fn influence(&self, n: usize) -> crate::Influence {
+        // the halves, when they are to be made, beside the table: on the thread that ends
+        // the first (the first iteration's assembly or this table) while the other works
+        if self.halves.as_ref().is_some_and(|c| c.get().is_none()) {
+            let (table, _) = rayon::join(|| self.index.influence(self.set, n), || self.halves());
+            return table;
+        }
         self.index.influence(self.set, n)
     }
 
@@ -1223,6 +1243,9 @@ pub(crate) mod tests {
                 let mut x = pos.clone();
                 let outcome =
                     crate::solve_model_active(&mut x, &scale, &movable, &model, &solver).unwrap();
+                // made beside the influence table, or by the first assembly in halves
+                let made = model.halves.as_ref().and_then(OnceLock::get).is_some();
+                assert_eq!(made, threads > 1);
                 (x, outcome)
             })
         };
