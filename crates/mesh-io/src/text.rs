@@ -5,8 +5,7 @@
 //! are the bytes `write!(w, "{:?}", x)` wrote before.
 
 use std::io::{self, Write};
-
-use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// Appends `x` as `format!("{x:?}")` would: the shortest digits that read back as `x`, in
 /// decimal form with at least one fractional digit (`1.0`, `0.0001`, `-0.0`) when
@@ -215,54 +214,64 @@ pub(crate) fn write_points(w: &mut dyn Write, nodes: &[[f64; 3]]) -> io::Result<
 
 /// Records per chunk of [`write_records`].
 const CHUNK: usize = 8192;
-/// Chunks formatted at once (in parallel) into one of two sets of buffers, while the other
-/// set is written: enough that the threads' chunks even out within a batch (with 4, a
-/// thread that had written the last batch then formatted one chunk and waited on the other's
-/// three: the 1M P3 run's `write` 1.23 → 1.05 s at two threads with 16), few enough that the
-/// buffers (about 0.5 MiB a chunk of P3 cells, up to twice that in capacity: 16–32 MiB in
-/// all) stay small next to the mesh (at 1M cells the writer runs at the memory peak).
-const BATCH: usize = 16;
+/// Chunks formatted ahead of the one being written: enough that the threads never wait on
+/// one another at the end of a group of chunks (with batches of 16 formatted while the last
+/// batch was written, a thread idled for the rest of each write, 2–3 ms a batch of P3
+/// cells), few enough that the buffers (about 0.5 MiB a chunk of P3 cells, up to twice that
+/// in capacity: 16–32 MiB in all) stay small next to the mesh (at 1M cells the writer runs
+/// at the memory peak).
+const AHEAD: usize = 32;
 
 /// Writes records `0..n`, each formatted by `record(i, buffer)`: chunks of records are
-/// formatted in parallel into their own buffers, a batch at a time, and written in order;
-/// batch k+1 is formatted (by the other threads, or by this one after the write) while
-/// batch k is written.
+/// formatted into their own buffers by jobs of the thread pool, up to [`AHEAD`] chunks ahead
+/// of the one being written, and written in order. A writing thread of the pool formats the
+/// chunks no other thread has taken yet (the oldest first) while it waits for the next one,
+/// so a pool of one thread formats and writes each chunk in turn; another thread waits for
+/// the pool.
 pub(crate) fn write_records<F>(w: &mut dyn Write, n: usize, record: F) -> io::Result<()>
 where
     F: Fn(usize, &mut Vec<u8>) + Sync,
 {
     let chunks = n.div_ceil(CHUNK);
-    let format = |first: usize, batch: &mut [Vec<u8>]| {
-        batch.par_iter_mut().enumerate().for_each(|(j, buffer)| {
-            let c = first + j;
-            buffer.clear();
-            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
-                record(i, buffer);
-            }
-        });
-    };
-    let len = |first: usize| BATCH.min(chunks - first);
-    // two sets of buffers, kept from batch to batch: one written, the other formatted
-    let mut ready: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(chunks)];
-    let mut next: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(chunks.saturating_sub(BATCH))];
-    if chunks > 0 {
-        format(0, &mut ready);
-    }
-    for first in (0..chunks).step_by(BATCH) {
-        let (batch, after) = (&ready[..len(first)], first + BATCH);
-        let write_batch = |w: &mut dyn Write| batch.iter().try_for_each(|b| w.write_all(b));
-        if after < chunks {
-            let upcoming = &mut next[..len(after)];
-            rayon::in_place_scope(|s| {
-                s.spawn(|_| format(after, upcoming));
-                write_batch(w)
-            })?;
-        } else {
-            write_batch(w)?;
+    // chunk c's buffer, once formatted, waits in slot c % AHEAD until it is written; the
+    // job for chunk c + AHEAD is spawned only then, with the same buffer
+    let slots: Vec<Mutex<Option<Vec<u8>>>> =
+        (0..AHEAD.min(chunks)).map(|_| Mutex::new(None)).collect();
+    let format = |c: usize, mut buffer: Vec<u8>| {
+        buffer.clear();
+        for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+            record(i, &mut buffer);
         }
-        std::mem::swap(&mut ready, &mut next);
-    }
-    Ok(())
+        *lock(&slots[c % AHEAD]) = Some(buffer);
+    };
+    rayon::in_place_scope_fifo(|s| {
+        for c in 0..slots.len() {
+            s.spawn_fifo(move |_| format(c, Vec::new()));
+        }
+        for c in 0..chunks {
+            let buffer = loop {
+                if let Some(buffer) = lock(&slots[c % AHEAD]).take() {
+                    break buffer;
+                }
+                // (the oldest job first: chunk c itself when no other thread has taken it)
+                if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                    std::thread::yield_now();
+                }
+            };
+            w.write_all(&buffer)?;
+            if c + AHEAD < chunks {
+                s.spawn_fifo(move |_| format(c + AHEAD, buffer));
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The slot's lock; a job that panicked while holding it (it would be formatting a record:
+/// a bug, which the scope then raises) left nothing half-done in it.
+fn lock(slot: &Mutex<Option<Vec<u8>>>) -> std::sync::MutexGuard<'_, Option<Vec<u8>>> {
+    slot.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 #[cfg(test)]
@@ -327,25 +336,59 @@ mod tests {
         }
     }
 
+    /// In pools of one to three threads (the writer a thread of the pool) and from a thread
+    /// outside any pool, whatever the number of chunks and of chunks ahead.
     #[test]
     fn records_are_written_in_order_whatever_the_chunks() {
-        for n in [
-            0,
-            1,
-            CHUNK - 1,
-            CHUNK,
-            CHUNK * BATCH + 3,
-            3 * CHUNK * BATCH - 1,
-        ] {
+        let write = |n: usize| {
             let mut fast = Vec::new();
             write_records(&mut fast, n, |i, b| {
                 push_int(b, i);
                 b.push(b'\n');
             })
             .unwrap();
+            fast
+        };
+        for n in [
+            0,
+            1,
+            CHUNK - 1,
+            CHUNK,
+            CHUNK * AHEAD + 3,
+            3 * CHUNK * AHEAD - 1,
+        ] {
             let slow: String = (0..n).map(|i| format!("{i}\n")).collect();
-            assert_eq!(fast, slow.as_bytes(), "{n} records");
+            for threads in 1..=3 {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let fast = pool.install(|| write(n));
+                assert_eq!(fast, slow.as_bytes(), "{n} records, {threads} threads");
+            }
+            assert_eq!(write(n), slow.as_bytes(), "{n} records, outside a pool");
         }
+    }
+
+    /// A failed write is the error returned, after the jobs already spawned have ended.
+    #[test]
+    fn a_failed_write_is_returned() {
+        struct Full(usize);
+        impl Write for Full {
+            fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+                if self.0 == 0 {
+                    return Err(io::Error::other("disk full"));
+                }
+                self.0 -= 1;
+                Ok(buf.len())
+            }
+            fn flush(&mut self) -> io::Result<()> {
+                Ok(())
+            }
+        }
+        let mut w = Full(3);
+        let e = write_records(&mut w, 10 * CHUNK, |i, b| push_int(b, i)).unwrap_err();
+        assert_eq!(e.to_string(), "disk full");
     }
 
     #[test]
