@@ -5,7 +5,7 @@
 //! are the bytes `write!(w, "{:?}", x)` wrote before.
 
 use std::io::{self, Write};
-use std::sync::Mutex;
+use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 
 /// Appends `x` as `format!("{x:?}")` would: the shortest digits that read back as `x`, in
 /// decimal form with at least one fractional digit (`1.0`, `0.0001`, `-0.0`) when
@@ -226,8 +226,8 @@ const AHEAD: usize = 32;
 /// formatted into their own buffers by jobs of the thread pool, up to [`AHEAD`] chunks ahead
 /// of the one being written, and written in order. A writing thread of the pool formats the
 /// chunks no other thread has taken yet (the oldest first) while it waits for the next one,
-/// so a pool of one thread formats and writes each chunk in turn; another thread waits for
-/// the pool.
+/// so a pool of one thread formats and writes each chunk in turn; a thread outside the pool
+/// sleeps until the pool has formatted it.
 pub(crate) fn write_records<F>(w: &mut dyn Write, n: usize, record: F) -> io::Result<()>
 where
     F: Fn(usize, &mut Vec<u8>) + Sync,
@@ -235,28 +235,31 @@ where
     let chunks = n.div_ceil(CHUNK);
     // chunk c's buffer, once formatted, waits in slot c % AHEAD until it is written; the
     // job for chunk c + AHEAD is spawned only then, with the same buffer
-    let slots: Vec<Mutex<Option<Vec<u8>>>> =
-        (0..AHEAD.min(chunks)).map(|_| Mutex::new(None)).collect();
+    let slots = Slots {
+        slots: Mutex::new((0..AHEAD.min(chunks)).map(|_| Slot::Empty).collect()),
+        filled: Condvar::new(),
+    };
     let format = |c: usize, mut buffer: Vec<u8>| {
+        let mut fill = Fill {
+            slots: &slots,
+            at: c % AHEAD,
+            buffer: None,
+        };
         buffer.clear();
         for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
             record(i, &mut buffer);
         }
-        *lock(&slots[c % AHEAD]) = Some(buffer);
+        fill.buffer = Some(buffer);
     };
+    let in_pool = rayon::current_thread_index().is_some();
     rayon::in_place_scope_fifo(|s| {
-        for c in 0..slots.len() {
+        for c in 0..AHEAD.min(chunks) {
             s.spawn_fifo(move |_| format(c, Vec::new()));
         }
         for c in 0..chunks {
-            let buffer = loop {
-                if let Some(buffer) = lock(&slots[c % AHEAD]).take() {
-                    break buffer;
-                }
-                // (the oldest job first: chunk c itself when no other thread has taken it)
-                if rayon::yield_now() != Some(rayon::Yield::Executed) {
-                    std::thread::yield_now();
-                }
+            // (None: a job panicked, which the scope raises once its jobs have ended)
+            let Some(buffer) = slots.take(c % AHEAD, in_pool) else {
+                return Ok(());
             };
             w.write_all(&buffer)?;
             if c + AHEAD < chunks {
@@ -267,11 +270,67 @@ where
     })
 }
 
-/// The slot's lock; a job that panicked while holding it (it would be formatting a record:
-/// a bug, which the scope then raises) left nothing half-done in it.
-fn lock(slot: &Mutex<Option<Vec<u8>>>) -> std::sync::MutexGuard<'_, Option<Vec<u8>>> {
-    slot.lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
+/// The chunks formatted and not yet written, by slot, and the signal that one was filled.
+struct Slots {
+    slots: Mutex<Vec<Slot>>,
+    filled: Condvar,
+}
+
+/// A slot of [`Slots`].
+enum Slot {
+    Empty,
+    Ready(Vec<u8>),
+    /// The job formatting its chunk panicked.
+    Failed,
+}
+
+impl Slots {
+    fn lock(&self) -> MutexGuard<'_, Vec<Slot>> {
+        // (poisoned only by a panic between a lock and its release, none of which formats)
+        self.slots.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The buffer of slot `at`, when it is filled: in the pool, meanwhile running the pool's
+    /// jobs (the oldest first: the chunk itself when no other thread has taken it); outside,
+    /// asleep. `None` when its job panicked.
+    fn take(&self, at: usize, in_pool: bool) -> Option<Vec<u8>> {
+        let mut slots = self.lock();
+        loop {
+            match std::mem::replace(&mut slots[at], Slot::Empty) {
+                Slot::Ready(buffer) => return Some(buffer),
+                Slot::Failed => return None,
+                Slot::Empty => {}
+            }
+            if in_pool {
+                drop(slots);
+                if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                    std::thread::yield_now();
+                }
+                slots = self.lock();
+            } else {
+                slots = self
+                    .filled
+                    .wait(slots)
+                    .unwrap_or_else(PoisonError::into_inner);
+            }
+        }
+    }
+}
+
+/// Fills a slot with its formatted buffer when dropped, or marks it failed when the buffer
+/// is missing (a panic while formatting), and signals it.
+struct Fill<'a> {
+    slots: &'a Slots,
+    at: usize,
+    buffer: Option<Vec<u8>>,
+}
+
+impl Drop for Fill<'_> {
+    fn drop(&mut self) {
+        let slot = self.buffer.take().map_or(Slot::Failed, Slot::Ready);
+        self.slots.lock()[self.at] = slot;
+        self.slots.filled.notify_all();
+    }
 }
 
 #[cfg(test)]
@@ -368,6 +427,29 @@ mod tests {
             }
             assert_eq!(write(n), slow.as_bytes(), "{n} records, outside a pool");
         }
+    }
+
+    /// A panic while formatting a record reaches the caller, in a pool or outside one (the
+    /// writer does not wait for the chunk for ever).
+    #[test]
+    fn a_panic_while_formatting_is_raised() {
+        let write = || {
+            let mut out = Vec::new();
+            let _ = write_records(&mut out, 5 * CHUNK, |i, b| {
+                assert!(i != 3 * CHUNK + 7, "record {i}");
+                push_int(b, i);
+            });
+        };
+        for threads in 1..=2 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let caught =
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| pool.install(write)));
+            assert!(caught.is_err(), "{threads} threads");
+        }
+        assert!(std::panic::catch_unwind(write).is_err(), "outside a pool");
     }
 
     /// A failed write is the error returned, after the jobs already spawned have ended.
