@@ -35,6 +35,7 @@ mod perf_doc;
 mod pictures;
 pub mod pipeline;
 pub mod pipeline3d;
+mod pool;
 mod progress;
 mod quality_cmd;
 mod report;

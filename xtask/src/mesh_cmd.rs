@@ -31,15 +31,10 @@ pub(crate) struct Planned {
     pub(crate) binary: bool,
 }
 
-/// Runs `cargo xtask mesh` in a pool of `--threads` threads (default: rayon's, one per core
-/// or `RAYON_NUM_THREADS`), entered by the run's thread: from a thread outside it, rayon's
-/// global pool hands every fork to its threads and blocks (the 1M-cell P3 run took some
-/// 0.05 s longer so).
+/// Runs `cargo xtask mesh` in a pool of `--threads` threads (default: one per core), entered
+/// by this thread (see [`crate::pool`]).
 pub fn run(args: &MeshArgs) -> Result<Finished> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.map_or(0, usize::from))
-        .build()?
-        .install(|| run_here(args))
+    crate::pool::in_pool(args.threads, || run_here(args))?
 }
 
 fn run_here(args: &MeshArgs) -> Result<Finished> {

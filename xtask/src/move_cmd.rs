@@ -26,8 +26,13 @@ use crate::report::Report;
 use crate::stages::Snapshot;
 use crate::{Finished, case, pipeline};
 
-/// Runs `cargo xtask move`.
+/// Runs `cargo xtask move`, in a pool of one thread per core entered by this thread (see
+/// [`crate::pool`]).
 pub fn run(args: &MoveArgs) -> Result<Finished> {
+    crate::pool::in_pool(None, || run_here(args))?
+}
+
+fn run_here(args: &MoveArgs) -> Result<Finished> {
     let total = Instant::now();
     let case = case::load(&args.case)?;
     let order = args.output.order.unwrap_or(case.order);

@@ -13,8 +13,13 @@ use crate::outputs::Outputs;
 use crate::pictures::{self, Colour};
 use crate::report::Report;
 
-/// Runs `cargo xtask quality`.
+/// Runs `cargo xtask quality`, in a pool of one thread per core entered by this thread (see
+/// [`crate::pool`]).
 pub fn run(args: &QualityArgs) -> Result<Finished> {
+    crate::pool::in_pool(None, || run_here(args))?
+}
+
+fn run_here(args: &QualityArgs) -> Result<Finished> {
     let total = Instant::now();
     if let Some(r) = &args.report
         && r.extension().is_none_or(|e| e != "json")
