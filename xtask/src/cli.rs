@@ -71,7 +71,8 @@ pub struct MeshArgs {
     #[arg(long)]
     pub binary: bool,
 
-    /// Threads for the parallel stages (writers, certification); default: every core. The
+    /// Threads for the parallel stages (the layers' solves and checks, the fill, the curving,
+    /// the certification, the writers); default: every core (or RAYON_NUM_THREADS). The
     /// files written are the same whatever the number.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
