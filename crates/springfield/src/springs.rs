@@ -302,8 +302,6 @@ pub struct SpringField2d<'a> {
     /// before the second), or by the first assembly in halves. `None` with one thread or a
     /// small solve.
     halves: Option<OnceLock<Halves>>,
-    /// The nodes of the solve.
-    n: usize,
 }
 
 impl<'a> SpringField2d<'a> {
@@ -316,14 +314,15 @@ impl<'a> SpringField2d<'a> {
             params,
             index: set.index(n),
             halves: parallel.then(OnceLock::new),
-            n,
         }
     }
 
     /// The halves, made now if they were not yet; `None` when the assembly is not split.
     fn halves(&self) -> Option<&Halves> {
         let cell = self.halves.as_ref()?;
-        Some(cell.get_or_init(|| Halves::new(self.set, self.n)))
+        // (over the nodes of the solve: those the index covers)
+        let n = self.index.offsets.len() - 1;
+        Some(cell.get_or_init(|| Halves::new(self.set, n)))
     }
 }
 

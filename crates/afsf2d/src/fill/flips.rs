@@ -186,17 +186,17 @@ fn flip_in_blocks(tris: &mut [[u32; 3]], pts: &[P2], constraints: &[(u32, u32)],
 /// opposite corner `i+2`), by first node and then second node (the order of a sort by edge):
 /// a directed edge met twice keeps its last triangle. Built by a counting sort on the first
 /// node, each node's few edges then sorted by their second node and position.
-pub(super) struct Owners {
+struct Owners {
     /// `edges[start[a]..start[a + 1]]`: the edges leaving node `a`, as (second node, position
     /// `3 t + i` of the edge in the triangles), increasing.
     start: Vec<u32>,
     edges: Vec<(u32, u32)>,
     /// Whether no directed edge was met twice.
-    pub(super) unique: bool,
+    unique: bool,
 }
 
 impl Owners {
-    pub(super) fn new(tris: &[[u32; 3]], n_nodes: usize) -> Self {
+    fn new(tris: &[[u32; 3]], n_nodes: usize) -> Self {
         Owners::in_blocks(tris, n_nodes, SORT_BLOCK)
     }
 
@@ -256,7 +256,7 @@ impl Owners {
             .map(move |&(b, at)| ((a as u32, b), split(at)))
     }
 
-    pub(super) fn get(&self, (a, b): (u32, u32)) -> Option<(usize, usize)> {
+    fn get(&self, (a, b): (u32, u32)) -> Option<(usize, usize)> {
         let a = a as usize;
         let run = &self.edges[self.start[a] as usize..self.start[a + 1] as usize];
         run.iter().find(|e| e.0 == b).map(|e| split(e.1))
@@ -305,7 +305,7 @@ fn sort_runs(edges: &mut [(u32, u32)], start: &[u32], block: usize) -> bool {
 }
 
 /// The triangle of edge position `3 t + i` and its corner opposite the edge.
-pub(super) fn split(at: u32) -> (usize, usize) {
+fn split(at: u32) -> (usize, usize) {
     (at as usize / 3, (at as usize % 3 + 2) % 3)
 }
 
