@@ -393,19 +393,37 @@ fn threads_row(
     runs: usize,
 ) -> Result<perf_doc::ThreadsRow> {
     let (mut one, mut two, mut cells) = (Vec::new(), Vec::new(), 0);
+    let mut round_trips = Vec::new();
     for _ in 0..runs.max(1) {
         let (time, report) = mesh_process(work, case, &["--order", "3", "--threads", "1"])?;
         cells = cells_of(&report);
         one.push(time);
         two.push(mesh_process(work, case, &["--order", "3", "--threads", "2"])?.0);
+        // the host's cross-core latency just after the two-thread run
+        round_trips.push(crate::probe::round_trip_ns());
     }
+    round_trips.sort_by(f64::total_cmp);
+    let two_walls: Vec<f64> = two.iter().map(|t| t.wall_s).collect();
     Ok(perf_doc::ThreadsRow {
         max_spacing: spacing,
         cells,
         runs: one.len(),
         one: medians(&one),
         two: medians(&two),
+        two_range: range(&two_walls),
+        round_trip_ns: (
+            round_trips[0],
+            median(&mut round_trips.clone()),
+            round_trips[round_trips.len() - 1],
+        ),
     })
+}
+
+/// The least and the greatest of `values` (not empty).
+fn range(values: &[f64]) -> (f64, f64) {
+    let least = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let greatest = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (least, greatest)
 }
 
 /// The medians of the wall and CPU times.

@@ -36,6 +36,7 @@ mod pictures;
 pub mod pipeline;
 pub mod pipeline3d;
 mod pool;
+mod probe;
 mod progress;
 mod quality_cmd;
 mod report;

@@ -77,6 +77,11 @@ pub struct ThreadsRow {
     /// Median times at `--threads 1` and at `--threads 2`.
     pub one: Times,
     pub two: Times,
+    /// The least and the greatest wall time at `--threads 2`.
+    pub two_range: (f64, f64),
+    /// The host's cross-core round trip after each two-thread run ([`crate::probe`]), in
+    /// nanoseconds: least, median, greatest.
+    pub round_trip_ns: (f64, f64, f64),
 }
 
 const VS: &str = "vs-gmsh";
@@ -119,12 +124,18 @@ pub fn scaling_line(r: &ScalingRow) -> String {
 /// The printed line of the threads point.
 pub fn threads_line(r: &ThreadsRow) -> String {
     format!(
-        "threads  max_spacing {}: one {:.3} s wall, two {:.3} s wall: {:.2}x (median of {})",
+        "threads  max_spacing {}: one {:.3} s wall, two {:.3} s wall ({:.3}-{:.3}): {:.2}x \
+         (median of {}); cross-core round trip {:.0} ns ({:.0}-{:.0})",
         r.max_spacing,
         r.one.wall_s,
         r.two.wall_s,
+        r.two_range.0,
+        r.two_range.1,
         r.one.wall_s / r.two.wall_s,
-        r.runs
+        r.runs,
+        r.round_trip_ns.1,
+        r.round_trip_ns.0,
+        r.round_trip_ns.2
     )
 }
 
@@ -140,7 +151,10 @@ fn threads_markdown(r: &ThreadsRow) -> String {
          {} ({} P3 cells), `cargo xtask mesh CASE --order 3 --threads 1` and `--threads 2` \
          alternating, {} runs of each (medians).\n\n| threads | wall | CPU |\n|---|---|---|\n\
          | 1 | {:.3} s | {:.3} s |\n| 2 | {:.3} s | {:.3} s |\n\nTwo threads over one: \
-         **{:.2}×** in wall time.\n",
+         **{:.2}×** in wall time. The two-thread runs took {:.3}–{:.3} s. The host's \
+         cross-core round trip (a cache line passed to another thread and back, timed after \
+         each two-thread run) was {:.0} ns (median; {:.0}–{:.0} ns): where it is high, the \
+         hypervisor has placed the two cores apart and two-thread runs are slower.\n",
         r.max_spacing,
         r.cells,
         r.runs,
@@ -148,7 +162,12 @@ fn threads_markdown(r: &ThreadsRow) -> String {
         r.one.cpu_s,
         r.two.wall_s,
         r.two.cpu_s,
-        r.one.wall_s / r.two.wall_s
+        r.one.wall_s / r.two.wall_s,
+        r.two_range.0,
+        r.two_range.1,
+        r.round_trip_ns.1,
+        r.round_trip_ns.0,
+        r.round_trip_ns.2
     )
 }
 

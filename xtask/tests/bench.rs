@@ -49,6 +49,7 @@ fn bench_vs_gmsh_and_scaling_work_on_a_tiny_configuration() {
         "<!-- threads:begin -->",
         "| 2 |",
         "Two threads over one",
+        "cross-core round trip",
         "<!-- 3d:begin -->",
         "| step | 864 tets, 1512 pyramids, 6552 hexes |",
     ] {
