@@ -38,14 +38,14 @@ pub(crate) fn round_trip_ns() -> f64 {
 /// Spins until `counter` holds `value`, yielding the core now and then (on a single core the
 /// other thread must run for the value to come).
 fn wait_for(counter: &AtomicU64, value: u64) {
-    let mut spins = 0u32;
-    while counter.load(Ordering::Acquire) != value {
-        spins += 1;
-        if spins % 1024 == 0 {
-            std::thread::yield_now();
-        } else {
+    loop {
+        for _ in 0..1024 {
+            if counter.load(Ordering::Acquire) == value {
+                return;
+            }
             std::hint::spin_loop();
         }
+        std::thread::yield_now();
     }
 }
 
