@@ -153,8 +153,9 @@ fn threads_markdown(r: &ThreadsRow) -> String {
          | 1 | {:.3} s | {:.3} s |\n| 2 | {:.3} s | {:.3} s |\n\nTwo threads over one: \
          **{:.2}×** in wall time. The two-thread runs took {:.3}–{:.3} s. The host's \
          cross-core round trip (a cache line passed to another thread and back, timed after \
-         each two-thread run) was {:.0} ns (median; {:.0}–{:.0} ns): where it is high, the \
-         hypervisor has placed the two cores apart and two-thread runs are slower.\n",
+         each two-thread run) was {:.0} ns (median; {:.0}–{:.0} ns): where it is high (the \
+         host's two virtual cores placed apart, or one of them held), data handed from one \
+         thread to the other is slow and two-thread runs are slower.\n",
         r.max_spacing,
         r.cells,
         r.runs,

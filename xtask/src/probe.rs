@@ -1,10 +1,10 @@
 //! The host's cross-core latency, for the bench's threads study: how long a cache line takes
 //! to go from one thread to another and back. On a virtual machine it depends on where the
-//! hypervisor places the two virtual cores (on this project's 2-core host it swings between
-//! about 55 ns, cores that share a cache, and 350–580 ns), and two-thread runs, which hand
-//! data from one core to the other many times a layer, are slower when it is high. Printed
-//! beside the study so that a ratio is read with the host's state at the time; nothing else
-//! uses it.
+//! hypervisor places the two virtual cores and whether it holds one of them (on this
+//! project's 2-core host it swings within seconds between about 55 ns, cores that share a
+//! cache, and several hundred ns, up to 2 µs), and two-thread runs, which hand data from one
+//! core to the other many times a layer, are slower when it is high. Printed beside the
+//! study so that a ratio is read with the host's state at the time; nothing else uses it.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
