@@ -402,28 +402,23 @@ fn threads_row(
         // the host's cross-core latency just after the two-thread run
         round_trips.push(crate::probe::round_trip_ns());
     }
-    round_trips.sort_by(f64::total_cmp);
-    let two_walls: Vec<f64> = two.iter().map(|t| t.wall_s).collect();
+    let mut two_walls: Vec<f64> = two.iter().map(|t| t.wall_s).collect();
+    let (least, _, greatest) = spread(&mut two_walls);
     Ok(perf_doc::ThreadsRow {
         max_spacing: spacing,
         cells,
         runs: one.len(),
         one: medians(&one),
         two: medians(&two),
-        two_range: range(&two_walls),
-        round_trip_ns: (
-            round_trips[0],
-            median(&mut round_trips.clone()),
-            round_trips[round_trips.len() - 1],
-        ),
+        two_range: (least, greatest),
+        round_trip_ns: spread(&mut round_trips),
     })
 }
 
-/// The least and the greatest of `values` (not empty).
-fn range(values: &[f64]) -> (f64, f64) {
-    let least = values.iter().copied().fold(f64::INFINITY, f64::min);
-    let greatest = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    (least, greatest)
+/// The least, the median and the greatest of `values` (not empty; sorted on the way).
+fn spread(values: &mut [f64]) -> (f64, f64, f64) {
+    let middle = median(values);
+    (values[0], middle, values[values.len() - 1])
 }
 
 /// The medians of the wall and CPU times.
