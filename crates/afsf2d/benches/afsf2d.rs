@@ -3,7 +3,7 @@
 //! fill stage alone (the fill's own timer, `AfsfStats::timings.fill`), and the obtuse-angle
 //! histogram of the mesh it makes (`max_angle_histogram`, the report's figure); and in a far
 //! field of 2000 nodes, the fill, the closing test (with the planning) and the verification
-//! (their broad phase, docs/performance.md's session 27).
+//! (their broad phase, docs/performance.md, "Plan, closing and verification").
 //!
 //! Measured (release, one thread, this machine): see docs/afsf.md.
 

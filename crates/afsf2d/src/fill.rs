@@ -549,8 +549,8 @@ fn refill_cavity(
     seeds.extend(change.peeled.iter().flat_map(peeled_corners));
     seeds.sort_unstable();
     seeds.dedup();
-    // (one ring of triangles more made the built-in meshes' worst fill angles worse:
-    // docs/performance.md, session 30)
+    // (one ring of triangles more makes the built-in meshes' worst fill angles worse:
+    // docs/afsf.md, "Hole filling")
     let in_cavity: Vec<bool> = prev
         .tris
         .iter()

@@ -1,7 +1,7 @@
 //! Benchmarks of the certified check: 100 000 mildly curved P3 triangles (and P2 quads),
 //! certified one by one as the curving stage does; 10 000 mildly curved prisms (P1, P2),
 //! linear pyramids and P2 tets; the areas of 100 000 P3 quadrilaterals and triangles by
-//! quadrature (`cell_area`, what the report's `area` summed until session 31); `check_mesh`
+//! quadrature (`cell_area`, the independent check of the report's `area`); `check_mesh`
 //! and `integrate_area` of a 120 000-cell P3 annulus. Results in `benches/RESULTS.md`.
 
 // criterion_group! generates an undocumented public function.
@@ -152,7 +152,7 @@ fn area_100k(c: &mut Criterion) {
 
 /// What the report's certification of a curved 2D mesh costs: `check_mesh` (which also sums
 /// the cells' areas from their certificates, `MeshValidity::measure`) and `integrate_area`
-/// (the same area by quadrature, which the report ran after it until session 31), on an
+/// (the same area by quadrature, the independent check the report no longer runs), on an
 /// annulus of 120 000 P3 cells (a third of the quadrilaterals cut into triangles; every cell
 /// curved, so none takes the straight-sided shortcut), on the threads rayon is given.
 fn mesh_area(c: &mut Criterion) {
