@@ -22,6 +22,7 @@ targets=(
   "crates/geom-curve airfoil_dat fixtures/geometry/*.dat fixtures/geometry/30p30n/*.dat crates/geom-curve/tests/data/*.dat"
   "crates/mesh-io msh crates/mesh-io/tests/data/*.msh"
   "crates/mesh-io stl crates/mesh-io/tests/data/*.stl"
+  "crates/mesh-io snapshot crates/mesh-io/tests/data/*.snap"
   "xtask case_toml fixtures/cases/*.toml"
 )
 failed=()

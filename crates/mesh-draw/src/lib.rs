@@ -23,7 +23,7 @@
 //! its own small stroke font (see the `font` module for the reasons) instead of a font
 //! rasteriser and a font file; the SVG writes `<text>` elements for the viewer's font.
 //!
-//! 3D meshes are drawn as a plane cut through them ([`slice`]): the polygons where the cells
+//! 3D meshes are drawn as a plane cut through them ([`mod@slice`]): the polygons where the cells
 //! meet the plane, a 2D mesh like any other, coloured by the type of their cell
 //! ([`ColourBy::Categories`]) or any other way.
 //!

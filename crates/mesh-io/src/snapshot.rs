@@ -7,6 +7,10 @@
 //! messages only), then the value encoded by bincode 1.3 (fixed-width integers, little
 //! endian). Snapshots are not an exchange format: they are read by the same version of the
 //! program that wrote them.
+//!
+//! Written by [`save`] (a file, atomically) or [`save_to`] (any writer); read by [`load`] (a
+//! file) or [`parse`] (its bytes, which may be anything: a bad file is an error, never a
+//! panic or an unbounded allocation; fuzzed by the `snapshot` target of `fuzz/run.sh`).
 
 use std::io::Write;
 use std::path::Path;
@@ -83,6 +87,19 @@ fn encode<T: Serialize>(path: &Path, value: &T) -> Result<(Vec<u8>, Vec<u8>), Io
 /// (the message names the type the file holds).
 pub fn load<T: DeserializeOwned>(path: &Path) -> Result<T, IoError> {
     let bytes = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
+    parse(&bytes, path)
+}
+
+/// Decodes the bytes of a snapshot (a whole file saved by [`save`] or [`save_to`]) as a `T`:
+/// [`load`] without the file; `path` only names the source in errors.
+///
+/// Any bytes give a value or an error, never a panic, and memory in proportion to their
+/// length: the header's type name is read only when it is at most 1 KiB and within the
+/// bytes, and the decoder may read no more than the payload holds, so a hostile length
+/// prefix (a vector of 2⁶⁰ nodes in a file of a hundred bytes) fails before it allocates.
+///
+/// Errors: [`IoError::Snapshot`], as [`load`].
+pub fn parse<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Result<T, IoError> {
     let snapshot_error = |message: String| IoError::Snapshot {
         path: path.to_path_buf(),
         message,
@@ -109,6 +126,9 @@ pub fn load<T: DeserializeOwned>(path: &Path) -> Result<T, IoError> {
         .ok_or_else(|| snapshot_error("truncated or corrupt snapshot header".into()))?;
     let stored = String::from_utf8_lossy(&rest[8..8 + name_len]);
     let payload = &rest[8 + name_len..];
+    // the limit: every length prefix is checked against the bytes left before its elements
+    // are read (bincode's byte buffers and strings), and serde preallocates at most 1 MiB for
+    // a sequence whatever its prefix claims
     options()
         .with_limit(payload.len() as u64)
         .deserialize::<T>(payload)
@@ -172,5 +192,132 @@ mod tests {
             let err = load::<Vec<f64>>(&path).unwrap_err();
             assert!(matches!(err, IoError::Snapshot { .. }), "cut {cut}: {err}");
         }
+    }
+
+    /// The bytes of a snapshot of `value`, as [`save`] writes them.
+    fn snapshot_bytes<T: Serialize>(value: &T) -> Vec<u8> {
+        let mut out = Vec::new();
+        save_to(&mut out, value, Path::new("mem.snap")).unwrap();
+        out
+    }
+
+    /// The small mesh of the fuzz seed `tests/data/annulus_p1.snap`.
+    fn seed_mesh() -> Mesh {
+        annulus(&AnnulusParams {
+            order: 1,
+            radial_cells: 1,
+            angular_cells: 4,
+            triangle_mask: vec![true, false],
+            ..AnnulusParams::default()
+        })
+    }
+
+    fn seed_path() -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/annulus_p1.snap")
+    }
+
+    #[test]
+    fn parse_decodes_what_save_to_writes_as_load_does() {
+        let m = seed_mesh();
+        let bytes = snapshot_bytes(&m);
+        assert_eq!(parse::<Mesh>(&bytes, Path::new("mem.snap")).unwrap(), m);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.snap");
+        std::fs::write(&path, &bytes).unwrap();
+        assert_eq!(load::<Mesh>(&path).unwrap(), m);
+    }
+
+    /// Regression for the fuzz target `snapshot` (`fuzz/fuzz_targets/snapshot.rs`): every
+    /// truncation of a snapshot, every byte of it overwritten, and pseudo-random bytes (with
+    /// and without a valid header) give an error or a value, never a panic; truncations always
+    /// an error.
+    #[test]
+    fn truncated_corrupt_and_random_bytes_give_an_error_not_a_panic() {
+        let path = Path::new("fuzz.snap");
+        let bytes = snapshot_bytes(&seed_mesh());
+        for cut in 0..bytes.len() {
+            let err = parse::<Mesh>(&bytes[..cut], path).unwrap_err();
+            assert!(matches!(err, IoError::Snapshot { .. }), "cut {cut}: {err}");
+        }
+        for at in 0..bytes.len() {
+            for byte in [0x00, 0x7f, 0xff] {
+                let mut b = bytes.clone();
+                b[at] = byte;
+                let _ = parse::<Mesh>(&b, path);
+            }
+        }
+        let header_len = bytes.len() - options().serialize(&seed_mesh()).unwrap().len();
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for round in 0..2000 {
+            let len = round % 300;
+            let mut b: Vec<u8> = (0..len)
+                .map(|_| {
+                    // xorshift64
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    state as u8
+                })
+                .collect();
+            if round % 2 == 1 {
+                b.splice(0..0, bytes[..header_len].iter().copied());
+            }
+            let err = parse::<Mesh>(&b, path).unwrap_err();
+            assert!(
+                matches!(err, IoError::Snapshot { .. }),
+                "round {round}: {err}"
+            );
+        }
+    }
+
+    /// A length prefix claiming far more elements than the bytes hold is an error, not an
+    /// allocation of that many (which would abort the process).
+    #[test]
+    fn a_hostile_length_prefix_is_an_error_not_an_allocation() {
+        let path = Path::new("hostile.snap");
+        let mut bytes = snapshot_bytes(&vec![1.5f64, 2.5]);
+        let at = bytes.len() - 2 * 8 - 8; // the vector's u64 length
+        for len in [3u64, 1 << 40, 1 << 60, u64::MAX] {
+            bytes[at..at + 8].copy_from_slice(&len.to_le_bytes());
+            let err = parse::<Vec<f64>>(&bytes, path).unwrap_err();
+            assert!(matches!(err, IoError::Snapshot { .. }), "{len}: {err}");
+        }
+        // in a mesh: its node count (after `dim`, a u32 variant index, and `order`, a u8)
+        let mut bytes = snapshot_bytes(&seed_mesh());
+        let at = bytes.len() - options().serialize(&seed_mesh()).unwrap().len() + 5;
+        let nodes = seed_mesh().nodes.len() as u64;
+        assert_eq!(
+            bytes[at..at + 8],
+            nodes.to_le_bytes(),
+            "the node count's place"
+        );
+        for len in [1u64 << 40, u64::MAX] {
+            bytes[at..at + 8].copy_from_slice(&len.to_le_bytes());
+            let err = parse::<Mesh>(&bytes, path).unwrap_err();
+            assert!(matches!(err, IoError::Snapshot { .. }), "{len}: {err}");
+        }
+        // and a string: a patch name
+        let mut m = seed_mesh();
+        m.patches[0].name = "ABCDEFGH".into();
+        let mut bytes = snapshot_bytes(&m);
+        let name = bytes.windows(8).position(|w| w == b"ABCDEFGH").unwrap();
+        bytes[name - 8..name].copy_from_slice(&u64::MAX.to_le_bytes());
+        let err = parse::<Mesh>(&bytes, path).unwrap_err();
+        assert!(matches!(err, IoError::Snapshot { .. }), "{err}");
+    }
+
+    /// The fuzz seed `tests/data/annulus_p1.snap` (run by `fuzz/run.sh`) is a snapshot this
+    /// build reads. When the format or `Mesh` changes, rewrite it with
+    /// `cargo test -p mesh-io --lib -- --ignored write_the_fuzz_seed`.
+    #[test]
+    fn the_fuzz_seed_is_a_current_snapshot() {
+        let back: Mesh = load(&seed_path()).unwrap();
+        assert_eq!(back, seed_mesh());
+    }
+
+    #[test]
+    #[ignore = "writes the fuzz seed into tests/data"]
+    fn write_the_fuzz_seed() {
+        save(&seed_path(), &seed_mesh()).unwrap();
     }
 }

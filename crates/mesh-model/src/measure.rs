@@ -8,10 +8,10 @@ use crate::mesh::Mesh;
 /// side (the worst value, so that degenerate cells stand out).
 ///
 /// The largest angle lies opposite the longest side, so only the corners whose opposite side
-/// is within [`SIDE_MARGIN`] of the longest are measured (one `atan2` instead of three, nearly
-/// always): each measured the same way as every corner would be, so the value is the largest
-/// of the three to the last bit. Sides too short or too long to square, or not finite, measure
-/// every corner.
+/// is within a small margin of the longest (1e-6 relative, squared) are measured (one `atan2`
+/// instead of three, nearly always): each measured the same way as every corner would be, so
+/// the value is the largest of the three to the last bit. Sides too short or too long to
+/// square, or not finite, measure every corner.
 pub fn triangle_max_angle_deg(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let corners = [a, b, c];
     if corners

@@ -31,7 +31,7 @@ pub fn selig(name: &str) -> Vec<Point2<f64>> {
     selig::parse(&text).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-/// [`selig`] as `[x, y]` pairs.
+/// [`selig()`] as `[x, y]` pairs.
 pub fn selig_xy(name: &str) -> Vec<[f64; 2]> {
     selig(name).iter().map(|p| [p.x, p.y]).collect()
 }
@@ -39,7 +39,7 @@ pub fn selig_xy(name: &str) -> Vec<[f64; 2]> {
 /// The C2 curve through a Selig fixture (default curve parameters).
 ///
 /// # Panics
-/// As [`selig`], or when the curve cannot be fitted.
+/// As [`selig()`], or when the curve cannot be fitted.
 pub fn selig_curve(name: &str) -> ClosedCurve {
     ClosedCurve::new(&selig(name), &CurveParams::default())
         .unwrap_or_else(|e| panic!("{name}: {e}"))

@@ -46,6 +46,39 @@
 //! are the bottoms of layer-0 cells (patch `wall`) and the other faces of one cell (the outer
 //! front, patch `farfield`), turned out of the domain; when the pipes number the wall facets
 //! `0..n`, facet `p` is (the first part of) the wall facet of pipe `p`.
+//!
+//! # Example
+//!
+//! One layer of one cell: the unit cube grown from the wall square (0, 1, 2, 3), its nodes'
+//! children 4 to 7; the bottom face first, then the top, then the sides, all turned out. The
+//! tetrahedral cut makes six positive tetrahedra filling the cube; the mixed cut keeps the
+//! hexahedron:
+//!
+//! ```
+//! use mesh_model::poly::{CellFace, PolyMesh};
+//! use mesh_model::{Shape, measure3d::cell_volume, validate};
+//!
+//! let mut poly = PolyMesh::new();
+//! poly.nodes = [0.0, 1.0]
+//!     .iter()
+//!     .flat_map(|&z| [[0.0, 0.0, z], [1.0, 0.0, z], [1.0, 1.0, z], [0.0, 1.0, z]])
+//!     .collect();
+//! let faces: [&[u32]; 6] =
+//!     [&[0, 3, 2, 1], &[4, 5, 6, 7], &[0, 1, 5, 4], &[1, 2, 6, 5], &[2, 3, 7, 6], &[3, 0, 4, 7]];
+//! let faces: Vec<CellFace> =
+//!     faces.iter().map(|k| CellFace { face: poly.push_face(k), reversed: false }).collect();
+//! poly.push_cell(&faces, 0, 0); // layer 0, pipe 0
+//!
+//! let tets = topo_cut::cut_to_tets(&poly).unwrap();
+//! assert!(validate(&tets).is_empty());
+//! assert_eq!((tets.cells.len(), tets.count(Shape::Tet)), (6, 6));
+//! assert!((0..6).all(|i| cell_volume(&tets, i) > 0.0));
+//! let volume: f64 = (0..6).map(|i| cell_volume(&tets, i)).sum();
+//! assert!((volume - 1.0).abs() < 1e-12);
+//!
+//! let mixed = topo_cut::cut_to_mixed(&poly).unwrap();
+//! assert_eq!((mixed.cells.len(), mixed.count(Shape::Hex)), (1, 1));
+//! ```
 
 pub mod cone;
 pub mod improve;
