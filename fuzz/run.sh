@@ -23,7 +23,8 @@ targets=(
   "crates/mesh-io msh crates/mesh-io/tests/data/*.msh"
   "crates/mesh-io stl crates/mesh-io/tests/data/*.stl"
   "crates/mesh-io snapshot crates/mesh-io/tests/data/*.snap"
-  "xtask case_toml fixtures/cases/*.toml"
+  "crates/curvemesh case_toml fixtures/cases/*.toml"
+  "crates/curvemesh motion_toml fixtures/motions/*.toml"
 )
 failed=()
 for entry in "${targets[@]}"; do

@@ -291,7 +291,7 @@ fn tet_dihedrals(mesh: &mesh_model::Mesh) -> Vec<f64> {
 
 fn main() -> anyhow::Result<()> {
     let a = args()?;
-    let mut case = xtask::case::load(&a.case)?;
+    let mut case = curvemesh::load::load_2d(&a.case)?;
     case.layers.first_height = a.surface_h;
     case.layers.growth = a.growth;
     case.boundary.growth = a.growth;
@@ -304,7 +304,7 @@ fn main() -> anyhow::Result<()> {
         }
     }
     let t0 = Instant::now();
-    let (wall, _shape) = xtask::wing::wing_surface(&case, a.span, !a.quads)?;
+    let (wall, _shape) = curvemesh::wing::wing_surface(&case, a.span, !a.quads)?;
     let t_surface = t0.elapsed().as_secs_f64();
     let params = LayerParams {
         first_height: a.h,

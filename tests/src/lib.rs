@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use clap::Parser;
+pub use curvemesh_cli::Outcome;
+use curvemesh_cli::{cli::Cli, execute};
 use serde_json::Value;
-pub use xtask::Outcome;
-use xtask::{cli::Cli, execute};
 
 /// The flags `cargo xtask ARGS…` parse to; panics when they do not (a test's fault).
 pub fn cli(args: &[&str]) -> Cli {

@@ -3,9 +3,9 @@
 
 use std::collections::HashMap;
 
+use curvemesh::builtin;
 use end_to_end::{Outcome, mesh, xtask_ok as run};
 use mesh_model::{Role, Shape};
-use xtask::builtin;
 
 #[test]
 fn every_builtin_case_at_every_order_round_trips() {

@@ -5,10 +5,10 @@
 //! certified check even when the structural check fails too.
 
 use clap::Parser;
+use curvemesh_cli::cli::{Cli, Command};
+use curvemesh_cli::exit::{self, Exit};
+use curvemesh_cli::{Outcome, run};
 use end_to_end::{assert_one_line_naming, assert_problem, cli, read_json, s};
-use xtask::cli::{Cli, Command};
-use xtask::exit::{self, Exit};
-use xtask::{Outcome, run};
 
 fn usage(args: &[&str]) -> Option<Exit> {
     let mut all = vec!["cargo xtask"];

@@ -7,9 +7,9 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use curvemesh::builtin;
 use end_to_end::{Outcome, s, xtask_ok};
 use mesh_model::Mesh;
-use xtask::builtin;
 
 const GOLDEN: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),

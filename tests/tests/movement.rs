@@ -266,7 +266,7 @@ fn a_mover_that_inverts_cells_writes_the_mesh_and_fails() {
     assert_eq!(r["order"], 1, "an inverted mesh is written linear");
     assert!(r["quality"]["invalid_cells"].as_u64().unwrap() > 0);
     assert!(!r["problems"].as_array().unwrap().is_empty());
-    let finished = xtask::run(end_to_end::cli(&[
+    let finished = curvemesh_cli::run(end_to_end::cli(&[
         "move",
         "naca0012",
         "--quiet",
@@ -282,7 +282,7 @@ fn a_mover_that_inverts_cells_writes_the_mesh_and_fails() {
         "0.5",
     ]))
     .unwrap();
-    let line = xtask::exit::of_run(&Ok(finished));
+    let line = curvemesh_cli::exit::of_run(&Ok(finished));
     assert_eq!(line.code, 2);
     assert_one_line_naming(
         line.stderr.as_deref().unwrap(),

@@ -164,6 +164,6 @@ fn a_case_name_is_made_safe_for_the_default_file_names() {
         ("NACA 0012 (clean)", "NACA_0012__clean_"),
         ("naca0012", "naca0012"),
     ] {
-        assert_eq!(xtask::outputs::file_stem_of(name), stem, "{name:?}");
+        assert_eq!(curvemesh::outputs::file_stem_of(name), stem, "{name:?}");
     }
 }

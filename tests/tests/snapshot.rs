@@ -19,8 +19,7 @@ fn snapshot_holds_the_stages_and_loads_back() {
         &bin,
     ])
     .unwrap();
-    let stages: xtask::stages::Snapshot =
-        mesh_io::snapshot::load(std::path::Path::new(&bin)).unwrap();
+    let stages: curvemesh::Snapshot = mesh_io::snapshot::load(std::path::Path::new(&bin)).unwrap();
     let written = mesh_io::read_msh(std::path::Path::new(&msh)).unwrap();
     assert_eq!(stages.case, "bat");
     assert_eq!(stages.layered.mesh.nodes, written.nodes);

@@ -2,8 +2,8 @@
 //! and a binary `.msh` holds the very mesh the text one does.
 
 use clap::Parser;
+use curvemesh_cli::cli::Cli;
 use end_to_end::{Outcome, assert_one_line_naming, mesh, s};
-use xtask::cli::Cli;
 
 #[test]
 fn one_and_two_threads_write_the_same_bytes() {
@@ -72,7 +72,7 @@ fn binary_without_an_msh_output_is_refused_in_one_line() {
 fn zero_threads_is_refused_in_one_line() {
     let err = Cli::try_parse_from(["cargo xtask", "mesh", "lshape", "--threads", "0"])
         .expect_err("clap refuses --threads 0");
-    let e = xtask::exit::of_usage_error(&err).expect("a usage error");
+    let e = curvemesh_cli::exit::of_usage_error(&err).expect("a usage error");
     assert_eq!(e.code, 1, "{e:?}");
     assert_one_line_naming(e.stderr.as_deref().unwrap(), &["--threads", "0"]);
 }

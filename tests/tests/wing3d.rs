@@ -22,9 +22,9 @@ fn tet_volume(mesh: &Mesh) -> f64 {
 /// The NACA0012 wing of span 0.5 (surface and layers from 1e-3, growth 1.3) and `layers`
 /// layers grown from it.
 fn wing(triangles: bool, layers: usize) -> (geom_surface::Surface, afsf3d::Grown3d) {
-    let mut case = xtask::case::load("naca0012").unwrap();
+    let mut case = curvemesh::load::load_2d("naca0012").unwrap();
     case.layers.first_height = 1e-3;
-    let (wall, _) = xtask::wing::wing_surface(&case, 0.5, triangles).unwrap();
+    let (wall, _) = curvemesh::wing::wing_surface(&case, 0.5, triangles).unwrap();
     let params = LayerParams {
         first_height: 1e-3,
         growth: 1.3,

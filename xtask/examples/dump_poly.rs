@@ -5,8 +5,8 @@
 use std::io::Write;
 
 use anyhow::{Result, bail};
-use xtask::case::{AnyCase, load_any};
-use xtask::pipeline3d;
+use curvemesh::pipeline3d;
+use curvemesh::{AnyCase, load as load_any};
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();

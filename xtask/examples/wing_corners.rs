@@ -9,9 +9,9 @@
 //! cap's facets at the trailing edge (x > 0.97).
 
 use anyhow::{Result, bail};
+use curvemesh::pipeline3d;
+use curvemesh::{AnyCase, load as load_any};
 use mesh_model::measure3d;
-use xtask::case::{AnyCase, load_any};
-use xtask::pipeline3d;
 
 fn angle(a: [f64; 3], o: [f64; 3], b: [f64; 3]) -> f64 {
     let u: [f64; 3] = std::array::from_fn(|d| a[d] - o[d]);

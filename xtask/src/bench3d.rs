@@ -10,8 +10,8 @@ use std::fmt::Write as _;
 use anyhow::Result;
 use serde_json::Value;
 
-use crate::bench_cmd::median;
-use crate::bench_vs::{Timed, Work, mesh_process};
+use crate::runs::{Timed, Work, median, mesh_process};
+
 use crate::perf_doc::{self, Times};
 
 /// A row to run: (label, built-in case, `(from, to)` line edits of its case file).
@@ -103,7 +103,7 @@ fn row(label: &'static str, times: &[Timed], reports: &[Value]) -> Row {
         cells: parts.join(", "),
         cell_count,
         runs: times.len(),
-        time: crate::bench_vs::medians(times),
+        time: crate::runs::medians(times),
         stages: STAGES
             .iter()
             .map(|s| of(&|r: &Value| r["timings_s"][*s].as_f64()))

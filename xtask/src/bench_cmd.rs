@@ -11,7 +11,10 @@ use anyhow::{Result, bail};
 use mesh_model::Shape;
 
 use crate::cli::BenchArgs;
-use crate::{Outcome, builtin, case, pipeline};
+use curvemesh::{builtin, load::load_2d as load_case, pipeline};
+use curvemesh_cli::Outcome;
+
+use crate::runs::median;
 
 /// Runs `cargo xtask bench`.
 pub fn run(args: &BenchArgs) -> Result<Outcome> {
@@ -54,7 +57,7 @@ pub fn run(args: &BenchArgs) -> Result<Outcome> {
 /// Times every case and prints its row.
 fn bench_cases(names: &[String], runs: usize) -> Result<()> {
     for name in names {
-        let case = case::load(name)?;
+        let case = load_case(name)?;
         let (mut curve_s, mut boundary_s, mut linear_s) = (vec![], vec![], vec![]);
         let (mut curving_s, mut certify_s) = (vec![], vec![]);
         let mut counts = (0, 0, 0);
@@ -100,13 +103,4 @@ fn bench_cases(names: &[String], runs: usize) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// The median of `v` (NaN when empty).
-pub(crate) fn median(v: &mut [f64]) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }

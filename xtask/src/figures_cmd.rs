@@ -9,8 +9,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 
 use crate::cli::FiguresArgs;
-use crate::entry::{self, CARGO_XTASK};
-use crate::{Finished, Outcome};
+use curvemesh_cli::{Finished, Outcome, entry};
+
+use crate::CARGO_XTASK;
 
 /// Width of every figure in pixels: small files, sharp enough on a page.
 pub const WIDTH: &str = "900";
@@ -145,8 +146,11 @@ fn make_all(fig: &Path, tmp: &Path, quiet: bool) -> Result<()> {
         argv.push("--width".into());
         argv.push(WIDTH.into());
         argv.push("--quiet".into());
-        let cli = entry::parse(CARGO_XTASK, argv).map_err(|e| anyhow::anyhow!("{e}"))?;
-        let finished = crate::run(cli).with_context(|| format!("figures: {}", line.join(" ")))?;
+        // every figure is a `curvemesh` command (mesh, move, quality)
+        let cli = entry::parse::<curvemesh_cli::cli::Cli, _, _>(CARGO_XTASK, argv)
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        let finished =
+            curvemesh_cli::run(cli).with_context(|| format!("figures: {}", line.join(" ")))?;
         if finished.outcome != Outcome::Valid {
             bail!(
                 "figures: {}: {}",

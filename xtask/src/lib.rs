@@ -1,80 +1,25 @@
-//! `cargo xtask`: the command-line tool. It composes the crates of the pipeline —
-//! `geom-curve` → `boundary1d` → the domain meshers → `mesh-io` — into the commands of
-//! `../shared/design/interface.md`. Flags are parsed in [`cli`]; each subcommand has its own
-//! module with a `run`. This is the only crate (with `mesh-io`) that touches files, and the
-//! only one that uses `anyhow`.
+//! `cargo xtask`: the development tasks of the workspace — `bench` (each stage timed, whole
+//! runs side by side with Gmsh, the scaling and threads studies, 3D; written into
+//! `docs/performance.md`) and `figures` (the pictures of the docs, from real runs) — beside
+//! the `curvemesh` commands `mesh`, `move` and `quality`, forwarded as they are to
+//! [`curvemesh_cli`] so that `cargo xtask mesh` is `curvemesh mesh`.
 //!
-//! The library half holds everything, so that the end-to-end tests in `tests/` can drive the
-//! commands in-process; `main.rs` only parses the flags and turns the outcome into an exit
-//! status.
-//!
-//! Exit status ([`exit`]): 0 on success, 1 on bad input (one line on stderr naming the fault,
-//! no output file left behind), 2 when a mesh was made but failed validation (written, with
-//! one line on stderr). Every output of a run — meshes, snapshot, pictures, report — is
-//! reserved before the work starts and replaced together at the end, or not at all
-//! ([`mesh_io::atomic::Transaction`], see [`outputs`]).
+//! Modules, each importing only those listed before it: [`cli`], `probe`, `perf_doc`,
+//! `runs`, `bench3d`, `bench_vs`, `bench_cmd`, [`figures_cmd`].
 
-mod airfoil;
 mod bench3d;
 mod bench_cmd;
 mod bench_vs;
-pub mod builtin;
-pub mod case;
-pub mod case3d;
 pub mod cli;
-pub mod entry;
-mod estimate;
-pub mod exit;
 pub mod figures_cmd;
-mod mesh3d_cmd;
-mod mesh_cmd;
-mod move_cmd;
-mod move_sens;
-pub mod outputs;
 mod perf_doc;
-mod pictures;
-pub mod pipeline;
-pub mod pipeline3d;
-mod pool;
 mod probe;
-mod progress;
-mod quality_cmd;
-mod report;
-mod resources;
-pub mod stages;
-mod summary;
-pub mod wing;
+mod runs;
 
-/// The case loader from TOML text, for the fuzz target (`xtask/fuzz`).
-pub use case::parse_case_str;
+pub use curvemesh_cli::{Finished, Outcome, exit};
 
-/// How a run that did not fail on bad input ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Outcome {
-    /// Everything was made and passed validation.
-    Valid,
-    /// A mesh was written, but it failed validation (named in the report).
-    Invalid,
-}
-
-/// How a run ended, with the line for stderr when the mesh failed validation.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Finished {
-    /// Valid or not.
-    pub outcome: Outcome,
-    /// For [`Outcome::Invalid`]: what failed and where the report is, on one line.
-    pub problem: Option<String>,
-}
-
-impl Finished {
-    /// A valid run.
-    pub fn valid() -> Finished {
-        Finished {
-            outcome: Outcome::Valid,
-            problem: None,
-        }
-    }
-}
+/// The name `cargo xtask` prints in help and usage lines.
+pub const CARGO_XTASK: &str = "cargo xtask";
 
 /// Runs one parsed command. An `Err` is bad input (exit status 1); its `{:#}` display is the
 /// one-line message for the user.
@@ -86,9 +31,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<Outcome> {
 /// (see [`exit::of_run`]).
 pub fn run(cli: cli::Cli) -> anyhow::Result<Finished> {
     match cli.command {
-        cli::Command::Mesh(args) => mesh_cmd::run(&args),
-        cli::Command::Move(args) => move_cmd::run(&args),
-        cli::Command::Quality(args) => quality_cmd::run(&args),
+        cli::Command::Tool(command) => curvemesh_cli::run_command(command),
         cli::Command::Bench(args) => bench_cmd::run(&args).map(|_| Finished::valid()),
         cli::Command::Figures(args) => figures_cmd::run(&args),
     }

@@ -1,5 +1,5 @@
-//! The `xtask` binary, run as `cargo xtask` (the alias in `.cargo/config.toml`); everything is
-//! in the library ([`xtask::entry`]), shared with the `curvemesh` binary.
+//! The `xtask` binary, run as `cargo xtask` (the alias in `.cargo/config.toml`): the
+//! development tasks and the `curvemesh` commands ([`xtask::run`]).
 
 /// jemalloc with one arena (`.cargo/config.toml`): glibc gives the second thread an arena of
 /// its own, which kept the 1M-cell run's peak memory 10 % higher with two threads.
@@ -8,5 +8,5 @@
 static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
 
 fn main() -> std::process::ExitCode {
-    xtask::entry::main(xtask::entry::CARGO_XTASK)
+    curvemesh_cli::entry::main::<xtask::cli::Cli>(xtask::CARGO_XTASK, xtask::run)
 }

@@ -796,8 +796,8 @@ fn the_wing_at_p2_has_its_side_nodes_on_the_true_wing() {
     assert!(r["notes"].to_string().contains("true wing"), "{r}");
     let mesh = mesh_io::read_msh(&d.join("p2.msh")).unwrap();
     assert_eq!(mesh.order, 2);
-    let section = xtask::case::load("naca0012").unwrap();
-    let (_, shape) = xtask::wing::wing_surface(&section, span, true).unwrap();
+    let section = curvemesh::load::load_2d("naca0012").unwrap();
+    let (_, shape) = curvemesh::wing::wing_surface(&section, span, true).unwrap();
     let (mut side, mut cap) = (0, 0);
     for (f, facet) in mesh.boundary.iter().enumerate() {
         let patch = &mesh.patches[mesh.boundary_patch[f] as usize];

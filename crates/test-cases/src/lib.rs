@@ -1,6 +1,6 @@
 //! Test and bench fixture code only — not part of the pipeline. The built-in cases of
-//! `cargo xtask mesh` as the tool reads them (`fixtures/cases/*.toml` through xtask's own case
-//! loader, [`xtask::case`]) and run through the tool's own stages ([`xtask::pipeline`]):
+//! `curvemesh mesh` as the tool reads them (`fixtures/cases/*.toml` through the library's case
+//! loader, [`curvemesh::load`]) and run through the tool's own stages ([`curvemesh::pipeline`]):
 //! curves, boundary nodes, the layered linear mesh and its curving. Domains made in code
 //! (random bodies, ellipses) become a [`Case`] by [`case_of`] and run through the same
 //! stages, so that the tests and benches of `afsf2d` and `vector-adding` mesh what the tool
@@ -12,15 +12,15 @@
 
 use afsf2d::{AfsfOutput, AfsfParams, FrontLoop};
 use boundary1d::BoundaryNodes;
+pub use curvemesh::case::{Case, LoopInput};
+use curvemesh::pipeline;
 use geom_curve::ClosedCurve;
 use mesh_model::Role;
 use vector_adding::{Curved, CurvingError, CurvingParams};
-pub use xtask::case::{Case, LoopInput};
-use xtask::pipeline;
 
 /// The names of the built-in cases (`cargo xtask mesh --list`).
 pub fn real_cases() -> Vec<&'static str> {
-    xtask::builtin::names()
+    curvemesh::builtin::names()
 }
 
 /// A built-in case by name, read from its case file as `cargo xtask mesh NAME` reads it.
@@ -28,7 +28,7 @@ pub fn real_cases() -> Vec<&'static str> {
 /// # Panics
 /// When `name` is not a built-in case.
 pub fn real_case(name: &str) -> Case {
-    xtask::case::load(name).unwrap_or_else(|e| panic!("built-in case {name}: {e:#}"))
+    curvemesh::load::load_2d(name).unwrap_or_else(|e| panic!("built-in case {name}: {e:#}"))
 }
 
 /// A case made in code from its loops — (name, role, points) each, in any orientation — with

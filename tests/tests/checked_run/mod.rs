@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use clap::Parser;
-use xtask::{Outcome, cli::Cli, execute};
+use curvemesh_cli::{Outcome, cli::Cli, execute};
 
 /// What one run came to.
 pub enum Verdict {

@@ -1,0 +1,172 @@
+//! `curvemesh move`: load a 2D case, read its motion (a motion file, or the flags of one
+//! loop's motion), check it against the case, reserve every output, move the case with the
+//! library (meshed first, or from `--snapshot`), draw the pictures, write the report and
+//! the sensitivities, print the summary. A bad motion is refused with one line before any
+//! work; the outputs are written all together or not at all.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result, ensure};
+use curvemesh::movement::motion::{self, default_loop, parse_bump, rigid};
+use curvemesh::movement::{MoveOptions, Moved, Mover};
+use curvemesh::{Case, Snapshot};
+use mesh_move::{LoopMotion, Motion};
+
+use crate::cli::{MotionArgs, MoveArgs, MoveMethod, RbfKernel};
+use crate::outcome::Finished;
+use crate::pictures::{self, Colour};
+use crate::plan::{OutputFlags, plan};
+use crate::progress::{Spinners, stage};
+use crate::{pool, resources, summary};
+
+/// Runs `curvemesh move`, in a pool of one thread per core entered by this thread (see
+/// [`crate::pool`]).
+pub fn run(args: &MoveArgs) -> Result<Finished> {
+    pool::in_pool(None, || run_here(args))?
+}
+
+fn run_here(args: &MoveArgs) -> Result<Finished> {
+    let total = Instant::now();
+    let case = curvemesh::load::load_2d(&args.case)?;
+    let options = options(args);
+    options.check()?;
+    check_csv(args)?;
+    let motions = motions(&args.motion, &case)?;
+    // every motion checked against the case before any output is reserved
+    motion::moved_geometry(&case, &motions)?;
+    let flags = OutputFlags {
+        outs: &args.output.outs,
+        report: args.output.report.as_deref(),
+        snapshot: None,
+        pictures: &args.pictures,
+    };
+    let mut planned = plan(&flags, &format!("{}-moved", case.file_stem()), &case.views)?;
+    let at = args
+        .snapshot
+        .as_ref()
+        .map(|p| format!("--snapshot {}", p.display()));
+    let start = match (&args.snapshot, &at) {
+        (Some(path), Some(at)) => {
+            let snapshot: Snapshot = mesh_io::snapshot::load(path).with_context(|| at.clone())?;
+            Some((snapshot, at.as_str()))
+        }
+        _ => None,
+    };
+    let mut spinners = Spinners::new(args.quiet);
+    let plan = Some(&mut planned.plan);
+    let moved =
+        curvemesh::movement::move_into(&case, &motions, start, &options, &mut spinners, plan)?;
+    let Moved {
+        mesh,
+        mut report,
+        scaled_jacobian,
+        sensitivities,
+    } = moved;
+    if !planned.pictures.is_empty() {
+        let t = Instant::now();
+        let progress = stage(args.quiet, "pictures");
+        pictures::draw_all(
+            &mesh,
+            &planned.pictures,
+            &args.pictures,
+            Colour::Layer,
+            &case.name,
+            &scaled_jacobian,
+            &mut planned.plan.outputs,
+        )?;
+        drop(progress);
+        report
+            .timings_s
+            .insert("pictures", t.elapsed().as_secs_f64());
+    }
+    report
+        .timings_s
+        .insert("total", total.elapsed().as_secs_f64());
+    report.peak_memory_bytes = resources::peak_memory_bytes();
+    let report_path = planned.plan.commit(&mut report)?;
+    // written only with a valid mesh
+    if let (Some(path), Some(columns), true) =
+        (&args.sensitivities, &sensitivities, report.is_valid())
+    {
+        let xy: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
+        mesh_io::sensitivities::write_sensitivities(path, &xy, columns)
+            .map_err(|e| anyhow::anyhow!("--sensitivities {}: {e}", path.display()))?;
+    }
+    if !args.quiet {
+        print!("{}", summary::table(&report));
+        if let Some(movement) = &report.movement {
+            print!("{}", movement.summary());
+        }
+    }
+    let verdict = report.verdict(report_path.as_deref(), "the moved mesh was written but");
+    Ok(Finished::of(verdict))
+}
+
+/// The library's options of the flags.
+fn options(args: &MoveArgs) -> MoveOptions {
+    MoveOptions {
+        order: args.output.order,
+        triangles: args.output.triangles,
+        mover: match args.method {
+            MoveMethod::Springs => Mover::Springs,
+            MoveMethod::Idw => Mover::Idw,
+            MoveMethod::Rbf => Mover::Rbf,
+        },
+        kernel: match args.kernel {
+            RbfKernel::WendlandC2 => curvemesh::movement::RbfKernel::WendlandC2,
+            RbfKernel::ThinPlate => curvemesh::movement::RbfKernel::ThinPlate,
+        },
+        radius: args.radius,
+        smooth: args.smooth,
+        sensitivities: args.sensitivities.is_some(),
+        ..MoveOptions::default()
+    }
+}
+
+/// The sensitivities are a CSV file.
+fn check_csv(args: &MoveArgs) -> Result<()> {
+    if let Some(path) = &args.sensitivities {
+        ensure!(
+            path.extension().is_some_and(|e| e == "csv"),
+            "--sensitivities {}: the sensitivities are CSV: give a .csv file name",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// The motions asked for: the motion file, or the flags' motion of one loop.
+fn motions(args: &MotionArgs, case: &Case) -> Result<Vec<LoopMotion>> {
+    let flags = args.rotate.is_some()
+        || args.about.is_some()
+        || args.translate.is_some()
+        || args.scale.is_some()
+        || !args.bumps.is_empty()
+        || args.loop_name.is_some();
+    if let Some(path) = &args.motion {
+        ensure!(
+            !flags,
+            "give either --motion FILE.toml or the motion flags (--loop, --rotate, --about, \
+             --translate, --scale, --bump), not both"
+        );
+        return Ok(motion::load_file(path)?);
+    }
+    let rigid = rigid(args.scale, args.rotate, args.about, args.translate);
+    let bumps = args
+        .bumps
+        .iter()
+        .map(|b| parse_bump(b).with_context(|| format!("--bump {b}")))
+        .collect::<Result<Vec<_>>>()?;
+    ensure!(
+        rigid.is_some() || !bumps.is_empty(),
+        "no motion given: use --rotate, --translate, --scale, --bump or --motion FILE.toml"
+    );
+    let loop_name = match &args.loop_name {
+        Some(name) => name.clone(),
+        None => default_loop(case)?,
+    };
+    Ok(vec![LoopMotion {
+        loop_name,
+        motion: Motion { rigid, bumps },
+    }])
+}

@@ -1,0 +1,175 @@
+//! A 3D case meshed (`dimension = 3`): the wall surface, its check, the layers, the cut into
+//! standard cells, the validation and measures (at order 2 after the curving, each wall onto
+//! its true surface, and the certified check of every cell), then the meshes written into the
+//! caller's reserved outputs. Bad input (a surface that is open, inverted,
+//! self-intersecting; an option that does not apply in 3D) is an error before any output.
+
+use crate::case3d::{Case3d, check_order};
+use crate::error::{Result, bail};
+use crate::meshed::{Meshed, Options};
+use crate::observer::{Observer, stage};
+use crate::outputs::Plan;
+use crate::pipeline3d;
+use crate::report::Report;
+
+/// Meshes the 3D `case` with `options`, telling `observer` of each stage; the meshes are
+/// written into `plan`'s reserved outputs.
+pub(crate) fn mesh(
+    case: &Case3d,
+    options: &Options,
+    observer: &mut dyn Observer,
+    plan: Option<&mut Plan>,
+) -> Result<Meshed> {
+    let order = options.order.unwrap_or(case.order);
+    check_order(order, &format!("--order {order}"))?;
+    if options.snapshot || options.triangles {
+        let what = if options.snapshot {
+            "--snapshot"
+        } else {
+            "--triangles"
+        };
+        bail!("{what} applies to 2D cases (this case has dimension = 3)");
+    }
+    let mut report = Report::new(&case.name, order);
+    report.dimension = 3;
+    let o = &mut *observer;
+    let r = &mut report;
+    let (surface, shape) = timed(r, o, ("surface", "wall surface"), |_| {
+        pipeline3d::surface(case)
+    })?;
+    timed(r, o, ("check", "surface check"), |_| {
+        pipeline3d::check_surface(case, &surface)
+    })?;
+    let grown = timed(r, o, ("grow", "layers (AFSF 3D)"), |_| {
+        pipeline3d::grow(case, &surface)
+    })?;
+    // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
+    let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
+        let front = pipeline3d::front_measures(&surface, &grown);
+        let (mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
+        Ok::<_, crate::Error>((mesh, flagged, front))
+    })?;
+    let mut measures = timed(r, o, ("measure", "measures"), |_| {
+        pipeline3d::measure(&surface, &grown, &front, &mesh, case.layers.layers)
+    });
+    let curved = if order == 2 {
+        let curved = timed(r, o, ("curving", "curving to P2"), |_| {
+            pipeline3d::curve(case, &shape, &grown, &mesh)
+        })?;
+        timed(r, o, ("volume", "curved volumes"), |_| {
+            pipeline3d::curved_volumes(&curved.mesh, &mut measures)
+        })?;
+        Some(curved)
+    } else {
+        None
+    };
+    let out = curved.as_ref().map_or(&mesh, |c| &c.mesh);
+    timed(r, o, ("validate", "validation"), |r| {
+        r.describe_3d(out, &measures);
+        match &curved {
+            Some(c) => r.certify_3d(c, &shape),
+            None => Ok(()),
+        }
+    })?;
+    report.layers = Some(case.layers.layers as u32);
+    push_notes(&mut report, curved.is_none(), grown.stats.converged);
+    push_height_note(&mut report, &case.layers, &grown);
+    push_cut_note(&mut report, case, cut_anyway);
+    if let Some(plan) = plan {
+        timed(&mut report, observer, ("write", "writing"), |r| {
+            for (path, format) in plan.write_meshes(out)? {
+                r.wrote_mesh(&path, format, out.order);
+            }
+            Ok::<_, crate::Error>(())
+        })?;
+    }
+    let (mesh, linear) = match curved {
+        Some(c) => (c.mesh, Some(mesh)),
+        None => (mesh, None),
+    };
+    Ok(Meshed {
+        mesh,
+        report,
+        scaled_jacobian: Vec::new(),
+        snapshot: None,
+        linear,
+    })
+}
+
+/// Runs `work` on `report` as the stage `what` and records its seconds in the report's
+/// timings under `key`.
+fn timed<T>(
+    report: &mut Report,
+    observer: &mut dyn Observer,
+    (key, what): (&'static str, &str),
+    work: impl FnOnce(&mut Report) -> T,
+) -> T {
+    let (out, seconds) = stage(observer, what, || work(report));
+    report.timings_s.insert(key, seconds);
+    out
+}
+
+/// The report's notes on what the mesh is: near-body, how validity was judged, balances that
+/// ran out of iterations.
+fn push_notes(report: &mut Report, linear: bool, converged: bool) {
+    report.notes.push(
+        "a near-body mesh: the domain is the region the layers cover, its outer boundary \
+         (farfield) the final front"
+            .into(),
+    );
+    if linear {
+        report.notes.push(
+            "linear cells: validity is every corner Jacobian positive by the exact orient3d \
+             (mesh_model::validate)"
+                .into(),
+        );
+    }
+    if !converged {
+        report.notes.push(
+            "some layers' spring balances ran out of iterations (the layers passed their checks)"
+                .into(),
+        );
+    }
+}
+
+/// The report's note on layers whose height [`afsf3d::LayerParams::max_aspect`] held below
+/// `first_height × growth^k`: from which layer, and the stack's thickness with and without.
+fn push_height_note(report: &mut Report, params: &afsf3d::LayerParams, grown: &afsf3d::Grown3d) {
+    let Some(first) = grown.stats.first_capped else {
+        return;
+    };
+    let grown_to: f64 = grown.layer_heights.iter().sum();
+    let geometric: f64 = (0..grown.layer_heights.len())
+        .map(|k| params.first_height * params.growth.powi(k as i32))
+        .sum();
+    report.notes.push(format!(
+        "layer heights held to {} × the front's mean edge from layer {first} on ({} layers): \
+         the layers' heights sum to {grown_to:.4} (geometric first_height × growth^k: {geometric:.4})",
+        params.max_aspect, grown.stats.capped_layers
+    ));
+}
+
+/// The report's note on the standard layer cells the mixed cut cut into tetrahedra and
+/// pyramids rather than keep ([`pipeline3d::cut_anyway`]), when there are any.
+fn push_cut_note(report: &mut Report, case: &Case3d, cut: pipeline3d::CutAnyway) {
+    let mut why = Vec::new();
+    if cut.leaning > 0 {
+        why.push(format!(
+            "{} over an extrusion edge leaning more than {}° off the front's normal",
+            cut.leaning, case.max_lean_deg
+        ));
+    }
+    if cut.low_corner > 0 {
+        why.push(format!(
+            "{} with a corner scaled Jacobian below {}",
+            cut.low_corner, case.min_corner_sj
+        ));
+    }
+    if !why.is_empty() {
+        report.notes.push(format!(
+            "layer cells cut into tetrahedra and pyramids rather than kept as prisms or \
+             hexahedra: {}",
+            why.join(", ")
+        ));
+    }
+}

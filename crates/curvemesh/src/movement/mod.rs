@@ -1,0 +1,412 @@
+//! Moving a meshed 2D case (dissertation ch. 4): its loops moved by rigid motions and bumps
+//! ([`motion`]), the moved loops' C2 curves refitted and each boundary node put on its moved
+//! curve at its own parameter `t`, the other linear nodes moved by the chosen mover
+//! (`mesh_move`), the moved layered mesh re-curved with the original curving's decisions, and
+//! every cell certified — the same topology as the original mesh. With
+//! [`MoveOptions::sensitivities`], the derivative of every node with respect to each design
+//! variable of the motion ([`sensitivities`]).
+//!
+//! ```
+//! use curvemesh::movement::{MoveOptions, motion, move_case};
+//! let case = curvemesh::load::load_2d("naca0012")?;
+//! let motions = motion::parse_str("[[motion]]\nloop = \"naca0012\"\nrotate_deg = 5.0\n", "pitch")?;
+//! let options = MoveOptions { order: Some(2), ..Default::default() };
+//! let moved = move_case(&case, &motions, None, &options, &mut curvemesh::Silent)?;
+//! assert!(moved.report.is_valid(), "{:?}", moved.report.problems);
+//! # Ok::<(), curvemesh::Error>(())
+//! ```
+
+pub mod motion;
+pub mod report;
+pub mod sensitivities;
+
+use boundary1d::BoundaryNodes;
+use mesh_model::{LayeredMesh, Mesh};
+use mesh_move::{
+    BoundaryMotion, IdwParams, Kernel, LoopMotion, Method, RbfParams, SpringMoveParams,
+};
+
+use crate::case::Case;
+use crate::error::{Result, ensure, input_error};
+use crate::observer::{Observer, stage};
+use crate::outputs::Plan;
+use crate::report::{LinearAngles, Report};
+use crate::stages::Snapshot;
+use crate::{mesh2d, pipeline};
+use motion::{MovedGeometry, boundary_targets, moved_geometry};
+use report::MovementReport;
+
+/// How the nodes inside the domain follow the moved boundary.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Mover {
+    /// The Spring-Field on the mesh's own layers: the near-wall layers keep their shape.
+    #[default]
+    Springs,
+    /// Rotation-aware inverse-distance weighting (Witteveen & Bijl).
+    Idw,
+    /// Radial basis functions with a linear polynomial (de Boer et al.).
+    Rbf,
+}
+
+impl Mover {
+    /// The name in the report and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mover::Springs => "springs",
+            Mover::Idw => "idw",
+            Mover::Rbf => "rbf",
+        }
+    }
+}
+
+/// The radial basis function of [`Mover::Rbf`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum RbfKernel {
+    /// Wendland C2 with a support radius (default: the bounding-box diagonal, global).
+    #[default]
+    WendlandC2,
+    /// The thin-plate spline r² ln r.
+    ThinPlate,
+}
+
+impl RbfKernel {
+    /// The name in the report and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            RbfKernel::WendlandC2 => "wendland-c2",
+            RbfKernel::ThinPlate => "thin-plate",
+        }
+    }
+}
+
+/// How to move a case.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MoveOptions {
+    /// The moved mesh's order, 1 to 3; `None`: the case's.
+    pub order: Option<u8>,
+    /// Cut every quad along its shorter diagonal.
+    pub triangles: bool,
+    /// The mover of the inner nodes.
+    pub mover: Mover,
+    /// [`Mover::Rbf`]'s kernel.
+    pub kernel: RbfKernel,
+    /// [`RbfKernel::WendlandC2`]'s support radius (default: the bounding-box diagonal).
+    pub radius: Option<f64>,
+    /// The smooth spring mover: the shape balance converged by Newton's method, so that the
+    /// moved mesh is a smooth function of the motion (implied by `sensitivities`).
+    pub smooth: bool,
+    /// Also compute the mesh sensitivities ([`Moved::sensitivities`]).
+    pub sensitivities: bool,
+    /// Refuse a case expected to make more cells than this (when it is meshed first).
+    pub max_cells: u64,
+}
+
+impl Default for MoveOptions {
+    fn default() -> MoveOptions {
+        MoveOptions {
+            order: None,
+            triangles: false,
+            mover: Mover::default(),
+            kernel: RbfKernel::default(),
+            radius: None,
+            smooth: false,
+            sensitivities: false,
+            max_cells: crate::estimate::DEFAULT_MAX_CELLS,
+        }
+    }
+}
+
+impl MoveOptions {
+    /// Refuses options that do not go together.
+    pub fn check(&self) -> Result<()> {
+        ensure!(
+            self.mover == Mover::Springs || (!self.sensitivities && !self.smooth),
+            "--smooth and --sensitivities need --method springs (the smooth balance)"
+        );
+        Ok(())
+    }
+
+    /// The mover of `mesh_move`.
+    fn method(&self) -> Method {
+        match self.mover {
+            Mover::Springs if self.smooth || self.sensitivities => {
+                Method::Springs(SpringMoveParams::smooth())
+            }
+            Mover::Springs => Method::Springs(SpringMoveParams::default()),
+            Mover::Idw => Method::Idw(IdwParams::default()),
+            Mover::Rbf => Method::Rbf(RbfParams {
+                kernel: match self.kernel {
+                    RbfKernel::WendlandC2 => Kernel::WendlandC2,
+                    RbfKernel::ThinPlate => Kernel::ThinPlateSpline,
+                },
+                support_radius: self.radius,
+            }),
+        }
+    }
+}
+
+/// A moved case.
+#[derive(Debug)]
+pub struct Moved {
+    /// The moved mesh: the original's topology, curved at its order (linear, and invalid,
+    /// when the mover inverted a linear cell).
+    pub mesh: Mesh,
+    /// Its report, with the `movement` block.
+    pub report: Report,
+    /// Each cell's least scaled Jacobian (certified bound).
+    pub scaled_jacobian: Vec<f64>,
+    /// With [`MoveOptions::sensitivities`] and no inverted cell: for each design variable
+    /// (`loop.rotate_deg`, `loop.translate_x`, …, `loop.bump1`), the derivative of every
+    /// node of [`Moved::mesh`].
+    pub sensitivities: Option<Vec<(String, Vec<[f64; 2]>)>>,
+}
+
+/// Moves `case` by `motions`: from its mesh made with its own parameters, or from `start`, a
+/// snapshot of it (with where it came from, for messages; checked to be this case's). The
+/// meshes are written into `plan`'s reserved outputs beside the certification.
+pub fn move_case(
+    case: &Case,
+    motions: &[LoopMotion],
+    start: Option<(Snapshot, &str)>,
+    options: &MoveOptions,
+    observer: &mut dyn Observer,
+) -> Result<Moved> {
+    move_into(case, motions, start, options, observer, None)
+}
+
+/// [`move_case`], writing the mesh files into `plan`'s reserved outputs beside the
+/// certification; the caller commits the plan.
+pub fn move_into(
+    case: &Case,
+    motions: &[LoopMotion],
+    start: Option<(Snapshot, &str)>,
+    options: &MoveOptions,
+    observer: &mut dyn Observer,
+    plan: Option<&mut Plan>,
+) -> Result<Moved> {
+    let order = options.order.unwrap_or(case.order);
+    ensure!(
+        (1..=crate::case::MAX_ORDER).contains(&order),
+        "order {order}: must be 1, 2 or 3"
+    );
+    options.check()?;
+    let moved = moved_geometry(case, motions)?;
+    let mut report = Report::new(&case.name, order);
+    let (nodes, layered) = match start {
+        None => {
+            let (_, nodes, grown) = mesh2d::grow(case, options.max_cells, observer, &mut report)?;
+            (nodes, grown.layered)
+        }
+        Some((snapshot, origin)) => from_snapshot(case, snapshot, origin, &mut report)?,
+    };
+    let boundary = boundary_targets(&moved, &nodes, &layered)?;
+    let (linear, seconds) = stage(observer, "moving the linear nodes", || {
+        mesh_move::move_layered(&layered, &boundary, &options.method())
+            .map_err(|e| input_error!("moving the mesh: {e}"))
+    });
+    let linear = linear?;
+    report.timings_s.insert("move", seconds);
+    let moved_layered = LayeredMesh {
+        mesh: linear.mesh,
+        layering: layered.layering.clone(),
+    };
+    let comparison = mesh_move::compare(&layered.mesh, &moved_layered.mesh)
+        .map_err(|e| input_error!("comparing the meshes: {e}"))?;
+    let inverted = linear.stats.inverted_cells > 0;
+    let mut decisions = None;
+    let mesh = if inverted {
+        // an inverted linear mesh cannot be curved: it is written as it is, and fails
+        report.order = 1;
+        report.notes.push(format!(
+            "the mover inverted {} linear cells: the moved linear mesh is written, not curved",
+            linear.stats.inverted_cells
+        ));
+        moved_layered.mesh.clone()
+    } else if order == 1 {
+        mesh2d::linear_at_order(&moved_layered, options.triangles, &mut report)
+    } else {
+        let curved = curve_keeping(
+            (case, &moved),
+            &nodes,
+            (&layered, &moved_layered),
+            (order, options.triangles),
+            observer,
+            &mut report,
+        )?;
+        decisions = Some(curved.decisions);
+        curved.mesh
+    };
+    let sensitivities = if options.sensitivities && !inverted {
+        let at = (
+            motions,
+            &nodes[..],
+            &boundary,
+            decisions.as_ref().map(|d| (d, order)),
+        );
+        let (columns, seconds) = stage(observer, "mesh sensitivities", || {
+            sensitivities_at(case, &layered, &moved_layered, at)
+        });
+        report.timings_s.insert("sensitivities", seconds);
+        Some(columns?)
+    } else {
+        None
+    };
+    let method = options.method_names();
+    report.movement = Some(MovementReport::new(
+        motions,
+        method,
+        &linear.stats,
+        &comparison,
+        (&layered.mesh, &moved_layered.mesh),
+    ));
+    let scaled_jacobian = mesh2d::certify_and_write(
+        (&mesh, LinearAngles::Of(&moved_layered.mesh)),
+        plan.map(|p| (p, None)),
+        observer,
+        &mut report,
+    )?;
+    Ok(Moved {
+        mesh,
+        report,
+        scaled_jacobian,
+        sensitivities,
+    })
+}
+
+impl MoveOptions {
+    /// The mover's and the kernel's names in the report (the kernel for RBF only).
+    fn method_names(&self) -> (&'static str, Option<&'static str>) {
+        let kernel = (self.mover == Mover::Rbf).then(|| self.kernel.name());
+        (self.mover.name(), kernel)
+    }
+}
+
+/// What the sensitivities are taken at: the motions, the boundary nodes, the boundary's
+/// targets and the curving's decisions with the order (none at order 1).
+type SensitivityAt<'a> = (
+    &'a [LoopMotion],
+    &'a [BoundaryNodes],
+    &'a BoundaryMotion,
+    Option<(&'a vector_adding::Decisions, u8)>,
+);
+
+/// The mesh sensitivities of the move of `original` to `moved`.
+fn sensitivities_at(
+    case: &Case,
+    original: &LayeredMesh,
+    moved: &LayeredMesh,
+    (motions, nodes, boundary, curving): SensitivityAt<'_>,
+) -> Result<Vec<(String, Vec<[f64; 2]>)>> {
+    let balance = balance_at(original, moved, boundary)?;
+    let at = sensitivities::At {
+        case,
+        motions,
+        nodes,
+        moved,
+        balance: &balance,
+        curving,
+    };
+    let vars = sensitivities::variables(motions);
+    sensitivities::sensitivities(&at, &vars)
+}
+
+/// The smooth balance of the original mesh's shape field linearised at the moved nodes, the
+/// boundary nodes fixed: what the sensitivities differentiate.
+fn balance_at(
+    original: &LayeredMesh,
+    moved: &LayeredMesh,
+    boundary: &BoundaryMotion,
+) -> Result<mesh_move::Sensitivity> {
+    let field = mesh_move::ShapeField::of(original, SpringMoveParams::smooth().shape)
+        .map_err(|e| input_error!("sensitivities: {e}"))?;
+    let x: Vec<[f64; 2]> = (0..moved.mesh.nodes.len() as u32)
+        .map(|k| moved.mesh.xy(k))
+        .collect();
+    let mut fixed = vec![false; x.len()];
+    boundary
+        .nodes
+        .iter()
+        .for_each(|&k| fixed[k as usize] = true);
+    field
+        .linearise(&x, &fixed)
+        .map_err(|e| input_error!("sensitivities: {e}"))
+}
+
+/// The moved layered mesh curved as the original one is (`vector_adding::curve_mesh_keeping`
+/// with the original curving's decisions): a small motion flips no decision; the decisions
+/// that had to change (a cell the kept decision would leave invalid) are counted in the
+/// report and the first ones named in its notes.
+fn curve_keeping(
+    (case, moved): (&Case, &MovedGeometry),
+    nodes: &[BoundaryNodes],
+    (original, layered): (&LayeredMesh, &LayeredMesh),
+    (order, triangles): (u8, bool),
+    observer: &mut dyn Observer,
+    report: &mut Report,
+) -> Result<vector_adding::Curved> {
+    let what = "curving (Vector-Adding, the original's decisions kept)";
+    let (curved, seconds) = stage(observer, what, || {
+        let curves = pipeline::curves(case)?;
+        let original = std::borrow::Cow::Borrowed(original);
+        let before = pipeline::curved_mesh(case, &curves, nodes, original, order, triangles)?;
+        vector_adding::curve_mesh_keeping(
+            layered,
+            &pipeline::loop_curves(&moved.curves, nodes),
+            &pipeline::curving_params(&moved.case, order, triangles),
+            &before.decisions,
+        )
+        .map_err(|e| input_error!("curving: {e}"))
+    });
+    let (curved, changes) = curved?;
+    report.timings_s.insert("curving", seconds);
+    report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
+    report.curving = Some(curved.stats.clone());
+    report.curving_decisions_changed = Some(changes.len());
+    for change in changes.iter().take(5) {
+        report.notes.push(format!(
+            "curving decision changed by the motion: {change:?}"
+        ));
+    }
+    Ok(curved)
+}
+
+/// The boundary nodes and the layered linear mesh of `snapshot`, checked to be this case's:
+/// every boundary node on its curve. `origin` names the snapshot in messages.
+fn from_snapshot(
+    case: &Case,
+    snapshot: Snapshot,
+    origin: &str,
+    report: &mut Report,
+) -> Result<(Vec<BoundaryNodes>, LayeredMesh)> {
+    ensure!(
+        snapshot.case == case.name,
+        "{origin}: made from case '{}', not '{}'",
+        snapshot.case,
+        case.name
+    );
+    let curves = pipeline::curves(case)?;
+    ensure!(
+        snapshot.boundary.len() == curves.len(),
+        "{origin}: {} boundary loops, the case has {}",
+        snapshot.boundary.len(),
+        curves.len()
+    );
+    for ((curve, bn), input) in curves.iter().zip(&snapshot.boundary).zip(&case.loops) {
+        let tolerance = 1e-9 * curve.total_length();
+        let off =
+            bn.t.iter()
+                .zip(&bn.points)
+                .any(|(&t, p)| (curve.point(t) - p).norm() > tolerance);
+        ensure!(
+            !off && bn.t.len() == bn.points.len(),
+            "{origin}: its boundary nodes of loop '{}' are not on the case's curve (made from \
+             another version of the case?)",
+            input.name
+        );
+    }
+    report.layers = (snapshot.layered.layering.node_layer.iter())
+        .filter(|&&l| l != mesh_model::NONE)
+        .max()
+        .copied();
+    Ok((snapshot.boundary, snapshot.layered))
+}
