@@ -16,6 +16,8 @@ pub struct Cli {
 
 /// The subcommands.
 #[derive(Debug, Subcommand)]
+// parsed once per run: the size of the largest variant costs nothing
+#[allow(clippy::large_enum_variant)]
 pub enum Command {
     /// The commands of `curvemesh`.
     #[command(flatten)]

@@ -21,7 +21,7 @@
 //!
 //! Pyramids are curved like every other cell (the 14-node pyramid is certified in Gmsh's
 //! Bergot space by `jacobian_check`, its base node the Coons point of its base's edges).
-//! Until 2026-12-02 every edge of a pyramid above the wall was kept straight, and with it
+//! An earlier version kept every edge of a pyramid above the wall straight, and with it
 //! its neighbours' shared faces: in the mixed cut of the finer wing cases the cells next to
 //! those straight faces, over curved edges below, were left invalid (153 cells in case 2).
 //! The final certification judges every cell.
