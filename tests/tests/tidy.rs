@@ -99,8 +99,9 @@ fn dependencies(krate: &str) -> Vec<String> {
 }
 
 /// The layering of the workspace (docs/architecture.md, "Invariants"): the data model and the
-/// predicates know no algorithm; movement depends on no mesher; only `mesh-io` (and `xtask`)
-/// touch files; only `xtask` serialises the report (it alone uses `serde_json`).
+/// predicates know no algorithm; movement depends on no mesher; only `mesh-io` writes files;
+/// only the `curvemesh` library serialises the report (`serde_json`); only the command-line
+/// crate uses `anyhow`, and the library has no command-line dependency.
 #[test]
 fn crates_depend_only_on_what_the_architecture_allows() {
     let ours = |deps: Vec<String>| -> Vec<String> {
@@ -136,8 +137,12 @@ fn crates_depend_only_on_what_the_architecture_allows() {
         }
         let deps = dependencies(&name);
         assert!(
-            !deps.iter().any(|d| d == "serde_json" || d == "anyhow"),
-            "{name}: only xtask serialises the report and uses anyhow"
+            name == "curvemesh" || !deps.iter().any(|d| d == "serde_json"),
+            "{name}: only the curvemesh library serialises the report"
+        );
+        assert!(
+            name == "curvemesh-cli" || !deps.iter().any(|d| d == "anyhow" || d == "curvemesh-cli"),
+            "{name}: only the command-line crate uses anyhow, and no library depends on it"
         );
         if name != "mesh-io" {
             assert!(
@@ -146,4 +151,211 @@ fn crates_depend_only_on_what_the_architecture_allows() {
             );
         }
     }
+}
+
+/// The library of the whole pipeline is a library: no flag parser, progress bar, `anyhow` or
+/// global allocator (those are the command's, `curvemesh-cli`).
+#[test]
+fn the_library_has_no_command_line_dependency() {
+    let deps = dependencies("curvemesh");
+    for banned in [
+        "clap",
+        "indicatif",
+        "anyhow",
+        "tikv-jemallocator",
+        "ctrlc",
+        "nix",
+    ] {
+        assert!(
+            !deps.iter().any(|d| d == banned),
+            "curvemesh depends on {banned}"
+        );
+    }
+}
+
+/// `docs/architecture.md` keeps the map of crates: every crate folder is named in it (and in
+/// the README's crate table).
+#[test]
+fn every_crate_is_named_in_the_architecture_and_the_readme() {
+    let root = workspace();
+    for doc in ["docs/architecture.md", "README.md"] {
+        let text = std::fs::read_to_string(root.join(doc)).unwrap();
+        for krate in std::fs::read_dir(root.join("crates")).unwrap().flatten() {
+            if !krate.path().join("Cargo.toml").is_file() {
+                continue;
+            }
+            let name = krate.file_name().to_string_lossy().to_string();
+            assert!(
+                text.contains(&format!("`{name}`")),
+                "{doc} does not name `{name}`"
+            );
+        }
+    }
+}
+
+/// The modules of one crate's `src/` and the modules each imports (`crate::a::b` paths, the
+/// names of `use crate::{...}` lists, `super::x` in nested modules; an item of the crate root
+/// as `ROOT`), test modules left out.
+fn module_graph(src: &Path) -> std::collections::BTreeMap<String, Vec<String>> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let mut texts = std::collections::BTreeMap::new();
+    for path in &files {
+        let rel = path.strip_prefix(src).unwrap().with_extension("");
+        let mut parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into()).collect();
+        if parts.first().is_some_and(|p| p == "bin") {
+            continue;
+        }
+        if parts
+            .last()
+            .is_some_and(|p| ["mod", "lib", "main"].contains(&p.as_str()))
+        {
+            parts.pop();
+        }
+        let name = if parts.is_empty() {
+            "ROOT".to_string()
+        } else {
+            parts.join("::")
+        };
+        let text = std::fs::read_to_string(path).unwrap();
+        let text = text.split("#[cfg(test)]").next().unwrap_or_default();
+        let code: String = text
+            .lines()
+            .map(|l| l.split("//").next().unwrap_or_default())
+            .collect::<Vec<_>>()
+            .join("\n");
+        texts.insert(name, code);
+    }
+    let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == ':';
+    let mut graph = std::collections::BTreeMap::new();
+    for (name, code) in &texts {
+        let mut deps = std::collections::BTreeSet::new();
+        let parent = name.rsplit_once("::").map(|(p, _)| p.to_string());
+        for (prefix, base) in [("crate::", None), ("super::", parent.clone())] {
+            for (at, _) in code.match_indices(prefix) {
+                let rest = &code[at + prefix.len()..];
+                if let Some(list) = rest.strip_prefix('{') {
+                    let list = list.split('}').next().unwrap_or_default();
+                    for item in list
+                        .split(',')
+                        .map(|i| i.trim().split("::").next().unwrap_or_default())
+                    {
+                        let full = base
+                            .as_ref()
+                            .map_or(item.to_string(), |b| format!("{b}::{item}"));
+                        if texts.contains_key(&full) {
+                            deps.insert(full);
+                        } else if item.starts_with(char::is_uppercase) && base.is_none() {
+                            deps.insert("ROOT".to_string());
+                        }
+                    }
+                    continue;
+                }
+                let path: String = rest.chars().take_while(|&c| is_ident(c)).collect();
+                let segments: Vec<&str> = path.split("::").filter(|s| !s.is_empty()).collect();
+                let found = (1..=segments.len()).rev().find_map(|k| {
+                    let joined = segments[..k].join("::");
+                    let full = base
+                        .as_ref()
+                        .map_or(joined.clone(), |b| format!("{b}::{joined}"));
+                    texts.contains_key(&full).then_some(full)
+                });
+                match found {
+                    Some(full) => {
+                        deps.insert(full);
+                    }
+                    None if base.is_none() && path.starts_with(char::is_uppercase) => {
+                        deps.insert("ROOT".to_string());
+                    }
+                    None => {}
+                }
+            }
+        }
+        deps.remove(name);
+        if name == "ROOT" {
+            deps.clear();
+        }
+        graph.insert(name.clone(), deps.into_iter().collect());
+    }
+    graph
+}
+
+/// A cycle of `graph`, if it has one.
+fn find_cycle(graph: &std::collections::BTreeMap<String, Vec<String>>) -> Option<Vec<String>> {
+    fn visit(
+        node: &str,
+        graph: &std::collections::BTreeMap<String, Vec<String>>,
+        state: &mut std::collections::BTreeMap<String, u8>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        state.insert(node.to_string(), 1);
+        stack.push(node.to_string());
+        for next in graph.get(node).into_iter().flatten() {
+            match state.get(next).copied().unwrap_or(0) {
+                1 => {
+                    let from = stack.iter().position(|n| n == next).unwrap();
+                    return Some(stack[from..].to_vec());
+                }
+                0 => {
+                    if let Some(cycle) = visit(next, graph, state, stack) {
+                        return Some(cycle);
+                    }
+                }
+                _ => {}
+            }
+        }
+        stack.pop();
+        state.insert(node.to_string(), 2);
+        None
+    }
+    let mut state = std::collections::BTreeMap::new();
+    for node in graph.keys() {
+        if state.get(node).copied().unwrap_or(0) == 0
+            && let Some(cycle) = visit(node, graph, &mut state, &mut Vec::new())
+        {
+            return Some(cycle);
+        }
+    }
+    None
+}
+
+/// No module cycles inside a crate: each module imports only modules that do not import it
+/// back, directly or through others (shared types sit in leaf modules). The crate root, which
+/// declares the modules, is left out as an importer.
+#[test]
+fn no_crate_has_a_module_cycle() {
+    let root = workspace();
+    let mut srcs = vec![root.join("xtask/src")];
+    for krate in std::fs::read_dir(root.join("crates")).unwrap().flatten() {
+        srcs.push(krate.path().join("src"));
+    }
+    let mut cycles = Vec::new();
+    for src in srcs.iter().filter(|s| s.is_dir()) {
+        let graph = module_graph(src);
+        if let Some(cycle) = find_cycle(&graph) {
+            cycles.push(format!("{}: {}", src.display(), cycle.join(" -> ")));
+        }
+    }
+    assert!(cycles.is_empty(), "module cycles:\n{}", cycles.join("\n"));
+}
+
+/// The checker sees a cycle where there is one.
+#[test]
+fn the_module_cycle_check_finds_a_cycle() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("lib.rs"), "//! root\nmod a;\nmod b;\n").unwrap();
+    std::fs::write(
+        dir.path().join("a.rs"),
+        "//! a\nuse crate::b::B;\npub struct A;\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("b.rs"),
+        "//! b\nuse crate::{a};\npub struct B;\n",
+    )
+    .unwrap();
+    let graph = module_graph(dir.path());
+    assert!(find_cycle(&graph).is_some(), "{graph:?}");
+    std::fs::write(dir.path().join("b.rs"), "//! b\npub struct B;\n").unwrap();
+    assert!(find_cycle(&module_graph(dir.path())).is_none());
 }

@@ -308,16 +308,13 @@ mod tests {
 
     /// The fuzz seed `tests/data/annulus_p1.snap` (run by `fuzz/run.sh`) is a snapshot this
     /// build reads. When the format or `Mesh` changes, rewrite it with
-    /// `cargo test -p mesh-io --lib -- --ignored write_the_fuzz_seed`.
+    /// `UPDATE_SEED=1 cargo test -p mesh-io --lib the_fuzz_seed`.
     #[test]
     fn the_fuzz_seed_is_a_current_snapshot() {
+        if std::env::var_os("UPDATE_SEED").is_some() {
+            save(&seed_path(), &seed_mesh()).unwrap();
+        }
         let back: Mesh = load(&seed_path()).unwrap();
         assert_eq!(back, seed_mesh());
-    }
-
-    #[test]
-    #[ignore = "writes the fuzz seed into tests/data"]
-    fn write_the_fuzz_seed() {
-        save(&seed_path(), &seed_mesh()).unwrap();
     }
 }
