@@ -1,13 +1,14 @@
-//! The checks of a new layer (positive corner tetrahedra of every cell, no self-intersection
-//! of the new front) and the shrinking of the children where they fail.
+//! The checks of a new layer (positive corner tetrahedra of every cell, strictly convex
+//! merged cells, no self-intersection of the new front) and the shrinking of the children
+//! where they fail.
 
 use geom_surface::{Facet, first_self_intersection};
 use mesh_model::is_positive_tet;
 use mesh_model::measure3d::corner_determinants;
 use rayon::prelude::*;
 
+use crate::children::Layer;
 use crate::front::turn_off;
-use crate::layer::{Layer, strictly_convex};
 use crate::{GrowError, GrowStats};
 
 /// Whether every corner tetrahedron of a cell with the `m` bottom corners `bottom(i)`
@@ -49,6 +50,25 @@ pub(crate) fn cell_sj(nodes: &[[f64; 3]], facet: &Facet, top: impl Fn(u32) -> [f
     corner_determinants(&p, true)
         .into_iter()
         .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether the cell with the outward faces `faces` (nodes at `pos`) is strictly convex:
+/// every node of the cell off a face lies strictly inside of the triangle at every corner of
+/// that face, so every cone from a node over the faces without it — every cut of
+/// `topo-cut` — is positive.
+pub(crate) fn strictly_convex(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3]) -> bool {
+    let mut all: Vec<u32> = faces.iter().flatten().copied().collect();
+    all.sort_unstable();
+    all.dedup();
+    faces.iter().all(|k| {
+        let m = k.len();
+        (0..m).all(|i| {
+            let (p, c, q) = (pos(k[(i + m - 1) % m]), pos(k[i]), pos(k[(i + 1) % m]));
+            all.iter()
+                .filter(|v| !k.contains(v))
+                .all(|&v| is_positive_tet(c, p, q, pos(v)))
+        })
+    })
 }
 
 /// Whether the cell of `layer` over the front facet `facet` is valid: [`corners_ok`] when its
@@ -206,7 +226,7 @@ pub(crate) fn turned_steps(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layer::Ideal;
+    use crate::children::Ideal;
 
     #[test]
     fn a_step_under_its_corner_triangle_is_turned_off_it_keeping_its_length() {

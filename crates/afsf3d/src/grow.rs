@@ -12,8 +12,9 @@ use springfield::{
 
 use crate::aspect::{limit_ratio, mean_edge};
 use crate::check::{Failed, bad_cells, shrink_until_valid, turned_steps};
+use crate::children::{Ideal, Layer};
 use crate::front::{Topo, ideal_steps};
-use crate::layer::{Ideal, Layer, add_twisted, choose_merges, merged_layer};
+use crate::layer::{add_twisted, choose_merges, merged_layer};
 use crate::repair::{CUT_LIMIT, repair_layer};
 use crate::squeeze::squeezed_layer;
 use crate::{GrowError, GrowStats, Grown3d, LayerParams};

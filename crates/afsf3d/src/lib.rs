@@ -79,9 +79,15 @@
 //! assert_eq!(grown.stats.merges, 0); // a sphere's front grows: no edge shrinks
 //! # Ok::<(), afsf3d::GrowError>(())
 //! ```
+//!
+//! Modules, bottom up (each uses only modules before it, and the parameter, error and result
+//! types here at the crate root): the leaves `front` and `children` (a layer's children and
+//! cells); then `aspect`, `check`, `repair`, `upright`, `layer` (the merging), `squeeze`,
+//! `grow`.
 
 mod aspect;
 mod check;
+mod children;
 mod front;
 mod grow;
 mod layer;

@@ -23,7 +23,7 @@ use mesh_model::{NONE, is_positive_tet};
 use rayon::prelude::*;
 
 use crate::check::{cell_node, cell_sj, layer_cell_ok};
-use crate::layer::Layer;
+use crate::children::Layer;
 
 /// The quality given to a cut with an inverted or flat tetrahedron.
 const INVERTED: f64 = 360.0;
@@ -290,7 +290,7 @@ fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layer::Ideal;
+    use crate::children::Ideal;
 
     /// A triangle of the front (and its neighbours: a fan of four around node 0) grown by
     /// 0.2 along z, its top a cap: the child of node 2 pushed across, next to the

@@ -21,8 +21,9 @@ use geom_predicates::vector::dist;
 use geom_surface::Facet;
 
 use crate::check::cell_sj;
+use crate::children::{Ideal, Layer};
 use crate::front::Topo;
-use crate::layer::{Ideal, Layer, best_free_edge, merged_layer};
+use crate::layer::{best_free_edge, merged_layer};
 
 /// A squeezed cell merges the children of an edge only where they came closer than this
 /// fraction of their parents' distance: where the front shrinks.

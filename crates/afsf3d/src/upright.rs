@@ -19,7 +19,7 @@ use geom_predicates::vector::sub;
 use geom_surface::{Facet, unit};
 use mesh_model::measure3d::angle_deg;
 
-use crate::layer::{Ideal, Layer};
+use crate::children::{Ideal, Layer};
 use crate::repair::{CUT_LIMIT, cell_cut};
 
 /// Table 6's last bin: a merged child leaning this much or less off its parents' normals

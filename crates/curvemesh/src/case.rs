@@ -53,7 +53,7 @@ pub struct LoopInput {
     pub points: Vec<[f64; 2]>,
     /// Where the points came from, for messages.
     pub origin: String,
-    /// The boundary group of the loop in the mesh files ([`name_groups`]).
+    /// The boundary group of the loop in the mesh files (`name_groups`).
     pub group: String,
     /// This loop's largest boundary segment, overriding `[boundary] max_spacing`.
     pub max_spacing: Option<f64>,

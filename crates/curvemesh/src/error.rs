@@ -1,5 +1,5 @@
 //! The library's one error type: what went wrong, as one line naming the input at fault and
-//! the rule it breaks ("case.toml, line 4: [layers] growth = 0.9: must be > 1"), with its
+//! the rule it breaks ("case.toml, line 4: \[layers\] growth = 0.9: must be > 1"), with its
 //! [`ErrorKind`] for callers that react to the kind (the CLI's exit status, Python's
 //! `FileNotFoundError`). Every stage's error is folded into that line where it is raised,
 //! with what was being done in front ([`Context`]), so the message reads the same whoever

@@ -63,7 +63,7 @@ pub fn check_loops(case: &Case, max_cells: u64, observer: &mut dyn Observer) -> 
 
 /// The cells expected from the boundary nodes: on wall loops, one column of layered cells per
 /// segment, as many layers as it takes their total height (from `first_height`, growing by
-/// `[layers] growth`) to fill the room in front of the wall ([`room`]), at most `max_layers`
+/// `[layers] growth`) to fill the room in front of the wall (`room`), at most `max_layers`
 /// (half as many columns on average inside a loop, where the front shrinks); on far-field loops a few
 /// isotropic layers; and the fill, a few triangles per boundary node. Within a factor of two
 /// of the cells made on the built-in cases.

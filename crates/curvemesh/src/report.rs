@@ -489,7 +489,7 @@ pub struct WrittenMesh {
 pub struct Quality {
     /// Largest interior angle of any triangle (quads cut on the shorter diagonal), degrees.
     pub max_angle_deg: f64,
-    /// Triangles by largest angle in [95,105), [105,115), [115,125), [125,135), [135,180].
+    /// Triangles by largest angle in \[95,105), \[105,115), \[115,125), \[125,135), \[135,180\].
     pub obtuse_hist: [usize; 5],
     /// Which mesh `max_angle_deg` and `obtuse_hist` are about ([`ANGLES_OF`]).
     pub angles_of: &'static str,

@@ -7,45 +7,21 @@
 //! Triangles use the collapsed (Duffy) product of Gauss–Legendre rules; quadrilaterals the
 //! tensor product. The volume of 3D cells ([`cell_volume`]) needs no rule: it is the mean of
 //! the determinant's Bernstein coefficients. The volume a curved 3D mesh's boundary
-//! encloses ([`enclosed_volume`]) is its independent check. This module owns the quadratures
-//! and the reference cells' measures.
+//! encloses ([`enclosed_volume`]) is its independent check. This module owns the area rules;
+//! the Gauss–Legendre rule is the `gauss` module's, the reference cells' measures the
+//! `measure` module's.
 
 use std::sync::OnceLock;
 
 use mesh_model::{CellType, Mesh, Shape};
 
 use crate::error::JacobianError;
-use crate::jacobian::{check_cell, det, matrix_from_gradients};
+use crate::gauss::gauss_legendre;
+use crate::jacobian::check_cell;
 use crate::lagrange::basis;
+use crate::matrix::{det, matrix_from_gradients};
+use crate::measure::measure_from_coefficients;
 use crate::types::{Feature, SLOTS, slot};
-
-/// Gauss–Legendre nodes and weights on [−1, 1] with `m` points (Newton on the Legendre
-/// recurrence, from the Chebyshev guesses).
-pub(crate) fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
-    (0..m)
-        .map(|i| {
-            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (m as f64 + 0.5)).cos();
-            let mut dp = 1.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=m {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                let pm = if m == 1 { x } else { p1 };
-                let pm1 = if m == 1 { 1.0 } else { p0 };
-                dp = m as f64 * (x * pm - pm1) / (x * x - 1.0);
-                let dx = pm / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
 
 /// A quadrature rule on a 2D reference cell with the shape-function gradients at its points.
 #[derive(Debug)]
@@ -212,31 +188,6 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
     Ok(total)
 }
 
-/// The measure of a shape's reference cell in Gmsh's reference coordinates: its area in 2D,
-/// its volume in 3D.
-fn reference_measure(shape: Shape) -> f64 {
-    match shape {
-        Shape::Tri => 0.5,
-        Shape::Quad => 4.0, // [−1, 1]²
-        Shape::Tet => 1.0 / 6.0,
-        Shape::Prism => 1.0, // the unit triangle (½) × [−1, 1]
-        Shape::Hex => 8.0,
-        Shape::Pyramid => 4.0 / 3.0,
-        Shape::Line => 0.0,
-    }
-}
-
-/// The integral of the Jacobian determinant over a cell of shape `shape` from its Bernstein
-/// coefficients `c` on the whole reference cell (triangle, quadrilateral, tetrahedron, prism,
-/// hexahedron, or the linear pyramid's base square): their mean times the reference measure,
-/// since every Bernstein polynomial of a degree has the same integral over the simplex, the
-/// box and the prism (and the linear pyramid's determinant, a biquadratic f(ξ, η) along the
-/// rays from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3).
-/// Not for the 14-node pyramid's coefficients, which live on its collapsed box.
-pub(crate) fn measure_from_coefficients(shape: Shape, c: &[f64]) -> f64 {
-    c.iter().sum::<f64>() / c.len() as f64 * reference_measure(shape)
-}
-
 /// The signed volume of a 3D cell, exact for its map up to rounding: the integral of the
 /// Jacobian determinant is the mean of its Bernstein coefficients times the reference
 /// volume (`measure_from_coefficients`). A straight-sided 14-node pyramid is its linear
@@ -336,22 +287,6 @@ fn flux(ty: CellType, x: &[[f64; 3]], xi: [f64; 3]) -> Result<f64, JacobianError
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn gauss_legendre_integrates_its_degree_exactly() {
-        for m in 1..=5 {
-            let g = gauss_legendre(m);
-            for d in 0..2 * m {
-                let exact = if d % 2 == 1 {
-                    0.0
-                } else {
-                    2.0 / (d as f64 + 1.0)
-                };
-                let got: f64 = g.iter().map(|(x, w)| w * x.powi(d as i32)).sum();
-                assert!((got - exact).abs() < 1e-14, "m={m} d={d}: {got} vs {exact}");
-            }
-        }
-    }
 
     #[test]
     fn the_enclosed_volume_of_curved_tetrahedra_is_their_integrated_volume() {

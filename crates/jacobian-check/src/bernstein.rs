@@ -17,8 +17,8 @@
 //! unit triangle × [0, 1] for prisms; a [`Region`] maps them affinely into Gmsh's reference
 //! coordinates.
 
-use crate::lagrange::RefPoint;
 use crate::linalg::{invert, mat_mul};
+use crate::point::RefPoint;
 
 /// The shape of a Bernstein space's domain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -434,7 +434,7 @@ mod tests {
                 let d = if dim == 2 {
                     a[0][0] * a[1][1] - a[0][1] * a[1][0]
                 } else {
-                    crate::jacobian::det3(&a)
+                    crate::matrix::det3(&a)
                 };
                 let unit = match domain {
                     Domain::Box | Domain::Pyramid { .. } => 1.0,

@@ -27,9 +27,12 @@ use mesh_model::{CellType, Dim, Mesh, Shape};
 
 use crate::bernstein::{Domain, Region, Space};
 use crate::error::JacobianError;
-use crate::jacobian::{check_cell, det, matrix_from_gradients, ref_point};
-use crate::lagrange::{RefPoint, basis};
+use crate::jacobian::{check_cell, ref_point};
+use crate::lagrange::basis;
 use crate::linalg::mat_vec;
+use crate::matrix::{det, matrix_from_gradients};
+use crate::measure::measure_from_coefficients;
+use crate::point::RefPoint;
 use crate::types::{Feature, SLOTS, slot};
 
 /// Parameters of the certified and sampled checks.
@@ -337,7 +340,7 @@ fn certify_measured<const D: usize>(
                 .collect();
             crate::pyramid::volume(&x)
         }
-        _ => crate::area::measure_from_coefficients(ty.shape, &coeffs),
+        _ => measure_from_coefficients(ty.shape, &coeffs),
     };
     let root = Region::root(table.space.domain, table.space.dim);
     let certificate = match certify_coefficients(&table.space, root, coeffs, params.max_depth) {

@@ -20,8 +20,7 @@ use crate::error::JacobianError;
 use crate::linalg::invert;
 use crate::types::{Feature, SLOTS, slot};
 
-/// A point in reference coordinates (unused coordinates are 0).
-pub type RefPoint = [f64; 3];
+pub use crate::point::RefPoint;
 
 /// Position of a supported type in the table of types ([`crate::types`]).
 fn type_index(ty: CellType) -> Result<usize, JacobianError> {

@@ -73,15 +73,23 @@
 //! assert!(!certify_cell(p1, &pyramid, &CertifyParams::default())?.is_valid());
 //! # Ok::<(), jacobian_check::JacobianError>(())
 //! ```
+//!
+//! Modules, bottom up (each uses only modules before it): the leaves `error`, `linalg`,
+//! `matrix`, `gauss`, `measure`, `point` and [`curved`]; then [`types`], `pyramid`,
+//! [`lagrange`], [`mod@jacobian`], `bernstein`, `straight`, [`certify`], [`area`].
 
 pub mod area;
 mod bernstein;
 pub mod certify;
 pub mod curved;
 pub mod error;
+mod gauss;
 pub mod jacobian;
 pub mod lagrange;
 mod linalg;
+mod matrix;
+mod measure;
+mod point;
 mod pyramid;
 mod straight;
 pub mod types;

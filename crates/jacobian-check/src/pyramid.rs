@@ -29,9 +29,10 @@ use std::sync::OnceLock;
 
 use mesh_model::{CellType, Shape};
 
-use crate::jacobian::{det3, matrix_from_gradients};
-use crate::lagrange::RefPoint;
+use crate::gauss::gauss_legendre;
 use crate::linalg::invert;
+use crate::matrix::{det3, matrix_from_gradients};
+use crate::point::RefPoint;
 
 /// The Bergot space of order 2: the exponents (a, b, m, k) of ξ̂ᵃ η̂ᵇ tᵐ ζᵏ.
 fn modes() -> Vec<[i32; 4]> {
@@ -163,7 +164,7 @@ struct VolumeRule {
 fn volume_rule() -> &'static VolumeRule {
     static CACHE: OnceLock<VolumeRule> = OnceLock::new();
     CACHE.get_or_init(|| {
-        let g = crate::area::gauss_legendre(3);
+        let g = gauss_legendre(3);
         let b = bergot2();
         let (mut weights, mut grads) = (Vec::new(), Vec::new());
         for &(z, wz) in &g {

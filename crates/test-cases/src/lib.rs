@@ -1,6 +1,6 @@
 //! Test and bench fixture code only — not part of the pipeline. The built-in cases of
 //! `curvemesh mesh` as the tool reads them (`fixtures/cases/*.toml` through the library's case
-//! loader, [`curvemesh::load`]) and run through the tool's own stages ([`curvemesh::pipeline`]):
+//! loader, [`curvemesh::load()`]) and run through the tool's own stages ([`curvemesh::pipeline`]):
 //! curves, boundary nodes, the layered linear mesh and its curving. Domains made in code
 //! (random bodies, ellipses) become a [`Case`] by [`case_of`] and run through the same
 //! stages, so that the tests and benches of `afsf2d` and `vector-adding` mesh what the tool
