@@ -33,10 +33,10 @@ use springfield::{
 use geom_predicates::vector::{cross2, dist, dot};
 use geom_predicates::{orient2d, segment_distance};
 
+use crate::contact::front_edges_meet;
 use crate::geom::{Aabb, P2, Strips, par_overlapping_strips_in};
 use crate::input::AfsfParams;
 use crate::nodes::{NodeStore, PARALLEL_SHARES_MIN};
-use crate::sanity::front_edges_meet;
 
 /// Cells from which `verify` tests them on every thread: below, a fork-join costs more than
 /// it saves (a cell's test takes some 50 ns).
@@ -70,6 +70,9 @@ pub(crate) struct FEdge {
 
 /// A starting front: its nodes, the boundary facet under each of its edges, its law.
 pub(crate) type StartFront = (Vec<u32>, Vec<u32>, Law);
+
+/// A front edge: (node a, node b, loop, edge index).
+pub(crate) type FrontSeg = (u32, u32, u32, u32);
 
 /// One front loop.
 #[derive(Debug, Clone)]
@@ -354,6 +357,25 @@ impl<'p> Work<'p> {
             out.extend((0..m).map(|i| (l.items[i], l.items[(i + 1) % m], l.edges[i].cell)));
         }
         out
+    }
+
+    /// Every front edge with its bounding box.
+    pub(crate) fn front_segments(&self) -> (Vec<FrontSeg>, Vec<Aabb>) {
+        let mut segs: Vec<FrontSeg> = Vec::new();
+        let mut boxes = Vec::new();
+        for (li, l) in self.loops.iter().enumerate() {
+            let k = l.items.len();
+            for i in 0..k {
+                let (a, b) = (l.items[i], l.items[(i + 1) % k]);
+                segs.push((a, b, li as u32, i as u32));
+                boxes.push(Aabb::of_segment(
+                    self.nodes.pos[a as usize],
+                    self.nodes.pos[b as usize],
+                    0.0,
+                ));
+            }
+        }
+        (segs, boxes)
     }
 
     fn ideal_length(&self, law: Law, g: usize) -> f64 {

@@ -1,5 +1,4 @@
-//! The whole-state check of the growing mesh, and the front-edge contact test it shares with
-//! the step verification.
+//! The whole-state check of the growing mesh.
 //!
 //! [`Work::sanity_check`] checks the invariant that the growth keeps after every step: the
 //! node store is consistent, every cell is alive-cornered and positive, and the fronts are
@@ -9,66 +8,13 @@
 
 use mesh_model::NONE;
 
-use geom_predicates::vector::dot;
-use geom_predicates::{for_each_overlapping_pair, orient2d, polygon_area, segments_meet};
+use geom_predicates::{for_each_overlapping_pair, polygon_area};
 
-use crate::geom::{Aabb, P2};
+use crate::contact::front_edges_meet;
+use crate::geom::P2;
 use crate::grow::Work;
 
-/// True when front edges `x` and `y` (node pairs) meet other than at a node they share:
-/// edges with no common node must not meet at all, edges with one common node may touch
-/// only there (not overlap along a line), and two edges on the same two nodes always meet.
-pub(crate) fn front_edges_meet(pos: &[P2], x: [u32; 2], y: [u32; 2]) -> bool {
-    let shared = x.iter().filter(|n| **n == y[0] || **n == y[1]).count();
-    let (pa, pb, pc, pd) = (
-        pos[x[0] as usize],
-        pos[x[1] as usize],
-        pos[y[0] as usize],
-        pos[y[1] as usize],
-    );
-    match shared {
-        0 => segments_meet(pa, pb, pc, pd),
-        1 => {
-            // consecutive edges: they may only meet at the shared node
-            let (s, ox, oy) = if x[0] == y[0] {
-                (pa, pb, pd)
-            } else if x[0] == y[1] {
-                (pa, pb, pc)
-            } else if x[1] == y[0] {
-                (pb, pa, pd)
-            } else {
-                (pb, pa, pc)
-            };
-            orient2d(s, ox, oy) == 0.0
-                && dot([ox[0] - s[0], ox[1] - s[1]], [oy[0] - s[0], oy[1] - s[1]]) > 0.0
-        }
-        _ => true,
-    }
-}
-
-/// A front edge: (node a, node b, loop, edge index).
-pub(crate) type FrontSeg = (u32, u32, u32, u32);
-
 impl Work<'_> {
-    /// Every front edge with its bounding box.
-    pub(crate) fn front_segments(&self) -> (Vec<FrontSeg>, Vec<Aabb>) {
-        let mut segs: Vec<FrontSeg> = Vec::new();
-        let mut boxes = Vec::new();
-        for (li, l) in self.loops.iter().enumerate() {
-            let k = l.items.len();
-            for i in 0..k {
-                let (a, b) = (l.items[i], l.items[(i + 1) % k]);
-                segs.push((a, b, li as u32, i as u32));
-                boxes.push(Aabb::of_segment(
-                    self.nodes.pos[a as usize],
-                    self.nodes.pos[b as usize],
-                    0.0,
-                ));
-            }
-        }
-        (segs, boxes)
-    }
-
     /// The first problem of the whole front state, if any (see the module documentation).
     pub(crate) fn sanity_check(&self) -> Result<(), String> {
         self.nodes.check()?;

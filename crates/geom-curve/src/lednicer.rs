@@ -8,7 +8,7 @@
 //! trailing edge → leading edge → lower trailing edge), the shared leading-edge point and a
 //! repeated trailing-edge point listed once.
 
-use crate::selig::{data_lines, drop_repeated_closing_point, parse_pair};
+use crate::dat_lines::{data_lines, drop_repeated_closing_point, excerpt, parse_pair};
 use crate::{CurveError, Point2};
 
 /// The surface counts `(NU, NL)` if the first data line is two whole numbers ≥ 2 and exactly
@@ -47,7 +47,7 @@ pub fn parse(text: &str) -> Result<Vec<Point2<f64>>, CurveError> {
             line,
             content: format!(
                 "{} (expected the Lednicer counts \"NU NL\" matching the points that follow)",
-                crate::selig::excerpt(content)
+                excerpt(content)
             ),
         });
     };

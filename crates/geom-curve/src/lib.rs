@@ -49,6 +49,7 @@
 //! [`naca::naca4`] makes the same section from its four digits, at any resolution.
 
 pub mod curvature;
+mod dat_lines;
 pub mod hermite;
 pub mod lednicer;
 pub mod loops;

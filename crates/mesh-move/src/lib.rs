@@ -73,6 +73,8 @@ mod boundary;
 mod error;
 pub mod motion;
 pub mod movers;
+mod outcome;
+mod params;
 mod polish;
 pub mod quality;
 pub mod springs;

@@ -30,48 +30,9 @@ use rayon::prelude::*;
 use crate::MoveError;
 use crate::boundary::{BoundaryMotion, check_linear_2d};
 use crate::motion::Mat2;
-
-/// Parameters of the inverse-distance weighting.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct IdwParams {
-    /// Exponent `p` of the weights `A_i / r^p` (> 0; larger is more local). Default 3.
-    pub exponent: f64,
-}
-
-impl Default for IdwParams {
-    fn default() -> Self {
-        IdwParams { exponent: 3.0 }
-    }
-}
-
-/// The radial basis function.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kernel {
-    /// Wendland's C2 function `(1 − r/R)⁴ (4r/R + 1)`, zero beyond the support radius `R`.
-    WendlandC2,
-    /// The thin-plate spline `r² ln r` (global).
-    ThinPlateSpline,
-}
-
-/// Parameters of the radial-basis-function mover.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RbfParams {
-    /// The kernel. Default Wendland C2.
-    pub kernel: Kernel,
-    /// Support radius `R` of the Wendland kernel; `None` (the default): the bounding-box
-    /// diagonal of the mesh, so that every boundary node acts everywhere. Ignored by the
-    /// thin-plate spline.
-    pub support_radius: Option<f64>,
-}
-
-impl Default for RbfParams {
-    fn default() -> Self {
-        RbfParams {
-            kernel: Kernel::WendlandC2,
-            support_radius: None,
-        }
-    }
-}
+pub use crate::outcome::{MoveStats, Moved};
+use crate::params::SpringMoveParams;
+pub use crate::params::{IdwParams, Kernel, RbfParams};
 
 /// A mover.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,37 +45,7 @@ pub enum Method {
     Rbf(RbfParams),
     /// The Spring-Field re-balanced on the original layers ([`crate::springs`]); needs the
     /// layering, so only [`crate::move_layered`] takes it.
-    Springs(crate::springs::SpringMoveParams),
-}
-
-/// What a move did.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct MoveStats {
-    /// Largest displacement of any node.
-    pub largest_displacement: f64,
-    /// Largest displacement of a boundary node.
-    pub largest_boundary_displacement: f64,
-    /// Boundary nodes (placed at their targets).
-    pub boundary_nodes: usize,
-    /// Other nodes (placed by the mover).
-    pub interior_nodes: usize,
-    /// Cells inverted or degenerate after the move ([`crate::quality::inverted_cells`]): a
-    /// move with any is a failure, whatever the mover.
-    pub inverted_cells: usize,
-    /// RBF only: the largest difference between the interpolant and the boundary
-    /// displacement at a boundary node (the solve's accuracy); 0 for IDW.
-    pub interpolation_residual: f64,
-    /// Springs only: the spring solve's figures.
-    pub springs: Option<crate::springs::SpringStats>,
-}
-
-/// The moved mesh (same topology, new node positions) and what the move did.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Moved {
-    /// The moved mesh.
-    pub mesh: Mesh,
-    /// Figures of the move.
-    pub stats: MoveStats,
+    Springs(SpringMoveParams),
 }
 
 /// `mesh` with its boundary nodes at the targets of `boundary` and its other nodes moved by

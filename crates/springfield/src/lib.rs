@@ -57,6 +57,7 @@
 //! # Ok::<(), springfield::SpringError>(())
 //! ```
 
+mod active;
 mod error;
 pub mod length;
 pub mod model;
@@ -69,6 +70,7 @@ pub mod springs;
 pub mod springs3d;
 mod vec;
 
+pub use active::{Active, Influence};
 pub use error::SpringError;
 pub use length::{BalanceSpring, LengthSpring};
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
@@ -76,9 +78,7 @@ pub use newton::{EnergyModel, Linearised, NewtonOutcome, NewtonParams, solve_new
 pub use params::{SolverParams, SpringParams};
 pub use problem::{LocalProblem, NO_NODE, Undo};
 pub use shape::{ShapeLaw, ShapeSpring, shape_springs};
-pub use solver::{
-    Active, Influence, SolveOutcome, solve, solve_active, solve_model, solve_model_active,
-};
+pub use solver::{SolveOutcome, solve, solve_active, solve_model, solve_model_active};
 pub use springs::{
     AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringIndex2d, SpringSet2d,
     assemble_2d, assemble_2d_active, bisector, left_normal,

@@ -18,8 +18,8 @@
 //! its `ForceModel<3>` binding like [`crate::SpringField2d`]; the extrusion spring and everything in
 //! this module are reused as they are. Nothing of it exists yet.
 
+use crate::active::{Active, Influence};
 use crate::params::SpringParams;
-use crate::solver::{Active, Influence};
 
 /// One entry of a sparse matrix in coordinate form; repeated (row, col) entries add up.
 /// For the forces' Jacobian, `row = D·i + a` is component `a` of the force on node `i` and

@@ -21,10 +21,10 @@
 //! It owns the 2D shape spring. It does not choose which triangles to hold (the mover does)
 //! nor solve ([`crate::newton`]).
 
+use crate::active::Influence;
 use crate::model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 use crate::newton::EnergyModel;
 use crate::params::SpringParams;
-use crate::solver::Influence;
 
 /// A triangle `(a, b, c)` held to its rest shape.
 #[derive(Debug, Clone, Copy, PartialEq)]

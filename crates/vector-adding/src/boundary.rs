@@ -4,10 +4,10 @@
 use geom_curve::ClosedCurve;
 use mesh_model::Mesh;
 
-use crate::LoopCurve;
 use crate::decisions::EdgeRule;
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
+use crate::loop_curve::LoopCurve;
 
 /// Puts the inner points of every boundary facet on its loop's curve. The boundary nodes of
 /// loop `l` are mesh nodes `first_l .. first_l + t.len()`, loops numbered as the patches.

@@ -12,6 +12,7 @@ use crate::decisions::Diagonal;
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
+use crate::scratch::Scratch;
 use crate::split::{TriScratch, best_halves, diagonal_as, judge_halves};
 
 /// A candidate for one local edge of a cell: (local edge, node the points start from, the
@@ -24,24 +25,8 @@ pub(crate) struct Ctx<'a> {
     pub mesh: &'a Mesh,
     pub interiors: &'a Interiors,
     pub params: &'a CurvingParams,
-    /// Bottom and top local edge of every cell (see `march::classify`).
+    /// Bottom and top local edge of every cell (see `roles::classify`).
     pub roles: &'a [[u8; 2]],
-}
-
-/// Reusable buffers for building one cell's nodes.
-#[derive(Debug, Default)]
-pub(crate) struct Scratch {
-    pub corners: Vec<[f64; 2]>,
-    pub edge_pts: Vec<[f64; 2]>,
-    pub nodes: Vec<[f64; 2]>,
-    pub tri: Vec<[f64; 2]>,
-    pub tri_pts: Vec<[f64; 2]>,
-    pub diag: Vec<[f64; 2]>,
-}
-
-/// A certificate's scaled-Jacobian lower bound, 0 when not proved valid.
-pub(crate) fn quality(c: &Certificate) -> f64 {
-    c.scaled_jacobian_lower_bound().unwrap_or(0.0)
 }
 
 /// Certifies cell `ci` built from the edge table, with the edges in `replaced` taking their

@@ -10,15 +10,16 @@ use mesh_model::{LayeredMesh, Layering, Mesh, NONE};
 
 use crate::assemble::assemble;
 use crate::boundary::{facet_points, place_given, place_on_curves};
-use crate::cellcheck::{Ctx, Scratch, check_as_cut};
+use crate::cellcheck::{Ctx, check_as_cut};
 use crate::cellmap::Interiors;
 use crate::decisions::{DecisionChange, Decisions, Diagonal, EdgeRule, EdgeRules};
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
+use crate::scratch::Scratch;
 use crate::split::OutCell;
 use crate::stats::CurvingStats;
-use crate::{Curved, LoopCurve, check_input, curve_mesh, march, split};
+use crate::{Curved, LoopCurve, check_input, curve_mesh, roles, split};
 
 /// Where the boundary facets' high-order nodes come from.
 #[derive(Clone, Copy)]
@@ -202,7 +203,7 @@ fn lay_out(
     if let Err(cycle) = lay_rules(mesh, rules, &mut edges) {
         return Ok(Err(cycle));
     }
-    let roles = march::classify(mesh, &layering.node_layer, layering.layered_cells);
+    let roles = roles::classify(mesh, &layering.node_layer, layering.layered_cells);
     let interiors = Interiors::new(p);
     let (cells, cut) = if params.triangles {
         split::cut(mesh, &roles, &mut edges, &interiors, params, Some(cuts))?

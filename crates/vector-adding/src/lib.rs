@@ -95,35 +95,30 @@ mod decisions;
 mod edges;
 pub mod error;
 mod keep;
+mod loop_curve;
 mod march;
 mod march3d;
 pub mod params;
 mod part;
+mod projector;
+mod quality;
 mod repair;
+mod roles;
+mod scratch;
 mod split;
 pub mod stats;
 mod table;
 
-use geom_curve::ClosedCurve;
 use mesh_model::{Dim, LayeredMesh, Mesh, Shape};
 
 pub use curve3d::{Curved3d, Curving3dStats, SphereProjector, SurfaceProjector, curve_mesh_3d};
 pub use decisions::{Carry, DecisionChange, Decisions, Diagonal, EdgeRule, EdgeRules};
 pub use error::CurvingError;
 pub use keep::{boundary_points, curve_mesh_keeping, replay, tangent};
+pub use loop_curve::LoopCurve;
 pub use params::{CurvingParams, Strategy};
 pub use part::PartEdges;
 pub use stats::{CurvingStats, StopCounts};
-
-/// The curve of one boundary loop and the parameters of its nodes, as `boundary1d` placed
-/// them: node `k` of the loop is at `curve.point(t[k])`.
-#[derive(Debug, Clone, Copy)]
-pub struct LoopCurve<'a> {
-    /// The loop's curve.
-    pub curve: &'a ClosedCurve,
-    /// The curve parameter of each of its boundary nodes, in node order.
-    pub t: &'a [f64],
-}
 
 /// The curved mesh and the figures of the run.
 #[derive(Debug, Clone)]
@@ -310,7 +305,7 @@ fn decide_from(
     boundary::place_on_curves(mesh, loops, &mut edges)?;
     let curved_boundary_edges = edges.curved.iter().filter(|&&c| c).count();
     clock.lap("boundary");
-    let roles = march::classify(
+    let roles = roles::classify(
         mesh,
         &input.layering.node_layer,
         input.layering.layered_cells,

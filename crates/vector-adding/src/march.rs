@@ -4,70 +4,18 @@
 //! before the cell above reads it.
 
 use jacobian_check::Certificate;
-use mesh_model::{Mesh, NONE, Role, Shape};
-use rayon::prelude::*;
+use mesh_model::{Mesh, NONE, Role};
 
-use crate::cellcheck::{Ctx, Scratch, check, quality};
+use crate::cellcheck::{Ctx, check};
 use crate::cellmap::Interiors;
 use crate::decisions::{Carry, lay};
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
+use crate::quality::quality;
+use crate::roles::NO_EDGE;
+use crate::scratch::Scratch;
 use crate::stats::StopCounts;
-
-/// No local edge.
-pub(crate) const NO_EDGE: u8 = u8::MAX;
-
-/// The bottom and top local edges of every cell (NO_EDGE where it has none): the bottom joins
-/// two nodes of the cell's layer, the top two nodes of the layer above. Fill cells (from
-/// `layered_cells` on) and cells that do not fit the pattern have neither. Each cell on its
-/// own, on every thread.
-pub(crate) fn classify(mesh: &Mesh, node_layer: &[u32], layered_cells: usize) -> Vec<[u8; 2]> {
-    (0..mesh.cells.len())
-        .into_par_iter()
-        .with_min_len(1 << 12)
-        .map(|i| {
-            if i < layered_cells {
-                roles_of(mesh, node_layer, i)
-            } else {
-                [NO_EDGE; 2]
-            }
-        })
-        .collect()
-}
-
-/// The bottom and top local edges of layered cell `i` ([`classify`]).
-fn roles_of(mesh: &Mesh, node_layer: &[u32], i: usize) -> [u8; 2] {
-    let layer = mesh.cell_layer[i];
-    if layer == NONE {
-        return [NO_EDGE; 2];
-    }
-    let cell = mesh.cells.get(i);
-    let k = cell.corners();
-    let (mut bottom, mut top, mut bottoms, mut tops) = (NO_EDGE, NO_EDGE, 0, 0);
-    for (j, e) in cell.ty.shape.edges().iter().enumerate() {
-        let (la, lb) = (node_layer[k[e[0]] as usize], node_layer[k[e[1]] as usize]);
-        if la == layer && lb == layer {
-            bottom = j as u8;
-            bottoms += 1;
-        } else if la == layer + 1 && lb == layer + 1 {
-            top = j as u8;
-            tops += 1;
-        }
-    }
-    if bottoms > 1 || tops > 1 {
-        return [NO_EDGE; 2];
-    }
-    // a quadrilateral's top must face its bottom, so that the chords correspond
-    if cell.ty.shape == Shape::Quad
-        && bottom != NO_EDGE
-        && top != NO_EDGE
-        && (bottom + 2) % 4 != top
-    {
-        return [NO_EDGE; 2];
-    }
-    [bottom, top]
-}
 
 /// What the marching did.
 #[derive(Debug, Clone, Default)]

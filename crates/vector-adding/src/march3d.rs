@@ -10,9 +10,9 @@ use jacobian_check::{Certificate, certify_cell};
 use mesh_model::topology::Edges;
 use mesh_model::{CellType, Mesh, NONE, Shape};
 
-use crate::curve3d::SurfaceProjector;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
+use crate::projector::SurfaceProjector;
 use crate::stats::StopCounts;
 
 /// The layer of every node and its parents (the nodes below it in its columns).

@@ -6,12 +6,13 @@
 
 use mesh_model::{Mesh, NONE};
 
-use crate::cellcheck::{Candidate, Ctx, Scratch, check};
+use crate::cellcheck::{Candidate, Ctx, check};
 use crate::cellmap::Interiors;
 use crate::decisions::{Carry, EdgeRule, lay};
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
+use crate::scratch::Scratch;
 
 /// What the repair did.
 #[derive(Debug, Clone, Copy, Default)]

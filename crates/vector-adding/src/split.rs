@@ -8,13 +8,14 @@
 use jacobian_check::{Certificate, CertifyParams, JacobianError, certify_cell};
 use mesh_model::{CellType, Mesh, NONE, Shape};
 
-use crate::cellcheck::{Scratch, quality};
 use crate::cellmap::{Interiors, coons, lagrange_1d};
 use crate::decisions::Diagonal;
 use crate::edges::{EdgeTable, lerp};
 use crate::error::CurvingError;
-use crate::march::NO_EDGE;
 use crate::params::{CurvingParams, Strategy};
+use crate::quality::quality;
+use crate::roles::NO_EDGE;
+use crate::scratch::Scratch;
 
 /// A cell of the output: corners and the edge of each local edge (Gmsh order).
 #[derive(Debug, Clone, Copy)]
