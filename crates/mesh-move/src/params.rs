@@ -1,0 +1,168 @@
+//! The parameters of the movers: the inverse-distance weighting and the radial basis
+//! functions of [`crate::movers`], and the spring mover of [`crate::springs`] with its
+//! strategy and fill. Plain data with their defaults; the movers themselves are elsewhere.
+
+use springfield::{NewtonParams, ShapeLaw, SolverParams, SpringParams};
+
+/// Parameters of the inverse-distance weighting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IdwParams {
+    /// Exponent `p` of the weights `A_i / r^p` (> 0; larger is more local). Default 3.
+    pub exponent: f64,
+}
+
+impl Default for IdwParams {
+    fn default() -> Self {
+        IdwParams { exponent: 3.0 }
+    }
+}
+
+/// The radial basis function.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kernel {
+    /// Wendland's C2 function `(1 − r/R)⁴ (4r/R + 1)`, zero beyond the support radius `R`.
+    WendlandC2,
+    /// The thin-plate spline `r² ln r` (global).
+    ThinPlateSpline,
+}
+
+/// Parameters of the radial-basis-function mover.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RbfParams {
+    /// The kernel. Default Wendland C2.
+    pub kernel: Kernel,
+    /// Support radius `R` of the Wendland kernel; `None` (the default): the bounding-box
+    /// diagonal of the mesh, so that every boundary node acts everywhere. Ignored by the
+    /// thin-plate spline.
+    pub support_radius: Option<f64>,
+}
+
+impl Default for RbfParams {
+    fn default() -> Self {
+        RbfParams {
+            kernel: Kernel::WendlandC2,
+            support_radius: None,
+        }
+    }
+}
+
+/// In what order the layer nodes are balanced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Strategy {
+    /// Every layer node in one solve.
+    #[default]
+    AllTogether,
+    /// One solve per layer from the wall up (the layers below held), then one solve of all.
+    LayerByLayer,
+}
+
+/// How the nodes outside the kept layers move. The rotation-aware IDW is always computed; a
+/// later candidate replaces it only when its worst scaled-Jacobian ratio over these nodes'
+/// cells is no lower.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Fill {
+    /// Rotation-aware IDW from the region's bounding nodes.
+    Idw,
+    /// Also the screw fill: the bounding nodes' local rigid motions as logarithms in se(2),
+    /// blended by inverse-distance weights, then exponentiated.
+    Screw,
+    /// Also as-rigid-as-possible iterations from the screw fill.
+    Arap,
+    /// Also the global Wendland C2 RBF of the bounding nodes' displacements (the default:
+    /// the best on the NACA0012 pitch; its system may be too ill-conditioned on a mesh with
+    /// very fine walls, as on the 30P30N, and is then passed over).
+    #[default]
+    Rbf,
+}
+
+/// Parameters of the spring mover.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringMoveParams {
+    /// The spring coefficients: the dissertation's, except a ten times stiffer extrusion
+    /// spring (the layer heights are given, not grown) and no angle reaction on the parent
+    /// (`c_percent` 0: the layers below are already in place). With the dissertation's own
+    /// the angle springs' pull shortens the first-layer edges of a bumped wall by up to 6 %
+    /// before the solve stops.
+    pub springs: SpringParams,
+    /// The explicit solver (tolerance relative to each node's original extrusion length).
+    pub solver: SolverParams,
+    /// All layer nodes together, or layer by layer.
+    pub strategy: Strategy,
+    /// How the filled region moves.
+    pub fill: Fill,
+    /// The IDW of the filled region.
+    pub idw: IdwParams,
+    /// The exponent of the screw fill's inverse-distance weights (> 0). Default 2.
+    pub screw_exponent: f64,
+    /// Most as-rigid-as-possible iterations.
+    pub arap_iterations: usize,
+    /// Passes of each kind of the polish after the fill (worst cells, then open angles:
+    /// the module `polish`; 0: none). Default 50; the smooth
+    /// mover ([`SpringMoveParams::smooth`]) has none (the shape balance follows).
+    pub polish_passes: usize,
+    /// A layer node keeps its original layer geometry (predictor and springs) while its
+    /// cell below is at least this anisotropic (front spacing over extrusion length) and
+    /// its parents do; the nodes above join the filled region. Default 16.
+    pub core_aspect: f64,
+    /// The last phase: the shape balance ([`crate::balance`]) by Newton's method, which
+    /// makes the moved mesh a smooth function of the boundary, the base of the
+    /// sensitivities; `None` (the default) skips it: the mesh is then where the fill and the
+    /// polish leave it, with a better worst cell but not smooth.
+    pub newton: Option<NewtonParams>,
+    /// The energy density of the shape balance.
+    pub shape: ShapeLaw,
+    /// Without `newton`: when the polished mesh's worst-cell ratio is below this, the shape
+    /// balance is also run from the unpolished fill and polished, and the better of the two
+    /// kept (`stats.newton` says the balanced one was). Default 0.8; `None`: never.
+    pub balance_below: Option<f64>,
+}
+
+impl Default for SpringMoveParams {
+    fn default() -> Self {
+        SpringMoveParams {
+            springs: SpringParams {
+                k_extrusion: 10.0,
+                c_percent: 0.0,
+                ..SpringParams::default()
+            },
+            solver: SolverParams {
+                max_iterations: 500,
+                tolerance: 1e-4,
+                // the two groups of §4.1 with their own move limits: the extrusion springs
+                // move a node along its extrusion edge, the neighbour and angle springs
+                // across it (their forces are at right angles to the edge)
+                lateral_max_move: Some(LATERAL_MAX_MOVE),
+                ..SolverParams::default()
+            },
+            strategy: Strategy::AllTogether,
+            fill: Fill::Rbf,
+            idw: IdwParams::default(),
+            screw_exponent: 2.0,
+            arap_iterations: 30,
+            polish_passes: 50,
+            core_aspect: 16.0,
+            newton: None,
+            shape: ShapeLaw::default(),
+            balance_below: Some(0.8),
+        }
+    }
+}
+
+impl SpringMoveParams {
+    /// The smooth mover: no polish, then the shape balance by Newton's method, so that the
+    /// moved mesh is a smooth function of the boundary (for sensitivities and shape
+    /// optimisation).
+    pub fn smooth() -> Self {
+        SpringMoveParams {
+            polish_passes: 0,
+            newton: Some(NewtonParams::default()),
+            ..SpringMoveParams::default()
+        }
+    }
+}
+
+/// The move limit across a node's extrusion edge per iteration (fraction of its length
+/// scale), against 0.25 along it: the sideways pull of the neighbour and angle springs is
+/// taken in smaller steps than the extrusion spring's, so a column is set to its height
+/// before it swings.
+const LATERAL_MAX_MOVE: f64 = 0.1;
