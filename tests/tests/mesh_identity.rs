@@ -115,7 +115,11 @@ fn the_library_makes_the_mesh_the_command_writes() {
             ..curvemesh::Options::default()
         };
         let meshed = curvemesh::mesh(&case, &options, &mut curvemesh::Silent).unwrap();
-        assert!(meshed.report.is_valid(), "{name}: {:?}", meshed.report.problems);
+        assert!(
+            meshed.report.is_valid(),
+            "{name}: {:?}",
+            meshed.report.problems
+        );
         assert_eq!(digest(&meshed.mesh), digest(&written), "{name} {flags:?}");
     }
 }
