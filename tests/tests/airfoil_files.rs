@@ -141,7 +141,16 @@ fn airfoil_flags_with_a_case_and_mixed_inputs_are_refused() {
     for (args, want) in [
         (
             vec!["naca0012", "--aoa", "4"],
-            "--aoa applies to airfoil .dat files only",
+            "--aoa applies to airfoil coordinate files (.dat, .txt) only",
+        ),
+        // a misspelt file name is said to be missing, not taken for a case
+        (
+            vec!["naca4412.dta", "--aoa", "4"],
+            "naca4412.dta: no such file (with --aoa, give airfoil coordinates",
+        ),
+        (
+            vec!["naca4412.dta"],
+            "nor airfoil coordinates (.dat or .txt)",
         ),
         (vec!["naca0012", &dat], "not both"),
         (vec![&dat, "--aoa", "-120"], "--aoa -120"),
@@ -152,4 +161,15 @@ fn airfoil_flags_with_a_case_and_mixed_inputs_are_refused() {
         let msg = format!("{err:#}");
         assert!(msg.contains(want) && !msg.contains('\n'), "{msg}");
     }
+}
+
+/// Airfoil sites often serve coordinates as `.txt`: read as the same `.dat` would be.
+#[test]
+fn coordinates_in_a_txt_file_are_read_as_a_dat_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let txt = dir.path().join("naca0012.txt");
+    std::fs::copy(fixture("naca0012.dat"), &txt).unwrap();
+    let (a, _) = run(dir.path(), &[txt.to_str().unwrap()]).expect("a .txt airfoil meshes");
+    let (b, _) = run(dir.path(), &[&fixture("naca0012.dat")]).unwrap();
+    assert_eq!(a["cells"], b["cells"]);
 }

@@ -145,12 +145,14 @@ pub struct OutputArgs {
 
     /// Output mesh file; the format follows the extension: .msh (Gmsh 4.1 ASCII), .vtu (VTK
     /// XML, Lagrange cells for P2/P3) or .su2 (linear). May be given several times.
-    /// Default: out/CASE.msh (`move`: out/CASE-moved.msh).
+    /// Default: out/CASE.msh (`move`: out/CASE-moved.msh); at an --order other than the
+    /// case's, out/CASE-pN.msh, so that no mesh of the case's own order is replaced.
     #[arg(long = "out", value_name = "FILE")]
     pub outs: Vec<PathBuf>,
 
     /// Write the JSON report (cells, layers, timings, quality; `move`: the movement) to this
-    /// file. Default when no --out is given: out/CASE.json (`move`: out/CASE-moved.json).
+    /// file. Default when no --out is given: out/CASE.json (`move`: out/CASE-moved.json;
+    /// out/CASE-pN.json at an --order other than the case's).
     #[arg(long, value_name = "FILE.json")]
     pub report: Option<PathBuf>,
 

@@ -15,7 +15,7 @@ use mesh_io::Format;
 use crate::cli::MeshArgs;
 use crate::outcome::Finished;
 use crate::pictures::{self, Colour};
-use crate::plan::{OutputFlags, Planned, plan, plan_with};
+use crate::plan::{OutputFlags, Planned, default_stem, plan, plan_with};
 use crate::progress::{Spinners, stage};
 use crate::{pool, resources, summary};
 
@@ -117,7 +117,8 @@ fn plan_2d(args: &MeshArgs, case: &curvemesh::Case) -> Result<Planned> {
         snapshot: args.snapshot.as_deref(),
         pictures: &args.pictures,
     };
-    let mut planned = plan(&flags, &case.file_stem(), &case.views)?;
+    let stem = default_stem(&case.file_stem(), args.output.order, case.order);
+    let mut planned = plan(&flags, &stem, &case.views)?;
     if args.binary {
         let msh = |p: &std::path::PathBuf| Format::from_path(p) == Some(Format::Msh);
         if !planned.plan.meshes.iter().any(|(p, _)| msh(p)) {
@@ -141,6 +142,7 @@ fn plan_3d(args: &MeshArgs, case: &Case3d) -> Result<Planned> {
         pictures: &args.pictures,
     };
     let stem = curvemesh::source::file_stem_of(&case.name);
+    let stem = default_stem(&stem, args.output.order, case.order);
     let mut planned = plan_with(&flags, &stem, || {
         pictures::parse_3d(&args.pictures).map(|(p, _)| p)
     })?;
@@ -172,11 +174,15 @@ fn refuse_2d_flags(args: &MeshArgs) -> Result<()> {
 /// The case named on the command line: a case file or built-in case (2D or 3D), or airfoil
 /// `.dat` files; the airfoil flags are refused with anything but `.dat` files.
 fn load(args: &MeshArgs) -> Result<AnyCase> {
-    let dats = args.case.iter().filter(|c| airfoil::is_dat(c)).count();
+    let dats = args
+        .case
+        .iter()
+        .filter(|c| airfoil::is_coordinate_file(c))
+        .count();
     if dats > 0 {
         if dats < args.case.len() {
             bail!(
-                "give either airfoil .dat files or one case, not both: {}",
+                "give either airfoil coordinate files (.dat, .txt) or one case, not both: {}",
                 args.case.join(" ")
             );
         }
@@ -199,7 +205,20 @@ fn load(args: &MeshArgs) -> Result<AnyCase> {
         ("--merge-walls", a.merge_walls),
     ];
     if let Some((flag, _)) = given.into_iter().find(|f| f.1) {
-        bail!("{flag} applies to airfoil .dat files only (a case file sets its own geometry)");
+        // a misspelt or missing airfoil file is the likelier mistake than a flag given to a case
+        if let [one] = args.case.as_slice()
+            && builtin::case_text(one).is_none()
+            && !std::path::Path::new(one).is_file()
+        {
+            bail!(
+                "{one}: no such file (with {flag}, give airfoil coordinates as a .dat or .txt \
+                 file)"
+            );
+        }
+        bail!(
+            "{flag} applies to airfoil coordinate files (.dat, .txt) only (a case file sets its \
+             own geometry)"
+        );
     }
     match args.case.as_slice() {
         [] => Ok(curvemesh::load(builtin::DEFAULT)?),

@@ -15,7 +15,7 @@ use mesh_move::{LoopMotion, Motion};
 use crate::cli::{MotionArgs, MoveArgs, MoveMethod, RbfKernel};
 use crate::outcome::Finished;
 use crate::pictures::{self, Colour};
-use crate::plan::{OutputFlags, plan};
+use crate::plan::{OutputFlags, default_stem, plan};
 use crate::progress::{Spinners, stage};
 use crate::{pool, resources, summary};
 
@@ -40,7 +40,12 @@ fn run_here(args: &MoveArgs) -> Result<Finished> {
         snapshot: None,
         pictures: &args.pictures,
     };
-    let mut planned = plan(&flags, &format!("{}-moved", case.file_stem()), &case.views)?;
+    let stem = default_stem(
+        &format!("{}-moved", case.file_stem()),
+        options.order,
+        case.order,
+    );
+    let mut planned = plan(&flags, &stem, &case.views)?;
     let at = args
         .snapshot
         .as_ref()

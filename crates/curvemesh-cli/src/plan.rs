@@ -1,7 +1,8 @@
 //! The output flags of a run (`--out`, `--report`, `--snapshot`, `--png`, `--svg`) checked
 //! and every output file reserved before any work, so that a bad flag, an unwritable folder
 //! or two outputs on one file are refused at once. Without `--out`, the mesh and the report
-//! go to `out/STEM.msh` and `out/STEM.json`.
+//! go to `out/STEM.msh` and `out/STEM.json` ([`default_stem`]: an order other than the case's
+//! is in the name, so that a picture run at P1 does not replace the P3 mesh of the case).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -80,6 +81,15 @@ pub fn plan_with(
     })
 }
 
+/// The stem of a run's default outputs: the case's `stem`, with `-pN` when the order `asked`
+/// is not the case's own `order` (`out/30p30n-p1.msh` beside the default `out/30p30n.msh`).
+pub fn default_stem(stem: &str, asked: Option<u8>, order: u8) -> String {
+    match asked {
+        Some(p) if p != order => format!("{stem}-p{p}"),
+        _ => stem.to_string(),
+    }
+}
+
 /// The mesh files and the report to write, by flags or by default (under `out/`, named after
 /// `stem`); checked before any work is done.
 fn outputs(flags: &OutputFlags<'_>, stem: &str) -> Result<(Vec<PathBuf>, Option<PathBuf>)> {
@@ -109,4 +119,17 @@ fn outputs(flags: &OutputFlags<'_>, stem: &str) -> Result<(Vec<PathBuf>, Option<
         None => None,
     };
     Ok((outs, report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_order_other_than_the_cases_is_in_the_default_name() {
+        assert_eq!(default_stem("30p30n", None, 3), "30p30n");
+        assert_eq!(default_stem("30p30n", Some(3), 3), "30p30n");
+        assert_eq!(default_stem("30p30n", Some(1), 3), "30p30n-p1");
+        assert_eq!(default_stem("sphere-moved", Some(2), 1), "sphere-moved-p2");
+    }
 }

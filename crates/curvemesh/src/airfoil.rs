@@ -1,5 +1,5 @@
-//! `cargo xtask mesh A.dat [B.dat ...]`: a case made from airfoil coordinate files (Selig or
-//! Lednicer, told apart by `geom_curve::selig::parse`) with the defaults of the built-in
+//! `curvemesh mesh A.dat [B.dat ...]`: a case made from airfoil coordinate files (`.dat` or
+//! `.txt`, Selig or Lednicer, told apart by `geom_curve::selig::parse`) with the defaults of the built-in
 //! cases. Each file is a wall loop named after its file stem, placed by its own coordinates
 //! (a multi-element airfoil is several files in one frame). Then:
 //!
@@ -23,11 +23,12 @@ use crate::case::{Case, LoopInput};
 /// Points on the far-field circle (its geometry, not its mesh spacing).
 const FARFIELD_POINTS: usize = 256;
 
-/// Whether `spec` names an airfoil coordinate file rather than a case.
-pub fn is_dat(spec: &str) -> bool {
+/// Whether `spec` names an airfoil coordinate file rather than a case: a `.dat` file, or a
+/// `.txt` file (as airfoil sites often serve them), read as Selig or Lednicer.
+pub fn is_coordinate_file(spec: &str) -> bool {
     Path::new(spec)
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("dat"))
+        .is_some_and(|e| e.eq_ignore_ascii_case("dat") || e.eq_ignore_ascii_case("txt"))
 }
 
 /// The first layer height for a target y⁺ at Reynolds number `re` (based on `chord`), by the

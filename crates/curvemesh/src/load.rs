@@ -40,7 +40,8 @@ pub fn load(spec: &str) -> Result<AnyCase> {
     let path = PathBuf::from(spec);
     if path.extension().is_none_or(|e| e != "toml") && !path.exists() {
         bail!(
-            "'{spec}' is neither a built-in case ({}) nor a case file (.toml)",
+            "'{spec}' is neither a built-in case ({}) nor a case file (.toml) nor airfoil \
+             coordinates (.dat or .txt)",
             builtin::all_names().join(", ")
         );
     }
