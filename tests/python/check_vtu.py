@@ -17,8 +17,9 @@ counts of the cells of each type, the cell-data arrays, and two areas of a 2D me
   curved cell into linear pieces through its points, so for P2/P3 cells this is only close to
   the true area (exact for linear cells). 3D meshes give "volume_linearised" only.
 The counts and measures are of the domain cells; the boundary facets the file also holds
-(cell data `boundary_group` ≥ 0, an index into the field-data string array
-`boundary_group_names`) are counted per group under "boundary_groups".
+(cell data `boundary_group` ≥ 0, an index into the group names, which the field data holds
+as one numeric array `boundary_group:NAME` per group, holding the index) are counted per group
+under "boundary_groups", named by VTK's own reading of those arrays.
 A file VTK cannot read gives a line with an "error" key; the exit status is then 1.
 """
 import collections
@@ -29,6 +30,7 @@ import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
+GROUP_PREFIX = "boundary_group:"  # the field data naming a boundary group (mesh_io::vtu)
 GAUSS_POINTS = 6  # per direction: exact for det J of cubic quads (degree 5 in each variable)
 
 
@@ -93,17 +95,28 @@ def lagrange_area(grid):
     return total, min_ratio
 
 
+def group_names(grid):
+    """The boundary group names by index: the field-data arrays `boundary_group:NAME`, each
+    one tuple holding the group's index, as VTK reads them."""
+    fd = grid.GetFieldData()
+    names = {}
+    for i in range(fd.GetNumberOfArrays()):
+        name, arr = fd.GetArrayName(i), fd.GetArray(i)
+        if name and name.startswith(GROUP_PREFIX) and arr is not None:
+            names[int(arr.GetTuple1(0))] = name[len(GROUP_PREFIX):]
+    return names
+
+
 def split_boundary(grid):
     """The domain cells of grid (boundary_group −1) as a grid of their own, and the number of
-    boundary facets of each group, by name (VTK's own reading of the string array)."""
+    boundary facets of each group, by name (group_names)."""
     arr = grid.GetCellData().GetArray("boundary_group")
-    names = grid.GetFieldData().GetAbstractArray("boundary_group_names")
     if arr is None:
         return grid, {}
+    names = group_names(grid)
     group = vtk_to_numpy(arr)
     counts = collections.Counter(group[group >= 0].tolist())
-    named = {names.GetValue(int(k)) if names is not None else str(k): int(n)
-             for k, n in sorted(counts.items())}
+    named = {names.get(int(k), f"unnamed {k}"): int(n) for k, n in sorted(counts.items())}
     ids = vtk.vtkIdList()
     for i in np.nonzero(group < 0)[0].tolist():
         ids.InsertNextId(i)

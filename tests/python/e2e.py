@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """End-to-end check with independent readers: run `cargo xtask mesh` on every built-in case at
-orders 1, 2 and 3, mixed and `--triangles`, writing .msh, .vtu and the JSON report, then:
+orders 1, 2 and 3, mixed and `--triangles`, writing .msh, .vtu, .su2 and the JSON report, then:
 - Gmsh (check_msh.py) reads each .msh: node and element counts and the physical groups `fluid`,
   one per wall body (`slat`, `main`, `flap`) and `farfield` agree with the report, no warning, a positive scaled Jacobian on every cell,
   element types of the requested order (Triangle 3/6/10, Quadrilateral 4/9/16, Line 2/3/4
@@ -12,6 +12,12 @@ orders 1, 2 and 3, mixed and `--triangles`, writing .msh, .vtu and the JSON repo
   linear types at order 1 and Lagrange types with the right point count at orders 2 and 3, a
   positive Jacobian at the Gauss points of every cell and an area equal to the report's, both
   with VTK's own shape functions;
+- meshio (check_meshio.py), the reader most Python pipelines convert meshes with, reads each
+  .vtu and .su2 without exiting: the .vtu's points, domain cells of each VTK type with their
+  point counts, and boundary facets of each group (named by the numeric field data
+  `boundary_group:NAME`) the same as the report's and as VTK's; the .su2's triangles, quads and
+  marker facets of each group as the report's, and its points the report's nodes at order 1,
+  the corners of the .vtu's cells (the linear mesh underneath) at orders 2 and 3;
 - PyFR (check_pyfr.py) imports every .msh: elements of the right node count, as many as the
   report says, the report's faces of each boundary group (each body, `farfield`), curved elements at orders 2 and 3 and
   none at order 1.
@@ -21,13 +27,16 @@ Also checks that bad input exits with status 1, one line on stderr, and no file.
 merged children, cut by `topo-cut` to tetrahedra and to mixed cells (tetrahedra, pyramids,
 prisms, hexahedra), linear and straight-sided P2. Gmsh reads every .msh: the counts of each
 element type of the right order, the physical groups `fluid`, `wall` and `farfield`, no warning,
-minSJ > 0 on every element, a positive volume; VTK reads every .vtu with the same counts.
+minSJ > 0 on every element, a positive volume; VTK and meshio read every .vtu with the same
+counts (points, cells of each type, boundary facets of each group), except that meshio 5.3.5
+cannot read a P2 pyramid (VTK's quadratic pyramid: its own bug, a KeyError 'pyramid13', the one
+error accepted for those files).
 The built-in 3D cases (`--list` lines described "3D: ...") go through the same 3D checks,
 meshed by xtask to .msh and .vtu, their counts from the report. At P2 (curved, every cell
 certified by xtask): the sphere (mixed: prisms; and tets) and the step (hexahedra and the
 straight-sided cells of a flat wall), from the built-in case files with fewer layers and, for
 the sphere, one refinement less (Gmsh's checker holds every element's Jacobians in memory):
-the same 3D checks (Gmsh: no element with minSJ <= 0, the counts; VTK: the counts), the
+the same 3D checks (Gmsh: no element with minSJ <= 0, the counts; VTK, meshio: the counts), the
 report's certificate (no invalid cell, all certified, volume check passed), and `pyfr import`
 of the mixed sphere: the report's elements of each kind with P2 node counts, some curved,
 and faces on `wall` and `farfield`.
@@ -87,12 +96,13 @@ def lookup(report, path):
     return v
 
 
-def run_checkers(msh, vtu, pyfr):
-    """Runs the three readers side by side (each a process that reads its files in turn) and
-    returns {(reader, file): summary} for every file a reader answered for, and each reader's
-    stderr under (reader, "error")."""
+def run_checkers(msh, vtu, pyfr, meshio=()):
+    """Runs the readers side by side (each a process that reads its files in turn) and returns
+    {(reader, file): summary} for every file a reader answered for, and each reader's stderr
+    under (reader, "error"). `meshio`: the .vtu and .su2 files for check_meshio.py."""
     jobs = []
-    for reader, files in (("check_msh.py", msh), ("check_vtu.py", vtu), ("check_pyfr.py", pyfr)):
+    for reader, files in (("check_msh.py", msh), ("check_vtu.py", vtu), ("check_pyfr.py", pyfr),
+                          ("check_meshio.py", list(meshio))):
         if files:
             err = tempfile.TemporaryFile(mode="w+")
             p = subprocess.Popen([sys.executable, os.path.join(HERE, reader)] + files,
@@ -205,6 +215,46 @@ def check_vtk(label, v, report, order):
                   f"report {area!r}")
 
 
+def check_meshio(label, mv, ms, v, report, order):
+    """meshio's reading of the .vtu (mv) against the report and VTK's (v), and of the .su2
+    (ms): the linear mesh, whose points are the .vtu's corners at orders 2 and 3."""
+    cells = report["cells"]
+    if check(mv is not None and "error" not in mv, f"{label}: meshio reads the .vtu: {mv}"):
+        check(mv["points"] == report["nodes"],
+              f"{label}: meshio .vtu points {mv['points']} vs report nodes {report['nodes']}")
+        want = {str(VTK_TYPES[order][k]): cells[k] for k in ("tri", "quad") if cells[k]}
+        check(mv["types"] == want, f"{label}: meshio .vtu cell types {mv['types']}, "
+                                   f"expected {want}")
+        want = {str(VTK_TYPES[order][k]): [CELL_NODES[k][order]] for k in ("tri", "quad")
+                if cells[k]}
+        check(mv["points_per_cell"] == want,
+              f"{label}: meshio .vtu points per cell {mv['points_per_cell']}, expected {want}")
+        check(mv["boundary_groups"] == report["boundary_groups"],
+              f"{label}: meshio .vtu boundary facets by group {mv['boundary_groups']} vs "
+              f"{report['boundary_groups']}")
+        check(sorted(mv["field_data"]) == sorted("boundary_group:" + name
+                                                 for name in report["boundary_groups"]),
+              f"{label}: meshio .vtu field data {mv['field_data']}")
+        if v is not None and "error" not in v:
+            check((mv["points"], mv["cells"], mv["types"]) == (v["points"], v["cells"], v["types"]),
+                  f"{label}: meshio and VTK read the .vtu alike: {mv['points']} points, "
+                  f"{mv['types']} vs {v['points']} points, {v['types']}")
+        if order == 1:
+            check(mv["corners"] == report["nodes"],
+                  f"{label}: meshio .vtu corners {mv['corners']} vs nodes {report['nodes']}")
+    if check(ms is not None and "error" not in ms, f"{label}: meshio reads the .su2: {ms}"):
+        want = {str(VTK_TYPES[1][k]): cells[k] for k in ("tri", "quad") if cells[k]}
+        check(ms["types"] == want, f"{label}: meshio .su2 cell types {ms['types']}, "
+                                   f"expected {want}")
+        check(ms["boundary_groups"] == report["boundary_groups"],
+              f"{label}: meshio .su2 marker facets {ms['boundary_groups']} vs "
+              f"{report['boundary_groups']}")
+        corners = report["nodes"] if order == 1 else (mv or {}).get("corners")
+        check(ms["points"] == corners,
+              f"{label}: meshio .su2 points {ms['points']}, expected {corners} (the "
+              f"{'nodes' if order == 1 else 'corners of the .vtu cells'})")
+
+
 def check_pyfr(label, p, report, order):
     if not check(p is not None, f"{label}: PyFR gave no answer"):
         return
@@ -245,6 +295,10 @@ P2_3D = (("sphere-mixed", "sphere.toml", (("refinement = 3", "refinement = 2"),
                                           ("max_layers = 30", "max_layers = 6"),
                                           ('cells = "mixed"', 'cells = "tets"')), False),
          ("step", "step.toml", (("max_layers = 15", "max_layers = 5"),), False))
+# meshio 5.3.5 reads VTK's quadratic pyramid (27) as its "pyramid13" but has no dimension for
+# that type, so any .vtu with a P2 pyramid fails in meshio with this error (nschloe/meshio#1300,
+# never merged); e2e.py accepts exactly this failure for files with P2 pyramids.
+MESHIO_PYRAMID13 = "KeyError('pyramid13')"
 PYFR_3D = {"tet": ("tet", 10), "pyramid": ("pyr", 14), "prism": ("pri", 18), "hex": ("hex", 27)}
 
 
@@ -331,7 +385,8 @@ def check_p2_3d(xtask, tmp):
 def check_3d(meshes):
     """Gmsh and VTK read each 3D mesh (`msh`, `vtu` or None, `order`, `nodes`, `cells` by
     type, `boundary_groups`) with the same counts, and Gmsh finds every minSJ positive."""
-    found = run_checkers([m["msh"] for m in meshes], [m["vtu"] for m in meshes if m["vtu"]], [])
+    vtus = [m["vtu"] for m in meshes if m["vtu"]]
+    found = run_checkers([m["msh"] for m in meshes], vtus, [], vtus)
     for m in meshes:
         label, order, cells = os.path.basename(m["msh"]), m["order"], m["cells"]
         before = failed
@@ -363,10 +418,24 @@ def check_3d(meshes):
                 check(v["types"] == want, f"{label}: VTK types {v['types']} vs {want}")
                 check(v["boundary_groups"] == m["boundary_groups"],
                       f"{label}: VTK boundary groups {v['boundary_groups']}")
+            mv = found.get(("check_meshio.py", m["vtu"]))
+            if mv is not None and order == 2 and cells.get("pyramid") \
+                    and mv.get("error", "").endswith(MESHIO_PYRAMID13):
+                # meshio's own gap, not the file's: VTK read it above; any other error fails
+                print(f"--   {label}: meshio cannot hold VTK's quadratic pyramid "
+                      f"({MESHIO_PYRAMID13}, a known bug of meshio 5.3.5)")
+            elif check(mv is not None and "error" not in mv,
+                       f"{label}: meshio reads the .vtu: {mv}"):
+                check(mv["cells"] == sum(cells.values()) and mv["points"] == m["nodes"],
+                      f"{label}: meshio cells {mv['cells']} points {mv['points']}")
+                want = {str(VTK_3D[order][k]): n for k, n in cells.items() if n}
+                check(mv["types"] == want, f"{label}: meshio types {mv['types']} vs {want}")
+                check(mv["boundary_groups"] == m["boundary_groups"],
+                      f"{label}: meshio boundary groups {mv['boundary_groups']}")
         print(f"{'ok  ' if failed == before else 'bad '} 3D {label:<22} nodes {m['nodes']:>6}  "
               + "  ".join(f"{k} {n}" for k, n in cells.items())
               + f"  gmsh minSJ {g.get('min_scaled_jacobian') if g else '-'}"
-              + f"  vtu {'yes' if m['vtu'] else 'no (P2 pyramids)'}")
+              + f"  vtu {'yes (VTK, meshio)' if m['vtu'] else 'no (P2 pyramids)'}")
 
 
 def main(xtask, cut3d=None):
@@ -386,10 +455,12 @@ def main(xtask, cut3d=None):
                 for order in ORDERS:
                     stem = os.path.join(tmp, f"{name}-{split}-p{order}")
                     run = {"name": name, "split": split, "order": order, "msh": stem + ".msh",
-                           "vtu": stem + ".vtu", "label": f"{name} {split} P{order}"}
+                           "vtu": stem + ".vtu", "su2": stem + ".su2",
+                           "label": f"{name} {split} P{order}"}
                     r = subprocess.run([xtask, "mesh", name, "--order", str(order), "--quiet",
-                                        "--out", run["msh"], "--out", run["vtu"], "--report",
-                                        stem + ".json"] + extra, capture_output=True, text=True)
+                                        "--out", run["msh"], "--out", run["vtu"], "--out",
+                                        run["su2"], "--report", stem + ".json"] + extra,
+                                       capture_output=True, text=True)
                     # exit 2: written but failed validation; the checks below say why
                     if check(r.returncode == 0,
                              f"{run['label']}: xtask exit {r.returncode}: {r.stderr.strip()}") \
@@ -398,7 +469,8 @@ def main(xtask, cut3d=None):
                         runs.append(run)
         meshed = time.monotonic()
         found = run_checkers([r["msh"] for r in runs], [r["vtu"] for r in runs],
-                             [r["msh"] for r in runs])
+                             [r["msh"] for r in runs],
+                             [f for r in runs for f in (r["vtu"], r["su2"])])
         read = time.monotonic()
 
         linear = {(r["name"], r["split"]): lookup(r["report"], "area") for r in runs
@@ -413,6 +485,9 @@ def main(xtask, cut3d=None):
             g = found.get(("check_msh.py", run["msh"]))
             check_gmsh(label, g, report, order)
             check_vtk(label, found.get(("check_vtu.py", run["vtu"])), report, order)
+            check_meshio(label, found.get(("check_meshio.py", run["vtu"])),
+                         found.get(("check_meshio.py", run["su2"])),
+                         found.get(("check_vtu.py", run["vtu"])), report, order)
             curved = check_pyfr(label, found.get(("check_pyfr.py", run["msh"])), report, order)
             sj = g.get("min_scaled_jacobian") if g else None
             fraction = lookup(report, "curved_edge_fraction")
@@ -423,7 +498,8 @@ def main(xtask, cut3d=None):
                   f"{'-' if fraction is MISSING else f'{fraction:.4f}'}  PyFR curved {curved}")
         # A reader that gave no answer for some file has died: show why.
         for reader, files in (("check_msh.py", "msh"), ("check_vtu.py", "vtu"),
-                              ("check_pyfr.py", "msh")):
+                              ("check_pyfr.py", "msh"), ("check_meshio.py", "vtu"),
+                              ("check_meshio.py", "su2")):
             if any((reader, r[files]) not in found for r in runs):
                 print(f"-- {reader} stderr:\n{found.get((reader, 'error'), '')}")
 
@@ -444,7 +520,7 @@ def main(xtask, cut3d=None):
         check_builtin_3d(xtask, names_3d, tmp)
         check_p2_3d(xtask, tmp)
     end = time.monotonic()
-    print(f"time: meshing {meshed - start:.1f} s, reading (Gmsh, VTK, PyFR side by side) "
+    print(f"time: meshing {meshed - start:.1f} s, reading (Gmsh, VTK, PyFR, meshio side by side) "
           f"{read - meshed:.1f} s, total {end - start:.1f} s")
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0

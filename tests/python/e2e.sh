@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the release tool (the `curvemesh` binary) and runs the end-to-end checks with Gmsh's,
-# VTK's and PyFR's own readers (tests/python/e2e.py), and the 3D meshes cut by topo-cut (example cut3d), in the
+# VTK's, PyFR's and meshio's own readers (tests/python/e2e.py), and the 3D meshes cut by topo-cut (example cut3d), in the
 # checkers' virtual environment (tests/python/install.sh).
 set -euo pipefail
 cd "$(dirname "$0")/../.."

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the independent checkers the end-to-end tests use (tests/python/requirements.txt):
-# Gmsh's and VTK's Python packages and PyFR, and the Debian libraries their wheels load (Gmsh's
+# Gmsh's, VTK's and meshio's Python packages and PyFR, and the Debian libraries their wheels load (Gmsh's
 # GUI libraries, Open MPI for PyFR's mpi4py). The Python packages go into a virtual environment,
 # `.venv-checkers/` at the repository root (git-ignored; CHECKERS_VENV overrides the place), made
 # with `python3 -m venv` — Debian's python3-venv is installed when venv or ensurepip is missing —
@@ -75,9 +75,10 @@ fi
 from importlib.metadata import version
 
 import gmsh
+import meshio
 import vtk
 
 print("checkers:", ", ".join(f"{n} {version(n)}" for n in
-                             ("gmsh", "vtk", "pyfr", "h5py", "numpy", "mpi4py")))
+                             ("gmsh", "vtk", "meshio", "pyfr", "h5py", "numpy", "mpi4py")))
 PY
 "$CHECKERS_PYTHON" -m pyfr --version

@@ -108,20 +108,17 @@ fn the_vtu_carries_the_boundary_facets_with_their_group() {
     assert_eq!(xtask_ok(&[&args[..], &outputs].concat()), Outcome::Valid);
     let text = std::fs::read_to_string(&vtu).unwrap();
     let report = read_json(&json);
-    // the group names, as VTK's ASCII string array: each string's bytes, then 0
-    let start = text.find(r#"Name="boundary_group_names""#).unwrap();
-    let block = &text[text[start..].find('>').unwrap() + start + 1..];
-    let block = &block[..block.find("</Array>").unwrap()];
-    let bytes: Vec<u8> = block
-        .split_whitespace()
-        .map(|t| t.parse().unwrap())
-        .collect();
-    let names: Vec<String> = bytes
-        .split(|&b| b == 0)
-        .filter(|s| !s.is_empty())
-        .map(|s| String::from_utf8(s.to_vec()).unwrap())
-        .collect();
+    // the group names, as numeric field data (meshio reads no string array): one Int64 array
+    // `boundary_group:NAME` per group, holding the group's index, in index order
+    let mut names = Vec::new();
+    for (k, piece) in text.split(r#"Name="boundary_group:"#).skip(1).enumerate() {
+        let (name, rest) = piece.split_once('"').unwrap();
+        let index = &rest[rest.find('>').unwrap() + 1..rest.find("</DataArray>").unwrap()];
+        assert_eq!(index.trim().parse::<usize>().unwrap(), k, "{name}");
+        names.push(name.to_string());
+    }
     assert_eq!(names, ["main", "flap", "farfield"]);
+    assert!(!text.contains(r#"type="String""#));
     let start = text.find(r#"Name="boundary_group""#).unwrap();
     let block = &text[text[start..].find('>').unwrap() + start + 1..];
     let block = &block[..block.find("</DataArray>").unwrap()];

@@ -292,7 +292,6 @@ fn what_3d_does_not_do_yet_is_refused_in_one_line() {
             vec![sphere.as_str(), "--triangles"],
             "--triangles applies to 2D",
         ),
-        (vec![sphere.as_str(), "--out", "a.su2"], ".msh or .vtu"),
         (
             vec![sphere.as_str(), "--png", "a.png", "--slice", "w=1"],
             "x=C, y=C or z=C",

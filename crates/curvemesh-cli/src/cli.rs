@@ -21,7 +21,8 @@ pub struct Cli {
 pub enum Command {
     /// Mesh a case: boundary curves, 1D boundary mesh, then the layered domain mesh.
     Mesh(MeshArgs),
-    /// Check a mesh file: structure, orientation, conformity, angles; draw it on request.
+    /// Check a mesh file, 2D or 3D: structure, orientation, conformity, angles (3D: dihedral
+    /// angles, volumes), the certified Jacobian at P2/P3; draw it on request.
     Quality(QualityArgs),
     /// Move the bodies of a meshed case (rigid motion, Hicks-Henne bumps) and re-curve the
     /// moved mesh: same topology, every cell certified.
@@ -60,7 +61,8 @@ pub struct MeshArgs {
 
     /// Refuse a case expected to make more cells than this (the estimate is made from the
     /// boundary mesh, before the domain is meshed).
-    #[arg(long, value_name = "N", default_value_t = curvemesh::estimate::DEFAULT_MAX_CELLS)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true,
+          default_value_t = curvemesh::estimate::DEFAULT_MAX_CELLS)]
     pub max_cells: u64,
 
     /// Write the .msh outputs as binary MSH 4.1, for large meshes: about 3/4 the size of text
@@ -71,7 +73,8 @@ pub struct MeshArgs {
     /// Threads for the parallel stages (the layers' solves and checks, the fill, the curving,
     /// the certification, the writers); default: every core (or RAYON_NUM_THREADS). The
     /// files written are the same whatever the number.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    #[arg(long, value_name = "N", allow_hyphen_values = true,
+          value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
 
     /// No summary table on stdout and no progress on stderr; errors are still printed.
@@ -139,7 +142,7 @@ pub struct MoveArgs {
 #[derive(Debug, Args)]
 pub struct OutputArgs {
     /// Polynomial order of the cells, overriding the case: 1 (linear), 2 or 3.
-    #[arg(long, value_name = "P",
+    #[arg(long, value_name = "P", allow_hyphen_values = true,
           value_parser = clap::value_parser!(u8).range(1..=i64::from(curvemesh::case::MAX_ORDER)))]
     pub order: Option<u8>,
 
@@ -245,18 +248,33 @@ pub struct AirfoilArgs {
     pub aoa: Option<f64>,
 
     /// Far-field circle radius in chords, about the quarter chord (.dat only; default 30).
-    #[arg(long, value_name = "R")]
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub farfield: Option<f64>,
 
     /// Target y+ of the first layer. First height y = y+ c / (Re sqrt(Cf/2)),
     /// Cf = 0.026 / Re^(1/7): the flat-plate skin friction (Schlichting, White) at x = c, for
     /// U = 1 and nu = c / Re (.dat only; default 1).
-    #[arg(long, value_name = "Y")]
+    #[arg(long, value_name = "Y", allow_hyphen_values = true)]
     pub yplus: Option<f64>,
 
     /// Reynolds number based on the chord, for --yplus (.dat only; default 1e6).
-    #[arg(long, value_name = "RE")]
+    #[arg(long, value_name = "RE", allow_hyphen_values = true)]
     pub re: Option<f64>,
+
+    /// The first layer's height, instead of the one --yplus and --re give (.dat only; the
+    /// case file's `[layers] first_height`).
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub first_height: Option<f64>,
+
+    /// The ratio of one layer's height to the one below (.dat only; default 1.3, the case
+    /// file's `[layers] growth`).
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
+    pub growth: Option<f64>,
+
+    /// The most layers grown from any boundary (.dat only; the case file's `[layers]
+    /// max_layers`).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub layers: Option<u32>,
 
     /// One boundary group `wall` for all the elements instead of one per element (.dat only;
     /// case files say `merge_walls = true`).
@@ -307,14 +325,14 @@ pub struct PictureArgs {
     #[arg(long, value_enum)]
     pub colour: Option<Colour>,
 
-    /// 3D cases: the plane the pictures cut through the volume, `x=C`, `y=C` or `z=C`
-    /// (default: z through the middle of the mesh); views are in the plane's coordinates
-    /// ((y, z) for x, (z, x) for y, (x, y) for z).
+    /// 3D cases and meshes: the plane the pictures cut through the volume, `x=C`, `y=C` or
+    /// `z=C` (default: z through the middle of the mesh); views are in the plane's
+    /// coordinates ((y, z) for x, (z, x) for y, (x, y) for z).
     #[arg(long, value_name = "AXIS=VALUE", allow_hyphen_values = true)]
     pub slice: Option<String>,
 
     /// Width of PNG pictures in pixels (the height is three quarters of it).
-    #[arg(long, value_name = "PX", default_value_t = 2000,
+    #[arg(long, value_name = "PX", default_value_t = 2000, allow_hyphen_values = true,
           value_parser = clap::value_parser!(u32).range(64..=16384))]
     pub width: u32,
 }

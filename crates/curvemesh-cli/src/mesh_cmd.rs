@@ -150,8 +150,7 @@ fn plan_3d(args: &MeshArgs, case: &Case3d) -> Result<Planned> {
     Ok(planned)
 }
 
-/// Refuses the flags of 2D runs that mean nothing in 3D, and the linear-only `.su2` output,
-/// before any work.
+/// Refuses the flags of 2D runs that mean nothing in 3D, before any work.
 fn refuse_2d_flags(args: &MeshArgs) -> Result<()> {
     let given = [
         ("--snapshot", args.snapshot.is_some()),
@@ -159,14 +158,6 @@ fn refuse_2d_flags(args: &MeshArgs) -> Result<()> {
     ];
     if let Some((flag, _)) = given.into_iter().find(|f| f.1) {
         bail!("{flag} applies to 2D cases (this case has dimension = 3)");
-    }
-    for out in &args.output.outs {
-        if Format::from_path(out) == Some(Format::Su2) {
-            bail!(
-                "--out {}: 3D meshes are written as .msh or .vtu",
-                out.display()
-            );
-        }
     }
     Ok(())
 }
@@ -193,6 +184,9 @@ fn load(args: &MeshArgs) -> Result<AnyCase> {
             yplus: a.yplus,
             re: a.re,
             merge_walls: a.merge_walls,
+            first_height: a.first_height,
+            growth: a.growth,
+            layers: a.layers,
         };
         return Ok(AnyCase::Two(airfoil::case(&args.case, &options)?));
     }
@@ -202,6 +196,9 @@ fn load(args: &MeshArgs) -> Result<AnyCase> {
         ("--farfield", a.farfield.is_some()),
         ("--yplus", a.yplus.is_some()),
         ("--re", a.re.is_some()),
+        ("--first-height", a.first_height.is_some()),
+        ("--growth", a.growth.is_some()),
+        ("--layers", a.layers.is_some()),
         ("--merge-walls", a.merge_walls),
     ];
     if let Some((flag, _)) = given.into_iter().find(|f| f.1) {

@@ -80,6 +80,12 @@ pub fn parse_3d(args: &PictureArgs) -> Result<(Vec<Picture>, Option<Plane>)> {
     Ok((parse_files(args, &BTreeMap::new())?, plane))
 }
 
+/// The pictures' files and views without the checks of [`parse`] and [`parse_3d`]: for
+/// `quality`, which reserves the files before it reads the mesh that tells which applies.
+pub fn parse_files_only(args: &PictureArgs) -> Result<Vec<Picture>> {
+    parse_files(args, &BTreeMap::new())
+}
+
 fn parse_files(args: &PictureArgs, named: &BTreeMap<String, [f64; 4]>) -> Result<Vec<Picture>> {
     let (pngs, svgs, default_view) = (&args.pngs, &args.svgs, args.view.as_deref());
     let mut pictures = Vec::new();
@@ -189,7 +195,8 @@ pub fn draw_all(
 }
 
 /// Draws every picture of a 3D run: the cut of `mesh` by `plane` (default z through the
-/// middle of the mesh's nodes), coloured as the flags say (default by cell type).
+/// middle of the mesh's nodes), coloured as the flags say (default by cell type; by layer
+/// only when the mesh has layers, else uncoloured).
 pub fn draw_slices(
     mesh: &Mesh,
     pictures: &[(Picture, Output)],
@@ -200,6 +207,9 @@ pub fn draw_slices(
 ) -> Result<()> {
     if pictures.is_empty() {
         return Ok(());
+    }
+    if let Some(problem) = mesh_model::first_structural_problem(mesh) {
+        bail!("cannot slice the mesh to draw it: {problem}");
     }
     let plane = plane.unwrap_or_else(|| {
         let (lo, hi) = mesh.nodes.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
@@ -241,7 +251,8 @@ pub fn draw_slices(
                 .collect(),
             label: "max dihedral".into(),
         },
-        Colour::Layer => ColourBy::Layer,
+        // a mesh read back has no layers: drawn uncoloured, as in 2D
+        Colour::Layer if mesh.cell_layer.len() == mesh.cells.len() => ColourBy::Layer,
         _ => ColourBy::None,
     };
     let axis = ["x", "y", "z"][plane.axis];

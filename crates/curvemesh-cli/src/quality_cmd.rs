@@ -1,11 +1,13 @@
 //! `curvemesh quality MESH.msh`: reads a mesh file and reports what `mesh` would report of
-//! it — counts, structural problems, largest angles, certified validity — and draws it on
-//! request. Exit status 2 when the mesh fails validation.
+//! it — counts, structural problems, largest angles (2D) or dihedral angles and volumes (3D),
+//! certified validity — and draws it on request (3D: plane slices, `--slice`). Exit status 2
+//! when the mesh fails validation.
 
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use curvemesh::outputs::Outputs;
+use mesh_model::Dim;
 
 use crate::cli::QualityArgs;
 use crate::outcome::Finished;
@@ -28,7 +30,8 @@ fn run_here(args: &QualityArgs) -> Result<Finished> {
             r.display()
         );
     }
-    let pics = pictures::parse(&args.pictures, &Default::default())?;
+    // 2D or 3D is known once the mesh is read; the flags of the other are refused then
+    let pics = pictures::parse_files_only(&args.pictures)?;
     let mut outputs = Outputs::new();
     let picture_outputs = pictures::reserve(&pics, &mut outputs)?;
     let report_output = match &args.report {
@@ -45,18 +48,31 @@ fn run_here(args: &QualityArgs) -> Result<Finished> {
         .and_then(|s| s.to_str())
         .unwrap_or("mesh");
     let origin = args.mesh.display().to_string();
+    let plane = match mesh.dim {
+        Dim::Two => {
+            pictures::parse(&args.pictures, &Default::default())?;
+            None
+        }
+        Dim::Three => pictures::parse_3d(&args.pictures)?.1,
+    };
     let (mut report, scaled_jacobian) = curvemesh::quality::check(&mesh, name, &origin)?;
     report.timings_s.insert("read", read_s);
     let pics: Vec<_> = pics.into_iter().zip(picture_outputs).collect();
-    pictures::draw_all(
-        &mesh,
-        &pics,
-        &args.pictures,
-        Colour::Angle,
-        name,
-        &scaled_jacobian,
-        &mut outputs,
-    )?;
+    match mesh.dim {
+        Dim::Two => pictures::draw_all(
+            &mesh,
+            &pics,
+            &args.pictures,
+            Colour::Angle,
+            name,
+            &scaled_jacobian,
+            &mut outputs,
+        )?,
+        // the slices cut the cells' corners (the linear cells under P2 ones)
+        Dim::Three => {
+            pictures::draw_slices(&mesh, &pics, &args.pictures, plane, name, &mut outputs)?;
+        }
+    }
     report.files = outputs.files();
     report
         .timings_s

@@ -64,12 +64,7 @@ pub fn table(r: &Report) -> String {
     if let Some(c) = r.coverage {
         let _ = writeln!(s, "  {:<22} {:>11.1}%", "coverage", 100.0 * c);
     }
-    let timings: Vec<String> = r
-        .timings_s
-        .iter()
-        .map(|(k, v)| format!("{k} {:.1} ms", v * 1e3))
-        .collect();
-    let _ = writeln!(s, "  time: {}", timings.join(", "));
+    let _ = writeln!(s, "  time: {}", timings(r).join(", "));
     for n in &r.notes {
         let _ = writeln!(s, "  note: {n}");
     }
@@ -97,8 +92,9 @@ fn quality_2d(s: &mut String, q: &curvemesh::report::Quality, order: u8) {
         (q.min_scaled_jacobian, q.invalid_cells, q.certified)
     {
         let _ = writeln!(s, "  {:<22} {:>12.3}", "min scaled Jacobian", sj);
+        // Gmsh numbers elements from 1 (and the .msh file's tags are these indices plus 1)
         let at = |w: &curvemesh::report::WorstCell| {
-            format!("cell {} at ({:.6}, {:.6})", w.cell, w.x, w.y)
+            format!("cell {} (0-based) at ({:.6}, {:.6})", w.cell, w.x, w.y)
         };
         if let Some(w) = &q.worst_cell {
             let _ = writeln!(
@@ -128,11 +124,14 @@ fn quality_2d(s: &mut String, q: &curvemesh::report::Quality, order: u8) {
 
 /// The 3D quality lines: the largest dihedral angle, the certification, the histograms.
 fn quality_3d(s: &mut String, q: &curvemesh::report::Quality3d) {
-    let _ = writeln!(
-        s,
-        "  {:<22} {:>12.1}",
-        "max dihedral (deg)", q.max_dihedral_deg
-    );
+    // (0 when the mesh has no tetrahedron: nothing to show)
+    if q.max_dihedral_deg > 0.0 {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12.1}",
+            "max tet dihedral (deg)", q.max_dihedral_deg
+        );
+    }
     if let Some(v) = &q.validity {
         let _ = writeln!(
             s,
@@ -155,6 +154,42 @@ fn quality_3d(s: &mut String, q: &curvemesh::report::Quality3d) {
             h.max_deg
         );
     }
+}
+
+/// The stages' times in the order they ran, `total` last (the report keeps them by name;
+/// a stage not listed here comes after the listed ones).
+fn timings(r: &Report) -> Vec<String> {
+    const ORDER: [&str; 18] = [
+        "setup",
+        "read",
+        "surface",
+        "check",
+        "boundary",
+        "grow",
+        "linear",
+        "cut",
+        "measure",
+        "move",
+        "curving",
+        "volume",
+        "sensitivities",
+        "describe",
+        "validate",
+        "validity",
+        "write",
+        "pictures",
+    ];
+    let rank = |k: &str| match k {
+        "total" => usize::MAX,
+        _ => ORDER.iter().position(|o| *o == k).unwrap_or(ORDER.len()),
+    };
+    let mut stages: Vec<(&&str, &f64)> = r.timings_s.iter().collect();
+    // stable: stages of one rank keep their order by name
+    stages.sort_by_key(|(k, _)| rank(k));
+    stages
+        .iter()
+        .map(|(k, v)| format!("{k} {:.1} ms", **v * 1e3))
+        .collect()
 }
 
 /// One line per file written, with the order of the mesh in it.
@@ -180,5 +215,30 @@ fn verdict(invalid: usize, certified: bool) -> String {
         (0, true) => "every cell proved valid".to_string(),
         (0, false) => "no cell proved invalid, some undecided".to_string(),
         (n, _) => format!("{n} cells INVALID"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_times_are_in_pipeline_order_with_the_total_last() {
+        let mut r = Report::new("c", 3);
+        for k in [
+            "total", "write", "boundary", "curving", "linear", "setup", "validity",
+        ] {
+            r.timings_s.insert(k, 0.001);
+        }
+        let names: Vec<String> = timings(&r)
+            .iter()
+            .map(|t| t.split(' ').next().unwrap().to_string())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "setup", "boundary", "linear", "curving", "validity", "write", "total"
+            ]
+        );
     }
 }

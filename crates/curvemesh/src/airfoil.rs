@@ -9,19 +9,19 @@
 //!   (clockwise in x-right, y-up axes);
 //! - the far field is a circle of radius `--farfield R` chords about the quarter-chord point;
 //! - the first layer height comes from a target y⁺ and Reynolds number (based on the chord)
-//!   with the flat-plate skin-friction estimate at x = c: `Cf = 0.026 / Re^(1/7)` (Schlichting,
-//!   White), `u_τ = U √(Cf/2)`, `y = y⁺ ν / u_τ` with `ν = U c / Re`, so `y = y⁺ c / (Re √(Cf/2))`.
+//!   with the flat-plate skin-friction estimate at x = c ([`crate::placement`]), or is given
+//!   (`--first-height`); `--growth` and `--layers` set the layers as the case file's keys do.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crate::error::{Context, Result, ensure};
+use crate::error::{Context, Result, bail, ensure};
 use mesh_model::Role;
 
 use crate::case::{Case, LoopInput};
+use crate::placement::{Frame, Placement};
 
-/// Points on the far-field circle (its geometry, not its mesh spacing).
-const FARFIELD_POINTS: usize = 256;
+pub use crate::placement::first_height;
 
 /// Whether `spec` names an airfoil coordinate file rather than a case: a `.dat` file, or a
 /// `.txt` file (as airfoil sites often serve them), read as Selig or Lednicer.
@@ -31,15 +31,8 @@ pub fn is_coordinate_file(spec: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("dat") || e.eq_ignore_ascii_case("txt"))
 }
 
-/// The first layer height for a target y⁺ at Reynolds number `re` (based on `chord`), by the
-/// flat-plate estimate of the module doc.
-pub fn first_height(yplus: f64, re: f64, chord: f64) -> f64 {
-    let cf = 0.026 / re.powf(1.0 / 7.0);
-    yplus * chord / (re * (0.5 * cf).sqrt())
-}
-
 /// The airfoil options with their defaults applied.
-struct Placement {
+struct Defaulted {
     aoa: f64,
     farfield: f64,
     yplus: f64,
@@ -61,11 +54,17 @@ pub struct AirfoilOptions {
     pub re: Option<f64>,
     /// The walls as one group `wall`.
     pub merge_walls: bool,
+    /// The first layer's height, instead of the one of `yplus` and `re`.
+    pub first_height: Option<f64>,
+    /// The ratio of one layer's height to the one below (default: the case file's, 1.3).
+    pub growth: Option<f64>,
+    /// The most layers grown from any boundary (default: the case file's).
+    pub layers: Option<u32>,
 }
 
 /// The case of airfoil files `files` with the options `args`.
 pub fn case(files: &[String], args: &AirfoilOptions) -> Result<Case> {
-    let a = Placement {
+    let a = Defaulted {
         aoa: args.aoa.unwrap_or(0.0),
         farfield: args.farfield.unwrap_or(30.0),
         yplus: args.yplus.unwrap_or(1.0),
@@ -89,6 +88,10 @@ pub fn case(files: &[String], args: &AirfoilOptions) -> Result<Case> {
         "--re {}: give a Reynolds number of at least 1e3",
         a.re
     );
+    ensure!(
+        args.first_height.is_none() || (args.yplus.is_none() && args.re.is_none()),
+        "--first-height sets the first layer: give it or --yplus/--re, not both"
+    );
     let mut loops = Vec::with_capacity(files.len() + 1);
     for f in files {
         let path = Path::new(f);
@@ -104,38 +107,17 @@ pub fn case(files: &[String], args: &AirfoilOptions) -> Result<Case> {
             max_spacing: None,
         });
     }
-    let all = || loops.iter().flat_map(|l| l.points.iter());
-    let x_min = all().map(|p| p[0]).fold(f64::INFINITY, f64::min);
-    let x_max = all().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
-    let chord = x_max - x_min;
-    ensure!(
-        positive(chord),
-        "{}: the airfoil has no extent in x",
-        files.join(", ")
-    );
-    let y_le = all().find(|p| p[0] == x_min).map_or(0.0, |p| p[1]);
-    let centre = [x_min + 0.25 * chord, y_le];
-    // nose up: clockwise
-    let (sin, cos) = (-a.aoa.to_radians()).sin_cos();
+    let frame = Frame::of(loops.iter().map(|l| &l.points[..]))
+        .with_context(|| format!("{}: the airfoil has no extent in x", files.join(", ")))?;
+    let chord = frame.chord;
     for l in &mut loops {
-        for p in &mut l.points {
-            let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
-            *p = [
-                centre[0] + dx * cos - dy * sin,
-                centre[1] + dx * sin + dy * cos,
-            ];
-        }
+        frame.pitch(&mut l.points, a.aoa);
     }
-    let circle = geom_curve::circle_points(
-        geom_curve::Point2::new(centre[0], centre[1]),
-        a.farfield * chord,
-        FARFIELD_POINTS,
-    )
-    .context("far field")?;
+    let circle = frame.farfield(a.farfield).context("far field")?;
     loops.push(LoopInput {
         name: "farfield".into(),
         role: Role::Farfield,
-        points: circle.iter().map(|p| [p.x, p.y]).collect(),
+        points: circle,
         origin: format!("circle of radius {} chords", a.farfield),
         group: String::new(),
         max_spacing: None,
@@ -145,29 +127,70 @@ pub fn case(files: &[String], args: &AirfoilOptions) -> Result<Case> {
         .map(|l| l.name.as_str())
         .collect::<Vec<_>>()
         .join("+");
+    let (x_min, y_le) = (frame.x_min, frame.y_le);
     let mut views = BTreeMap::new();
     let h = 0.02 * chord;
     views.insert(
         "le".to_string(),
         [x_min - h, y_le - h, x_min + 2.0 * h, y_le + h],
     );
+    // the trailing edge: the rightmost wall point
+    let walls = loops.iter().filter(|l| l.role == Role::Wall);
+    let te = walls
+        .flat_map(|l| l.points.iter())
+        .fold(
+            [f64::NEG_INFINITY, 0.0],
+            |a, p| if p[0] > a[0] { *p } else { a },
+        );
+    views.insert(
+        "te".to_string(),
+        [te[0] - 2.0 * h, te[1] - h, te[0] + h, te[1] + h],
+    );
     let mut case = Case::new(&name, loops, false, a.merge_walls);
     case.boundary.max_spacing = chord;
-    case.layers.first_height = first_height(a.yplus, a.re, chord);
+    case.layers.first_height = match args.first_height {
+        Some(h) => {
+            ensure!(positive(h), "--first-height {h}: must be positive");
+            h
+        }
+        None => first_height(a.yplus, a.re, chord),
+    };
+    if let Some(g) = args.growth {
+        case.layers.growth = g;
+    }
+    if let Some(n) = args.layers {
+        case.layers.max_layers = n;
+    }
+    check_layers(&case.layers)?;
+    case.placement = Placement {
+        aoa_deg: Some(a.aoa),
+        yplus: args.first_height.is_none().then_some(a.yplus),
+        re: args.first_height.is_none().then_some(a.re),
+        farfield_chords: Some(a.farfield),
+        chord: Some(chord),
+    };
     case.views = views;
     Ok(case)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn first_height_is_the_flat_plate_estimate() {
-        // Re 6e6, y+ 1: Cf = 0.026 / 6e6^(1/7) = 0.002799, u_tau = 0.03741, y = 1 / (6e6 u_tau)
-        let y = first_height(1.0, 6e6, 1.0);
-        assert!((y - 4.455e-6).abs() < 0.005e-6, "{y}");
-        // linear in y+ and in the chord
-        assert!((first_height(30.0, 6e6, 2.0) - 60.0 * y).abs() < 1e-15);
+/// The layers of a case of airfoil files checked as a case file's are, the faults named by
+/// their flags.
+fn check_layers(layers: &afsf2d::AfsfParams) -> Result<()> {
+    match layers.check() {
+        Err(afsf2d::AfsfError::BadParameter {
+            name,
+            value,
+            expected,
+        }) => {
+            let flag = match name {
+                "first_height" => "--first-height",
+                "growth" => "--growth",
+                "max_layers" => "--layers",
+                other => other,
+            };
+            bail!("{flag} {value}: must be {expected}")
+        }
+        Err(e) => bail!("the layers: {e}"),
+        Ok(()) => Ok(()),
     }
 }

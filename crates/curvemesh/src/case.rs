@@ -13,6 +13,7 @@ use serde::Deserialize;
 use vector_adding::CurvingParams;
 
 use crate::builtin;
+use crate::placement::{Frame, Placement};
 use crate::policy::{curving_of, spacing_of};
 use crate::source::{FileSource, from_toml};
 
@@ -40,6 +41,8 @@ pub struct Case {
     pub curving: CurvingParams,
     /// `[views]`: named rectangles `x0, y0, x1, y1` for pictures (`--png FILE@NAME`).
     pub views: BTreeMap<String, [f64; 4]>,
+    /// `aoa`, `farfield` and `[layers] yplus`, `re`, when given (the report echoes them).
+    pub placement: Placement,
 }
 
 /// One closed boundary loop, read and transformed.
@@ -69,6 +72,11 @@ struct CaseFile {
     inside: bool,
     #[serde(default)]
     merge_walls: bool,
+    /// The angle of attack in degrees, nose up, about the walls' quarter chord.
+    aoa: Option<f64>,
+    /// A far-field circle of this radius in chords about the walls' quarter chord, instead
+    /// of a farfield loop.
+    farfield: Option<f64>,
     #[serde(rename = "loop", default)]
     loops: Vec<LoopSpec>,
     #[serde(default)]
@@ -142,6 +150,10 @@ pub(crate) struct LayerKeys {
     pub(crate) first_height: Option<f64>,
     pub(crate) growth: Option<f64>,
     pub(crate) max_layers: Option<u32>,
+    /// The target y⁺ of the first layer, instead of `first_height` (with `re`).
+    pub(crate) yplus: Option<f64>,
+    /// The Reynolds number based on the walls' chord, for `yplus` (default 1e6).
+    pub(crate) re: Option<f64>,
 }
 
 /// `[curving]`: the order, and keys of `vector_adding::CurvingParams` (method.md §4).
@@ -234,7 +246,18 @@ impl Case {
             order,
             curving,
             views: BTreeMap::new(),
+            placement: Placement::default(),
         }
+    }
+
+    /// The order of a run that asks for `asked` (`None`: the case's own), checked.
+    pub fn order_of(&self, asked: Option<u8>) -> Result<u8> {
+        let order = asked.unwrap_or(self.order);
+        ensure!(
+            (1..=MAX_ORDER).contains(&order),
+            "order {order}: must be 1, 2 or 3"
+        );
+        Ok(order)
     }
 
     /// The case's name made safe for file names ([`crate::source::file_stem_of`]): the
@@ -260,8 +283,14 @@ pub(crate) fn parse(
     if let Some(d) = file.dimension.filter(|&d| d != 2) {
         bail!("{origin}: dimension = {d}: must be 2 or 3");
     }
-    let (boundary, layers, order, curving) = file.params();
-    check_params(origin, &boundary, &layers, order, &curving)?;
+    let (boundary, mut layers, order, curving) = file.params();
+    let (yplus, re) = (file.layers.yplus, file.layers.re);
+    let derived = yplus.is_some() || re.is_some();
+    if derived {
+        check_yplus(origin, &file.layers)?;
+    } else {
+        check_params(origin, &boundary, &layers, order, &curving)?;
+    }
     ensure!(
         !file.loops.is_empty(),
         "{origin}: no [[loop]]: a case needs at least one boundary loop"
@@ -277,6 +306,19 @@ pub(crate) fn parse(
             walls == 1 && farfields == 0,
             "{origin}: inside = true needs exactly one wall loop and no farfield loop \
              (found {walls} wall and {farfields} farfield)"
+        );
+        ensure!(
+            file.farfield.is_none(),
+            "{origin}: farfield = {}: inside = true meshes the inside of the wall, with no far \
+             field",
+            file.farfield.unwrap_or_default()
+        );
+    } else if file.farfield.is_some() {
+        ensure!(
+            farfields == 0,
+            "{origin}: farfield = {} makes the far-field circle: give it or a farfield loop, not \
+             both",
+            file.farfield.unwrap_or_default()
         );
     } else {
         ensure!(
@@ -295,6 +337,10 @@ pub(crate) fn parse(
         let what = format!("{origin}: loop {}", i + 1);
         loops.push(read_loop(spec, &files, &what)?);
     }
+    let placement = place(origin, &file, &mut loops, &mut layers)?;
+    if derived {
+        check_params(origin, &boundary, &layers, order, &curving)?;
+    }
     name_groups(&mut loops, file.merge_walls);
     Ok(Case {
         name: file
@@ -308,7 +354,85 @@ pub(crate) fn parse(
         order,
         curving,
         views,
+        placement,
     })
+}
+
+/// `[layers] yplus` and `re` checked: they set the first layer instead of `first_height`.
+fn check_yplus(origin: &str, l: &LayerKeys) -> Result<()> {
+    ensure!(
+        l.first_height.is_none(),
+        "{origin}: [layers] first_height and yplus/re both set the first layer: give one"
+    );
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    if let Some(y) = l.yplus {
+        ensure!(
+            positive(y),
+            "{origin}: [layers] yplus = {y}: must be positive"
+        );
+    }
+    if let Some(re) = l.re {
+        ensure!(
+            positive(re) && re >= 1e3,
+            "{origin}: [layers] re = {re}: give a Reynolds number of at least 1e3"
+        );
+    }
+    Ok(())
+}
+
+/// The case file's placement of its walls, as airfoil files are placed
+/// ([`crate::placement`]): `aoa` turns every wall about the walls' quarter chord, `farfield`
+/// adds a far-field circle of that many chords about it, `[layers] yplus` and `re` set the
+/// first layer's height from the walls' chord.
+fn place(
+    origin: &str,
+    file: &CaseFile,
+    loops: &mut Vec<LoopInput>,
+    layers: &mut AfsfParams,
+) -> Result<Placement> {
+    let (yplus, re) = (file.layers.yplus, file.layers.re);
+    if file.aoa.is_none() && file.farfield.is_none() && yplus.is_none() && re.is_none() {
+        return Ok(Placement::default());
+    }
+    let walls = loops.iter().filter(|l| l.role == Role::Wall);
+    let frame = Frame::of(walls.map(|l| &l.points[..]))
+        .with_context(|| format!("{origin}: the walls have no extent in x (no chord)"))?;
+    let mut placement = Placement {
+        chord: Some(frame.chord),
+        ..Placement::default()
+    };
+    if let Some(aoa) = file.aoa {
+        ensure!(
+            aoa.is_finite() && aoa.abs() <= 90.0,
+            "{origin}: aoa = {aoa}: give degrees in [-90, 90]"
+        );
+        for l in loops.iter_mut().filter(|l| l.role == Role::Wall) {
+            frame.pitch(&mut l.points, aoa);
+        }
+        placement.aoa_deg = Some(aoa);
+    }
+    if let Some(r) = file.farfield {
+        ensure!(
+            r.is_finite() && r >= 2.0,
+            "{origin}: farfield = {r}: give a radius of at least 2 chords"
+        );
+        loops.push(LoopInput {
+            name: "farfield".into(),
+            role: Role::Farfield,
+            points: frame.farfield(r).context("far field")?,
+            origin: format!("circle of radius {r} chords"),
+            group: String::new(),
+            max_spacing: None,
+        });
+        placement.farfield_chords = Some(r);
+    }
+    if yplus.is_some() || re.is_some() {
+        let (y, r) = (yplus.unwrap_or(1.0), re.unwrap_or(1e6));
+        layers.first_height = crate::placement::first_height(y, r, frame.chord);
+        placement.yplus = Some(y);
+        placement.re = Some(r);
+    }
+    Ok(placement)
 }
 
 /// Names the boundary group of every loop, as solvers will see it (PyFR and SU2 take it as a

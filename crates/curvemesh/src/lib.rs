@@ -39,6 +39,7 @@ pub mod observer;
 pub mod outputs;
 pub mod pipeline;
 pub mod pipeline3d;
+pub mod placement;
 pub mod policy;
 pub mod quality;
 pub mod report;

@@ -10,11 +10,11 @@ use geom_curve::ClosedCurve;
 use mesh_model::{LayeredMesh, Mesh};
 
 use crate::case::{Case, LoopInput};
-use crate::error::{Result, ensure};
+use crate::error::Result;
 use crate::meshed::{Meshed, Options};
 use crate::observer::{Observer, stage};
 use crate::outputs::Plan;
-use crate::report::{LinearAngles, LoopReport, Report};
+use crate::report::{Inputs, LinearAngles, LoopReport, Report};
 use crate::stages::Snapshot;
 use crate::{estimate, pipeline};
 
@@ -26,13 +26,10 @@ pub(crate) fn mesh(
     observer: &mut dyn Observer,
     plan: Option<&mut Plan>,
 ) -> Result<Meshed> {
-    let order = options.order.unwrap_or(case.order);
-    ensure!(
-        (1..=crate::case::MAX_ORDER).contains(&order),
-        "order {order}: must be 1, 2 or 3"
-    );
+    let order = case.order_of(options.order)?;
     estimate::check_loops(case, options.max_cells, observer)?;
     let mut report = Report::new(&case.name, order);
+    report.inputs = Some(inputs_of(case));
     let (mesh, snapshot, angles) = make(case, options, order, observer, &mut report)?;
     let scaled_jacobian = certify_and_write(
         (&mesh, angles),
@@ -248,6 +245,16 @@ pub(crate) fn linear_at_order(layered: &LayeredMesh, triangles: bool, report: &m
         afsf2d::cut_quads_shorter_diagonal(&layered.mesh)
     } else {
         layered.mesh.clone()
+    }
+}
+
+/// The inputs of a 2D case as the run uses them.
+pub(crate) fn inputs_of(case: &Case) -> Inputs {
+    Inputs {
+        first_height: case.layers.first_height,
+        growth: case.layers.growth,
+        max_layers: case.layers.max_layers,
+        placement: case.placement.clone(),
     }
 }
 

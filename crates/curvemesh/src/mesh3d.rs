@@ -32,6 +32,12 @@ pub(crate) fn mesh(
     }
     let mut report = Report::new(&case.name, order);
     report.dimension = 3;
+    report.inputs = Some(crate::report::Inputs {
+        first_height: case.layers.first_height,
+        growth: case.layers.growth,
+        max_layers: u32::try_from(case.layers.layers).unwrap_or(u32::MAX),
+        placement: crate::placement::Placement::default(),
+    });
     let o = &mut *observer;
     let r = &mut report;
     let (surface, shape) = timed(r, o, ("surface", "wall surface"), |_| {
@@ -118,11 +124,7 @@ fn push_notes(report: &mut Report, linear: bool, converged: bool) {
             .into(),
     );
     if linear {
-        report.notes.push(
-            "linear cells: validity is every corner Jacobian positive by the exact orient3d \
-             (mesh_model::validate)"
-                .into(),
-        );
+        report.notes.push(crate::report::P1_VALIDITY.into());
     }
     if !converged {
         report.notes.push(

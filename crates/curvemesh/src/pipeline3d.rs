@@ -316,16 +316,19 @@ pub struct Measures3d {
     pub volume: f64,
     /// The volume between the wall and the final front: the volume the front's facets
     /// enclose minus the wall's, by the divergence theorem over the mesh's boundary facets
-    /// alone (the front as the cut triangulates it), independent of the cells.
+    /// alone (the front as the cut triangulates it), independent of the cells. For a mesh
+    /// read back ([`mesh_measures`]) the volume its boundary facets enclose, the same thing.
     pub volume_between: f64,
     /// The smallest cell volume.
     pub min_cell_volume: f64,
     /// The largest dihedral angle of the tetrahedra (0 without any).
     pub max_dihedral_deg: f64,
-    /// Fraction of the wall nodes with their full column of layers.
-    pub coverage: f64,
+    /// Fraction of the wall nodes with their full column of layers (`None` for a mesh read
+    /// back, whose growth is not known).
+    pub coverage: Option<f64>,
     /// Tables 5, 6 and 7, then table 6 over the extrusion edges of the prisms and
-    /// hexahedra alone when the mesh has any (the mixed cut's layers).
+    /// hexahedra alone when the mesh has any (the mixed cut's layers); table 7 alone for a
+    /// mesh read back (5 and 6 measure the growth).
     pub histograms: Vec<Histogram>,
     /// The smallest corner scaled Jacobian of the prisms and hexahedra (`None` without any).
     pub min_corner_sj: Option<CornerJacobian>,
@@ -340,23 +343,28 @@ pub struct CornerJacobian {
     pub value: f64,
     /// Its cell (0-based).
     pub cell: usize,
-    /// Its cell's layer (0 on the wall).
-    pub layer: u32,
+    /// Its cell's layer (0 on the wall; absent for a mesh read back, which has no layers).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layer: Option<u32>,
     /// The mean of its cell's corners.
     pub at: [f64; 3],
-    /// The smallest value over the cells grown from each wall patch (by name).
+    /// The smallest value over the cells grown from each wall patch (by name; empty for a
+    /// mesh read back, whose cells' pipes are not known).
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub by_wall_patch: std::collections::BTreeMap<String, f64>,
 }
 
-/// The prisms' and hexahedra's smallest corner scaled Jacobian ([`CornerJacobian`]).
-fn min_corner_sj(wall: &Surface, mesh: &Mesh) -> Option<CornerJacobian> {
+/// The prisms' and hexahedra's smallest corner scaled Jacobian ([`CornerJacobian`]); the
+/// smallest by wall patch when the `wall` the cells' pipes number is given.
+fn min_corner_sj(wall: Option<&Surface>, mesh: &Mesh) -> Option<CornerJacobian> {
     let (value, cell) = (0..mesh.cells.len())
         .into_par_iter()
         .filter_map(|i| measure3d::min_corner_scaled_jacobian(mesh, i).map(|q| (q, i)))
         .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))?;
     let mut by_wall_patch = std::collections::BTreeMap::new();
     for i in 0..mesh.cells.len() {
-        let (Some(q), Some(&f)) = (
+        let (Some(wall), Some(q), Some(&f)) = (
+            wall,
             measure3d::min_corner_scaled_jacobian(mesh, i),
             mesh.cell_pipe.get(i),
         ) else {
@@ -382,7 +390,7 @@ fn min_corner_sj(wall: &Surface, mesh: &Mesh) -> Option<CornerJacobian> {
              det(e1, e2, e3) / (|e1| |e2| |e3|) of the three edges at each corner",
         value,
         cell,
-        layer: mesh.cell_layer.get(cell).copied().unwrap_or(0),
+        layer: mesh.cell_layer.get(cell).copied(),
         at,
         by_wall_patch,
     })
@@ -397,6 +405,65 @@ pub fn measure(
     mesh: &Mesh,
     layers: usize,
 ) -> Measures3d {
+    let mut m = measure_cells(mesh, Some(wall));
+    let full = grown
+        .columns
+        .iter()
+        .filter(|c| c.len() == layers + 1)
+        .count();
+    m.coverage = Some(full as f64 / grown.columns.len().max(1) as f64);
+    let (front_angles, deviations) = (&front.angles, &front.deviations);
+    let layered = layered_deviations(mesh, deviations);
+    let growth = [
+        Histogram::new(
+            (
+                "front facet max angle",
+                "largest corner angle of every front facet grown (layers 1 to n; \
+                 dissertation table 5)",
+            ),
+            &FRONT_ANGLE_EDGES,
+            front_angles,
+        ),
+        Histogram::new(
+            (
+                "extrusion edge deviation",
+                "angle between each extrusion edge and the angle-weighted normal of the \
+                 front it grew from (dissertation table 6)",
+            ),
+            &DEVIATION_EDGES,
+            &deviations.iter().map(|d| d.1).collect::<Vec<_>>(),
+        ),
+    ];
+    // tables 5 and 6 before the mesh's table 7, then table 6 over the layers' cells
+    m.histograms.splice(0..0, growth);
+    m.histograms.extend(layered.map(|values| {
+        Histogram::new(
+            (
+                "layer extrusion edge deviation",
+                "table 6 over the extrusion edges of the prisms and hexahedra alone (the \
+                 mixed cut's layers; the extrusion edges of merged children are cut into \
+                 tetrahedra and pyramids)",
+            ),
+            &DEVIATION_EDGES,
+            &values,
+        )
+    }));
+    m
+}
+
+/// Measures a 3D mesh from its cells and boundary facets alone, for a mesh read back
+/// from a file ([`crate::quality`]): what [`measure`] measures of a run's mesh but what needs
+/// the growth (the coverage, tables 5 and 6, the minimum corner scaled Jacobian by wall
+/// patch). The mesh must be structurally sound (`mesh_model::first_structural_problem`).
+/// At order 2 the volumes are the corners' (the linear cells'): [`curved_volumes`] puts the
+/// curved cells' in their place.
+pub fn mesh_measures(mesh: &Mesh) -> Measures3d {
+    measure_cells(mesh, None)
+}
+
+/// The measures of `mesh` that need no growth: counts, volumes, the volume its boundary
+/// encloses, table 7, the minimum corner scaled Jacobian (by patch of `wall` when given).
+fn measure_cells(mesh: &Mesh, wall: Option<&Surface>) -> Measures3d {
     let n = mesh.cells.len();
     let volumes: Vec<f64> = (0..n)
         .into_par_iter()
@@ -407,13 +474,6 @@ pub fn measure(
         .filter(|&i| mesh.cells.get(i).ty.shape == Shape::Tet)
         .map(|i| measure3d::tet_max_dihedral_deg(mesh, i))
         .collect();
-    let full = grown
-        .columns
-        .iter()
-        .filter(|c| c.len() == layers + 1)
-        .count();
-    let (front_angles, deviations) = (&front.angles, &front.deviations);
-    let layered = layered_deviations(mesh, deviations);
     let count = |s| mesh.count(s);
     Measures3d {
         cells: [
@@ -426,49 +486,15 @@ pub fn measure(
         volume_between: enclosed(mesh, Role::Farfield) + enclosed(mesh, Role::Wall),
         min_cell_volume: volumes.iter().copied().fold(f64::INFINITY, f64::min),
         max_dihedral_deg: dihedral.iter().copied().fold(0.0, f64::max),
-        coverage: full as f64 / grown.columns.len().max(1) as f64,
-        histograms: [
-            Histogram::new(
-                (
-                    "front facet max angle",
-                    "largest corner angle of every front facet grown (layers 1 to n; \
-                     dissertation table 5)",
-                ),
-                &FRONT_ANGLE_EDGES,
-                front_angles,
+        coverage: None,
+        histograms: vec![Histogram::new(
+            (
+                "tet max dihedral",
+                "largest dihedral angle of every tetrahedron (dissertation table 7)",
             ),
-            Histogram::new(
-                (
-                    "extrusion edge deviation",
-                    "angle between each extrusion edge and the angle-weighted normal of the \
-                     front it grew from (dissertation table 6)",
-                ),
-                &DEVIATION_EDGES,
-                &deviations.iter().map(|d| d.1).collect::<Vec<_>>(),
-            ),
-            Histogram::new(
-                (
-                    "tet max dihedral",
-                    "largest dihedral angle of every tetrahedron (dissertation table 7)",
-                ),
-                &DIHEDRAL_EDGES,
-                &dihedral,
-            ),
-        ]
-        .into_iter()
-        .chain(layered.map(|values| {
-            Histogram::new(
-                (
-                    "layer extrusion edge deviation",
-                    "table 6 over the extrusion edges of the prisms and hexahedra alone (the \
-                     mixed cut's layers; the extrusion edges of merged children are cut into \
-                     tetrahedra and pyramids)",
-                ),
-                &DEVIATION_EDGES,
-                &values,
-            )
-        }))
-        .collect(),
+            &DIHEDRAL_EDGES,
+            &dihedral,
+        )],
         min_corner_sj: min_corner_sj(wall, mesh),
     }
 }

@@ -82,6 +82,10 @@ pub struct Report {
     /// The cells expected before the domain was meshed (`mesh` only), see `--max-cells`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_cells: Option<u64>,
+    /// The inputs the run used: the layers' first height, growth and count, and where given
+    /// the angle of attack, y⁺, Reynolds number, far-field radius and reference chord.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inputs: Option<Inputs>,
 }
 
 impl Report {
@@ -184,14 +188,7 @@ impl Report {
     /// that differs from the volume between the wall and the front by more than
     /// [`VOLUME_TOLERANCE`].
     pub fn describe_3d(&mut self, mesh: &Mesh, m: &crate::pipeline3d::Measures3d) {
-        self.dimension = 3;
-        self.nodes = mesh.nodes.len();
-        self.cells = m.cells.iter().copied().collect();
-        self.count_boundary(mesh);
-        self.problems = mesh_model::validate(mesh)
-            .iter()
-            .map(ToString::to_string)
-            .collect();
+        self.describe_3d_structure(mesh);
         let difference = (m.volume - m.volume_between).abs() / m.volume_between.abs();
         // NaN (no volume between) fails too
         if difference.is_nan() || difference > VOLUME_TOLERANCE {
@@ -207,7 +204,7 @@ impl Report {
             relative_difference: difference,
             tolerance: VOLUME_TOLERANCE,
         });
-        self.coverage = Some(m.coverage);
+        self.coverage = m.coverage;
         self.quality_3d = Some(Quality3d {
             max_dihedral_deg: m.max_dihedral_deg,
             min_cell_volume: m.min_cell_volume,
@@ -217,22 +214,69 @@ impl Report {
         });
     }
 
+    /// Fills what a 3D mesh shows without measuring it: the counts (nodes, cells by type,
+    /// boundary facets by role and group) and as problems whatever `mesh_model::validate`
+    /// finds. [`Report::describe_3d`] starts with it; alone, for a mesh whose structure is
+    /// broken (an index out of range, a coordinate not finite), which cannot be measured.
+    pub fn describe_3d_structure(&mut self, mesh: &Mesh) {
+        self.dimension = 3;
+        self.nodes = mesh.nodes.len();
+        self.cells = [Shape::Tet, Shape::Pyramid, Shape::Prism, Shape::Hex]
+            .into_iter()
+            .map(|s| (s.name(), mesh.count(s)))
+            .collect();
+        self.count_boundary(mesh);
+        self.problems = mesh_model::validate(mesh)
+            .iter()
+            .map(ToString::to_string)
+            .collect();
+    }
+
     /// Certifies every cell of the P2 mesh `curved` (after [`Report::describe_3d`]) as
     /// [`Report::certify`] does in 2D: the validity figures in the quality block, every
-    /// invalid, undecided or uncertified cell a problem; and what the curving did, as notes.
+    /// invalid, undecided or uncertified cell a problem ([`Report::certify_cells_3d`]); and
+    /// what the curving did, as notes.
     pub fn certify_3d(
         &mut self,
         curved: &vector_adding::Curved3d,
         shape: &crate::pipeline3d::TrueShape,
     ) -> Result<()> {
         use crate::pipeline3d::TrueShape;
-        let mesh = &curved.mesh;
+        if !self.certify_cells_3d(&curved.mesh)? {
+            return Ok(());
+        }
+        let s = &curved.stats;
+        self.curved_edge_fraction = Some(s.curved_edge_fraction);
+        let wall = match shape {
+            TrueShape::Sphere(_) => "the wall's P2 nodes on the true sphere",
+            TrueShape::Wing(_) => {
+                "the wall's P2 nodes on the true wing (the section's curve times the span; the \
+                 tip caps flat)"
+            }
+            TrueShape::Flat => {
+                "the wall is flat-faceted (a cube, step, STL or .msh surface): its P2 nodes at \
+                 the edge midpoints, so the cells are straight-sided P2 cells"
+            }
+        };
+        self.notes.push(format!(
+            "P2 by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
+             {} cells the marching left invalid mended by the repair ({} not); {P2_VALIDITY}",
+            s.curved_edges, s.edges, s.deepest_curved_layer, s.repaired, s.unrepaired
+        ));
+        Ok(())
+    }
+
+    /// Certifies every cell of the high-order 3D `mesh` (after [`Report::describe_3d`]): the
+    /// validity figures in the quality block, every invalid, undecided or uncertified cell a
+    /// problem. False when the check could not run on a mesh that already has problems (that
+    /// is then one more problem); an error when it could not run on a mesh without.
+    pub fn certify_cells_3d(&mut self, mesh: &Mesh) -> Result<bool> {
         let v = match jacobian_check::check_mesh(mesh, &jacobian_check::CertifyParams::default()) {
             Ok(v) => v,
             Err(e) if !self.problems.is_empty() => {
                 self.problems
                     .push(format!("the certified Jacobian check could not run: {e}"));
-                return Ok(());
+                return Ok(false);
             }
             Err(e) => bail!("certifying the mesh: {e}"),
         };
@@ -267,27 +311,7 @@ impl Report {
                 ));
             }
         }
-        let s = &curved.stats;
-        self.curved_edge_fraction = Some(s.curved_edge_fraction);
-        let wall = match shape {
-            TrueShape::Sphere(_) => "the wall's P2 nodes on the true sphere",
-            TrueShape::Wing(_) => {
-                "the wall's P2 nodes on the true wing (the section's curve times the span; the \
-                 tip caps flat)"
-            }
-            TrueShape::Flat => {
-                "the wall is flat-faceted (a cube, step, STL or .msh surface): its P2 nodes at \
-                 the edge midpoints, so the cells are straight-sided P2 cells"
-            }
-        };
-        self.notes.push(format!(
-            "P2 by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
-             {} cells the marching left invalid mended by the repair ({} not); validity: \
-             every cell certified by the Bernstein Jacobian check; volume: the curved cells' \
-             (integrated) against the volume the curved boundary encloses",
-            s.curved_edges, s.edges, s.deepest_curved_layer, s.repaired, s.unrepaired
-        ));
-        Ok(())
+        Ok(true)
     }
 
     /// Fills the angle figures from those of the linear mesh under the final one (its cell
@@ -390,6 +414,14 @@ pub enum LinearAngles<'a> {
         seconds: f64,
     },
 }
+
+/// How a P2 3D mesh is judged, as the notes of `mesh` and `quality` say.
+pub const P2_VALIDITY: &str = "validity: every cell certified by the Bernstein Jacobian check; \
+    volume: the curved cells' (integrated) against the volume the curved boundary encloses";
+
+/// How a linear 3D mesh is judged, as the notes of `mesh` and `quality` say.
+pub const P1_VALIDITY: &str = "linear cells: validity is every corner Jacobian positive by the \
+    exact orient3d (mesh_model::validate)";
 
 /// What `min_scaled_jacobian` is.
 pub const SCALED_JACOBIAN_OF: &str = "the mesh as written (its order): per cell, the certified \
@@ -574,6 +606,20 @@ pub struct WorstCell {
     pub x: f64,
     /// Mean of the cell's corners, y.
     pub y: f64,
+}
+
+/// The inputs of a run, as it used them (the report's `inputs`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Inputs {
+    /// The first layer's height (given, or from y⁺ and Re).
+    pub first_height: f64,
+    /// The ratio of one layer's height to the one below.
+    pub growth: f64,
+    /// The most layers grown from a boundary (3D: the layers grown).
+    pub max_layers: u32,
+    /// The placement's inputs, where given.
+    #[serde(flatten)]
+    pub placement: crate::placement::Placement,
 }
 
 /// One boundary loop in the report.

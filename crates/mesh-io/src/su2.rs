@@ -1,4 +1,4 @@
-//! SU2 native mesh format (`.su2`), linear only.
+//! SU2 native mesh format (`.su2`), linear only, 2D and 3D.
 //!
 //! SU2 has no high-order cells, so for a mesh of order 2 or 3 this writer writes the linear
 //! mesh underneath: the corner nodes of every cell and facet, renumbered densely in their
@@ -9,8 +9,21 @@
 //! index), `NPOIN=` with one line per point (coordinates, index; z only in 3D), `NMARK=` with
 //! one marker per boundary group ([`crate::groups`]: each wall body by its name, `slat`,
 //! `main`, `flap`, and `farfield`), `MARKER_TAG=` the group's name, `MARKER_ELEMS=` and one
-//! line per facet (line 3 in 2D;
-//! triangle 5 or quadrilateral 9 in 3D). Indices are 0-based.
+//! line per facet (line 3 in 2D; triangle 5 or quadrilateral 9 in 3D). Indices are 0-based.
+//!
+//! Cell types are VTK's linear cells, as SU2 numbers them: triangle 5, quadrilateral 9,
+//! tetrahedron 10, hexahedron 12, prism (wedge) 13, pyramid 14. Corners are in the order and
+//! orientation SU2's reader checks (`CPhysicalGeometry::Check_IntElem_Orientation`, which
+//! swaps the nodes of a cell it finds inverted): the data model's (Gmsh's) for the
+//! triangle, quadrilateral, tetrahedron, pyramid and hexahedron; for the prism SU2 wants the
+//! tetrahedron 0-2-1-3 positive, the first triangle 0-1-2 turned away from the second, the
+//! mirror image of Gmsh's, so a prism is written 0, 2, 1, 3, 5, 4 ([`su2_corners`]) — as
+//! Gmsh's own SU2 export writes it (`MPrism::getVertexVTK`, the orientation of VTK's
+//! documented wedge; VTK 9.7's `vtkWedge` itself takes Gmsh's orientation as positive, which
+//! is why the `.vtu` writer does not permute). Boundary facets are written as SU2 orients
+//! them (`Check_BoundElem_Orientation`): in 2D a line with the domain on its left, as in the
+//! data model; in 3D a triangle or quadrilateral whose normal points into the domain, the
+//! reverse of the data model's outward facets. In that order SU2 re-orients nothing.
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -48,6 +61,19 @@ fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError
 pub fn write_to(out: &mut dyn Write, mesh: &Mesh, path: &Path) -> Result<(), IoError> {
     let groups = prepare(mesh, path)?;
     body(out, mesh, &groups).map_err(|e| IoError::io(path, e))
+}
+
+/// The corners of a cell (`facet` false) or boundary facet (`facet` true) of `shape` in the
+/// order SU2 reads them: written corner `k` is the data model's corner `order[k]` (see the
+/// module's documentation).
+pub fn su2_corners(shape: Shape, facet: bool) -> &'static [usize] {
+    match (shape, facet) {
+        (Shape::Prism, false) => &[0, 2, 1, 3, 5, 4],
+        // 3D boundary facets turned into the domain
+        (Shape::Tri, true) => &[0, 2, 1],
+        (Shape::Quad, true) => &[0, 3, 2, 1],
+        _ => &[0, 1, 2, 3, 4, 5, 6, 7][..shape.corners()],
+    }
 }
 
 /// VTK linear type number of a shape (SU2 uses VTK's).
@@ -89,9 +115,10 @@ fn body(
     write_records(w, mesh.cells.len(), |i, b| {
         let c = mesh.cells.get(i);
         push_int(b, vtk_linear(c.ty.shape));
-        for &v in c.corners() {
+        let k = c.corners();
+        for &j in su2_corners(c.ty.shape, false) {
             b.push(b' ');
-            push_int(b, new_index[v as usize]);
+            push_int(b, new_index[k[j] as usize]);
         }
         b.push(b' ');
         push_int(b, i);
@@ -117,9 +144,10 @@ fn body(
         write_records(w, facets.len(), |k, b| {
             let f = mesh.boundary.get(facets[k]);
             push_int(b, vtk_linear(f.ty.shape));
-            for &v in f.corners() {
+            let k = f.corners();
+            for &j in su2_corners(f.ty.shape, true) {
                 b.push(b' ');
-                push_int(b, new_index[v as usize]);
+                push_int(b, new_index[k[j] as usize]);
             }
             b.push(b'\n');
         })?;

@@ -12,9 +12,20 @@
 //! Cell data: `layer` and `pipe` (as `Int64`, −1 for [`mesh_model::NONE`] and for facets) when
 //! the mesh has them, `order` (the polynomial order of each cell or facet), and
 //! `boundary_group`: −1 for a domain cell, for a facet the index of its boundary group
-//! ([`crate::groups`]) in the field-data string array `boundary_group_names` (`slat`, `main`,
-//! `flap`, `farfield`). No point data. To look at the domain alone, threshold
-//! `boundary_group` at −1.
+//! ([`crate::groups`]: `slat`, `main`, `flap`, `farfield`). No point data. To look at the domain
+//! alone, threshold `boundary_group` at −1.
+//!
+//! Field data: the group names, one `Int64` array of one tuple per group, named
+//! `boundary_group:` and the group's name, holding the group's index (so
+//! `boundary_group:farfield` holds 3 on the 30P30N), in index order, e.g.
+//! `<DataArray type="Int64" Name="boundary_group:slat" NumberOfTuples="1" format="ascii">0</DataArray>`.
+//! Numeric field data is read by VTK and ParaView and by meshio
+//! (`mesh.field_data["boundary_group:slat"] == [0]`); VTK's own string array
+//! (`<Array type="String">`) is not: meshio refuses the whole file. The name is
+//! XML-escaped in the attribute; a name with a control character other than tab, line feed and
+//! carriage return (XML 1.0 cannot carry one) gives [`IoError::Unsupported`]. A mesh without
+//! boundary groups has no field data. (meshio 5.3.5 cannot read VTK's quadratic pyramid
+//! itself: a file with P2 pyramids fails there with `KeyError: 'pyramid13'`, its own gap.)
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -28,11 +39,15 @@ use crate::groups::{Group, boundary_groups};
 use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
 use crate::text::{push_int, write_points, write_records};
 
+/// The start of the name of each field-data array that names a boundary group (module doc).
+pub const GROUP_PREFIX: &str = "boundary_group:";
+
 /// Writes the domain cells of `mesh` to `path` as a VTK XML unstructured grid, atomically.
 ///
 /// Errors: [`IoError::NonFiniteNode`] or [`IoError::InvalidMesh`] for a mesh that breaks the
-/// data model's invariants, [`IoError::Unsupported`] for a cell type without a VTK ordering,
-/// all before anything is written; [`IoError::Io`] when the file cannot be written.
+/// data model's invariants, [`IoError::Unsupported`] for a cell type without a VTK ordering or
+/// a group name XML cannot carry, all before anything is written; [`IoError::Io`] when the
+/// file cannot be written.
 pub fn write(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
     let groups = prepare(mesh, path)?;
     write_atomic(path, |w| {
@@ -68,10 +83,45 @@ fn prepare(mesh: &Mesh, path: &Path) -> Result<(Vec<Group>, Vec<usize>), IoError
         }
     }
     check_pyramids(mesh, path)?;
-    boundary_groups(mesh).map_err(|message| IoError::InvalidMesh {
+    let groups = boundary_groups(mesh).map_err(|message| IoError::InvalidMesh {
         path: path.to_path_buf(),
         message,
+    })?;
+    if let Some(g) = groups.0.iter().find(|g| !xml_can_hold(&g.name)) {
+        return Err(IoError::Unsupported {
+            path: path.to_path_buf(),
+            format: "vtu",
+            what: format!(
+                "the boundary group name {:?} (a control character XML 1.0 cannot carry)",
+                g.name
+            ),
+        });
+    }
+    Ok(groups)
+}
+
+/// Whether XML 1.0 can carry `s` in an attribute (as characters or character references).
+fn xml_can_hold(s: &str) -> bool {
+    s.chars().all(|c| {
+        (c >= ' ' || matches!(c, '\t' | '\n' | '\r')) && !matches!(c, '\u{fffe}' | '\u{ffff}')
     })
+}
+
+/// `s` escaped for a double-quoted XML attribute; tab, line feed and carriage return as
+/// character references, which attribute-value normalisation leaves alone.
+fn xml_attribute(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\t' | '\n' | '\r' => out.push_str(&format!("&#{};", u32::from(c))),
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// Refuses a 14-node pyramid whose base node is not the serendipity point of its base's
@@ -126,20 +176,21 @@ fn record(v: u32) -> i64 {
     if v == NONE { -1 } else { i64::from(v) }
 }
 
-/// The group names as a VTK string array: in ASCII, each string's bytes as numbers, then 0.
-fn string_array(w: &mut dyn Write, name: &str, values: &[&str]) -> io::Result<()> {
-    writeln!(
-        w,
-        r#"        <Array type="String" Name="{name}" NumberOfTuples="{}" format="ascii">"#,
-        values.len()
-    )?;
-    for v in values {
-        for b in v.bytes() {
-            write!(w, "{b} ")?;
-        }
-        writeln!(w, "0")?;
+/// The field data: per boundary group, an `Int64` array `boundary_group:NAME` of one tuple,
+/// the group's index (see the module doc). Nothing when there is no group.
+fn group_name_arrays(w: &mut dyn Write, groups: &[Group]) -> io::Result<()> {
+    if groups.is_empty() {
+        return Ok(());
     }
-    writeln!(w, "        </Array>")
+    writeln!(w, "    <FieldData>")?;
+    for (k, g) in groups.iter().enumerate() {
+        writeln!(
+            w,
+            r#"      <DataArray type="Int64" Name="{GROUP_PREFIX}{}" NumberOfTuples="1" format="ascii">{k}</DataArray>"#,
+            xml_attribute(&g.name)
+        )?;
+    }
+    writeln!(w, "    </FieldData>")
 }
 
 fn body(
@@ -155,10 +206,7 @@ fn body(
         r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
-    writeln!(w, "    <FieldData>")?;
-    let names: Vec<&str> = groups.iter().map(|g| g.name.as_str()).collect();
-    string_array(w, "boundary_group_names", &names)?;
-    writeln!(w, "    </FieldData>")?;
+    group_name_arrays(w, groups)?;
     writeln!(
         w,
         r#"    <Piece NumberOfPoints="{}" NumberOfCells="{}">"#,
@@ -308,15 +356,96 @@ mod tests {
         for (j, &p) in m.boundary_patch.iter().enumerate() {
             assert_eq!(group[m.cells.len() + j], p as f64, "facet {j}");
         }
-        let names = format!(
-            "{} 0\n",
-            "farfield"
-                .bytes()
-                .map(|b| b.to_string())
-                .collect::<Vec<_>>()
-                .join(" ")
+        let names = group_names(&text);
+        assert_eq!(names.len(), m.patches.len());
+        assert_eq!(names[1], "farfield");
+        // no VTK string array: meshio cannot read one
+        assert!(!text.contains(r#"type="String""#));
+    }
+
+    /// The boundary group names from the field data, by index (`boundary_group:NAME`, one
+    /// tuple, the index), undoing the XML escapes; checks the arrays' form on the way.
+    fn group_names(text: &str) -> Vec<String> {
+        let field = &text[text.find("<FieldData>").unwrap()..text.find("</FieldData>").unwrap()];
+        let mut named = Vec::new();
+        for line in field.lines().skip(1).filter(|l| !l.trim().is_empty()) {
+            let open = r#"<DataArray type="Int64" Name=""#;
+            let rest = line.trim().strip_prefix(open).expect(line);
+            let (name, rest) = rest.split_once('"').expect(line);
+            let index = rest
+                .strip_prefix(r#" NumberOfTuples="1" format="ascii">"#)
+                .and_then(|r| r.strip_suffix("</DataArray>"))
+                .expect(line);
+            let name = name.strip_prefix(GROUP_PREFIX).expect(line);
+            let mut unescaped = name.to_string();
+            for (from, to) in [
+                ("&lt;", "<"),
+                ("&gt;", ">"),
+                ("&quot;", "\""),
+                ("&#9;", "\t"),
+                ("&#10;", "\n"),
+                ("&#13;", "\r"),
+                ("&amp;", "&"),
+            ] {
+                unescaped = unescaped.replace(from, to);
+            }
+            named.push((index.parse::<usize>().unwrap(), unescaped));
+        }
+        named.sort();
+        assert!(
+            named.iter().enumerate().all(|(k, (i, _))| *i == k),
+            "{named:?}"
         );
-        assert!(text.contains(&names), "{text:.600}");
+        named.into_iter().map(|(_, name)| name).collect()
+    }
+
+    #[test]
+    fn group_names_round_trip_through_numeric_field_data() {
+        let mut m = annulus(&AnnulusParams::default());
+        m.patches[0].name = "a \"b\" & <c>\td".into();
+        m.patches.push(mesh_model::Patch {
+            name: "slat".into(),
+            role: mesh_model::Role::Wall,
+        });
+        m.boundary_patch[0] = 2;
+        let text = to_string(&m).unwrap();
+        let (groups, _) = boundary_groups(&m).unwrap();
+        let want: Vec<&str> = groups.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(want, ["a \"b\" & <c>\td", "farfield", "slat"]);
+        assert_eq!(group_names(&text), want);
+        assert!(
+            text.contains(r#"Name="boundary_group:a &quot;b&quot; &amp; &lt;c&gt;&#9;d""#),
+            "{text:.800}"
+        );
+        // every field-data array is numeric (meshio reads no other type)
+        let field = &text[text.find("<FieldData>").unwrap()..text.find("</FieldData>").unwrap()];
+        assert_eq!(field.matches("<DataArray").count(), 3);
+        assert_eq!(field.matches(r#"type="Int64""#).count(), 3);
+        // the facet of the third group points at it
+        assert_eq!(array(&text, "boundary_group")[m.cells.len()], 2.0);
+    }
+
+    #[test]
+    fn a_group_name_xml_cannot_carry_is_refused_before_writing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.vtu");
+        let mut m = annulus(&AnnulusParams::default());
+        m.patches[0].name = "bell\u{7}".into();
+        let err = write(&path, &m).unwrap_err();
+        assert!(matches!(err, IoError::Unsupported { .. }), "{err}");
+        assert!(err.to_string().contains("bell"), "{err}");
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn a_mesh_without_groups_has_no_field_data() {
+        let mut m = annulus(&AnnulusParams::default());
+        m.patches.clear();
+        m.boundary = Default::default();
+        m.cell_pipe.clear();
+        m.boundary_patch.clear();
+        let text = to_string(&m).unwrap();
+        assert!(!text.contains("FieldData"));
     }
 
     #[test]

@@ -184,14 +184,11 @@ pub fn move_into(
     observer: &mut dyn Observer,
     plan: Option<&mut Plan>,
 ) -> Result<Moved> {
-    let order = options.order.unwrap_or(case.order);
-    ensure!(
-        (1..=crate::case::MAX_ORDER).contains(&order),
-        "order {order}: must be 1, 2 or 3"
-    );
+    let order = case.order_of(options.order)?;
     options.check()?;
     let moved = moved_geometry(case, motions)?;
     let mut report = Report::new(&case.name, order);
+    report.inputs = Some(mesh2d::inputs_of(case));
     let (nodes, layered) = match start {
         None => {
             let (_, nodes, grown) = mesh2d::grow(case, options.max_cells, observer, &mut report)?;
