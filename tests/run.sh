@@ -8,6 +8,10 @@ cd "$(dirname "$0")/.."
 
 bash tests/python/install.sh
 
+# built first with cargo's progress shown (the first build of the test profile takes minutes),
+# then run with one line per test binary
+echo "== cargo test: building the tests"
+cargo test --workspace --no-run
 echo "== cargo test"
 cargo test --workspace --quiet
 
