@@ -154,7 +154,7 @@ fn grow_ahead(
     let (boundary, seconds) = stage(observer, "boundary curves and 1D mesh", || {
         let curves = pipeline::curves(case)?;
         let nodes = pipeline::boundary_nodes(case, &curves)?;
-        Ok::<_, crate::Error>((curves, nodes))
+        Ok::<_, crate::error::Error>((curves, nodes))
     });
     let (curves, nodes) = boundary?;
     report.timings_s.insert("boundary", seconds);

@@ -53,7 +53,7 @@ pub(crate) fn mesh(
     let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
         let front = pipeline3d::front_measures(&surface, &grown);
         let (mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
-        Ok::<_, crate::Error>((mesh, flagged, front))
+        Ok::<_, crate::error::Error>((mesh, flagged, front))
     })?;
     let mut measures = timed(r, o, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &front, &mesh, case.layers.layers)
@@ -86,7 +86,7 @@ pub(crate) fn mesh(
             for (path, format) in plan.write_meshes(out)? {
                 r.wrote_mesh(&path, format, out.order);
             }
-            Ok::<_, crate::Error>(())
+            Ok::<_, crate::error::Error>(())
         })?;
     }
     let (mesh, linear) = match curved {

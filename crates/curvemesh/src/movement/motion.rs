@@ -12,7 +12,7 @@ use mesh_move::{
 };
 use serde::Deserialize;
 
-use crate::Case;
+use crate::case::Case;
 use crate::error::{Context, Result, bail, ensure, input_error};
 use crate::pipeline;
 use crate::source::from_toml;

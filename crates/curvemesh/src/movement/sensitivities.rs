@@ -16,7 +16,7 @@ use mesh_move::{LoopMotion, Sensitivity};
 use vector_adding::Decisions;
 
 use super::motion::{boundary_targets, moved_geometry};
-use crate::Case;
+use crate::case::Case;
 use crate::pipeline;
 
 /// Which value of a loop's motion.
