@@ -96,8 +96,11 @@ pub struct AfsfStats {
     /// Timings of the phases (seconds).
     pub timings: Timings,
     /// Wall facets with no layered cell on them (their first layer did not fit: a gap
-    /// narrower than the layers, where the fill meets the wall directly).
+    /// narrower than the layers, or a tight concave corner, where the fill meets the wall
+    /// directly).
     pub bare_wall_facets: usize,
+    /// The midpoints of those facets, for messages that say where.
+    pub bare_wall_facets_at: Vec<[f64; 2]>,
     /// The narrowest gap whose boundary nodes admit no triangle across it below
     /// `gap_max_angle_deg` (only when `refuse_narrow_gaps` is off; else it is an error).
     pub unresolved_gap: Option<NarrowGap>,
@@ -193,13 +196,22 @@ pub fn grow_mesh_with<R: Send>(
             layered_on_facet[c.pipe as usize] = true;
         }
     }
-    let bare_wall_facets = (0..mesh.boundary.len())
+    let bare: Vec<usize> = (0..mesh.boundary.len())
         .filter(|&f| {
             !layered_on_facet[f] && mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall
         })
-        .count();
+        .collect();
+    let bare_wall_facets_at = bare
+        .iter()
+        .map(|&f| {
+            let n = mesh.boundary.get(f).nodes;
+            let (a, b) = (mesh.xy(n[0]), mesh.xy(n[1]));
+            [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]
+        })
+        .collect();
     let stats = AfsfStats {
-        bare_wall_facets,
+        bare_wall_facets: bare.len(),
+        bare_wall_facets_at,
         unresolved_gap,
         layers: work.nodes.layer[..n_grown]
             .iter()

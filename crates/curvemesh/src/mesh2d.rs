@@ -172,19 +172,41 @@ fn grow_ahead(
     let (grown, made_ahead) = grown?;
     report.timings_s.insert("linear", seconds);
     report.layers = Some(grown.stats.layers);
-    if !grown.stats.all_converged {
-        report.notes.push(
-            "some layers' spring solves ran out of iterations (the mesh passed its checks)".into(),
-        );
-    }
-    if grown.stats.bare_wall_facets > 0 {
-        report.notes.push(format!(
-            "{} wall facets have no layers: a gap narrower than the first layer, where the \
-             filled region meets the wall directly (lower [layers] first_height to layer them)",
-            grown.stats.bare_wall_facets
+    report.notes.extend(growth_notes(&grown.stats));
+    Ok((curves, nodes, (grown, made_ahead)))
+}
+
+/// The notes on the growth that tell where and what to do: the layers whose spring balance
+/// stopped at its iteration limit, and the wall facets left without layers.
+fn growth_notes(stats: &afsf2d::AfsfStats) -> Vec<String> {
+    let mut notes = Vec::new();
+    let open: Vec<String> = (stats.layer_stats.iter())
+        .filter(|s| !s.converged)
+        .map(|s| s.layer.to_string())
+        .collect();
+    if !open.is_empty() {
+        notes.push(format!(
+            "the spring balance of layer{} {} stopped at its iteration limit: those layers keep \
+             the last iterate, and the mesh passed its checks (nothing to do unless the quality \
+             figures show poor cells there)",
+            if open.len() == 1 { "" } else { "s" },
+            open.join(", ")
         ));
     }
-    Ok((curves, nodes, (grown, made_ahead)))
+    if let Some(first) = stats.bare_wall_facets_at.first() {
+        let more = match stats.bare_wall_facets {
+            1 => String::new(),
+            n => format!(" and {} more", n - 1),
+        };
+        notes.push(format!(
+            "{} wall facets have no layers (at ({:.6}, {:.6}){more}): the filled region meets \
+             the wall directly, in a gap narrower than the first layer or a tight concave \
+             corner; a lower [layers] first_height, or finer boundary spacing there (the \
+             loop's max_spacing), lets the layers in",
+            stats.bare_wall_facets, first[0], first[1]
+        ));
+    }
+    notes
 }
 
 /// The mesh of the run at `order` (quads cut when `triangles`): `layered` curved by
