@@ -20,9 +20,10 @@
 //! the cell estimate), so a caller gets the very mesh `curvemesh mesh` writes.
 //!
 //! Module order, each using only those above it: [`error`], [`observer`], [`builtin`],
-//! [`source`] → [`case`] → [`case3d`] → [`mod@load`], [`airfoil`]; [`estimate`], [`pipeline`] →
-//! [`wing`] → [`pipeline3d`]; [`stages`], [`movement::report`] → [`report`] → [`outputs`];
-//! then the runs (`mesh2d`, `mesh3d`, [`movement`]) and this root.
+//! [`placement`], [`policy`], [`source`] → [`case`] → [`case3d`] → [`mod@load`], [`airfoil`];
+//! [`estimate`], [`pipeline`] → [`wing`] → [`pipeline3d`]; [`stages`], [`movement::report`] →
+//! [`report`] → [`outputs`], [`quality`]; `meshed` (`Options`, `Meshed`); then the runs
+//! (`mesh2d`, `mesh3d`, [`movement`]) and this root, which only declares and re-exports.
 
 pub mod airfoil;
 pub mod builtin;
