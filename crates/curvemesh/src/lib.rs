@@ -23,7 +23,7 @@
 //! [`placement`], [`policy`], [`source`] → [`case`] → [`case3d`] → [`mod@load`], [`airfoil`];
 //! [`estimate`], [`pipeline`] → [`wing`] → [`pipeline3d`]; [`stages`], [`movement::report`] →
 //! [`report`] → [`outputs`], [`quality`]; `meshed` (`Options`, `Meshed`); then the runs
-//! (`mesh2d`, `mesh3d`, [`movement`]) and this root, which only declares and re-exports.
+//! (`mesh2d`, `mesh3d`, [`movement`]) and this root (`mesh`, `mesh_into`, the re-exports).
 
 pub mod airfoil;
 pub mod builtin;
