@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use end_to_end::{Outcome, read_json, run_into, s};
+use testkit::su2::{kept_as_written, orientation_tests, tet6};
 
 /// An element as written: its VTK type and corner indices.
 type Element = (u8, Vec<usize>);
@@ -69,29 +70,6 @@ fn read_su2(path: &Path) -> Su2 {
     su2
 }
 
-fn tet6(p: &[[f64; 3]], [a, b, c, d]: [usize; 4]) -> f64 {
-    let s = |i: usize| [0, 1, 2].map(|k| p[i][k] - p[a][k]);
-    let (u, v, w) = (s(b), s(c), s(d));
-    let n = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
-    n[0] * w[0] + n[1] * w[1] + n[2] * w[2]
-}
-
-/// SU2's orientation tests of a cell of VTK type `ty`, as local corner tetrahedra that must
-/// be positive (`CPhysicalGeometry::Check_IntElem_Orientation`).
-fn su2_tests(ty: u8) -> &'static [[usize; 4]] {
-    match ty {
-        10 => &[[0, 1, 2, 3]],
-        14 => &[[0, 1, 2, 4], [2, 3, 0, 4]],
-        13 => &[[0, 2, 1, 3], [3, 4, 5, 2]],
-        12 => &[[0, 1, 2, 5], [0, 2, 3, 7], [4, 6, 5, 1], [4, 7, 6, 3]],
-        _ => panic!("not a 3D VTK cell: {ty}"),
-    }
-}
-
 /// Meshes `case` at `order` into `dir` as `.su2` (and `.msh`), returns the report and the
 /// `.su2` read back.
 fn mesh(dir: &Path, case: &str, order: &str) -> (serde_json::Value, Su2) {
@@ -125,11 +103,10 @@ fn the_sphere_and_the_step_as_su2_hold_the_cells_and_markers_of_their_report() {
                 _ => panic!("{case}: VTK type {ty}"),
             };
             *by_type.entry(name).or_insert(0u64) += 1;
-            assert_eq!(k.len(), su2_tests(*ty).iter().flatten().max().unwrap() + 1);
-            for t in su2_tests(*ty) {
-                let corners: Vec<[f64; 3]> = k.iter().map(|&v| su2.points[v]).collect();
-                assert!(tet6(&corners, *t) > 0.0, "{case}: SU2 flips a {name}");
-            }
+            let tests = orientation_tests(*ty);
+            assert_eq!(k.len(), tests.iter().flatten().max().unwrap() + 1);
+            let corners: Vec<[f64; 3]> = k.iter().map(|&v| su2.points[v]).collect();
+            assert!(kept_as_written(*ty, &corners), "{case}: SU2 flips a {name}");
         }
         for (name, n) in report["cells"].as_object().unwrap() {
             let n = n.as_u64().unwrap();
@@ -173,7 +150,7 @@ fn the_sphere_and_the_step_as_su2_hold_the_cells_and_markers_of_their_report() {
                 p.push(su2.points[*inside]);
                 let n = p.len() - 1;
                 assert!(
-                    tet6(&p, [0, 1, 2, n]) > 0.0,
+                    tet6(p[0], p[1], p[2], p[n]) > 0.0,
                     "{case}: {tag} facet {k:?} turned out"
                 );
             }

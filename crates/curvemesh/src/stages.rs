@@ -1,5 +1,5 @@
 //! What `--snapshot FILE.bin` saves: the intermediate stages of a run, so that a later stage
-//! (curving, movement) or a debugging session can start from them without meshing again.
+//! (curving, movement) or an inspection can start from them without meshing again.
 //! The encoding is `mesh_io::snapshot`'s (the one place that knows it).
 
 use boundary1d::BoundaryNodes;

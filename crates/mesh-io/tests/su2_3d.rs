@@ -8,6 +8,7 @@
 use std::path::Path;
 
 use mesh_model::{CellType, Dim, Mesh, Patch, Role, Shape};
+use testkit::su2::{orientation_tests, tet6};
 
 /// The four cells, apart, each a sheared copy of Gmsh's reference cell; their outward faces
 /// (`Shape::faces`) as boundary facets: the tetrahedron's and the hexahedron's in a wall
@@ -101,27 +102,6 @@ fn block(text: &str, key: &str) -> Vec<Vec<f64>> {
         .collect()
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Six times the signed volume of the tetrahedron a, b, c, d.
-fn tet6(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
-    dot(cross(sub(b, a), sub(c, a)), sub(d, a))
-}
-
 /// SU2's faces of its cells, each outward by the right-hand rule (the `Faces` of
 /// `CTetrahedronConnectivity`, `CPyramidConnectivity`, `CPrismConnectivity`,
 /// `CHexahedronConnectivity`, up to where each face's cycle starts), by VTK type. They are
@@ -171,18 +151,6 @@ fn su2_volume(ty: u8, x: &[[f64; 3]]) -> f64 {
     sum / 6.0
 }
 
-/// The corner tetrahedra SU2 (`CPhysicalGeometry::Check_IntElem_Orientation`) wants positive
-/// in a cell of VTK type `ty`, else it re-orients the cell.
-fn su2_tests(ty: u8) -> &'static [[usize; 4]] {
-    match ty {
-        10 => &[[0, 1, 2, 3]],
-        14 => &[[0, 1, 2, 4], [2, 3, 0, 4]],
-        13 => &[[0, 2, 1, 3], [3, 4, 5, 2]],
-        12 => &[[0, 1, 2, 5], [0, 2, 3, 7], [4, 6, 5, 1], [4, 7, 6, 3]],
-        _ => panic!("no VTK cell {ty}"),
-    }
-}
-
 #[test]
 fn every_cell_of_a_mixed_3d_mesh_is_positive_as_su2_reads_it() {
     let mesh = mixed();
@@ -212,7 +180,7 @@ fn every_cell_of_a_mixed_3d_mesh_is_positive_as_su2_reads_it() {
             ours > 0.0 && (v - ours).abs() < 1e-12 * ours,
             "type {ty}: SU2's volume {v}, ours {ours}"
         );
-        for t in su2_tests(ty) {
+        for t in orientation_tests(ty) {
             let s = tet6(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
             assert!(s > 0.0, "type {ty}: SU2 flips it (tetrahedron {t:?}: {s})");
         }

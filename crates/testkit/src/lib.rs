@@ -1,6 +1,6 @@
 //! Test code only — the one dev-only kit the crates' integration tests and benches share:
 //! the geometry fixtures of `fixtures/geometry` ([`fixtures`]), loop generators and their
-//! proptest strategies ([`shapes`]), layered 3D polyhedral meshes ([`layered`]), the property checks every mesh must pass ([`checks`]),
+//! proptest strategies ([`shapes`]), layered 3D polyhedral meshes ([`layered`]), the property checks every mesh must pass ([`checks`]), SU2's orientation tests of a 3D cell ([`su2`]),
 //! and [`assert_near!`].
 //!
 //! Dev-only: a `[dev-dependencies]` entry, never published. It depends on `mesh-model`,
@@ -12,6 +12,7 @@ pub mod checks;
 pub mod fixtures;
 pub mod layered;
 pub mod shapes;
+pub mod su2;
 
 /// Asserts that two numbers differ by at most `tol`, naming both and the difference:
 /// `assert_near!(a, b, 1e-12)` or `assert_near!(a, b, 1e-12, "at {i}")`.
