@@ -32,8 +32,6 @@ fn run_here(args: &MoveArgs) -> Result<Finished> {
     options.check()?;
     check_csv(args)?;
     let motions = motions(&args.motion, &case)?;
-    // every motion checked against the case before any output is reserved
-    motion::moved_geometry(&case, &motions)?;
     let flags = OutputFlags {
         outs: &args.output.outs,
         report: args.output.report.as_deref(),
