@@ -10,6 +10,7 @@ use anyhow::{Result, bail};
 use curvemesh::airfoil::{self, AirfoilOptions};
 use curvemesh::case3d::{Case3d, check_order};
 use curvemesh::{AnyCase, Meshed, Options, builtin};
+use mesh_draw::slice::Plane;
 use mesh_io::Format;
 
 use crate::cli::MeshArgs;
@@ -34,8 +35,9 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
     }
     let total = Instant::now();
     let case = load(args)?;
-    let planned = match &case {
-        AnyCase::Two(case) => plan_2d(args, case)?,
+    // (the plane 3D pictures cut, parsed with them)
+    let (planned, plane) = match &case {
+        AnyCase::Two(case) => (plan_2d(args, case)?, None),
         AnyCase::Three(case) => plan_3d(args, case)?,
     };
     let Planned {
@@ -76,7 +78,6 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
             )?,
             AnyCase::Three(_) => {
                 // the slices cut the linear cells
-                let (_, plane) = pictures::parse_3d(&args.pictures)?;
                 let cut = linear.as_ref().unwrap_or(&mesh);
                 pictures::draw_slices(cut, &drawn, &args.pictures, plane, &name, &mut plan.outputs)?
             }
@@ -130,8 +131,8 @@ fn plan_2d(args: &MeshArgs, case: &curvemesh::Case) -> Result<Planned> {
 }
 
 /// The outputs of a 3D run, reserved after the order and the flags that mean nothing in 3D
-/// are refused.
-fn plan_3d(args: &MeshArgs, case: &Case3d) -> Result<Planned> {
+/// are refused, with the plane the pictures cut.
+fn plan_3d(args: &MeshArgs, case: &Case3d) -> Result<(Planned, Option<Plane>)> {
     let order = args.output.order.unwrap_or(case.order);
     check_order(order, &format!("--order {order}"))?;
     refuse_2d_flags(args)?;
@@ -143,11 +144,14 @@ fn plan_3d(args: &MeshArgs, case: &Case3d) -> Result<Planned> {
     };
     let stem = curvemesh::source::file_stem_of(&case.name);
     let stem = default_stem(&stem, args.output.order, case.order);
+    let mut plane = None;
     let mut planned = plan_with(&flags, &stem, || {
-        pictures::parse_3d(&args.pictures).map(|(p, _)| p)
+        let (pictures, p) = pictures::parse_3d(&args.pictures)?;
+        plane = p;
+        Ok(pictures)
     })?;
     planned.plan.binary = args.binary;
-    Ok(planned)
+    Ok((planned, plane))
 }
 
 /// Refuses the flags of 2D runs that mean nothing in 3D, before any work.
