@@ -68,6 +68,13 @@ pub fn parse_str(text: &str) -> Result<AnyCase> {
     parse_any(text, "case", FileSource::Builtin, "case")
 }
 
+/// Parses a 2D or 3D case from TOML text whose relative file names are looked up in `dir` (a
+/// case made in memory, as the Python package's dicts): `origin` names it in messages, and it
+/// is named `case` unless it says.
+pub fn parse_str_in(text: &str, origin: &str, dir: &Path) -> Result<AnyCase> {
+    parse_any(text, origin, FileSource::Dir(dir), "case")
+}
+
 /// The case in `text`: 3D when its top-level `dimension` is 3, else 2D.
 fn parse_any(
     text: &str,
