@@ -446,26 +446,31 @@ pub(crate) fn name_groups(loops: &mut [LoopInput], merge_walls: bool) {
         l.group = match l.role {
             Role::Farfield => "farfield".into(),
             Role::Wall if merge_walls => "wall".into(),
-            Role::Wall => {
-                let mut base: String = l
-                    .name
-                    .chars()
-                    .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
-                    .collect();
-                if base.is_empty() || base.starts_with(|c: char| c.is_ascii_digit()) {
-                    base.insert_str(0, "wall_");
-                }
-                let mut name = base.clone();
-                let mut k = 2;
-                while taken.iter().any(|t| t.eq_ignore_ascii_case(&name)) {
-                    name = format!("{base}_{k}");
-                    k += 1;
-                }
-                taken.push(name.clone());
-                name
-            }
+            Role::Wall => wall_group_name(&l.name, &mut taken),
         };
     }
+}
+
+/// The boundary group of a wall named `name` (2D loops, 3D surface groups): an identifier
+/// (`A-Z a-z 0-9 _`, other characters become `_`; `wall_` in front of an empty name or one
+/// starting with a digit) unlike every name in `taken` (case ignored, `_2`, `_3`... added),
+/// which it joins. `taken` starts with `farfield` and `fluid`.
+pub(crate) fn wall_group_name(name: &str, taken: &mut Vec<String>) -> String {
+    let mut base: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    if base.is_empty() || base.starts_with(|c: char| c.is_ascii_digit()) {
+        base.insert_str(0, "wall_");
+    }
+    let mut name = base.clone();
+    let mut k = 2;
+    while taken.iter().any(|t| t.eq_ignore_ascii_case(&name)) {
+        name = format!("{base}_{k}");
+        k += 1;
+    }
+    taken.push(name.clone());
+    name
 }
 
 /// Checks the parameters by the crates' own checks (what the pipeline will hand them), each

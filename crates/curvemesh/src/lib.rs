@@ -21,9 +21,10 @@
 //!
 //! Module order, each using only those above it: [`error`], [`observer`], [`builtin`],
 //! [`placement`], [`policy`], [`source`] → [`case`] → [`case3d`] → [`mod@load`], [`airfoil`];
-//! [`estimate`], [`pipeline`] → [`wing`] → [`pipeline3d`]; [`stages`], [`movement::report`] →
-//! [`report`] → [`outputs`], [`quality`]; `meshed` (`Options`, `Meshed`); then the runs
-//! (`mesh2d`, `mesh3d`, [`movement`]) and this root (`mesh`, `mesh_into`, the re-exports).
+//! [`estimate`], [`pipeline`] → [`wing`], `groups3d` → [`pipeline3d`]; [`stages`],
+//! [`movement::report`] → [`report`] → [`outputs`], [`quality`]; `meshed` (`Options`,
+//! `Meshed`); then the runs (`mesh2d`, `mesh3d`, [`movement`]) and this root (`mesh`,
+//! `mesh_into`, the re-exports).
 
 pub mod airfoil;
 pub mod builtin;
@@ -31,6 +32,7 @@ pub mod case;
 pub mod case3d;
 pub mod error;
 pub mod estimate;
+mod groups3d;
 pub mod load;
 mod mesh2d;
 mod mesh3d;

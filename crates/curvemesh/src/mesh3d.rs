@@ -52,7 +52,9 @@ pub(crate) fn mesh(
     // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
     let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
         let front = pipeline3d::front_measures(&surface, &grown);
-        let (mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
+        let (mut mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
+        // the wall's facets in their surface patches' groups (the wing's tips apart)
+        crate::groups3d::wall_groups(&surface, &mut mesh)?;
         Ok::<_, crate::error::Error>((mesh, flagged, front))
     })?;
     let mut measures = timed(r, o, ("measure", "measures"), |_| {

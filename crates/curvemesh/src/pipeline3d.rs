@@ -58,9 +58,10 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
         ),
         SurfaceSource::Step { refinement } => (Surface::step(*refinement), TrueShape::Flat),
         SurfaceSource::File(path) => {
-            let (nodes, tris) = mesh_io::stl::read_surface(path)
+            // a patch per group of the file: STL solids, `.msh` physical surfaces
+            let read = mesh_io::stl::read_surface_grouped(path)
                 .with_context(|| format!("{}: [surface] file", case.origin))?;
-            (Surface::from_triangles(nodes, &tris), TrueShape::Flat)
+            (crate::groups3d::surface_of_file(read), TrueShape::Flat)
         }
         SurfaceSource::Wing {
             case: section,

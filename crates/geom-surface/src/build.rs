@@ -7,7 +7,7 @@ use crate::{Facet, Surface};
 impl Surface {
     /// A sphere of radius `radius` centred at the origin: an icosahedron whose triangles are
     /// split in four `refinement` times, every node projected onto the sphere
-    /// (20·4^refinement triangles). One wall patch `sphere`.
+    /// (20·4^refinement triangles). One wall patch `wall` (its boundary group).
     pub fn sphere(radius: f64, refinement: u32) -> Surface {
         let t = (1.0 + 5f64.sqrt()) / 2.0;
         let mut nodes: Vec<[f64; 3]> = [
@@ -70,20 +70,20 @@ impl Surface {
             *p = p.map(|x| x * radius / l);
         }
         let facets = tris.iter().map(|t| Facet::tri(t[0], t[1], t[2])).collect();
-        Surface::single_patch(nodes, facets, "sphere")
+        Surface::single_patch(nodes, facets, "wall")
     }
 
     /// A cube of side `size`, corner at the origin, each face an `n`×`n` grid of quads (or
     /// of triangles, each quad split along a diagonal, when `triangles`). Sharp edges and
-    /// corners. One wall patch `cube`.
+    /// corners. One wall patch `wall`.
     pub fn cube(size: f64, n: usize, triangles: bool) -> Surface {
         let n = n.max(1);
-        voxel_surface([n, n, n], size / n as f64, |_| true, triangles, "cube")
+        voxel_surface([n, n, n], size / n as f64, |_| true, triangles, "wall")
     }
 
     /// The step: a 1×1×0.5 block (corner at the origin) with a 0.4×0.4×0.5 tower centred on
     /// its top, so the surface has 90° concave edges where the tower meets the block; quads
-    /// of side 0.1 / `refine`. One wall patch `step`.
+    /// of side 0.1 / `refine`. One wall patch `wall`.
     pub fn step(refine: usize) -> Surface {
         let r = refine.max(1);
         let cells = [10 * r, 10 * r, 10 * r];
@@ -92,7 +92,7 @@ impl Surface {
             0.1 / r as f64,
             |[i, j, k]| k < 5 * r || ((3 * r..7 * r).contains(&i) && (3 * r..7 * r).contains(&j)),
             false,
-            "step",
+            "wall",
         )
     }
 

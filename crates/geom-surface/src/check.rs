@@ -1,11 +1,14 @@
 //! The checks a surface must pass before it is meshed, each failure a one-line error naming
-//! the first bad node, facet or edge.
+//! the first bad node, facet, edge or body (`bodies`: the bodies of a surface of several
+//! must each face out and lie side by side, none inside another).
 
 use geom_predicates::{Aabb, orient3d, overlapping_pairs, segment_meets_triangle, triangles_meet};
 
 use rayon::prelude::*;
 
 use crate::{Facet, Surface, cross, dot, norm, sub};
+
+mod bodies;
 
 /// What is wrong with a surface (the first problem found).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -70,6 +73,39 @@ pub enum SurfaceError {
         /// The signed enclosed volume.
         volume: f64,
     },
+    /// One body (connected component) of several encloses a volume that is not positive:
+    /// its facets face into it. Bodies are numbered from 1 in the order of their first facet.
+    #[error(
+        "the surface's body {body} (group {group:?}, facet {facet}) is inverted: it encloses a volume of {volume:e} (facets must be counter-clockwise seen from the fluid)"
+    )]
+    InvertedBody {
+        /// The body's number, from 1.
+        body: usize,
+        /// Its first facet.
+        facet: usize,
+        /// That facet's patch.
+        group: String,
+        /// The signed volume it encloses.
+        volume: f64,
+    },
+    /// A body lies inside another: the layers would grow inside a solid.
+    #[error(
+        "the surface's body {body} (group {group:?}, facet {facet}) lies inside body {outer} (group {outer_group:?}, facet {outer_facet}): bodies must lie side by side"
+    )]
+    NestedBody {
+        /// The inner body's number, from 1.
+        body: usize,
+        /// Its first facet.
+        facet: usize,
+        /// That facet's patch.
+        group: String,
+        /// The outer body's number.
+        outer: usize,
+        /// Its first facet.
+        outer_facet: usize,
+        /// That facet's patch.
+        outer_group: String,
+    },
     /// Two facets cross or touch away from their shared nodes.
     #[error("the surface intersects itself: facets {facet} and {other} meet")]
     SelfIntersecting {
@@ -82,8 +118,9 @@ pub enum SurfaceError {
 
 impl Surface {
     /// Checks that the surface can be meshed: finite nodes, valid facets, closed, manifold
-    /// (each edge in exactly two facets), consistently oriented, positive enclosed volume,
-    /// not self-intersecting. Returns the first problem.
+    /// (each edge in exactly two facets), consistently oriented, positive enclosed volume
+    /// (of each body, when there are several), not self-intersecting, no body inside another.
+    /// Returns the first problem.
     pub fn check(&self) -> Result<(), SurfaceError> {
         if self.facets.is_empty() {
             return Err(SurfaceError::Empty);
@@ -101,10 +138,45 @@ impl Surface {
         if volume.is_nan() || volume <= 0.0 {
             return Err(SurfaceError::Inverted { volume });
         }
-        match first_self_intersection(&self.nodes, &self.facets) {
-            Some((facet, other)) => Err(SurfaceError::SelfIntersecting { facet, other }),
-            None => Ok(()),
+        let bodies = bodies::bodies(self);
+        if bodies.len() > 1 {
+            for (i, b) in bodies.iter().enumerate() {
+                let volume = bodies::volume(self, b);
+                if volume.is_nan() || volume <= 0.0 {
+                    let (body, facet, group) = self.body_at(i, b);
+                    return Err(SurfaceError::InvertedBody {
+                        body,
+                        facet,
+                        group,
+                        volume,
+                    });
+                }
+            }
         }
+        if let Some((facet, other)) = first_self_intersection(&self.nodes, &self.facets) {
+            return Err(SurfaceError::SelfIntersecting { facet, other });
+        }
+        // the bodies do not meet now, so one node of a body tells where all of it is
+        let Some((i, j)) = bodies::first_nested(self, &bodies) else {
+            return Ok(());
+        };
+        let (body, facet, group) = self.body_at(i, &bodies[i]);
+        let (outer, outer_facet, outer_group) = self.body_at(j, &bodies[j]);
+        Err(SurfaceError::NestedBody {
+            body,
+            facet,
+            group,
+            outer,
+            outer_facet,
+            outer_group,
+        })
+    }
+
+    /// How errors name body `i`: its number from 1, its first facet, that facet's patch.
+    fn body_at(&self, i: usize, body: &bodies::Body) -> (usize, usize, String) {
+        let facet = body.facets[0] as usize;
+        let group = self.patches[self.facet_patch[facet] as usize].name.clone();
+        (i + 1, facet, group)
     }
 
     fn check_facets(&self) -> Result<(), SurfaceError> {

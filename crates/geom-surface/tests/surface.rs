@@ -137,3 +137,107 @@ fn a_folded_surface_intersects_itself() {
         Err(SurfaceError::SelfIntersecting { .. }) | Err(SurfaceError::Inverted { .. })
     ));
 }
+
+/// `a` and `b` (moved by `shift` and scaled by `scale` about the origin first) as one
+/// surface of two bodies, `b`'s patches after `a`'s.
+fn two_bodies(a: &Surface, b: &Surface, scale: f64, shift: [f64; 3]) -> Surface {
+    let mut s = a.clone();
+    let (n, p) = (a.nodes.len() as u32, a.patches.len() as u32);
+    s.nodes.extend(
+        b.nodes
+            .iter()
+            .map(|q| std::array::from_fn(|d| scale * q[d] + shift[d])),
+    );
+    s.facets.extend(b.facets.iter().map(|f| {
+        let mut k = f.0;
+        k.iter_mut()
+            .filter(|v| **v != geom_surface::NO_NODE)
+            .for_each(|v| *v += n);
+        Facet(k)
+    }));
+    s.facet_patch.extend(b.facet_patch.iter().map(|&q| q + p));
+    s.patches.extend(b.patches.iter().cloned());
+    s
+}
+
+#[test]
+fn a_body_inside_another_is_named_and_bodies_side_by_side_pass() {
+    let sphere = Surface::sphere(1.0, 2);
+    let mut inner = Surface::sphere(1.0, 1);
+    inner.patches[0].name = "inner".into();
+    let nested = two_bodies(&sphere, &inner, 0.5, [0.1, 0.0, 0.0]);
+    let e = nested.check().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "the surface's body 2 (group \"inner\", facet 320) lies inside body 1 (group \"wall\", \
+         facet 0): bodies must lie side by side"
+    );
+    // the outer body listed second: the same two named the other way round
+    let nested = two_bodies(&inner, &sphere, 2.0, [0.0; 3]);
+    assert!(matches!(
+        nested.check(),
+        Err(SurfaceError::NestedBody {
+            body: 1,
+            outer: 2,
+            ..
+        })
+    ));
+    // a cube of quads inside a cube of quads
+    let cubes = two_bodies(
+        &Surface::cube(1.0, 2, false),
+        &Surface::cube(1.0, 1, false),
+        0.25,
+        [0.3, 0.4, 0.5],
+    );
+    assert_error(&cubes, |e| matches!(e, SurfaceError::NestedBody { .. }));
+    // side by side, and one in the other's bounding box but outside it (a corner's notch)
+    let apart = two_bodies(&sphere, &inner, 0.5, [2.0, 0.0, 0.0]);
+    assert_eq!(apart.check(), Ok(()));
+    let step = Surface::step(1);
+    let notch = two_bodies(&step, &Surface::cube(1.0, 1, true), 0.2, [0.05, 0.05, 0.75]);
+    assert_eq!(notch.check(), Ok(()));
+}
+
+#[test]
+fn an_inverted_body_beside_a_larger_one_is_named() {
+    let sphere = Surface::sphere(1.0, 2);
+    let mut small = Surface::sphere(1.0, 1);
+    small.facets.iter_mut().for_each(|f| f.0.swap(0, 1));
+    let s = two_bodies(&sphere, &small, 0.3, [3.0, 0.0, 0.0]);
+    assert_error(&s, |e| {
+        matches!(
+            e,
+            SurfaceError::InvertedBody {
+                body: 2,
+                facet: 320,
+                ..
+            }
+        )
+    });
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Two spheres: refused when the smaller lies inside the larger, accepted when apart.
+    #[test]
+    fn spheres_are_nested_or_apart(
+        r in 0.05f64..0.6,
+        dir in proptest::array::uniform3(-1.0f64..1.0),
+        reach in 0.0f64..1.0,
+        inside: bool,
+    ) {
+        let l = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-3);
+        // inside: the centre at most 0.9 - r from the origin (the facets' inradius is 0.95);
+        // apart: at least 1 + r + 0.05
+        let d = if inside { reach * (0.9 - r).max(0.0) } else { 1.05 + r + reach };
+        let shift = dir.map(|x| x / l * d);
+        let s = two_bodies(&Surface::sphere(1.0, 2), &Surface::sphere(1.0, 1), r, shift);
+        let got = s.check();
+        if inside {
+            prop_assert!(matches!(got, Err(SurfaceError::NestedBody { body: 2, outer: 1, .. })), "{got:?}");
+        } else {
+            prop_assert_eq!(got, Ok(()));
+        }
+    }
+}

@@ -49,6 +49,25 @@ pub enum IoError {
         path: PathBuf,
     },
 
+    /// A surface to be read has an extension no surface reader knows.
+    /// Fix: give an STL (`.stl`, ASCII or binary) or a Gmsh `.msh` of triangles.
+    #[error("{path}: unknown surface file extension (expected .stl or .msh)", path = path.display())]
+    UnknownSurfaceExtension {
+        /// The path given.
+        path: PathBuf,
+    },
+
+    /// A surface read from a file where no line or byte names the fault (a `.msh` surface):
+    /// a degenerate or non-finite triangle, no triangle at all. Fix: the message names the
+    /// triangle and what is wrong with it.
+    #[error("{path}: {message}", path = path.display())]
+    BadSurface {
+        /// The file read.
+        path: PathBuf,
+        /// What is wrong, and where.
+        message: String,
+    },
+
     /// A node to be written has a NaN or infinite coordinate; nothing was written.
     /// Fix: the stage that produced the mesh is at fault (run `mesh_model::validate`).
     #[error("{path}: node {node} has a non-finite coordinate {coords:?}; nothing written", path = path.display())]

@@ -25,7 +25,8 @@ use crate::IoError;
 ///   one physical group. Its role: `wall` or `farfield` when the group is so named (case
 ///   ignored); else the role the `$MeshIoPatches` section this crate writes gives it; else
 ///   (a group named after a body, `slat`, in a file without that section) a wall. Its name
-///   comes from that section, or else is the group's name.
+///   comes from that section, or else is the group's name. In a surface mesh an entity may
+///   be in no physical group (as Gmsh saves a mesh without any): a wall named `wall`.
 /// - Nodes are all nodes of the file, in the order of their tags. The order of the mesh is
 ///   the highest order of its cells (of its facets for a surface mesh).
 ///
@@ -661,11 +662,12 @@ fn node_table(
 }
 
 /// The boundary patches: the entities holding facets and those named in `$MeshIoPatches`,
-/// each with its name and role (from its one physical group), and the entity → patch map.
+/// each with its name and role (from its one physical group; in a surface mesh, an entity in
+/// none is a wall named `wall`), and the entity → patch map.
 fn patches_of(
     file: &RawFile,
     facet_elems: &[&RawElement],
-    fd: u8,
+    (fd, surface): (u8, bool),
     cur: &Cursor<'_>,
 ) -> Result<(Vec<Patch>, HashMap<i64, u32>), IoError> {
     let mut patch_entities: BTreeSet<i64> = facet_elems.iter().map(|e| e.entity).collect();
@@ -700,6 +702,8 @@ fn patches_of(
             // a group named after its body (`slat`): the role written beside the patch name,
             // else (a file without our section) a wall
             0 if groups.len() == 1 => file.patch_roles.get(&entity).copied().or(Some(Role::Wall)),
+            // a surface saved without physical groups (Gmsh's default): a wall to mesh around
+            0 if groups.is_empty() && surface => Some(Role::Wall),
             _ => None,
         }
         .ok_or_else(|| {
@@ -772,7 +776,8 @@ fn assemble(mut file: RawFile, cur: &Cursor<'_>) -> Result<Mesh, IoError> {
         .collect();
     facet_elems.sort_by_key(|e| e.tag);
 
-    let (patches, patch_of_entity) = patches_of(&file, &facet_elems, facet_dim, cur)?;
+    let surface = cell_dim.is_none();
+    let (patches, patch_of_entity) = patches_of(&file, &facet_elems, (facet_dim, surface), cur)?;
 
     let mut cells = Cells::with_capacity(cell_elems.len(), 0);
     for e in &cell_elems {
