@@ -2,7 +2,8 @@
 # The project's test command (README): installs the independent checkers (Gmsh's and VTK's
 # Python packages, PyFR, and the system libraries they load), runs every Rust test (doctests
 # included) and the standalone example project (examples/standalone), then has Gmsh, VTK and
-# PyFR read the meshes our pipeline writes for every built-in case at orders 1-3.
+# PyFR read the meshes our pipeline writes for every built-in case at orders 1-3, and builds and
+# tests the Python package (python/test.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,3 +27,6 @@ CARGO_TARGET_DIR="$PWD/target" cargo run --locked --quiet \
 
 echo "== end-to-end: Gmsh, VTK and PyFR read what we write"
 bash tests/python/e2e.sh
+
+echo "== python: the Python package built into .venv-python/ and tested (python/test.sh)"
+bash python/test.sh

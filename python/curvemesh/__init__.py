@@ -169,8 +169,6 @@ def load(case: Union[Case, PathLike, Mapping[str, Any], Sequence[PathLike]], *,
             native = _curvemesh.airfoil_case([spec], **airfoil)
             airfoil = {}
         elif spec.lower().endswith(".stl"):
-            if not os.path.isfile(spec):
-                raise FileNotFoundError(f"{spec}: no such file")
             stem = os.path.splitext(os.path.basename(spec))[0]
             document = {"name": stem, "dimension": 3,
                         "surface": {"file": os.path.abspath(spec)}}

@@ -691,6 +691,14 @@ fn toml_of_json(json: &str) -> PyResult<String> {
     toml::to_string(&value).map_err(|e| PyValueError::new_err(format!("not TOML: {e}")))
 }
 
+/// Panics inside a run, for the tests: the panic must come out as `RuntimeError`.
+#[pyfunction]
+fn _test_panic(py: Python<'_>) -> PyResult<()> {
+    run(py, Some(1), None, |_| -> curvemesh::Result<()> {
+        panic!("a panic raised on purpose by curvemesh._curvemesh._test_panic")
+    })
+}
+
 /// Whether this native module was built with debug assertions (a development build).
 #[pyfunction]
 fn debug_build() -> bool {
@@ -711,6 +719,7 @@ fn _curvemesh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_msh, m)?)?;
     m.add_function(wrap_pyfunction!(toml_of_json, m)?)?;
     m.add_function(wrap_pyfunction!(debug_build, m)?)?;
+    m.add_function(wrap_pyfunction!(_test_panic, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

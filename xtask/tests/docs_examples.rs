@@ -24,6 +24,10 @@ const SKIPPED: &[(&str, &str)] = &[
     ),
     ("cargo install", "installs into the user's ~/.cargo/bin"),
     (
+        "python3 -m venv",
+        "builds the Python package into a virtual environment; python/test.sh tests it",
+    ),
+    (
         "cargo xtask figures",
         "rewrites docs/figures; run by figures_match_the_docs",
     ),
