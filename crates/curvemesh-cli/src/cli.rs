@@ -103,16 +103,16 @@ pub struct MoveArgs {
     #[arg(long, value_enum, default_value_t = MoveMethod::Springs)]
     pub method: MoveMethod,
 
-    /// The smooth spring mover: no polish of the worst cells, then the shape balance by
-    /// Newton's method, so that the moved mesh is a smooth function of the motion (a little
-    /// lower worst-cell ratio on large rotations). Implied by `--sensitivities`.
-    #[arg(long)]
+    /// Ask for a smooth function of the motion: the spring mover always is (its shape
+    /// balance converged by Newton's method); refused with `--method idw|rbf`. Kept for
+    /// scripts written when it was an option.
+    #[arg(long, hide = true)]
     pub smooth: bool,
 
     /// Also write the mesh sensitivities to this CSV file: every node of the written mesh
     /// (linear and high-order) with its derivative with respect to each design variable of
     /// the motion (each moved loop's rotation, translation x and y, scale, and each bump's
-    /// amplitude), from the linearised balance of the smooth mover.
+    /// amplitude), from the linearised balance of the spring mover.
     #[arg(long, value_name = "FILE.csv")]
     pub sensitivities: Option<PathBuf>,
 

@@ -30,10 +30,6 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
     };
     for (name, method) in [
         ("springs", Method::Springs(SpringMoveParams::default())),
-        (
-            "springs smooth",
-            Method::Springs(SpringMoveParams::smooth()),
-        ),
         ("idw", Method::Idw(IdwParams::default())),
         ("rbf", Method::Rbf(rbf)),
     ] {
@@ -41,8 +37,8 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
             b.iter(|| move_layered(&layered, &boundary, &method).expect("moves"))
         });
     }
-    // the sensitivities at the smooth balance: the boundary nodes held, the others respond
-    let smooth = Method::Springs(SpringMoveParams::smooth());
+    // the sensitivities at the spring mover's balance: the boundary nodes held, the others respond
+    let smooth = Method::Springs(SpringMoveParams::default());
     let x = move_layered(&layered, &boundary, &smooth)
         .expect("moves")
         .mesh;
@@ -52,7 +48,7 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
         .nodes
         .iter()
         .for_each(|&k| fixed[k as usize] = true);
-    let field = ShapeField::of(&layered, SpringMoveParams::smooth().shape).expect("a field");
+    let field = ShapeField::of(&layered, SpringMoveParams::default().shape).expect("a field");
     group.bench_function("sensitivities: linearise", |b| {
         b.iter(|| field.linearise(&x, &fixed).expect("stable"))
     });

@@ -128,8 +128,11 @@ const SKEW_STIFFENING: f64 = 30.0;
 /// The most a cell is stiffened for its skewness (the Newton matrix stays well conditioned).
 const MAX_STIFFENING: f64 = 1e3;
 
-/// Each cell's weight in the balance: its area over the square of its distance to the
-/// nearest wall (to the nearest boundary when there is no wall), stiffened by its skewness.
+/// The power of the wall distance a cell's weight is divided by (below).
+const DISTANCE_POWER: f64 = 1.5;
+
+/// Each cell's weight in the balance: its area over its distance to the nearest wall (to the
+/// nearest boundary when there is no wall) to the power 1.5, stiffened by its skewness.
 ///
 /// Why: a body turned inside a fixed far field twists the mesh between them, and where the
 /// balance puts the twist depends on the weights. With equal weights it goes where cells are
@@ -137,7 +140,14 @@ const MAX_STIFFENING: f64 = 1e3;
 /// first layers, crushed). Area over distance² gives every ring about the body the same
 /// weight per unit of log-distance, which for a twist spreads the shear evenly in
 /// log-distance — the smallest largest shear — and makes the thin wall cells stiff (their
-/// weight is about their aspect ratio), so the layers turn with their wall.
+/// weight is about their aspect ratio), so the layers turn with their wall. But a flap or a
+/// slat deflected beside a fixed element squeezes the gap between them, and there area
+/// over distance² leaves the squeeze to the gap's larger middle cells: power 1.5 spreads it.
+/// Measured at P3 by the four measures of issue 43 (lin / sj / sicn / edge, worst cell
+/// ratios), power 2 → 1.5: the 30P30N flap +10° 0.84/0.83/0.71/0.76 → 0.86/0.85/0.72/0.78,
+/// its slat 10° 0.88/0.82/0.82/0.82 → 0.89/0.83/0.85/0.86, the NACA0012 pitched 90°
+/// 0.77/0.77/0.74/0.60 → 0.74/0.76/0.74/0.63 (power 1: the flap 0.89/0.86/0.74/0.81 but
+/// the pitch 0.66/0.64/0.59/0.67; power 0 breaks down: 0.31 on the flap).
 ///
 /// The skewness: a balance minimises a sum, and any smooth energy is quadratic in a small
 /// strain, so a few cells may take a few per cent of it; a skewed cell's scaled Jacobian
@@ -200,14 +210,14 @@ fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
             let d = distance(centre).max(0.25 * area.abs().sqrt());
             let pts: Vec<[f64; 2]> = c.nodes.iter().map(|&k| rest[k as usize]).collect();
             let sj = crate::quality::scaled_jacobian(&pts).max(f64::MIN_POSITIVE);
-            area.abs() / (d * d) * sj.powf(-SKEW_STIFFENING).min(MAX_STIFFENING)
+            area.abs() / d.powf(DISTANCE_POWER) * sj.powf(-SKEW_STIFFENING).min(MAX_STIFFENING)
         })
         .collect()
 }
 
 /// How much an extrusion edge's length counts against its cells' shapes: its spring's weight
-/// over the sum of the weights of the (one or two) cells beside it.
-const LENGTH_STIFFNESS: f64 = 40.0;
+/// over the sum of the weights of the (one or two) cells beside it (why 150: below).
+const LENGTH_STIFFNESS: f64 = 150.0;
 /// The layers whose extrusion edges are held (1: the first layer's).
 const LENGTH_LAYERS: u32 = 3;
 
@@ -221,7 +231,9 @@ const LENGTH_LAYERS: u32 = 3;
 /// geometry, as the dissertation's mover does with its extrusion springs. Measured on the
 /// NACA0012 (first-layer height drift, worst-cell ratio): all layers at 4: bumps 8.8 %, 0.983,
 /// 90° 0.723 (from 0.774); the first three layers at 40: bumps 2.0 %, 0.979, ×1.5 and moved
-/// 6.2 % (from 49 %), 0.877, 90° 0.773; at 400: bumps 0.5 %, but ×1.5 no longer converges.
+/// 6.2 % (from 49 %), 0.877, 90° 0.773; at 150 (with the cells' weights over distance^1.5):
+/// bumps under 1 %, ×1.5 1.6 % and 6.7°, the four measures of the 30P30N flap and slat and
+/// the 90° pitch unchanged; at 400: bumps 0.5 %, but ×1.5 no longer converges.
 fn extrusion_springs(
     layered: &LayeredMesh,
     rest: &[[f64; 2]],

@@ -21,6 +21,9 @@ pub struct BoundaryMotion {
     /// The linear part (`scale · rotation`) of the motion of each node's body; the identity
     /// for fixed loops and bumps.
     pub linear: Vec<Mat2>,
+    /// The turn of each node's body, radians in [−π, π] ([`crate::RigidMotion::turn_rad`]);
+    /// 0 for fixed loops and bumps.
+    pub turn: Vec<f64>,
 }
 
 impl BoundaryMotion {
@@ -35,10 +38,12 @@ impl BoundaryMotion {
         nodes.dedup();
         let targets = nodes.iter().map(|&k| mesh.xy(k)).collect();
         let linear = vec![IDENTITY; nodes.len()];
+        let turn = vec![0.0; nodes.len()];
         Ok(BoundaryMotion {
             nodes,
             targets,
             linear,
+            turn,
         })
     }
 }
@@ -146,6 +151,7 @@ pub fn boundary_motion(mesh: &Mesh, motions: &[LoopMotion]) -> Result<BoundaryMo
         nodes: Vec::new(),
         targets: Vec::new(),
         linear: Vec::new(),
+        turn: Vec::new(),
     };
     for ((nodes, l), m) in loops.iter().zip(&resolved) {
         let points = moved_points(l, *m)?;
@@ -153,6 +159,8 @@ pub fn boundary_motion(mesh: &Mesh, motions: &[LoopMotion]) -> Result<BoundaryMo
         out.nodes.extend_from_slice(nodes);
         out.targets.extend_from_slice(&points);
         out.linear.extend(std::iter::repeat_n(linear, nodes.len()));
+        let turn = m.map_or(0.0, |m| m.turn_rad());
+        out.turn.extend(std::iter::repeat_n(turn, nodes.len()));
         moved.push(BoundaryLoop {
             points,
             ..l.clone()

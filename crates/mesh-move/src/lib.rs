@@ -75,7 +75,6 @@ pub mod motion;
 pub mod movers;
 mod outcome;
 mod params;
-mod polish;
 pub mod quality;
 pub mod springs;
 

@@ -81,6 +81,20 @@ impl RigidMotion {
         self.rotate_deg.to_radians()
     }
 
+    /// The turn of the body, radians, in [−π, π]: the rotation reduced by whole turns, with
+    /// ±180° kept as given (a rotation by 540° turns the body as one by 180° does). The movers
+    /// read a turn of ±π from this, never from the moved positions, whose angle is on the
+    /// branch cut of `atan2` (rounding puts one node at +π and its neighbour at −π).
+    pub fn turn_rad(&self) -> f64 {
+        let r = self.rotate_deg.rem_euclid(360.0);
+        let deg = if r > 180.0 || (r == 180.0 && self.rotate_deg < 0.0) {
+            r - 360.0
+        } else {
+            r
+        };
+        deg.to_radians()
+    }
+
     /// The linear part `scale · R(rotate_deg)`.
     pub fn linear(&self) -> Mat2 {
         let (s, c) = sin_cos_deg(self.rotate_deg);
@@ -381,6 +395,11 @@ impl Motion {
     /// body turns and stretches by.
     pub fn linear(&self) -> Mat2 {
         self.rigid.map_or(IDENTITY, |r| r.linear())
+    }
+
+    /// The turn of the rigid motion ([`RigidMotion::turn_rad`]; 0 without one).
+    pub fn turn_rad(&self) -> f64 {
+        self.rigid.map_or(0.0, |r| r.turn_rad())
     }
 
     /// The loop `points` moved (validate first). The bumps need a chord: a loop of fewer than

@@ -117,12 +117,16 @@ pub fn move_mesh(
 pub(crate) fn check_boundary(mesh: &Mesh, b: &BoundaryMotion) -> Result<(), MoveError> {
     check_linear_2d(mesh)?;
     let bad = |what: String| Err(MoveError::BadBoundaryMotion { what });
-    if b.targets.len() != b.nodes.len() || b.linear.len() != b.nodes.len() {
+    if b.targets.len() != b.nodes.len()
+        || b.linear.len() != b.nodes.len()
+        || b.turn.len() != b.nodes.len()
+    {
         return bad(format!(
-            "{} nodes, {} targets, {} linear parts",
+            "{} nodes, {} targets, {} linear parts, {} turns",
             b.nodes.len(),
             b.targets.len(),
-            b.linear.len()
+            b.linear.len(),
+            b.turn.len()
         ));
     }
     let mut seen = vec![false; mesh.nodes.len()];
@@ -138,8 +142,13 @@ pub(crate) fn check_boundary(mesh: &Mesh, b: &BoundaryMotion) -> Result<(), Move
         }
         let t = b.targets[i];
         let m = b.linear[i];
-        if !(t.iter().chain(m.iter().flatten()).all(|v| v.is_finite())) {
-            return bad(format!("node {k}: non-finite target or linear part"));
+        if !(t.iter().chain(m.iter().flatten()).all(|v| v.is_finite()))
+            || b.turn[i].is_nan()
+            || b.turn[i].abs() > std::f64::consts::PI
+        {
+            return bad(format!(
+                "node {k}: non-finite target or linear part, or a turn outside [-pi, pi]"
+            ));
         }
     }
     if let Some(&node) = mesh
@@ -171,6 +180,11 @@ pub(crate) struct Sources {
     pub(crate) m: Vec<Mat2>,
     /// Half the length of the boundary facets at each.
     pub(crate) area: Vec<f64>,
+    /// The turn of each one's body, radians ([`BoundaryMotion::turn`]): the branch its
+    /// rotation angle is read on.
+    pub(crate) turn: Vec<f64>,
+    /// The log of the scale of each one's body (0 for fixed loops and bumps).
+    pub(crate) log_scale: Vec<f64>,
 }
 
 impl Sources {
@@ -195,7 +209,14 @@ impl Sources {
             .iter()
             .map(|l| [[l[0][0] - 1.0, l[0][1]], [l[1][0], l[1][1] - 1.0]])
             .collect();
-        Sources { at, d, m, area }
+        Sources {
+            at,
+            d,
+            m,
+            area,
+            turn: b.turn.clone(),
+            log_scale: b.linear.iter().map(|&l| log_scale(l)).collect(),
+        }
     }
 
     /// What boundary node `i` predicts for the displacement of a node at `x`.
@@ -229,6 +250,12 @@ impl Sources {
             [0.0, 0.0]
         }
     }
+}
+
+/// The log of the scale of a linear part `scale · rotation`.
+pub(crate) fn log_scale(l: Mat2) -> f64 {
+    let det = l[0][0] * l[1][1] - l[0][1] * l[1][0];
+    if det > 0.0 { 0.5 * det.ln() } else { 0.0 }
 }
 
 /// `r^-p` from `r²`, without `powf` for the usual integer exponents.

@@ -56,12 +56,9 @@ pub struct SpringStats {
     pub fill_nodes: usize,
     /// As-rigid-as-possible iterations done.
     pub arap_iterations: usize,
-    /// The fill kept.
+    /// The fill used.
     pub fill: Fill,
-    /// Node moves made by the worst-cell polish.
-    pub polished: usize,
-    /// The shape balance's Newton solve, when its result was kept (always with
-    /// [`crate::SpringMoveParams::newton`], by the worst cell with
-    /// [`crate::SpringMoveParams::balance_below`]).
+    /// The shape balance's Newton solve (`None` when the fill inverted a cell: the balance
+    /// needs an uninverted start, and the move is reported as failed).
     pub newton: Option<NewtonOutcome>,
 }

@@ -56,22 +56,27 @@ pub enum Strategy {
     LayerByLayer,
 }
 
-/// How the nodes outside the kept layers move. The rotation-aware IDW is always computed; a
-/// later candidate replaces it only when its worst scaled-Jacobian ratio over these nodes'
-/// cells is no lower.
+/// How the nodes outside the kept layers are placed before the shape balance: the fill
+/// chosen, then, only while the start inverts a cell, the screw, RBF and IDW fills in turn —
+/// never a choice among candidates by their quality (which would make the start, and so the
+/// balance's basin, jump with the motion). The balance does not depend on where its start
+/// is inside its basin, so the fill matters only for large motions, where a start must not
+/// invert a cell.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Fill {
-    /// Rotation-aware IDW from the region's bounding nodes.
+    /// Rotation-aware IDW from the region's bounding nodes (blends each node's linear map:
+    /// a half turn blends to a collapse).
     Idw,
-    /// Also the screw fill: the bounding nodes' local rigid motions as logarithms in se(2),
-    /// blended by inverse-distance weights, then exponentiated.
-    Screw,
-    /// Also as-rigid-as-possible iterations from the screw fill.
-    Arap,
-    /// Also the global Wendland C2 RBF of the bounding nodes' displacements (the default:
-    /// the best on the NACA0012 pitch; its system may be too ill-conditioned on a mesh with
-    /// very fine walls, as on the 30P30N, and is then passed over).
+    /// The screw fill (the default): the bounding nodes' local similarities as logarithms
+    /// (scale, turn, translation), blended by inverse-distance weights, then exponentiated; each rotation
+    /// angle is read on the branch of its body's turn, so a half turn is a twist, as is
+    /// 179.999°.
     #[default]
+    Screw,
+    /// As-rigid-as-possible iterations from the screw fill.
+    Arap,
+    /// The global Wendland C2 RBF of the bounding nodes' displacements (the screw fill when
+    /// its system is singular).
     Rbf,
 }
 
@@ -88,7 +93,7 @@ pub struct SpringMoveParams {
     pub solver: SolverParams,
     /// All layer nodes together, or layer by layer.
     pub strategy: Strategy,
-    /// How the filled region moves.
+    /// Where the filled region starts.
     pub fill: Fill,
     /// The IDW of the filled region.
     pub idw: IdwParams,
@@ -96,25 +101,16 @@ pub struct SpringMoveParams {
     pub screw_exponent: f64,
     /// Most as-rigid-as-possible iterations.
     pub arap_iterations: usize,
-    /// Passes of each kind of the polish after the fill (worst cells, then open angles:
-    /// the module `polish`; 0: none). Default 50; the smooth
-    /// mover ([`SpringMoveParams::smooth`]) has none (the shape balance follows).
-    pub polish_passes: usize,
     /// A layer node keeps its original layer geometry (predictor and springs) while its
     /// cell below is at least this anisotropic (front spacing over extrusion length) and
     /// its parents do; the nodes above join the filled region. Default 16.
     pub core_aspect: f64,
     /// The last phase: the shape balance ([`crate::balance`]) by Newton's method, which
     /// makes the moved mesh a smooth function of the boundary, the base of the
-    /// sensitivities; `None` (the default) skips it: the mesh is then where the fill and the
-    /// polish leave it, with a better worst cell but not smooth.
-    pub newton: Option<NewtonParams>,
+    /// sensitivities.
+    pub newton: NewtonParams,
     /// The energy density of the shape balance.
     pub shape: ShapeLaw,
-    /// Without `newton`: when the polished mesh's worst-cell ratio is below this, the shape
-    /// balance is also run from the unpolished fill and polished, and the better of the two
-    /// kept (`stats.newton` says the balanced one was). Default 0.8; `None`: never.
-    pub balance_below: Option<f64>,
 }
 
 impl Default for SpringMoveParams {
@@ -135,28 +131,13 @@ impl Default for SpringMoveParams {
                 ..SolverParams::default()
             },
             strategy: Strategy::AllTogether,
-            fill: Fill::Rbf,
+            fill: Fill::Screw,
             idw: IdwParams::default(),
             screw_exponent: 2.0,
             arap_iterations: 30,
-            polish_passes: 50,
             core_aspect: 16.0,
-            newton: None,
+            newton: NewtonParams::default(),
             shape: ShapeLaw::default(),
-            balance_below: Some(0.8),
-        }
-    }
-}
-
-impl SpringMoveParams {
-    /// The smooth mover: no polish, then the shape balance by Newton's method, so that the
-    /// moved mesh is a smooth function of the boundary (for sensitivities and shape
-    /// optimisation).
-    pub fn smooth() -> Self {
-        SpringMoveParams {
-            polish_passes: 0,
-            newton: Some(NewtonParams::default()),
-            ..SpringMoveParams::default()
         }
     }
 }

@@ -19,7 +19,7 @@ pub fn scaled_jacobian(corners: &[[f64; 2]]) -> f64 {
         let (p, a, b) = (corners[i], corners[(i + 1) % n], corners[(i + n - 1) % n]);
         let e1 = [a[0] - p[0], a[1] - p[1]];
         let e2 = [b[0] - p[0], b[1] - p[1]];
-        // one square root, not two `hypot`s: the polish evaluates this millions of times
+        // one square root, not two `hypot`s: the measures evaluate this for every cell
         let norm = ((e1[0] * e1[0] + e1[1] * e1[1]) * (e2[0] * e2[0] + e2[1] * e2[1])).sqrt();
         let v = if norm > 0.0 {
             (e1[0] * e2[1] - e1[1] * e2[0]) / norm

@@ -30,29 +30,26 @@
 //! 5. **Wall cells outside the band** (fill triangles on a wall facet): their other corners
 //!    move rigidly with the facet's nodes and are held, so every first-layer cell keeps its
 //!    shape.
-//! 6. **The rest** (filled region and upper layers), from the nodes that bound it, each with
-//!    its local rigid motion (its turn, taking its original place to its moved one),
-//!    candidates by [`Fill`]: the rotation-aware IDW of [`crate::movers`]; the screw fill
-//!    (each motion's logarithm in se(2), blended by inverse-distance weights and
-//!    exponentiated: a rigid motion stays exact, a rotation becomes a twist about its
-//!    centre); as-rigid-as-possible iterations from it (each cell's best rotation of its
-//!    original edges, then the positions that fit the turned edges best: a
-//!    1/length²-weighted Laplacian solved by Jacobi-preconditioned conjugate gradients); the
-//!    global Wendland C2 RBF of the displacements. The IDW is always computed, and a later
-//!    candidate replaces it only when its worst scaled-Jacobian ratio over these cells is no
-//!    lower, so an ill-conditioned RBF or a folded ARAP is passed over.
+//! 6. **The rest** (filled region and upper layers) starts from the nodes that bound it,
+//!    each with its local rigid motion (its turn, taking its original place to its moved
+//!    one), by one [`Fill`]: by default the screw fill (each motion's logarithm in se(2),
+//!    blended by inverse-distance weights and exponentiated: a rigid motion stays exact, a
+//!    rotation becomes a twist about its centre; each angle read on the branch of its body's
+//!    turn from the motion, so ±180° is a half turn like 179.999°).
+//! 7. **The shape balance** ([`crate::balance`]): every cell held to its original shape,
+//!    balanced by Newton's method with the boundary held. Its result does not depend on the
+//!    start inside its basin, and it is a smooth function of the boundary: no selection
+//!    among candidates and no non-smooth polish, so the sensitivities are its linearisation.
 //!
-//! A motion that moves no boundary node returns the mesh unchanged, to the bit. Angles are
-//! taken in (−180°, 180°]: a body turned by 180° or more is outside what the screw fill
-//! blends correctly.
+//! A motion that moves no boundary node returns the mesh unchanged, to the bit.
 
 use std::collections::HashMap;
 
 use mesh_model::{LayeredMesh, Layering, Mesh, NONE, Role};
 use rayon::prelude::*;
 use springfield::{
-    AngleSpring, ExtrusionSpring, NeighbourSpring, NewtonParams, SpringField2d, SpringSet2d,
-    bisector, solve_model_active,
+    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringSet2d, bisector,
+    solve_model_active,
 };
 
 use crate::MoveError;
@@ -62,7 +59,6 @@ pub use crate::outcome::SpringStats;
 use crate::outcome::{MoveStats, Moved};
 use crate::params::RbfParams;
 pub use crate::params::{Fill, SpringMoveParams, Strategy};
-use crate::quality::scaled_jacobian;
 
 /// `layered` moved by `method` to follow `boundary`: the springs use the layering, IDW and
 /// RBF take the mesh alone ([`move_mesh`]). One entry point for every method.
@@ -103,7 +99,6 @@ fn move_springs(
         ("IDW exponent", p.idw.exponent),
         ("screw exponent", p.screw_exponent),
         ("core aspect", p.core_aspect),
-        ("balance-below ratio", p.balance_below.unwrap_or(1.0)),
     ] {
         if !(value > 0.0 && value.is_finite()) {
             return Err(MoveError::BadParameter { what, value });
@@ -148,69 +143,44 @@ fn move_springs(
             held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
         }
         pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
-        fill(mesh, &old, &mut x, &turn, &held, p, &mut stats);
-        if let Some(newton) = &p.newton {
-            if crate::quality::inverted_cells(&with_nodes(mesh, &x)) > 0 {
-                // the balance needs an uninverted start: the failure is reported as it is
-                return Ok(finish(mesh, boundary, &old, &x, stats));
-            }
-            let field = crate::balance::ShapeField::of(layered, p.shape)?;
-            stats.newton = Some(field.balance(&mut x, &fixed, newton)?);
-        } else if p.polish_passes > 0 {
-            let free: Vec<bool> = held.iter().map(|h| !h).collect();
-            let cells = fill_cells(mesh, &free);
-            let filled = x.clone();
-            stats.polished = crate::polish::polish(&old, &mut x, &cells, &free, p.polish_passes);
-            if let Some(below) = p.balance_below {
-                let all = fill_cells(mesh, &vec![true; old.len()]);
-                let worst = worst_ratio(&old, &x, &all);
-                if worst < below {
-                    balanced_fallback(
-                        layered,
-                        (&old, &mut x),
-                        filled,
-                        (&fixed, &free),
-                        &cells,
-                        p,
-                        &mut stats,
-                    )?;
-                }
+        let reference = reference_turns(&old, boundary);
+        // the balance needs an uninverted start: the chosen fill, then the others in turn
+        // while the start inverts a cell (a choice by validity alone, not by quality: inside
+        // its basin the balance does not depend on its start)
+        let placed = x.clone();
+        let mut order = vec![p.fill];
+        order.extend(
+            [Fill::Screw, Fill::Rbf, Fill::Idw]
+                .into_iter()
+                .filter(|&f| f != p.fill),
+        );
+        for fill_with in order {
+            x.copy_from_slice(&placed);
+            let p = SpringMoveParams {
+                fill: fill_with,
+                ..*p
+            };
+            fill(
+                mesh,
+                &old,
+                &mut x,
+                (&turn, &reference),
+                &held,
+                &p,
+                &mut stats,
+            );
+            if crate::quality::inverted_cells(&with_nodes(mesh, &x)) == 0 {
+                break;
             }
         }
+        if crate::quality::inverted_cells(&with_nodes(mesh, &x)) > 0 {
+            // no start: the failure is reported as it is
+            return Ok(finish(mesh, boundary, &old, &x, stats));
+        }
+        let field = crate::balance::ShapeField::of(layered, p.shape)?;
+        stats.newton = Some(field.balance(&mut x, &fixed, &p.newton)?);
     }
     Ok(finish(mesh, boundary, &old, &x, stats))
-}
-
-/// The large-motion fallback of the default mover: the shape balance ([`crate::balance`])
-/// from the unpolished fill `filled`, then the polish; kept in `x` when its worst-cell ratio
-/// is higher than the polished fill's (on the NACA0012 pitched 90° and the 30P30N turned
-/// ±90°, the balance spreads the turn over the whole fill, where the polish alone stalls on
-/// a plateau of equally bad cells).
-fn balanced_fallback(
-    layered: &LayeredMesh,
-    (old, x): (&[[f64; 2]], &mut [[f64; 2]]),
-    mut y: Vec<[f64; 2]>,
-    (fixed, free): (&[bool], &[bool]),
-    cells: &[Vec<u32>],
-    p: &SpringMoveParams,
-    stats: &mut SpringStats,
-) -> Result<(), MoveError> {
-    let mesh = &layered.mesh;
-    if crate::quality::inverted_cells(&with_nodes(mesh, &y)) > 0 {
-        return Ok(());
-    }
-    let field = crate::balance::ShapeField::of(layered, p.shape)?;
-    let Ok(outcome) = field.balance(&mut y, fixed, &NewtonParams::default()) else {
-        return Ok(());
-    };
-    let polished = crate::polish::polish(old, &mut y, cells, free, p.polish_passes);
-    let all = fill_cells(mesh, &vec![true; old.len()]);
-    if worst_ratio(old, &y, &all) > worst_ratio(old, x, &all) {
-        x.copy_from_slice(&y);
-        stats.polished = polished;
-        stats.newton = Some(outcome);
-    }
-    Ok(())
 }
 
 /// `mesh` with its nodes at `x`.
@@ -652,14 +622,14 @@ fn balance(
     Ok(())
 }
 
-/// The filled region (every node not held): IDW from its bounding nodes, then (with [`Fill::Arap`]) ARAP when it
-/// does not make the fill cells worse.
+/// The filled region (every node not held) placed by the fill `p.fill` from its bounding
+/// nodes.
 #[allow(clippy::too_many_arguments)]
 fn fill(
     mesh: &Mesh,
     old: &[[f64; 2]],
     x: &mut [[f64; 2]],
-    turns: &[[f64; 2]],
+    (turns, reference): (&[[f64; 2]], &[[f64; 2]]),
     held: &[bool],
     p: &SpringMoveParams,
     stats: &mut SpringStats,
@@ -673,56 +643,49 @@ fn fill(
         return;
     }
     let cells = fill_cells(mesh, &free);
-    let sources = fill_sources(old, x, turns, &cells, &free);
-    let moved: Vec<[f64; 2]> = nodes
-        .par_iter()
-        .map(|&k| {
-            let (o, d) = (
-                old[k as usize],
-                sources.idw(old[k as usize], p.idw.exponent),
-            );
-            [o[0] + d[0], o[1] + d[1]]
-        })
-        .collect();
-    for (&k, m) in nodes.iter().zip(moved) {
-        x[k as usize] = m;
-    }
-    stats.fill = Fill::Idw;
-    if p.fill == Fill::Idw {
-        return;
-    }
-    let mut best = worst_ratio(old, x, &cells);
-    let mut keep = |y: &[[f64; 2]], used: Fill, x: &mut [[f64; 2]], stats: &mut SpringStats| {
-        let r = worst_ratio(old, y, &cells);
-        if r >= best {
-            best = r;
-            x.copy_from_slice(y);
-            stats.fill = used;
-        }
-    };
-    let mut y = x.to_vec();
-    screw(old, &mut y, &sources, &nodes, p.screw_exponent);
-    keep(&y, Fill::Screw, x, stats);
-    if p.fill == Fill::Arap {
-        let graph = Graph::new(old, &cells, &free);
-        stats.arap_iterations = arap(old, &mut y, &graph, p.arap_iterations);
-        keep(&y, Fill::Arap, x, stats);
-    }
-    if p.fill == Fill::Rbf {
-        // a singular system leaves the other candidates
-        if let Ok(rbf) = Rbf::fit(mesh, &sources, &RbfParams::default()) {
+    let sources = fill_sources(old, x, turns, reference, &cells, &free);
+    stats.fill = p.fill;
+    match p.fill {
+        Fill::Idw => {
             let moved: Vec<[f64; 2]> = nodes
                 .par_iter()
                 .map(|&k| {
-                    let (o, d) = (old[k as usize], rbf.displacement(old[k as usize]));
+                    let (o, d) = (
+                        old[k as usize],
+                        sources.idw(old[k as usize], p.idw.exponent),
+                    );
                     [o[0] + d[0], o[1] + d[1]]
                 })
                 .collect();
             for (&k, m) in nodes.iter().zip(moved) {
-                y[k as usize] = m;
+                x[k as usize] = m;
             }
-            keep(&y, Fill::Rbf, x, stats);
         }
+        Fill::Screw => screw(old, x, &sources, &nodes, p.screw_exponent),
+        Fill::Arap => {
+            screw(old, x, &sources, &nodes, p.screw_exponent);
+            let graph = Graph::new(old, &cells, &free);
+            stats.arap_iterations = arap(old, x, &graph, p.arap_iterations);
+        }
+        Fill::Rbf => match Rbf::fit(mesh, &sources, &RbfParams::default()) {
+            Ok(rbf) => {
+                let moved: Vec<[f64; 2]> = nodes
+                    .par_iter()
+                    .map(|&k| {
+                        let (o, d) = (old[k as usize], rbf.displacement(old[k as usize]));
+                        [o[0] + d[0], o[1] + d[1]]
+                    })
+                    .collect();
+                for (&k, m) in nodes.iter().zip(moved) {
+                    x[k as usize] = m;
+                }
+            }
+            // a singular system: the screw fill
+            Err(_) => {
+                screw(old, x, &sources, &nodes, p.screw_exponent);
+                stats.fill = Fill::Screw;
+            }
+        },
     }
 }
 
@@ -740,6 +703,7 @@ fn fill_sources(
     old: &[[f64; 2]],
     x: &[[f64; 2]],
     turns: &[[f64; 2]],
+    reference: &[[f64; 2]],
     cells: &[Vec<u32>],
     free: &[bool],
 ) -> Sources {
@@ -766,33 +730,20 @@ fn fill_sources(
         d: Vec::with_capacity(list.len()),
         m: Vec::with_capacity(list.len()),
         area: Vec::with_capacity(list.len()),
+        turn: Vec::with_capacity(list.len()),
+        log_scale: Vec::with_capacity(list.len()),
     };
     for (n, a) in list {
         let k = n as usize;
         let z = turns[k];
+        s.turn.push(reference[k][0]);
+        s.log_scale.push(reference[k][1]);
         s.at.push(old[k]);
         s.d.push([x[k][0] - old[k][0], x[k][1] - old[k][1]]);
         s.m.push([[z[0] - 1.0, -z[1]], [z[1], z[0] - 1.0]]);
         s.area.push(a);
     }
     s
-}
-
-/// The worst ratio of scaled Jacobians (moved / original) over `cells`.
-fn worst_ratio(old: &[[f64; 2]], x: &[[f64; 2]], cells: &[Vec<u32>]) -> f64 {
-    let mut worst = f64::INFINITY;
-    let (mut a, mut b) = (Vec::new(), Vec::new());
-    for k in cells {
-        a.clear();
-        b.clear();
-        a.extend(k.iter().map(|&n| old[n as usize]));
-        b.extend(k.iter().map(|&n| x[n as usize]));
-        let before = scaled_jacobian(&a);
-        if before > 0.0 {
-            worst = worst.min(scaled_jacobian(&b) / before);
-        }
-    }
-    worst
 }
 
 /// The filled region as a graph: its cells' edges weighted by 1/length² (original), the free
@@ -842,71 +793,111 @@ fn mul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
 }
 
-/// `V(θ) = (sin θ + i(1 − cos θ))/θ`, the translation part of the exponential in se(2).
-fn screw_v(theta: f64) -> [f64; 2] {
-    if theta.abs() < 1e-8 {
-        [1.0, 0.5 * theta]
+/// Complex quotient `a / b`.
+fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let n = b[0] * b[0] + b[1] * b[1];
+    mul(a, [b[0] / n, -b[1] / n])
+}
+
+/// `e^a` for a complex `a = σ + iθ`: scaling by `e^σ`, turning by `θ`.
+fn exp(a: [f64; 2]) -> [f64; 2] {
+    let (s, c) = a[1].sin_cos();
+    let r = a[0].exp();
+    [r * c, r * s]
+}
+
+/// `V(a) = (e^a − 1)/a`, the translation part of the exponential of a similarity (a rigid
+/// motion when `σ = 0`).
+fn screw_v(a: [f64; 2]) -> [f64; 2] {
+    if a[0].hypot(a[1]) < 1e-8 {
+        [1.0 + 0.5 * a[0], 0.5 * a[1]]
     } else {
-        [theta.sin() / theta, (1.0 - theta.cos()) / theta]
+        let e = exp(a);
+        div([e[0] - 1.0, e[1]], a)
     }
 }
 
-/// The logarithm (θ, w) in se(2), about `o`, of the rigid motion that turns by `z` and takes
-/// `from` to `to`.
-fn screw_log(o: [f64; 2], z: [f64; 2], from: [f64; 2], to: [f64; 2]) -> [f64; 3] {
-    let theta = z[1].atan2(z[0]);
-    let r = mul(z, [from[0] - o[0], from[1] - o[1]]);
+/// The logarithm `(σ, θ, w)` about `o` of the similarity that scales by `e^σ`, turns by `z`
+/// and takes `from` to `to`. The angle of `z` is read on the branch nearest `reference` (its
+/// body's turn, from its motion): a half turn is then ±π as the motion says, for every node
+/// of the body.
+fn screw_log(
+    o: [f64; 2],
+    (z, reference, sigma): ([f64; 2], f64, f64),
+    from: [f64; 2],
+    to: [f64; 2],
+) -> [f64; 4] {
+    let (s, c) = reference.sin_cos();
+    let relative = mul(z, [c, -s]);
+    let a = [sigma, reference + relative[1].atan2(relative[0])];
+    let r = mul(exp(a), [from[0] - o[0], from[1] - o[1]]);
     let t = [to[0] - o[0] - r[0], to[1] - o[1] - r[1]];
-    let v = screw_v(theta);
-    let n = v[0] * v[0] + v[1] * v[1];
-    let w = mul(t, [v[0] / n, -v[1] / n]);
-    [theta, w[0], w[1]]
+    let w = div(t, screw_v(a));
+    [a[0], a[1], w[0], w[1]]
 }
 
 /// The exponential of the logarithm `log` about `o`, applied to `p`.
-fn screw_exp(o: [f64; 2], log: [f64; 3], p: [f64; 2]) -> [f64; 2] {
-    let z = [log[0].cos(), log[0].sin()];
-    let r = mul(z, [p[0] - o[0], p[1] - o[1]]);
-    let t = mul(screw_v(log[0]), [log[1], log[2]]);
+fn screw_exp(o: [f64; 2], log: [f64; 4], p: [f64; 2]) -> [f64; 2] {
+    let a = [log[0], log[1]];
+    let r = mul(exp(a), [p[0] - o[0], p[1] - o[1]]);
+    let t = mul(screw_v(a), [log[2], log[3]]);
     [o[0] + r[0] + t[0], o[1] + r[1] + t[1]]
 }
 
-/// The screw fill: each source's local rigid motion (its turn, taking its original position
-/// to its current one) as a logarithm (θ, w) in se(2); at each free node the
+/// The screw fill: each source's local similarity (its body's scale, its turn, taking its
+/// original position to its current one) as a logarithm `(σ, θ, w)`; at each free node the
 /// inverse-distance-weighted mean of the sources' logarithms, exponentiated. Blending
-/// logarithms keeps a rigid motion exact and makes a rotation a twist about its centre,
-/// without the shrinking of blended positions; near a wall its nodes dominate, so a node
-/// there moves with the wall's own motion.
+/// logarithms keeps a rigid motion exact and makes a rotation a twist about its centre and a
+/// scaling a graded one, without the shrinking of blended positions; near a wall its nodes
+/// dominate, so a node there moves with the wall's own motion.
 fn screw(old: &[[f64; 2]], x: &mut [[f64; 2]], sources: &Sources, nodes: &[u32], exponent: f64) {
     let o = centre(old);
-    let logs: Vec<[f64; 3]> = (0..sources.at.len())
+    let logs: Vec<[f64; 4]> = (0..sources.at.len())
         .map(|i| {
             let m = sources.m[i];
             let z = [m[0][0] + 1.0, m[1][0]];
             let b = sources.at[i];
             let to = [b[0] + sources.d[i][0], b[1] + sources.d[i][1]];
-            screw_log(o, z, b, to)
+            screw_log(o, (z, sources.turn[i], sources.log_scale[i]), b, to)
         })
         .collect();
     let moved: Vec<[f64; 2]> = nodes
         .par_iter()
         .map(|&k| {
             let p = old[k as usize];
-            let (mut sum, mut total) = ([0.0; 3], 0.0);
+            let (mut sum, mut total) = ([0.0; 4], 0.0);
             for (i, b) in sources.at.iter().enumerate() {
                 let r2 = (p[0] - b[0]).powi(2) + (p[1] - b[1]).powi(2);
                 let w = sources.area[i] * r2.powf(-0.5 * exponent);
-                for c in 0..3 {
+                for c in 0..4 {
                     sum[c] += w * logs[i][c];
                 }
                 total += w;
             }
-            screw_exp(o, [sum[0] / total, sum[1] / total, sum[2] / total], p)
+            screw_exp(o, sum.map(|v| v / total), p)
         })
         .collect();
     for (&k, m) in nodes.iter().zip(moved) {
         x[k as usize] = m;
     }
+}
+
+/// Each node's reference turn and log-scale: those of the nearest boundary node's body
+/// ([`BoundaryMotion::turn`], [`BoundaryMotion::linear`]); the branch on which its rotation
+/// angle is read, and the scale of its local similarity.
+fn reference_turns(old: &[[f64; 2]], boundary: &BoundaryMotion) -> Vec<[f64; 2]> {
+    let points: Vec<[f64; 2]> = boundary.nodes.iter().map(|&k| old[k as usize]).collect();
+    let tree = geom_predicates::PointTree::new(&points);
+    old.iter()
+        .map(|&p| {
+            tree.nearest(p).map_or([0.0, 0.0], |(i, _)| {
+                [
+                    boundary.turn[i],
+                    crate::movers::log_scale(boundary.linear[i]),
+                ]
+            })
+        })
+        .collect()
 }
 
 /// The centre of the bounding box of `points`.

@@ -203,6 +203,7 @@ fn the_movers_refuse_what_they_cannot_move_in_one_line() {
     let lost = short.nodes.pop().unwrap();
     short.targets.pop();
     short.linear.pop();
+    short.turn.pop();
     let e = move_mesh(mesh, &short, &idw).unwrap_err().to_string();
     assert_eq!(
         e,

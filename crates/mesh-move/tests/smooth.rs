@@ -26,7 +26,7 @@ fn moved(motions: &[LoopMotion]) -> Vec<[f64; 2]> {
     let m = move_layered(
         mesh,
         &boundary,
-        &Method::Springs(SpringMoveParams::smooth()),
+        &Method::Springs(SpringMoveParams::default()),
     )
     .expect("moves");
     assert_eq!(m.stats.inverted_cells, 0);
@@ -74,7 +74,7 @@ fn sensitivity(motion: &dyn Fn(f64) -> Vec<LoopMotion>, alpha: f64) -> Vec<[f64;
         d_boundary[k as usize] = [(tp[0] - tm[0]) / (2.0 * h), (tp[1] - tm[1]) / (2.0 * h)];
         fixed[k as usize] = true;
     }
-    let field = ShapeField::of(mesh, SpringMoveParams::smooth().shape).unwrap();
+    let field = ShapeField::of(mesh, SpringMoveParams::default().shape).unwrap();
     field.linearise(&x, &fixed).unwrap().respond(&d_boundary)
 }
 

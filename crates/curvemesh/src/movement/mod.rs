@@ -92,8 +92,9 @@ pub struct MoveOptions {
     pub kernel: RbfKernel,
     /// [`RbfKernel::WendlandC2`]'s support radius (default: the bounding-box diagonal).
     pub radius: Option<f64>,
-    /// The smooth spring mover: the shape balance converged by Newton's method, so that the
-    /// moved mesh is a smooth function of the motion (implied by `sensitivities`).
+    /// Asks for a mover whose mesh is a smooth function of the motion: the spring mover,
+    /// which always is (its shape balance converged by Newton's method); refused with IDW
+    /// and RBF, as `sensitivities` is.
     pub smooth: bool,
     /// Also compute the mesh sensitivities ([`Moved::sensitivities`]).
     pub sensitivities: bool,
@@ -129,9 +130,6 @@ impl MoveOptions {
     /// The mover of `mesh_move`.
     fn method(&self) -> Method {
         match self.mover {
-            Mover::Springs if self.smooth || self.sensitivities => {
-                Method::Springs(SpringMoveParams::smooth())
-            }
             Mover::Springs => Method::Springs(SpringMoveParams::default()),
             Mover::Idw => Method::Idw(IdwParams::default()),
             Mover::Rbf => Method::Rbf(RbfParams {
@@ -314,7 +312,7 @@ fn balance_at(
     moved: &LayeredMesh,
     boundary: &BoundaryMotion,
 ) -> Result<mesh_move::Sensitivity> {
-    let field = mesh_move::ShapeField::of(original, SpringMoveParams::smooth().shape)
+    let field = mesh_move::ShapeField::of(original, SpringMoveParams::default().shape)
         .map_err(|e| input_error!("sensitivities: {e}"))?;
     let x: Vec<[f64; 2]> = (0..moved.mesh.nodes.len() as u32)
         .map(|k| moved.mesh.xy(k))

@@ -26,6 +26,8 @@ pub struct MovedGeometry {
     pub curves: Vec<ClosedCurve>,
     /// Each loop's linear part.
     linear: Vec<Mat2>,
+    /// Each loop's turn, radians in [−π, π].
+    turn: Vec<f64>,
 }
 
 /// The motions checked against the case (values, names) and the moved loops checked (none
@@ -44,10 +46,14 @@ pub fn moved_geometry(case: &Case, motions: &[LoopMotion]) -> Result<MovedGeomet
         .collect();
     let moved = move_loops(&loops, motions).map_err(bad)?;
     let names: Vec<(&str, Role)> = loops.iter().map(|l| (l.name.as_str(), l.role)).collect();
-    let linear = resolve_motions(&names, motions)
-        .map_err(bad)?
-        .into_iter()
+    let resolved = resolve_motions(&names, motions).map_err(bad)?;
+    let linear = resolved
+        .iter()
         .map(|m| m.map_or(IDENTITY, Motion::linear))
+        .collect();
+    let turn = resolved
+        .iter()
+        .map(|m| m.map_or(0.0, Motion::turn_rad))
         .collect();
     let mut moved_case = case.clone();
     for (input, l) in moved_case.loops.iter_mut().zip(moved) {
@@ -67,6 +73,7 @@ pub fn moved_geometry(case: &Case, motions: &[LoopMotion]) -> Result<MovedGeomet
         case: moved_case,
         curves,
         linear,
+        turn,
     })
 }
 
@@ -81,13 +88,16 @@ pub fn boundary_targets(
         nodes: Vec::new(),
         targets: Vec::new(),
         linear: Vec::new(),
+        turn: Vec::new(),
     };
-    for ((curve, bn), linear) in moved.curves.iter().zip(nodes).zip(&moved.linear) {
+    let loops = moved.curves.iter().zip(nodes);
+    for (((curve, bn), linear), turn) in loops.zip(&moved.linear).zip(&moved.turn) {
         for &t in &bn.t {
             let p = curve.point(t);
             out.nodes.push(out.nodes.len() as u32);
             out.targets.push([p.x, p.y]);
             out.linear.push(*linear);
+            out.turn.push(*turn);
         }
     }
     ensure!(

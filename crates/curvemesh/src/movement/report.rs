@@ -52,9 +52,7 @@ pub struct SpringsReport {
     pub converged: bool,
     /// The last solve's largest node move over the node's extrusion length.
     pub residual: f64,
-    /// Node moves made by the worst-cell polish.
-    pub polished: usize,
-    /// `--smooth`: the shape balance by Newton's method.
+    /// The shape balance by Newton's method (absent when the fill inverted a cell).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub newton: Option<NewtonReport>,
 }
@@ -82,7 +80,6 @@ fn springs_report(s: &mesh_move::SpringStats) -> SpringsReport {
         iterations: s.iterations,
         converged: s.converged,
         residual: s.residual,
-        polished: s.polished,
         newton: s.newton.map(|n| NewtonReport {
             iterations: n.iterations,
             converged: n.converged,
