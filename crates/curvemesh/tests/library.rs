@@ -116,7 +116,35 @@ fn a_moved_case_has_one_sensitivity_per_node_and_variable() {
     };
     let moved = move_case(&case, &motions, None, &options, &mut curvemesh::Silent).unwrap();
     assert!(moved.report.is_valid(), "{:?}", moved.report.problems);
+    // the transposed product (for adjoints) against the forward one: v · (dX/dα · dα)
+    let v: Vec<[f64; 2]> = moved
+        .mesh
+        .nodes
+        .iter()
+        .map(|p| [p[1] - 0.1, 0.3 * p[0] + 1.0])
+        .collect();
+    let adjoint = moved.transposed_product(&v).expect("sensitivities");
+    assert!(moved.transposed_product(&v[1..]).is_none());
     let columns = moved.sensitivities.expect("sensitivities");
+    let dalpha: Vec<f64> = (0..columns.len()).map(|i| 0.5 + i as f64).collect();
+    let forward: f64 = v
+        .iter()
+        .enumerate()
+        .map(|(n, v)| {
+            let dx = columns
+                .iter()
+                .zip(&dalpha)
+                .fold([0.0, 0.0], |a, ((_, c), d)| {
+                    [a[0] + d * c[n][0], a[1] + d * c[n][1]]
+                });
+            v[0] * dx[0] + v[1] * dx[1]
+        })
+        .sum();
+    let backward: f64 = adjoint.iter().zip(&dalpha).map(|(a, d)| a * d).sum();
+    assert!(
+        (forward - backward).abs() <= 1e-10 * forward.abs().max(1.0),
+        "{forward} {backward}"
+    );
     assert!(
         columns
             .iter()

@@ -159,6 +159,30 @@ pub struct Moved {
     pub sensitivities: Option<Vec<(String, Vec<[f64; 2]>)>>,
 }
 
+impl Moved {
+    /// The transposed product for an adjoint solver: for `v` with one entry per node of
+    /// [`Moved::mesh`] (say dJ/dX), `Σ_nodes v · dX/dα` for each design variable α, in the
+    /// order of [`Moved::sensitivities`]; `None` without sensitivities or when `v` is not
+    /// one entry per node. Computed from the forward sensitivities (one balance solve per
+    /// variable), so it equals the forward product to rounding.
+    pub fn transposed_product(&self, v: &[[f64; 2]]) -> Option<Vec<f64>> {
+        let s = self.sensitivities.as_ref()?;
+        if v.len() != self.mesh.nodes.len() {
+            return None;
+        }
+        Some(
+            s.iter()
+                .map(|(_, d)| {
+                    d.iter()
+                        .zip(v)
+                        .map(|(d, v)| d[0] * v[0] + d[1] * v[1])
+                        .sum()
+                })
+                .collect(),
+        )
+    }
+}
+
 /// Moves `case` by `motions`: from its mesh made with its own parameters, or from `start`, a
 /// snapshot of it (with where it came from, for messages; checked to be this case's). The
 /// meshes are written into `plan`'s reserved outputs beside the certification.
