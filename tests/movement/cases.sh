@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The case table of mesh movement (docs/movement.md, issue 12): every motion of the table run in
-# one step from the original mesh, at P3, by the default spring mover, by `--smooth` and by the
+# one step from the original mesh, at P3, by the spring mover and by the
 # baselines `--method idw` and `--method rbf`; prints
 # a Markdown table (certified, inverted cells, worst-cell ratio, max angle, first-layer drift,
 # move time). Usage: bash tests/movement/cases.sh [OUT_DIR]   (about 2 minutes, release build)
@@ -38,9 +38,8 @@ for row in "${rows[@]}"; do
   IFS='|' read -r case key args label <<< "$row"
   snap="$out/$key.bin"
   [ -f "$snap" ] || "$xtask" mesh "$case" --order 3 --snapshot "$snap" --quiet > /dev/null
-  for mover in default smooth idw rbf; do
+  for mover in default idw rbf; do
     case "$mover" in
-      smooth) flag="--smooth" ;;
       idw | rbf) flag="--method $mover" ;;
       *) flag="" ;;
     esac
