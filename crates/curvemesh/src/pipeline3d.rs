@@ -21,8 +21,30 @@ pub enum TrueShape {
     Sphere(vector_adding::SphereProjector),
     /// The wing: the section's curve times a straight line, the caps flat.
     Wing(Box<crate::wing::WingProjector>),
-    /// The facets themselves (cube, step, STL and `.msh` surfaces): straight-sided P2 cells.
+    /// A smooth surface rebuilt from the facets (STL and `.msh` surfaces): PN triangles,
+    /// feature edges kept sharp (`geom_surface::SmoothSurface`).
+    Smooth(Box<SmoothWall>),
+    /// The facets themselves (cube, step): straight-sided P2 cells.
     Flat,
+}
+
+/// A wall known only by its facets, onto the smooth surface rebuilt from them.
+#[derive(Debug, Clone)]
+pub struct SmoothWall(pub geom_surface::SmoothSurface);
+
+impl vector_adding::SurfaceProjector for SmoothWall {
+    /// `p` is a point of wall facet `facet` (an edge's midpoint): onto that facet's patch.
+    fn project(&self, p: [f64; 3], facet: usize) -> [f64; 3] {
+        self.0.point(p, facet)
+    }
+}
+
+/// A surface read from a file with its true shape: the smooth surface through its facets,
+/// edges over [`geom_surface::DEFAULT_FEATURE_ANGLE_DEG`] kept sharp.
+fn smoothed(surface: Surface) -> (Surface, TrueShape) {
+    let smooth =
+        geom_surface::SmoothSurface::new(&surface, geom_surface::DEFAULT_FEATURE_ANGLE_DEG);
+    (surface, TrueShape::Smooth(Box::new(SmoothWall(smooth))))
 }
 
 /// Projects nothing: a flat (faceted) wall.
@@ -61,7 +83,7 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
             // a patch per group of the file: STL solids, `.msh` physical surfaces
             let read = mesh_io::stl::read_surface_grouped(path)
                 .with_context(|| format!("{}: [surface] file", case.origin))?;
-            (crate::groups3d::surface_of_file(read), TrueShape::Flat)
+            smoothed(crate::groups3d::surface_of_file(read))
         }
         SurfaceSource::Wing {
             case: section,
@@ -101,6 +123,7 @@ pub fn curve(
     let projector: &dyn vector_adding::SurfaceProjector = match shape {
         TrueShape::Sphere(s) => s,
         TrueShape::Wing(w) => w.as_ref(),
+        TrueShape::Smooth(s) => s.as_ref(),
         TrueShape::Flat => &FlatWall,
     };
     vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params)

@@ -253,9 +253,15 @@ impl Report {
                 "the wall's P2 nodes on the true wing (the section's curve times the span; the \
                  tip caps flat)"
             }
+            TrueShape::Smooth(s) => &format!(
+                "the wall's P2 nodes on a smooth surface rebuilt from its facets (PN triangles; \
+                 {} edges between facets over {}° apart kept sharp)",
+                s.0.feature_edge_count(),
+                geom_surface::DEFAULT_FEATURE_ANGLE_DEG
+            ),
             TrueShape::Flat => {
-                "the wall is flat-faceted (a cube, step, STL or .msh surface): its P2 nodes at \
-                 the edge midpoints, so the cells are straight-sided P2 cells"
+                "the wall is flat-faceted (a cube or step): its P2 nodes at the edge midpoints, \
+                 so the cells are straight-sided P2 cells"
             }
         };
         self.notes.push(format!(

@@ -13,6 +13,9 @@
 //! [`wing::build_wing`] makes a finite wing from a 2D section (its boundary nodes extruded
 //! over the span, caps at the tips) with its true surface ([`wing::WingShape`]).
 //!
+//! [`SmoothSurface`] rebuilds a smooth surface from the facets (PN triangles, feature edges
+//! over 30° kept sharp): the true shape of a wall known only by its triangles.
+//!
 //! No IO here: files are read by `mesh-io`.
 //!
 //! ```
@@ -27,10 +30,12 @@
 
 mod build;
 mod check;
+mod smooth;
 pub mod wing;
 
 pub use check::{SurfaceError, first_self_intersection};
 use mesh_model::{Patch, Role};
+pub use smooth::{DEFAULT_FEATURE_ANGLE_DEG, PnTriangle, SmoothSurface};
 
 /// No fourth node: the facet is a triangle.
 pub const NO_NODE: u32 = u32::MAX;
