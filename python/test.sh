@@ -9,9 +9,11 @@
 # Needs: the Rust toolchain and python3. The system libraries Gmsh's and PyFR's wheels load come
 # from tests/python/install.sh (idempotent; it also makes the checkers' environment), the Python
 # packages from pip (python/requirements-test.txt, pinned). The extension is built in the
-# workspace's target/ (CARGO_TARGET_DIR overrides it), so a later run compiles only what changed;
-# its first build compiles its dependencies once more in release (their features differ from the
-# command line's): 3 to 6 minutes on two cores.
+# workspace's target/ (CARGO_TARGET_DIR overrides it), so a later run compiles only what changed
+# (seconds when nothing did). Its first build compiles the crates once more in release — pyo3's
+# macros give the shared proc-macro crates other features than the command line's build, so
+# almost none of its artifacts can be reused: 6 min 20 s on a busy two-core machine, where the command
+# line's own cold release build took 11 min.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -29,6 +31,9 @@ echo "== pip install -r python/requirements-test.txt"
 
 echo "== the curvemesh command the tests compare with (cargo build --release -p curvemesh-cli)"
 cargo build --release --quiet -p curvemesh-cli --bin curvemesh
+
+echo "== cargo fmt --check (python/, outside the workspace)"
+cargo fmt --manifest-path python/Cargo.toml --check
 
 echo "== pip install ./python (maturin, release)"
 start=$SECONDS
