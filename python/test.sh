@@ -12,8 +12,8 @@
 # workspace's target/ (CARGO_TARGET_DIR overrides it), so a later run compiles only what changed
 # (seconds when nothing did). Its first build compiles the crates once more in release — pyo3's
 # macros give the shared proc-macro crates other features than the command line's build, so
-# almost none of its artifacts can be reused: 6 min 20 s on a busy two-core machine, where the command
-# line's own cold release build took 11 min.
+# almost none of its artifacts can be reused: 6 min 20 s on a busy two-core machine, where the
+# command line's own cold release build took 11 min.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
