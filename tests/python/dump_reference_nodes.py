@@ -5,7 +5,10 @@ themselves, so that mesh-io's node-order tables can be tested against them.
 Usage: python3 tests/python/dump_reference_nodes.py > crates/mesh-io/tests/data/reference_nodes.json
 Needs: pip install gmsh vtk
 
-Gmsh: gmsh.model.mesh.getElementProperties(type) gives each node's reference coordinates.
+Gmsh: gmsh.model.mesh.getElementProperties(type) gives each node's reference coordinates;
+for the 40-node prism (type 90), where it fails ("FaceClosureFull not implemented for prisms of
+order 3"), Gmsh meshes the reference prism itself (one triangle extruded from z = -1 to 1) and
+raises it to order 3 (setOrder), and its one element's nodes are read.
 VTK: the Python wrapping does not expose GetParametricCoords, so each node's parametric
 point is found on the lattice of spacing 1/order as the point where that node's interpolation
 function is 1 (and all the others 0).
@@ -17,7 +20,7 @@ import sys
 import gmsh
 import vtk
 
-GMSH_TYPES = [1, 8, 26, 2, 9, 21, 3, 10, 36, 4, 11, 29, 5, 12, 92, 6, 13, 7, 14, 118]
+GMSH_TYPES = [1, 8, 26, 2, 9, 21, 3, 10, 36, 4, 11, 29, 5, 12, 92, 6, 13, 90, 7, 14, 118]
 
 # (VTK type id, class name, order, node count, lattice kind)
 VTK_CELLS = [
@@ -83,12 +86,40 @@ def vtk_nodes(cls, p, n, kind):
     return coords
 
 
+def gmsh_prism40():
+    """The reference prism meshed by Gmsh as one element and raised to order 3: its nodes."""
+    gmsh.model.add("prism40")
+    geo = gmsh.model.geo
+    pts = [geo.addPoint(x, y, -1.0) for x, y in ((0, 0), (1, 0), (0, 1))]
+    lines = [geo.addLine(pts[i], pts[(i + 1) % 3]) for i in range(3)]
+    for c in lines:
+        geo.mesh.setTransfiniteCurve(c, 2)
+    s = geo.addPlaneSurface([geo.addCurveLoop(lines)])
+    geo.mesh.setTransfiniteSurface(s)
+    geo.extrude([(2, s)], 0, 0, 2, [1], recombine=True)
+    geo.synchronize()
+    gmsh.model.mesh.generate(3)
+    gmsh.model.mesh.setOrder(3)
+    types, _, nodes = gmsh.model.mesh.getElements(3)
+    assert list(types) == [90] and len(nodes[0]) == 40, (types, nodes)
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    at = {int(t): [float(v) for v in coords[3 * i:3 * i + 3]] for i, t in enumerate(tags)}
+    pts = [at[int(n)] for n in nodes[0]]
+    want = [[0, 0, -1], [1, 0, -1], [0, 1, -1], [0, 0, 1], [1, 0, 1], [0, 1, 1]]
+    assert all(abs(a - b) < 1e-12 for p, q in zip(pts, want) for a, b in zip(p, q)), pts[:6]
+    gmsh.model.remove()
+    return {"type": 90, "name": "Prism 40", "dim": 3, "order": 3, "nodes": pts}
+
+
 def main():
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     out = {"gmsh_version": gmsh.__version__, "vtk_version": vtk.vtkVersion.GetVTKVersion(),
            "gmsh": [], "vtk": []}
     for t in GMSH_TYPES:
+        if t == 90:
+            out["gmsh"].append(gmsh_prism40())
+            continue
         name, dim, order, n, coords, _ = gmsh.model.mesh.getElementProperties(t)
         pts = [list(coords[i * dim:(i + 1) * dim]) + [0.0] * (3 - dim) for i in range(n)]
         out["gmsh"].append({"type": t, "name": name, "dim": dim, "order": order, "nodes": pts})

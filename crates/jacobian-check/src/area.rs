@@ -190,14 +190,14 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
 
 /// The signed volume of a 3D cell, exact for its map up to rounding: the integral of the
 /// Jacobian determinant is the mean of its Bernstein coefficients times the reference
-/// volume (`measure_from_coefficients`). A straight-sided 14-node pyramid is its linear
+/// volume (`measure_from_coefficients`). A straight-sided high-order pyramid is its linear
 /// pyramid; a curved one is integrated by an exact Gauss rule on its collapsed box (the
 /// `pyramid` module).
 ///
 /// # Errors
 /// Unsupported type, a 2D type, wrong node count, non-finite node.
 pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianError> {
-    if crate::straight::is_pyramid14(ty) {
+    if ty.shape == Shape::Pyramid && ty.order >= 2 {
         check_cell(ty, nodes)?;
         if crate::straight::is_straight(ty, nodes)?.is_some() {
             return cell_volume(CellType::new(Shape::Pyramid, 1), &nodes[..5]);
@@ -218,27 +218,29 @@ pub fn integrate_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
 
 /// The volume enclosed by the boundary facets of a 3D mesh (turned out of the domain), along
 /// their curved (Lagrange) shape: ⅓∮ x·n dA by Gauss quadrature exact for triangles and
-/// quadrilaterals of order 1 and 2 (x·(x_u × x_v) has degree 4 on a P2 triangle, taken by
-/// the collapsed 3 × 3 rule; degree 5 per direction on a Q2 quadrilateral, 3 × 3 Gauss).
+/// quadrilaterals of order 1 to 3 (x·(x_u × x_v) has degree 4 on a P2 triangle, taken by
+/// the collapsed 3 × 3 rule; degree 5 per direction on a Q2 quadrilateral, 3 × 3 Gauss; at
+/// order 3 degree 7 on the triangle, 8 per direction on the quadrilateral, 5 × 5 Gauss).
 /// Equal to [`integrate_volume`] up to rounding when the cells tile the domain exactly —
 /// the independent check that a curved 3D mesh is conforming and leaves no gap.
 ///
 /// # Errors
 /// A facet naming a missing node, a facet that is not a triangle or quadrilateral of order 1
-/// or 2.
+/// to 3.
 pub fn enclosed_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
-    let g: Vec<(f64, f64)> = gauss_legendre(3);
+    let (g3, g5) = (gauss_legendre(3), gauss_legendre(5));
     let origin = mesh.nodes.first().copied().unwrap_or_default();
     let mut total = 0.0;
     let mut x = Vec::new();
     for (i, f) in mesh.boundary.iter().enumerate() {
         let ty = f.ty;
-        if !matches!(ty.shape, Shape::Tri | Shape::Quad) || !(1..=2).contains(&ty.order) {
+        if !matches!(ty.shape, Shape::Tri | Shape::Quad) || !(1..=3).contains(&ty.order) {
             return Err(JacobianError::Unsupported {
                 ty,
-                what: "the enclosed volume (boundary triangles and quadrilaterals of order 1 or 2)",
+                what: "the enclosed volume (boundary triangles and quadrilaterals of order 1 to 3)",
             });
         }
+        let g = if ty.order < 3 { &g3 } else { &g5 };
         if let Some(&node) = f.nodes.iter().find(|&&n| n as usize >= mesh.nodes.len()) {
             return Err(JacobianError::NodeOutOfRange { cell: i, node });
         }
@@ -247,8 +249,8 @@ pub fn enclosed_volume(mesh: &Mesh) -> Result<f64, JacobianError> {
             let p = mesh.nodes[n as usize];
             [0, 1, 2].map(|d| p[d] - origin[d])
         }));
-        for &(a, wa) in &g {
-            for &(b, wb) in &g {
+        for &(a, wa) in g {
+            for &(b, wb) in g {
                 // a point of the reference cell and its weight
                 let (xi, w) = match ty.shape {
                     Shape::Tri => {

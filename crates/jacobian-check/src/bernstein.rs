@@ -13,11 +13,22 @@
 //! the polynomial to the child); as precomputed matrices they cost one small
 //! matrix–vector product per child.
 //!
+//! The 3D spaces of the P3 boxes, prisms and pyramids (324 to 729 coefficients) are tensor
+//! products (line × line × line, triangle × line): there the dense matrices would take tens
+//! of megabytes and seconds to build, and the inverse of the 729 × 729 matrix loses seven
+//! digits, so such a space keeps its factors' own small maps and applies them one direction
+//! at a time — the same coefficients, to rounding, from the Kronecker product of the factors'
+//! inverses. The smaller spaces keep their dense matrices. At degree 8 the equispaced
+//! samples' rounding is amplified up to the product of the factors' inverse norms (1.7e8 for
+//! the P3 hexahedron, 2.8e7 for the P3 pyramid, 2.3e5 for the P3 prism: the observed error
+//! of the coefficients is about 1e-8 of the determinant), so these spaces carry that factor
+//! ([`Space::amplification`]) and the certificate asks their coefficients to clear it.
+//!
 //! Regions are parametrised by unit coordinates t: the unit simplex, [0, 1]ᵈ for boxes, the
 //! unit triangle × [0, 1] for prisms; a [`Region`] maps them affinely into Gmsh's reference
 //! coordinates.
 
-use crate::linalg::{invert, mat_mul};
+use crate::linalg::{invert, mat_mul, mat_vec};
 use crate::point::RefPoint;
 
 /// The shape of a Bernstein space's domain.
@@ -96,6 +107,26 @@ impl Region {
     }
 }
 
+/// The maps of a space: from samples to coefficients, and from a region's coefficients to a
+/// child's.
+#[derive(Debug)]
+enum Maps {
+    /// Row-major `len × len` matrices: the inverse of the Bernstein–Lagrange matrix, and one
+    /// per child.
+    Dense {
+        to_bernstein: Vec<f64>,
+        children: Vec<Vec<f64>>,
+    },
+    /// The space is the tensor product of these factors, the first running fastest in the
+    /// coefficient order; child `i` is the product of one child per factor, the first
+    /// factor's child index running fastest.
+    Tensor(Vec<Space>),
+}
+
+/// Spaces with more coefficients than this that are tensor products are applied by factors
+/// (module docs): every space of the P1 and P2 cells stays below it.
+const TENSOR_ABOVE: usize = 256;
+
 /// A Bernstein space with its sampling lattice and subdivision matrices.
 #[derive(Debug)]
 pub(crate) struct Space {
@@ -110,11 +141,12 @@ pub(crate) struct Space {
     /// Indices of the coefficients at the corners of the domain (equal to the polynomial's
     /// value there).
     pub(crate) corners: Vec<usize>,
-    /// Inverse of the Bernstein–Lagrange matrix (row-major, `len × len`).
-    pub(crate) to_bernstein: Vec<f64>,
-    /// The subdivision children: their region in unit coordinates and the matrix from the
-    /// parent's coefficients to theirs.
-    pub(crate) children: Vec<(Region, Vec<f64>)>,
+    /// The subdivision children's regions in unit coordinates.
+    pub(crate) children: Vec<Region>,
+    /// How much a tensor space's maps may amplify the rounding of the samples: the product
+    /// of its factors' inverse ∞-norms; 0 for a dense space, whose callers need no margin.
+    pub(crate) amplification: f64,
+    maps: Maps,
 }
 
 fn binomial(n: usize, k: usize) -> f64 {
@@ -149,6 +181,24 @@ fn line_basis(a: usize, t: f64, n: usize) -> f64 {
 impl Space {
     /// Builds the space (lattice, transformation and subdivision matrices).
     pub(crate) fn new(domain: Domain, dim: usize, degree: usize) -> Space {
+        let mut space = Space::lattice(domain, dim, degree);
+        let tensor = dim == 3 && domain != Domain::Simplex && space.len() > TENSOR_ABOVE;
+        space.maps = if tensor {
+            space.tensor_maps()
+        } else {
+            space.dense_maps()
+        };
+        if let Maps::Tensor(factors) = &space.maps {
+            space.amplification = factors
+                .iter()
+                .map(|f| inverse_norm(f.dense().0, f.len()))
+                .product();
+        }
+        space
+    }
+
+    /// The space's lattice, corners and children's regions, without maps.
+    fn lattice(domain: Domain, dim: usize, degree: usize) -> Space {
         let n = degree;
         let mut index = Vec::new();
         let top = match domain {
@@ -156,8 +206,9 @@ impl Space {
             _ if dim == 3 => n,
             _ => 0,
         };
+        let middle = if dim >= 2 { n } else { 0 };
         for c in 0..=top {
-            for b in 0..=n {
+            for b in 0..=middle {
                 for a in 0..=n {
                     let keep = match domain {
                         Domain::Simplex => a + b + c <= n,
@@ -217,22 +268,84 @@ impl Space {
             index,
             lattice_unit,
             corners,
-            to_bernstein: Vec::new(),
             children: Vec::new(),
+            amplification: 0.0,
+            maps: Maps::Tensor(Vec::new()),
         };
-        let len = space.len();
-        let t = space.basis_matrix(&Region::root_unit());
-        space.to_bernstein = invert(&t, len).expect("Bernstein–Lagrange matrix is invertible");
-        space.children = space
-            .child_regions()
-            .into_iter()
-            .map(|r| {
-                let s = space.basis_matrix(&r);
-                let m = mat_mul(&space.to_bernstein, &s, len);
-                (r, m)
-            })
-            .collect();
+        space.children = space.child_regions();
         space
+    }
+
+    /// The dense matrices of the space.
+    fn dense_maps(&self) -> Maps {
+        let len = self.len();
+        let t = self.basis_matrix(&Region::root_unit());
+        let to_bernstein = invert(&t, len).expect("Bernstein–Lagrange matrix is invertible");
+        let children = self
+            .children
+            .iter()
+            .map(|r| mat_mul(&to_bernstein, &self.basis_matrix(r), len))
+            .collect();
+        Maps::Dense {
+            to_bernstein,
+            children,
+        }
+    }
+
+    /// The factors of a 3D tensor-product space: three lines (box, pyramid) or a triangle
+    /// and a line (prism).
+    fn tensor_maps(&self) -> Maps {
+        let n = self.degree;
+        let line = |degree| Space::new(Domain::Box, 1, degree);
+        Maps::Tensor(match self.domain {
+            Domain::Box => vec![line(n), line(n), line(n)],
+            Domain::Pyramid { axis } => vec![line(n), line(n), line(axis)],
+            Domain::Prism { axis } => vec![Space::new(Domain::Simplex, 2, n), line(axis)],
+            Domain::Simplex => unreachable!("simplices are no tensor products"),
+        })
+    }
+
+    /// The Bernstein coefficients of the polynomial sampled at the lattice (`samples`).
+    pub(crate) fn to_bernstein(&self, samples: &[f64], out: &mut [f64]) {
+        match &self.maps {
+            Maps::Dense { to_bernstein, .. } => mat_vec(to_bernstein, samples, out),
+            Maps::Tensor(factors) => {
+                let maps: Vec<(&[f64], usize)> =
+                    factors.iter().map(|f| (f.dense().0, f.len())).collect();
+                apply_tensor(&maps, samples, out);
+            }
+        }
+    }
+
+    /// The coefficients on child `i` ([`Space::children`]) of the region with coefficients `c`.
+    pub(crate) fn child(&self, i: usize, c: &[f64], out: &mut [f64]) {
+        match &self.maps {
+            Maps::Dense { children, .. } => mat_vec(&children[i], c, out),
+            Maps::Tensor(factors) => {
+                let mut rest = i;
+                let maps: Vec<(&[f64], usize)> = factors
+                    .iter()
+                    .map(|f| {
+                        let children = f.dense().1;
+                        let k = rest % children.len();
+                        rest /= children.len();
+                        (children[k].as_slice(), f.len())
+                    })
+                    .collect();
+                apply_tensor(&maps, c, out);
+            }
+        }
+    }
+
+    /// The dense maps of a factor.
+    fn dense(&self) -> (&[f64], &[Vec<f64>]) {
+        match &self.maps {
+            Maps::Dense {
+                to_bernstein,
+                children,
+            } => (to_bernstein, children),
+            Maps::Tensor(_) => unreachable!("the factors of a tensor space are dense"),
+        }
     }
 
     /// Number of coefficients.
@@ -345,6 +458,36 @@ impl Space {
     }
 }
 
+/// The ∞-norm (largest row sum of magnitudes) of the row-major `n × n` matrix `m`.
+fn inverse_norm(m: &[f64], n: usize) -> f64 {
+    m.chunks(n)
+        .map(|row| row.iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// `out = (M_k ⊗ … ⊗ M_1) x` for the factors `(M_g, size_g)` (row-major), the first
+/// factor's index running fastest in `x`: one direction at a time.
+fn apply_tensor(factors: &[(&[f64], usize)], x: &[f64], out: &mut [f64]) {
+    let mut current = x.to_vec();
+    let mut next = vec![0.0; x.len()];
+    let mut inner = 1;
+    for &(m, size) in factors {
+        let outer = x.len() / (inner * size);
+        for o in 0..outer {
+            for i in 0..size {
+                let row = &m[i * size..(i + 1) * size];
+                for q in 0..inner {
+                    let at = |j: usize| (o * size + j) * inner + q;
+                    next[at(i)] = (0..size).map(|j| row[j] * current[at(j)]).sum();
+                }
+            }
+        }
+        std::mem::swap(&mut current, &mut next);
+        inner *= size;
+    }
+    out.copy_from_slice(&current);
+}
+
 impl Region {
     /// The identity region in unit coordinates.
     fn root_unit() -> Region {
@@ -358,22 +501,30 @@ impl Region {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linalg::mat_vec;
 
     /// A polynomial of degree ≤ n: its Bernstein coefficients reproduce it everywhere, and
     /// the child coefficients reproduce it on the child.
     fn check_reproduction(domain: Domain, dim: usize, n: usize) {
-        let space = Space::new(domain, dim, n);
+        check_space_reproduces(&Space::new(domain, dim, n));
+    }
+
+    fn check_space_reproduces(space: &Space) {
+        let (domain, dim, n) = (space.domain, space.dim, space.degree);
+        // of total degree n, or less where the axis' degree is less
+        let top = match domain {
+            Domain::Prism { axis } | Domain::Pyramid { axis } => n.min(axis),
+            _ => n,
+        };
         let f = |t: RefPoint| {
             let s = t[0] + 0.3 * t[1] + 0.2 * t[2];
-            (0..=n)
+            (0..=top)
                 .map(|k| (k as f64 + 1.0) * s.powi(k as i32))
                 .sum::<f64>()
                 - 0.7
         };
         let samples: Vec<f64> = space.lattice_unit.iter().map(|&t| f(t)).collect();
         let mut coeffs = vec![0.0; space.len()];
-        mat_vec(&space.to_bernstein, &samples, &mut coeffs);
+        space.to_bernstein(&samples, &mut coeffs);
         let eval = |c: &[f64], t: RefPoint| -> f64 {
             (0..space.len()).map(|m| c[m] * space.basis(m, t)).sum()
         };
@@ -386,9 +537,9 @@ mod tests {
         for &c in &space.corners {
             assert!((coeffs[c] - f(space.lattice_unit[c])).abs() < 1e-10);
         }
-        for (region, m) in &space.children {
+        for (i, region) in space.children.iter().enumerate() {
             let mut child = vec![0.0; space.len()];
-            mat_vec(m, &coeffs, &mut child);
+            space.child(i, &coeffs, &mut child);
             let inside = region.apply(probe);
             assert!(
                 (eval(&child, probe) - f(inside)).abs() < 1e-9,
@@ -413,8 +564,41 @@ mod tests {
             (Domain::Prism { axis: 2 }, 3, 1),
             (Domain::Pyramid { axis: 5 }, 3, 3),
             (Domain::Pyramid { axis: 2 }, 3, 2),
+            (Domain::Box, 1, 4),
+            // the P3 spaces, tensor products applied by factors
+            (Domain::Box, 3, 8),
+            (Domain::Prism { axis: 8 }, 3, 7),
+            (Domain::Pyramid { axis: 6 }, 3, 8),
+            (Domain::Simplex, 3, 6),
         ] {
             check_reproduction(domain, dim, n);
+        }
+    }
+
+    #[test]
+    fn tensor_maps_are_the_dense_maps() {
+        for (domain, n) in [
+            (Domain::Box, 3),
+            (Domain::Prism { axis: 3 }, 2),
+            (Domain::Pyramid { axis: 2 }, 3),
+        ] {
+            let mut dense = Space::lattice(domain, 3, n);
+            dense.maps = dense.dense_maps();
+            let mut tensor = Space::lattice(domain, 3, n);
+            tensor.maps = tensor.tensor_maps();
+            check_space_reproduces(&tensor);
+            let len = dense.len();
+            let x: Vec<f64> = (0..len).map(|k| ((k * 7 + 3) % 11) as f64 - 5.0).collect();
+            let (mut a, mut b) = (vec![0.0; len], vec![0.0; len]);
+            dense.to_bernstein(&x, &mut a);
+            tensor.to_bernstein(&x, &mut b);
+            let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(u, v)| (u - v).abs() < 1e-9);
+            assert!(close(&a, &b), "{domain:?}");
+            for i in 0..dense.children.len() {
+                dense.child(i, &x, &mut a);
+                tensor.child(i, &x, &mut b);
+                assert!(close(&a, &b), "{domain:?} child {i}");
+            }
         }
     }
 
@@ -442,7 +626,7 @@ mod tests {
                 };
                 d.abs() * unit
             };
-            let total: f64 = space.children.iter().map(|(r, _)| measure(r)).sum();
+            let total: f64 = space.children.iter().map(measure).sum();
             assert!((total - whole).abs() < 1e-14, "{domain:?} {dim}: {total}");
         }
     }

@@ -7,18 +7,17 @@
 //! hexahedron 3p − 1 per direction, of a P_p prism 3p − 2 on the triangle and 3p − 1 along
 //! its axis; the linear pyramid's, rational in the reference coordinates, is a biquadratic
 //! in the coordinates of the rays from the apex (see `determinant_space`: the approach of
-//! Johnen & Geuzaine for pyramids, 2015, at order 1); the 14-node pyramid's is a polynomial
-//! of degree 5, 5, 3 in the collapsed coordinates (ξ̂, η̂, ζ) of the box [−1, 1]² × [0, 1]
-//! (the `pyramid` module). It is sampled at the lattice points of that degree and
+//! Johnen & Geuzaine for pyramids, 2015, at order 1); the 14- and 30-node pyramids' is a
+//! polynomial of degree 3p − 1, 3p − 1, 3(p − 1) in the collapsed coordinates (ξ̂, η̂, ζ) of the
+//! box [−1, 1]² × [0, 1] (the `pyramid` module). It is sampled at the lattice points of that degree and
 //! turned into Bernstein coefficients by a per-type matrix. The coefficients bound the
 //! determinant (convex hull property) and the corner coefficients equal it at the corners:
 //! all coefficients > 0 proves validity, a corner coefficient ≤ 0 proves invalidity,
 //! otherwise the region is subdivided and each child examined, down to a depth limit;
 //! a region still undecided there makes the cell [`Certificate::Undecided`].
 //!
-//! Certified: triangles and quadrilaterals of order 1–3, tetrahedra, prisms and hexahedra of
-//! order 1–2, the linear pyramid, and the 14-node pyramid (a straight-sided one as its
-//! linear pyramid).
+//! Certified: every type of order 1–3 — triangles, quadrilaterals, tetrahedra, prisms,
+//! hexahedra and pyramids (a straight-sided high-order one as its order-1 cell).
 //! This module does not move nodes or repair cells.
 
 use std::sync::OnceLock;
@@ -29,7 +28,6 @@ use crate::bernstein::{Domain, Region, Space};
 use crate::error::JacobianError;
 use crate::jacobian::{check_cell, ref_point};
 use crate::lagrange::basis;
-use crate::linalg::mat_vec;
 use crate::matrix::{det, matrix_from_gradients};
 use crate::measure::measure_from_coefficients;
 use crate::point::RefPoint;
@@ -149,8 +147,8 @@ fn determinant_space(ty: CellType) -> (Domain, usize, usize) {
         Shape::Tet => (Domain::Simplex, 3, 3 * (p - 1)),
         Shape::Prism => (Domain::Prism { axis: 3 * p - 1 }, 3, 3 * p - 2),
         Shape::Pyramid if p == 1 => (Domain::Box, 2, 2),
-        // the 14-node pyramid: degree 5 in (ξ̂, η̂), 3 in ζ (see `crate::pyramid`)
-        Shape::Pyramid => (Domain::Pyramid { axis: 3 }, 3, 5),
+        // the 14- and 30-node pyramids: degree 3p − 1 in (ξ̂, η̂), 3(p − 1) in ζ (`crate::pyramid`)
+        Shape::Pyramid => (Domain::Pyramid { axis: 3 * (p - 1) }, 3, 3 * p - 1),
         _ => (Domain::Box, 3, 3 * p - 1),
     }
 }
@@ -169,7 +167,7 @@ fn cert_table(ty: CellType) -> Result<&'static CertTable, JacobianError> {
             let g = &mut grads[k * nodes..(k + 1) * nodes];
             if let Domain::Pyramid { .. } = domain {
                 // the lattice is in collapsed coordinates: ζ = 1 holds the apex's limits
-                crate::pyramid::bergot2().collapsed_gradients(root.apply(*t), g);
+                crate::pyramid::bergot(ty.order).collapsed_gradients(root.apply(*t), g);
             } else {
                 b.gradients(root.apply(*t), g);
             }
@@ -186,8 +184,11 @@ fn to_point<const D: usize>(x: RefPoint) -> [f64; D] {
     std::array::from_fn(|k| x[k])
 }
 
-/// The Bernstein coefficients of the determinant of a checked cell.
-fn coefficients<const D: usize>(table: &CertTable, nodes: &[[f64; D]]) -> Vec<f64> {
+/// The Bernstein coefficients of the determinant of a checked cell, and the least value a
+/// region's coefficients must exceed to count as positive: 0, or for a tensor space
+/// (`Space::amplification`) its amplification of the samples' rounding, 64 units of it on
+/// the largest sample.
+fn coefficients<const D: usize>(table: &CertTable, nodes: &[[f64; D]]) -> (Vec<f64>, f64) {
     let len = table.space.len();
     let samples: Vec<f64> = (0..len)
         .map(|k| {
@@ -196,13 +197,19 @@ fn coefficients<const D: usize>(table: &CertTable, nodes: &[[f64; D]]) -> Vec<f6
         })
         .collect();
     let mut coeffs = vec![0.0; len];
-    mat_vec(&table.space.to_bernstein, &samples, &mut coeffs);
+    table.space.to_bernstein(&samples, &mut coeffs);
     // A corner coefficient is the value at the corner: take it exactly, not through the
     // (rounded) inverse matrix, so that an invalid verdict rests on an evaluated value.
     for &k in &table.space.corners {
         coeffs[k] = samples[k];
     }
-    coeffs
+    let margin = if table.space.amplification > 0.0 {
+        let largest = samples.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        table.space.amplification * 64.0 * f64::EPSILON * largest
+    } else {
+        0.0
+    };
+    (coeffs, margin)
 }
 
 /// The Bernstein coefficients of the Jacobian determinant of a cell of dimension `D`, in the
@@ -217,7 +224,7 @@ pub fn determinant_bernstein_coefficients<const D: usize>(
     nodes: &[[f64; D]],
 ) -> Result<Vec<f64>, JacobianError> {
     check_cell(ty, nodes)?;
-    Ok(coefficients(cert_table(ty)?, nodes))
+    Ok(coefficients(cert_table(ty)?, nodes).0)
 }
 
 fn min_max(c: &[f64]) -> (f64, f64) {
@@ -227,11 +234,12 @@ fn min_max(c: &[f64]) -> (f64, f64) {
         })
 }
 
-/// The certified check of the sign of the determinant from its root coefficients.
+/// The certified check of the sign of the determinant from its root coefficients: a region
+/// is positive when its least coefficient exceeds `margin` (see `coefficients`).
 fn certify_coefficients(
     space: &Space,
     root: Region,
-    coeffs: Vec<f64>,
+    (coeffs, margin): (Vec<f64>, f64),
     max_depth: u32,
 ) -> Certificate<RefPoint> {
     let mut stack = vec![(coeffs, root, 0u32)];
@@ -248,7 +256,7 @@ fn certify_coefficients(
             };
         }
         let (cmin, cmax) = min_max(&c);
-        if cmin > 0.0 {
+        if cmin > margin {
             lo = lo.min(cmin);
             hi = hi.max(cmax);
             continue;
@@ -257,9 +265,9 @@ fn certify_coefficients(
             undecided = true;
             continue;
         }
-        for (child, m) in &space.children {
+        for (i, child) in space.children.iter().enumerate() {
             let mut cc = vec![0.0; c.len()];
-            mat_vec(m, &c, &mut cc);
+            space.child(i, &c, &mut cc);
             stack.push((cc, region.compose(child), depth + 1));
         }
     }
@@ -273,15 +281,14 @@ fn certify_coefficients(
     }
 }
 
-/// The certified validity of a cell of dimension `D` (triangles and quadrilaterals of order
-/// 1 to 3, tetrahedra, prisms and hexahedra of order 1 and 2, the 5- and 14-node pyramids) with node
-/// coordinates `nodes` in Gmsh
-/// order. Valid means the Jacobian determinant is > 0 everywhere in the cell: the cell is
+/// The certified validity of a cell of dimension `D` (every shape of order 1 to 3: triangles,
+/// quadrilaterals, tetrahedra, prisms, hexahedra, pyramids) with node coordinates `nodes` in
+/// Gmsh order. Valid means the Jacobian determinant is > 0 everywhere in the cell: the cell is
 /// not folded and is positively oriented (counter-clockwise in 2D).
 ///
 /// # Errors
-/// Unsupported type (3D cells of order 3), wrong dimension, wrong node count, non-finite
-/// node, bad parameter.
+/// Unsupported type (order above 3), wrong dimension, wrong node count, non-finite node, bad
+/// parameter.
 pub fn certify_cell<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
@@ -296,11 +303,11 @@ pub fn certify_cell<const D: usize>(
 /// 3D: the integral of det J) from the coefficients the certificate rests on — whatever the
 /// verdict. The mean of the undivided cell's coefficients times the reference measure
 /// (`measure_from_coefficients`), or, for a straight-sided cell the shortcut certifies,
-/// that of its order-1 cell, whose map it is; the curved 14-node pyramid by its own rule.
+/// that of its order-1 cell, whose map it is; a curved high-order pyramid by its own rule.
 /// NaN unless `measured` (the certificate alone: the pyramid's rule is not free).
 ///
 /// # Errors
-/// Unsupported type (3D cells of order 3).
+/// Unsupported type (order above 3).
 fn certify_measured<const D: usize>(
     ty: CellType,
     nodes: &[[f64; D]],
@@ -340,7 +347,7 @@ fn certify_measured<const D: usize>(
                 .collect();
             crate::pyramid::volume(&x)
         }
-        _ => measure_from_coefficients(ty.shape, &coeffs),
+        _ => measure_from_coefficients(ty.shape, &coeffs.0),
     };
     let root = Region::root(table.space.domain, table.space.dim);
     let certificate = match certify_coefficients(&table.space, root, coeffs, params.max_depth) {

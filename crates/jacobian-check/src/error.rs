@@ -5,10 +5,9 @@ use mesh_model::CellType;
 /// Everything that can go wrong evaluating or certifying a cell.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum JacobianError {
-    /// The cell type has no shape functions or no certified check here (pyramids of order 2
-    /// and above, cells of order 3 in 3D, order 0 or above 3, lines).
-    /// Fix: use a supported type (see the crate documentation); a mesh with curved 14-node
-    /// pyramids cannot be checked here (straight-sided ones can).
+    /// The cell type has no shape functions or no certified check here (order 0 or above 3,
+    /// lines), or the operation does not apply to it (area of a 3D cell).
+    /// Fix: use a supported type (see the crate documentation).
     #[error("cell type {shape} P{order} is not supported by {what}", shape = ty.shape.name(), order = ty.order)]
     Unsupported {
         /// The cell type asked for.

@@ -1,5 +1,5 @@
 //! Gauss–Legendre rules on [−1, 1]: the one quadrature behind the area rules, the enclosed
-//! volume and the curved 14-node pyramid's volume rule. A leaf.
+//! volume and the curved high-order pyramids' volume rule. A leaf.
 
 /// Gauss–Legendre nodes and weights on [−1, 1] with `m` points (Newton on the Legendre
 /// recurrence, from the Chebyshev guesses).

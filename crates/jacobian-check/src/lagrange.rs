@@ -3,9 +3,9 @@
 //! hexahedra on [−1, 1]ⁿ; prisms on the unit triangle × [−1, 1]; pyramids on the base
 //! [−1, 1]² with the apex at (0, 0, 1).
 //!
-//! Supported: triangles and quadrilaterals of order 1 to 3; tetrahedra, prisms and
-//! hexahedra of order 1 and 2; the linear pyramid (its classical rational shape functions)
-//! and Gmsh's 14-node pyramid (its rational Bergot basis, the `pyramid` module). Polynomial
+//! Supported: triangles, quadrilaterals, tetrahedra, prisms and hexahedra of order 1 to 3;
+//! the linear pyramid (its classical rational shape functions) and Gmsh's 14- and 30-node
+//! pyramids (their rational Bergot bases, the `pyramid` module). Polynomial
 //! bases are built once per type from their monomial space and reference nodes (the
 //! inverse of the Vandermonde matrix) and cached.
 //!
@@ -32,7 +32,8 @@ fn type_index(ty: CellType) -> Result<usize, JacobianError> {
 /// corner to its second), then face nodes, then interior nodes (the centroid of a P3
 /// triangle; the centre of a P2 quadrilateral; the four nodes at ±1/3 of a P3
 /// quadrilateral, counter-clockwise from (−1/3, −1/3); the quadrilateral-face centres and
-/// the centre of P2 3D cells).
+/// the centre of P2 3D cells; at P3 each face's interior, a third in from its corners, and
+/// the cell's: see `mesh_model::reference`).
 ///
 /// # Errors
 /// [`JacobianError::Unsupported`] for types outside the supported list (module docs).
@@ -80,8 +81,8 @@ pub(crate) enum Basis {
     },
     /// The linear pyramid's rational shape functions.
     Pyramid1,
-    /// The 14-node pyramid's (Bergot's space, the `pyramid` module).
-    Pyramid2,
+    /// The 14- or 30-node pyramid's (Bergot's space, the `pyramid` module), by order.
+    Bergot(u8),
 }
 
 impl Basis {
@@ -90,7 +91,7 @@ impl Basis {
             return if ty.order == 1 {
                 Basis::Pyramid1
             } else {
-                Basis::Pyramid2
+                Basis::Bergot(ty.order)
             };
         }
         let nodes = reference_nodes(ty).expect("supported type");
@@ -134,7 +135,7 @@ impl Basis {
                 }
                 values[4] = w;
             }
-            Basis::Pyramid2 => crate::pyramid::bergot2().values(xi, values),
+            Basis::Bergot(order) => crate::pyramid::bergot(*order).values(xi, values),
         }
     }
 
@@ -189,7 +190,7 @@ impl Basis {
                 }
                 grads[4] = [0.0, 0.0, 1.0];
             }
-            Basis::Pyramid2 => crate::pyramid::bergot2().gradients(xi, grads),
+            Basis::Bergot(order) => crate::pyramid::bergot(*order).gradients(xi, grads),
         }
     }
 }

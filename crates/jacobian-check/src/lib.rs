@@ -50,12 +50,12 @@
 //! One API for 2D and 3D: every per-cell function is generic over the dimension `D` of the
 //! node coordinates (`[f64; 2]` or `[f64; 3]`), and [`types`] is the one table of the cell
 //! types the crate knows and what it offers for each ([`capabilities`]): every type with
-//! shape functions is certified — triangles and quadrilaterals of order 1–3; tetrahedra,
-//! prisms (6 and 18 nodes) and hexahedra of order 1–2; the 5- and 14-node pyramids. A
-//! straight-sided 14-node pyramid (edge nodes at the edge midpoints, the base node at the
-//! base's centre) *is* its linear pyramid and is certified (and integrated) as one; a curved
-//! one in Gmsh's own (Bergot) space, its determinant expanded in the pyramid's collapsed
-//! coordinates (Johnen & Geuzaine 2015).
+//! shape functions is certified — triangles, quadrilaterals, tetrahedra, prisms, hexahedra
+//! and pyramids of order 1–3 (Gmsh's complete cells: the 20-node tetrahedron, the 40-node
+//! prism, the 64-node hexahedron, the 14- and 30-node pyramids). A straight-sided high-order
+//! pyramid (every node where the linear pyramid puts it) *is* its linear pyramid and is
+//! certified (and integrated) as one; a curved one in Gmsh's own (Bergot) space, its
+//! determinant expanded in the pyramid's collapsed coordinates (Johnen & Geuzaine 2015).
 //!
 //! ```
 //! use jacobian_check::{CertifyParams, certify_cell, reference_nodes};

@@ -25,7 +25,7 @@ fn reference_measure(shape: Shape) -> f64 {
 /// since every Bernstein polynomial of a degree has the same integral over the simplex, the
 /// box and the prism (and the linear pyramid's determinant, a biquadratic f(ξ, η) along the
 /// rays from the apex, integrates to ∫∫ f dξ dη / 3, the mean of its coefficients times 4/3).
-/// Not for the 14-node pyramid's coefficients, which live on its collapsed box.
+/// Not for the high-order pyramids' coefficients, which live on its collapsed box.
 pub(crate) fn measure_from_coefficients(shape: Shape, c: &[f64]) -> f64 {
     c.iter().sum::<f64>() / c.len() as f64 * reference_measure(shape)
 }

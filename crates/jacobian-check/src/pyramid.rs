@@ -1,5 +1,5 @@
-//! The 14-node (P2) pyramid of Gmsh (type 14): its shape functions, as Gmsh defines them, and
-//! what the certified check and the volume need from them.
+//! The 14-node (P2) and 30-node (P3) pyramids of Gmsh (types 14 and 118): their shape
+//! functions, as Gmsh defines them, and what the certified check and the volume need from them.
 //!
 //! Gmsh interpolates pyramids in Bergot's space (Bergot, Cohen & Duruflé, J. Sci. Comput.
 //! 2010; Gmsh's `pyramidalBasis` over `BergotBasis`): in the collapsed coordinates
@@ -7,23 +7,24 @@
 //! [−1, 1]² × [0, 1], its top face collapsed onto the apex), with t = 1 − ζ, the space of
 //! order p is spanned by ξ̂ᵃ η̂ᵇ tᵐ ζᵏ with max(a, b) = m ≤ p and k ≤ p − m (Gmsh's
 //! Legendre × Jacobi functions span the same space). At p = 2 that is 3 + 6 + 5 = 14 functions,
-//! rational in (ξ, η, ζ) (ξη/(1 − ζ) among them), and they contain the linear pyramid's.
-//! The Lagrange basis through Gmsh's 14 reference nodes (corners, edge midpoints, the base's
-//! centre) is built here from that space, as Gmsh builds it.
+//! at p = 3 4 + 9 + 10 + 7 = 30, rational in (ξ, η, ζ) (ξη/(1 − ζ) among them), and they
+//! contain the linear pyramid's. The Lagrange basis through Gmsh's reference nodes (corners,
+//! edge nodes, face and interior nodes) is built here from that space, as Gmsh builds it.
 //!
 //! The Jacobian determinant is a polynomial in the collapsed coordinates (Johnen & Geuzaine,
 //! "Geometrical validity of curvilinear pyramidal finite elements", J. Comput. Phys. 2015):
 //! with the reduced gradient g = (∂φ/∂ξ̂ / t, ∂φ/∂η̂ / t, ∂φ/∂ζ|collapsed) — polynomial, since
 //! a function with a ≥ 1 has m ≥ 1 — the gradient in (ξ, η, ζ) is (g₁, g₂, g₃ + ξ̂ g₁ + η̂ g₂),
 //! a shear of g, so det J = det[Σ xᵢ ⊗ gᵢ]. Its columns have degrees (in ξ̂, η̂, ζ) at most
-//! (1, 2, 1), (2, 1, 1), (2, 2, 1) at p = 2, so det J has degree ≤ 5 in ξ̂ and η̂ and ≤ 3 in ζ:
-//! it is expanded in the tensor Bernstein basis of those degrees on the box
-//! ([`crate::bernstein::Domain::Pyramid`]), which bounds it over the whole pyramid, the limits
-//! along every ray into the apex included (ζ = 1 is the apex seen from every direction).
-//! The volume ∫ det J dξ dη dζ = ∫ det J · t² dξ̂ dη̂ dζ has degree ≤ 5 in each collapsed
-//! coordinate, integrated exactly by 3 Gauss points per direction.
+//! (p − 1, p, p − 1), (p, p − 1, p − 1), (p, p, p − 1), so det J has degree ≤ 3p − 1 in ξ̂
+//! and η̂ and ≤ 3(p − 1) in ζ (5 and 3 at p = 2, 8 and 6 at p = 3): it is expanded in the
+//! tensor Bernstein basis of those degrees on the box ([`crate::bernstein::Domain::Pyramid`]),
+//! which bounds it over the whole pyramid, the limits along every ray into the apex included
+//! (ζ = 1 is the apex seen from every direction). The volume ∫ det J dξ dη dζ =
+//! ∫ det J · t² dξ̂ dη̂ dζ has degree ≤ 3p − 1 in each collapsed coordinate, integrated exactly
+//! by (3p − 1) / 2 + 1 Gauss points per direction (3 at p = 2, 5 at p = 3).
 //!
-//! This module owns the P2 pyramid's basis only; certifying is [`crate::certify`]'s.
+//! This module owns the high-order pyramids' bases only; certifying is [`crate::certify`]'s.
 
 use std::sync::OnceLock;
 
@@ -34,14 +35,14 @@ use crate::linalg::invert;
 use crate::matrix::{det3, matrix_from_gradients};
 use crate::point::RefPoint;
 
-/// The Bergot space of order 2: the exponents (a, b, m, k) of ξ̂ᵃ η̂ᵇ tᵐ ζᵏ.
-fn modes() -> Vec<[i32; 4]> {
-    let mut out = Vec::with_capacity(14);
-    for m in 0..=2 {
+/// The Bergot space of order `p`: the exponents (a, b, m, k) of ξ̂ᵃ η̂ᵇ tᵐ ζᵏ.
+fn modes(p: i32) -> Vec<[i32; 4]> {
+    let mut out = Vec::new();
+    for m in 0..=p {
         for b in 0..=m {
             for a in 0..=m {
                 if a.max(b) == m {
-                    out.extend((0..=2 - m).map(|k| [a, b, m, k]));
+                    out.extend((0..=p - m).map(|k| [a, b, m, k]));
                 }
             }
         }
@@ -71,22 +72,23 @@ pub(crate) fn to_reference(c: RefPoint) -> RefPoint {
     [c[0] * t, c[1] * t, c[2]]
 }
 
-/// Gmsh's Lagrange basis of the 14-node pyramid.
+/// Gmsh's Lagrange basis of a high-order pyramid.
 #[derive(Debug)]
-pub(crate) struct Bergot2 {
+pub(crate) struct Bergot {
     modes: Vec<[i32; 4]>,
-    /// `N_i = Σ_j coeffs[j · 14 + i] φ_j`.
+    /// `N_i = Σ_j coeffs[j · n + i] φ_j`, n the number of nodes.
     coeffs: Vec<f64>,
 }
 
-/// The cached basis.
-pub(crate) fn bergot2() -> &'static Bergot2 {
-    static CACHE: OnceLock<Bergot2> = OnceLock::new();
-    CACHE.get_or_init(|| {
-        let modes = modes();
+/// The cached basis of the pyramid of order `order` (2 or 3).
+pub(crate) fn bergot(order: u8) -> &'static Bergot {
+    static CACHE: [OnceLock<Bergot>; 2] = [const { OnceLock::new() }; 2];
+    assert!((2..=3).contains(&order), "pyramid of order {order}");
+    CACHE[order as usize - 2].get_or_init(|| {
+        let modes = modes(i32::from(order));
         let n = modes.len();
-        let nodes = mesh_model::reference::reference_nodes(CellType::new(Shape::Pyramid, 2))
-            .expect("the 14-node pyramid's reference nodes");
+        let nodes = mesh_model::reference::reference_nodes(CellType::new(Shape::Pyramid, order))
+            .expect("the high-order pyramids' reference nodes");
         let mut v = vec![0.0; n * n];
         for (i, x) in nodes.iter().enumerate() {
             let c = collapse(*x);
@@ -95,7 +97,7 @@ pub(crate) fn bergot2() -> &'static Bergot2 {
             }
         }
         let coeffs = invert(&v, n).expect("unisolvent pyramid nodes");
-        Bergot2 { modes, coeffs }
+        Bergot { modes, coeffs }
     })
 }
 
@@ -115,7 +117,7 @@ fn mode_reduced_gradient([a, b, m, k]: [i32; 4], c: RefPoint) -> [f64; 3] {
     ]
 }
 
-impl Bergot2 {
+impl Bergot {
     /// The shape functions at the reference point `xi`.
     pub(crate) fn values(&self, xi: RefPoint, values: &mut [f64]) {
         let c = collapse(xi);
@@ -153,19 +155,20 @@ impl Bergot2 {
     }
 }
 
-/// The 3 × 3 × 3 Gauss rule on the collapsed box, with the weight t² of the collapse folded
-/// in, and the gradients at its points.
+/// The Gauss rule on the collapsed box (module docs), with the weight t² of the collapse
+/// folded in, and the gradients at its points.
 struct VolumeRule {
     weights: Vec<f64>,
-    /// `grads[q · 14 + i]`.
+    /// `grads[q · n + i]`, n the number of nodes.
     grads: Vec<[f64; 3]>,
 }
 
-fn volume_rule() -> &'static VolumeRule {
-    static CACHE: OnceLock<VolumeRule> = OnceLock::new();
-    CACHE.get_or_init(|| {
-        let g = gauss_legendre(3);
-        let b = bergot2();
+fn volume_rule(order: u8) -> &'static VolumeRule {
+    static CACHE: [OnceLock<VolumeRule>; 2] = [const { OnceLock::new() }; 2];
+    CACHE[order as usize - 2].get_or_init(|| {
+        let g = gauss_legendre((3 * order as usize - 1) / 2 + 1);
+        let b = bergot(order);
+        let n = CellType::new(Shape::Pyramid, order).node_count();
         let (mut weights, mut grads) = (Vec::new(), Vec::new());
         for &(z, wz) in &g {
             let zeta = 0.5 * (z + 1.0);
@@ -173,7 +176,7 @@ fn volume_rule() -> &'static VolumeRule {
             for &(y, wy) in &g {
                 for &(x, wx) in &g {
                     weights.push(wx * wy * 0.5 * wz * t * t);
-                    let mut q = [[0.0; 3]; 14];
+                    let mut q = vec![[0.0; 3]; n];
                     b.collapsed_gradients([x, y, zeta], &mut q);
                     grads.extend_from_slice(&q);
                 }
@@ -183,17 +186,19 @@ fn volume_rule() -> &'static VolumeRule {
     })
 }
 
-/// The signed volume of a 14-node pyramid with node coordinates `nodes` (checked by the
-/// caller), exact up to rounding (module docs).
+/// The signed volume of a 14- or 30-node pyramid with node coordinates `nodes` (checked by
+/// the caller), exact up to rounding (module docs).
 pub(crate) fn volume(nodes: &[[f64; 3]]) -> f64 {
-    let rule = volume_rule();
+    let n = nodes.len();
+    let order = if n == 14 { 2 } else { 3 };
+    let rule = volume_rule(order);
     rule.weights
         .iter()
         .enumerate()
         .map(|(q, w)| {
             w * det3(&matrix_from_gradients(
                 nodes,
-                &rule.grads[q * 14..(q + 1) * 14],
+                &rule.grads[q * n..(q + 1) * n],
             ))
         })
         .sum()

@@ -4,9 +4,10 @@
 //! instead of the full Bernstein expansion. Most cells of a curved viscous mesh are such
 //! cells, so this is where the certification spends least.
 //!
-//! The same argument covers the 14-node pyramid (Gmsh type 14, [`crate::pyramid`]): its
-//! (Bergot) space contains the linear pyramid's, so a 14-node pyramid whose edge nodes sit at
-//! the edge midpoints and whose base node at the mean of the base corners *is* the linear
+//! The same argument covers the 14- and 30-node pyramids (Gmsh types 14 and 118,
+//! [`crate::pyramid`]): their (Bergot) spaces contain the linear pyramid's, so a high-order
+//! pyramid whose nodes sit where the linear pyramid puts them (the 14-node one's edge nodes at
+//! the edge midpoints, its base node at the mean of the base corners) *is* the linear
 //! pyramid, and is certified as one; a curved one gets the full check.
 
 use std::sync::OnceLock;

@@ -22,9 +22,9 @@ pub struct Capabilities {
 }
 
 /// Every type with Lagrange shape functions, and whether it has a certificate (all of them
-/// now; the column stays for a type that would come with shape functions first). The 14-node
-/// pyramid of Gmsh has a rational (Bergot) basis (the `pyramid` module).
-const TABLE: [(Shape, u8, bool); 14] = [
+/// now; the column stays for a type that would come with shape functions first). The 14- and
+/// 30-node pyramids of Gmsh have rational (Bergot) bases (the `pyramid` module).
+const TABLE: [(Shape, u8, bool); 18] = [
     (Shape::Tri, 1, true),
     (Shape::Tri, 2, true),
     (Shape::Tri, 3, true),
@@ -39,6 +39,10 @@ const TABLE: [(Shape, u8, bool); 14] = [
     (Shape::Hex, 2, true),
     (Shape::Pyramid, 1, true),
     (Shape::Pyramid, 2, true),
+    (Shape::Tet, 3, true),
+    (Shape::Prism, 3, true),
+    (Shape::Hex, 3, true),
+    (Shape::Pyramid, 3, true),
 ];
 
 /// The number of slots: the length of every per-type cache.
@@ -106,13 +110,15 @@ mod tests {
     #[test]
     fn every_type_with_shape_functions_is_certified() {
         assert!(supported_types().all(|t| capabilities(t).unwrap().certified));
-        assert_eq!(supported_types().count(), 14);
-        let p2_pyramid = CellType::new(Shape::Pyramid, 2);
-        assert!(capabilities(p2_pyramid).unwrap().straight_shortcut);
-        assert!(slot(p2_pyramid, Feature::Certified).is_ok());
-        let p3_pyramid = CellType::new(Shape::Pyramid, 3);
-        assert!(capabilities(p3_pyramid).is_none());
-        assert!(slot(p3_pyramid, Feature::ShapeFunctions).is_err());
+        assert_eq!(supported_types().count(), 18);
+        for p in [2, 3] {
+            let pyramid = CellType::new(Shape::Pyramid, p);
+            assert!(capabilities(pyramid).unwrap().straight_shortcut);
+            assert!(slot(pyramid, Feature::Certified).is_ok());
+        }
+        let p4_tet = CellType::new(Shape::Tet, 4);
+        assert!(capabilities(p4_tet).is_none());
+        assert!(slot(p4_tet, Feature::ShapeFunctions).is_err());
         let prism = CellType::new(Shape::Prism, 2);
         assert!(slot(prism, Feature::Certified).is_ok());
         assert!(capabilities(prism).unwrap().straight_shortcut);

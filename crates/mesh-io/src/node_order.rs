@@ -16,9 +16,9 @@
 use mesh_model::{CellType, Shape};
 
 /// The VTK cell type number of a cell type: the linear VTK cell for order 1, the Lagrange
-/// cell for orders 2 and 3, the 14-node pyramid as VTK's 13-node quadratic pyramid (27; see
-/// [`vtk_from_gmsh`]), or `None` where no verified node ordering exists here (pyramids of
-/// order 3, prisms of order 3).
+/// cell for orders 2 and 3, the 14-node pyramid as VTK's 13-node quadratic pyramid (27) and
+/// the 30-node one as VTK's linear pyramid (14; see [`vtk_from_gmsh`]); `None` where no
+/// verified node ordering exists here.
 pub fn vtk_cell_type(ty: CellType) -> Option<u8> {
     vtk_from_gmsh(ty)?;
     let linear = ty.order == 1;
@@ -48,7 +48,10 @@ pub fn vtk_cell_type(ty: CellType) -> Option<u8> {
 /// and 8 edge nodes in VTK's edge order 0-1, 1-2, 2-3, 3-0, 0-4, 1-4, 2-4, 3-4
 /// (`vtkQuadraticPyramid`), leaving out Gmsh's base node 13. That is exact when the base node
 /// is the serendipity point of the base's edges, ½ Σ edge nodes − ¼ Σ corners (the node the
-/// curving puts there); `crate::vtu` refuses any other.
+/// curving puts there); `crate::vtu` refuses any other. VTK has no cubic pyramid at all: the
+/// 30-node pyramid maps onto its 5 corners, VTK's linear pyramid, which is exact when every
+/// other node sits where the linear pyramid puts it (a straight-sided pyramid); `crate::vtu`
+/// refuses a curved one.
 pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
     const ID: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9];
     const QUAD16: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8, 11, 10, 12, 13, 15, 14];
@@ -66,6 +69,10 @@ pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
         32, 35, 33, 34, 52, 53, 55, 54, 56, 57, 59, 58, 60, 61, 63, 62,
     ];
     const PRISM18: [usize; 18] = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11, 15, 17, 16];
+    const PRISM40: [usize; 40] = [
+        0, 1, 2, 3, 4, 5, 6, 7, 12, 13, 9, 8, 18, 19, 22, 23, 21, 20, 10, 11, 14, 15, 16, 17, 24,
+        25, 26, 27, 29, 28, 34, 35, 37, 36, 33, 30, 32, 31, 38, 39,
+    ];
     const PYRAMID13: [usize; 13] = [0, 1, 2, 3, 4, 5, 8, 10, 6, 7, 9, 11, 12];
     let n = ty.node_count();
     match (ty.shape, ty.order) {
@@ -79,7 +86,9 @@ pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
         (Shape::Hex, 2) => Some(&HEX27),
         (Shape::Hex, 3) => Some(&HEX64),
         (Shape::Prism, 2) => Some(&PRISM18),
+        (Shape::Prism, 3) => Some(&PRISM40),
         (Shape::Pyramid, 2) => Some(&PYRAMID13),
+        (Shape::Pyramid, 3) => Some(&ID[..5]),
         _ => None,
     }
 }
@@ -157,17 +166,14 @@ mod tests {
         let mut checked = 0;
         for r in load("gmsh") {
             let ty = cell_type_of_gmsh(r.type_id).unwrap();
-            let Some(ours) = gmsh_reference_nodes(ty) else {
-                assert!(ty.order == 3 && ty.shape.dim() == 3, "{ty:?} not generated");
-                continue;
-            };
+            let ours = gmsh_reference_nodes(ty).unwrap();
             assert_eq!(ours.len(), r.nodes.len(), "{ty:?}");
             for (k, (a, b)) in ours.iter().zip(&r.nodes).enumerate() {
                 assert!(close(*a, *b), "{ty:?} node {k}: ours {a:?}, Gmsh {b:?}");
             }
             checked += 1;
         }
-        assert_eq!(checked, 17);
+        assert_eq!(checked, 21);
     }
 
     #[test]
@@ -185,10 +191,7 @@ mod tests {
                 other => panic!("unexpected VTK type {other}"),
             };
             let ty = CellType::new(shape, v.order);
-            let Some(perm) = vtk_from_gmsh(ty) else {
-                assert_eq!((shape, v.order), (Shape::Prism, 3));
-                continue;
-            };
+            let perm = vtk_from_gmsh(ty).unwrap();
             assert_eq!(vtk_cell_type(ty), Some(v.type_id as u8), "{ty:?}");
             let g = gmsh
                 .iter()
@@ -208,7 +211,7 @@ mod tests {
             }
             checked += 1;
         }
-        assert_eq!(checked, 15);
+        assert_eq!(checked, 16);
     }
 
     #[test]
@@ -242,12 +245,10 @@ mod tests {
     }
 
     #[test]
-    fn unverified_orderings_have_no_vtk_type() {
-        for ty in [
-            CellType::new(Shape::Pyramid, 3),
-            CellType::new(Shape::Prism, 3),
-        ] {
-            assert_eq!(vtk_cell_type(ty), None, "{ty:?}");
-        }
+    fn the_30_node_pyramid_maps_onto_vtks_linear_pyramid() {
+        let ty = CellType::new(Shape::Pyramid, 3);
+        assert_eq!(vtk_cell_type(ty), Some(14));
+        assert_eq!(vtk_from_gmsh(ty), Some(&[0, 1, 2, 3, 4][..]));
+        assert_eq!(vtk_cell_type(CellType::new(Shape::Tet, 4)), None);
     }
 }

@@ -257,16 +257,16 @@ fn ring(
     mesh
 }
 
-/// One of each 3D cell type of the given order (1 or 2): Gmsh's reference tetrahedron,
+/// One of each 3D cell type of the given order (1 to 3): Gmsh's reference tetrahedron,
 /// pyramid, prism and hexahedron, shifted apart along x, with their nodes in Gmsh order. The
 /// bottom face of the hexahedron (a quadrilateral, patch `floor`, a wall) and of the
 /// tetrahedron (a triangle, patch `box`, far field) are boundary facets. Not a conforming
 /// mesh: for format tests only.
 ///
 /// # Panics
-/// If `order` is not 1 or 2.
+/// If `order` is not 1 to 3.
 pub fn reference_cells_3d(order: u8) -> Mesh {
-    assert!(order == 1 || order == 2, "order {order}");
+    assert!((1..=3).contains(&order), "order {order}");
     let mut mesh = Mesh::new(Dim::Three, order);
     for (k, shape) in [Shape::Tet, Shape::Pyramid, Shape::Prism, Shape::Hex]
         .into_iter()
@@ -282,31 +282,26 @@ pub fn reference_cells_3d(order: u8) -> Mesh {
         mesh.cells.push(ty, &nodes);
         match shape {
             Shape::Tet => {
-                // Face (0, 2, 1) with its edge nodes (0-2, 2-1, 1-0) for order 2.
-                let n = |i: u32| start + i;
-                let (ty, facet) = if order == 1 {
-                    (CellType::new(Shape::Tri, 1), vec![n(0), n(2), n(1)])
-                } else {
-                    (
-                        CellType::new(Shape::Tri, 2),
-                        vec![n(0), n(2), n(1), n(6), n(5), n(4)],
-                    )
+                // Face (0, 2, 1) with its edge nodes (0-2, 2-1, 1-0) and face node.
+                let local: &[u32] = match order {
+                    1 => &[0, 2, 1],
+                    2 => &[0, 2, 1, 6, 5, 4],
+                    _ => &[0, 2, 1, 9, 8, 7, 6, 5, 4, 16],
                 };
-                mesh.boundary.push(ty, &facet);
+                let facet: Vec<u32> = local.iter().map(|&i| start + i).collect();
+                mesh.boundary.push(CellType::new(Shape::Tri, order), &facet);
                 mesh.boundary_patch.push(1);
             }
             Shape::Hex => {
-                // Face (0, 3, 2, 1) with its edge nodes (0-3, 3-2, 2-1, 1-0) and face node.
-                let n = |i: u32| start + i;
-                let (ty, facet) = if order == 1 {
-                    (CellType::new(Shape::Quad, 1), vec![n(0), n(3), n(2), n(1)])
-                } else {
-                    (
-                        CellType::new(Shape::Quad, 2),
-                        vec![n(0), n(3), n(2), n(1), n(9), n(13), n(11), n(8), n(20)],
-                    )
+                // Face (0, 3, 2, 1) with its edge nodes (0-3, 3-2, 2-1, 1-0) and face nodes.
+                let local: &[u32] = match order {
+                    1 => &[0, 3, 2, 1],
+                    2 => &[0, 3, 2, 1, 9, 13, 11, 8, 20],
+                    _ => &[0, 3, 2, 1, 10, 11, 19, 18, 15, 14, 9, 8, 32, 33, 34, 35],
                 };
-                mesh.boundary.push(ty, &facet);
+                let facet: Vec<u32> = local.iter().map(|&i| start + i).collect();
+                mesh.boundary
+                    .push(CellType::new(Shape::Quad, order), &facet);
                 mesh.boundary_patch.push(0);
             }
             _ => {}
@@ -394,11 +389,27 @@ mod tests {
 
     #[test]
     fn reference_cells_have_their_types() {
-        for order in 1..=2 {
+        for order in 1..=3 {
             let m = reference_cells_3d(order);
             assert_eq!(m.cells.len(), 4);
             assert_eq!(m.boundary.len(), 2);
             assert!(m.cells.types().iter().all(|t| t.order == order));
+            // each facet's nodes where its reference facet's, mapped by its corners, put them
+            for f in m.boundary.iter() {
+                let refs = gmsh_reference_nodes(f.ty).unwrap();
+                let c: Vec<[f64; 3]> = f.corners().iter().map(|&n| m.nodes[n as usize]).collect();
+                for (r, &n) in refs.iter().zip(f.nodes) {
+                    let w = if f.ty.shape == Shape::Tri {
+                        vec![1.0 - r[0] - r[1], r[0], r[1]]
+                    } else {
+                        let (u, v) = (0.5 * (r[0] + 1.0), 0.5 * (r[1] + 1.0));
+                        vec![(1.0 - u) * (1.0 - v), u * (1.0 - v), u * v, (1.0 - u) * v]
+                    };
+                    let at = [0, 1, 2].map(|d| (0..c.len()).map(|j| w[j] * c[j][d]).sum::<f64>());
+                    let x = m.nodes[n as usize];
+                    assert!((0..3).all(|d| (x[d] - at[d]).abs() < 1e-12), "{f:?}");
+                }
+            }
         }
     }
 }

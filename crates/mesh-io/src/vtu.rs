@@ -6,8 +6,10 @@
 //! use VTK's Lagrange cells (triangle 69, quadrilateral 70, tetra 71, hexahedron 72, wedge 73
 //! at order 2) with the nodes permuted from Gmsh's order by [`crate::node_order`]; the
 //! 14-node pyramid as VTK's 13-node quadratic pyramid (27) when its base node is the
-//! serendipity point of its base's edges (else [`IoError::Unsupported`]). Pyramids of order 3
-//! and order-3 prisms have no verified ordering and give [`IoError::Unsupported`].
+//! serendipity point of its base's edges (else [`IoError::Unsupported`]). VTK has no cubic
+//! pyramid: a straight-sided 30-node pyramid (every node where the linear pyramid puts it) is
+//! written as VTK's linear pyramid (14), which is the same cell, and a curved one gives
+//! [`IoError::Unsupported`].
 //!
 //! Cell data: `layer` and `pipe` (as `Int64`, −1 for [`mesh_model::NONE`] and for facets) when
 //! the mesh has them, `order` (the polynomial order of each cell or facet), and
@@ -125,10 +127,22 @@ fn xml_attribute(s: &str) -> String {
 }
 
 /// Refuses a 14-node pyramid whose base node is not the serendipity point of its base's
-/// edges: VTK's quadratic pyramid, which leaves that node out, would change its shape.
+/// edges, and a curved 30-node pyramid: VTK's quadratic and linear pyramids, which leave
+/// those nodes out, would change their shape.
 fn check_pyramids(mesh: &Mesh, path: &Path) -> Result<(), IoError> {
     let pyramid14 = mesh_model::CellType::new(mesh_model::Shape::Pyramid, 2);
+    let pyramid30 = mesh_model::CellType::new(mesh_model::Shape::Pyramid, 3);
     for (i, c) in mesh.cells.iter().enumerate() {
+        if c.ty == pyramid30 && !straight_pyramid(mesh, c.nodes) {
+            return Err(IoError::Unsupported {
+                path: path.to_path_buf(),
+                format: "vtu",
+                what: format!(
+                    "cell {i}, a curved 30-node pyramid (VTK has no cubic pyramid; a straight \
+                     one is written as VTK's linear pyramid)"
+                ),
+            });
+        }
         if c.ty != pyramid14 {
             continue;
         }
@@ -153,6 +167,28 @@ fn check_pyramids(mesh: &Mesh, path: &Path) -> Result<(), IoError> {
         }
     }
     Ok(())
+}
+
+/// Whether every node of the 30-node pyramid `nodes` is where its corners' linear pyramid
+/// puts it: `(1 − w)·B(u / (1 − w), v / (1 − w)) + w·apex` at its reference point (u, v, w),
+/// B the bilinear map of the base.
+fn straight_pyramid(mesh: &Mesh, nodes: &[u32]) -> bool {
+    let ty = mesh_model::CellType::new(mesh_model::Shape::Pyramid, 3);
+    let refs = mesh_model::reference::reference_nodes(ty).expect("the 30-node pyramid's nodes");
+    let x = |j: usize| mesh.nodes[nodes[j] as usize];
+    let scale = (0..nodes.len())
+        .flat_map(&x)
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let tolerance = 64.0 * f64::EPSILON * scale.max(f64::MIN_POSITIVE);
+    refs.iter().enumerate().skip(5).all(|(j, r)| {
+        let t = 1.0 - r[2];
+        let (a, b) = (0.5 * (1.0 + r[0] / t), 0.5 * (1.0 + r[1] / t));
+        let w = [(1.0 - a) * (1.0 - b), a * (1.0 - b), a * b, (1.0 - a) * b];
+        (0..3).all(|d| {
+            let base: f64 = (0..4).map(|k| w[k] * x(k)[d]).sum();
+            (x(j)[d] - (t * base + r[2] * x(4)[d])).abs() <= tolerance
+        })
+    })
 }
 
 fn int_array(
@@ -491,6 +527,31 @@ mod tests {
             types[4..].iter().all(|&t| t == 5.0 || t == 9.0),
             "{types:?}"
         );
+    }
+
+    #[test]
+    fn p3_solids_are_lagrange_cells_and_a_curved_pyramid_is_refused_before_writing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.vtu");
+        let mut m = reference_cells_3d(3);
+        let text = to_string(&m).unwrap();
+        let types = array(&text, "types");
+        // the straight 30-node pyramid as VTK's linear pyramid, its corners alone
+        assert_eq!(types[..4], [71.0, 14.0, 73.0, 72.0]);
+        let offsets = array(&text, "offsets");
+        assert_eq!(offsets[..4], [20.0, 25.0, 65.0, 129.0]);
+        let conn = array(&text, "connectivity");
+        let prism = m.cells.get(2).nodes.to_vec();
+        let vtk: Vec<u32> = conn[25..65].iter().map(|&v| v as u32).collect();
+        let perm = crate::node_order::vtk_from_gmsh(m.cells.get(2).ty).unwrap();
+        assert_eq!(vtk, perm.iter().map(|&j| prism[j]).collect::<Vec<_>>());
+        // a node of the pyramid's edge 0-4 off its place: refused
+        let bent = m.cells.get(1).nodes[9] as usize;
+        m.nodes[bent][0] += 0.05;
+        let err = write(&path, &m).unwrap_err();
+        assert!(matches!(err, IoError::Unsupported { .. }), "{err}");
+        assert!(err.to_string().contains("30-node pyramid"), "{err}");
+        assert!(!path.exists());
     }
 
     #[test]

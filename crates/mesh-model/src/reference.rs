@@ -127,8 +127,7 @@ fn gmsh_quad(p: usize, c: [[f64; 3]; 4], out: &mut Vec<[f64; 3]>) {
 /// quadrilaterals and hexahedra on [−1, 1]ⁿ; prisms on the unit triangle × [−1, 1]; pyramids
 /// on the base [−1, 1]² with the apex at (0, 0, 1). Unused coordinates are 0.
 ///
-/// Available for lines, triangles and quadrilaterals of order 1 to 3 and for 3D cells of
-/// order 1 and 2; `None` otherwise.
+/// Available for every shape of order 1 to 3; `None` otherwise.
 pub fn reference_nodes(ty: CellType) -> Option<Vec<[f64; 3]>> {
     let c = corners(ty.shape);
     let p = ty.order as usize;
@@ -156,7 +155,46 @@ pub fn reference_nodes(ty: CellType) -> Option<Vec<[f64; 3]>> {
                 out.push(mean(c));
             }
         }
+        (Shape::Tet | Shape::Hex | Shape::Prism | Shape::Pyramid, 3) => {
+            solid_p3(ty.shape, &mut out)
+        }
         _ => return None,
     }
     Some(out)
+}
+
+/// Gmsh's nodes of a 3D cell of order 3: the corners; two nodes on each edge, at a third and
+/// two thirds from its first corner; each face's interior in face order (a triangle's
+/// centroid; a quadrilateral's four nodes a third in from its corners, the one nearest the
+/// face's first corner first, then round the face as it is listed); then the interior — a
+/// hexahedron's the order-1 hexahedron at a third of the reference one, a prism's two nodes
+/// at the triangle's centroid, ζ = −⅓ then ⅓, a pyramid's one node at (0, 0, ⅓), none in a
+/// tetrahedron. Checked against Gmsh's own nodes (`mesh-io`'s tests).
+fn solid_p3(shape: Shape, out: &mut Vec<[f64; 3]>) {
+    let c = corners(shape);
+    out.extend_from_slice(c);
+    for e in shape.edges() {
+        for i in 1..3 {
+            out.push(lerp(c[e[0]], c[e[1]], i as f64 / 3.0));
+        }
+    }
+    let mut face = Vec::new();
+    for f in shape.faces() {
+        // the face as a cell of its own, its boundary nodes left out
+        face.clear();
+        if let [a, b, d] = **f {
+            gmsh_triangle(3, [c[a], c[b], c[d]], &mut face);
+            out.extend_from_slice(&face[9..]);
+        } else {
+            gmsh_quad(3, [c[f[0]], c[f[1]], c[f[2]], c[f[3]]], &mut face);
+            out.extend_from_slice(&face[12..]);
+        }
+    }
+    let t = 1.0 / 3.0;
+    match shape {
+        Shape::Hex => out.extend(c.iter().map(|x| x.map(|v| v * t))),
+        Shape::Prism => out.extend([[t, t, -t], [t, t, t]]),
+        Shape::Pyramid => out.push([0.0, 0.0, t]),
+        _ => {}
+    }
 }
