@@ -327,8 +327,53 @@ fn a_rigid_motion_of_every_loop_moves_every_node_of_the_p3_mesh_by_it() {
     assert!(worst < 1e-9, "a node misses the rigid motion by {worst:e}");
 }
 
-/// The written P3 mesh of `--smooth` at bump amplitude `a` (every node, linear and
-/// high-order).
+#[test]
+fn steps_write_the_sequence_each_as_the_one_step_move_and_a_half_turn_is_one() {
+    // `--steps 3` of a pitch to 90° writes the unmoved mesh, then 30°, 60° and 90°, each the
+    // mesh a one-step move to that angle writes (the balance does not depend on its warm
+    // start); and a turn by exactly 180° is valid, as 179.999° is
+    let dir = tempfile::tempdir().unwrap();
+    let pitch = ["--rotate", "-90", "--about", "0.25,0", "--order", "2"];
+    let args = [&pitch[..], &["--steps", "3"]].concat();
+    assert_eq!(
+        run_move(dir.path(), "seq", "naca0012", &args).unwrap(),
+        Outcome::Valid
+    );
+    let (outcome, _) = moved(dir.path(), "one", "naca0012", &pitch);
+    assert_eq!(outcome, Outcome::Valid);
+    assert!(!dir.path().join("seq.msh").exists());
+    let nodes = |name: &str| mesh_io::read_msh(&dir.path().join(name)).unwrap().nodes;
+    let last = nodes("seq-003.msh");
+    let worst = last
+        .iter()
+        .zip(&nodes("one.msh"))
+        .map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()))
+        .fold(0.0f64, f64::max);
+    assert!(
+        worst < 1e-9,
+        "the last step misses the one-step move by {worst:e}"
+    );
+    let first = read_json(&dir.path().join("seq-000.json"));
+    assert_eq!(first["movement"]["largest_displacement"], 0.0);
+    for k in 1..=3 {
+        let r = read_json(&dir.path().join(format!("seq-{k:03}.json")));
+        assert_certified(&r);
+        let turn = r["movement"]["motion"][0]["rigid"]["rotate_deg"]
+            .as_f64()
+            .unwrap();
+        assert!((turn + 30.0 * k as f64).abs() < 1e-12, "{turn}");
+    }
+    // exactly a half turn of the body in its far field, as 179.999°
+    for (name, deg) in [("half", "180"), ("almost", "179.999")] {
+        let args = ["--rotate", deg, "--about", "0.25,0", "--order", "2"];
+        let (outcome, r) = moved(dir.path(), name, "naca0012", &args);
+        assert_eq!(outcome, Outcome::Valid, "{deg}: {}", r["problems"]);
+        assert_certified(&r);
+        assert_eq!(r["movement"]["inverted_linear_cells"], 0);
+    }
+}
+
+/// The written P3 mesh at bump amplitude `a` (every node, linear and high-order).
 fn bumped_p3(dir: &Path, name: &str, a: f64, extra: &[&str]) -> Vec<[f64; 3]> {
     let bump = format!("0.3,{a}");
     let mut args = vec![
@@ -338,7 +383,6 @@ fn bumped_p3(dir: &Path, name: &str, a: f64, extra: &[&str]) -> Vec<[f64; 3]> {
         "0.6,-0.004,3,lower",
         "--order",
         "3",
-        "--smooth",
     ];
     args.extend_from_slice(extra);
     let (outcome, _) = moved(dir, name, "naca0012", &args);

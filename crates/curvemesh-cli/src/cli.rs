@@ -109,6 +109,13 @@ pub struct MoveArgs {
     #[arg(long, hide = true)]
     pub smooth: bool,
 
+    /// Write the motion as a sequence: N + 1 meshes from none of it to all of it in N equal
+    /// steps (angles, translations and bump amplitudes times k/N, scale factors to the power
+    /// k/N), each moved from the original mesh (no drift), same topology; every output name
+    /// gets `-000` … `-N` before its extension.
+    #[arg(long, value_name = "N")]
+    pub steps: Option<usize>,
+
     /// Also write the mesh sensitivities to this CSV file: every node of the written mesh
     /// (linear and high-order) with its derivative with respect to each design variable of
     /// the motion (each moved loop's rotation, translation x and y, scale, and each bump's

@@ -4,6 +4,7 @@
 //! the sensitivities, print the summary. A bad motion is refused with one line before any
 //! work; the outputs are written all together or not at all.
 
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, ensure};
@@ -56,6 +57,16 @@ fn run_here(args: &MoveArgs) -> Result<Finished> {
         _ => None,
     };
     let mut spinners = Spinners::new(args.quiet);
+    if let Some(steps) = args.steps {
+        drop(planned);
+        return run_steps(
+            args,
+            &case,
+            (&motions, start, &options, steps),
+            &stem,
+            &mut spinners,
+        );
+    }
     let plan = Some(&mut planned.plan);
     let moved =
         curvemesh::movement::move_into(&case, &motions, start, &options, &mut spinners, plan)?;
@@ -103,6 +114,104 @@ fn run_here(args: &MoveArgs) -> Result<Finished> {
     }
     let verdict = report.verdict(report_path.as_deref(), "the moved mesh was written but");
     Ok(Finished::of(verdict))
+}
+
+/// `move --steps N`: the N + 1 meshes of the motion's sequence, each written with its own
+/// outputs (every name with `-k` before its extension) as soon as it is made; one summary
+/// line per step. The exit status is that of the worst step.
+fn run_steps(
+    args: &MoveArgs,
+    case: &Case,
+    (motions, start, options, steps): (
+        &[LoopMotion],
+        Option<(Snapshot, &str)>,
+        &MoveOptions,
+        usize,
+    ),
+    stem: &str,
+    spinners: &mut Spinners,
+) -> Result<Finished> {
+    ensure!(
+        args.pictures.pngs.is_empty() && args.pictures.svgs.is_empty(),
+        "--png and --svg do not go with --steps: picture the steps one by one"
+    );
+    let width = steps.to_string().len().max(3);
+    let mut failed: Option<String> = None;
+    let mut write = |k: usize, moved: Moved| -> Result<()> {
+        let tag = format!("-{k:0width$}");
+        let outs: Vec<PathBuf> = args.output.outs.iter().map(|p| tagged(p, &tag)).collect();
+        let report_path = args.output.report.as_deref().map(|p| tagged(p, &tag));
+        let flags = OutputFlags {
+            outs: &outs,
+            report: report_path.as_deref(),
+            snapshot: None,
+            pictures: &args.pictures,
+        };
+        let mut planned = plan(&flags, &format!("{stem}{tag}"), &case.views)?;
+        let Moved {
+            mesh,
+            mut report,
+            sensitivities,
+            ..
+        } = moved;
+        planned.plan.write_meshes(&mesh)?;
+        let written = planned.plan.commit(&mut report)?;
+        if let (Some(path), Some(columns), true) =
+            (&args.sensitivities, &sensitivities, report.is_valid())
+        {
+            let path = tagged(path, &tag);
+            let xy: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
+            mesh_io::sensitivities::write_sensitivities(&path, &xy, columns)
+                .map_err(|e| anyhow::anyhow!("--sensitivities {}: {e}", path.display()))?;
+        }
+        let verdict = report.verdict(written.as_deref(), "the moved mesh was written but");
+        if !args.quiet {
+            let movement = report.movement.as_ref();
+            println!(
+                "step {k}/{steps}: move {:.3} s, worst-cell ratio {:.3}, {}",
+                report.timings_s.get("move").copied().unwrap_or(0.0),
+                movement.map_or(f64::NAN, |m| m.worst_cell_ratio),
+                verdict.as_deref().unwrap_or("certified")
+            );
+        }
+        if failed.is_none() {
+            failed = verdict;
+        }
+        Ok(())
+    };
+    let mut error: Option<anyhow::Error> = None;
+    let run = curvemesh::movement::move_sequence(
+        case,
+        motions,
+        start,
+        (options, steps),
+        spinners,
+        &mut |k, moved| {
+            write(k, moved).map_err(|e| {
+                let line = format!("{e:#}");
+                error = Some(e);
+                curvemesh::Error::input(line)
+            })
+        },
+    );
+    if let Some(e) = error {
+        return Err(e);
+    }
+    run?;
+    Ok(Finished::of(failed))
+}
+
+/// `path` with `tag` before its extension (`out/a.msh`, `-003`: `out/a-003.msh`).
+fn tagged(path: &Path, tag: &str) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy())
+        .unwrap_or_default();
+    let name = match path.extension() {
+        Some(ext) => format!("{stem}{tag}.{}", ext.to_string_lossy()),
+        None => format!("{stem}{tag}"),
+    };
+    path.with_file_name(name)
 }
 
 /// The library's options of the flags.

@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::error::{Result, bail};
 
 /// Everything a run reports.
-#[derive(Debug, Default, Serialize)]
+#[derive(Debug, Clone, Default, Serialize)]
 pub struct Report {
     /// The case's name.
     pub case: String,
@@ -512,7 +512,7 @@ pub const ANGLES_OF: &str =
     "the linear mesh (cell corners), quads cut along the shorter diagonal, at any order";
 
 /// A mesh file written by the run.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct WrittenMesh {
     /// The path as given.
     pub file: String,
@@ -523,7 +523,7 @@ pub struct WrittenMesh {
 }
 
 /// The quality block of the report.
-#[derive(Debug, Default, Serialize)]
+#[derive(Debug, Clone, Default, Serialize)]
 pub struct Quality {
     /// Largest interior angle of any triangle (quads cut on the shorter diagonal), degrees.
     pub max_angle_deg: f64,
@@ -560,7 +560,7 @@ pub struct Quality {
 pub const VOLUME_TOLERANCE: f64 = 1e-9;
 
 /// The quality block of a 3D report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Quality3d {
     /// The largest dihedral angle of any tetrahedron, degrees (0 without tetrahedra).
     pub max_dihedral_deg: f64,
@@ -590,7 +590,7 @@ pub struct Validity3d {
 }
 
 /// The volume check of a 3D report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct VolumeCheck {
     /// The volume the final front encloses minus the wall's: the divergence theorem over the
     /// mesh's boundary facets (`farfield` and `wall`), independent of the cells.
@@ -629,7 +629,7 @@ pub struct Inputs {
 }
 
 /// One boundary loop in the report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct LoopReport {
     /// The loop's name.
     pub name: String,

@@ -87,4 +87,6 @@ pub use motion::{
 };
 pub use movers::{IdwParams, Kernel, Method, MoveStats, Moved, RbfParams, move_mesh};
 pub use quality::{Comparison, FirstLayerDrift, compare, scaled_jacobian};
-pub use springs::{Fill, SpringMoveParams, SpringStats, Strategy, move_layered};
+pub use springs::{
+    Fill, SpringMoveParams, SpringStats, Strategy, Warm, move_layered, move_layered_from,
+};

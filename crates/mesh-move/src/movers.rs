@@ -111,7 +111,11 @@ pub fn move_mesh(
         stats.largest_displacement = stats.largest_displacement.max(d[0].hypot(d[1]));
     }
     stats.inverted_cells = crate::quality::inverted_cells(&moved);
-    Ok(Moved { mesh: moved, stats })
+    Ok(Moved {
+        mesh: moved,
+        stats,
+        start: None,
+    })
 }
 
 pub(crate) fn check_boundary(mesh: &Mesh, b: &BoundaryMotion) -> Result<(), MoveError> {

@@ -34,6 +34,9 @@ pub struct Moved {
     pub mesh: Mesh,
     /// Figures of the move.
     pub stats: MoveStats,
+    /// The spring mover: where its shape balance started (the fill), with the balanced nodes
+    /// the warm start of the next step of a sequence ([`crate::move_layered_from`]).
+    pub start: Option<Vec<[f64; 2]>>,
 }
 
 /// Figures of a spring move.

@@ -72,7 +72,46 @@ pub fn move_layered(
     method: &Method,
 ) -> Result<Moved, MoveError> {
     match method {
-        Method::Springs(p) => move_springs(layered, boundary, p),
+        Method::Springs(p) => move_springs(layered, boundary, p, None),
+        other => move_mesh(&layered.mesh, boundary, other),
+    }
+}
+
+/// The previous step of a motion sequence: where its balance started and where it ended.
+#[derive(Debug, Clone, Copy)]
+pub struct Warm<'a> {
+    /// The start of its balance ([`Moved::start`]).
+    pub start: &'a [[f64; 2]],
+    /// Its balanced nodes.
+    pub balanced: &'a [[f64; 2]],
+}
+
+/// [`move_layered`], the spring mover's balance started from this move's fill plus the
+/// previous step's correction (`warm.balanced − warm.start`): close to the balance, so fewer
+/// Newton steps, and the same balance (it does not depend on its start inside its basin).
+/// A start that inverts a cell falls back to the fill alone; IDW and RBF ignore `warm`.
+///
+/// # Errors
+/// Those of [`move_layered`]; [`MoveError::BadBoundaryMotion`] when `warm` does not have one
+/// point per node.
+pub fn move_layered_from(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    method: &Method,
+    warm: Warm<'_>,
+) -> Result<Moved, MoveError> {
+    let n = layered.mesh.nodes.len();
+    if warm.start.len() != n || warm.balanced.len() != n {
+        return Err(MoveError::BadBoundaryMotion {
+            what: format!(
+                "a warm start of {} and {} points for {n} nodes",
+                warm.start.len(),
+                warm.balanced.len()
+            ),
+        });
+    }
+    match method {
+        Method::Springs(p) => move_springs(layered, boundary, p, Some(warm)),
         other => move_mesh(&layered.mesh, boundary, other),
     }
 }
@@ -87,6 +126,7 @@ fn move_springs(
     layered: &LayeredMesh,
     boundary: &BoundaryMotion,
     p: &SpringMoveParams,
+    warm: Option<Warm<'_>>,
 ) -> Result<Moved, MoveError> {
     let (mesh, layering) = (&layered.mesh, &layered.layering);
     check_boundary(mesh, boundary)?;
@@ -105,8 +145,8 @@ fn move_springs(
         }
     }
     let old: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
-    let mut x = old.clone();
     let mut fixed = vec![false; old.len()];
+    let mut x = old.clone();
     for (&k, t) in boundary.nodes.iter().zip(&boundary.targets) {
         x[k as usize] = *t;
         fixed[k as usize] = true;
@@ -115,72 +155,179 @@ fn move_springs(
         converged: true,
         ..SpringStats::default()
     };
-    if x != old {
-        let fronts = Fronts::of(mesh, layering);
-        let mut wall = vec![false; old.len()];
-        for (f, facet) in mesh.boundary.iter().enumerate() {
-            if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall {
-                facet
-                    .corners()
-                    .iter()
-                    .for_each(|&k| wall[k as usize] = true);
-            }
-        }
-        let layers = layer_nodes(layering, &fixed, &wall, &old, &fronts, p.core_aspect);
-        stats.layer_nodes = layers.iter().map(Vec::len).sum();
-        let mut held = fixed.clone();
-        layers
-            .iter()
-            .flatten()
-            .for_each(|&n| held[n as usize] = true);
-        predict(&old, &mut x, &fronts, layering, &layers, &fixed);
-        balance(
-            &old, &mut x, &fronts, layering, &layers, &held, p, &mut stats,
-        )?;
-        let mut turn = vec![[1.0, 0.0]; old.len()];
-        held_turns(&old, &x, &fronts, layering, &[], &held, &fixed, &mut turn);
-        for layer in layers.iter().filter(|l| !l.is_empty()) {
-            held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
-        }
-        pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
-        let reference = reference_turns(&old, boundary);
-        // the balance needs an uninverted start: the chosen fill, then the others in turn
-        // while the start inverts a cell (a choice by validity alone, not by quality: inside
-        // its basin the balance does not depend on its start)
-        let placed = x.clone();
-        let mut order = vec![p.fill];
-        order.extend(
-            [Fill::Screw, Fill::Rbf, Fill::Idw]
-                .into_iter()
-                .filter(|&f| f != p.fill),
-        );
-        for fill_with in order {
-            x.copy_from_slice(&placed);
-            let p = SpringMoveParams {
-                fill: fill_with,
-                ..*p
-            };
-            fill(
-                mesh,
-                &old,
-                &mut x,
-                (&turn, &reference),
-                &held,
-                &p,
-                &mut stats,
-            );
-            if crate::quality::inverted_cells(&with_nodes(mesh, &x)) == 0 {
-                break;
-            }
-        }
-        if crate::quality::inverted_cells(&with_nodes(mesh, &x)) > 0 {
-            // no start: the failure is reported as it is
-            return Ok(finish(mesh, boundary, &old, &x, stats));
-        }
-        let field = crate::balance::ShapeField::of(layered, p.shape)?;
-        stats.newton = Some(field.balance(&mut x, &fixed, &p.newton)?);
+    if x == old {
+        return Ok(finish(mesh, boundary, &old, &x, stats));
     }
-    Ok(finish(mesh, boundary, &old, &x, stats))
+    let Some(start) = start(layered, boundary, p, &mut stats, 0)? else {
+        // no start: the failure is reported as it is (the last fill tried)
+        let x = stats_start_failed(layered, boundary, p)?;
+        return Ok(finish(mesh, boundary, &old, &x, stats));
+    };
+    x.clone_from(&start);
+    if let Some(warm) = warm {
+        // the previous step's correction, carried over where it inverts nothing
+        let mut y = x.clone();
+        for (k, y) in y.iter_mut().enumerate().filter(|(k, _)| !fixed[*k]) {
+            y[0] += warm.balanced[k][0] - warm.start[k][0];
+            y[1] += warm.balanced[k][1] - warm.start[k][1];
+        }
+        if crate::quality::inverted_cells(&with_nodes(mesh, &y)) == 0 {
+            x = y;
+        }
+    }
+    let field = crate::balance::ShapeField::of(layered, p.shape)?;
+    stats.newton = Some(field.balance(&mut x, &fixed, &p.newton)?);
+    let mut moved = finish(mesh, boundary, &old, &x, stats);
+    moved.start = Some(start);
+    Ok(moved)
+}
+
+/// How many times a motion is halved at most when no fill gives an uninverted start (a
+/// half turn in a far field of 20 chords needs one halving).
+const MAX_HALVINGS: u32 = 3;
+
+/// The start of the shape balance of `layered` moved to `boundary`: the layers by the
+/// predictor and their springs, the rest by the fill (the chosen one, then the others in turn
+/// while the start inverts a cell — a choice by validity alone, not by quality: inside its
+/// basin the balance does not depend on its start). When every fill inverts a cell, the
+/// motion is halved: the half motion is moved and balanced (recursively), and the start is
+/// the fill of the remaining half from that balanced mesh — a continuation, for the turns
+/// near 180° that no blend of the two ends can fill. `None` when that fails too.
+fn start(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    p: &SpringMoveParams,
+    stats: &mut SpringStats,
+    halvings: u32,
+) -> Result<Option<Vec<[f64; 2]>>, MoveError> {
+    let x = filled(layered, boundary, p, stats)?;
+    if crate::quality::inverted_cells(&with_nodes(&layered.mesh, &x)) == 0 {
+        return Ok(Some(x));
+    }
+    if halvings >= MAX_HALVINGS {
+        return Ok(None);
+    }
+    let (half, rest) = halves(layered, boundary);
+    let Some(mut mid) = start(layered, &half, p, stats, halvings + 1)? else {
+        return Ok(None);
+    };
+    let mut fixed = vec![false; mid.len()];
+    half.nodes.iter().for_each(|&k| fixed[k as usize] = true);
+    let field = crate::balance::ShapeField::of(layered, p.shape)?;
+    if field.balance(&mut mid, &fixed, &p.newton).is_err() {
+        return Ok(None);
+    }
+    let from = LayeredMesh {
+        mesh: with_nodes(&layered.mesh, &mid),
+        layering: layered.layering.clone(),
+    };
+    let x = filled(&from, &rest, p, stats)?;
+    let valid = crate::quality::inverted_cells(&with_nodes(&layered.mesh, &x)) == 0;
+    Ok(valid.then_some(x))
+}
+
+/// The start that failed (the last fill tried), for the report of a failed move.
+fn stats_start_failed(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    p: &SpringMoveParams,
+) -> Result<Vec<[f64; 2]>, MoveError> {
+    filled(layered, boundary, p, &mut SpringStats::default())
+}
+
+/// The first phase of the spring mover: `layered`'s nodes with the boundary at `boundary`,
+/// the kept layers placed by the predictor and their springs, the rest by the fills in turn
+/// until one inverts no cell (the last one's when all do).
+fn filled(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    p: &SpringMoveParams,
+    stats: &mut SpringStats,
+) -> Result<Vec<[f64; 2]>, MoveError> {
+    let (mesh, layering) = (&layered.mesh, &layered.layering);
+    let old: Vec<[f64; 2]> = (0..mesh.nodes.len() as u32).map(|k| mesh.xy(k)).collect();
+    let mut x = old.clone();
+    let mut fixed = vec![false; old.len()];
+    for (&k, t) in boundary.nodes.iter().zip(&boundary.targets) {
+        x[k as usize] = *t;
+        fixed[k as usize] = true;
+    }
+    let fronts = Fronts::of(mesh, layering);
+    let mut wall = vec![false; old.len()];
+    for (f, facet) in mesh.boundary.iter().enumerate() {
+        if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall {
+            facet
+                .corners()
+                .iter()
+                .for_each(|&k| wall[k as usize] = true);
+        }
+    }
+    let layers = layer_nodes(layering, &fixed, &wall, &old, &fronts, p.core_aspect);
+    stats.layer_nodes = layers.iter().map(Vec::len).sum();
+    let mut held = fixed.clone();
+    layers
+        .iter()
+        .flatten()
+        .for_each(|&n| held[n as usize] = true);
+    predict(&old, &mut x, &fronts, layering, &layers, &fixed);
+    balance(&old, &mut x, &fronts, layering, &layers, &held, p, stats)?;
+    let mut turn = vec![[1.0, 0.0]; old.len()];
+    held_turns(&old, &x, &fronts, layering, &[], &held, &fixed, &mut turn);
+    for layer in layers.iter().filter(|l| !l.is_empty()) {
+        held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
+    }
+    pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
+    let reference = reference_turns(&old, boundary);
+    let placed = x.clone();
+    let mut order = vec![p.fill];
+    order.extend(
+        [Fill::Screw, Fill::Rbf, Fill::Idw]
+            .into_iter()
+            .filter(|&f| f != p.fill),
+    );
+    for fill_with in order {
+        x.copy_from_slice(&placed);
+        let p = SpringMoveParams {
+            fill: fill_with,
+            ..*p
+        };
+        let turns = (&turn[..], &reference[..]);
+        fill(mesh, &old, &mut x, turns, &held, &p, stats);
+        if crate::quality::inverted_cells(&with_nodes(mesh, &x)) == 0 {
+            break;
+        }
+    }
+    Ok(x)
+}
+
+/// The boundary motion split in two halves: from `layered`'s nodes to halfway, and from
+/// halfway to the whole. Each node's motion is its similarity (its body's turn and scale,
+/// taking it to its target) as a logarithm, halved: a rigid motion of a body becomes exactly
+/// the half rigid motion, a bump half the bump.
+fn halves(layered: &LayeredMesh, boundary: &BoundaryMotion) -> (BoundaryMotion, BoundaryMotion) {
+    let mesh = &layered.mesh;
+    let o = [0.0, 0.0];
+    let mut half = boundary.clone();
+    for (i, &k) in boundary.nodes.iter().enumerate() {
+        let p = mesh.xy(k);
+        let theta = boundary.turn[i];
+        let sigma = crate::movers::log_scale(boundary.linear[i]);
+        let z = [theta.cos(), theta.sin()];
+        let log = screw_log(o, (z, theta, sigma), p, boundary.targets[i]);
+        half.targets[i] = screw_exp(o, log.map(|v| 0.5 * v), p);
+        let (sh, ch) = (0.5 * theta).sin_cos();
+        let k = (0.5 * sigma).exp();
+        half.linear[i] = [[k * ch, -k * sh], [k * sh, k * ch]];
+        half.turn[i] = 0.5 * theta;
+    }
+    // the rest: from the half-moved nodes to the targets, by the other half of each motion
+    let rest = BoundaryMotion {
+        nodes: boundary.nodes.clone(),
+        targets: boundary.targets.clone(),
+        linear: half.linear.clone(),
+        turn: half.turn.clone(),
+    };
+    (half, rest)
 }
 
 /// `mesh` with its nodes at `x`.
@@ -219,7 +366,11 @@ fn finish(
             .max((a[0] - b[0]).hypot(a[1] - b[1]));
     }
     stats.inverted_cells = crate::quality::inverted_cells(&moved);
-    Moved { mesh: moved, stats }
+    Moved {
+        mesh: moved,
+        stats,
+        start: None,
+    }
 }
 
 /// Each node's neighbours along its front ([`NONE`] when absent), the front running with the

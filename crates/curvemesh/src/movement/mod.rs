@@ -206,9 +206,59 @@ pub fn move_into(
     observer: &mut dyn Observer,
     plan: Option<&mut Plan>,
 ) -> Result<Moved> {
-    let order = case.order_of(options.order)?;
+    case.order_of(options.order)?;
     options.check()?;
-    let moved = moved_geometry(case, motions)?;
+    moved_geometry(case, motions)?;
+    let unmoved = unmoved(case, start, options, observer)?;
+    Ok(move_from(case, &unmoved, motions, options, observer, plan, None)?.0)
+}
+
+/// Moves `case` by the motions `motions` scaled from 0 to their full amplitude in `steps`
+/// equal steps (`steps + 1` meshes, the first the unmoved mesh; a rotation's angle, a
+/// translation and a bump's amplitude scaled by `k / steps`, a scale factor raised to that
+/// power), each moved from the same original mesh (no drift), the spring mover's balance
+/// started from the previous step's nodes (fewer Newton steps, the same balance). `each` gets
+/// each step's number and moved mesh, and its plan of outputs when it gives one.
+pub fn move_sequence(
+    case: &Case,
+    motions: &[LoopMotion],
+    start: Option<(Snapshot, &str)>,
+    (options, steps): (&MoveOptions, usize),
+    observer: &mut dyn Observer,
+    each: &mut dyn FnMut(usize, Moved) -> Result<()>,
+) -> Result<()> {
+    case.order_of(options.order)?;
+    options.check()?;
+    ensure!(steps >= 1, "--steps must be at least 1, got {steps}");
+    // the whole motion is checked before any meshing; each step's is checked again
+    moved_geometry(case, motions)?;
+    let unmoved = unmoved(case, start, options, observer)?;
+    let mut warm: Option<Balanced> = None;
+    for k in 0..=steps {
+        let at = motion::scaled(motions, k as f64 / steps as f64);
+        let (moved, balanced) =
+            move_from(case, &unmoved, &at, options, observer, None, warm.as_ref())?;
+        warm = Some(balanced);
+        each(k, moved)?;
+    }
+    Ok(())
+}
+
+/// The unmoved layered mesh a move starts from, with its boundary nodes and the report's
+/// first lines: meshed from the case, or read from a snapshot.
+struct Unmoved {
+    nodes: Vec<BoundaryNodes>,
+    layered: LayeredMesh,
+    report: Report,
+}
+
+fn unmoved(
+    case: &Case,
+    start: Option<(Snapshot, &str)>,
+    options: &MoveOptions,
+    observer: &mut dyn Observer,
+) -> Result<Unmoved> {
+    let order = case.order_of(options.order)?;
     let mut report = Report::new(&case.name, order);
     report.inputs = Some(mesh2d::inputs_of(case));
     let (nodes, layered) = match start {
@@ -218,10 +268,48 @@ pub fn move_into(
         }
         Some((snapshot, origin)) => from_snapshot(case, snapshot, origin, &mut report)?,
     };
-    let boundary = boundary_targets(&moved, &nodes, &layered)?;
+    Ok(Unmoved {
+        nodes,
+        layered,
+        report,
+    })
+}
+
+/// A move's linear nodes and where its balance started (the fill; the nodes themselves when
+/// there was no balance): the warm start of the next step of a sequence.
+struct Balanced {
+    start: Vec<[f64; 2]>,
+    nodes: Vec<[f64; 2]>,
+}
+
+/// One move of `unmoved` by `motions` (the balance started with the previous step's
+/// correction `warm` when given): the moved case and its [`Balanced`] nodes.
+fn move_from(
+    case: &Case,
+    unmoved: &Unmoved,
+    motions: &[LoopMotion],
+    options: &MoveOptions,
+    observer: &mut dyn Observer,
+    plan: Option<&mut Plan>,
+    warm: Option<&Balanced>,
+) -> Result<(Moved, Balanced)> {
+    let order = case.order_of(options.order)?;
+    let moved = moved_geometry(case, motions)?;
+    let mut report = unmoved.report.clone();
+    let (nodes, layered) = (&unmoved.nodes, &unmoved.layered);
+    let boundary = boundary_targets(&moved, nodes, layered)?;
     let (linear, seconds) = stage(observer, "moving the linear nodes", || {
-        mesh_move::move_layered(&layered, &boundary, &options.method())
-            .map_err(|e| input_error!("moving the mesh: {e}"))
+        match warm {
+            Some(w) => {
+                let warm = mesh_move::Warm {
+                    start: &w.start,
+                    balanced: &w.nodes,
+                };
+                mesh_move::move_layered_from(layered, &boundary, &options.method(), warm)
+            }
+            None => mesh_move::move_layered(layered, &boundary, &options.method()),
+        }
+        .map_err(|e| input_error!("moving the mesh: {e}"))
     });
     let linear = linear?;
     report.timings_s.insert("move", seconds);
@@ -246,8 +334,8 @@ pub fn move_into(
     } else {
         let curved = curve_keeping(
             (case, &moved),
-            &nodes,
-            (&layered, &moved_layered),
+            nodes,
+            (layered, &moved_layered),
             (order, options.triangles),
             observer,
             &mut report,
@@ -263,7 +351,7 @@ pub fn move_into(
             decisions.as_ref().map(|d| (d, order)),
         );
         let (columns, seconds) = stage(observer, "mesh sensitivities", || {
-            sensitivities_at(case, &layered, &moved_layered, at)
+            sensitivities_at(case, layered, &moved_layered, at)
         });
         report.timings_s.insert("sensitivities", seconds);
         Some(columns?)
@@ -284,12 +372,20 @@ pub fn move_into(
         observer,
         &mut report,
     )?;
-    Ok(Moved {
+    let nodes: Vec<[f64; 2]> = (0..moved_layered.mesh.nodes.len() as u32)
+        .map(|k| moved_layered.mesh.xy(k))
+        .collect();
+    let balanced = Balanced {
+        start: linear.start.unwrap_or_else(|| nodes.clone()),
+        nodes,
+    };
+    let moved = Moved {
         mesh,
         report,
         scaled_jacobian,
         sensitivities,
-    })
+    };
+    Ok((moved, balanced))
 }
 
 impl MoveOptions {

@@ -107,6 +107,25 @@ pub fn boundary_targets(
     Ok(out)
 }
 
+/// `motions` at the fraction `s` of their amplitude (0: none, 1: all): each rotation angle,
+/// translation and bump amplitude times `s`, each scale factor to the power `s`, the centres
+/// as they are; the steps of a motion sequence.
+pub fn scaled(motions: &[LoopMotion], s: f64) -> Vec<LoopMotion> {
+    motions
+        .iter()
+        .map(|m| {
+            let mut m = m.clone();
+            if let Some(r) = m.motion.rigid.as_mut() {
+                r.scale = r.scale.powf(s);
+                r.rotate_deg *= s;
+                r.translate = [r.translate[0] * s, r.translate[1] * s];
+            }
+            m.motion.bumps.iter_mut().for_each(|b| b.amplitude *= s);
+            m
+        })
+        .collect()
+}
+
 /// The rigid motion of the values given (the others at the identity's), `None` when none is.
 pub fn rigid(
     scale: Option<f64>,

@@ -5,7 +5,7 @@ use mesh_move::{LoopMotion, Surface};
 use serde::Serialize;
 
 /// The `movement` block of the report of `move`.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct MovementReport {
     /// Each loop's motion.
     pub motion: Vec<LoopMotionReport>,
@@ -42,7 +42,7 @@ pub struct MovementReport {
 }
 
 /// The spring mover's solves in the report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct SpringsReport {
     /// Explicit spring solves (1, or one per layer plus one).
     pub solves: usize,
@@ -58,7 +58,7 @@ pub struct SpringsReport {
 }
 
 /// The Newton solve of the shape balance in the report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct NewtonReport {
     /// Newton steps.
     pub iterations: usize,
@@ -92,7 +92,7 @@ fn springs_report(s: &mesh_move::SpringStats) -> SpringsReport {
 }
 
 /// One loop's motion in the report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct LoopMotionReport {
     /// The loop.
     #[serde(rename = "loop")]
@@ -105,7 +105,7 @@ pub struct LoopMotionReport {
 }
 
 /// A rigid motion in the report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct RigidReport {
     scale: f64,
     rotate_deg: f64,
@@ -114,7 +114,7 @@ pub struct RigidReport {
 }
 
 /// Quality of one linear mesh.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Side {
     /// As in `quality`.
     pub max_angle_deg: f64,
