@@ -432,8 +432,12 @@ pub fn measure(
     layers: usize,
 ) -> Measures3d {
     let mut m = measure_cells(mesh, Some(wall));
-    debug_assert!(grown.columns.iter().all(|c| c.len() <= layers + 1));
-    m.coverage = Some(grown.coverage());
+    let full = grown
+        .columns
+        .iter()
+        .filter(|c| c.len() == layers + 1)
+        .count();
+    m.coverage = Some(full as f64 / grown.columns.len().max(1) as f64);
     let (front_angles, deviations) = (&front.angles, &front.deviations);
     let layered = layered_deviations(mesh, deviations);
     let growth = [
@@ -566,13 +570,12 @@ fn enclosed(mesh: &Mesh, role: Role) -> f64 {
 
 /// The largest corner angle of every facet of the fronts of layers 1 to n, and the deviation
 /// of every extrusion edge from the angle-weighted normal of the front it grew from. A front
-/// is the wall's facets over the nodes of that layer (a stopped column's top where it has
-/// fewer layers): where children merged, a facet loses its repeated corner (a quad becomes a
-/// triangle) or, left with two corners, is no facet of that front (it collapsed to an edge)
-/// and is not counted, nor is a facet all of whose columns stopped below that layer (it was
-/// not grown there); an extrusion edge two merged columns share is counted once.
+/// is the wall's facets over the nodes of that layer: where children merged, a facet loses
+/// its repeated corner (a quad becomes a triangle) or, left with two corners, is no facet of
+/// that front (it collapsed to an edge) and is not counted; an extrusion edge two merged
+/// columns share is counted once.
 pub fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> FrontMeasures {
-    let depth = grown.columns.iter().map(Vec::len).max().unwrap_or(0);
+    let depth = grown.columns.iter().map(Vec::len).min().unwrap_or(0);
     let mut angles = Vec::new();
     let mut deviations = Vec::new();
     let mut points = Vec::with_capacity(4);
@@ -583,7 +586,6 @@ pub fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> FrontMeasures 
         let mut edges: Vec<(u32, u32)> = grown
             .columns
             .iter()
-            .filter(|c| c.len() > k + 1)
             .map(|c| (c[k], c[k + 1]))
             .filter(|(a, b)| a != b)
             .collect();
@@ -619,21 +621,15 @@ pub struct FrontMeasures {
 }
 
 /// The front of layer `k` as facets over the grown mesh's nodes: each wall facet over its
-/// corners' layer-`k` nodes (the top of a column with fewer layers), repeated corners
-/// dropped, those left with fewer than three corners left out, and those whose columns all
-/// hold fewer than `k` layers (stopped below: not grown in layer `k − 1`).
+/// corners' layer-`k` nodes, repeated corners dropped, those left with fewer than three
+/// corners left out.
 fn layer_front(wall: &Surface, grown: &afsf3d::Grown3d, k: usize) -> Vec<geom_surface::Facet> {
     let mut facets = Vec::with_capacity(wall.facets.len());
     let mut corners: Vec<u32> = Vec::with_capacity(4);
     for f in &wall.facets {
-        let column = |v: u32| &grown.columns[v as usize];
-        if k > 0 && f.nodes().iter().all(|&v| column(v).len() <= k) {
-            continue;
-        }
         corners.clear();
         for &v in f.nodes() {
-            let c = column(v);
-            let node = c[k.min(c.len() - 1)];
+            let node = grown.columns[v as usize][k];
             if corners.last() != Some(&node) {
                 corners.push(node);
             }
@@ -677,7 +673,6 @@ mod tests {
         let grown = afsf3d::Grown3d {
             mesh,
             columns: vec![vec![0, 4, 7], vec![1, 5, 8], vec![2, 5, 8], vec![3, 6, 9]],
-            stops: vec![None; 4],
             front: wall.clone(),
             front_nodes: vec![],
             node_layer: vec![],
