@@ -2,7 +2,7 @@
 //! merged cells, no self-intersection of the new front) and the shrinking of the children
 //! where they fail.
 
-use geom_surface::{Facet, first_self_intersection};
+use geom_surface::{Facet, self_intersections};
 use mesh_model::is_positive_tet;
 use mesh_model::measure3d::corner_determinants;
 use rayon::prelude::*;
@@ -60,11 +60,19 @@ pub(crate) fn strictly_convex(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3])
     let mut all: Vec<u32> = faces.iter().flatten().copied().collect();
     all.sort_unstable();
     all.dedup();
+    cones_ok(faces, pos, &all)
+}
+
+/// Whether every cone from a node of `apexes` over the faces of the cell (outward `faces`,
+/// nodes at `pos`) without it is positive whatever the diagonals of its quadrilaterals: each
+/// apex lies strictly inside the triangle at every corner of every face without it.
+pub(crate) fn cones_ok(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3], apexes: &[u32]) -> bool {
     faces.iter().all(|k| {
         let m = k.len();
         (0..m).all(|i| {
             let (p, c, q) = (pos(k[(i + m - 1) % m]), pos(k[i]), pos(k[(i + 1) % m]));
-            all.iter()
+            apexes
+                .iter()
                 .filter(|v| !k.contains(v))
                 .all(|&v| is_positive_tet(c, p, q, pos(v)))
         })
@@ -73,10 +81,25 @@ pub(crate) fn strictly_convex(faces: &[Vec<u32>], pos: impl Fn(u32) -> [f64; 3])
 
 /// Whether the cell of `layer` over the front facet `facet` is valid: [`corners_ok`] when its
 /// top keeps every node, strictly convex (every cut of `topo-cut` positive) when children
-/// of it merged.
+/// of it merged; where some of its nodes stopped, every cone from a stopped node positive
+/// ([`cones_ok`]: `topo-cut` sweeps a stopped node first, so one of them is the cell's apex
+/// and splits its quadrilaterals). Stopping makes the cell thin by its top and bottom sharing
+/// nodes, and a warped bottom quadrilateral then folds some other cone however high the
+/// children rise: the stopped node's cones depend on the children's directions only. A facet
+/// whose nodes all stopped has no cell.
 pub(crate) fn layer_cell_ok(front: &[[f64; 3]], layer: &Layer, facet: &Facet) -> bool {
     let k = facet.nodes();
-    if layer.is_merged(facet) {
+    if layer.is_bare(facet) {
+        return true;
+    }
+    let kept: Vec<u32> = k.iter().copied().filter(|&v| layer.is_kept(v)).collect();
+    if !kept.is_empty() {
+        cones_ok(
+            &layer.cell_faces(facet),
+            |v| cell_node(front, layer, v),
+            &kept,
+        )
+    } else if layer.is_merged(facet) {
         strictly_convex(&layer.cell_faces(facet), |v| cell_node(front, layer, v))
     } else {
         let up = |i: usize| layer.children[layer.child[k[i] as usize] as usize];
@@ -93,6 +116,12 @@ pub(crate) fn bad_cells(front: &[[f64; 3]], layer: &Layer, facets: &[Facet]) -> 
         .map(|(i, _)| i)
         .collect()
 }
+
+/// What fails where a cell is inverted (or a merged or stopped cell not strictly convex).
+pub(crate) const INVERTED: &str = "an inverted cell";
+
+/// What fails where the new front meets itself (two of its parts, or two bodies' fronts).
+pub(crate) const CROSSING: &str = "the front intersects itself";
 
 /// Where a layer stays invalid: the failing front facets and what fails.
 #[derive(Debug, Clone, PartialEq)]
@@ -130,15 +159,20 @@ pub(crate) fn shrink_until_valid(
             Some(bad) => bad,
             None => bad_cells(front, layer, facets),
         };
-        let mut what = "an inverted cell";
+        let mut what = INVERTED;
         if bad.is_empty() {
-            match first_self_intersection(&layer.children, &layer.top) {
-                None => return Ok(()),
-                Some((f, g)) => {
-                    bad = vec![layer.top_of[f] as usize, layer.top_of[g] as usize];
-                    what = "the front intersects itself";
-                }
+            // every crossing pair at once: two fronts growing into each other meet over many
+            let crossing = self_intersections(&layer.children, &layer.top);
+            if crossing.is_empty() {
+                return Ok(());
             }
+            bad = crossing
+                .iter()
+                .flat_map(|&(f, g)| [layer.top_of[f] as usize, layer.top_of[g] as usize])
+                .collect();
+            bad.sort_unstable();
+            bad.dedup();
+            what = CROSSING;
         }
         if round == max_shrinks {
             return Err(Failed { bad, what });
@@ -150,7 +184,7 @@ pub(crate) fn shrink_until_valid(
                 moved[layer.child[v as usize] as usize] = true;
             }
         }
-        for c in (0..moved.len()).filter(|&c| moved[c]) {
+        for c in (0..moved.len()).filter(|&c| moved[c] && !layer.kept[c]) {
             let (base, x) = (layer.base(front, c), layer.children[c]);
             layer.children[c] = std::array::from_fn(|d| (base[d] + x[d]) / 2.0);
             stats.shrunk_nodes += 1;
@@ -190,6 +224,10 @@ pub(crate) fn turned_steps(
     for &f in bad {
         let facet = &facets[f];
         for (i, &v) in facet.nodes().iter().enumerate() {
+            // a stopped node has no step to turn
+            if balanced[v as usize] == front[v as usize] {
+                continue;
+            }
             if dot(corner(facet, i), step(v as usize)) <= 0.0 {
                 failing.push(v);
             }
@@ -250,6 +288,7 @@ mod tests {
                 dir: &[],
                 len: &[],
                 balanced: children,
+                stopped: &[],
             };
             let mut layer = Layer::new(&ideal, &facets, &[]);
             let mut stats = GrowStats::default();
@@ -279,6 +318,7 @@ mod tests {
                 dir: &[],
                 len: &[],
                 balanced: top,
+                stopped: &[],
             };
             layer_cell_ok(&bottom, &Layer::new(&ideal, &[f], &[]), &f)
         };

@@ -1,7 +1,10 @@
 //! One layer's children over a front: the front with its ideal steps and balanced children
 //! ([`Ideal`]), and the layer they make ([`Layer`]: each front node's child, the children's
-//! parents, the new front's facets, the faces of each cell). A leaf: the checks, the repair,
-//! the upright places, the merging and the squeeze all work on these.
+//! parents, the new front's facets, the faces of each cell). A front node whose column has
+//! stopped keeps itself as its child (`kept`): the cells beside it lose that corner's side
+//! edge (a prism becomes a pyramid or a tetrahedron), and a facet whose nodes all stopped has
+//! no cell and stays on the front. A leaf: the checks, the repair, the upright places, the
+//! merging, the squeeze and the stopping all work on these.
 
 use geom_surface::Facet;
 use mesh_model::NONE;
@@ -16,9 +19,16 @@ pub(crate) struct Ideal<'a> {
     pub len: &'a [f64],
     /// Each node's child after the balance.
     pub balanced: &'a [[f64; 3]],
+    /// The nodes whose columns have stopped: their child is the node itself (empty: none).
+    pub stopped: &'a [bool],
 }
 
 impl Ideal<'_> {
+    /// Whether front node `i`'s column has stopped.
+    pub(crate) fn is_stopped(&self, i: usize) -> bool {
+        self.stopped.get(i).copied().unwrap_or(false)
+    }
+
     /// The child of front nodes `a` and `b` merged: over the middle of their edge by the
     /// mean of their ideal lengths, along the mean of their ideal directions. (Not the
     /// middle of their two children: children merge where the front shrinks, and there
@@ -41,6 +51,8 @@ pub(crate) struct Layer {
     pub children: Vec<[f64; 3]>,
     /// For each child, the front nodes it grew from (the second [`NONE`] unless merged).
     pub parents: Vec<[u32; 2]>,
+    /// For each child, whether it is its parent itself (a stopped column; never merged).
+    pub kept: Vec<bool>,
     /// The new front's facets, over the children (a facet whose top collapsed to an edge
     /// is left out).
     pub top: Vec<Facet>,
@@ -52,7 +64,7 @@ pub(crate) struct Layer {
 }
 
 /// The cyclic sequence `k` without a node repeated next to itself.
-fn dedup_cyclic(k: impl IntoIterator<Item = u32>) -> Vec<u32> {
+pub(crate) fn dedup_cyclic(k: impl IntoIterator<Item = u32>) -> Vec<u32> {
     let mut out: Vec<u32> = Vec::with_capacity(4);
     for v in k {
         if out.last() != Some(&v) {
@@ -69,18 +81,24 @@ impl Layer {
     /// The layer of the balanced children `balanced` (one per front node) over the front
     /// (`front`, `facets`), with the children of each pair in `merges` (front nodes joined by
     /// a front edge, each node in one pair at most) merged into one over the middle of their
-    /// edge (see [`merged_child`](Ideal::merged_child)). Without merges each front node's child keeps its index.
+    /// edge (see [`merged_child`](Ideal::merged_child)); a stopped node's child is the node
+    /// itself, and a pair with a stopped node does not merge. Without merges each front node's
+    /// child keeps its index.
     pub fn new(front: &Ideal<'_>, facets: &[Facet], merges: &[[u32; 2]]) -> Layer {
         let balanced = front.balanced;
         let n = balanced.len();
         let mut partner = vec![NONE; n];
         for &[a, b] in merges {
-            partner[a as usize] = b;
-            partner[b as usize] = a;
+            if !front.is_stopped(a as usize) && !front.is_stopped(b as usize) {
+                partner[a as usize] = b;
+                partner[b as usize] = a;
+            }
         }
+        let merges = partner.iter().any(|&p| p != NONE);
         let mut child = vec![NONE; n];
         let mut children = Vec::with_capacity(n);
         let mut parents = Vec::with_capacity(n);
+        let mut kept = Vec::with_capacity(n);
         for i in 0..n {
             if child[i] != NONE {
                 continue;
@@ -88,7 +106,12 @@ impl Layer {
             let c = children.len() as u32;
             child[i] = c;
             let j = partner[i];
-            if j == NONE {
+            let stopped = front.is_stopped(i);
+            kept.push(stopped);
+            if stopped {
+                children.push(front.nodes[i]);
+                parents.push([i as u32, NONE]);
+            } else if j == NONE {
                 children.push(balanced[i]);
                 parents.push([i as u32, NONE]);
             } else {
@@ -100,7 +123,7 @@ impl Layer {
         }
         let mut top = Vec::with_capacity(facets.len());
         let mut top_of = Vec::with_capacity(facets.len());
-        if merges.is_empty() {
+        if !merges {
             // every child keeps its parent's index: the front's facets over the children
             top.extend_from_slice(facets);
             top_of.extend(0..facets.len() as u32);
@@ -122,6 +145,7 @@ impl Layer {
             parents,
             top,
             top_of,
+            kept,
             failing: None,
         }
     }
@@ -130,6 +154,22 @@ impl Layer {
     pub fn is_merged(&self, facet: &Facet) -> bool {
         let k = facet.nodes();
         (0..k.len()).any(|i| self.child[k[i] as usize] == self.child[k[(i + 1) % k.len()] as usize])
+    }
+
+    /// Whether front node `v`'s child is `v` itself (its column stopped).
+    pub fn is_kept(&self, v: u32) -> bool {
+        self.kept[self.child[v as usize] as usize]
+    }
+
+    /// Whether the cell over `facet` is a plain prism or hexahedron: no children merged, none
+    /// kept.
+    pub fn is_plain(&self, facet: &Facet) -> bool {
+        !self.is_merged(facet) && !facet.nodes().iter().any(|&v| self.is_kept(v))
+    }
+
+    /// Whether every node of `facet` stopped: it has no cell and stays on the front.
+    pub fn is_bare(&self, facet: &Facet) -> bool {
+        facet.nodes().iter().all(|&v| self.is_kept(v))
     }
 
     /// The point child `c` shrinks towards: its parent, or the midpoint of its two parents.
@@ -149,7 +189,14 @@ impl Layer {
     /// edge's two children merged).
     pub fn cell_faces(&self, facet: &Facet) -> Vec<Vec<u32>> {
         let n = self.child.len() as u32;
-        let up = |v: u32| n + self.child[v as usize];
+        // a kept child is its front node itself
+        let up = |v: u32| {
+            if self.is_kept(v) {
+                v
+            } else {
+                n + self.child[v as usize]
+            }
+        };
         let k = facet.nodes();
         let mut faces = vec![k.iter().rev().copied().collect::<Vec<u32>>()];
         let top = dedup_cyclic(k.iter().map(|&v| up(v)));
@@ -158,8 +205,85 @@ impl Layer {
         }
         for i in 0..k.len() {
             let (a, b) = (k[i], k[(i + 1) % k.len()]);
-            faces.push(dedup_cyclic([a, b, up(b), up(a)]));
+            let side = dedup_cyclic([a, b, up(b), up(a)]);
+            // the side of two kept nodes is an edge: no face
+            if side.len() >= 3 {
+                faces.push(side);
+            }
         }
         faces
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::layer_cell_ok;
+
+    /// A unit square 0 1 2 3 (z = 0, facing +z) and a triangle 1 4 2 beside it, every child
+    /// 0.5 above its node; the nodes of `stopped` keep themselves.
+    fn layer(stopped: &[usize]) -> (Vec<[f64; 3]>, Vec<Facet>, Layer) {
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.5, 0.0],
+        ];
+        let balanced: Vec<[f64; 3]> = nodes.iter().map(|p| [p[0], p[1], 0.5]).collect();
+        let mut flags = vec![false; 5];
+        stopped.iter().for_each(|&v| flags[v] = true);
+        let facets = vec![Facet::quad(0, 1, 2, 3), Facet::tri(1, 4, 2)];
+        let ideal = Ideal {
+            nodes: &nodes,
+            dir: &[[0.0, 0.0, 1.0]; 5],
+            len: &[0.5; 5],
+            balanced: &balanced,
+            stopped: &flags,
+        };
+        let layer = Layer::new(&ideal, &facets, &[[1, 2]]);
+        (nodes, facets, layer)
+    }
+
+    #[test]
+    fn a_stopped_node_keeps_itself_and_its_cells_lose_that_corners_side_edge() {
+        // node 1 stopped: the merge of 1 and 2 is dropped, 1 is its own child
+        let (nodes, facets, l) = layer(&[1]);
+        assert!(l.is_kept(1) && !l.is_kept(2));
+        assert_eq!(l.children[l.child[1] as usize], nodes[1]);
+        assert!(l.parents.iter().all(|p| p[1] == NONE));
+        // the quad's cell: 7 nodes, the sides at node 1 triangles; the triangle's a pyramid
+        let sizes = |f: &Facet| {
+            let mut s: Vec<usize> = l.cell_faces(f).iter().map(Vec::len).collect();
+            s.sort_unstable();
+            s
+        };
+        assert_eq!(sizes(&facets[0]), [3, 3, 4, 4, 4, 4]);
+        assert_eq!(sizes(&facets[1]), [3, 3, 3, 3, 4]);
+        assert!(facets.iter().all(|f| !l.is_plain(f) && !l.is_bare(f)));
+        assert!(facets.iter().all(|f| layer_cell_ok(&nodes, &l, f)));
+        // 1 and 2 stopped: the quad's cell a prism on its side, the triangle's a tetrahedron
+        let (nodes, facets, l) = layer(&[1, 2]);
+        let sizes = |f: &Facet| {
+            let mut s: Vec<usize> = l.cell_faces(f).iter().map(Vec::len).collect();
+            s.sort_unstable();
+            s
+        };
+        assert_eq!(sizes(&facets[0]), [3, 3, 4, 4, 4]);
+        assert_eq!(sizes(&facets[1]), [3, 3, 3, 3]);
+        assert!(facets.iter().all(|f| layer_cell_ok(&nodes, &l, f)));
+        // 1, 2 and 4 stopped: the triangle has no cell and stays on the front as it was
+        let (_, facets, l) = layer(&[1, 2, 4]);
+        assert!(l.is_bare(&facets[1]));
+        assert_eq!(l.top[1], Facet::tri(l.child[1], l.child[4], l.child[2]));
+    }
+
+    #[test]
+    fn a_child_leaning_over_a_stopped_node_is_refused() {
+        let (nodes, facets, mut l) = layer(&[1]);
+        // node 4's child pushed over node 1's column: the pyramid folds
+        let c = l.child[4] as usize;
+        l.children[c] = [0.8, 0.5, 0.5];
+        assert!(!layer_cell_ok(&nodes, &l, &facets[1]));
     }
 }

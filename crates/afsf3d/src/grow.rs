@@ -1,5 +1,5 @@
-//! The layer loop: ideal steps, two spring balances, checks, and the cells appended to the
-//! polyhedral mesh.
+//! The layer loop: ideal steps, two spring balances, merges, checks (columns that still fail
+//! stop, `stop`), and the cells appended to the polyhedral mesh.
 
 use geom_predicates::vector::dist;
 use geom_surface::{Facet, Surface};
@@ -12,12 +12,14 @@ use springfield::{
 
 use crate::aspect::{limit_ratio, mean_edge};
 use crate::check::{Failed, bad_cells, shrink_until_valid, turned_steps};
+use crate::children::dedup_cyclic;
 use crate::children::{Ideal, Layer};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{add_twisted, choose_merges, merged_layer};
 use crate::repair::{CUT_LIMIT, repair_layer};
 use crate::squeeze::squeezed_layer;
-use crate::{GrowError, GrowStats, Grown3d, LayerParams};
+use crate::stop::{MIN_RISE, rises, why_failed};
+use crate::{ColumnStop, GrowError, GrowStats, Grown3d, LayerParams, StopWhy};
 
 /// A cell that fails its check merges the children of its shortest edge when that edge is
 /// shorter than this fraction of the mean ideal extrusion length (the second trigger of
@@ -63,78 +65,179 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         thickness += height;
         state.layer_heights.push(height);
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
-        let front = &state.front;
-        let (dir, len) = ideal_steps(
-            front,
-            &topo,
-            height,
-            rounds,
-            params.stand_off,
-            params.patch_normals,
-        );
-        let step = Step {
-            x: &front.nodes,
-            dir: &dir,
-            len: &len,
-            params,
-            layer,
-        };
-        let balanced = balance(&step, &topo, &mut state.stats)?;
-        // the first layer stays whole: its height is what the wall resolution needs
-        let rows = (params.merge_rows > 0.0).then_some(params.merge_rows);
-        let merges = if layer > 0 && params.coe_shrink > 0.0 {
-            choose_merges(&topo, &balanced, &len, params.coe_shrink, rows)
-        } else {
-            Vec::new()
-        };
+        // where the layers are as thick as half the wall's spacing, squeezed cells merge too
+        let squeezing = 2.0 * thickness >= spacing;
+        let at = (layer, height, rounds, squeezing);
+        let (next, stops) = grow_layer(&mut state, &topo, params, at)?;
+        let merged = next.children.len() < state.front.nodes.len();
+        state.push_layer(&topo, next, layer, &stops);
+        if merged {
+            topo = Topo::new(&state.front);
+        }
+    }
+    Ok(state.finish())
+}
+
+/// What a layer's stops leave for the next: each front node's rise (its layer's height there,
+/// 0 where it stopped) and, for those that stopped in this layer, why.
+struct LayerStops {
+    rise: Vec<f64>,
+    why: Vec<Option<StopWhy>>,
+}
+
+/// Grows one layer over `state`'s front (its edges `topo`): layer `layer` (from 0) of height
+/// `height`, the directions smoothed `rounds` times, squeezed cells merged when `squeezing`
+/// (the layers as thick as half the wall's spacing). The front nodes of stopped columns keep
+/// themselves, those near them rise less ([`rises`]); the children are balanced, merged
+/// (Coe_shrink, the squeeze, the twisted cells), settled ([`settle_layer`]) — where the layer
+/// still fails, its failing cells' nodes stop and it is settled again — and repaired.
+fn grow_layer(
+    state: &mut State,
+    topo: &Topo,
+    params: &LayerParams,
+    (layer, height, rounds, squeezing): (usize, f64, usize, bool),
+) -> Result<(Layer, LayerStops), GrowError> {
+    let front = &state.front;
+    let n = front.nodes.len();
+    let (dir, mut len) = ideal_steps(
+        front,
+        topo,
+        height,
+        rounds,
+        params.stand_off,
+        params.patch_normals,
+    );
+    // the stopped columns keep themselves; those near them rise less, or stop
+    let mut stopped = state.stopped.clone();
+    let mut why: Vec<Option<StopWhy>> = vec![None; n];
+    let mut rise = rises(topo, &front.nodes, &state.thick, &stopped, height);
+    for v in 0..n {
+        if !stopped[v] && rise[v] < MIN_RISE * height {
+            stopped[v] = true;
+            why[v] = Some(StopWhy::Transition);
+            rise[v] = 0.0;
+        }
+        len[v] *= rise[v] / height;
+    }
+    let step = Step {
+        x: &front.nodes,
+        dir: &dir,
+        len: &len,
+        stopped: &stopped,
+        params,
+        layer,
+    };
+    let mut balanced = balance(&step, topo, &mut state.stats)?;
+    // the first layer stays whole: its height is what the wall resolution needs
+    let rows = (params.merge_rows > 0.0).then_some(params.merge_rows);
+    let merges = if layer > 0 && params.coe_shrink > 0.0 {
+        choose_merges(topo, &balanced, &len, params.coe_shrink, rows, &stopped)
+    } else {
+        Vec::new()
+    };
+    let ideal = Ideal {
+        nodes: &front.nodes,
+        dir: &dir,
+        len: &len,
+        balanced: &balanced,
+        stopped: &stopped,
+    };
+    let squeeze = (layer > 0 && params.squeeze > 0.0 && squeezing).then_some(params.squeeze);
+    let twisted = layer > 0 && params.coe_shrink > 0.0;
+    let (mut next, mut merges) =
+        merged_and_twisted(topo, (&ideal, &front.facets), squeeze, twisted, merges);
+    // where the layer still fails, the nodes of its failing cells stop and it is settled again
+    loop {
         let ideal = Ideal {
             nodes: &front.nodes,
             dir: &dir,
             len: &len,
             balanced: &balanced,
+            stopped: &stopped,
         };
-        // where the layers are as thick as half the wall's spacing, squeezed cells merge too
-        let (mut next, merges) = if layer > 0 && params.squeeze > 0.0 && 2.0 * thickness >= spacing
-        {
-            squeezed_layer(&topo, &ideal, &front.facets, params.squeeze, merges)
-        } else {
-            (merged_layer(&ideal, &front.facets, merges.clone()), merges)
-        };
-        if layer > 0 && params.coe_shrink > 0.0 {
-            // cells that fail merge their shortest edge rather than shrink, if it is short
-            let bad = bad_cells(&front.nodes, &next, &front.facets);
-            let mut more = merges.clone();
-            add_twisted(&topo, &balanced, &len, &bad, TWISTED_RATIO, &mut more);
-            if more.len() > merges.len() {
-                next = merged_layer(&ideal, &front.facets, more);
-            } else {
-                // checked already: the shrinking starts from these
-                next.failing = Some(bad);
-            }
-        }
-        settle_layer(
+        let failed = match settle_layer(
             &ideal,
             &front.facets,
             &mut next,
             params.max_shrinks,
             params.patch_normals,
             &mut state.stats,
-        )
-        .map_err(|failed| failed.error(&state.pipes, layer))?;
-        // the few cells no cut can keep under the limit: their children moved (checked); not
-        // in the first layer, whose children stand on the wall's normals at its first height
-        // (moved there, the wing's thin tip-cap cells made the second layer fail)
-        if layer > 0 {
-            state.stats.repaired +=
-                repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+        ) {
+            Ok(()) => break,
+            Err(failed) => failed,
+        };
+        let mut newly = 0;
+        for &f in &failed.bad {
+            for &v in front.facets[f].nodes() {
+                let v = v as usize;
+                if !stopped[v] {
+                    stopped[v] = true;
+                    why[v] = Some(why_failed(failed.what));
+                    rise[v] = 0.0;
+                    balanced[v] = front.nodes[v];
+                    newly += 1;
+                }
+            }
         }
-        let merged = next.children.len() < front.nodes.len();
-        state.push_layer(&topo, next, layer);
-        if merged {
-            topo = Topo::new(&state.front);
+        if newly == 0 {
+            return Err(failed.error(&state.pipes, layer));
+        }
+        merges.retain(|m| !stopped[m[0] as usize] && !stopped[m[1] as usize]);
+        let ideal = Ideal {
+            nodes: &front.nodes,
+            dir: &dir,
+            len: &len,
+            balanced: &balanced,
+            stopped: &stopped,
+        };
+        next = merged_layer(&ideal, &front.facets, merges.clone());
+    }
+    // the few cells no cut can keep under the limit: their children moved (checked); not
+    // in the first layer, whose children stand on the wall's normals at its first height
+    // (moved there, the wing's thin tip-cap cells made the second layer fail)
+    if layer > 0 {
+        state.stats.repaired +=
+            repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+    }
+    Ok((next, LayerStops { rise, why }))
+}
+
+/// The layer of the balanced children of `ideal` (over `facets`) with Coe_shrink's `merges`,
+/// the merges of squeezed cells (with `squeeze`, [`LayerParams::squeeze`]'s floor where it
+/// applies) and the second trigger's (cells that fail merge their shortest edge rather than
+/// shrink, if it is short); and the merges it was built with.
+fn merged_and_twisted(
+    topo: &Topo,
+    (ideal, facets): (&Ideal<'_>, &[Facet]),
+    squeeze: Option<f64>,
+    twisted: bool,
+    merges: Vec<[u32; 2]>,
+) -> (Layer, Vec<[u32; 2]>) {
+    let (mut next, mut merges) = match squeeze {
+        Some(floor) => squeezed_layer(topo, ideal, facets, floor, merges),
+        None => (merged_layer(ideal, facets, merges.clone()), merges),
+    };
+    if twisted {
+        let bad = bad_cells(ideal.nodes, &next, facets);
+        let mut more = merges.clone();
+        let (balanced, len) = (ideal.balanced, ideal.len);
+        add_twisted(
+            topo,
+            balanced,
+            len,
+            (&bad, ideal.stopped),
+            TWISTED_RATIO,
+            &mut more,
+        );
+        if more.len() > merges.len() {
+            next = merged_layer(ideal, facets, more.clone());
+            merges = more;
+        } else {
+            // checked already: the shrinking starts from these
+            next.failing = Some(bad);
         }
     }
-    Ok(state.finish())
+    (next, merges)
 }
 
 /// How many times a layer that stays invalid drops the merges of its failing cells and is
@@ -220,6 +323,12 @@ struct State {
     /// For each wall node, its column so far, and the front node at its top.
     columns: Vec<Vec<u32>>,
     column_top: Vec<u32>,
+    /// For each wall node, where its column stopped.
+    stops: Vec<Option<ColumnStop>>,
+    /// For each front node, whether its column stopped, and its thickness (the sum of its
+    /// layers' heights; a merged child's the mean of its parents').
+    stopped: Vec<bool>,
+    thick: Vec<f64>,
     node_layer: Vec<u32>,
     node_parents: Vec<[u32; 2]>,
     layer_merges: Vec<usize>,
@@ -246,6 +355,9 @@ impl State {
             pipes: (0..surface.facets.len() as u32).collect(),
             columns: (0..n as u32).map(|i| vec![i]).collect(),
             column_top: (0..n as u32).collect(),
+            stops: vec![None; n],
+            stopped: vec![false; n],
+            thick: vec![0.0; n],
             node_layer: vec![0; n],
             node_parents: vec![[NONE; 2]; n],
             layer_merges: Vec::new(),
@@ -257,15 +369,25 @@ impl State {
         }
     }
 
-    /// Appends the layer `next` grown over the current front (its edges `topo`): its nodes,
-    /// its cells, the records; then `next`'s top is the front.
-    fn push_layer(&mut self, topo: &Topo, next: Layer, layer: usize) {
-        let base = self.mesh.nodes.len() as u32;
-        self.mesh.nodes.extend_from_slice(&next.children);
-        let merges = next.parents.iter().filter(|p| p[1] != NONE).count();
-        self.stats.merges += merges;
-        self.layer_merges.push(merges);
-        for p in &next.parents {
+    /// Appends the layer `next` grown over the current front (its edges `topo`): its nodes
+    /// (a kept child is its parent's node), its cells, the records (`stops`: the nodes'
+    /// rises and why those that stopped in this layer did); then `next`'s top is the front.
+    fn push_layer(&mut self, topo: &Topo, next: Layer, layer: usize, stops: &LayerStops) {
+        let mut mesh_node = Vec::with_capacity(next.children.len());
+        let mut thick = Vec::with_capacity(next.children.len());
+        for (c, p) in next.parents.iter().enumerate() {
+            let parents = p.iter().filter(|&&v| v != NONE).map(|&v| v as usize);
+            let grown: f64 = parents
+                .clone()
+                .map(|v| self.thick[v] + stops.rise[v])
+                .sum::<f64>();
+            thick.push(grown / parents.clone().count() as f64);
+            if next.kept[c] {
+                mesh_node.push(self.front_mesh[p[0] as usize]);
+                continue;
+            }
+            mesh_node.push(self.mesh.nodes.len() as u32);
+            self.mesh.nodes.push(next.children[c]);
             self.node_layer.push(layer as u32 + 1);
             self.node_parents.push(p.map(|v| {
                 if v == NONE {
@@ -275,10 +397,25 @@ impl State {
                 }
             }));
         }
-        let top_faces = self.push_cells(topo, &next, base, layer);
-        for (column, top) in self.columns.iter_mut().zip(&mut self.column_top) {
-            *top = next.child[*top as usize];
-            column.push(base + *top);
+        let merges = next.parents.iter().filter(|p| p[1] != NONE).count();
+        self.stats.merges += merges;
+        self.layer_merges.push(merges);
+        let top_faces = self.push_cells(topo, &next, &mesh_node, layer);
+        for (w, (column, top)) in self
+            .columns
+            .iter_mut()
+            .zip(&mut self.column_top)
+            .enumerate()
+        {
+            let was = *top as usize;
+            *top = next.child[was];
+            if !next.kept[*top as usize] {
+                column.push(mesh_node[*top as usize]);
+            } else if let Some(why) = stops.why[was] {
+                // the column stops here (a column already stopped keeps its record)
+                self.stops[w] = Some(ColumnStop { layer, why });
+                self.stats.stopped_columns += 1;
+            }
         }
         self.pipes = next
             .top_of
@@ -291,31 +428,39 @@ impl State {
             .map(|&f| self.front.facet_patch[f as usize])
             .collect();
         self.front_faces = top_faces;
-        self.front_mesh = (base..base + next.children.len() as u32).collect();
+        self.front_mesh = mesh_node;
+        self.stopped = next.kept;
+        self.thick = thick;
         self.front.nodes = next.children;
         self.front.facets = next.top;
     }
 
-    /// Appends the cells of one layer: the children of `layer` (mesh nodes `base + c`) over the
-    /// front (its edges `topo`), one cell per front facet with its faces in the contract's order (bottom, top
-    /// when it keeps three nodes, sides along the bottom's edges); each side face is stored
-    /// once, as (a, b, b', a') for the edge a → b of its first facet, a triangle (a, b, b')
-    /// where the two children merged. Returns the mesh faces of the new front's facets.
+    /// Appends the cells of one layer: the children of `layer` (child `c` is mesh node
+    /// `mesh_node[c]`) over the front (its edges `topo`), one cell per front facet with its
+    /// faces in the contract's order (bottom, top when it keeps three nodes, sides along the
+    /// bottom's edges); each side face is stored once, as (a, b, b', a') for the edge a → b
+    /// of its first facet without the repeated nodes of merged or kept children (a triangle,
+    /// or no face where both a and b stopped). A facet whose nodes all stopped has no cell:
+    /// its face stays the front's. Returns the mesh faces of the new front's facets.
     fn push_cells(
         &mut self,
         topo: &Topo,
         layer: &Layer,
-        base: u32,
+        mesh_node: &[u32],
         layer_index: usize,
     ) -> Vec<u32> {
         let (mesh, front, level) = (&mut self.mesh, &self.front, &self.front_mesh);
         let (bottom_faces, pipes) = (&self.front_faces, &self.pipes);
-        let up = |v: u32| base + layer.child[v as usize];
+        let up = |v: u32| mesh_node[layer.child[v as usize] as usize];
         let top_faces: Vec<u32> = layer
             .top
             .iter()
-            .map(|f| {
-                let k: Vec<u32> = f.nodes().iter().map(|&c| base + c).collect();
+            .zip(&layer.top_of)
+            .map(|(f, &below)| {
+                if layer.is_bare(&front.facets[below as usize]) {
+                    return bottom_faces[below as usize];
+                }
+                let k: Vec<u32> = f.nodes().iter().map(|&c| mesh_node[c as usize]).collect();
                 mesh.push_face(&k)
             })
             .collect();
@@ -329,15 +474,19 @@ impl State {
             .map(|e| {
                 let [a, b] = e.nodes;
                 let (la, lb) = (level[a as usize], level[b as usize]);
-                if up(a) == up(b) {
-                    mesh.push_face(&[la, lb, up(b)])
+                let k = dedup_cyclic([la, lb, up(b), up(a)]);
+                if k.len() < 3 {
+                    NONE
                 } else {
-                    mesh.push_face(&[la, lb, up(b), up(a)])
+                    mesh.push_face(&k)
                 }
             })
             .collect();
         let mut faces = Vec::with_capacity(6);
         for (f, facet) in front.facets.iter().enumerate() {
+            if layer.is_bare(facet) {
+                continue;
+            }
             faces.clear();
             faces.push(CellFace {
                 face: bottom_faces[f],
@@ -350,10 +499,12 @@ impl State {
                 });
             }
             for (&v, &e) in facet.nodes().iter().zip(&topo.facet_edges[f]) {
-                faces.push(CellFace {
-                    face: side_faces[e as usize],
-                    reversed: topo.edges[e as usize].nodes[0] != v,
-                });
+                if side_faces[e as usize] != NONE {
+                    faces.push(CellFace {
+                        face: side_faces[e as usize],
+                        reversed: topo.edges[e as usize].nodes[0] != v,
+                    });
+                }
             }
             mesh.push_cell(&faces, layer_index as u32, pipes[f]);
         }
@@ -364,6 +515,7 @@ impl State {
         Grown3d {
             mesh: self.mesh,
             columns: self.columns,
+            stops: self.stops,
             front: self.front,
             front_nodes: self.front_mesh,
             node_layer: self.node_layer,
@@ -422,6 +574,8 @@ struct Step<'a> {
     x: &'a [[f64; 3]],
     dir: &'a [[f64; 3]],
     len: &'a [f64],
+    /// The nodes whose columns stopped: their children stay on them.
+    stopped: &'a [bool],
     params: &'a LayerParams,
     layer: usize,
 }
@@ -429,7 +583,8 @@ struct Step<'a> {
 /// The children of the front nodes, balanced: placed at their ideal steps, balanced by the
 /// extrusion, neighbour and angle springs (the neighbour springs on the front's edges
 /// `topo`), then again with the tension springs (ideal length `tension_ratio` × the length
-/// after the first balance). Only the children move.
+/// after the first balance). Only the children move, and not those of stopped nodes (they
+/// stay on their parents, held by no extrusion or angle spring).
 fn balance(
     step: &Step<'_>,
     topo: &Topo,
@@ -439,17 +594,23 @@ fn balance(
         x,
         dir,
         len,
+        stopped,
         params,
         layer,
     } = *step;
     let n = x.len();
     let mut p: Vec<[f64; 3]> = x.to_vec();
     p.extend((0..n).map(|i| std::array::from_fn(|d| x[i][d] + len[i] * dir[i][d])));
-    let movable: Vec<bool> = (0..2 * n).map(|i| i >= n).collect();
-    let scale: Vec<f64> = (0..2 * n).map(|i| len[i % n]).collect();
+    let movable: Vec<bool> = (0..2 * n).map(|i| i >= n && !stopped[i - n]).collect();
+    // (a stopped node's scale is the largest step's: any positive length)
+    let longest = len.iter().copied().fold(0.0, f64::max);
+    let scale: Vec<f64> = (0..2 * n)
+        .map(|i| if stopped[i % n] { longest } else { len[i % n] })
+        .collect();
     let up = n as u32;
     let mut set = SpringSet3d::default();
-    for i in 0..n {
+    let both_stopped = |e: [u32; 2]| stopped[e[0] as usize] && stopped[e[1] as usize];
+    for i in (0..n).filter(|&i| !stopped[i]) {
         let k = i as u32;
         set.extrusion.push(ExtrusionSpring {
             lower: k,
@@ -464,7 +625,7 @@ fn balance(
         });
     }
     let edge_length = |e: [u32; 2]| (len[e[0] as usize] + len[e[1] as usize]) / 2.0;
-    for e in &topo.edges {
+    for e in topo.edges.iter().filter(|e| !both_stopped(e.nodes)) {
         set.neighbour.push(NeighbourSpring3d {
             edge: e.nodes.map(|v| v + up),
             far1: e.far[0].map(|v| v + up),
@@ -481,7 +642,7 @@ fn balance(
     };
     solve(&mut p, &set, stats)?;
     let longest = topo.longest_edge(&p[n..]);
-    for e in &topo.edges {
+    for e in topo.edges.iter().filter(|e| !both_stopped(e.nodes)) {
         let [a, b] = e.nodes.map(|v| v as usize);
         let length = dist(p[n + a], p[n + b]);
         let l_charac = longest[a].max(longest[b]);

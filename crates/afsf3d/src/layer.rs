@@ -15,7 +15,8 @@ use crate::upright::{Around, upright_place};
 
 /// The pairs of front nodes whose children merge (Coe_shrink): the children of a front edge
 /// closer than `coe` times the mean of the two nodes' ideal extrusion lengths `len`, the
-/// shortest (relative to that length) first, each node in one pair at most.
+/// shortest (relative to that length) first, each node in one pair at most, none with a
+/// `stopped` node (empty: none stopped).
 ///
 /// With `rows` (a ratio, [`LayerParams::merge_rows`](crate::LayerParams::merge_rows)), each
 /// pair taken is carried across the front's quads: the opposite side of each quad on a taken
@@ -31,6 +32,7 @@ pub(crate) fn choose_merges(
     len: &[f64],
     coe: f64,
     rows: Option<f64>,
+    stopped: &[bool],
 ) -> Vec<[u32; 2]> {
     let ratio = |[a, b]: [u32; 2]| {
         let (a, b) = (a as usize, b as usize);
@@ -63,7 +65,7 @@ pub(crate) fn choose_merges(
             .collect();
         by_nodes.sort_unstable();
     }
-    let mut used = vec![false; children.len()];
+    let mut used = free(children.len(), stopped);
     let mut merges = Vec::new();
     let mut stack = Vec::new();
     for (_, e) in short {
@@ -95,6 +97,14 @@ pub(crate) fn choose_merges(
     merges
 }
 
+/// For each of `n` front nodes, whether it is taken for merging already: the `stopped` ones
+/// (empty: none).
+fn free(n: usize, stopped: &[bool]) -> Vec<bool> {
+    (0..n)
+        .map(|i| stopped.get(i).copied().unwrap_or(false))
+        .collect()
+}
+
 /// The edge of front facet `f` with neither node `used` and the smallest `ratio` of its two
 /// nodes, with that ratio (ties to the smaller pair).
 pub(crate) fn best_free_edge(
@@ -115,16 +125,16 @@ pub(crate) fn best_free_edge(
 /// Adds to `merges` (the pairs of [`choose_merges`]) the second trigger of §5.2.1: for each
 /// cell over `bad` (front facets whose cells fail their check), the children of its
 /// shortest edge relative to the mean ideal extrusion length, when that is below
-/// `ratio` and neither node merges yet.
+/// `ratio` and neither node merges yet nor is `stopped` (empty: none).
 pub(crate) fn add_twisted(
     topo: &Topo,
     children: &[[f64; 3]],
     len: &[f64],
-    bad: &[usize],
+    (bad, stopped): (&[usize], &[bool]),
     ratio: f64,
     merges: &mut Vec<[u32; 2]>,
 ) {
-    let mut used = vec![false; children.len()];
+    let mut used = free(children.len(), stopped);
     for &[a, b] in merges.iter() {
         used[a as usize] = true;
         used[b as usize] = true;
@@ -230,7 +240,7 @@ fn place_merged(
                 let facet = &facets[f as usize];
                 let pass = layer_cell_ok(front.nodes, layer, facet);
                 ok += usize::from(pass);
-                let needed = layer.is_merged(facet) || unmerged_ok[f as usize];
+                let needed = !layer.is_plain(facet) || unmerged_ok[f as usize];
                 needed_ok &= pass || !needed;
             }
             (needed_ok, ok)
@@ -316,6 +326,7 @@ mod tests {
             dir: &[[0.0, 0.0, 1.0]; 5],
             len: &[1.0; 5],
             balanced: &balanced,
+            stopped: &[],
         };
         let mut layer = Layer::new(&ideal, &facets, &[[1, 2]]);
         assert_eq!(layer.child, vec![0, 1, 1, 2, 3]);
@@ -369,16 +380,16 @@ mod tests {
                 merged(k[0], k[1]) != merged(k[3], k[2])
             })
         };
-        let plain = choose_merges(&topo, &nodes, &len, 0.65, None);
+        let plain = choose_merges(&topo, &nodes, &len, 0.65, None, &[]);
         assert_eq!(plain.len(), 4);
         assert!(one_side_merged(&plain), "{plain:?}");
-        let rows = choose_merges(&topo, &nodes, &len, 0.65, Some(1.0));
+        let rows = choose_merges(&topo, &nodes, &len, 0.65, Some(1.0), &[]);
         assert_eq!(rows.len(), 4);
         assert!(!one_side_merged(&rows), "{rows:?}");
         // the shortest pair (station 0, nodes 0-1) seeds the row
         assert!(rows.iter().all(|m| m[0] % 3 + m[1] % 3 == 1), "{rows:?}");
         // a row stops where the opposite side is not short enough
-        let far = choose_merges(&topo, &nodes, &len, 0.65, Some(0.5));
+        let far = choose_merges(&topo, &nodes, &len, 0.65, Some(0.5), &[]);
         assert_eq!(far, plain);
     }
 
@@ -402,6 +413,7 @@ mod tests {
             dir: &[[0.0, 0.0, 1.0]; 4],
             len: &[1.0; 4],
             balanced: &nodes,
+            stopped: &[],
         };
         let layer = Layer::new(&ideal, &facets, &[[0, 1]]);
         assert_eq!(tangled_children(&layer), vec![0]);

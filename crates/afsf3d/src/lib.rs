@@ -47,6 +47,15 @@
 //! the steps of the nodes whose bottom corners fail (a step that does not stand off a
 //! corner triangle of the front, which no shrink mends) and is built again.
 //!
+//! Where a layer still fails, its columns stop there rather than the growth (`stop`): the
+//! front nodes of the failing cells (or of the facets where the new front crosses itself or
+//! another body's front) keep themselves as their children, the cells beside them become
+//! pyramids and tetrahedra (each checked strictly convex like a merged cell), a facet whose
+//! nodes all stopped has no cell and stays on the front, and the layer is checked again until
+//! it passes; the rest keep growing. Around stopped columns the layers are lower, so the step
+//! down to them is at most 45° (a node left under a quarter of its layer stops too). The
+//! columns record where and why they stopped ([`Grown3d::stops`]).
+//!
 //! Then, from the second layer on, where a cell over a front triangle has no cone cut (any
 //! apex, any diagonals) with every tetrahedron under 140° — a cap on its top, one child
 //! almost on the line of two others — its children are moved by a small checked search to
@@ -63,8 +72,8 @@
 //! the side faces in the order of the bottom's edges (a triangle where the edge's two
 //! children merged).
 //!
-//! Not yet: front closing between bodies or between parts of one front growing into each
-//! other (such a layer fails as "the front intersects itself").
+//! Fronts that meet (between bodies, or two parts of one front growing into each other) do
+//! not close: the columns where they would cross stop.
 //!
 //! ```
 //! use afsf3d::{LayerParams, grow_layers};
@@ -83,7 +92,7 @@
 //! Modules, bottom up (each uses only modules before it, and the parameter, error and result
 //! types here at the crate root): the leaves `front` and `children` (a layer's children and
 //! cells); then `aspect`, `check`, `repair`, `upright`, `layer` (the merging), `squeeze`,
-//! `grow`.
+//! `stop` (columns that stop), `grow`.
 
 mod aspect;
 mod check;
@@ -93,6 +102,7 @@ mod grow;
 mod layer;
 mod repair;
 mod squeeze;
+mod stop;
 mod upright;
 
 pub use grow::grow_layers;
@@ -211,7 +221,8 @@ pub enum GrowError {
         /// The solver's error.
         source: SpringError,
     },
-    /// A layer stays invalid however much its children are shrunk.
+    /// A layer stays invalid however much its children are shrunk and however many of its
+    /// columns stop (not expected: a layer whose columns all stop is its front, valid).
     #[error("layer {layer} cannot be grown over wall facet {facet}: {what}")]
     LayerFailed {
         /// The layer (from 0).
@@ -241,6 +252,41 @@ pub struct GrowStats {
     pub capped_layers: usize,
     /// The first layer (from 0) with such a child.
     pub first_capped: Option<usize>,
+    /// Wall nodes whose columns stopped before the last layer.
+    pub stopped_columns: usize,
+}
+
+/// Why a column stopped before the last layer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum StopWhy {
+    /// A cell of its next layer stayed inverted (or, merged or beside a stopped column, not
+    /// strictly convex).
+    InvertedCell,
+    /// Its next layer's front would cross itself or another body's front.
+    FrontsCross,
+    /// Next to a stopped column: its layer would have been under a quarter of the layer's
+    /// height, to keep the step down to that column at most 45°.
+    Transition,
+}
+
+impl StopWhy {
+    /// A few words for messages and reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            StopWhy::InvertedCell => "an inverted cell",
+            StopWhy::FrontsCross => "the front crosses itself or another body's front",
+            StopWhy::Transition => "next to a stopped column (the step down kept gradual)",
+        }
+    }
+}
+
+/// Where a wall node's column stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ColumnStop {
+    /// The layer (from 0) it could not take: its column holds this many layers.
+    pub layer: usize,
+    /// Why.
+    pub why: StopWhy,
 }
 
 /// Grown layers.
@@ -250,10 +296,12 @@ pub struct Grown3d {
     /// surface is node `i` here, the children of each layer follow (one per front node, two
     /// merged front nodes sharing one).
     pub mesh: PolyMesh,
-    /// For each surface node, its node and its children, bottom-up (`layers + 1` nodes); a
-    /// merged child is in the columns of both its parents' wall nodes, and every column
-    /// above it.
+    /// For each surface node, its node and its children, bottom-up (`layers + 1` nodes where
+    /// the column took every layer, fewer where it stopped); a merged child is in the columns
+    /// of both its parents' wall nodes, and every column above it.
     pub columns: Vec<Vec<u32>>,
+    /// For each surface node, where and why its column stopped (`None`: every layer).
+    pub stops: Vec<Option<ColumnStop>>,
     /// The final front, the outer boundary of the layers: the wall's facets over the top
     /// children, less those that collapsed to an edge (node `i` of the front is mesh node
     /// `front_nodes[i]`).
@@ -272,4 +320,15 @@ pub struct Grown3d {
     pub layer_heights: Vec<f64>,
     /// Measures of the growth.
     pub stats: GrowStats,
+}
+
+impl Grown3d {
+    /// The fraction of the wall nodes whose columns took every layer (1 without wall nodes).
+    pub fn coverage(&self) -> f64 {
+        if self.stops.is_empty() {
+            return 1.0;
+        }
+        let full = self.stops.iter().filter(|s| s.is_none()).count();
+        full as f64 / self.stops.len() as f64
+    }
 }

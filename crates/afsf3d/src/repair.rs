@@ -100,7 +100,7 @@ fn min_corner_sj(front: &[[f64; 3]], facets: &[Facet], around: &[u32], layer: &L
     let mut worst = 1.0f64;
     for &f in around {
         let facet = &facets[f as usize];
-        if layer.is_merged(facet) {
+        if !layer.is_plain(facet) {
             continue;
         }
         worst = worst.min(cell_sj(front, facet, |v| {
@@ -145,7 +145,10 @@ pub(crate) fn repair_layer(
     let bad: Vec<usize> = (0..facets.len())
         .into_par_iter()
         .filter(|&f| {
-            facets[f].nodes().len() == 3 && cell_cut(front, layer, &facets[f], limit) > limit
+            let facet = &facets[f];
+            facet.nodes().len() == 3
+                && !layer.is_bare(facet)
+                && cell_cut(front, layer, facet, limit) > limit
         })
         .collect();
     if bad.is_empty() {
@@ -230,6 +233,9 @@ fn improve_child(
         let mut sum = 0.0;
         for &f in around {
             let facet = &facets[f as usize];
+            if layer.is_bare(facet) {
+                continue;
+            }
             if !layer_cell_ok(front, layer, facet) {
                 return (INVERTED, f64::INFINITY);
             }
@@ -319,6 +325,7 @@ mod tests {
             dir: &[],
             len: &[],
             balanced: children,
+            stopped: &[],
         };
         Layer::new(&ideal, facets, &[])
     }

@@ -57,7 +57,10 @@ fn add_squeezed(
         return Vec::new();
     }
     squeezed.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    let mut used = vec![false; front.nodes.len()];
+    // a stopped node merges with none
+    let mut used: Vec<bool> = (0..front.nodes.len())
+        .map(|i| front.is_stopped(i))
+        .collect();
     for &[a, b] in merges.iter() {
         used[a as usize] = true;
         used[b as usize] = true;
@@ -99,7 +102,7 @@ pub(crate) fn squeezed_layer(
         }
         // the worst unmerged cell around each child
         let mut worst = vec![f64::INFINITY; layer.children.len()];
-        for facet in facets.iter().filter(|f| !layer.is_merged(f)) {
+        for facet in facets.iter().filter(|f| layer.is_plain(f)) {
             let q = cell_sj(front.nodes, facet, |v| {
                 layer.children[layer.child[v as usize] as usize]
             });

@@ -172,6 +172,7 @@ mod tests {
             dir: &[[0.0, 0.0, 1.0]; 6],
             len: &[0.25; 6],
             balanced: &balanced,
+            stopped: &[],
         };
         let normals = geom_surface::node_normals(&nodes, &facets);
         let around: Vec<u32> = (0..6).collect();

@@ -2,7 +2,7 @@
 //! or step, a `.stl` / `.msh` file relative to the case file, or the finite wing of a 2D case),
 //! the layers (`[layers]`, as
 //! in 2D), the cut into standard cells (`[cut] cells = "tets" | "mixed"`) and the order
-//! (`[curving] order = 1`, `2` or `3`: P2 or P3 cells curved onto the true wall). Unknown keys are errors,
+//! (`[curving] order = 1` or `2`: P2 cells curved onto the true wall, P3 not in 3D). Unknown keys are errors,
 //! as in 2D; every value is checked here, each fault named by its section and key.
 
 use std::path::PathBuf;
@@ -23,6 +23,11 @@ pub struct Case3d {
     pub surface: SurfaceSource,
     /// `[layers]`: first height, growth, number of layers (the other settings the crate's).
     pub layers: afsf3d::LayerParams,
+    /// `[layers] min_coverage`: the least fraction of wall nodes whose columns take every
+    /// layer (where a column cannot take its next layer it stops and the rest grow on);
+    /// below it the run fails with one line naming where and why (default
+    /// [`MIN_COVERAGE`]).
+    pub min_coverage: f64,
     /// `[cut] cells`.
     pub cells: CutCells,
     /// `[cut] max_lean_deg`: in the mixed cut, a layer cell with an extrusion edge leaning
@@ -33,7 +38,7 @@ pub struct Case3d {
     /// hexahedron with a corner scaled Jacobian below this is cut into tetrahedra and
     /// pyramids instead (default 0: every such cell kept).
     pub min_corner_sj: f64,
-    /// `[curving] order` (1 to 3).
+    /// `[curving] order` (1 or 2).
     pub order: u8,
 }
 
@@ -143,6 +148,8 @@ struct LayerKeys3d {
     /// [`afsf3d::LayerParams::smoothing`]: rounds of direction smoothing; default 8.
     /// (signed, so that a negative count is refused by name, not by the TOML reader)
     smoothing: Option<i64>,
+    /// [`Case3d::min_coverage`]; default [`MIN_COVERAGE`].
+    min_coverage: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -178,6 +185,9 @@ pub const MAX_LEAN_DEG: f64 = 30.0;
 /// (case 3); carried along the rows, cases 2 and 3 grow their 45 layers (0.65: the corners
 /// 0.028 / 0.022; 1.3: case 2 fails in layer 40; `docs/3d.md`).
 pub const QUAD_WING_MERGE_ROWS: f64 = 1.0;
+
+/// The default `[layers] min_coverage`: nine wall nodes in ten keep every layer.
+pub const MIN_COVERAGE: f64 = 0.9;
 
 /// The most rounds of direction smoothing a 3D case may ask for.
 pub const MAX_SMOOTHING: u32 = 100;
@@ -265,6 +275,11 @@ pub(crate) fn parse(
         );
         layers.smoothing = n as usize;
     }
+    let min_coverage = l.min_coverage.unwrap_or(MIN_COVERAGE);
+    ensure!(
+        (0.0..=1.0).contains(&min_coverage),
+        "{origin}: [layers] min_coverage = {min_coverage}: must be 0 to 1 (a fraction of the wall nodes)"
+    );
     let max_lean_deg = file.cut.max_lean_deg.unwrap_or(MAX_LEAN_DEG);
     ensure!(
         max_lean_deg.is_finite() && max_lean_deg > 0.0 && max_lean_deg <= 180.0,
@@ -282,6 +297,7 @@ pub(crate) fn parse(
         origin: origin.to_string(),
         surface,
         layers,
+        min_coverage,
         cells: file.cut.cells.unwrap_or(CutCells::Mixed),
         max_lean_deg,
         min_corner_sj,
@@ -300,11 +316,12 @@ fn positive(value: Option<f64>, default: f64, at: &str, key: &str) -> Result<f64
     Ok(v)
 }
 
-/// Refuses any order but 1, 2 and 3, naming `what` (the key or the flag).
+/// Refuses any order but 1 and 2 in 3D, naming `what` (the key or the flag).
 pub fn check_order(order: u8, what: &str) -> Result<()> {
     match order {
-        1..=3 => Ok(()),
-        _ => bail!("{what}: must be 1, 2 or 3"),
+        1 | 2 => Ok(()),
+        3 => bail!("{what}: P3 is not available in 3D; use order 1 or 2"),
+        _ => bail!("{what}: must be 1 or 2 in 3D"),
     }
 }
 

@@ -21,7 +21,8 @@
 //!
 //! Module order, each using only those above it: [`error`], [`observer`], [`builtin`],
 //! [`placement`], [`policy`], [`source`] → [`case`] → [`case3d`] → [`mod@load`], [`airfoil`];
-//! [`estimate`], [`pipeline`] → [`wing`], `groups3d` → [`pipeline3d`]; [`stages`],
+//! [`estimate`], [`pipeline`] → [`wing`], `groups3d`, [`columns3d`] → [`pipeline3d`];
+//! [`stages`],
 //! [`movement::report`] → [`report`] → [`outputs`], [`quality`]; `meshed` (`Options`,
 //! `Meshed`); then the runs (`mesh2d`, `mesh3d`, [`movement`]) and this root (`mesh`,
 //! `mesh_into`, the re-exports).
@@ -30,6 +31,7 @@ pub mod airfoil;
 pub mod builtin;
 pub mod case;
 pub mod case3d;
+pub mod columns3d;
 pub mod error;
 pub mod estimate;
 mod groups3d;

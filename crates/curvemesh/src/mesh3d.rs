@@ -1,5 +1,5 @@
 //! A 3D case meshed (`dimension = 3`): the wall surface, its check, the layers, the cut into
-//! standard cells, the validation and measures (at orders 2 and 3 after the curving, each wall onto
+//! standard cells, the validation and measures (at order 2 after the curving, each wall onto
 //! its true surface, and the certified check of every cell), then the meshes written into the
 //! caller's reserved outputs. Bad input (a surface that is open, inverted,
 //! self-intersecting; an option that does not apply in 3D) is an error before any output.
@@ -49,6 +49,9 @@ pub(crate) fn mesh(
     let grown = timed(r, o, ("grow", "layers (AFSF 3D)"), |_| {
         pipeline3d::grow(case, &surface)
     })?;
+    // columns that stopped: too few full ones fail the run here, before any output
+    let columns = crate::columns3d::columns(&surface, &grown, case.min_coverage);
+    columns.check(&case.origin)?;
     // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
     let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
         let front = pipeline3d::front_measures(&surface, &grown);
@@ -60,9 +63,9 @@ pub(crate) fn mesh(
     let mut measures = timed(r, o, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &front, &mesh, case.layers.layers)
     });
-    let curved = if order >= 2 {
-        let curved = timed(r, o, ("curving", &format!("curving to P{order}")), |_| {
-            pipeline3d::curve(case, &shape, &grown, &mesh, order)
+    let curved = if order == 2 {
+        let curved = timed(r, o, ("curving", "curving to P2"), |_| {
+            pipeline3d::curve(case, &shape, &grown, &mesh)
         })?;
         timed(r, o, ("volume", "curved volumes"), |_| {
             pipeline3d::curved_volumes(&curved.mesh, &mut measures)
@@ -81,6 +84,8 @@ pub(crate) fn mesh(
     })?;
     report.layers = Some(case.layers.layers as u32);
     push_notes(&mut report, curved.is_none(), grown.stats.converged);
+    report.notes.extend(columns.note());
+    report.columns = Some(columns);
     push_height_note(&mut report, &case.layers, &grown);
     push_cut_note(&mut report, case, cut_anyway);
     if let Some(plan) = plan {

@@ -2,7 +2,7 @@
 //! `mesh-io`), its check, the layers (`afsf3d`), the cut into standard cells (`topo-cut`), and
 //! the measures of the result (cells by type, dihedral angles, volume against the volume
 //! between the wall and the final front, coverage, the histograms of the dissertation's
-//! tables 5–7); at orders 2 and 3 the curving (`vector-adding`, each wall onto its true surface)
+//! tables 5–7); at order 2 the curving (`vector-adding`, each wall onto its true surface)
 //! and the curved volumes. No file is written here.
 
 use crate::error::{Context, Result, input_error};
@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use crate::case3d::{Case3d, CutCells, SurfaceSource};
 
-/// The true shape of a wall, where the P2 and P3 wall nodes go.
+/// The true shape of a wall, where the P2 wall nodes go.
 #[derive(Debug, Clone)]
 pub enum TrueShape {
     /// The built-in sphere (centred at the origin).
@@ -24,7 +24,7 @@ pub enum TrueShape {
     /// A smooth surface rebuilt from the facets (STL and `.msh` surfaces): PN triangles,
     /// feature edges kept sharp (`geom_surface::SmoothSurface`).
     Smooth(Box<SmoothWall>),
-    /// The facets themselves (cube, step): straight-sided P2 and P3 cells.
+    /// The facets themselves (cube, step): straight-sided P2 cells.
     Flat,
 }
 
@@ -109,17 +109,15 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
     })
 }
 
-/// The cut mesh curved to P2 or P3 (`order`) by Vector-Adding, the wall's high-order nodes
-/// on its true shape.
+/// The cut mesh curved to P2 by Vector-Adding, the wall's P2 nodes on its true shape.
 pub fn curve(
     case: &Case3d,
     shape: &TrueShape,
     grown: &afsf3d::Grown3d,
     mesh: &Mesh,
-    order: u8,
 ) -> Result<vector_adding::Curved3d> {
     let params = vector_adding::CurvingParams {
-        order,
+        order: 2,
         ..vector_adding::CurvingParams::default()
     };
     let projector: &dyn vector_adding::SurfaceProjector = match shape {
@@ -129,7 +127,7 @@ pub fn curve(
         TrueShape::Flat => &FlatWall,
     };
     vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params)
-        .map_err(|e| input_error!("{}: curving to P{order}: {e}", case.origin))
+        .map_err(|e| input_error!("{}: curving to P2: {e}", case.origin))
 }
 
 /// The curved mesh's volume (the sum of `jacobian_check::cell_volume` over the cells in
@@ -432,12 +430,8 @@ pub fn measure(
     layers: usize,
 ) -> Measures3d {
     let mut m = measure_cells(mesh, Some(wall));
-    let full = grown
-        .columns
-        .iter()
-        .filter(|c| c.len() == layers + 1)
-        .count();
-    m.coverage = Some(full as f64 / grown.columns.len().max(1) as f64);
+    debug_assert!(grown.columns.iter().all(|c| c.len() <= layers + 1));
+    m.coverage = Some(grown.coverage());
     let (front_angles, deviations) = (&front.angles, &front.deviations);
     let layered = layered_deviations(mesh, deviations);
     let growth = [
@@ -570,12 +564,13 @@ fn enclosed(mesh: &Mesh, role: Role) -> f64 {
 
 /// The largest corner angle of every facet of the fronts of layers 1 to n, and the deviation
 /// of every extrusion edge from the angle-weighted normal of the front it grew from. A front
-/// is the wall's facets over the nodes of that layer: where children merged, a facet loses
-/// its repeated corner (a quad becomes a triangle) or, left with two corners, is no facet of
-/// that front (it collapsed to an edge) and is not counted; an extrusion edge two merged
-/// columns share is counted once.
+/// is the wall's facets over the nodes of that layer (a stopped column's top where it has
+/// fewer layers): where children merged, a facet loses its repeated corner (a quad becomes a
+/// triangle) or, left with two corners, is no facet of that front (it collapsed to an edge)
+/// and is not counted, nor is a facet all of whose columns stopped below that layer (it was
+/// not grown there); an extrusion edge two merged columns share is counted once.
 pub fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> FrontMeasures {
-    let depth = grown.columns.iter().map(Vec::len).min().unwrap_or(0);
+    let depth = grown.columns.iter().map(Vec::len).max().unwrap_or(0);
     let mut angles = Vec::new();
     let mut deviations = Vec::new();
     let mut points = Vec::with_capacity(4);
@@ -586,6 +581,7 @@ pub fn front_measures(wall: &Surface, grown: &afsf3d::Grown3d) -> FrontMeasures 
         let mut edges: Vec<(u32, u32)> = grown
             .columns
             .iter()
+            .filter(|c| c.len() > k + 1)
             .map(|c| (c[k], c[k + 1]))
             .filter(|(a, b)| a != b)
             .collect();
@@ -621,15 +617,21 @@ pub struct FrontMeasures {
 }
 
 /// The front of layer `k` as facets over the grown mesh's nodes: each wall facet over its
-/// corners' layer-`k` nodes, repeated corners dropped, those left with fewer than three
-/// corners left out.
+/// corners' layer-`k` nodes (the top of a column with fewer layers), repeated corners
+/// dropped, those left with fewer than three corners left out, and those whose columns all
+/// hold fewer than `k` layers (stopped below: not grown in layer `k − 1`).
 fn layer_front(wall: &Surface, grown: &afsf3d::Grown3d, k: usize) -> Vec<geom_surface::Facet> {
     let mut facets = Vec::with_capacity(wall.facets.len());
     let mut corners: Vec<u32> = Vec::with_capacity(4);
     for f in &wall.facets {
+        let column = |v: u32| &grown.columns[v as usize];
+        if k > 0 && f.nodes().iter().all(|&v| column(v).len() <= k) {
+            continue;
+        }
         corners.clear();
         for &v in f.nodes() {
-            let node = grown.columns[v as usize][k];
+            let c = column(v);
+            let node = c[k.min(c.len() - 1)];
             if corners.last() != Some(&node) {
                 corners.push(node);
             }
@@ -673,6 +675,7 @@ mod tests {
         let grown = afsf3d::Grown3d {
             mesh,
             columns: vec![vec![0, 4, 7], vec![1, 5, 8], vec![2, 5, 8], vec![3, 6, 9]],
+            stops: vec![None; 4],
             front: wall.clone(),
             front_nodes: vec![],
             node_layer: vec![],

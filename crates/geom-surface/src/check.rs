@@ -242,6 +242,40 @@ impl Surface {
 /// without either opposite edge meeting the other are not seen (the corner-tet checks of a
 /// mesher see such folds).
 pub fn first_self_intersection(nodes: &[[f64; 3]], facets: &[Facet]) -> Option<(usize, usize)> {
+    let (tris, pairs) = candidate_pairs(nodes, facets);
+    // the exact tests of the broad phase's pairs on all cores (the first in the sweep's
+    // order wins, whatever the threads)
+    pairs
+        .par_iter()
+        .map(|&(i, j)| (tris[i], tris[j]))
+        .find_first(|&((fa, a), (fb, b))| fa != fb && triangles_cross(nodes, a, b))
+        .map(|((fa, _), (fb, _))| (fa.min(fb) as usize, fa.max(fb) as usize))
+}
+
+/// Every pair of facets that meet anywhere but at the nodes and edges they share (the test
+/// of [`first_self_intersection`]), each pair once, the lower facet first, sorted: where a
+/// mesher must act on all of them at once (two fronts growing into each other meet over
+/// many facets).
+pub fn self_intersections(nodes: &[[f64; 3]], facets: &[Facet]) -> Vec<(usize, usize)> {
+    let (tris, pairs) = candidate_pairs(nodes, facets);
+    let mut out: Vec<(usize, usize)> = pairs
+        .par_iter()
+        .map(|&(i, j)| (tris[i], tris[j]))
+        .filter(|&((fa, a), (fb, b))| fa != fb && triangles_cross(nodes, a, b))
+        .map(|((fa, _), (fb, _))| (fa.min(fb) as usize, fa.max(fb) as usize))
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The facets' triangles (a quad split into two), each with its facet, and the pairs of
+/// triangles whose boxes overlap (sort-and-sweep), in the sweep's order.
+#[allow(clippy::type_complexity)]
+fn candidate_pairs(
+    nodes: &[[f64; 3]],
+    facets: &[Facet],
+) -> (Vec<(u32, [u32; 3])>, Vec<(usize, usize)>) {
     let tris: Vec<(u32, [u32; 3])> = facets
         .iter()
         .enumerate()
@@ -252,13 +286,8 @@ pub fn first_self_intersection(nodes: &[[f64; 3]], facets: &[Facet]) -> Option<(
         .iter()
         .map(|&(_, t)| Aabb::of_points(&corners(t)).expect("three corners"))
         .collect();
-    // the broad phase in order, the exact tests of its pairs on all cores (the first in
-    // the sweep's order wins, whatever the threads)
-    overlapping_pairs(&boxes)
-        .par_iter()
-        .map(|&(i, j)| (tris[i], tris[j]))
-        .find_first(|&((fa, a), (fb, b))| fa != fb && triangles_cross(nodes, a, b))
-        .map(|((fa, _), (fb, _))| (fa.min(fb) as usize, fa.max(fb) as usize))
+    let pairs = overlapping_pairs(&boxes);
+    (tris, pairs)
 }
 
 /// Whether triangles `a` and `b` (node indices) meet away from the nodes they share.

@@ -33,7 +33,7 @@ mod check;
 mod smooth;
 pub mod wing;
 
-pub use check::{SurfaceError, first_self_intersection};
+pub use check::{SurfaceError, first_self_intersection, self_intersections};
 use mesh_model::{Patch, Role};
 pub use smooth::{DEFAULT_FEATURE_ANGLE_DEG, PnTriangle, SmoothSurface};
 

@@ -111,6 +111,14 @@ fn two_overlapping_spheres_intersect() {
         .for_each(|f| tris.push([f.0[0] + offset, f.0[1] + offset, f.0[2] + offset]));
     let s = Surface::from_triangles(nodes.clone(), &tris);
     assert_error(&s, |e| matches!(e, SurfaceError::SelfIntersecting { .. }));
+    // every crossing pair, each once, the check's among them, one facet of each body
+    let all = geom_surface::self_intersections(&s.nodes, &s.facets);
+    assert!(all.len() > 10, "{}", all.len());
+    assert!(all.windows(2).all(|w| w[0] < w[1]));
+    let first = geom_surface::first_self_intersection(&s.nodes, &s.facets).unwrap();
+    assert!(all.contains(&first));
+    let faces = a.facets.len();
+    assert!(all.iter().all(|&(f, g)| f < faces && g >= faces));
     // apart, the two spheres are a valid surface of two bodies
     let apart: Vec<[f64; 3]> = nodes
         .iter()

@@ -7,7 +7,10 @@
 //! direction"), every child inheriting its parent's key, a merged child the smallest of its
 //! parents' (a merging group is swept at once). Inheriting keeps a hexahedron's first bottom
 //! node under its first top node, so the top's diagonal passes over the bottom's and no
-//! tetrahedron lies flat in a thin layer. Ties are broken by node index.
+//! tetrahedron lies flat in a thin layer. Ties are broken by node index. A node on both the
+//! bottom and the top of a cell (its column stopped, `afsf3d`) comes first in its level: the
+//! cells beside a stopped column are thin where their top and bottom meet, and only the cones
+//! from the stopped node are sure.
 
 use mesh_model::NONE;
 use mesh_model::poly::PolyMesh;
@@ -24,10 +27,19 @@ pub fn cells_by_layer(poly: &PolyMesh) -> Vec<u32> {
     cells
 }
 
+/// Whether bottom node `v` of a cell is kept: on its top (face 1) as well, its column
+/// stopped (`afsf3d`), so it has no child in the cell.
+fn kept(faces: &CellFaces, v: u32) -> bool {
+    faces.len() > 1 && faces.face(1).contains(&v)
+}
+
 /// The child of bottom node `v` in a cell: the node joined to it by an edge of the cell and
-/// not on the bottom (face 0).
+/// not on the bottom (face 0); none for a kept node ([`kept`]).
 fn child(faces: &CellFaces, v: u32) -> Option<u32> {
     let bottom = faces.face(0);
+    if kept(faces, v) {
+        return None;
+    }
     faces.faces().skip(1).find_map(|k| {
         let at = k.iter().position(|&x| x == v)?;
         let next = k[(at + 1) % k.len()];
@@ -84,7 +96,12 @@ pub fn sweep_ranks(poly: &PolyMesh) -> Vec<u32> {
         for i in 0..faces.face(0).len() {
             let v = faces.face(0)[i] as usize;
             let ch = child(&faces, v as u32);
-            if level[v] == u32::MAX {
+            if level[v] == u32::MAX && kept(&faces, v as u32) {
+                // a stopped column's node first in its level: the apex of the cells beside
+                // it, whose cones from it `afsf3d` checked (their other cones may fold)
+                level[v] = layer;
+                key[v] = f64::NEG_INFINITY;
+            } else if level[v] == u32::MAX {
                 level[v] = layer;
                 key[v] = ch.map_or(f64::INFINITY, |u| {
                     let p = poly.nodes[u as usize];
@@ -184,15 +201,21 @@ pub fn round_cut_ranks(
     Ok(rank)
 }
 
+/// The most rounds of [`uncover_inverted`]: each splits one more quadrilateral per inverted
+/// piece, and a chain of warped quadrilaterals takes one round a link (the slot of `afsf3d`'s
+/// `tests/stop.rs`, whose layers outgrow its width, needs 17; 8 left it inverted).
+const UNCOVER_ROUNDS: usize = 64;
+
 /// Where a round-cut cell still has a piece that is not positive (a pyramid over a warped
 /// quadrilateral of a kept neighbour), ranks one more node of it, the one whose cut keeps
 /// the cells around it best, so that the quadrilateral is split and the neighbour cut too;
-/// a few rounds at most (every node ranked is the pure tetrahedral cut).
+/// round after round while one ranks a node, at most [`UNCOVER_ROUNDS`] (every node ranked
+/// is the pure tetrahedral cut).
 fn uncover_inverted(poly: &PolyMesh, sweep: &[u32], around: &Around, rank: &mut [u32]) {
     let mut scratch = Scratch::default();
     let mut faces = CellFaces::default();
     let mut nodes = Vec::new();
-    for _ in 0..8 {
+    for _ in 0..UNCOVER_ROUNDS {
         let mut changed = false;
         for c in 0..poly.cell_count() as u32 {
             if scratch.quality(poly, c, rank) < INVERTED {
