@@ -17,6 +17,7 @@ m=fixtures/motions
 rows=(
   "naca0012|naca|--rotate -90 --about 0.25,0|NACA0012 R20, pitch 90°"
   "fixtures/movement/naca0012-far5.toml|far5|--rotate -90 --about 0.25,0|NACA0012 R5, pitch 90°"
+  "naca0012|naca|--rotate 180 --about 0.25,0|NACA0012 R20, exactly 180°"
   "30p30n|30p30n|--motion $m/30p30n-flap10.toml|30P30N flap +10°"
   "30p30n|30p30n|--motion $m/30p30n-slat10.toml|30P30N slat 10°"
   "30p30n|30p30n|--motion $m/30p30n-slat-flap10.toml|30P30N slat + flap"

@@ -2,7 +2,7 @@
 //! or step, a `.stl` / `.msh` file relative to the case file, or the finite wing of a 2D case),
 //! the layers (`[layers]`, as
 //! in 2D), the cut into standard cells (`[cut] cells = "tets" | "mixed"`) and the order
-//! (`[curving] order = 1` or `2`: P2 cells curved onto the true wall, P3 not in 3D). Unknown keys are errors,
+//! (`[curving] order = 1`, `2` or `3`: P2 or P3 cells curved onto the true wall). Unknown keys are errors,
 //! as in 2D; every value is checked here, each fault named by its section and key.
 
 use std::path::PathBuf;
@@ -38,7 +38,7 @@ pub struct Case3d {
     /// hexahedron with a corner scaled Jacobian below this is cut into tetrahedra and
     /// pyramids instead (default 0: every such cell kept).
     pub min_corner_sj: f64,
-    /// `[curving] order` (1 or 2).
+    /// `[curving] order` (1 to 3).
     pub order: u8,
 }
 
@@ -316,12 +316,11 @@ fn positive(value: Option<f64>, default: f64, at: &str, key: &str) -> Result<f64
     Ok(v)
 }
 
-/// Refuses any order but 1 and 2 in 3D, naming `what` (the key or the flag).
+/// Refuses any order but 1, 2 and 3, naming `what` (the key or the flag).
 pub fn check_order(order: u8, what: &str) -> Result<()> {
     match order {
-        1 | 2 => Ok(()),
-        3 => bail!("{what}: P3 is not available in 3D; use order 1 or 2"),
-        _ => bail!("{what}: must be 1 or 2 in 3D"),
+        1..=3 => Ok(()),
+        _ => bail!("{what}: must be 1, 2 or 3"),
     }
 }
 

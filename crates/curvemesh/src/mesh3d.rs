@@ -1,5 +1,5 @@
 //! A 3D case meshed (`dimension = 3`): the wall surface, its check, the layers, the cut into
-//! standard cells, the validation and measures (at order 2 after the curving, each wall onto
+//! standard cells, the validation and measures (at orders 2 and 3 after the curving, each wall onto
 //! its true surface, and the certified check of every cell), then the meshes written into the
 //! caller's reserved outputs. Bad input (a surface that is open, inverted,
 //! self-intersecting; an option that does not apply in 3D) is an error before any output.
@@ -63,9 +63,9 @@ pub(crate) fn mesh(
     let mut measures = timed(r, o, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &front, &mesh, case.layers.layers)
     });
-    let curved = if order == 2 {
-        let curved = timed(r, o, ("curving", "curving to P2"), |_| {
-            pipeline3d::curve(case, &shape, &grown, &mesh)
+    let curved = if order >= 2 {
+        let curved = timed(r, o, ("curving", &format!("curving to P{order}")), |_| {
+            pipeline3d::curve(case, &shape, &grown, &mesh, order)
         })?;
         timed(r, o, ("volume", "curved volumes"), |_| {
             pipeline3d::curved_volumes(&curved.mesh, &mut measures)

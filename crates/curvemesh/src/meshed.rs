@@ -9,7 +9,7 @@ use crate::stages::Snapshot;
 /// How to mesh a case, beyond what the case itself says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
-    /// The cells' order, 1 to 3 (2D) or 1 to 2 (3D); `None`: the case's `[curving] order`.
+    /// The cells' order, 1 to 3; `None`: the case's `[curving] order`.
     pub order: Option<u8>,
     /// 2D: cut every quad along its shorter diagonal (all triangles).
     pub triangles: bool,

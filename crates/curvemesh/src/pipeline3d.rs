@@ -2,7 +2,7 @@
 //! `mesh-io`), its check, the layers (`afsf3d`), the cut into standard cells (`topo-cut`), and
 //! the measures of the result (cells by type, dihedral angles, volume against the volume
 //! between the wall and the final front, coverage, the histograms of the dissertation's
-//! tables 5–7); at order 2 the curving (`vector-adding`, each wall onto its true surface)
+//! tables 5–7); at orders 2 and 3 the curving (`vector-adding`, each wall onto its true surface)
 //! and the curved volumes. No file is written here.
 
 use crate::error::{Context, Result, input_error};
@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use crate::case3d::{Case3d, CutCells, SurfaceSource};
 
-/// The true shape of a wall, where the P2 wall nodes go.
+/// The true shape of a wall, where the P2 and P3 wall nodes go.
 #[derive(Debug, Clone)]
 pub enum TrueShape {
     /// The built-in sphere (centred at the origin).
@@ -24,7 +24,7 @@ pub enum TrueShape {
     /// A smooth surface rebuilt from the facets (STL and `.msh` surfaces): PN triangles,
     /// feature edges kept sharp (`geom_surface::SmoothSurface`).
     Smooth(Box<SmoothWall>),
-    /// The facets themselves (cube, step): straight-sided P2 cells.
+    /// The facets themselves (cube, step): straight-sided P2 and P3 cells.
     Flat,
 }
 
@@ -109,15 +109,17 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
     })
 }
 
-/// The cut mesh curved to P2 by Vector-Adding, the wall's P2 nodes on its true shape.
+/// The cut mesh curved to P2 or P3 (`order`) by Vector-Adding, the wall's high-order nodes
+/// on its true shape.
 pub fn curve(
     case: &Case3d,
     shape: &TrueShape,
     grown: &afsf3d::Grown3d,
     mesh: &Mesh,
+    order: u8,
 ) -> Result<vector_adding::Curved3d> {
     let params = vector_adding::CurvingParams {
-        order: 2,
+        order,
         ..vector_adding::CurvingParams::default()
     };
     let projector: &dyn vector_adding::SurfaceProjector = match shape {
@@ -127,7 +129,7 @@ pub fn curve(
         TrueShape::Flat => &FlatWall,
     };
     vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params)
-        .map_err(|e| input_error!("{}: curving to P2: {e}", case.origin))
+        .map_err(|e| input_error!("{}: curving to P{order}: {e}", case.origin))
 }
 
 /// The curved mesh's volume (the sum of `jacobian_check::cell_volume` over the cells in

@@ -236,7 +236,7 @@ impl Report {
             .collect();
     }
 
-    /// Certifies every cell of the P2 mesh `curved` (after [`Report::describe_3d`]) as
+    /// Certifies every cell of the P2 or P3 mesh `curved` (after [`Report::describe_3d`]) as
     /// [`Report::certify`] does in 2D: the validity figures in the quality block, every
     /// invalid, undecided or uncertified cell a problem ([`Report::certify_cells_3d`]); and
     /// what the curving did, as notes.
@@ -251,25 +251,26 @@ impl Report {
         }
         let s = &curved.stats;
         self.curved_edge_fraction = Some(s.curved_edge_fraction);
+        let p = curved.mesh.order;
         let wall = match shape {
-            TrueShape::Sphere(_) => "the wall's P2 nodes on the true sphere",
-            TrueShape::Wing(_) => {
-                "the wall's P2 nodes on the true wing (the section's curve times the span; the \
+            TrueShape::Sphere(_) => format!("the wall's P{p} nodes on the true sphere"),
+            TrueShape::Wing(_) => format!(
+                "the wall's P{p} nodes on the true wing (the section's curve times the span; the \
                  tip caps flat)"
-            }
-            TrueShape::Smooth(s) => &format!(
-                "the wall's P2 nodes on a smooth surface rebuilt from its facets (PN triangles; \
+            ),
+            TrueShape::Smooth(s) => format!(
+                "the wall's P{p} nodes on a smooth surface rebuilt from its facets (PN triangles; \
                  {} edges between facets over {}° apart kept sharp)",
                 s.0.feature_edge_count(),
                 geom_surface::DEFAULT_FEATURE_ANGLE_DEG
             ),
-            TrueShape::Flat => {
-                "the wall is flat-faceted (a cube or step): its P2 nodes at the edge midpoints, \
-                 so the cells are straight-sided P2 cells"
-            }
+            TrueShape::Flat => format!(
+                "the wall is flat-faceted (a cube or step): its P{p} nodes where the straight \
+                 facets put them, so the cells are straight-sided P{p} cells"
+            ),
         };
         self.notes.push(format!(
-            "P2 by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
+            "P{p} by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \
              {} cells the marching left invalid mended by the repair ({} not); {P2_VALIDITY}",
             s.curved_edges, s.edges, s.deepest_curved_layer, s.repaired, s.unrepaired
         ));
@@ -425,7 +426,7 @@ pub enum LinearAngles<'a> {
     },
 }
 
-/// How a P2 3D mesh is judged, as the notes of `mesh` and `quality` say.
+/// How a P2 or P3 3D mesh is judged, as the notes of `mesh` and `quality` say.
 pub const P2_VALIDITY: &str = "validity: every cell certified by the Bernstein Jacobian check; \
     volume: the curved cells' (integrated) against the volume the curved boundary encloses";
 

@@ -190,18 +190,19 @@ pub fn enclosed_area(mesh: &Mesh) -> Result<f64, JacobianError> {
 
 /// The signed volume of a 3D cell, exact for its map up to rounding: the integral of the
 /// Jacobian determinant is the mean of its Bernstein coefficients times the reference
-/// volume (`measure_from_coefficients`). A straight-sided high-order pyramid is its linear
-/// pyramid; a curved one is integrated by an exact Gauss rule on its collapsed box (the
-/// `pyramid` module).
+/// volume (`measure_from_coefficients`). A straight-sided high-order cell is its order-1
+/// cell, as [`crate::check_mesh`] measures it; a curved high-order pyramid is integrated by an
+/// exact Gauss rule on its collapsed box (the `pyramid` module).
 ///
 /// # Errors
 /// Unsupported type, a 2D type, wrong node count, non-finite node.
 pub fn cell_volume(ty: CellType, nodes: &[[f64; 3]]) -> Result<f64, JacobianError> {
+    check_cell(ty, nodes)?;
+    if crate::straight::is_straight(ty, nodes)?.is_some() {
+        let linear = CellType::new(ty.shape, 1);
+        return cell_volume(linear, &nodes[..ty.shape.corners()]);
+    }
     if ty.shape == Shape::Pyramid && ty.order >= 2 {
-        check_cell(ty, nodes)?;
-        if crate::straight::is_straight(ty, nodes)?.is_some() {
-            return cell_volume(CellType::new(Shape::Pyramid, 1), &nodes[..5]);
-        }
         return Ok(crate::pyramid::volume(nodes));
     }
     let c = crate::certify::determinant_bernstein_coefficients(ty, nodes)?;

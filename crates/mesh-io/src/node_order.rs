@@ -13,6 +13,8 @@
 //!
 //! This module holds tables only; it does no IO.
 
+use std::sync::OnceLock;
+
 use mesh_model::{CellType, Shape};
 
 /// The VTK cell type number of a cell type: the linear VTK cell for order 1, the Lagrange
@@ -91,6 +93,29 @@ pub fn vtk_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
         (Shape::Pyramid, 3) => Some(&ID[..5]),
         _ => None,
     }
+}
+
+/// The permutation from Gmsh's node order to the order a `.vtu` file of format version 1.0
+/// holds (the version [`crate::vtu`] writes, the newest meshio 5.3.5 reads): VTK's
+/// ([`vtk_from_gmsh`]) but for the Lagrange hexahedron, whose edges 10 and 11 (corners 2–6 and
+/// 3–7) come exchanged. VTK 9.1 exchanged them in its own numbering, and its reader converts
+/// files older than version 2.2 from the order before; written in VTK's present order, a
+/// version 1.0 file is read with those edges' nodes swapped, folding every hexahedron.
+pub fn vtu_from_gmsh(ty: CellType) -> Option<&'static [usize]> {
+    static HEX: [OnceLock<Vec<usize>>; 2] = [const { OnceLock::new() }; 2];
+    let perm = vtk_from_gmsh(ty)?;
+    if ty.shape != Shape::Hex || ty.order < 2 {
+        return Some(perm);
+    }
+    Some(HEX[ty.order as usize - 2].get_or_init(|| {
+        let per = ty.order as usize - 1;
+        let mut file = perm.to_vec();
+        let (ten, eleven) = (8 + 10 * per, 8 + 11 * per);
+        for i in 0..per {
+            file.swap(ten + i, eleven + i);
+        }
+        file
+    }))
 }
 
 pub use mesh_model::reference::reference_nodes as gmsh_reference_nodes;
@@ -242,6 +267,27 @@ mod tests {
         used.sort_unstable();
         assert_eq!(used, (0..13).collect::<Vec<_>>());
         assert_eq!(g[13], [0.0; 3]);
+    }
+
+    #[test]
+    fn a_vtu_file_holds_the_hexahedra_in_vtks_order_before_9_1() {
+        // VTK 9.7's hexahedron edges 10 and 11 run along 2–6 and 3–7 (x = 1 and x = 0 at
+        // y = 1); a version 1.0 file has them the other way round
+        for p in [2, 3] {
+            let ty = CellType::new(Shape::Hex, p);
+            let (vtk, file) = (vtk_from_gmsh(ty).unwrap(), vtu_from_gmsh(ty).unwrap());
+            let g = gmsh_reference_nodes(ty).unwrap();
+            let per = usize::from(p) - 1;
+            for i in 0..per {
+                let (ten, eleven) = (8 + 10 * per + i, 8 + 11 * per + i);
+                assert_eq!((file[ten], file[eleven]), (vtk[eleven], vtk[ten]));
+                assert_eq!(g[file[ten]][..2], [-1.0, 1.0], "P{p}: edge 10 at x = −1");
+            }
+            let same = (0..vtk.len()).filter(|&k| vtk[k] == file[k]).count();
+            assert_eq!(same, vtk.len() - 2 * per);
+        }
+        let tet = CellType::new(Shape::Tet, 3);
+        assert_eq!(vtu_from_gmsh(tet), vtk_from_gmsh(tet));
     }
 
     #[test]

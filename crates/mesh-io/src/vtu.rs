@@ -3,8 +3,9 @@
 //! The domain cells are written first, then the boundary facets (lines in 2D, linear or VTK
 //! Lagrange curves 68, ends first as in Gmsh; faces in 3D). Linear cells use the linear VTK
 //! types (triangle 5, quad 9, tetra 10, hexahedron 12, wedge 13, pyramid 14); orders 2 and 3
-//! use VTK's Lagrange cells (triangle 69, quadrilateral 70, tetra 71, hexahedron 72, wedge 73
-//! at order 2) with the nodes permuted from Gmsh's order by [`crate::node_order`]; the
+//! use VTK's Lagrange cells (triangle 69, quadrilateral 70, tetra 71, hexahedron 72, wedge 73)
+//! with the nodes permuted from Gmsh's order by [`crate::node_order::vtu_from_gmsh`] (the file
+//! format 1.0's order: a hexahedron's edges 10 and 11 as VTK before 9.1 numbered them); the
 //! 14-node pyramid as VTK's 13-node quadratic pyramid (27) when its base node is the
 //! serendipity point of its base's edges (else [`IoError::Unsupported`]). VTK has no cubic
 //! pyramid: a straight-sided 30-node pyramid (every node where the linear pyramid puts it) is
@@ -38,7 +39,7 @@ use crate::IoError;
 use crate::atomic::write_atomic;
 use crate::check::check_writable;
 use crate::groups::{Group, boundary_groups};
-use crate::node_order::{vtk_cell_type, vtk_from_gmsh};
+use crate::node_order::{vtk_cell_type, vtu_from_gmsh};
 use crate::text::{push_int, write_points, write_records};
 
 /// The start of the name of each field-data array that names a boundary group (module doc).
@@ -273,7 +274,7 @@ fn body(
     let n = n_cells + facets;
     write_records(w, n, |k, b| {
         let c = element(k);
-        let perm = vtk_from_gmsh(c.ty).unwrap_or(&[]);
+        let perm = vtu_from_gmsh(c.ty).unwrap_or(&[]);
         for (i, &g) in perm.iter().enumerate() {
             push_int(b, c.nodes[g]);
             b.push(if i + 1 == perm.len() { b'\n' } else { b' ' });
@@ -283,7 +284,7 @@ fn body(
     let mut offset = 0i64;
     let offsets: Vec<i64> = all()
         .map(|c| {
-            offset += vtk_from_gmsh(c.ty).map_or(c.nodes.len(), <[usize]>::len) as i64;
+            offset += vtu_from_gmsh(c.ty).map_or(c.nodes.len(), <[usize]>::len) as i64;
             offset
         })
         .collect();

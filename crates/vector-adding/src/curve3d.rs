@@ -86,23 +86,18 @@ pub fn curve_mesh_3d(
     params: &CurvingParams,
 ) -> Result<Curved3d, CurvingError> {
     params.check()?;
-    if params.order != 2 {
-        return Err(CurvingError::BadParameter {
-            name: "order",
-            value: params.order as f64,
-            rule: "3D curving is P2 only",
-        });
-    }
     check_input(mesh)?;
     let layers = crate::march3d::Layers::new(mesh, columns)?;
     let edges = Edges::build(mesh.cells.shapes_and_corners(), []);
     let faces = Faces::build(mesh.cells.shapes_and_corners(), []);
     let outer = outer_nodes(mesh);
-    let mut m = crate::march3d::March::new(mesh, &edges, &layers, params);
+    let mut m = crate::march3d::March::new(mesh, &edges, &faces, &layers, params);
     let wall_edges = m.place_wall(surface);
     m.march(&outer)?;
     let (repaired, unrepaired) = m.repair()?;
-    let curved_edges = m.dev.iter().filter(|d| d.iter().any(|&v| v != 0.0)).count();
+    let curved_edges = (0..edges.len() as u32)
+        .filter(|&e| !m.is_straight(e))
+        .count();
     let stats = Curving3dStats {
         wall_edges,
         curved_edge_fraction: crate::stats::share(curved_edges, edges.len()),
@@ -114,7 +109,11 @@ pub fn curve_mesh_3d(
         repaired,
         unrepaired,
     };
-    let out = assemble(mesh, &edges, &faces, &m);
+    let out = if params.order == 2 {
+        assemble(mesh, &edges, &faces, &m)
+    } else {
+        crate::nodes3d::assemble_p3(mesh, &edges, &m)
+    };
     Ok(Curved3d { mesh: out, stats })
 }
 

@@ -5,12 +5,18 @@
 //! parents — and the decisions are taken per edge, layer of nodes by layer of nodes, each
 //! certified on the cells below the edge. The stops and the fractions (1, ½, ¼) are the 2D
 //! ones.
+//!
+//! An edge has `order − 1` inner nodes, each with its displacement from its straight place
+//! (the edge's slots, listed from its lower-numbered end): one at P2, two at P3, both
+//! carried up together. At P3 the faces' interior nodes follow their edges, plus the residual
+//! each inherits from the face below it (`nodes3d`).
 
 use jacobian_check::{Certificate, certify_cell};
 use mesh_model::topology::Edges;
 use mesh_model::{CellType, Mesh, NONE, Shape};
 
 use crate::error::CurvingError;
+use crate::nodes3d::FaceNodes;
 use crate::params::CurvingParams;
 use crate::projector::SurfaceProjector;
 use crate::stats::StopCounts;
@@ -62,14 +68,14 @@ impl Layers {
         })
     }
 
-    fn parents(&self, node: u32) -> &[u32] {
+    pub(crate) fn parents(&self, node: u32) -> &[u32] {
         let i = node as usize;
         &self.parents[self.parent_start[i] as usize..self.parent_start[i + 1] as usize]
     }
 
     /// Where an end at `node` of an edge at `level` comes from one layer down: its parents
     /// when it is at `level`, else itself.
-    fn lower<'s>(&'s self, node: &'s u32, level: u32) -> &'s [u32] {
+    pub(crate) fn lower<'s>(&'s self, node: &'s u32, level: u32) -> &'s [u32] {
         if self.layer[*node as usize] == level {
             self.parents(*node)
         } else {
@@ -78,26 +84,31 @@ impl Layers {
     }
 }
 
-/// The state of the marching: the displacement of every edge's mid node from its chord's
-/// midpoint, and the figures.
+/// The state of the marching: the displacement of every edge's inner nodes from their
+/// straight places, and the figures.
 pub(crate) struct March<'a> {
-    mesh: &'a Mesh,
-    edges: &'a Edges,
-    layers: &'a Layers,
+    pub(crate) mesh: &'a Mesh,
+    pub(crate) edges: &'a Edges,
+    pub(crate) layers: &'a Layers,
     params: &'a CurvingParams,
-    /// Per edge: curved minus straight mid node.
+    /// Inner nodes per edge: the order − 1.
+    pub(crate) per: usize,
+    /// Per edge slot (edge `e`'s at `e · per ..`, from its lower-numbered end): curved minus
+    /// straight inner node.
     pub dev: Vec<[f64; 3]>,
+    /// At P3, the faces' interior nodes (`nodes3d`); `None` at P2.
+    pub(crate) faces: Option<FaceNodes<'a>>,
     pub stops: StopCounts,
     pub reduced: usize,
     pub deepest: u32,
     scratch: Vec<[f64; 3]>,
 }
 
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(crate) fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+pub(crate) fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
     a.map(|v| s * v)
 }
 
@@ -105,19 +116,29 @@ fn mid(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
 }
 
+/// Displacements of an edge's inner nodes (the first `per` used).
+pub(crate) type Slots = [[f64; 3]; 2];
+
+const STRAIGHT: Slots = [[0.0; 3]; 2];
+
 impl<'a> March<'a> {
+    /// The marching of `mesh` to `params.order`; `faces` (its face table) is needed at P3.
     pub(crate) fn new(
         mesh: &'a Mesh,
         edges: &'a Edges,
+        faces: &'a mesh_model::topology::Faces,
         layers: &'a Layers,
         params: &'a CurvingParams,
     ) -> March<'a> {
+        let per = params.order as usize - 1;
         March {
             mesh,
             edges,
             layers,
             params,
-            dev: vec![[0.0; 3]; edges.len()],
+            per,
+            dev: vec![[0.0; 3]; edges.len() * per],
+            faces: (per == 2).then(|| FaceNodes::new(mesh, faces, layers)),
             stops: StopCounts::default(),
             reduced: 0,
             deepest: 0,
@@ -125,13 +146,36 @@ impl<'a> March<'a> {
         }
     }
 
-    fn ends(&self, e: u32) -> [u32; 2] {
+    pub(crate) fn ends(&self, e: u32) -> [u32; 2] {
         let k = self.edges.nodes(e);
         [k[0], k[1]]
     }
 
-    fn x(&self, n: u32) -> [f64; 3] {
+    pub(crate) fn x(&self, n: u32) -> [f64; 3] {
         self.mesh.nodes[n as usize]
+    }
+
+    /// The slots of edge `e`.
+    pub(crate) fn slots(&self, e: u32) -> &[[f64; 3]] {
+        let i = e as usize * self.per;
+        &self.dev[i..i + self.per]
+    }
+
+    /// Whether every inner node of edge `e` is on its chord.
+    pub(crate) fn is_straight(&self, e: u32) -> bool {
+        self.slots(e).iter().all(|d| *d == [0.0; 3])
+    }
+
+    /// Sets the slots of edge `e` (the first `per` of `d`).
+    fn set(&mut self, e: u32, d: &Slots) {
+        let i = e as usize * self.per;
+        self.dev[i..i + self.per].copy_from_slice(&d[..self.per]);
+    }
+
+    /// Sets every slot of edge `e` to `d`.
+    fn set_all(&mut self, e: u32, d: [f64; 3]) {
+        let i = e as usize * self.per;
+        self.dev[i..i + self.per].fill(d);
     }
 
     /// The mid node of edge `e`.
@@ -190,16 +234,20 @@ impl<'a> March<'a> {
     /// The certificate of cell `c` as the edges stand now.
     fn certify(&mut self, c: usize) -> Result<Certificate<[f64; 3]>, CurvingError> {
         let mut buf = std::mem::take(&mut self.scratch);
-        self.cell_nodes(c, &mut buf);
-        let ty = CellType::new(self.mesh.cells.get(c).ty.shape, 2);
+        if self.faces.is_some() {
+            self.cell_nodes_p3(c, &mut buf);
+        } else {
+            self.cell_nodes(c, &mut buf);
+        }
+        let ty = CellType::new(self.mesh.cells.get(c).ty.shape, self.per as u8 + 1);
         let result = certify_cell(ty, &buf, &self.params.certify)
             .map_err(|source| CurvingError::Check { cell: c, source });
         self.scratch = buf;
         result
     }
 
-    /// Puts the mid node of every wall edge (both ends in layer 0) onto the true surface;
-    /// returns how many.
+    /// Puts the mid node (P2) or the two inner nodes (P3, `nodes3d::thirds_on_surface`) of
+    /// every wall edge (both ends in layer 0) onto the true surface; returns how many.
     pub(crate) fn place_wall(&mut self, surface: &dyn SurfaceProjector) -> usize {
         let mut count = 0;
         for e in 0..self.edges.len() as u32 {
@@ -216,31 +264,48 @@ impl<'a> March<'a> {
                 .and_then(|c| self.mesh.cell_pipe.get(c).copied())
                 .filter(|&p| p != NONE);
             let Some(facet) = facet else { continue };
-            let m = mid(self.x(a), self.x(b));
-            let on = surface.project(m, facet as usize);
-            self.dev[e as usize] = [0, 1, 2].map(|k| on[k] - m[k]);
+            if self.per == 1 {
+                let m = mid(self.x(a), self.x(b));
+                let on = surface.project(m, facet as usize);
+                self.dev[e as usize] = [0, 1, 2].map(|k| on[k] - m[k]);
+            } else {
+                let on = crate::nodes3d::thirds_on_surface(self.x(a), self.x(b), surface, facet);
+                for (i, on) in on.into_iter().enumerate() {
+                    let m = self.straight_point(e, i);
+                    self.dev[e as usize * self.per + i] = [0, 1, 2].map(|k| on[k] - m[k]);
+                }
+            }
             count += 1;
+        }
+        if self.faces.is_some() {
+            self.place_wall_faces(surface);
         }
         count
     }
 
-    /// The displacement an edge at `level` receives from below: the mean over the edges
-    /// joining the nodes its ends come from. `None` when no such edge exists.
-    fn source_below(&self, e: u32, level: u32) -> Option<[f64; 3]> {
+    /// The displacements an edge at `level` receives from below: the mean over the edges
+    /// joining the nodes its ends come from, each read from the end under this edge's first
+    /// end. `None` when no such edge exists.
+    fn source_below(&self, e: u32, level: u32) -> Option<Slots> {
         let [a, b] = self.ends(e);
-        let (mut sum, mut count) = ([0.0; 3], 0);
+        let (mut sum, mut count) = (STRAIGHT, 0);
         for &x in self.layers.lower(&a, level) {
             for &y in self.layers.lower(&b, level) {
                 if x == y {
                     continue;
                 }
                 if let Some(lower) = self.edges.find(&[x, y]) {
-                    sum = add(sum, self.dev[lower as usize]);
+                    let d = self.slots(lower);
+                    let along = self.edges.nodes(lower)[0] == x;
+                    for (i, s) in sum.iter_mut().enumerate().take(self.per) {
+                        let j = if along { i } else { self.per - 1 - i };
+                        *s = add(*s, d[j]);
+                    }
                     count += 1;
                 }
             }
         }
-        (count > 0).then(|| scale(sum, 1.0 / count as f64))
+        (count > 0).then(|| sum.map(|v| scale(v, 1.0 / count as f64)))
     }
 
     /// Marches up the layers: every edge above the wall gets the displacement below it, or a
@@ -262,6 +327,9 @@ impl<'a> March<'a> {
         let mut i = 0;
         while i < by_level.len() {
             let level = level_of(by_level[i]);
+            if self.faces.is_some() {
+                self.inherit_faces(level);
+            }
             pending.clear();
             while i < by_level.len() && level_of(by_level[i]) == level {
                 let e = by_level[i];
@@ -274,17 +342,18 @@ impl<'a> March<'a> {
                     self.stops.collapsed += 1;
                     continue;
                 };
-                if source == [0.0; 3] {
+                if source == STRAIGHT {
                     continue;
                 }
                 // where the layer may stop, its edges wait straight (so that the stop of one
                 // edge is judged with its neighbours straight too), else with the full source
                 let at_outer = outer[a as usize] && outer[b as usize];
-                self.dev[e as usize] = if at_outer || self.may_stop(level) {
-                    [0.0; 3]
+                let waiting = if at_outer || self.may_stop(level) {
+                    STRAIGHT
                 } else {
                     source
                 };
+                self.set(e, &waiting);
                 pending.push((e, source, at_outer));
             }
             // an edge found with no valid choice is decided again once its neighbours are
@@ -349,13 +418,12 @@ impl<'a> March<'a> {
     fn decide(
         &mut self,
         e: u32,
-        source: [f64; 3],
+        source: Slots,
         level: u32,
         at_outer: bool,
     ) -> Result<bool, CurvingError> {
-        let ei = e as usize;
         if at_outer || self.may_stop(level) {
-            self.dev[ei] = [0.0; 3];
+            self.set(e, &STRAIGHT);
             let threshold = if at_outer {
                 f64::MIN_POSITIVE
             } else {
@@ -372,7 +440,7 @@ impl<'a> March<'a> {
         }
         self.deepest = self.deepest.max(level);
         for fraction in [1.0, 0.5, 0.25] {
-            self.dev[ei] = scale(source, fraction);
+            self.set(e, &source.map(|d| scale(d, fraction)));
             if self.cells_below_good(e, level, f64::MIN_POSITIVE)? {
                 if fraction < 1.0 {
                     self.reduced += 1;
@@ -380,12 +448,12 @@ impl<'a> March<'a> {
                 return Ok(true);
             }
         }
-        self.dev[ei] = [0.0; 3];
+        self.set(e, &STRAIGHT);
         if self.cells_below_good(e, level, f64::MIN_POSITIVE)? {
             self.stops.jacobian += 1;
             return Ok(true);
         }
-        self.dev[ei] = source;
+        self.set(e, &source);
         Ok(false)
     }
 
@@ -409,11 +477,7 @@ impl<'a> March<'a> {
     pub(crate) fn repair(&mut self) -> Result<(usize, usize), CurvingError> {
         let mut bad = Vec::new();
         for c in 0..self.mesh.cells.len() {
-            let curved = self
-                .edges
-                .of_cell(c)
-                .iter()
-                .any(|&e| self.dev[e as usize] != [0.0; 3]);
+            let curved = self.edges.of_cell(c).iter().any(|&e| !self.is_straight(e));
             if curved && !self.valid(c)? {
                 bad.push(c);
             }
@@ -451,8 +515,8 @@ impl<'a> March<'a> {
         self.mend_to(c, depth, &mut journal)
     }
 
-    /// [`March::mend`] with `depth` levels of neighbours mended in turn; every edge changed
-    /// is recorded in `journal` (edge, previous displacement) when the cell ends valid, and
+    /// [`March::mend`] with `depth` levels of neighbours mended in turn; every slot changed
+    /// is recorded in `journal` (slot, previous displacement) when the cell ends valid, and
     /// nothing is changed when it does not.
     fn mend_to(
         &mut self,
@@ -461,7 +525,10 @@ impl<'a> March<'a> {
         journal: &mut Vec<(u32, [f64; 3])>,
     ) -> Result<bool, CurvingError> {
         for choice in self.choices(c) {
-            if choice.iter().all(|&(e, d)| self.dev[e as usize] == d) {
+            if choice
+                .iter()
+                .all(|&(e, d)| self.slots(e).iter().all(|&v| v == d))
+            {
                 continue;
             }
             let mut around: Vec<usize> = choice
@@ -474,12 +541,14 @@ impl<'a> March<'a> {
             for &d in &around {
                 was.push(self.valid(d)?);
             }
+            let per = self.per;
             let mut local: Vec<(u32, [f64; 3])> = choice
                 .iter()
-                .map(|&(e, _)| (e, self.dev[e as usize]))
+                .flat_map(|&(e, _)| (0..per).map(move |i| e * per as u32 + i as u32))
+                .map(|slot| (slot, self.dev[slot as usize]))
                 .collect();
             for &(e, d) in &choice {
-                self.dev[e as usize] = d;
+                self.set_all(e, d);
             }
             let mut broken = Vec::new();
             let mut ok = self.valid(c)?;
@@ -507,16 +576,16 @@ impl<'a> March<'a> {
                 journal.extend(local);
                 return Ok(true);
             }
-            for &(e, d) in local.iter().rev() {
-                self.dev[e as usize] = d;
+            for &(slot, d) in local.iter().rev() {
+                self.dev[slot as usize] = d;
             }
         }
         Ok(false)
     }
 
     /// The repair's choices for cell `c` ([`March::repair`]): each edge above the wall given
-    /// the displacement of the cell's most curved edge, or straight; then every such edge
-    /// given it at once.
+    /// the displacement of the cell's most curved edge (the mean of its slots, which belongs to
+    /// no end, for every slot), or straight; then every such edge given it at once.
     fn choices(&self, c: usize) -> Vec<Vec<(u32, [f64; 3])>> {
         let layer = &self.layers.layer;
         let own = self.edges.of_cell(c);
@@ -525,15 +594,19 @@ impl<'a> March<'a> {
             .copied()
             .filter(|&e| self.ends(e).iter().any(|&n| layer[n as usize] > 0))
             .collect();
-        let size = |d: [f64; 3]| d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let size = |e: u32| {
+            let norm = |d: &[f64; 3]| d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            self.slots(e).iter().map(norm).sum::<f64>()
+        };
         let Some(most) = own
             .iter()
             .copied()
-            .max_by(|&a, &b| size(self.dev[a as usize]).total_cmp(&size(self.dev[b as usize])))
+            .max_by(|&a, &b| size(a).total_cmp(&size(b)))
         else {
             return Vec::new();
         };
-        let target = self.dev[most as usize];
+        let sum = self.slots(most).iter().fold([0.0; 3], |s, d| add(s, *d));
+        let target = scale(sum, 1.0 / self.per as f64);
         let mut choices: Vec<Vec<(u32, [f64; 3])>> = Vec::new();
         for &e in &above {
             choices.push(vec![(e, target)]);

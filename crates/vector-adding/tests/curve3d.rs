@@ -1,13 +1,16 @@
 //! The 3D curving on a sphere grown by `afsf3d` and cut by `topo-cut` (tetrahedra, and the
-//! mixed cut, all prisms without merged children): every P2 cell certified valid, the wall
-//! mid-edge nodes on the sphere, the volume of the curved mesh closer to the exact volume
-//! between the sphere and the outer front than the linear mesh's; bad input refused.
+//! mixed cut, all prisms without merged children), at P2 and P3: every cell certified valid,
+//! the wall's high-order nodes on the sphere, the volume of the curved mesh closer to the
+//! exact volume between the sphere and the outer front than the linear mesh's (and at P3
+//! than the P2 mesh's); pyramids on flat and curved walls; bad input refused.
 
 use afsf3d::{LayerParams, grow_layers};
 use geom_surface::Surface;
 use jacobian_check::{CertifyParams, check_mesh, integrate_volume};
 use mesh_model::{CellType, Dim, Mesh, Role, Shape};
-use vector_adding::{CurvingError, CurvingParams, SphereProjector, curve_mesh_3d};
+use vector_adding::{
+    CurvingError, CurvingParams, SphereProjector, SurfaceProjector, curve_mesh_3d,
+};
 
 const R: f64 = 1.0;
 
@@ -27,8 +30,12 @@ fn grown_on(refinement: u32, first_height: f64, layers: usize) -> afsf3d::Grown3
 }
 
 fn p2() -> CurvingParams {
+    order(2)
+}
+
+fn order(order: u8) -> CurvingParams {
     CurvingParams {
-        order: 2,
+        order,
         ..CurvingParams::default()
     }
 }
@@ -38,26 +45,27 @@ const SPHERE: SphereProjector = SphereProjector {
     radius: R,
 };
 
-/// Curves `linear`, checks every cell certified valid and the wall nodes on the sphere;
-/// returns the curved mesh.
-fn curved_and_valid(linear: &Mesh, g: &afsf3d::Grown3d) -> vector_adding::Curved3d {
-    let curved = curve_mesh_3d(linear, &g.columns, &SPHERE, &p2()).unwrap();
+/// Curves `linear` to order `p`, checks every cell certified valid and the wall nodes on
+/// the sphere; returns the curved mesh.
+fn curved_and_valid(linear: &Mesh, g: &afsf3d::Grown3d, p: u8) -> vector_adding::Curved3d {
+    let curved = curve_mesh_3d(linear, &g.columns, &SPHERE, &order(p)).unwrap();
     let mesh = &curved.mesh;
-    assert_eq!(mesh.order, 2);
+    assert_eq!(mesh.order, p);
+    assert!(mesh.cells.types().iter().all(|t| t.order == p));
     assert_eq!(mesh.cells.len(), linear.cells.len());
     assert!(
         mesh_model::validate(mesh).is_empty(),
         "{:?}",
         mesh_model::validate(mesh).first()
     );
-    // every P2 cell certified valid
+    // every cell certified valid
     let v = check_mesh(mesh, &CertifyParams::default()).unwrap();
     assert!(
         v.invalid_cells.is_empty() && v.undecided.is_empty() && v.uncertified.is_empty(),
         "{v:?} {:?}",
         curved.stats
     );
-    // the wall edges' mid nodes on the sphere
+    // the wall facets' high-order nodes on the sphere
     let mut on_wall = 0;
     for (f, facet) in mesh.boundary.iter().enumerate() {
         if mesh.patches[mesh.boundary_patch[f] as usize].role != Role::Wall {
@@ -76,12 +84,24 @@ fn curved_and_valid(linear: &Mesh, g: &afsf3d::Grown3d) -> vector_adding::Curved
     curved
 }
 
+/// Curves `linear` to P2 and P3 and checks each valid, the P2 volume error under a hundredth
+/// of the linear mesh's, the P3 one under half the P2 one (P2's symmetric error along each
+/// edge integrates to nothing: both are of order h⁴ in the wall's edge length h).
 fn check_curved(linear: &Mesh, g: &afsf3d::Grown3d) {
-    let curved = curved_and_valid(linear, g);
+    let e2 = check_curved_at(linear, g, 2, integrate_volume(linear).unwrap(), 0.01);
+    let p2 = curved_and_valid(linear, g, 2);
+    let e3 = check_curved_at(linear, g, 3, integrate_volume(&p2.mesh).unwrap(), 0.5);
+    println!("volume errors: P2 {e2:.3e}, P3 {e3:.3e}");
+}
+
+/// Curves `linear` to order `p`, checks it (`curved_and_valid`), its volumes agree, and its
+/// volume error is under `ratio` times the error of `below`, the volume at order p − 1;
+/// returns its volume error.
+fn check_curved_at(linear: &Mesh, g: &afsf3d::Grown3d, p: u8, below: f64, ratio: f64) -> f64 {
+    let curved = curved_and_valid(linear, g, p);
     let mesh = &curved.mesh;
     // the volume between the true sphere and the (straight) outer front
     let exact = g.front.enclosed_volume() - 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
-    let linear_volume = integrate_volume(linear).unwrap();
     let curved_volume = integrate_volume(mesh).unwrap();
     // the volume `check_mesh` takes from the certificates' coefficients: the same integral
     let measure = check_mesh(mesh, &CertifyParams::default()).unwrap().measure;
@@ -92,13 +112,19 @@ fn check_curved(linear: &Mesh, g: &afsf3d::Grown3d) {
             "certified volume {measure} vs {of}' {other}"
         );
     }
-    let (e1, e2) = ((linear_volume - exact).abs(), (curved_volume - exact).abs());
-    println!("P1 volume error {e1:.3e}, P2 {e2:.3e}; {:?}", curved.stats);
-    assert!(
-        e2 < 0.01 * e1,
-        "P1 error {e1}, P2 error {e2} ({:?})",
+    let (e1, e2) = ((below - exact).abs(), (curved_volume - exact).abs());
+    println!(
+        "P{} volume error {e1:.3e}, P{p} {e2:.3e}; {:?}",
+        p - 1,
         curved.stats
     );
+    assert!(
+        e2 < ratio * e1,
+        "P{} error {e1}, P{p} error {e2} ({:?})",
+        p - 1,
+        curved.stats
+    );
+    e2
 }
 
 #[test]
@@ -109,9 +135,11 @@ fn a_coarse_sphere_under_thin_layers_curves_up_to_its_outer_front_and_stays_vali
         topo_cut::cut_to_tets(&g.mesh).unwrap(),
         topo_cut::cut_to_mixed(&g.mesh).unwrap(),
     ] {
-        let curved = curved_and_valid(&linear, &g);
-        println!("{:?}", curved.stats);
-        assert_eq!(curved.stats.stops.invalid, 0);
+        for p in [2, 3] {
+            let curved = curved_and_valid(&linear, &g, p);
+            println!("P{p}: {:?}", curved.stats);
+            assert_eq!(curved.stats.stops.invalid, 0);
+        }
     }
 }
 
@@ -134,13 +162,9 @@ fn a_sphere_of_prisms_is_curved_and_certified() {
 fn bad_input_is_refused_with_a_clear_error() {
     let g = grown(2);
     let linear = topo_cut::cut_to_tets(&g.mesh).unwrap();
-    // order 3
-    let p3 = CurvingParams {
-        order: 3,
-        ..CurvingParams::default()
-    };
+    // order 4
     assert!(matches!(
-        curve_mesh_3d(&linear, &g.columns, &SPHERE, &p3),
+        curve_mesh_3d(&linear, &g.columns, &SPHERE, &order(4)),
         Err(CurvingError::BadParameter { name: "order", .. })
     ));
     // a node in no column
@@ -199,6 +223,33 @@ impl vector_adding::SurfaceProjector for Bulge {
     fn project(&self, p: [f64; 3], _facet: usize) -> [f64; 3] {
         [p[0], p[1], -0.4 * p[0] * (1.0 - p[0])]
     }
+}
+
+#[test]
+fn a_pyramid_on_a_curved_wall_is_curved_to_p3_and_certified() {
+    let pyramid = one_pyramid();
+    let columns = vec![vec![0, 4], vec![1], vec![2], vec![3]];
+    let curved = curve_mesh_3d(&pyramid, &columns, &Bulge, &order(3)).unwrap();
+    let mesh = &curved.mesh;
+    let cell = mesh.cells.get(0);
+    assert_eq!(cell.nodes.len(), 30);
+    // Gmsh's edge 0-1 nodes (5, 6) and the base's four nodes (25-28) on the wall
+    for j in [5, 6, 25, 26, 27, 28] {
+        let x = mesh.nodes[cell.nodes[j] as usize];
+        assert!(
+            (x[2] - Bulge.project(x, 0)[2]).abs() < 1e-15,
+            "node {j}: {x:?}"
+        );
+    }
+    let v = check_mesh(mesh, &CertifyParams::default()).unwrap();
+    assert!(
+        v.invalid_cells.is_empty() && v.undecided.is_empty() && v.min_scaled_jacobian > 0.0,
+        "{v:?}"
+    );
+    // the bulge adds to the straight pyramid's third (less than its own 1/15: the side
+    // edges 1-4, over the bowed wall edge 0-1, bow down with it)
+    let volume = integrate_volume(mesh).unwrap();
+    assert!(volume > 1.0 / 3.0 + 0.01 && volume < 0.4, "{volume}");
 }
 
 #[test]

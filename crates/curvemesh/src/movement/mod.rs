@@ -16,6 +16,7 @@
 //! # Ok::<(), curvemesh::Error>(())
 //! ```
 
+pub mod measures;
 pub mod motion;
 pub mod report;
 pub mod sensitivities;
@@ -321,6 +322,7 @@ fn move_from(
         .map_err(|e| input_error!("comparing the meshes: {e}"))?;
     let inverted = linear.stats.inverted_cells > 0;
     let mut decisions = None;
+    let mut unmoved_mesh = None;
     let mesh = if inverted {
         // an inverted linear mesh cannot be curved: it is written as it is, and fails
         report.order = 1;
@@ -330,9 +332,15 @@ fn move_from(
         ));
         moved_layered.mesh.clone()
     } else if order == 1 {
+        let mut scratch = Report::default();
+        unmoved_mesh = Some(mesh2d::linear_at_order(
+            layered,
+            options.triangles,
+            &mut scratch,
+        ));
         mesh2d::linear_at_order(&moved_layered, options.triangles, &mut report)
     } else {
-        let curved = curve_keeping(
+        let (curved, before) = curve_keeping(
             (case, &moved),
             nodes,
             (layered, &moved_layered),
@@ -341,6 +349,7 @@ fn move_from(
             &mut report,
         )?;
         decisions = Some(curved.decisions);
+        unmoved_mesh = Some(before);
         curved.mesh
     };
     let sensitivities = if options.sensitivities && !inverted {
@@ -359,13 +368,15 @@ fn move_from(
         None
     };
     let method = options.method_names();
-    report.movement = Some(MovementReport::new(
+    let mut movement = MovementReport::new(
         motions,
         method,
         &linear.stats,
         &comparison,
         (&layered.mesh, &moved_layered.mesh),
-    ));
+    );
+    movement.measures = unmoved_mesh.and_then(|before| measures::measures(&before, &mesh));
+    report.movement = Some(movement);
     let scaled_jacobian = mesh2d::certify_and_write(
         (&mesh, LinearAngles::Of(&moved_layered.mesh)),
         plan.map(|p| (p, None)),
@@ -458,7 +469,7 @@ fn curve_keeping(
     (order, triangles): (u8, bool),
     observer: &mut dyn Observer,
     report: &mut Report,
-) -> Result<vector_adding::Curved> {
+) -> Result<(vector_adding::Curved, Mesh)> {
     let what = "curving (Vector-Adding, the original's decisions kept)";
     let (curved, seconds) = stage(observer, what, || {
         let curves = pipeline::curves(case)?;
@@ -470,9 +481,10 @@ fn curve_keeping(
             &pipeline::curving_params(&moved.case, order, triangles),
             &before.decisions,
         )
+        .map(|moved| (moved, before.mesh))
         .map_err(|e| input_error!("curving: {e}"))
     });
-    let (curved, changes) = curved?;
+    let ((curved, changes), before) = curved?;
     report.timings_s.insert("curving", seconds);
     report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
     report.curving = Some(curved.stats.clone());
@@ -482,7 +494,7 @@ fn curve_keeping(
             "curving decision changed by the motion: {change:?}"
         ));
     }
-    Ok(curved)
+    Ok((curved, before))
 }
 
 /// The boundary nodes and the layered linear mesh of `snapshot`, checked to be this case's:

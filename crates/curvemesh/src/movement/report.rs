@@ -39,6 +39,10 @@ pub struct MovementReport {
     pub first_layer: Option<[f64; 2]>,
     /// What `before`, `after` and `worst_cell_ratio` are about.
     pub of: &'static str,
+    /// The four measures cell by cell against the unmoved mesh of the same order (lin, sj,
+    /// sicn, edge; absent when the mover inverted a cell).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measures: Option<super::measures::Measures>,
 }
 
 /// The spring mover's solves in the report.
@@ -162,12 +166,13 @@ impl MovementReport {
             worst_cell: c.worst_cell,
             first_layer: c.first_layer.map(|d| [d.height, d.angle_deg]),
             of: MOVEMENT_OF,
+            measures: None,
         }
     }
 
     /// The line printed after the summary table.
     pub fn summary(&self) -> String {
-        format!(
+        let mut out = format!(
             "moved by {}: largest displacement {:.4e}, worst-cell ratio {:.3}, min scaled \
              Jacobian (linear) {:.3} -> {:.3}, max angle {:.1} -> {:.1} deg\n",
             self.method,
@@ -177,7 +182,15 @@ impl MovementReport {
             self.after.min_scaled_jacobian,
             self.before.max_angle_deg,
             self.after.max_angle_deg,
-        )
+        );
+        if let Some(m) = &self.measures {
+            out += &format!(
+                "worst ratios after / before, cell by cell: lin {:.3}, sj {:.3}, sicn {:.3}, \
+                 edge {:.3}\n",
+                m.lin.ratio, m.sj.ratio, m.sicn.ratio, m.edge.ratio
+            );
+        }
+        out
     }
 }
 
