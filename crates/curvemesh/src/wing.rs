@@ -32,8 +32,9 @@ impl SectionCurve for Section {
     }
 }
 
-/// The wing's true surface as the 3D curving sees it: the mid-edge point of a wall edge on
-/// the curved side from [`WingShape::edge_point`], the caps flat.
+/// The wing's true surface as the 3D curving sees it: the points of the curved side over its
+/// facets ([`WingShape::edge_point`] along an edge, [`WingShape::side_point`] inside a side
+/// facet), the caps flat.
 #[derive(Debug, Clone)]
 pub struct WingProjector {
     /// The wing's surface (the layers grew from it).
@@ -43,8 +44,10 @@ pub struct WingProjector {
 }
 
 impl vector_adding::SurfaceProjector for WingProjector {
-    /// `p` is the straight midpoint of an edge of wall facet `facet`: the edge whose midpoint
-    /// it is goes onto the true wing, at half its arc length.
+    /// `p` is a point of wall facet `facet`: the straight midpoint of one of its edges goes to
+    /// that edge's point at half its arc length (the P2 wall nodes); any other point of a side
+    /// facet to the side's point at its height whose chordwise place over the section edge is
+    /// `p`'s (the P3 wall faces' nodes); a cap's points stay (the caps are flat).
     fn project(&self, p: [f64; 3], facet: usize) -> [f64; 3] {
         let Some(f) = self.surface.facets.get(facet) else {
             return p;
@@ -60,9 +63,70 @@ impl vector_adding::SurfaceProjector for WingProjector {
         let i = (0..k.len())
             .min_by(|&i, &j| off(i).total_cmp(&off(j)))
             .expect("a facet has corners");
-        self.shape
-            .edge_point(k[i], k[(i + 1) % k.len()], 0.5)
-            .unwrap_or(p)
+        if off(i) == 0.0 {
+            return self
+                .shape
+                .edge_point(k[i], k[(i + 1) % k.len()], 0.5)
+                .unwrap_or(p);
+        }
+        self.side_point_under(k, p).unwrap_or(p)
+    }
+
+    /// Along the section's curve at fraction `s` of the arc length where the edge follows it
+    /// ([`WingShape::edge_point`]), else (the span, a cap's inside) along the chord.
+    fn edge_point(&self, a: [f64; 3], b: [f64; 3], s: f64, facet: usize) -> [f64; 3] {
+        let chord = [0, 1, 2].map(|d| a[d] + s * (b[d] - a[d]));
+        let Some(f) = self.surface.facets.get(facet) else {
+            return chord;
+        };
+        let node = |p: [f64; 3]| {
+            f.nodes()
+                .iter()
+                .copied()
+                .find(|&v| self.surface.nodes[v as usize] == p)
+        };
+        match (node(a), node(b)) {
+            (Some(u), Some(v)) => self.shape.edge_point(u, v, s).unwrap_or(chord),
+            _ => chord,
+        }
+    }
+}
+
+impl WingProjector {
+    /// The side's point under `p` for a side facet with corners `k` (spanning two stations
+    /// over section edge i → i + 1): at `p`'s height, at the arc fraction along the section
+    /// edge whose point falls where `p` does along the edge's chord (by bisection: the
+    /// fraction along the chord grows with the arc's on a section edge). `None` on a cap.
+    fn side_point_under(&self, k: &[u32], p: [f64; 3]) -> Option<[f64; 3]> {
+        let sides: Vec<(usize, usize)> = k
+            .iter()
+            .map(|&v| self.shape.side_node(v))
+            .collect::<Option<_>>()?;
+        if sides.iter().all(|&(_, station)| station == sides[0].1) {
+            return None;
+        }
+        let n = self.shape.section.len();
+        let first = sides[0].0;
+        let other = sides.iter().map(|s| s.0).find(|&j| j != first)?;
+        let i = if other == (first + 1) % n {
+            first
+        } else {
+            other
+        };
+        let (a, b) = (self.shape.section[i], self.shape.section[(i + 1) % n]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let along = |q: [f64; 3]| (q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1];
+        let target = along(p);
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if along(self.shape.side_point(i, mid, p[2])) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(self.shape.side_point(i, 0.5 * (lo + hi), p[2]))
     }
 }
 
@@ -314,6 +378,40 @@ mod tests {
             }
         }
         smallest
+    }
+
+    #[test]
+    fn the_projector_puts_p3_points_on_the_section_curve() {
+        use vector_adding::SurfaceProjector;
+        let case = crate::load::load_2d("naca0012").unwrap();
+        let (surface, shape) = wing_surface(&case, 2.0, false).unwrap();
+        let w = WingProjector { surface, shape };
+        let n = w.shape.section.len();
+        // a side facet: section edge 10 → 11 between the first two stations
+        let side = |v: usize| w.surface.nodes[v];
+        let f = (0..w.surface.facets.len())
+            .find(|&f| {
+                let k = w.surface.facets[f].nodes();
+                k.len() == 4 && k.contains(&10) && k.contains(&11) && k.contains(&(n as u32 + 10))
+            })
+            .unwrap();
+        let (a, b) = (side(10), side(11));
+        // along the edge: the curve at a third of its arc length
+        let third = w.edge_point(a, b, 1.0 / 3.0, f);
+        assert_eq!(third, w.shape.side_point(10, 1.0 / 3.0, a[2]));
+        // inside the facet: the curve's point at that height whose place along the chord is
+        // the point's
+        let z = 0.5 * (a[2] + side(n + 10)[2]);
+        let inside = [0, 1, 2].map(|d| a[d] + 0.4 * (b[d] - a[d]));
+        let on = w.project([inside[0], inside[1], z], f);
+        assert_eq!(on[2], z);
+        let chord = [b[0] - a[0], b[1] - a[1]];
+        let along = |q: [f64; 3]| (q[0] - a[0]) * chord[0] + (q[1] - a[1]) * chord[1];
+        let length = chord[0] * chord[0] + chord[1] * chord[1];
+        assert!((along(on) / length - 0.4).abs() < 1e-12, "{on:?}");
+        // the P2 midpoint as before: the curve at half the arc length
+        let mid = [0, 1, 2].map(|d| 0.5 * (a[d] + b[d]));
+        assert_eq!(w.project(mid, f), w.shape.edge_point(10, 11, 0.5).unwrap());
     }
 
     #[test]

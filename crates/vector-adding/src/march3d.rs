@@ -246,8 +246,9 @@ impl<'a> March<'a> {
         result
     }
 
-    /// Puts the mid node (P2) or the two inner nodes (P3, `nodes3d::thirds_on_surface`) of
-    /// every wall edge (both ends in layer 0) onto the true surface; returns how many.
+    /// Puts the mid node (P2) or the two inner nodes (P3, at a third and two thirds of the arc
+    /// length, [`SurfaceProjector::edge_point`]) of every wall edge (both ends in layer 0)
+    /// onto the true surface; returns how many.
     pub(crate) fn place_wall(&mut self, surface: &dyn SurfaceProjector) -> usize {
         let mut count = 0;
         for e in 0..self.edges.len() as u32 {
@@ -269,8 +270,10 @@ impl<'a> March<'a> {
                 let on = surface.project(m, facet as usize);
                 self.dev[e as usize] = [0, 1, 2].map(|k| on[k] - m[k]);
             } else {
-                let on = crate::nodes3d::thirds_on_surface(self.x(a), self.x(b), surface, facet);
-                for (i, on) in on.into_iter().enumerate() {
+                // at equal arc length along the surface's curve over the edge (`nodes3d`)
+                for i in 0..self.per {
+                    let s = (i + 1) as f64 / (self.per + 1) as f64;
+                    let on = surface.edge_point(self.x(a), self.x(b), s, facet as usize);
                     let m = self.straight_point(e, i);
                     self.dev[e as usize * self.per + i] = [0, 1, 2].map(|k| on[k] - m[k]);
                 }

@@ -2,8 +2,8 @@
 //! interior nodes, the cells' interior nodes, and the P3 mesh assembled from them.
 //!
 //! A wall edge's two nodes go onto the true surface at equal arc length along the surface's
-//! curve over the edge (the [`SurfaceProjector`]'s image of its chord), as the 2D curving
-//! spaces them along its curves: the straight points at a third and two thirds, projected,
+//! curve over the edge ([`SurfaceProjector::edge_point`]), as the 2D curving spaces them
+//! along its curves: the straight points at a third and two thirds, projected,
 //! would crowd towards the middle of a curved edge (a radial projection spaces them by
 //! the tangent of the angle) and the cubic through them would swing off the surface more
 //! than the P2 edge does — on a sphere's edge of 0.13 rad, 2.1e-5 off against 8.9e-6 at P2,
@@ -295,50 +295,6 @@ impl March<'_> {
         }
         push_interior(shape, out);
     }
-}
-
-/// The points of the surface's curve over the wall edge from `a` to `b` (`surface`'s image
-/// of the chord, near wall facet `facet`) at a third and two thirds of its length, the length
-/// taken along 24 pieces of the image; the chord's own thirds where the image is the chord
-/// (a flat wall).
-pub(crate) fn thirds_on_surface(
-    a: [f64; 3],
-    b: [f64; 3],
-    surface: &dyn SurfaceProjector,
-    facet: u32,
-) -> [[f64; 3]; 2] {
-    const PIECES: usize = 24;
-    let chord = |t: f64| [0, 1, 2].map(|d| a[d] + t * (b[d] - a[d]));
-    let image: Vec<[f64; 3]> = (0..=PIECES)
-        .map(|k| surface.project(chord(k as f64 / PIECES as f64), facet as usize))
-        .collect();
-    if image
-        .iter()
-        .enumerate()
-        .all(|(k, p)| *p == chord(k as f64 / PIECES as f64))
-    {
-        return [chord(1.0 / 3.0), chord(2.0 / 3.0)];
-    }
-    let mut length = vec![0.0];
-    for w in image.windows(2) {
-        let d = (0..3)
-            .map(|d| (w[1][d] - w[0][d]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        length.push(length.last().unwrap_or(&0.0) + d);
-    }
-    let total = length[PIECES];
-    [1.0, 2.0].map(|i| {
-        let s = i / 3.0 * total;
-        let k = length.partition_point(|&l| l <= s).clamp(1, PIECES) - 1;
-        let piece = length[k + 1] - length[k];
-        let within = if piece > 0.0 {
-            (s - length[k]) / piece
-        } else {
-            0.0
-        };
-        surface.project(chord((k as f64 + within) / PIECES as f64), facet as usize)
-    })
 }
 
 /// Every combination of one node from each list.
