@@ -11,7 +11,7 @@ use springfield::{
 };
 
 use crate::aspect::{limit_ratio, mean_edge};
-use crate::check::{Failed, bad_cells, shrink_until_valid, turned_steps};
+use crate::check::{Failed, INVERTED_SHRINKS, bad_cells, shrink_until_valid, turned_steps};
 use crate::children::dedup_cyclic;
 use crate::children::{Ideal, Layer};
 use crate::front::{Topo, ideal_steps};
@@ -249,7 +249,8 @@ const UNMERGE_TRIES: usize = 4;
 const TURN_TRIES: usize = 3;
 
 /// Shrinks `next` (the layer over the front of `ideal`, its facets `facets`) until valid
-/// ([`shrink_until_valid`]). Where it stays invalid and children of its failing cells are
+/// ([`shrink_until_valid`]: once where a cell is inverted, `max_shrinks` times where the front
+/// crosses itself). Where it stays invalid and children of its failing cells are
 /// merged, the layer is built again from the balanced children without those merges
 /// ([`merged_layer`] with the others) and shrunk again, at most [`UNMERGE_TRIES`] times:
 /// a merged child stands over the middle of its two parents, half an edge off each
@@ -278,7 +279,9 @@ fn settle_layer(
     let mut turned: Option<Vec<[f64; 3]>> = None;
     let mut turns = 0;
     loop {
-        let failed = match shrink_until_valid(ideal.nodes, facets, next, max_shrinks, stats) {
+        // an inverted cell shrunk further only flattens: its columns stop instead (`stop`)
+        let shrinks = (max_shrinks.min(INVERTED_SHRINKS), max_shrinks);
+        let failed = match shrink_until_valid(ideal.nodes, facets, next, shrinks, stats) {
             Ok(()) => return Ok(()),
             Err(failed) => failed,
         };

@@ -39,11 +39,12 @@
 //! and the new front must not intersect itself anywhere (facet pairs by sort-and-sweep over
 //! the whole front, the exact triangle test). The children of a failing cell or facet pair
 //! are moved halfway back to their parents (a merged child to the midpoint of its two), and
-//! the check repeated, at most [`LayerParams::max_shrinks`] times. A layer still invalid
-//! then drops the merges of its failing cells' nodes (a merged child stands half an edge off
-//! its parents' columns and shrinks towards their middle, so a neighbour it shears stays
-//! inverted) and is built and shrunk again, at most four times; then the growth fails with
-//! the layer and wall facet. With [`LayerParams::patch_normals`] such a layer first turns
+//! the check repeated, once where a cell is inverted (halved further it would only flatten),
+//! at most [`LayerParams::max_shrinks`] times where the front crosses itself. A layer still
+//! invalid then drops the merges of its failing cells' nodes (a merged child stands half an
+//! edge off its parents' columns and shrinks towards their middle, so a neighbour it shears
+//! stays inverted) and is built and shrunk again, at most four times; then its failing
+//! columns stop (below). With [`LayerParams::patch_normals`] such a layer first turns
 //! the steps of the nodes whose bottom corners fail (a step that does not stand off a
 //! corner triangle of the front, which no shrink mends) and is built again.
 //!
@@ -124,8 +125,8 @@ pub struct LayerParams {
     pub springs: SpringParams3d,
     /// The balance's solver settings.
     pub solver: SolverParams,
-    /// How many times the children of a failing cell are moved halfway back before the growth
-    /// fails.
+    /// How many times the children of the facets where the new front crosses itself are moved
+    /// halfway back before those columns stop (an inverted cell's are moved back once).
     pub max_shrinks: usize,
     /// Rounds of smoothing of the ideal directions over the front (each direction replaced
     /// by the normalised sum of its own and its neighbours'): fans the directions out of
