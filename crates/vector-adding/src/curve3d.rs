@@ -112,7 +112,7 @@ pub fn curve_mesh_3d(
     let out = if params.order == 2 {
         assemble(mesh, &edges, &faces, &m)
     } else {
-        crate::nodes3d::assemble_p3(mesh, &edges, &m)
+        crate::march3d::nodes::assemble_p3(mesh, &edges, &m)
     };
     Ok(Curved3d { mesh: out, stats })
 }

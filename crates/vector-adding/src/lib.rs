@@ -98,7 +98,6 @@ mod keep;
 mod loop_curve;
 mod march;
 mod march3d;
-mod nodes3d;
 pub mod params;
 mod part;
 mod projector;

@@ -9,17 +9,19 @@
 //! An edge has `order − 1` inner nodes, each with its displacement from its straight place
 //! (the edge's slots, listed from its lower-numbered end): one at P2, two at P3, both
 //! carried up together. At P3 the faces' interior nodes follow their edges, plus the residual
-//! each inherits from the face below it (`nodes3d`).
+//! each inherits from the face below it (`march3d::nodes`).
+
+pub(crate) mod nodes;
 
 use jacobian_check::{Certificate, certify_cell};
 use mesh_model::topology::Edges;
 use mesh_model::{CellType, Mesh, NONE, Shape};
 
 use crate::error::CurvingError;
-use crate::nodes3d::FaceNodes;
 use crate::params::CurvingParams;
 use crate::projector::SurfaceProjector;
 use crate::stats::StopCounts;
+use nodes::FaceNodes;
 
 /// The layer of every node and its parents (the nodes below it in its columns).
 #[derive(Debug, Clone)]
@@ -96,7 +98,7 @@ pub(crate) struct March<'a> {
     /// Per edge slot (edge `e`'s at `e · per ..`, from its lower-numbered end): curved minus
     /// straight inner node.
     pub dev: Vec<[f64; 3]>,
-    /// At P3, the faces' interior nodes (`nodes3d`); `None` at P2.
+    /// At P3, the faces' interior nodes (`march3d::nodes`); `None` at P2.
     pub(crate) faces: Option<FaceNodes<'a>>,
     pub stops: StopCounts,
     pub reduced: usize,
@@ -270,7 +272,7 @@ impl<'a> March<'a> {
                 let on = surface.project(m, facet as usize);
                 self.dev[e as usize] = [0, 1, 2].map(|k| on[k] - m[k]);
             } else {
-                // at equal arc length along the surface's curve over the edge (`nodes3d`)
+                // at equal arc length along the surface's curve over the edge (`march3d::nodes`)
                 for i in 0..self.per {
                     let s = (i + 1) as f64 / (self.per + 1) as f64;
                     let on = surface.edge_point(self.x(a), self.x(b), s, facet as usize);

@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 use mesh_model::topology::{Edges, Faces};
 use mesh_model::{CellType, Cells, Mesh, NONE, Shape};
 
-use crate::march3d::{Layers, March, add, scale};
+use super::{Layers, March, add, scale};
 use crate::projector::SurfaceProjector;
 
 /// The faces' interior nodes at P3: each face's corners in cyclic order and the residuals of
