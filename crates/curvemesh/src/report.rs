@@ -582,7 +582,7 @@ pub struct Quality3d {
 }
 
 /// The certified check of a P2 3D mesh, as the 2D quality block gives it.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Validity3d {
     /// The least certified scaled Jacobian over the cells ([`SCALED_JACOBIAN_OF`]).
     pub min_scaled_jacobian: f64,
