@@ -6,7 +6,8 @@
 //! grow on: every run is valid (conforming, every cell positive by the exact corner test,
 //! the volumes balanced), read back valid by `quality`, and reports its coverage, the least
 //! layers per boundary group and where columns stopped and why; below `[layers]
-//! min_coverage` the run stops with one line naming where and why.
+//! min_coverage` the run stops with one line naming where and why. No built-in 3D case sets an
+//! expert key.
 
 use std::path::{Path, PathBuf};
 
@@ -104,6 +105,9 @@ fn every_untuned_body_grows_at_the_default_keys() {
         let stopped = check_columns(name, &r, 0.95, least);
         assert_eq!(stopped > 0, stops, "{name}: {stopped} columns stopped");
         assert_eq!(r["problems"].as_array().unwrap().len(), 0, "{name}");
+        // the mixed cut's prisms keep the default corner floor, 0.2
+        let sj = &r["quality"]["min_corner_scaled_jacobian"]["value"];
+        assert!(sj.as_f64().unwrap() >= 0.2, "{name}: {sj}");
         let note = r["notes"].as_array().unwrap().iter();
         let noted = note
             .filter_map(Value::as_str)
@@ -173,4 +177,24 @@ fn coverage_below_min_coverage_stops_the_run_naming_where_and_why() {
         &["coverage", "min_coverage = 0.999", "layer", "front crosses"],
     );
     assert!(!out.exists(), "{line}");
+}
+
+#[test]
+fn no_built_in_3d_case_sets_an_expert_key() {
+    let expert = [
+        "max_aspect",
+        "merge_rows",
+        "stand_off",
+        "smoothing",
+        "min_coverage",
+        "max_lean_deg",
+        "min_corner_sj",
+    ];
+    for name in curvemesh::builtin::names_3d() {
+        let text = curvemesh::builtin::case_text(name).unwrap();
+        for line in text.lines().map(str::trim_start) {
+            let key = line.split('=').next().unwrap_or("").trim();
+            assert!(!expert.contains(&key), "{name}: {line}");
+        }
+    }
 }

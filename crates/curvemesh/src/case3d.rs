@@ -36,7 +36,7 @@ pub struct Case3d {
     pub max_lean_deg: f64,
     /// `[cut] min_corner_sj`: in the mixed cut, a layer cell that would be kept as a prism or
     /// hexahedron with a corner scaled Jacobian below this is cut into tetrahedra and
-    /// pyramids instead (default 0: every such cell kept).
+    /// pyramids instead (default [`MIN_CORNER_SJ`]; 0 keeps every such cell).
     pub min_corner_sj: f64,
     /// `[curving] order` (1 to 3).
     pub order: u8,
@@ -186,6 +186,12 @@ pub const MAX_LEAN_DEG: f64 = 30.0;
 /// 0.028 / 0.022; 1.3: case 2 fails in layer 40; `docs/3d.md`).
 pub const QUAD_WING_MERGE_ROWS: f64 = 1.0;
 
+/// The default `[cut] min_corner_sj`: the mixed mesh's prisms and hexahedra keep a corner
+/// scaled Jacobian of 0.2 at least (the bar on wings); the few layer cells under it
+/// (the step's, squeezed at its concave edges down to 0.175; cells beside stopped columns;
+/// prisms over a surface's thin triangles) are cut into tetrahedra and pyramids.
+pub const MIN_CORNER_SJ: f64 = 0.2;
+
 /// The default `[layers] min_coverage`: nine wall nodes in ten keep every layer.
 pub const MIN_COVERAGE: f64 = 0.9;
 
@@ -285,7 +291,7 @@ pub(crate) fn parse(
         max_lean_deg.is_finite() && max_lean_deg > 0.0 && max_lean_deg <= 180.0,
         "{origin}: [cut] max_lean_deg = {max_lean_deg}: must be above 0 and at most 180 (degrees)"
     );
-    let min_corner_sj = file.cut.min_corner_sj.unwrap_or(0.0);
+    let min_corner_sj = file.cut.min_corner_sj.unwrap_or(MIN_CORNER_SJ);
     ensure!(
         (0.0..1.0).contains(&min_corner_sj),
         "{origin}: [cut] min_corner_sj = {min_corner_sj}: must be at least 0 and below 1"
