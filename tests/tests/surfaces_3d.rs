@@ -141,12 +141,20 @@ fn the_wing_the_fin_and_the_two_spheres_cut_into_valid_tetrahedra() {
 }
 
 #[test]
-fn two_spheres_apart_and_the_fin_curve_to_p2_with_every_cell_certified() {
+fn every_untuned_body_curves_to_p2_with_every_cell_certified() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    for name in ["two-spheres", "capsule-fin"] {
+    let bodies = [
+        "swept-wing",
+        "capsule-fin",
+        "torus",
+        "fused-spheres",
+        "box-tower",
+        "two-spheres",
+    ];
+    for name in bodies {
         let r = meshed(d, &format!("{name}-p2"), &fixture(name), &["--order", "2"]);
-        check_columns(name, &r, 0.95, 10);
+        check_columns(name, &r, 0.95, 8);
         assert_eq!(r["order"], 2, "{name}");
         assert_eq!(r["quality"]["certified"], true, "{name}: {}", r["quality"]);
     }
