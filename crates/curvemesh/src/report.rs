@@ -581,7 +581,7 @@ pub struct Quality3d {
     pub validity: Option<Validity3d>,
 }
 
-/// The certified check of a P2 3D mesh, as the 2D quality block gives it.
+/// The certified check of a P2 or P3 3D mesh, as the 2D quality block gives it.
 #[derive(Debug, Clone, Serialize)]
 pub struct Validity3d {
     /// The least certified scaled Jacobian over the cells ([`SCALED_JACOBIAN_OF`]).
