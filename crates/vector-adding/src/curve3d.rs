@@ -1,8 +1,9 @@
-//! P2 curving of a 3D layered mesh by Vector-Adding (dissertation §5.3; issue 13, item 4):
+//! P2 and P3 curving of a 3D layered mesh by Vector-Adding (dissertation §5.3; issue 13,
+//! item 4; issue 47, item 4):
 //! the linear mesh `topo-cut` makes of `afsf3d`'s layers (tetrahedra, or tetrahedra,
 //! pyramids, prisms and hexahedra) with its `cell_layer` and `cell_pipe`, the columns of the
 //! layering (each wall node and its children, bottom-up) and a [`SurfaceProjector`] onto
-//! the true wall, in; a P2 mesh, out.
+//! the true wall, in; a P2 or P3 mesh, out.
 //!
 //! The mid-edge node of every wall edge goes onto the true surface. Every other edge takes
 //! the displacement (curved minus straight mid-edge node) of the edge below it — the edge
@@ -17,10 +18,12 @@
 //! displacement, or none; an edge with nothing below it (merged children) stays straight,
 //! and so does everything above a straight edge. Every decision rests on `jacobian-check`'s
 //! certificate. Quadrilateral faces get their centre node from their four edges
-//! (the Coons patch: ½ Σ edge nodes − ¼ Σ corners), a hexahedron its centre likewise.
+//! (the Coons patch: ½ Σ edge nodes − ¼ Σ corners), a hexahedron its centre likewise. At P3
+//! each edge carries its two nodes' displacements together, the wall's at equal arc length
+//! on the surface, and the faces' and cells' interior nodes come from `nodes3d`.
 //!
-//! Pyramids are curved like every other cell (the 14-node pyramid is certified in Gmsh's
-//! Bergot space by `jacobian_check`, its base node the Coons point of its base's edges).
+//! Pyramids are curved like every other cell (the 14- and 30-node pyramids are certified in
+//! Gmsh's Bergot space by `jacobian_check`, the base's nodes Coons points of its edges).
 //! An earlier version kept every edge of a pyramid above the wall straight, and with it
 //! its neighbours' shared faces: in the mixed cut of the finer wing cases the cells next to
 //! those straight faces, over curved edges below, were left invalid (153 cells in case 2).
@@ -36,12 +39,13 @@ use crate::params::CurvingParams;
 pub use crate::projector::{SphereProjector, SurfaceProjector};
 use crate::stats::StopCounts;
 
-/// The P2 mesh and the figures of a 3D curving.
+/// The P2 or P3 mesh and the figures of a 3D curving.
 #[derive(Debug, Clone)]
 pub struct Curved3d {
-    /// The P2 mesh: the linear nodes first (same indices), then one node per edge of the
-    /// linear mesh (in `mesh_model::topology` order), one per quadrilateral face of a prism or
-    /// hexahedron, one per hexahedron.
+    /// The curved mesh: the linear nodes first (same indices), then the edges' inner nodes (in
+    /// `mesh_model::topology` order); at P2 one node per quadrilateral face of a prism or
+    /// hexahedron, then one per hexahedron; at P3 every face's interior nodes (one a
+    /// triangle, four a quadrilateral), then the cells' (`nodes3d`).
     pub mesh: Mesh,
     /// What was done.
     pub stats: Curving3dStats,
@@ -72,7 +76,7 @@ pub struct Curving3dStats {
     pub unrepaired: usize,
 }
 
-/// Curves the linear 3D mesh `mesh` to P2. `columns[i]` lists a wall node and its children
+/// Curves the linear 3D mesh `mesh` to P2 or P3. `columns[i]` lists a wall node and its children
 /// bottom-up (`afsf3d::Grown3d::columns`); every node of the mesh must be in a column.
 /// `params.order` must be 2.
 ///

@@ -23,10 +23,10 @@
 //! each [`DecisionChange`]), replayed by [`replay`], and differentiated by [`tangent`].
 //!
 //! In 3D ([`curve3d`], [`curve_mesh_3d`]) the linear mesh `topo-cut` makes of `afsf3d`'s
-//! layers is curved to P2 the same way (dissertation §5.3): wall mid-edge nodes on the true
-//! surface through a [`SurfaceProjector`], their displacement added up the columns edge by
-//! edge, with the 2D stops, every decision certified (tetrahedra, prisms, hexahedra;
-//! pyramids curved on the wall only).
+//! layers is curved to P2 or P3 the same way (dissertation §5.3): the wall's high-order
+//! nodes on the true surface through a [`SurfaceProjector`], their displacements added up the
+//! columns edge by edge (and face by face at P3), with the 2D stops, every decision certified
+//! (tetrahedra, prisms, hexahedra and pyramids).
 //!
 //! The mesh's edge table may be given half-made ([`PartEdges`]: the table of its layered
 //! cells, made while its fill was) to [`curve_mesh_owned_with`], which finishes it into the

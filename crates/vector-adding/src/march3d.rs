@@ -98,7 +98,7 @@ pub(crate) struct March<'a> {
     /// Per edge slot (edge `e`'s at `e · per ..`, from its lower-numbered end): curved minus
     /// straight inner node.
     pub dev: Vec<[f64; 3]>,
-    /// At P3, the faces' interior nodes (`march3d::nodes`); `None` at P2.
+    /// At P3, the faces' interior nodes (`nodes3d`); `None` at P2.
     pub(crate) faces: Option<FaceNodes<'a>>,
     pub stops: StopCounts,
     pub reduced: usize,
