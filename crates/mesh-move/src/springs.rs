@@ -158,10 +158,10 @@ fn move_springs(
     if x == old {
         return Ok(finish(mesh, boundary, &old, &x, stats));
     }
-    let Some(start) = start(layered, boundary, p, &mut stats, 0)? else {
-        // no start: the failure is reported as it is (the last fill tried)
-        let x = stats_start_failed(layered, boundary, p)?;
-        return Ok(finish(mesh, boundary, &old, &x, stats));
+    let start = match start(layered, boundary, p, &mut stats, 0)? {
+        Ok(start) => start,
+        // no start: the failure is reported as it is (the fill that inverted)
+        Err(failed) => return Ok(finish(mesh, boundary, &old, &failed, stats)),
     };
     x.clone_from(&start);
     if let Some(warm) = warm {
@@ -182,6 +182,9 @@ fn move_springs(
     Ok(moved)
 }
 
+/// A start of the balance (`Ok`), or the fill that inverted a cell (`Err`).
+type Start = Result<Vec<[f64; 2]>, Vec<[f64; 2]>>;
+
 /// How many times a motion is halved at most when no fill gives an uninverted start (a
 /// half turn in a far field of 20 chords needs one halving).
 const MAX_HALVINGS: u32 = 3;
@@ -192,47 +195,42 @@ const MAX_HALVINGS: u32 = 3;
 /// basin the balance does not depend on its start). When every fill inverts a cell, the
 /// motion is halved: the half motion is moved and balanced (recursively), and the start is
 /// the fill of the remaining half from that balanced mesh — a continuation, for the turns
-/// near 180° that no blend of the two ends can fill. `None` when that fails too.
+/// near 180° that no blend of the two ends can fill. `Err` with the inverted fill when that
+/// fails too.
 fn start(
     layered: &LayeredMesh,
     boundary: &BoundaryMotion,
     p: &SpringMoveParams,
     stats: &mut SpringStats,
     halvings: u32,
-) -> Result<Option<Vec<[f64; 2]>>, MoveError> {
+) -> Result<Start, MoveError> {
     let x = filled(layered, boundary, p, stats)?;
     if crate::quality::inverted_cells(&with_nodes(&layered.mesh, &x)) == 0 {
-        return Ok(Some(x));
+        return Ok(Ok(x));
     }
     if halvings >= MAX_HALVINGS {
-        return Ok(None);
+        return Ok(Err(x));
     }
     let (half, rest) = halves(layered, boundary);
-    let Some(mut mid) = start(layered, &half, p, stats, halvings + 1)? else {
-        return Ok(None);
+    let Ok(mut mid) = start(layered, &half, p, stats, halvings + 1)? else {
+        return Ok(Err(x));
     };
     let mut fixed = vec![false; mid.len()];
     half.nodes.iter().for_each(|&k| fixed[k as usize] = true);
     let field = crate::balance::ShapeField::of(layered, p.shape)?;
     if field.balance(&mut mid, &fixed, &p.newton).is_err() {
-        return Ok(None);
+        return Ok(Err(x));
     }
     let from = LayeredMesh {
         mesh: with_nodes(&layered.mesh, &mid),
         layering: layered.layering.clone(),
     };
-    let x = filled(&from, &rest, p, stats)?;
-    let valid = crate::quality::inverted_cells(&with_nodes(&layered.mesh, &x)) == 0;
-    Ok(valid.then_some(x))
-}
-
-/// The start that failed (the last fill tried), for the report of a failed move.
-fn stats_start_failed(
-    layered: &LayeredMesh,
-    boundary: &BoundaryMotion,
-    p: &SpringMoveParams,
-) -> Result<Vec<[f64; 2]>, MoveError> {
-    filled(layered, boundary, p, &mut SpringStats::default())
+    let y = filled(&from, &rest, p, stats)?;
+    if crate::quality::inverted_cells(&with_nodes(&layered.mesh, &y)) == 0 {
+        Ok(Ok(y))
+    } else {
+        Ok(Err(x))
+    }
 }
 
 /// The first phase of the spring mover: `layered`'s nodes with the boundary at `boundary`,
