@@ -501,7 +501,7 @@ fn gmsh_min_sj(mesh: &Mesh, min_det: &[f64]) -> Vec<f64> {
 }
 
 /// The mean of a cell's corners, to say where a named cell is.
-pub(crate) fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
+fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
     let c = mesh.cells.get(cell);
     let k = c.corners();
     let n = k.len() as f64;

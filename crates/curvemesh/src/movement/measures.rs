@@ -74,7 +74,7 @@ pub fn measures(before: &Mesh, after: &Mesh) -> Option<Measures> {
         Worst {
             ratio,
             cell,
-            at: crate::report::centroid(after, cell),
+            at: centroid(after, cell),
         }
     };
     Some(Measures {
@@ -124,6 +124,16 @@ fn equilateral(j: [[f64; 2]; 2]) -> [[f64; 2]; 2] {
     // W = [[1, 1/2], [0, √3/2]], W⁻¹ = [[1, −1/√3], [0, 2/√3]]
     let s = 3f64.sqrt();
     [0, 1].map(|r| [j[r][0], -j[r][0] / s + 2.0 * j[r][1] / s])
+}
+
+/// The mean of a cell's corners.
+fn centroid(mesh: &Mesh, cell: usize) -> [f64; 2] {
+    let k = mesh.cells.get(cell).corners();
+    let sum = k.iter().fold([0.0, 0.0], |s, &v| {
+        let x = mesh.xy(v);
+        [s[0] + x[0], s[1] + x[1]]
+    });
+    [sum[0] / k.len() as f64, sum[1] / k.len() as f64]
 }
 
 #[cfg(test)]
