@@ -6,6 +6,9 @@
 # tests the Python package (python/test.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# no incremental compilation caches: a run of the whole suite builds every crate once, and the
+# caches would be the largest part of target/ (CARGO_INCREMENTAL=1 keeps them)
+export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 
 bash tests/python/install.sh
 

@@ -2,7 +2,7 @@
 //! real runs of `mesh` and `quality` (the same code as the commands, run in-process), into
 //! `docs/figures/` by default. Meshes made on the way go to a scratch folder that is removed at
 //! the end; only the pictures are kept. The list of figures is [`FIGURES`]; the docs test
-//! (`xtask/tests/docs_examples.rs`) checks that the docs show exactly these files.
+//! (`xtask/tests/integration/docs_examples.rs`) checks that the docs show exactly these files.
 
 use std::path::{Path, PathBuf};
 

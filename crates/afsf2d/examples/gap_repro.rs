@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p afsf2d --example gap_repro`
 
-#[path = "../tests/common/gaps.rs"]
+#[path = "../tests/integration/common/gaps.rs"]
 mod gaps;
 
 use afsf2d::{grow_mesh, max_angle_histogram};

@@ -8,7 +8,7 @@
 //! `cargo run --release -p afsf2d --example gap_survey -- [CASES] [SEED]`
 //! (`VERBOSE=1` lists the five worst cells of every case.)
 
-#[path = "../tests/common/gaps.rs"]
+#[path = "../tests/integration/common/gaps.rs"]
 mod gaps;
 
 use afsf2d::{AfsfOutput, grow_mesh, max_angle_histogram};

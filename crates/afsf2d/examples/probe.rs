@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p afsf2d --example probe -- CASE [GROWTH] [FIRST_HEIGHT] [x y halfwidth out.png]`
 
-#[path = "../tests/common/real.rs"]
+#[path = "../tests/integration/common/real.rs"]
 mod real;
 
 use afsf2d::{grow_mesh, max_angle_histogram, max_triangle_angle_deg};

@@ -6,7 +6,7 @@
 //!
 //! `cargo run --release -p afsf2d --example speed -- [CASE...]`
 
-#[path = "../tests/common/real.rs"]
+#[path = "../tests/integration/common/real.rs"]
 mod real;
 
 use afsf2d::{grow_mesh, max_angle_histogram};

@@ -203,7 +203,7 @@ pub fn round_cut_ranks(
 
 /// The most rounds of [`uncover_inverted`]: each splits one more quadrilateral per inverted
 /// piece, and a chain of warped quadrilaterals takes one round a link (the slot of `afsf3d`'s
-/// `tests/stop.rs`, whose layers outgrow its width, needs 17; 8 left it inverted).
+/// `tests/integration/stop.rs`, whose layers outgrow its width, needs 17; 8 left it inverted).
 const UNCOVER_ROUNDS: usize = 64;
 
 /// Where a round-cut cell still has a piece that is not positive (a pyramid over a warped
