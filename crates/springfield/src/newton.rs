@@ -18,10 +18,12 @@
 //! It owns the solve. It does not build springs (the mover does) nor know what a design
 //! variable is.
 
-use faer::Side;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
-use faer::{Mat, MatMut};
+use dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::cholesky::{
+    LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, MatMut, Par, Side};
 
 use crate::SpringError;
 use crate::model::{ForceModel, Triplet};
@@ -107,27 +109,44 @@ impl<const D: usize> Dofs<D> {
     }
 }
 
-/// The assembly of `−∂F/∂X` over the movable nodes into a sparse matrix, its pattern found
-/// once. A model emits its Jacobian triplets in the same order at every step while no cell
-/// inverts, so the sort that merges duplicates and orders columns (most of the time of a
-/// Newton step when redone: profiled on the 30P30N) is done once, and each step only scatters
-/// the values; when the triplets' positions change the pattern is found again. Only the lower
-/// triangle is kept: the matrix is symmetric and the Cholesky factorisation reads no more.
+/// The assembly of `−∂F/∂X` over the movable nodes into a sparse matrix and its Cholesky
+/// factor, the pattern and the fill-reducing ordering found once. A model emits its Jacobian
+/// triplets in the same order at every step while no cell inverts, so the sort that merges
+/// duplicates and orders columns (most of the time of a Newton step when redone: profiled on
+/// the 30P30N) is done once: each step scatters the values straight into the matrix's value
+/// array and factorises into the same factor and workspace buffers (allocating them at every
+/// factorisation was a sixth of a 30P30N move, in page faults). When the triplets' positions
+/// change the pattern is found again. Only the lower triangle is kept: the matrix is
+/// symmetric and the Cholesky factorisation reads no more.
 struct Assembly<const D: usize> {
     dofs: Dofs<D>,
     /// The (row, column) of every triplet the pattern was found for, to tell a change.
     keys: Vec<(u32, u32)>,
-    /// The value slot of every triplet, or `u32::MAX` when dropped (held or upper).
+    /// The index in the matrix's values of every triplet, or `u32::MAX` when dropped (held
+    /// or upper).
     slot: Vec<u32>,
-    /// Kept triplets; the shifted diagonal's entries follow them.
-    kept: usize,
-    symbolic: Option<(SymbolicSparseColMat<u32>, Argsort<u32>, SymbolicLlt<u32>)>,
+    /// The index in the matrix's values of each unknown's diagonal entry.
+    diagonal_slot: Vec<u32>,
+    pattern: Option<Pattern>,
+    /// The matrix's values (column by column, in the pattern's order).
     values: Vec<f64>,
+    /// The unshifted diagonal.
     diagonal: Vec<f64>,
+    /// The factor's values (valid after a successful [`Assembly::factorise`]).
+    factor: Vec<f64>,
+    /// Workspace of the factorisation and the solves.
+    scratch: MemBuffer,
+    par: Par,
     /// The diagonal shift the last factorisation needed (0: none).
     last_shift: f64,
     /// Factorisations attempted, failed ones included.
     pub(crate) factorisations: usize,
+}
+
+/// The lower triangle's sparsity pattern and its symbolic Cholesky factorisation.
+struct Pattern {
+    matrix: SymbolicSparseColMat<u32>,
+    cholesky: SymbolicCholesky<u32>,
 }
 
 impl<const D: usize> Assembly<D> {
@@ -136,10 +155,13 @@ impl<const D: usize> Assembly<D> {
             dofs: Dofs::new(movable),
             keys: Vec::new(),
             slot: Vec::new(),
-            kept: 0,
-            symbolic: None,
+            diagonal_slot: Vec::new(),
+            pattern: None,
             values: Vec::new(),
             diagonal: Vec::new(),
+            factor: Vec::new(),
+            scratch: MemBuffer::new(StackReq::EMPTY),
+            par: faer::get_global_parallelism(),
             last_shift: 0.0,
             factorisations: 0,
         }
@@ -147,7 +169,7 @@ impl<const D: usize> Assembly<D> {
 
     /// Finds the pattern of `jacobian` and its fill-reducing ordering, unless known.
     fn pattern(&mut self, jacobian: &[Triplet]) -> Result<(), SpringError> {
-        let same = self.symbolic.is_some()
+        let same = self.pattern.is_some()
             && self.keys.len() == jacobian.len()
             && self
                 .keys
@@ -158,64 +180,79 @@ impl<const D: usize> Assembly<D> {
             return Ok(());
         }
         self.keys = jacobian.iter().map(|t| (t.row, t.col)).collect();
-        let mut pairs = Vec::with_capacity(jacobian.len() + self.dofs.count);
+        let n = self.dofs.count;
+        // (column, row) of every kept entry, the diagonal always present (so a shift never
+        // changes the pattern), then sorted and merged into the columns' row lists
+        let mut entries: Vec<(u32, u32)> = jacobian
+            .iter()
+            .filter_map(|t| match (self.dofs.of(t.row), self.dofs.of(t.col)) {
+                (Some(r), Some(c)) if r >= c => Some((c as u32, r as u32)),
+                _ => None,
+            })
+            .collect();
+        entries.extend((0..n as u32).map(|i| (i, i)));
+        entries.sort_unstable();
+        entries.dedup();
+        let mut col_ptr = vec![0u32; n + 1];
+        for &(c, _) in &entries {
+            col_ptr[c as usize + 1] += 1;
+        }
+        for c in 0..n {
+            col_ptr[c + 1] += col_ptr[c];
+        }
+        let index = |c: usize, r: usize| -> u32 {
+            let (a, b) = (col_ptr[c] as usize, col_ptr[c + 1] as usize);
+            let rows = &entries[a..b];
+            (a + rows.partition_point(|e| (e.1 as usize) < r)) as u32
+        };
         self.slot = jacobian
             .iter()
             .map(|t| match (self.dofs.of(t.row), self.dofs.of(t.col)) {
-                (Some(r), Some(c)) if r >= c => {
-                    pairs.push(Pair::new(r as u32, c as u32));
-                    (pairs.len() - 1) as u32
-                }
+                (Some(r), Some(c)) if r >= c => index(c, r),
                 _ => u32::MAX,
             })
             .collect();
-        self.kept = pairs.len();
-        // the diagonal is always present, so a shift never changes the pattern
-        pairs.extend((0..self.dofs.count as u32).map(|i| Pair::new(i, i)));
-        let n = self.dofs.count;
-        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| SpringError::Solver(format!("assembling the Newton matrix: {e:?}")))?;
-        let llt = SymbolicLlt::try_new(symbolic.as_ref(), Side::Lower)
-            .map_err(|e| SpringError::Solver(format!("ordering the Newton matrix: {e:?}")))?;
-        self.symbolic = Some((symbolic, argsort, llt));
+        self.diagonal_slot = (0..n).map(|i| index(i, i)).collect();
+        let row_idx: Vec<u32> = entries.iter().map(|e| e.1).collect();
+        let matrix = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let cholesky = factorize_symbolic_cholesky(
+            matrix.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map_err(|e| SpringError::Solver(format!("ordering the Newton matrix: {e:?}")))?;
+        self.factor = vec![0.0; cholesky.len_val()];
+        self.scratch = MemBuffer::new(StackReq::any_of(&[
+            cholesky.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()),
+            cholesky.solve_in_place_scratch::<f64>(1, self.par),
+        ]));
+        self.values = vec![0.0; matrix.compute_nnz()];
+        self.pattern = Some(Pattern { matrix, cholesky });
         Ok(())
     }
 
     /// Scatters the values of `jacobian` (whose pattern [`Assembly::pattern`] found).
     fn scatter(&mut self, jacobian: &[Triplet]) {
-        self.values.clear();
-        self.values.resize(self.kept + self.dofs.count, 0.0);
-        self.diagonal.clear();
-        self.diagonal.resize(self.dofs.count, 0.0);
+        self.values.iter_mut().for_each(|v| *v = 0.0);
         for (t, &s) in jacobian.iter().zip(&self.slot) {
             if s != u32::MAX {
-                self.values[s as usize] = -t.value;
-                let (r, c) = (self.dofs.of(t.row), self.dofs.of(t.col));
-                if r == c {
-                    self.diagonal[r.expect("kept")] -= t.value;
-                }
+                self.values[s as usize] -= t.value;
             }
         }
-    }
-
-    /// The matrix with `shift` × |its diagonal| added to the diagonal.
-    fn matrix(&mut self, shift: f64) -> Result<SparseColMat<u32, f64>, SpringError> {
-        let (symbolic, argsort, _) = self.symbolic.as_ref().expect("pattern found first");
-        for (i, d) in self.diagonal.iter().enumerate() {
-            self.values[self.kept + i] = shift * d.abs();
-        }
-        SparseColMat::new_from_argsort(symbolic.clone(), argsort, &self.values)
-            .map_err(|e| SpringError::Solver(format!("assembling the Newton matrix: {e:?}")))
+        self.diagonal.clear();
+        self.diagonal
+            .extend(self.diagonal_slot.iter().map(|&s| self.values[s as usize]));
     }
 
     /// A Cholesky factorisation of `−∂F/∂X` that shifts its diagonal until it is positive
-    /// definite; returns it and whether it had to. `shift_allowed` false: no shift, an
-    /// indefinite matrix is an error.
+    /// definite; returns whether it had to. `shift_allowed` false: no shift, an indefinite
+    /// matrix is an error. The factor is then [`Assembly::solve`]'s.
     fn factorise(
         &mut self,
         jacobian: &[Triplet],
         shift_allowed: bool,
-    ) -> Result<(Llt<u32, f64>, bool), SpringError> {
+    ) -> Result<bool, SpringError> {
         self.pattern(jacobian)?;
         self.scatter(jacobian);
         // consecutive steps tend to need similar shifts: start a decade below the last one
@@ -225,13 +262,30 @@ impl<const D: usize> Assembly<D> {
         } else {
             0.0
         };
+        let pattern = self.pattern.as_ref().expect("found");
         for _ in 0..24 {
-            let a = self.matrix(shift)?;
-            let llt = self.symbolic.as_ref().expect("found").2.clone();
+            for (&s, d) in self.diagonal_slot.iter().zip(&self.diagonal) {
+                self.values[s as usize] = d + shift * d.abs();
+            }
+            let a = SparseColMatRef::new(pattern.matrix.as_ref(), &self.values);
             self.factorisations += 1;
-            if let Ok(llt) = Llt::try_new_with_symbolic(llt, a.as_ref(), Side::Lower) {
+            // a failed attempt leaves a partial factor: the supernodal factorisation starts
+            // from zeros itself, the simplicial one is given them
+            if matches!(pattern.cholesky.raw(), SymbolicCholeskyRaw::Simplicial(_)) {
+                self.factor.iter_mut().for_each(|v| *v = 0.0);
+            }
+            let factored = pattern.cholesky.factorize_numeric_llt(
+                &mut self.factor,
+                a,
+                Side::Lower,
+                Default::default(),
+                self.par,
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            );
+            if factored.is_ok() {
                 self.last_shift = shift;
-                return Ok((llt, shift > 0.0));
+                return Ok(shift > 0.0);
             }
             if !shift_allowed {
                 return Err(SpringError::Solver(
@@ -244,16 +298,23 @@ impl<const D: usize> Assembly<D> {
             "the Newton matrix stays indefinite after shifting its diagonal".into(),
         ))
     }
-}
 
-/// Solves `llt · x = rhs` in place on a vector.
-fn solve_vector(llt: &Llt<u32, f64>, rhs: &mut [f64]) {
-    use faer::linalg::solvers::SolveCore;
-    let mut m = Mat::<f64>::from_fn(rhs.len(), 1, |i, _| rhs[i]);
-    let view: MatMut<'_, f64> = m.as_mut();
-    llt.solve_in_place_with_conj(faer::Conj::No, view);
-    for (i, r) in rhs.iter_mut().enumerate() {
-        *r = m[(i, 0)];
+    /// Solves `L Lᵀ x = rhs` in place with the last factor.
+    fn solve(&mut self, rhs: &mut [f64]) {
+        let pattern = self.pattern.as_ref().expect("factorised first");
+        let llt = LltRef::new(&pattern.cholesky, &self.factor);
+        let view = MatMut::from_column_major_slice_mut(rhs, rhs.len(), 1);
+        llt.solve_in_place_with_conj(Conj::No, view, self.par, MemStack::new(&mut self.scratch));
+    }
+
+    /// [`Assembly::solve`] with a workspace of its own, for a shared factor.
+    fn solve_with_own_scratch(&self, rhs: &mut [f64]) {
+        let pattern = self.pattern.as_ref().expect("factorised first");
+        let mut scratch =
+            MemBuffer::new(pattern.cholesky.solve_in_place_scratch::<f64>(1, self.par));
+        let llt = LltRef::new(&pattern.cholesky, &self.factor);
+        let view = MatMut::from_column_major_slice_mut(rhs, rhs.len(), 1);
+        llt.solve_in_place_with_conj(Conj::No, view, self.par, MemStack::new(&mut scratch));
     }
 }
 
@@ -292,17 +353,17 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
         model.assemble(positions, &mut force, &mut stiffness);
         jacobian.clear();
         model.jacobian(positions, movable, &mut jacobian);
-        let (llt, shifted) = assembly.factorise(&jacobian, true)?;
-        let dofs = &assembly.dofs;
+        let shifted = assembly.factorise(&jacobian, true)?;
         outcome.shifted += usize::from(shifted);
         outcome.factorisations = assembly.factorisations;
-        let mut step = vec![0.0; dofs.count];
+        let mut step = vec![0.0; assembly.dofs.count];
         for (node, f) in force.iter().enumerate() {
-            if let Some(first) = dofs.of((D * node) as u32) {
+            if let Some(first) = assembly.dofs.of((D * node) as u32) {
                 step[first..first + D].copy_from_slice(f);
             }
         }
-        solve_vector(&llt, &mut step);
+        assembly.solve(&mut step);
+        let dofs = &assembly.dofs;
         let largest = (0..n)
             .filter_map(|i| dofs.of((D * i) as u32).map(|f| (i, f)))
             .map(|(i, f)| {
@@ -357,8 +418,8 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
 /// The linearised balance at a converged `positions`: `−∂F/∂X` over the movable nodes,
 /// factorised once, and its coupling to the held nodes.
 pub struct Linearised<const D: usize> {
-    dofs: Dofs<D>,
-    llt: Llt<u32, f64>,
+    /// The factorised `−J_XX` (and its numbering of the movable nodes' coordinates).
+    assembly: Assembly<D>,
     /// `∂F/∂X` entries with a movable row and a held column.
     coupling: Vec<Triplet>,
 }
@@ -377,32 +438,29 @@ impl<const D: usize> Linearised<D> {
         let mut assembly = Assembly::<D>::new(movable);
         let mut all = Vec::new();
         model.jacobian(positions, &vec![true; positions.len()], &mut all);
-        let (llt, _) = assembly.factorise(&all, false)?;
-        let dofs = assembly.dofs;
+        assembly.factorise(&all, false)?;
+        let dofs = &assembly.dofs;
         let coupling = all
             .into_iter()
             .filter(|t| dofs.of(t.row).is_some() && dofs.of(t.col).is_none())
             .collect();
-        Ok(Linearised {
-            dofs,
-            llt,
-            coupling,
-        })
+        Ok(Linearised { assembly, coupling })
     }
 
     /// The motion of every node when the held nodes move by `held` (entries of movable
     /// nodes are ignored): held nodes as given, movable ones by `(−J_XX)⁻¹ J_XB dB`.
     pub fn respond(&self, held: &[[f64; D]]) -> Vec<[f64; D]> {
-        let mut rhs = vec![0.0; self.dofs.count];
+        let dofs = &self.assembly.dofs;
+        let mut rhs = vec![0.0; dofs.count];
         for t in &self.coupling {
-            let r = self.dofs.of(t.row).expect("movable row");
+            let r = dofs.of(t.row).expect("movable row");
             let (node, b) = (t.col as usize / D, t.col as usize % D);
             rhs[r] += t.value * held[node][b];
         }
-        solve_vector(&self.llt, &mut rhs);
+        self.assembly.solve_with_own_scratch(&mut rhs);
         held.iter()
             .enumerate()
-            .map(|(i, h)| match self.dofs.of((D * i) as u32) {
+            .map(|(i, h)| match dofs.of((D * i) as u32) {
                 Some(f) => std::array::from_fn(|a| rhs[f + a]),
                 None => *h,
             })
