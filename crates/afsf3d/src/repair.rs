@@ -18,7 +18,7 @@
 
 use geom_predicates::vector::{cross3, dist, dot, sub};
 use geom_surface::{Facet, first_self_intersection, unit};
-use mesh_model::measure3d::tet_dihedral_angles_deg;
+use mesh_model::measure3d::tet_max_dihedral_deg_of;
 use mesh_model::{NONE, is_positive_tet};
 use rayon::prelude::*;
 
@@ -34,9 +34,7 @@ fn tet_quality(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     if !is_positive_tet(o, a, b, c) {
         return INVERTED;
     }
-    tet_dihedral_angles_deg([o, a, b, c])
-        .into_iter()
-        .fold(0.0, f64::max)
+    tet_max_dihedral_deg_of([o, a, b, c])
 }
 
 /// The best cone cut of the cell with the outward faces `faces` (nodes at `pos`): the

@@ -11,7 +11,7 @@ use mesh_model::poly::PolyMesh;
 use mesh_model::{Shape, is_positive_tet};
 
 use crate::cone::{CellFaces, Piece, UNRANKED};
-use crate::quality::tet_dihedral_angles_deg;
+use mesh_model::measure3d::tet_max_dihedral_deg_of;
 
 /// The quality of a cell that is cut into a piece that is not positive.
 pub const INVERTED: f64 = 360.0;
@@ -71,8 +71,7 @@ pub fn piece_quality(nodes: &[[f64; 3]], (shape, k): &Piece) -> f64 {
         return INVERTED;
     }
     if *shape == Shape::Tet {
-        let p = [at(0), at(1), at(2), at(3)];
-        tet_dihedral_angles_deg(p).into_iter().fold(0.0, f64::max)
+        tet_max_dihedral_deg_of([at(0), at(1), at(2), at(3)])
     } else {
         0.0
     }
