@@ -19,7 +19,7 @@ use crate::params::CurvingParams;
 use crate::scratch::Scratch;
 use crate::split::OutCell;
 use crate::stats::CurvingStats;
-use crate::{Curved, LoopCurve, check_input, curve_mesh, roles, split};
+use crate::{Curved, LoopCurve, check_input, curve_mesh, march, roles, split};
 
 /// Where the boundary facets' high-order nodes come from.
 #[derive(Clone, Copy)]
@@ -262,9 +262,12 @@ fn lay_rules(mesh: &Mesh, rules: &EdgeRules, edges: &mut EdgeTable) -> Result<()
 /// then every cell certified with the check of [`crate::curve_mesh`]. For the cells that
 /// fail, the decisions of their pipes (and of their own edges) are taken afresh as
 /// `curve_mesh` takes them on `input`, widening to the whole mesh if that is not enough.
-/// Returns the curved mesh (its stats count edges, curved boundary edges and diagonals, and
-/// as `unrepaired_cells` the cells still invalid; the marching's figures stay 0) and every
-/// decision that changed.
+/// Returns the curved mesh and every decision that changed. Its stats count edges, curved
+/// boundary edges and diagonals, as `unrepaired_cells` the cells still invalid, and the
+/// pipes as the mesh has them (deepest curved layer, stops, reduced tops, read back from the
+/// laid edges: a run's own decisions on its own mesh give its figures, but for edges its
+/// repair bent); `repaired_cells` and `invalid_after_cut` stay 0 and the timings empty
+/// (nothing is repaired, and nothing judged but the cells' validity).
 ///
 /// # Errors
 /// As [`crate::curve_mesh`], and [`CurvingError::NotTheSameMesh`] when `previous` does not
@@ -307,7 +310,8 @@ pub fn curve_mesh_keeping(
         let failing = failing_cells(mesh, &laid, &merged, params)?;
         if failing.is_empty() || own.all {
             let changes = changes(previous, &merged);
-            return Ok((finish(mesh, laid, merged, failing.len()), changes));
+            let layered_cells = input.layering.layered_cells;
+            return Ok((finish(mesh, laid, merged, layered_cells, &failing), changes));
         }
         if fresh.is_none() {
             fresh = Some(curve_mesh(input, loops, params)?.decisions);
@@ -420,17 +424,30 @@ fn changes(before: &Decisions, now: &Decisions) -> Vec<DecisionChange> {
     out
 }
 
-/// The curved mesh of `laid` with the figures a replay knows.
-fn finish(mesh: &Mesh, laid: Laid, decisions: Decisions, invalid: usize) -> Curved {
+/// The curved mesh of `laid` with the figures a replay knows: the pipes' figures read back
+/// from its edges (`march::read_back`), `failing` (increasing) its cells the check does not
+/// prove valid.
+fn finish(
+    mesh: &Mesh,
+    laid: Laid,
+    decisions: Decisions,
+    layered_cells: usize,
+    failing: &[u32],
+) -> Curved {
     let edges = laid.edges.len();
     let curved_edges = laid.edges.curved.iter().filter(|&&c| c).count();
+    let pipes = march::read_back(mesh, &laid.roles, &laid.edges, layered_cells, failing);
     let stats = CurvingStats {
         edges,
         curved_edges,
         curved_edge_fraction: curved_edges as f64 / edges.max(1) as f64,
         curved_boundary_edges: laid.curved_boundary_edges,
+        stops: pipes.stops,
+        reduced_tops: pipes.reduced_tops,
+        handed_to_fill: pipes.handed_to_fill,
+        deepest_curved_layer: pipes.deepest_curved_layer,
         curved_diagonals: laid.curved_diagonals,
-        unrepaired_cells: invalid,
+        unrepaired_cells: failing.len(),
         ..CurvingStats::default()
     };
     Curved {

@@ -8,7 +8,7 @@ use mesh_model::{Mesh, NONE, Role};
 
 use crate::cellcheck::{Ctx, check};
 use crate::cellmap::Interiors;
-use crate::decisions::{Carry, lay};
+use crate::decisions::{Carry, EdgeRule, lay};
 use crate::edges::EdgeTable;
 use crate::error::CurvingError;
 use crate::params::CurvingParams;
@@ -85,11 +85,7 @@ pub(crate) fn march(
         let (t0, t1) = (k[(top as usize + 1) % n], k[top as usize]); // t0 above b0
         let bulge = edges.deviation(mesh, be, b0, &mut dev);
         let te = edges.cell_edges[ci][top as usize];
-        let above = edges.other_cell(te, i);
-        let continues = above != NONE
-            && roles[above as usize][0] != NO_EDGE
-            && edges.cell_edges[above as usize][roles[above as usize][0] as usize] == te
-            && mesh.cell_layer[above as usize] == layer + 1;
+        let (above, continues) = next_in_pipe(mesh, roles, edges, i, te);
         let mut t = Top {
             p,
             ci,
@@ -294,6 +290,73 @@ fn go_on(
         }
     }
     Ok(())
+}
+
+/// The cell above pipe cell `i` across its top edge `te` (NONE at the boundary) and whether
+/// it is the next cell of the same pipe: a layered cell of the next layer whose bottom is `te`.
+fn next_in_pipe(mesh: &Mesh, roles: &[[u8; 2]], edges: &EdgeTable, i: u32, te: u32) -> (u32, bool) {
+    let above = edges.other_cell(te, i);
+    let continues = above != NONE
+        && roles[above as usize][0] != NO_EDGE
+        && edges.cell_edges[above as usize][roles[above as usize][0] as usize] == te
+        && mesh.cell_layer[above as usize] == mesh.cell_layer[i as usize] + 1;
+    (above, continues)
+}
+
+/// The marching's figures read back from a mesh whose edges are laid already (by recorded
+/// decisions, [`crate::curve_mesh_keeping`]): every layered cell with a curved bottom edge is
+/// a pipe cell; its layer counts towards the deepest curved layer; a pipe ends in a collapsed
+/// cell, where the next cell is not of the pipe (`pipe_ended`; `handed_to_fill` when its top
+/// took part of the bottom's deviation into a fill cell), or at a top not carried from its
+/// bottom (`jacobian`: a straight top, valid); a top carried with less than the whole
+/// deviation is a reduced top. `invalid` counts the pipe cells in `failing` (cells the check
+/// does not prove valid), with `certified` left empty. On the mesh the marching laid, the
+/// figures are the marching's own, but for the edges the repair bent after it.
+pub(crate) fn read_back(
+    mesh: &Mesh,
+    roles: &[[u8; 2]],
+    edges: &EdgeTable,
+    layered_cells: usize,
+    failing: &[u32],
+) -> MarchOutcome {
+    let mut out = MarchOutcome::default();
+    for (ci, &[bottom, top]) in roles.iter().enumerate() {
+        if bottom == NO_EDGE {
+            continue;
+        }
+        let be = edges.cell_edges[ci][bottom as usize];
+        if !edges.curved[be as usize] {
+            continue;
+        }
+        let i = ci as u32;
+        out.deepest_curved_layer = out.deepest_curved_layer.max(mesh.cell_layer[ci] + 1);
+        if failing.binary_search(&i).is_ok() {
+            out.stops.invalid += 1;
+        }
+        if top == NO_EDGE {
+            out.stops.collapsed += 1;
+            continue;
+        }
+        let te = edges.cell_edges[ci][top as usize];
+        let carried = match edges.rules[te as usize] {
+            EdgeRule::Carried(c) if c.source == be => Some(c.fraction),
+            _ => None,
+        };
+        let (above, continues) = next_in_pipe(mesh, roles, edges, i, te);
+        if !continues {
+            out.stops.pipe_ended += 1;
+            if carried.is_some() && above != NONE && above as usize >= layered_cells {
+                out.handed_to_fill += 1;
+            }
+            continue;
+        }
+        match carried {
+            Some(fraction) if fraction < 1.0 => out.reduced_tops += 1,
+            Some(_) => {}
+            None => out.stops.jacobian += 1,
+        }
+    }
+    out
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {

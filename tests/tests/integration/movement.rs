@@ -60,6 +60,16 @@ fn naca0012_rotated_10_deg_keeps_its_topology_and_every_cell_valid() {
         assert_eq!(r["order"], 3);
         assert_eq!(r["nodes"], unmoved["nodes"], "{method}");
         assert_eq!(r["cells"], unmoved["cells"], "{method}");
+        // re-curved with the unmoved mesh's decisions: its pipes, curved as deep
+        let deepest = |r: &Value| r["curving"]["deepest_curved_layer"].as_u64().unwrap();
+        assert!(deepest(&unmoved) > 0, "{}", unmoved["curving"]);
+        assert_eq!(deepest(&r), deepest(&unmoved), "{method}: {}", r["curving"]);
+        if r["curving_decisions_changed"] == 0 {
+            assert_eq!(
+                r["curving"]["stops"], unmoved["curving"]["stops"],
+                "{method}"
+            );
+        }
         let m = &r["movement"];
         assert_eq!(m["method"], method);
         assert_eq!(m["motion"][0]["loop"], "naca0012");

@@ -7,6 +7,7 @@
 use geom_curve::ClosedCurve;
 use mesh_model::{LayeredMesh, Mesh};
 use test_cases::{Grown, grow, real_case};
+use vector_adding::stats::CurvingStats;
 use vector_adding::{
     Carry, CurvingParams, DecisionChange, Decisions, EdgeRule, LoopCurve, boundary_points,
     curve_mesh_keeping, curve_mesh_owned, replay, tangent,
@@ -46,6 +47,18 @@ fn assert_valid(mesh: &Mesh, what: &str) {
     );
 }
 
+/// The pipes of a curving kept from another are reported as that one's (no repair on the
+/// NACA 0012: nothing bent after its marching), curved some layers deep.
+fn assert_same_pipes(kept: &CurvingStats, curved: &CurvingStats, what: &str) {
+    assert!(curved.deepest_curved_layer > 1, "{what}: {curved:?}");
+    assert_eq!(curved.repaired_cells, 0, "{what}");
+    let pipes = |s: &CurvingStats| {
+        let (d, st) = (s.deepest_curved_layer, s.stops);
+        (d, st, s.reduced_tops, s.handed_to_fill, s.curved_edges)
+    };
+    assert_eq!(pipes(kept), pipes(curved), "{what}");
+}
+
 #[test]
 fn a_replay_of_its_own_decisions_is_the_same_mesh() {
     let g = naca();
@@ -59,6 +72,7 @@ fn a_replay_of_its_own_decisions_is_the_same_mesh() {
         assert!(changes.is_empty(), "{what}: {changes:?}");
         assert_identical(&kept.mesh, &curved.mesh, &what);
         assert_eq!(kept.decisions, curved.decisions);
+        assert_same_pipes(&kept.stats, &curved.stats, &what);
         let boundary = boundary_points(layered, &on, 3).unwrap();
         let replayed = replay(layered, &curved.decisions, &boundary).unwrap();
         assert_identical(&replayed, &curved.mesh, &what);
@@ -181,6 +195,7 @@ fn a_slight_motion_changes_no_decision() {
         assert!(changes.is_empty(), "triangles={triangles}: {changes:?}");
         assert_valid(&kept.mesh, "slight motion");
         assert_ne!(bits(&kept.mesh), bits(&curved.mesh));
+        assert_same_pipes(&kept.stats, &curved.stats, "slight motion");
     }
 }
 
