@@ -59,6 +59,7 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
         mut report,
         scaled_jacobian,
         linear,
+        fill_cells,
         ..
     } = meshed;
     report.timings_s.insert("setup", setup);
@@ -68,7 +69,7 @@ fn run_here(args: &MeshArgs) -> Result<Finished> {
         let progress = stage(args.quiet, "pictures");
         match &case {
             AnyCase::Two(_) => pictures::draw_all(
-                &mesh,
+                (&mesh, fill_cells),
                 &drawn,
                 &args.pictures,
                 Colour::Layer,

@@ -74,13 +74,14 @@ fn run_here(args: &MoveArgs) -> Result<Finished> {
         mesh,
         mut report,
         scaled_jacobian,
+        fill_cells,
         sensitivities,
     } = moved;
     if !planned.pictures.is_empty() {
         let t = Instant::now();
         let progress = stage(args.quiet, "pictures");
         pictures::draw_all(
-            &mesh,
+            (&mesh, fill_cells),
             &planned.pictures,
             &args.pictures,
             Colour::Layer,

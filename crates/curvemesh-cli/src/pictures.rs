@@ -168,10 +168,11 @@ pub fn reserve(pictures: &[Picture], outputs: &mut Outputs) -> Result<Vec<Output
         .map_err(Into::into)
 }
 
-/// Draws every picture, coloured as the flags say or else by `default_colour`, into its
-/// reserved output; `scaled_jacobian` holds one value per cell for [`Colour::Jacobian`].
+/// Draws every picture of `mesh` (its last `fill_cells` cells its filled region), coloured
+/// as the flags say or else by `default_colour`, into its reserved output; `scaled_jacobian`
+/// holds one value per cell for [`Colour::Jacobian`].
 pub fn draw_all(
-    mesh: &Mesh,
+    (mesh, fill_cells): (&Mesh, usize),
     pictures: &[(Picture, Output)],
     args: &PictureArgs,
     default_colour: Colour,
@@ -191,7 +192,8 @@ pub fn draw_all(
         })
     };
     let colour = args.colour.unwrap_or(default_colour);
-    draw_each(mesh, pictures, args, colour_by(colour)?, title, outputs)
+    let colour = (colour_by(colour)?, fill_cells);
+    draw_each(mesh, pictures, args, colour, title, outputs)
 }
 
 /// Draws every picture of a 3D run: the cut of `mesh` by `plane` (default z through the
@@ -257,15 +259,17 @@ pub fn draw_slices(
     };
     let axis = ["x", "y", "z"][plane.axis];
     let title = format!("{title}, slice {axis} = {}", plane.at);
-    draw_each(&cut.mesh, pictures, args, colour, &title, outputs)
+    // (a slice's fill cells have no layer)
+    draw_each(&cut.mesh, pictures, args, (colour, 0), &title, outputs)
 }
 
-/// Draws every picture of the 2D `mesh` coloured by `colour`, into its reserved output.
+/// Draws every picture of the 2D `mesh` coloured by `colour` (its last `fill_cells` cells
+/// its filled region), into its reserved output.
 fn draw_each(
     mesh: &Mesh,
     pictures: &[(Picture, Output)],
     args: &PictureArgs,
-    colour: ColourBy,
+    (colour, fill_cells): (ColourBy, usize),
     title: &str,
     outputs: &mut Outputs,
 ) -> Result<()> {
@@ -285,6 +289,7 @@ fn draw_each(
             view,
             colour: colour.clone(),
             title: Some(format!("{title}, view {}", p.view_name)),
+            fill_cells,
             ..DrawParams::default()
         };
         let bytes = match p.format {

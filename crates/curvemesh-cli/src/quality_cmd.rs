@@ -59,8 +59,9 @@ fn run_here(args: &QualityArgs) -> Result<Finished> {
     report.timings_s.insert("read", read_s);
     let pics: Vec<_> = pics.into_iter().zip(picture_outputs).collect();
     match mesh.dim {
+        // (a mesh read back has no layers: no fill to tell)
         Dim::Two => pictures::draw_all(
-            &mesh,
+            (&mesh, 0),
             &pics,
             &args.pictures,
             Colour::Angle,

@@ -30,7 +30,7 @@ pub(crate) fn mesh(
     estimate::check_loops(case, options.max_cells, observer)?;
     let mut report = Report::new(&case.name, order);
     report.inputs = Some(inputs_of(case));
-    let (mesh, snapshot, angles) = make(case, options, order, observer, &mut report)?;
+    let (mesh, snapshot, angles, fill_cells) = make(case, options, order, observer, &mut report)?;
     let scaled_jacobian = certify_and_write(
         (&mesh, angles),
         plan.map(|p| (p, snapshot.as_ref())),
@@ -43,6 +43,7 @@ pub(crate) fn mesh(
         scaled_jacobian,
         snapshot,
         linear: None,
+        fill_cells,
     })
 }
 
@@ -91,16 +92,17 @@ pub(crate) fn certify_and_write(
 
 /// Runs the stages: curves, boundary mesh (then the cell estimate), the layered linear mesh,
 /// and the curving when `order` > 1. Returns the final mesh, the stages to save when asked
-/// for, and the angle figures of the linear layered mesh (its quads uncut), computed beside
+/// for, the angle figures of the linear layered mesh (its quads uncut), computed beside
 /// the curving's decisions, before the curving lets go of the linear mesh (which it does
-/// before it builds the curved mesh, the peak of the run's memory).
+/// before it builds the curved mesh, the peak of the run's memory), and the number of its
+/// fill cells ([`Meshed::fill_cells`]).
 fn make(
     case: &Case,
     options: &Options,
     order: u8,
     observer: &mut dyn Observer,
     report: &mut Report,
-) -> Result<(Mesh, Option<Snapshot>, LinearAngles<'static>)> {
+) -> Result<(Mesh, Option<Snapshot>, LinearAngles<'static>, usize)> {
     // the layered part's edge table is made beside the fill when the curving will want it
     // and there is a second thread to make it
     let ahead = order > 1 && rayon::current_num_threads() > 1;
@@ -111,6 +113,7 @@ fn make(
         boundary: nodes.clone(),
         layered: grown.layered.clone(),
     });
+    let fill_cells = crate::meshed::fill_cells(&grown.layered);
     let (mesh, angles) = at_order(
         case,
         (&curves, &nodes),
@@ -119,7 +122,7 @@ fn make(
         observer,
         report,
     )?;
-    Ok((mesh, snapshot, angles))
+    Ok((mesh, snapshot, angles, fill_cells))
 }
 
 /// The first stages: curves, boundary mesh (then the cell estimate, refused above

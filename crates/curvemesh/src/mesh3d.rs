@@ -106,6 +106,7 @@ pub(crate) fn mesh(
         scaled_jacobian: Vec::new(),
         snapshot: None,
         linear,
+        fill_cells: 0,
     })
 }
 

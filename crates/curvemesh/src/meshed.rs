@@ -45,4 +45,15 @@ pub struct Meshed {
     pub snapshot: Option<Snapshot>,
     /// 3D at order 2: the linear mesh under the curved one.
     pub linear: Option<Mesh>,
+    /// 2D: how many of [`Meshed::mesh`]'s cells, the last ones, are the filled region's
+    /// triangles rather than layers (their `cell_layer` and `cell_pipe` are a neighbour's,
+    /// as `afsf2d` leaves them); 0 in 3D, whose fill cells have no layer.
+    pub fill_cells: usize,
+}
+
+/// The filled region's triangles of a layered mesh: its cells after the layered ones, the
+/// last ones of every mesh made from it (a cut quadrilateral's two triangles take its place,
+/// so they stay last).
+pub(crate) fn fill_cells(layered: &mesh_model::LayeredMesh) -> usize {
+    layered.mesh.cells.len() - layered.layering.layered_cells
 }

@@ -19,8 +19,11 @@ pub(crate) const EDGE: Rgb = [48, 48, 48];
 pub(crate) const INK: Rgb = [25, 25, 25];
 /// Plot-area frame.
 pub(crate) const FRAME: Rgb = [150, 150, 150];
-/// Cells with no value (no layer, NaN).
+/// Cells with no value (the fill in the layer colouring, NaN).
 pub(crate) const NO_VALUE: Rgb = [200, 200, 200];
+/// Cells of layers grown from the far field, in the layer colouring (which counts the walls'
+/// layers).
+pub(crate) const FARFIELD_LAYERS: Rgb = [188, 204, 230];
 /// Cells whose scaled Jacobian is negative (inverted).
 pub(crate) const INVERTED: Rgb = [215, 25, 28];
 
@@ -102,7 +105,7 @@ pub(crate) struct Legend {
     pub bar: BarPaint,
     /// Ticks along the bar.
     pub ticks: Vec<Tick>,
-    /// Extra colour keys below the bar (no layer, inverted, NaN).
+    /// Extra colour keys below the bar (far field, fill, inverted, NaN).
     pub swatches: Vec<(Rgb, String)>,
 }
 
@@ -114,8 +117,13 @@ pub(crate) struct CellColours {
     pub legend: Option<Legend>,
 }
 
-/// Colours the cells of `mesh` as `by` asks.
-pub(crate) fn cell_colours(mesh: &Mesh, by: &ColourBy) -> Result<CellColours, DrawError> {
+/// Colours the cells of `mesh` as `by` asks; its last `fill_cells` cells are its filled
+/// region (for the layer colouring).
+pub(crate) fn cell_colours(
+    mesh: &Mesh,
+    by: &ColourBy,
+    fill_cells: usize,
+) -> Result<CellColours, DrawError> {
     let n = mesh.cells.len();
     let check_len = |what, len| {
         if len == n {
@@ -139,7 +147,7 @@ pub(crate) fn cell_colours(mesh: &Mesh, by: &ColourBy) -> Result<CellColours, Dr
                 "mesh.cell_layer (needed to colour by layer)",
                 mesh.cell_layer.len(),
             )?;
-            Ok(layer_colours(&mesh.cell_layer))
+            Ok(layer_colours(mesh, n.saturating_sub(fill_cells)))
         }
         ColourBy::MaxAngle => {
             // the scale fits the data (whole 5° steps within 60–180°), and small angles, the
@@ -299,25 +307,79 @@ fn category_colours(values: &[u32], names: &[String], label: &str) -> CellColour
     }
 }
 
-/// Layer colours: the map from layer 0 to the outermost layer, odd layers lighter.
-fn layer_colours(cell_layer: &[u32]) -> CellColours {
-    let max_layer = cell_layer
-        .iter()
-        .copied()
-        .filter(|&l| l != NONE)
-        .max()
-        .unwrap_or(0);
-    let colour = |layer: u32| {
-        let c = map_colour(layer as f64 / max_layer.max(1) as f64);
-        if layer % 2 == 1 { lighten(c, 0.3) } else { c }
+/// Where a cell stands in the layer colouring.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LayerOf {
+    /// In layer `n` (1 = on the boundary) grown from a wall, or from a boundary of unknown
+    /// role when the mesh has no pipes.
+    Wall(u32),
+    /// In a layer grown from the far field.
+    Farfield,
+    /// In the filled region, or in no layer.
+    Fill,
+}
+
+/// Each cell's place in the layer colouring: a cell from `fill_from` on, or with no layer,
+/// is the fill; the others are in layer `cell_layer + 1` of the boundary their pipe starts
+/// at (`cell_pipe`, a boundary facet, gives its role); without pipes every layered cell
+/// counts as a wall's.
+fn layers_of(mesh: &Mesh, fill_from: usize) -> Vec<LayerOf> {
+    let piped = mesh.cell_pipe.len() == mesh.cell_layer.len();
+    let role = |pipe: u32| {
+        let patch = mesh.boundary_patch.get(pipe as usize)?;
+        mesh.patches.get(*patch as usize).map(|p| p.role)
     };
-    let per_cell = cell_layer
+    let cell = |(i, &layer): (usize, &u32)| {
+        if i >= fill_from || layer == NONE {
+            return LayerOf::Fill;
+        }
+        if !piped {
+            return LayerOf::Wall(layer + 1);
+        }
+        match role(mesh.cell_pipe[i]) {
+            Some(Role::Wall) => LayerOf::Wall(layer + 1),
+            Some(Role::Farfield) => LayerOf::Farfield,
+            None => LayerOf::Fill,
+        }
+    };
+    mesh.cell_layer.iter().enumerate().map(cell).collect()
+}
+
+/// Layer colours, counted from the walls: the map from layer 1 (on the wall) to the
+/// outermost wall layer, odd layers lighter; the layers grown from the far field in one
+/// light blue, the fill in grey, each with its swatch. Cells from `fill_from` on are the
+/// fill.
+fn layer_colours(mesh: &Mesh, fill_from: usize) -> CellColours {
+    let places = layers_of(mesh, fill_from);
+    let max_layer = places
         .iter()
-        .map(|&l| Some(if l == NONE { NO_VALUE } else { colour(l) }))
+        .filter_map(|p| match p {
+            LayerOf::Wall(l) => Some(*l),
+            _ => None,
+        })
+        .max()
+        .unwrap_or(1);
+    let colour = |layer: u32| {
+        let c = map_colour((layer - 1) as f64 / (max_layer - 1).max(1) as f64);
+        if layer.is_multiple_of(2) {
+            lighten(c, 0.3)
+        } else {
+            c
+        }
+    };
+    let per_cell = places
+        .iter()
+        .map(|p| {
+            Some(match *p {
+                LayerOf::Wall(l) => colour(l),
+                LayerOf::Farfield => FARFIELD_LAYERS,
+                LayerOf::Fill => NO_VALUE,
+            })
+        })
         .collect();
-    let count = max_layer as usize + 1;
+    let count = max_layer as usize;
     let bar = if count <= 200 {
-        BarPaint::Blocks((0..=max_layer).map(colour).collect())
+        BarPaint::Blocks((1..=max_layer).map(colour).collect())
     } else {
         BarPaint::Gradient(
             (0..=16)
@@ -326,29 +388,37 @@ fn layer_colours(cell_layer: &[u32]) -> CellColours {
         )
     };
     let step = nice_step(max_layer as f64 / 6.0).max(1.0) as u32;
-    let ticks = (0..=max_layer)
-        .filter(|l| l % step == 0 || *l == max_layer)
+    let ticks = (1..=max_layer)
+        .filter(|l| l % step == 0 || *l == 1 || *l == max_layer)
         .map(|l| Tick {
-            frac: (l as f64 + 0.5) / count as f64,
+            frac: (l as f64 - 0.5) / count as f64,
             label: l.to_string(),
-            major: l == 0 || l == max_layer,
+            major: l == 1 || l == max_layer,
         })
         .collect();
-    let swatches = if cell_layer.contains(&NONE) {
-        vec![(NO_VALUE, "no layer".to_string())]
-    } else {
-        Vec::new()
-    };
+    let mut swatches = Vec::new();
+    if places.contains(&LayerOf::Farfield) {
+        swatches.push((FARFIELD_LAYERS, FARFIELD_SWATCH.to_string()));
+    }
+    if places.contains(&LayerOf::Fill) {
+        swatches.push((NO_VALUE, FILL_SWATCH.to_string()));
+    }
     CellColours {
         per_cell,
         legend: Some(Legend {
-            title: "layer".to_string(),
+            title: LAYER_TITLE.to_string(),
             bar,
             ticks,
             swatches,
         }),
     }
 }
+
+/// The layer legend's heading: the layers are counted from the walls, the first is 1.
+pub(crate) const LAYER_TITLE: &str = "layer from wall";
+/// The layer legend's swatches.
+pub(crate) const FARFIELD_SWATCH: &str = "far field";
+pub(crate) const FILL_SWATCH: &str = "fill";
 
 /// The "nice" number (1, 2 or 5 × 10^k) nearest below-or-at `x` (x > 0); 0 for x <= 0.
 pub(crate) fn nice_step(x: f64) -> f64 {
@@ -473,6 +543,76 @@ mod tests {
             assert!(l > prev, "luminance not increasing at {i}");
             prev = l;
         }
+    }
+
+    /// Cells with the layers and pipes `afsf2d` gives them (no shapes: the colouring reads
+    /// only the records): facet 0 on a wall, facet 1 on the far field.
+    fn layered(cell_layer: Vec<u32>, cell_pipe: Vec<u32>) -> Mesh {
+        let mut mesh = Mesh::new(mesh_model::Dim::Two, 1);
+        mesh.cell_layer = cell_layer;
+        mesh.cell_pipe = cell_pipe;
+        mesh.boundary_patch = vec![0, 1];
+        for (name, role) in [("wall", Role::Wall), ("farfield", Role::Farfield)] {
+            mesh.patches.push(mesh_model::Patch {
+                name: name.into(),
+                role,
+            });
+        }
+        mesh
+    }
+
+    #[test]
+    fn layers_count_from_the_walls_only_and_the_far_field_and_fill_are_told_apart() {
+        // three wall layers (0-based 0, 1, 2), two far-field layers, a cell of no layer, then
+        // two fill triangles that borrowed a wall layer and a far-field one
+        let mesh = layered(
+            vec![0, 1, 2, 0, 1, NONE, 2, 1],
+            vec![0, 0, 0, 1, 1, NONE, 0, 1],
+        );
+        let places = layers_of(&mesh, 6);
+        use LayerOf::*;
+        let expected = [
+            Wall(1),
+            Wall(2),
+            Wall(3),
+            Farfield,
+            Farfield,
+            Fill,
+            Fill,
+            Fill,
+        ];
+        assert_eq!(places, expected);
+        let c = layer_colours(&mesh, 6);
+        let per_cell: Vec<Rgb> = c.per_cell.iter().map(|c| c.unwrap()).collect();
+        // the wall's first layer is the map's start, its last the map's end
+        assert_eq!(per_cell[0], map_colour(0.0));
+        assert_eq!(per_cell[2], map_colour(1.0));
+        assert!(per_cell[3..5].iter().all(|&c| c == FARFIELD_LAYERS));
+        assert!(per_cell[5..].iter().all(|&c| c == NO_VALUE));
+        assert!(
+            per_cell[..3]
+                .iter()
+                .all(|c| ![FARFIELD_LAYERS, NO_VALUE].contains(c))
+        );
+        let legend = c.legend.unwrap();
+        assert_eq!(legend.title, "layer from wall");
+        let labels: Vec<&str> = legend.ticks.iter().map(|t| t.label.as_str()).collect();
+        assert_eq!(labels, ["1", "2", "3"]);
+        assert_eq!(legend.bar, BarPaint::Blocks(per_cell[..3].to_vec()));
+        let swatches: Vec<&str> = legend.swatches.iter().map(|s| s.1.as_str()).collect();
+        assert_eq!(swatches, ["far field", "fill"]);
+    }
+
+    #[test]
+    fn without_pipes_every_layered_cell_counts_from_its_wall() {
+        let mesh = layered(vec![0, 1, NONE], Vec::new());
+        assert_eq!(
+            layers_of(&mesh, 3),
+            [LayerOf::Wall(1), LayerOf::Wall(2), LayerOf::Fill]
+        );
+        let legend = layer_colours(&mesh, 3).legend.unwrap();
+        let swatches: Vec<&str> = legend.swatches.iter().map(|s| s.1.as_str()).collect();
+        assert_eq!(swatches, ["fill"]);
     }
 
     #[test]

@@ -201,6 +201,22 @@ pub(crate) fn text_width(text: &str, cap_px: f64) -> f64 {
     (width - GAP) * unit + stroke_width(cap_px)
 }
 
+/// Highest and lowest point of any glyph above and below the baseline, grid units (the box
+/// every designed glyph stays in, tested below).
+const ASCENT: f64 = 11.1;
+const DESCENT: f64 = 3.1;
+
+/// The rows of pixels (top, bottom; y down) that text with its baseline at `y_baseline` and
+/// cap height `cap_px` can touch, whatever it says: from the top of the tallest glyph to the
+/// bottom of the descenders, strokes included.
+pub(crate) fn text_rows(y_baseline: f64, cap_px: f64) -> (f64, f64) {
+    let (unit, half_stroke) = (cap_px / CAP, 0.5 * stroke_width(cap_px));
+    (
+        y_baseline - ASCENT * unit - half_stroke,
+        y_baseline + DESCENT * unit + half_stroke,
+    )
+}
+
 /// The strokes (polylines, pixel coordinates, y down) of `text` written with its left edge at
 /// `x_left` and its baseline at `y_baseline`, at cap height `cap_px`.
 pub(crate) fn text_strokes(
@@ -244,7 +260,7 @@ mod tests {
             assert!((0.0..=10.0).contains(&width), "{c:?} width {width}");
             for p in strokes.iter().flatten() {
                 assert!(
-                    p[1] >= -3.1 && p[1] <= 11.1,
+                    p[1] >= -DESCENT && p[1] <= ASCENT,
                     "{c:?} point {p:?} off the grid"
                 );
             }

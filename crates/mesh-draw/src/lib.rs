@@ -4,15 +4,17 @@
 //! What a picture shows: a white background; every mesh edge once, thin, dark grey and
 //! anti-aliased (curved P2/P3 edges drawn as the exact polynomial curve through their nodes);
 //! the boundary loops bold, coloured by role (walls black, far field dark blue); optionally the
-//! cells filled by layer, by largest angle, by the caller's scaled Jacobian or any per-cell
-//! value, with a legend; a scale bar; a title.
+//! cells filled by layer (counted from the walls, the first layer 1; the far field's layers
+//! and the fill in neutral colours of their own), by largest angle, by the caller's scaled
+//! Jacobian or any per-cell value, with a legend; a scale bar; a title.
 //!
 //! Conventions: the light (yellow) end of the map is the good end in every quality colouring
 //! (small largest angle, high scaled Jacobian); the angle scale fits the data (whole 5° steps
 //! within 60–180°). The legend's column has one width whatever it holds (and is kept empty
 //! when there is no legend), so a view lands on the same pixels in every colouring. The wall
 //! line is no thicker than the first layer in view (down to 0.75 px), and a picture whose first
-//! layers are below a pixel says so at the top of the plot.
+//! layers are below a pixel says so in a line of its own between the title and the plot, never
+//! over the cells.
 //!
 //! What it owns: the layout, the colour map, the drawing. What it does not own: files (the
 //! functions return bytes and strings, the caller writes them), mesh checking beyond what

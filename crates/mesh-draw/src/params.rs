@@ -162,10 +162,15 @@ pub enum ColourBy {
     /// Cells are not filled: white background, edges only.
     #[default]
     None,
-    /// The mesh's `cell_layer` (layer 0 touches its boundary): a perceptual map from the
-    /// innermost to the outermost layer, odd layers slightly lighter so that neighbouring
-    /// layers stay apart; cells with no layer (`mesh_model::NONE`) in neutral grey.
-    /// Needs `mesh.cell_layer` with one entry per cell.
+    /// The layers grown from the walls, counted from the walls: a cell of `cell_layer` k
+    /// (0 touches its boundary) is in layer k + 1, so the first layer is 1, as the legend
+    /// (`layer from wall`) shows; a perceptual map from layer 1 to the outermost wall layer,
+    /// every second layer slightly lighter so that neighbouring layers stay apart. Cells of
+    /// layers grown from the far field (their `cell_pipe` is a far-field facet) are one light
+    /// blue (`far field`), and the filled region (the last
+    /// [`DrawParams::fill_cells`] cells) and cells with no layer (`mesh_model::NONE`) or no
+    /// boundary pipe are neutral grey (`fill`). A mesh without `cell_pipe` has every layered
+    /// cell counted as a wall's. Needs `mesh.cell_layer` with one entry per cell.
     Layer,
     /// The largest interior angle of each cell (corners only; quads cut along the shorter
     /// diagonal, the larger of the two triangles' angles), on a fixed 60–180° scale whose
@@ -213,6 +218,10 @@ pub struct DrawParams {
     pub show_scale_bar: bool,
     /// A title line above the plot. Default none.
     pub title: Option<String>,
+    /// How many of the mesh's cells, the last ones, are its filled region rather than layers
+    /// (as in the meshes `afsf2d` grows, whose fill triangles come last and borrow a
+    /// neighbour's `cell_layer`): drawn as fill by [`ColourBy::Layer`]. Default 0.
+    pub fill_cells: usize,
 }
 
 impl Default for DrawParams {
@@ -225,6 +234,7 @@ impl Default for DrawParams {
             show_legend: true,
             show_scale_bar: true,
             title: None,
+            fill_cells: 0,
         }
     }
 }

@@ -10,11 +10,11 @@ use mesh_model::{CellRef, Mesh, Role};
 
 use crate::check::check_mesh;
 use crate::colour::{
-    BarPaint, EDGE, FRAME, INK, Legend, Rgb, WHITE, cell_colours, format_number, nice_step,
-    role_colour,
+    BarPaint, EDGE, FARFIELD_SWATCH, FILL_SWATCH, FRAME, INK, LAYER_TITLE, Legend, Rgb, WHITE,
+    cell_colours, format_number, nice_step, role_colour,
 };
 use crate::error::DrawError;
-use crate::font::text_width;
+use crate::font::{text_rows, text_width};
 use crate::frame::{Curve, Frame, PxRect};
 use crate::params::{DrawParams, View, mesh_view};
 
@@ -158,16 +158,28 @@ pub(crate) fn build_scene(
         }
         None => mesh_view(mesh, 0.04)?,
     };
-    let colours = cell_colours(mesh, &params.colour)?;
+    let colours = cell_colours(mesh, &params.colour, params.fill_cells)?;
     let legend = if params.show_legend {
         colours.legend.as_ref()
     } else {
         None
     };
-    let layout = Layout::new(params, legend);
-    let frame = Frame::new(&view, layout.plot)?;
-
-    let visible = visible_cells(mesh, &frame.cull_view());
+    let mut layout = Layout::new(params, legend, false);
+    let mut frame = Frame::new(&view, layout.plot)?;
+    let mut visible = visible_cells(mesh, &frame.cull_view());
+    // the wall line no thicker than the first layer in view, so that the layers show
+    let mut first_px = first_layer_px(mesh, &frame, &visible);
+    // First layers below a pixel are said so in a band of its own above the plot, never over
+    // the cells. The band leaves the plot no larger, so they stay below a pixel in it.
+    if first_px.is_some_and(|h| h < 1.0) {
+        let with_note = Layout::new(params, legend, true);
+        if with_note.note_baseline.is_some() {
+            layout = with_note;
+            frame = Frame::new(&view, layout.plot)?;
+            visible = visible_cells(mesh, &frame.cull_view());
+            first_px = first_layer_px(mesh, &frame, &visible);
+        }
+    }
     let fills = if colours.per_cell.is_empty() {
         Vec::new()
     } else {
@@ -181,8 +193,6 @@ pub(crate) fn build_scene(
         curves: unique_edges(mesh, &frame, &visible, target),
     };
     let bold = (params.width_px.min(params.height_px) as f64 / 400.0).clamp(2.0, 3.0);
-    // the wall line no thicker than the first layer in view, so that the layers show
-    let first_px = first_layer_px(mesh, &frame, &visible);
     let wall_px = first_px.map_or(bold, |h| bold.min(h).max(MIN_WALL_PX));
     let boundaries = boundary_groups(mesh, &frame, bold, wall_px);
 
@@ -194,14 +204,15 @@ pub(crate) fn build_scene(
     if params.show_scale_bar {
         marks.extend(scale_bar(&frame, layout.cap_px));
     }
-    if let Some(h) = first_px.filter(|&h| h < 1.0) {
+    if let (Some(h), Some(y_baseline)) = (first_px.filter(|&h| h < 1.0), layout.note_baseline) {
         marks.push(Mark::Text {
-            text: format!(
-                "first layers below a pixel (first {}): zoom in to see them",
-                px_text(h)
+            text: below_a_pixel(
+                h,
+                params.width_px as f64 - 2.0 * layout.margin,
+                layout.cap_px,
             ),
             x: 0.5 * (layout.plot.x0 + layout.plot.x1),
-            y_baseline: layout.plot.y0 + 1.6 * layout.cap_px,
+            y_baseline,
             cap_px: layout.cap_px,
             anchor: Anchor::Middle,
             colour: INK,
@@ -235,18 +246,28 @@ pub(crate) fn build_scene(
 struct Layout {
     /// Cap height of the legend and scale-bar text, pixels.
     cap_px: f64,
+    /// The picture's margin, pixels.
+    margin: f64,
     /// Cap height of the title, pixels.
     title_cap_px: f64,
     /// Baseline of the title, pixels.
     title_baseline: f64,
+    /// Baseline of the note on the first layers, in its band between the title and the plot
+    /// (`None`: no band, or no room for one).
+    note_baseline: Option<f64>,
     /// The mesh's rectangle.
     plot: PxRect,
     /// The legend's column, when there is a legend.
     legend: Option<PxRect>,
 }
 
+/// The space above and below the note's line in its band, cap heights.
+const NOTE_GAP: f64 = 0.3;
+
 impl Layout {
-    fn new(params: &DrawParams, legend: Option<&Legend>) -> Layout {
+    /// The layout of the picture `params` asks for, with a band for the note on the first
+    /// layers above the plot when `note` (and the picture has room for it).
+    fn new(params: &DrawParams, legend: Option<&Legend>, note: bool) -> Layout {
         let (w, h) = (params.width_px as f64, params.height_px as f64);
         let cap_px = (w.min(h) / 70.0).clamp(7.0, 18.0);
         let title_cap_px = 1.25 * cap_px;
@@ -257,9 +278,15 @@ impl Layout {
             0.0
         };
         let title_baseline = margin + title_cap_px * 1.3;
+        // the note's band: a line of text at `cap_px`, from its tallest glyph to its
+        // descenders, with a gap above and below (clear of the title and the plot's frame)
+        let (above, below) = text_rows(0.0, cap_px);
+        let gap = NOTE_GAP * cap_px;
+        let note_band = if note { below - above + 2.0 * gap } else { 0.0 };
+        let mut note_baseline = note.then_some(margin + title_band + gap - above);
         let mut plot = PxRect {
             x0: margin,
-            y0: margin + title_band,
+            y0: margin + title_band + note_band,
             x1: w - margin,
             y1: h - margin,
         };
@@ -287,6 +314,8 @@ impl Layout {
                 x1: w,
                 y1: h,
             };
+            // no room for a band beside the plot: the note is left out
+            note_baseline = None;
         }
         // Whole pixels: the plot's frame stays crisp and the margins tile exactly.
         let plot = PxRect {
@@ -297,8 +326,10 @@ impl Layout {
         };
         Layout {
             cap_px,
+            margin,
             title_cap_px,
             title_baseline,
+            note_baseline,
             plot,
             legend: legend_rect,
         }
@@ -316,8 +347,10 @@ const SWATCH_ROW: f64 = 2.2;
 fn column_width(cap: f64) -> f64 {
     let text = |s: &str| text_width(s, cap);
     let bar = cap * (BAR_WIDTH + TICK_LENGTH + LABEL_GAP) + text("-0.000125");
-    let swatch = cap * (BAR_WIDTH + LABEL_GAP) + text("< 0 (inverted)");
-    bar.max(swatch).max(text("scaled jacobian")).ceil() + 1.0
+    let swatches = ["< 0 (inverted)", FARFIELD_SWATCH, FILL_SWATCH];
+    let swatch = cap * (BAR_WIDTH + LABEL_GAP) + swatches.map(text).into_iter().fold(0.0, f64::max);
+    let headings = text("scaled jacobian").max(text(LAYER_TITLE));
+    bar.max(swatch).max(headings).ceil() + 1.0
 }
 
 /// Width of the legend column, pixels.
@@ -573,6 +606,19 @@ fn unique_edges(mesh: &Mesh, frame: &Frame, visible: &[u32], target: Target) -> 
     curves
 }
 
+/// The note on first layers of `h` pixels, as long as fits in `room` pixels at `cap` (the
+/// shortest when none does).
+fn below_a_pixel(h: f64, room: f64, cap: f64) -> String {
+    let h = px_text(h);
+    let notes = [
+        format!("first layers below a pixel (first {h}): zoom in to see them"),
+        format!("first layers below a pixel ({h}): zoom in"),
+        format!("first layers {h}: zoom in"),
+    ];
+    let fits = notes.iter().position(|n| text_width(n, cap) <= room);
+    notes[fits.unwrap_or(notes.len() - 1)].clone()
+}
+
 /// A length in pixels for people: two digits, or a power of ten when very small.
 fn px_text(h: f64) -> String {
     if h >= 0.01 {
@@ -644,4 +690,106 @@ fn boundary_groups(mesh: &Mesh, frame: &Frame, width_px: f64, wall_px: f64) -> V
         }
     }
     groups
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::ColourBy;
+    use mesh_model::{CellType, Dim, Patch, Shape};
+
+    /// Two layers of quads on a wall along y = 0, the first 1e-4 high: below a pixel in any
+    /// picture of the whole mesh.
+    fn thin_layers() -> Mesh {
+        let mut mesh = Mesh::new(Dim::Two, 1);
+        for y in [0.0, 1e-4, 1.0] {
+            mesh.nodes.extend([[0.0, y, 0.0], [1.0, y, 0.0]]);
+        }
+        let quad = CellType::new(Shape::Quad, 1);
+        mesh.cells.push(quad, &[0, 1, 3, 2]);
+        mesh.cells.push(quad, &[2, 3, 5, 4]);
+        mesh.cell_layer = vec![0, 1];
+        mesh.boundary.push(CellType::new(Shape::Line, 1), &[0, 1]);
+        mesh.boundary_patch.push(0);
+        mesh.patches.push(Patch {
+            name: "wall".into(),
+            role: Role::Wall,
+        });
+        mesh
+    }
+
+    /// The rows of the text marks that start with `start`.
+    fn rows_of(scene: &Scene, start: &str) -> Vec<(f64, f64)> {
+        scene
+            .marks
+            .iter()
+            .filter_map(|m| match m {
+                Mark::Text {
+                    text,
+                    y_baseline,
+                    cap_px,
+                    ..
+                } if text.starts_with(start) => Some(text_rows(*y_baseline, *cap_px)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_note_on_first_layers_below_a_pixel_sits_above_the_plot_below_the_title() {
+        let mesh = thin_layers();
+        for (w, h) in [
+            (2000, 1500),
+            (900, 675),
+            (400, 300),
+            (200, 150),
+            (100, 75),
+            (40, 30),
+        ] {
+            for title in [Some("a title".to_string()), None] {
+                for colour in [ColourBy::None, ColourBy::Layer] {
+                    let params = DrawParams {
+                        width_px: w,
+                        height_px: h,
+                        title: title.clone(),
+                        colour,
+                        ..DrawParams::default()
+                    };
+                    let what = format!("{w}x{h} title {title:?}");
+                    let scene = build_scene(&mesh, &params, Target::Png).unwrap();
+                    let notes = rows_of(&scene, "first layers");
+                    // the plot's frame is a 1 px line on its edge
+                    let plot_top = scene.plot.y0 - 0.5;
+                    for &(top, bottom) in &notes {
+                        assert!(
+                            bottom < plot_top,
+                            "{what}: note down to {bottom}, plot {plot_top}"
+                        );
+                        assert!(top >= 0.0, "{what}: note from {top}");
+                    }
+                    if let (Some(t), Some(&(top, _))) = (&title, notes.first()) {
+                        let (_, title_bottom) = rows_of(&scene, t)[0];
+                        assert!(
+                            title_bottom < top,
+                            "{what}: title to {title_bottom}, note {top}"
+                        );
+                    }
+                    // a picture with room for a plot and the band says it (a smaller one
+                    // may leave the note out)
+                    assert!(notes.len() <= 1, "{what}");
+                    assert!(h < 75 || notes.len() == 1, "{what}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_note_fits_a_narrow_picture() {
+        let cap = 7.0;
+        let long = below_a_pixel(0.5, 2000.0, cap);
+        assert!(long.contains("zoom in to see them"), "{long}");
+        let short = below_a_pixel(0.5, 150.0, cap);
+        assert!(text_width(&short, cap) <= 150.0, "{short}");
+        assert!(short.contains("0.50 px"), "{short}");
+    }
 }

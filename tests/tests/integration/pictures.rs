@@ -136,7 +136,54 @@ fn the_first_layers_show_or_the_picture_says_they_are_below_a_pixel() {
         std::fs::read_to_string(close).unwrap(),
     );
     assert!(all.contains("first layers below a pixel"));
+    // the note is written above the plot's frame (its first rectangle), not over the cells
+    let doc = roxmltree::Document::parse(&all).unwrap();
+    let number = |n: roxmltree::Node, a: &str| n.attribute(a).unwrap().parse::<f64>().unwrap();
+    let frame = doc
+        .descendants()
+        .find(|n| n.has_tag_name("rect") && n.attribute("fill") == Some("none"))
+        .expect("the plot's frame");
+    let note = doc
+        .descendants()
+        .find(|n| n.has_tag_name("text") && n.text().unwrap().starts_with("first layers"))
+        .unwrap();
+    let (note_y, font) = (number(note, "y"), number(note, "font-size"));
+    assert!(
+        note_y + 0.3 * font < number(frame, "y"),
+        "{note:?} over {frame:?}"
+    );
     assert!(wall_width(&all) < 1.0, "{}", wall_width(&all));
     assert!(!close.contains("below a pixel"));
     assert!(wall_width(&close) >= 2.0, "{}", wall_width(&close));
+}
+
+/// The layer colouring counts the layers grown from the walls, from 1; the layers grown from
+/// the far field and the filled region are coloured apart, each named in the legend.
+#[test]
+fn the_layer_colouring_counts_from_the_walls_and_sets_the_far_field_and_fill_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (svg, msh) = (p("all.svg"), p("m.msh"));
+    let outcome = mesh("naca0012", "2", &["--out", &msh, "--svg", &svg]).unwrap();
+    assert_eq!(outcome, Outcome::Valid);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let texts: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text())
+        .collect();
+    for label in ["layer from wall", "1", "far field", "fill"] {
+        assert!(texts.contains(&label), "no {label:?} in {texts:?}");
+    }
+    assert!(!texts.contains(&"0"), "a layer 0 in {texts:?}");
+    // cells filled in the far field's light blue and in the fill's grey
+    let fills: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("path") && n.attribute("id").is_none())
+        .filter_map(|n| n.attribute("fill"))
+        .collect();
+    for colour in ["#bccce6", "#c8c8c8"] {
+        assert!(fills.contains(&colour), "no cells of {colour} in {fills:?}");
+    }
 }

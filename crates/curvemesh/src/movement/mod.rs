@@ -154,6 +154,9 @@ pub struct Moved {
     pub report: Report,
     /// Each cell's least scaled Jacobian (certified bound).
     pub scaled_jacobian: Vec<f64>,
+    /// How many of [`Moved::mesh`]'s cells, the last ones, are the filled region's triangles
+    /// (as [`crate::Meshed::fill_cells`]).
+    pub fill_cells: usize,
     /// With [`MoveOptions::sensitivities`] and no inverted cell: for each design variable
     /// (`loop.rotate_deg`, `loop.translate_x`, …, `loop.bump1`), the derivative of every
     /// node of [`Moved::mesh`].
@@ -394,6 +397,7 @@ fn move_from(
         mesh,
         report,
         scaled_jacobian,
+        fill_cells: crate::meshed::fill_cells(layered),
         sensitivities,
     };
     Ok((moved, balanced))
