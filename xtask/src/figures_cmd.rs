@@ -1,8 +1,10 @@
-//! `cargo xtask figures`: regenerates every figure of the README and `docs/user-guide.md` from
-//! real runs of `mesh` and `quality` (the same code as the commands, run in-process), into
+//! `cargo xtask figures`: regenerates every figure of the README and `docs/user-guide.md`, and
+//! those of `docs/3d.md` and `docs/movement.md` that a command draws, from real runs of `mesh`,
+//! `move` and `quality` (the same code as the commands, run in-process), into
 //! `docs/figures/` by default. Meshes made on the way go to a scratch folder that is removed at
 //! the end; only the pictures are kept. The list of figures is [`FIGURES`]; the docs test
-//! (`xtask/tests/integration/docs_examples.rs`) checks that the docs show exactly these files.
+//! (`xtask/tests/integration/docs_examples.rs`) checks that the README and the guide show no
+//! other figure and that every one of these is shown.
 
 use std::path::{Path, PathBuf};
 
@@ -94,6 +96,41 @@ pub const FIGURES: &[&[&str]] = &[
         "dihedral",
         "--png",
         "{fig}/wing-te-dihedral.png@0.9,-0.075,1.1,0.075",
+    ],
+    // 3D docs: the capsule's fin junction, cut across the fin
+    &[
+        "mesh",
+        "fixtures/cases3d/capsule-fin.toml",
+        "--out",
+        "{tmp}/capsule-fin.msh",
+        "--slice",
+        "x=0.85",
+        "--png",
+        "{fig}/capsule-fin-slice-x.png@-0.35,0.05,0.35,0.55",
+    ],
+    // 3D docs: the swept wing's far tip, cut through its chord plane
+    &[
+        "mesh",
+        "fixtures/cases3d/swept-wing.toml",
+        "--out",
+        "{tmp}/swept-wing.msh",
+        "--slice",
+        "y=0.005",
+        "--png",
+        "{fig}/swept-wing-tip-slice-y.png@1.2,0.45,1.75,1.25",
+    ],
+    // movement docs: the flap gap after the slat and the flap turned 10° each, by Jacobian
+    &[
+        "move",
+        "30p30n",
+        "--motion",
+        "fixtures/motions/30p30n-slat-flap10.toml",
+        "--out",
+        "{tmp}/30p30n-slat-flap.msh",
+        "--colour",
+        "jacobian",
+        "--png",
+        "{fig}/30p30n-p3-slat-flap-moved-gap.png@flap-gap",
     ],
     // guide: `quality` drawing a .msh file
     &[

@@ -230,20 +230,34 @@ fn figures_shown(text: &str) -> Vec<String> {
         .collect()
 }
 
+/// The docs beside the README and the guide whose figures `figures` may make (some of
+/// theirs come from scripts of their own, e.g. `tests/python/p3_wall_figure.py`).
+const FIGURE_DOCS: &[&str] = &["docs/3d.md", "docs/movement.md"];
+
 #[test]
 fn figures_match_the_docs() {
-    let mut shown: Vec<String> = DOCS
-        .iter()
-        .flat_map(|doc| figures_shown(&std::fs::read_to_string(root().join(doc)).unwrap()))
-        .collect();
-    shown.sort();
-    shown.dedup();
+    let shown_in = |docs: &[&str]| -> Vec<String> {
+        let mut shown: Vec<String> = docs
+            .iter()
+            .flat_map(|doc| figures_shown(&std::fs::read_to_string(root().join(doc)).unwrap()))
+            .collect();
+        shown.sort();
+        shown.dedup();
+        shown
+    };
+    let guides = shown_in(DOCS);
+    let all = shown_in(&[DOCS, FIGURE_DOCS].concat());
     let mut made = xtask::figures_cmd::names();
     made.sort();
-    assert_eq!(
-        shown, made,
-        "the docs show exactly the figures `figures` makes"
-    );
+    for name in &guides {
+        assert!(
+            made.contains(name),
+            "{name}, shown by the README or the guide, is not made by `figures`"
+        );
+    }
+    for name in &made {
+        assert!(all.contains(name), "`figures` makes {name}, which no doc shows");
+    }
     for name in &made {
         assert!(
             root().join("docs/figures").join(name).is_file(),
