@@ -256,7 +256,10 @@ fn figures_match_the_docs() {
         );
     }
     for name in &made {
-        assert!(all.contains(name), "`figures` makes {name}, which no doc shows");
+        assert!(
+            all.contains(name),
+            "`figures` makes {name}, which no doc shows"
+        );
     }
     for name in &made {
         assert!(
