@@ -302,9 +302,13 @@ impl<const D: usize> Assembly<D> {
     /// Solves `L Lᵀ x = rhs` in place with the last factor.
     fn solve(&mut self, rhs: &mut [f64]) {
         let pattern = self.pattern.as_ref().expect("factorised first");
-        let llt = LltRef::new(&pattern.cholesky, &self.factor);
-        let view = MatMut::from_column_major_slice_mut(rhs, rhs.len(), 1);
-        llt.solve_in_place_with_conj(Conj::No, view, self.par, MemStack::new(&mut self.scratch));
+        solve_in(
+            &pattern.cholesky,
+            &self.factor,
+            self.par,
+            rhs,
+            &mut self.scratch,
+        );
     }
 
     /// [`Assembly::solve`] with a workspace of its own, for a shared factor.
@@ -312,10 +316,25 @@ impl<const D: usize> Assembly<D> {
         let pattern = self.pattern.as_ref().expect("factorised first");
         let mut scratch =
             MemBuffer::new(pattern.cholesky.solve_in_place_scratch::<f64>(1, self.par));
-        let llt = LltRef::new(&pattern.cholesky, &self.factor);
-        let view = MatMut::from_column_major_slice_mut(rhs, rhs.len(), 1);
-        llt.solve_in_place_with_conj(Conj::No, view, self.par, MemStack::new(&mut scratch));
+        solve_in(&pattern.cholesky, &self.factor, self.par, rhs, &mut scratch);
     }
+}
+
+/// Solves `L Lᵀ x = rhs` in place with the factor `values` of `cholesky`, in `scratch`.
+fn solve_in(
+    cholesky: &SymbolicCholesky<u32>,
+    values: &[f64],
+    par: Par,
+    rhs: &mut [f64],
+    scratch: &mut MemBuffer,
+) {
+    let view = MatMut::from_column_major_slice_mut(rhs, rhs.len(), 1);
+    LltRef::new(cholesky, values).solve_in_place_with_conj(
+        Conj::No,
+        view,
+        par,
+        MemStack::new(scratch),
+    );
 }
 
 /// Balances `model` by Newton's method: the movable nodes of `positions` move, the others
