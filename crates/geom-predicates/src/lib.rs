@@ -1,6 +1,6 @@
 //! Shared geometric predicates and spatial search for the curvemesh crates, in one place so
 //! that every crate decides "left of", "crossing" and "inside" the same way: exact orientation
-//! in 2D and 3D (Shewchuk's adaptive predicates from the `robust` crate), segment–segment
+//! in 2D and 3D and the exact in-sphere test (Shewchuk's adaptive predicates from the `robust` crate), segment–segment
 //! intersection (proper or touching) and segment/triangle–triangle intersection in 3D decided
 //! on exact signs, point projection and distances to segments, polylines and loops, point in
 //! loop by an exact winding number, polygon area, a sort-and-sweep broad phase over boxes, and a k-d tree
@@ -50,7 +50,7 @@ mod tree;
 mod triangle;
 pub mod vector;
 
-pub use orient::{Sign, orient2d, orient2d_sign, orient3d, orient3d_sign};
+pub use orient::{Sign, insphere, insphere_sign, orient2d, orient2d_sign, orient3d, orient3d_sign};
 pub use polygon::{point_in_loop, polygon_area, winding_number};
 pub use segment::{
     Endpoint, SegmentMeet, closest_on_segment, distance_to_loop, distance_to_polyline,

@@ -81,3 +81,18 @@ pub fn orient3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
 pub fn orient3d_sign(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Sign {
     Sign::of(orient3d(a, b, c, d))
 }
+
+/// Whether `e` lies inside the sphere through `a b c d`, exact in sign: positive inside,
+/// negative outside, exactly 0 when the five points are co-spherical — for `a b c d`
+/// positively oriented ([`orient3d`] > 0); the sign flips for a negatively oriented
+/// tetrahedron. The magnitude approximates the 5×5 lifted determinant.
+#[inline]
+pub fn insphere(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
+    robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e))
+}
+
+/// The sign of [`insphere`].
+#[inline]
+pub fn insphere_sign(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> Sign {
+    Sign::of(insphere(a, b, c, d, e))
+}

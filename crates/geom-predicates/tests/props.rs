@@ -2,10 +2,10 @@
 //! unit cases of the 3D intersections.
 
 use geom_predicates::{
-    Aabb, PointTree, SegmentMeet, Sign, distance_to_loop, distance_to_polyline, orient2d,
-    orient2d_sign, orient3d, orient3d_sign, overlapping_pairs, point_in_loop,
-    point_segment_distance, polygon_area, segment_distance, segment_intersection, segment_meet,
-    segment_meets_triangle, segments_meet, triangles_meet, winding_number,
+    Aabb, PointTree, SegmentMeet, Sign, distance_to_loop, distance_to_polyline, insphere,
+    insphere_sign, orient2d, orient2d_sign, orient3d, orient3d_sign, overlapping_pairs,
+    point_in_loop, point_segment_distance, polygon_area, segment_distance, segment_intersection,
+    segment_meet, segment_meets_triangle, segments_meet, triangles_meet, winding_number,
 };
 use proptest::prelude::*;
 
@@ -20,6 +20,26 @@ fn exact3(a: [i64; 3], b: [i64; 3], c: [i64; 3], d: [i64; 3]) -> Sign {
     let (u, v, w) = (s(a), s(b), s(c));
     let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
         + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    Sign::of(det as f64)
+}
+
+/// The in-sphere determinant in exact integer arithmetic (coordinates below 2^20).
+fn exact_insphere(a: [i64; 3], b: [i64; 3], c: [i64; 3], d: [i64; 3], e: [i64; 3]) -> Sign {
+    let row = |p: [i64; 3]| {
+        let v = [0, 1, 2].map(|k| i128::from(p[k]) - i128::from(e[k]));
+        [v[0], v[1], v[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2]]
+    };
+    let m = [row(a), row(b), row(c), row(d)];
+    let det3 = |r: [usize; 3], c: [usize; 3]| {
+        m[r[0]][c[0]] * (m[r[1]][c[1]] * m[r[2]][c[2]] - m[r[1]][c[2]] * m[r[2]][c[1]])
+            - m[r[0]][c[1]] * (m[r[1]][c[0]] * m[r[2]][c[2]] - m[r[1]][c[2]] * m[r[2]][c[0]])
+            + m[r[0]][c[2]] * (m[r[1]][c[0]] * m[r[2]][c[1]] - m[r[1]][c[1]] * m[r[2]][c[0]])
+    };
+    // Laplace expansion along the first row
+    let det = m[0][0] * det3([1, 2, 3], [1, 2, 3]) - m[0][1] * det3([1, 2, 3], [0, 2, 3])
+        + m[0][2] * det3([1, 2, 3], [0, 1, 3])
+        - m[0][3] * det3([1, 2, 3], [0, 1, 2]);
+    // Shewchuk's sign convention: positive inside for orient3d(a, b, c, d) > 0
     Sign::of(det as f64)
 }
 
@@ -121,6 +141,16 @@ proptest! {
         prop_assert_eq!(orient3d_sign(f3(b), f3(c), f3(a), f3(d)), s);
         let on = [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) - (c[k] - a[k]));
         prop_assert_eq!(orient3d(f3(a), f3(b), f3(c), f3(on)), 0.0);
+    }
+
+    #[test]
+    fn insphere_is_exact(a in p3(), b in p3(), c in p3(), d in p3(), e in p3()) {
+        prop_assert_eq!(insphere_sign(f3(a), f3(b), f3(c), f3(d), f3(e)), exact_insphere(a, b, c, d, e));
+        // swapping two corners reverses the orientation and so the sign
+        prop_assert_eq!(
+            insphere_sign(f3(b), f3(a), f3(c), f3(d), f3(e)),
+            exact_insphere(a, b, c, d, e).reversed()
+        );
     }
 
     #[test]
@@ -246,6 +276,15 @@ fn orient3d_sign_convention() {
     assert!(orient3d(o, x, y, z) < 0.0);
     assert!(orient3d(o, y, x, z) > 0.0);
     assert_eq!(orient3d(o, x, y, [3.0, 4.0, 0.0]), 0.0);
+}
+
+#[test]
+fn insphere_sign_convention() {
+    // orient3d(o, y, x, z) > 0: the centre of the unit cube's corner sphere is inside
+    let (o, x, y, z) = ([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
+    assert!(insphere(o, y, x, z, [0.5; 3]) > 0.0);
+    assert!(insphere(o, y, x, z, [2.0; 3]) < 0.0);
+    assert_eq!(insphere(o, y, x, z, [1.0; 3]), 0.0);
 }
 
 #[test]
