@@ -11,6 +11,7 @@ use crate::error::{Result, bail, ensure};
 use serde::Deserialize;
 
 use crate::source::{FileSource, from_toml};
+use mesh_model::Role;
 
 /// A parsed and checked 3D case.
 #[derive(Debug, Clone)]
@@ -19,8 +20,11 @@ pub struct Case3d {
     pub name: String,
     /// Where the case came from, for messages.
     pub origin: String,
-    /// The wall surface.
-    pub surface: SurfaceSource,
+    /// The bodies (`[surface]`, or one `[[surface]]` table each), in order.
+    pub bodies: Vec<Body>,
+    /// `[farfield]`: the outer boundary, the space between it and the layers filled with
+    /// tetrahedra (`None`: the domain is the layers' shell, its outer boundary `outer`).
+    pub farfield: Option<Farfield>,
     /// `[layers]`: first height, growth, number of layers (the other settings the crate's).
     pub layers: afsf3d::LayerParams,
     /// `[layers] min_coverage`: the least fraction of wall nodes whose columns take every
@@ -42,7 +46,29 @@ pub struct Case3d {
     pub order: u8,
 }
 
-/// Where the wall surface comes from.
+/// One body of a 3D case: where its surface comes from, where it is moved to, its name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// The surface.
+    pub source: SurfaceSource,
+    /// `translate = [x, y, z]`: the body moved by this (default none).
+    pub translate: [f64; 3],
+    /// `name`: the boundary group of the body's `wall` patch (its other patches, a wing's
+    /// tips, get it as a prefix); default `wall`, then `wall_2`, … for later bodies.
+    pub name: Option<String>,
+}
+
+/// `[farfield]`: the domain's outer boundary and its triangles' size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Farfield {
+    /// `box = { min, max }` or `sphere = { center, radius }`.
+    pub shape: geom_surface::FarfieldShape,
+    /// `max_size`: the far field's triangles' edge length, the fill's largest (default a
+    /// tenth of the shape's extent).
+    pub max_size: f64,
+}
+
+/// Where a body's surface comes from.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SurfaceSource {
     /// `builtin = "sphere"`: `geom_surface::Surface::sphere(radius, refinement)`.
@@ -104,7 +130,9 @@ struct CaseFile3d {
     name: Option<String>,
     #[allow(dead_code)] // read by the probe in `case`; listed so that it is a known key
     dimension: u8,
-    surface: Option<SurfaceKeys>,
+    /// a table (`[surface]`) or an array of tables (`[[surface]]`), read in [`body_keys`]
+    surface: Option<toml::Value>,
+    farfield: Option<FarfieldKeys>,
     #[serde(default)]
     layers: LayerKeys3d,
     #[serde(default)]
@@ -127,6 +155,31 @@ struct SurfaceKeys {
     divisions: Option<usize>,
     triangles: Option<bool>,
     cap: Option<crate::wing::CapMesh>,
+    translate: Option<[f64; 3]>,
+    name: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FarfieldKeys {
+    #[serde(rename = "box")]
+    box_: Option<BoxKeys>,
+    sphere: Option<SphereKeys>,
+    max_size: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoxKeys {
+    min: [f64; 3],
+    max: [f64; 3],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SphereKeys {
+    center: [f64; 3],
+    radius: f64,
 }
 
 /// `[layers]` of a 3D case: the 2D keys, `max_aspect`, `stand_off` and `smoothing`.
@@ -220,7 +273,12 @@ pub(crate) fn parse(
             "{origin}: no [surface]: a 3D case needs builtin = \"sphere\" | \"cube\" | \"step\" or file = \"body.stl\""
         );
     };
-    let surface = surface_source(&keys, files, origin)?;
+    let bodies = body_keys(keys, origin)?
+        .iter()
+        .enumerate()
+        .map(|(i, k)| body(k, i, files, origin))
+        .collect::<Result<Vec<_>>>()?;
+    let farfield = file.farfield.map(|f| farfield(&f, origin)).transpose()?;
     let mut layers = afsf3d::LayerParams::default();
     let l = &file.layers;
     let at = format!("{origin}: [layers]");
@@ -240,13 +298,15 @@ pub(crate) fn parse(
         layers.layers = n as usize;
     }
     // a wing's quad side meets its caps on a rim where the plain angle weights feed back
-    layers.patch_normals = matches!(
-        surface,
-        SurfaceSource::Wing {
-            triangles: false,
-            ..
-        }
-    );
+    layers.patch_normals = bodies.iter().any(|b| {
+        matches!(
+            b.source,
+            SurfaceSource::Wing {
+                triangles: false,
+                ..
+            }
+        )
+    });
     // and its far layers, geometric, outrun the front's coarsening near the far tip
     if layers.patch_normals {
         layers.max_aspect = QUAD_WING_MAX_ASPECT;
@@ -301,7 +361,8 @@ pub(crate) fn parse(
     Ok(Case3d {
         name: file.name.unwrap_or_else(|| default_name.to_string()),
         origin: origin.to_string(),
-        surface,
+        bodies,
+        farfield,
         layers,
         min_coverage,
         cells: file.cut.cells.unwrap_or(CutCells::Mixed),
@@ -421,8 +482,101 @@ fn builtin_source(
     })
 }
 
-fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, origin: &str) -> Result<SurfaceSource> {
+/// The `surface` value: one table (`[surface]`) or several (`[[surface]]`), each read as
+/// [`SurfaceKeys`].
+fn body_keys(value: toml::Value, origin: &str) -> Result<Vec<SurfaceKeys>> {
+    let tables = match value {
+        toml::Value::Array(tables) => tables,
+        table @ toml::Value::Table(_) => vec![table],
+        _ => bail!("{origin}: surface must be a table ([surface]) or tables ([[surface]])"),
+    };
+    ensure!(
+        !tables.is_empty(),
+        "{origin}: no [surface]: a 3D case needs at least one body"
+    );
+    let several = tables.len() > 1;
+    tables
+        .into_iter()
+        .enumerate()
+        .map(|(i, t)| {
+            t.try_into::<SurfaceKeys>().map_err(|e| {
+                let at = if several {
+                    format!("[[surface]] {}", i + 1)
+                } else {
+                    "[surface]".into()
+                };
+                crate::error::input_error!("{origin}: {at}: {}", e.message().trim())
+            })
+        })
+        .collect()
+}
+
+/// Body `i`'s keys checked: its surface, where it moves, its name.
+fn body(k: &SurfaceKeys, i: usize, files: &FileSource<'_>, origin: &str) -> Result<Body> {
     let at = format!("{origin}: [surface]");
+    let at = if i > 0 { format!("{at} {}", i + 1) } else { at };
+    let translate = k.translate.unwrap_or([0.0; 3]);
+    ensure!(
+        translate.iter().all(|x| x.is_finite()),
+        "{at}: translate = {translate:?}: must be finite numbers"
+    );
+    if let Some(name) = &k.name {
+        let ok = !name.is_empty()
+            && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !name.starts_with(|c: char| c.is_ascii_digit());
+        ensure!(
+            ok,
+            "{at}: name = {name:?}: must be letters, digits and '_', not starting with a digit (a boundary group's name)"
+        );
+        let taken = [Role::Farfield.name(), "fluid", "outer"];
+        ensure!(
+            !taken.iter().any(|t| name.eq_ignore_ascii_case(t)),
+            "{at}: name = {name:?}: the name of another group"
+        );
+    }
+    Ok(Body {
+        source: surface_source(k, files, &at)?,
+        translate,
+        name: k.name.clone(),
+    })
+}
+
+/// `[farfield]`'s keys checked: one shape, valid, a size that makes at most
+/// [`geom_surface::MAX_FARFIELD_TRIANGLES`] triangles.
+fn farfield(k: &FarfieldKeys, origin: &str) -> Result<Farfield> {
+    use geom_surface::FarfieldShape;
+    let at = format!("{origin}: [farfield]");
+    let shape = match (&k.box_, &k.sphere) {
+        (Some(b), None) => FarfieldShape::Box {
+            min: b.min,
+            max: b.max,
+        },
+        (None, Some(s)) => FarfieldShape::Sphere {
+            center: s.center,
+            radius: s.radius,
+        },
+        _ => bail!(
+            "{at}: give box = {{ min = [x, y, z], max = [x, y, z] }} or sphere = {{ center = [x, y, z], radius = R }}"
+        ),
+    };
+    if let Some(problem) = shape.problem() {
+        bail!("{at}: {problem}");
+    }
+    let extent = shape.extent();
+    let max_size = positive(k.max_size, extent / 10.0, &at, "max_size")?;
+    // a sphere's area 4πr², a box's six faces at most 6 e²: two triangles per size²
+    let triangles = 2.0 * 6.0 * (extent / max_size).powi(2);
+    ensure!(
+        triangles <= geom_surface::MAX_FARFIELD_TRIANGLES as f64,
+        "{at} max_size = {max_size}: too small for a far field {extent} across (at most {} triangles; at least {:.3e})",
+        geom_surface::MAX_FARFIELD_TRIANGLES,
+        extent * (12.0 / geom_surface::MAX_FARFIELD_TRIANGLES as f64).sqrt()
+    );
+    Ok(Farfield { shape, max_size })
+}
+
+fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, at: &str) -> Result<SurfaceSource> {
+    let at = at.to_string();
     // the keys each source takes; any other key given is refused
     if let Some(name) = &k.wing {
         return wing_source(k, name, files, &at);

@@ -26,6 +26,50 @@ pub enum TrueShape {
     Smooth(Box<SmoothWall>),
     /// The facets themselves (cube, step): straight-sided P2 and P3 cells.
     Flat,
+    /// Several bodies, or one moved or renamed: each body's shape over its facets.
+    Bodies(Vec<BodyShape>),
+}
+
+/// One body's true shape among several: its facets in the case's surface, where it was moved.
+#[derive(Debug, Clone)]
+pub struct BodyShape {
+    /// Its facets' indices in the case's surface.
+    pub facets: std::ops::Range<usize>,
+    /// How far it was moved from where its shape was built.
+    pub translate: [f64; 3],
+    /// Its shape where it was built.
+    pub shape: TrueShape,
+}
+
+impl TrueShape {
+    /// The projector onto this shape.
+    fn projector(&self) -> &dyn vector_adding::SurfaceProjector {
+        match self {
+            TrueShape::Sphere(s) => s,
+            TrueShape::Wing(w) => w.as_ref(),
+            TrueShape::Smooth(s) => s.as_ref(),
+            TrueShape::Flat => &FlatWall,
+            TrueShape::Bodies(_) => self,
+        }
+    }
+}
+
+impl vector_adding::SurfaceProjector for TrueShape {
+    /// Onto the body of wall facet `facet` (only [`TrueShape::Bodies`] is asked this way).
+    fn project(&self, p: [f64; 3], facet: usize) -> [f64; 3] {
+        let TrueShape::Bodies(bodies) = self else {
+            return self.projector().project(p, facet);
+        };
+        let Some(b) = bodies.iter().find(|b| b.facets.contains(&facet)) else {
+            return p;
+        };
+        let by = b.translate;
+        let q = b.shape.projector().project(
+            std::array::from_fn(|d| p[d] - by[d]),
+            facet - b.facets.start,
+        );
+        std::array::from_fn(|d| q[d] + by[d])
+    }
 }
 
 /// A wall known only by its facets, onto the smooth surface rebuilt from them.
@@ -56,10 +100,63 @@ impl vector_adding::SurfaceProjector for FlatWall {
     }
 }
 
-/// The wall surface of a case: built, or read from its file (not yet checked), and its true
-/// shape.
+/// The wall surface of a case: its bodies built, or read from their files (not yet checked),
+/// moved and put together, and their true shape. One body where it is built is that body's
+/// surface and shape unchanged.
 pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
-    Ok(match &case.surface {
+    if let [body] = case.bodies.as_slice()
+        && body.translate == [0.0; 3]
+        && body.name.is_none()
+    {
+        return body_surface(case, &body.source);
+    }
+    let mut all = Surface {
+        nodes: Vec::new(),
+        facets: Vec::new(),
+        facet_patch: Vec::new(),
+        patches: Vec::new(),
+    };
+    let mut taken: Vec<String> = vec![Role::Farfield.name().into(), "fluid".into()];
+    let mut shapes = Vec::with_capacity(case.bodies.len());
+    for body in &case.bodies {
+        let (s, shape) = body_surface(case, &body.source)?;
+        let (node0, facet0, patch0) = (all.nodes.len(), all.facets.len(), all.patches.len());
+        let by = body.translate;
+        all.nodes.extend(
+            s.nodes
+                .iter()
+                .map(|p| std::array::from_fn(|d| p[d] + by[d])),
+        );
+        all.facets.extend(s.facets.iter().map(|f| {
+            geom_surface::Facet(f.0.map(|v| match v {
+                geom_surface::NO_NODE => v,
+                v => v + node0 as u32,
+            }))
+        }));
+        all.facet_patch
+            .extend(s.facet_patch.iter().map(|&p| p + patch0 as u32));
+        for p in s.patches {
+            // the body's name for its wall, its other patches after it
+            let name = match (&body.name, p.name.as_str()) {
+                (Some(n), "wall") => n.clone(),
+                (Some(n), other) => format!("{n}_{other}"),
+                (None, other) => other.to_string(),
+            };
+            let name = crate::case::wall_group_name(&name, &mut taken);
+            all.patches.push(mesh_model::Patch { name, role: p.role });
+        }
+        shapes.push(BodyShape {
+            facets: facet0..all.facets.len(),
+            translate: by,
+            shape,
+        });
+    }
+    Ok((all, TrueShape::Bodies(shapes)))
+}
+
+/// One body's surface where it is built, and its true shape.
+fn body_surface(case: &Case3d, source: &SurfaceSource) -> Result<(Surface, TrueShape)> {
+    Ok(match source {
         SurfaceSource::Sphere { radius, refinement } => {
             let sphere = vector_adding::SphereProjector {
                 centre: [0.0; 3],
@@ -122,13 +219,7 @@ pub fn curve(
         order,
         ..vector_adding::CurvingParams::default()
     };
-    let projector: &dyn vector_adding::SurfaceProjector = match shape {
-        TrueShape::Sphere(s) => s,
-        TrueShape::Wing(w) => w.as_ref(),
-        TrueShape::Smooth(s) => s.as_ref(),
-        TrueShape::Flat => &FlatWall,
-    };
-    vector_adding::curve_mesh_3d(mesh, &grown.columns, projector, &params)
+    vector_adding::curve_mesh_3d(mesh, &grown.columns, shape.projector(), &params)
         .map_err(|e| input_error!("{}: curving to P{order}: {e}", case.origin))
 }
 
@@ -161,9 +252,12 @@ pub fn curved_volumes(curved: &Mesh, m: &mut Measures3d) -> Result<()> {
 /// node) and where the surface came from.
 pub fn check_surface(case: &Case3d, surface: &Surface) -> Result<()> {
     surface.check().map_err(|e| {
-        let source = match &case.surface {
-            SurfaceSource::File(path) => path.display().to_string(),
-            _ => format!("{}: the built-in surface", case.origin),
+        let source = match case.bodies.as_slice() {
+            [body] => match &body.source {
+                SurfaceSource::File(path) => path.display().to_string(),
+                _ => format!("{}: the built-in surface", case.origin),
+            },
+            _ => format!("{}: the bodies' surfaces", case.origin),
         };
         input_error!("{source}: {e}")
     })

@@ -268,6 +268,11 @@ impl Report {
                 "the wall is flat-faceted (a cube or step): its P{p} nodes where the straight \
                  facets put them, so the cells are straight-sided P{p} cells"
             ),
+            TrueShape::Bodies(b) => format!(
+                "the wall's P{p} nodes on each of the {} bodies' true surfaces (a sphere's, a \
+                 wing's, one rebuilt from a file's facets; a cube's or step's flat)",
+                b.len()
+            ),
         };
         self.notes.push(format!(
             "P{p} by Vector-Adding up the pipes: {wall}; {} of {} edges curved, up to layer {}; \

@@ -10,6 +10,9 @@
 //! found by sort-and-sweep, decided by the exact triangle–triangle test of
 //! `geom-predicates`); the first problem found is a one-line [`SurfaceError`].
 //!
+//! [`Surface::farfield`] triangulates a far field (a box or a sphere, [`FarfieldShape`]) facing
+//! into the domain: the outer boundary the volume fill meshes up to.
+//!
 //! [`wing::build_wing`] makes a finite wing from a 2D section (its boundary nodes extruded
 //! over the span, caps at the tips) with its true surface ([`wing::WingShape`]).
 //!
@@ -30,10 +33,12 @@
 
 mod build;
 mod check;
+mod farfield;
 mod smooth;
 pub mod wing;
 
 pub use check::{SurfaceError, first_self_intersection, self_intersections};
+pub use farfield::{FarfieldShape, MAX_FARFIELD_TRIANGLES};
 use mesh_model::{Patch, Role};
 pub use smooth::{DEFAULT_FEATURE_ANGLE_DEG, PnTriangle, SmoothSurface};
 
