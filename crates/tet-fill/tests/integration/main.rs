@@ -1,0 +1,6 @@
+//! The integration tests of `tet-fill`, linked into one binary; `cargo test -p tet-fill --test
+//! integration -- MODULE::` runs one module.
+
+mod common;
+
+mod delaunay;
