@@ -62,6 +62,16 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
                 state.stats.first_capped.get_or_insert(layer);
             }
         }
+        if layer > 0
+            && stops_here(
+                params,
+                height,
+                thickness,
+                mean_edge(&topo, &state.front.nodes),
+            )
+        {
+            break;
+        }
         thickness += height;
         state.layer_heights.push(height);
         let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
@@ -76,6 +86,14 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         }
     }
     Ok(state.finish())
+}
+
+/// Whether the growth stops before a layer of `height` over layers `thickness` thick, the
+/// front's mean edge `spacing`: the layer would be over [`LayerParams::stop_aspect`] ×
+/// `spacing` high, or the layers over [`LayerParams::max_thickness`] thick.
+fn stops_here(params: &LayerParams, height: f64, thickness: f64, spacing: f64) -> bool {
+    (params.stop_aspect > 0.0 && height > params.stop_aspect * spacing)
+        || thickness + height > params.max_thickness
 }
 
 /// What a layer's stops leave for the next: each front node's rise (its layer's height there,
@@ -561,6 +579,12 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.merge_rows >= 0.0 && p.merge_rows.is_finite()) {
         return bad("merge_rows must be finite and at least 0");
+    }
+    if !(p.stop_aspect >= 0.0 && p.stop_aspect.is_finite()) {
+        return bad("stop_aspect must be finite and at least 0");
+    }
+    if !(p.max_thickness > 0.0) {
+        return bad("max_thickness must be positive");
     }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
         return bad("tension_ratio must be in (0, 1]");

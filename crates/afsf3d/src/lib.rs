@@ -173,6 +173,15 @@ pub struct LayerParams {
     /// (a thin quad merged on one side only becomes a triangle of about 1° on the quad
     /// wing's trailing edge; `docs/3d.md`). Default 0: each edge by itself.
     pub merge_rows: f64,
+    /// Where a volume fill follows the layers: growth stops, for every column, before the
+    /// first layer (after the first) higher than this × the front's mean edge — the layers
+    /// have turned isotropic, and isotropic cells are the fill's to make. Default 0: every
+    /// layer grows.
+    pub stop_aspect: f64,
+    /// Growth stops, for every column, before the layers would be thicker than this (a far
+    /// field's distance from the wall, halved, so the last front stays well inside it).
+    /// Default infinite.
+    pub max_thickness: f64,
 }
 
 impl Default for LayerParams {
@@ -195,6 +204,8 @@ impl Default for LayerParams {
             patch_normals: false,
             max_aspect: 0.0,
             merge_rows: 0.0,
+            stop_aspect: 0.0,
+            max_thickness: f64::INFINITY,
         }
     }
 }

@@ -527,3 +527,39 @@ fn a_slot_thinner_than_its_layers_keeps_every_column() {
     };
     grow_and_check("slot, thin layers", &slot(), &thin);
 }
+
+/// Before a volume fill the layers stop where they turn isotropic (`stop_aspect`) and under
+/// `max_thickness`: fewer layers, the next one higher than the wall's edges, the stack under
+/// the limit, every column complete. (On a sphere the front's edges grow with the stack, and
+/// at growth 1.2 over edges of 0.26 the layers never turn isotropic: the cube's flat faces do.)
+#[test]
+fn growth_stops_where_the_layers_turn_isotropic_or_too_thick() {
+    let cube = Surface::cube(1.0, 8, false);
+    let iso = LayerParams {
+        layers: 40,
+        stop_aspect: 1.0,
+        ..LayerParams::default()
+    };
+    let grown = grow_layers(&cube, &iso).unwrap();
+    let n = grown.layer_heights.len();
+    assert!(
+        (5..40).contains(&n),
+        "{n} layers: {:?}",
+        grown.layer_heights
+    );
+    let next = iso.first_height * iso.growth.powi(n as i32);
+    assert!(next > 0.125, "stopped early: next layer {next}");
+    assert!(grown.columns.iter().all(|c| c.len() == n + 1));
+    let sphere = Surface::sphere(1.0, 2);
+    let thin = LayerParams {
+        layers: 40,
+        max_thickness: 0.05,
+        ..LayerParams::default()
+    };
+    let grown = grow_layers(&sphere, &thin).unwrap();
+    let thickness: f64 = grown.layer_heights.iter().sum();
+    assert!(
+        thickness <= 0.05 && thickness > 0.05 / 1.2 - 1e-3,
+        "{thickness}"
+    );
+}
