@@ -22,7 +22,10 @@ pub fn boundary_groups(mesh: &Mesh) -> Result<(Vec<Group>, Vec<usize>), String> 
     let mut groups: Vec<Group> = Vec::new();
     let mut of_patch = Vec::with_capacity(mesh.patches.len());
     for (i, p) in mesh.patches.iter().enumerate() {
+        // every far-field patch is `farfield` but a 3D near-body mesh's outer boundary
+        // (`outer`); a wall its own name, else `wall`
         let name = match p.role {
+            Role::Farfield if p.name == mesh_model::OUTER_GROUP => mesh_model::OUTER_GROUP,
             Role::Farfield => Role::Farfield.name(),
             Role::Wall if p.name.is_empty() => Role::Wall.name(),
             Role::Wall => p.name.as_str(),
@@ -36,6 +39,11 @@ pub fn boundary_groups(mesh: &Mesh) -> Result<(Vec<Group>, Vec<usize>), String> 
             ));
         }
         let k = match groups.iter().position(|g| g.name == name) {
+            Some(k) if groups[k].role != p.role => {
+                return Err(format!(
+                    "patch {i} is named {name:?}, the name of a group of another role: rename it"
+                ));
+            }
             Some(k) => k,
             None => {
                 groups.push(Group {
@@ -73,12 +81,22 @@ mod tests {
             ("slat", Role::Wall),
             ("main", Role::Wall),
             ("flap", Role::Wall),
-            ("outer", Role::Farfield),
+            ("circle", Role::Farfield),
+            ("", Role::Farfield),
         ]);
         let (g, of) = boundary_groups(&m).unwrap();
         let names: Vec<&str> = g.iter().map(|g| g.name.as_str()).collect();
         assert_eq!(names, ["slat", "main", "flap", "farfield"]);
-        assert_eq!(of, [0, 1, 2, 3]);
+        assert_eq!(of, [0, 1, 2, 3, 3]);
+        // but a 3D near-body mesh's outer boundary keeps its name
+        let (g, _) =
+            boundary_groups(&mesh(&[("wall", Role::Wall), ("outer", Role::Farfield)])).unwrap();
+        assert_eq!(g[1].name, "outer");
+        assert_eq!(g[1].role, Role::Farfield);
+        // one name for two roles is refused
+        assert!(
+            boundary_groups(&mesh(&[("outer", Role::Wall), ("outer", Role::Farfield)])).is_err()
+        );
     }
 
     #[test]

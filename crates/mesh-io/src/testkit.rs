@@ -54,7 +54,7 @@ impl Default for AnnulusParams {
 /// of constant radius is an exact circular arc through its nodes and every radial edge is
 /// straight. Cells are counter-clockwise; boundary facets run with the domain on their left
 /// (the outer circle counter-clockwise, the inner one clockwise). Patch 0 is the inner circle
-/// (`inner`, a wall), patch 1 the outer circle (`outer`, the far field). `cell_layer` is the
+/// (`inner`, a wall), patch 1 the outer circle (`circle`, the far field). `cell_layer` is the
 /// ring index counted from the wall and `cell_pipe` the wall facet below each cell.
 ///
 /// # Panics
@@ -70,7 +70,7 @@ pub fn annulus(params: &AnnulusParams) -> Mesh {
         na,
         nr,
         &params.triangle_mask,
-        ["inner", "outer"],
+        ["inner", "circle"],
         |along, across| {
             let theta = TAU * along as f64 / (na * p) as f64;
             let r = r0 + (r1 - r0) * across as f64 / (nr * p) as f64;
@@ -114,7 +114,7 @@ pub fn selig_points(text: &str) -> Vec<[f64; 2]> {
 
 /// A structured ring of layers around a counter-clockwise closed loop (an airfoil), grown
 /// along the vertex normals: the loop is the wall (patch `wall-loop`), the outer edge of the
-/// last layer the far field (patch `outer`). High-order nodes are interpolated linearly
+/// last layer the far field (patch `circle`). High-order nodes are interpolated linearly
 /// between loop points, so edges are straight; nodes carry the loop's own coordinates. Valid
 /// for `mesh_model::validate` as long as the layers are thin against the loop's curvature.
 ///
@@ -137,7 +137,7 @@ pub fn airfoil_ring(points: &[[f64; 2]], params: &RingParams) -> Mesh {
         n,
         params.layers,
         &params.triangle_mask,
-        ["wall-loop", "outer"],
+        ["wall-loop", "circle"],
         |along, across| {
             let (i, f) = (along / p, (along % p) as f64 / p as f64);
             let j = (i + 1) % n;

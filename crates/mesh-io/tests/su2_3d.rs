@@ -21,7 +21,7 @@ fn mixed() -> Mesh {
             role: Role::Wall,
         },
         Patch {
-            name: "outer".into(),
+            name: "box".into(),
             role: Role::Farfield,
         },
     ];

@@ -54,6 +54,6 @@ pub use cells::{CellRef, Cells};
 /// The signed area of a polygon (shoelace formula), shared with every crate.
 pub use geom_predicates::polygon_area;
 pub use layering::{LayeredMesh, Layering};
-pub use mesh::{Dim, Mesh, NONE, Patch, Role, is_positive_polygon};
+pub use mesh::{Dim, Mesh, NONE, OUTER_GROUP, Patch, Role, is_positive_polygon};
 pub use topology::Topology;
 pub use validate::{Problem, first_problem, first_structural_problem, is_positive_tet, validate};

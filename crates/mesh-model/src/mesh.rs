@@ -19,6 +19,11 @@ pub enum Role {
     Farfield,
 }
 
+/// The name of a 3D near-body mesh's outer boundary (the layers' final front): a patch of
+/// role [`Role::Farfield`] so named is written as its own group `outer`, not `farfield`, where a
+/// solver would put a far-field condition a few body lengths away.
+pub const OUTER_GROUP: &str = "outer";
+
 impl Role {
     /// The physical-group name written to files (`wall`, `farfield`).
     pub fn name(self) -> &'static str {
