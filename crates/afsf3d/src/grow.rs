@@ -16,6 +16,7 @@ use crate::children::dedup_cyclic;
 use crate::children::{Ideal, Layer};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{add_twisted, choose_merges, merged_layer};
+use crate::proximity::facing_fronts;
 use crate::repair::{CUT_LIMIT, repair_layer};
 use crate::squeeze::squeezed_layer;
 use crate::stop::{MIN_RISE, rises, why_failed};
@@ -125,9 +126,18 @@ fn grow_layer(
         params.stand_off,
         params.patch_normals,
     );
-    // the stopped columns keep themselves; those near them rise less, or stop
+    // the stopped columns keep themselves; those facing another front too near stop now;
+    // those near them rise less, or stop
     let mut stopped = state.stopped.clone();
     let mut why: Vec<Option<StopWhy>> = vec![None; n];
+    if params.stop_gap > 0.0 {
+        let reach = params.stop_gap * height;
+        let near = facing_fronts(topo, &front.nodes, &dir, &stopped, reach);
+        for v in (0..n).filter(|&v| near[v]) {
+            stopped[v] = true;
+            why[v] = Some(StopWhy::FrontsNear);
+        }
+    }
     let mut rise = rises(topo, &front.nodes, &state.thick, &stopped, height);
     for v in 0..n {
         if !stopped[v] && rise[v] < MIN_RISE * height {
@@ -582,6 +592,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.stop_aspect >= 0.0 && p.stop_aspect.is_finite()) {
         return bad("stop_aspect must be finite and at least 0");
+    }
+    if !(p.stop_gap >= 0.0 && p.stop_gap.is_finite()) {
+        return bad("stop_gap must be finite and at least 0");
     }
     if !(p.max_thickness > 0.0) {
         return bad("max_thickness must be positive");

@@ -101,6 +101,7 @@ mod children;
 mod front;
 mod grow;
 mod layer;
+mod proximity;
 mod repair;
 mod squeeze;
 mod stop;
@@ -182,6 +183,11 @@ pub struct LayerParams {
     /// field's distance from the wall, halved, so the last front stays well inside it).
     /// Default infinite.
     pub max_thickness: f64,
+    /// Before each layer, a column whose front node faces another part of the front (another
+    /// body's, or its own across a gap) nearer than this × the layer's height stops, so the
+    /// fronts keep a gap for a volume fill (`proximity`). Default 0: none stops so; fronts
+    /// that would cross stop their columns all the same.
+    pub stop_gap: f64,
 }
 
 impl Default for LayerParams {
@@ -206,6 +212,7 @@ impl Default for LayerParams {
             merge_rows: 0.0,
             stop_aspect: 0.0,
             max_thickness: f64::INFINITY,
+            stop_gap: 0.0,
         }
     }
 }
@@ -279,6 +286,9 @@ pub enum StopWhy {
     /// Next to a stopped column: its layer would have been under a quarter of the layer's
     /// height, to keep the step down to that column at most 45°.
     Transition,
+    /// It faced another front (another body's, or its own across a gap) nearer than
+    /// [`LayerParams::stop_gap`] × its next layer's height.
+    FrontsNear,
 }
 
 impl StopWhy {
@@ -288,6 +298,7 @@ impl StopWhy {
             StopWhy::InvertedCell => "an inverted cell",
             StopWhy::FrontsCross => "the front crosses itself or another body's front",
             StopWhy::Transition => "next to a stopped column (the step down kept gradual)",
+            StopWhy::FrontsNear => "the front came near another front (a gap kept for the fill)",
         }
     }
 }
