@@ -596,7 +596,7 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     if !(p.stop_gap >= 0.0 && p.stop_gap.is_finite()) {
         return bad("stop_gap must be finite and at least 0");
     }
-    if !(p.max_thickness > 0.0) {
+    if p.max_thickness.is_nan() || p.max_thickness <= 0.0 {
         return bad("max_thickness must be positive");
     }
     if !(p.springs.tension_ratio > 0.0 && p.springs.tension_ratio <= 1.0) {
