@@ -108,3 +108,198 @@ pub fn randoms(n: usize, seed: u64) -> Vec<f64> {
         })
         .collect()
 }
+
+/// The region's volume from its facets (divergence theorem; normals point into the region).
+pub fn region_volume(p: &[[f64; 3]], facets: &[[u32; 3]]) -> f64 {
+    -facets
+        .iter()
+        .map(|f| {
+            let [a, b, c] = f.map(|v| p[v as usize]);
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+/// The fill conforms: input points first and unchanged, tets valid, the faces held by one tet
+/// exactly the input facets with that tet on the normal's side, volumes balanced.
+pub fn check_fill(points: &[[f64; 3]], facets: &[[u32; 3]], out: &tet_fill::Fill) {
+    assert!(out.points.len() >= points.len());
+    for (a, b) in points.iter().zip(&out.points) {
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+    }
+    let boundary = check_valid(&out.points, &out.tets);
+    let mut apex: HashMap<[u32; 3], u32> = HashMap::new();
+    for t in &out.tets {
+        for i in 0..4 {
+            let mut f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| t[k]).collect();
+            f.sort_unstable();
+            apex.insert([f[0], f[1], f[2]], t[i]);
+        }
+    }
+    let mut wanted: Vec<[u32; 3]> = facets
+        .iter()
+        .map(|f| {
+            let mut k = *f;
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    wanted.sort_unstable();
+    let mut got = boundary.clone();
+    got.sort_unstable();
+    assert_eq!(got.len(), wanted.len(), "boundary faces vs input facets");
+    assert_eq!(
+        got, wanted,
+        "the fill's boundary faces are the input facets"
+    );
+    for f in facets {
+        let mut k = *f;
+        k.sort_unstable();
+        let x = out.points[apex[&k] as usize];
+        let [a, b, c] = f.map(|v| out.points[v as usize]);
+        assert!(
+            orient3d(a, b, c, x) < 0.0,
+            "facet {f:?}: its tet is on the wrong side"
+        );
+    }
+    let (v, want) = (
+        total_volume(&out.points, &out.tets),
+        region_volume(points, facets),
+    );
+    assert!(
+        (v - want).abs() <= 1e-9 * want.abs(),
+        "volume {v} vs {want}"
+    );
+}
+
+/// Appends a surface: `points`, and `facets` offset to follow the points already there; the
+/// facets flipped when `flip`.
+pub fn append(
+    points: &mut Vec<[f64; 3]>,
+    facets: &mut Vec<[u32; 3]>,
+    (p, f): (Vec<[f64; 3]>, Vec<[u32; 3]>),
+    flip: bool,
+) {
+    let base = points.len() as u32;
+    points.extend(p);
+    facets.extend(f.into_iter().map(|[a, b, c]| {
+        if flip {
+            [a + base, c + base, b + base]
+        } else {
+            [a + base, b + base, c + base]
+        }
+    }));
+}
+
+/// An axis-aligned box, each face an `n × n` grid of squares split in two (alternating
+/// diagonals), facets counter-clockwise seen from outside.
+pub fn grid_box(lo: [f64; 3], hi: [f64; 3], n: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut index: HashMap<[usize; 3], u32> = HashMap::new();
+    let mut id = |g: [usize; 3], points: &mut Vec<[f64; 3]>| {
+        *index.entry(g).or_insert_with(|| {
+            points.push([0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) * g[k] as f64 / n as f64));
+            (points.len() - 1) as u32
+        })
+    };
+    let mut facets = Vec::new();
+    for axis in 0..3 {
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        for side in [0, n] {
+            for i in 0..n {
+                for j in 0..n {
+                    let at = |di: usize, dj: usize| {
+                        let mut g = [0; 3];
+                        g[axis] = side;
+                        g[u] = i + di;
+                        g[v] = j + dj;
+                        g
+                    };
+                    let q = [at(0, 0), at(1, 0), at(1, 1), at(0, 1)].map(|g| id(g, &mut points));
+                    // (u, v, axis) is right-handed: q turns counter-clockwise seen from +axis
+                    let q = if side == n {
+                        q
+                    } else {
+                        [q[0], q[3], q[2], q[1]]
+                    };
+                    if (i + j) % 2 == 0 {
+                        facets.push([q[0], q[1], q[2]]);
+                        facets.push([q[0], q[2], q[3]]);
+                    } else {
+                        facets.push([q[0], q[1], q[3]]);
+                        facets.push([q[1], q[2], q[3]]);
+                    }
+                }
+            }
+        }
+    }
+    (points, facets)
+}
+
+/// An icosphere (the icosahedron's faces split `level` times, projected), facets
+/// counter-clockwise seen from outside.
+pub fn icosphere(centre: [f64; 3], radius: f64, level: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut p: Vec<[f64; 3]> = vec![
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ];
+    let mut f: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..level {
+        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut next = Vec::new();
+        for &[a, b, c] in &f {
+            let mut m = |x: u32, y: u32| {
+                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
+                    let (px, py) = (p[x as usize], p[y as usize]);
+                    p.push([0, 1, 2].map(|k| (px[k] + py[k]) / 2.0));
+                    (p.len() - 1) as u32
+                })
+            };
+            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        f = next;
+    }
+    let p = p
+        .into_iter()
+        .map(|q| {
+            let l = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+            [0, 1, 2].map(|k| centre[k] + radius * q[k] / l)
+        })
+        .collect();
+    (p, f)
+}

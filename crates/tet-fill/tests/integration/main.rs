@@ -4,3 +4,4 @@
 mod common;
 
 mod delaunay;
+mod fill;

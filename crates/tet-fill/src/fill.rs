@@ -1,0 +1,160 @@
+//! The fill's driver: the input checked, the input points tetrahedralised inside a box well
+//! outside them (so that every facet is interior and every flip near it is between real tets),
+//! the facets recovered, the region classified, refined and cleared of slivers; then the
+//! region's tets returned with the box's corners dropped.
+
+use crate::build::{check_points, tetrahedralise};
+use crate::error::FillError;
+use crate::insert::FaceSet;
+use crate::mesh::{GHOST, Mesh, face_key};
+use crate::quality::max_dihedral_deg;
+use crate::recover::Recovery;
+use crate::region::{Side, classify};
+use crate::{Fill, FillInput, FillOptions};
+
+/// Refuses facets naming missing points and degenerate facets.
+fn check_facets(input: &FillInput) -> Result<(), FillError> {
+    let n = input.points.len();
+    for (facet, f) in input.facets.iter().enumerate() {
+        if let Some(&index) = f.iter().find(|&&v| v as usize >= n) {
+            return Err(FillError::FacetIndexOutOfRange {
+                facet,
+                index,
+                points: n,
+            });
+        }
+        let [a, b, c] = f.map(|v| input.points[v as usize]);
+        let degenerate = f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || collinear(a, b, c);
+        if degenerate {
+            return Err(FillError::DegenerateFacet {
+                facet,
+                corners: [a, b, c],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Exact collinearity in 3D.
+fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    [(0, 1), (1, 2), (2, 0)]
+        .iter()
+        .all(|&(k, m)| geom_predicates::orient2d([a[k], a[m]], [b[k], b[m]], [c[k], c[m]]) == 0.0)
+}
+
+/// The eight corners of a box around `points` with a margin of their extent on every side.
+fn box_corners(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0);
+    // each corner pushed out by its own odd amount: no box face parallel to an input plane,
+    // no box corner co-spherical with input points (degeneracies that recovery would pay for)
+    (0..8)
+        .map(|i| {
+            [0, 1, 2].map(|k| {
+                let m = extent * (1.0 + 0.0371 * ((3 * i + k) % 7) as f64);
+                if (i >> k) & 1 == 0 {
+                    lo[k] - m
+                } else {
+                    hi[k] + m
+                }
+            })
+        })
+        .collect()
+}
+
+/// The fill (see [`crate::fill`]).
+pub(crate) fn run(input: &FillInput, options: &FillOptions) -> Result<Fill, FillError> {
+    check_points(input.points)?;
+    check_facets(input)?;
+    let n = input.points.len();
+    if n + 8 > options.max_points {
+        return Err(FillError::TooManyPoints {
+            limit: options.max_points,
+        });
+    }
+    let mut points = input.points.to_vec();
+    points.extend(box_corners(input.points));
+    let mut mesh = Mesh::new(points);
+    let all: Vec<u32> = (0..(n + 8) as u32).collect();
+    tetrahedralise(&mut mesh, &all)?;
+    let (faces, steiner) = recover_all(&mut mesh, input, options.max_points)?;
+    let mut side = classify(&mesh, input.facets, &faces)?;
+    let refinement_points = crate::refine::refine(&mut mesh, &mut side, &faces, input, options)?;
+    crate::sliver::improve(&mut mesh, &mut side, &faces, n + 8, options);
+    Ok(output(&mesh, &side, n, steiner, refinement_points))
+}
+
+/// Recovers every facet; the kept faces and the Steiner points added.
+fn recover_all(
+    mesh: &mut Mesh,
+    input: &FillInput,
+    max_points: usize,
+) -> Result<(FaceSet, usize), FillError> {
+    let mut rec = Recovery::new(mesh, max_points);
+    rec.keep_present(input.facets);
+    // a Steiner point may take back an earlier facet's edges: a few passes
+    for pass in 0..4 {
+        let mut missing = 0;
+        for (k, &f) in input.facets.iter().enumerate() {
+            if rec.faces.contains(&face_key(f)) && rec.has_face(f) {
+                continue;
+            }
+            missing += 1;
+            // a failure may clear on a later pass, after other facets' flips and points
+            match rec.recover_facet(f) {
+                Err(why) if pass == 3 || why.contains("cap of") => {
+                    return Err(FillError::Unrecoverable {
+                        facet: k,
+                        corners: f.map(|v| rec.mesh.p(v)),
+                        why,
+                    });
+                }
+                _ => {}
+            }
+        }
+        if missing == 0 {
+            break;
+        }
+    }
+    for (k, &f) in input.facets.iter().enumerate() {
+        if !rec.has_face(f) {
+            return Err(FillError::Unrecoverable {
+                facet: k,
+                corners: f.map(|v| rec.mesh.p(v)),
+                why: "lost again while recovering others".into(),
+            });
+        }
+    }
+    let steiner = rec.steiner;
+    Ok((rec.faces, steiner))
+}
+
+/// The inside tets, with the box's corners dropped from the numbering.
+fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize, refinement_points: usize) -> Fill {
+    let remap = |v: u32| if (v as usize) < n { v } else { v - 8 };
+    let mut points = mesh.points[..n].to_vec();
+    points.extend_from_slice(&mesh.points[n + 8..]);
+    let tets: Vec<[u32; 4]> = (0..mesh.tets.len())
+        .filter(|&t| side.get(t) == Some(&Side::Inside) && !mesh.is_dead(t as u32))
+        .map(|t| mesh.tets[t].map(remap))
+        .collect();
+    debug_assert!(tets.iter().all(|t| !t.contains(&GHOST)));
+    let max_dihedral_deg = tets
+        .iter()
+        .map(|t| max_dihedral_deg(t.map(|v| points[v as usize])))
+        .fold(0.0, f64::max);
+    Fill {
+        points,
+        tets,
+        steiner_points: steiner,
+        refinement_points,
+        max_dihedral_deg,
+    }
+}

@@ -1,0 +1,508 @@
+//! Boundary recovery: every input facet made a face of the tetrahedralisation without splitting
+//! it. Missing edges first, then missing facets, each by flips that remove what crosses them
+//! (2-3 flips of crossed faces, edge removals of crossed edges, preferring the flip that makes
+//! the missing piece); when no flip helps, a Steiner point is inserted off the surface on the
+//! fill's side of the facet (constrained Bowyer–Watson: recovered facets are never crossed) and
+//! the flips are tried again. Recovered facets and input edges are kept from then on.
+
+use crate::flip::{EdgeSet, Kept, edge_key};
+use crate::insert::{FaceSet, Located, Scratch};
+use crate::mesh::{GHOST, Mesh, face_key, face_of};
+use crate::quality::shape;
+use geom_predicates::{SegmentMeet, orient3d, segment_meet, segment_meets_triangle};
+
+/// What recovery works with: the mesh, the kept faces and edges, a tet per vertex.
+pub(crate) struct Recovery<'m> {
+    pub mesh: &'m mut Mesh,
+    pub faces: FaceSet,
+    pub edges: EdgeSet,
+    /// A tet holding each vertex, refreshed when stale.
+    vt: Vec<u32>,
+    /// Points added off the surfaces.
+    pub steiner: usize,
+    /// The cap on the mesh's points.
+    pub max_points: usize,
+    scratch: Scratch,
+}
+
+/// What crosses a missing edge or facet.
+#[derive(Default, Debug)]
+struct Crossings {
+    /// Faces crossed in their interior, as (tet, face index).
+    faces: Vec<(u32, usize)>,
+    /// Edges crossed, with a tet holding each.
+    edges: Vec<(u32, u32, u32)>,
+    /// A vertex on the missing piece (recovery impossible without splitting it).
+    vertex: Option<u32>,
+}
+
+impl<'m> Recovery<'m> {
+    /// Recovery over `mesh`, with `max_points` the cap on its points.
+    pub fn new(mesh: &'m mut Mesh, max_points: usize) -> Self {
+        Self {
+            mesh,
+            faces: FaceSet::default(),
+            edges: EdgeSet::default(),
+            vt: Vec::new(),
+            steiner: 0,
+            max_points,
+            scratch: Scratch::default(),
+        }
+    }
+
+    /// A live tet holding `v`.
+    fn tet_of(&mut self, v: u32) -> u32 {
+        let cached = self.vt.get(v as usize).copied().unwrap_or(GHOST);
+        if cached != GHOST
+            && !self.mesh.is_dead(cached)
+            && self.mesh.tets[cached as usize].contains(&v)
+        {
+            return cached;
+        }
+        self.vt = vec![GHOST; self.mesh.points.len()];
+        for t in 0..self.mesh.tets.len() as u32 {
+            if !self.mesh.is_dead(t) {
+                for &w in &self.mesh.tets[t as usize] {
+                    if w != GHOST {
+                        self.vt[w as usize] = t;
+                    }
+                }
+            }
+        }
+        self.vt[v as usize]
+    }
+
+    /// The tets holding `v`.
+    fn star(&mut self, v: u32) -> Vec<u32> {
+        let t0 = self.tet_of(v);
+        let mut star = vec![t0];
+        let mut k = 0;
+        while k < star.len() {
+            let t = star[k];
+            k += 1;
+            for i in 0..4 {
+                if self.mesh.tets[t as usize][i] != v {
+                    let n = self.mesh.neighbour(t, i);
+                    if !star.contains(&n) {
+                        star.push(n);
+                    }
+                }
+            }
+        }
+        star
+    }
+
+    /// A tet holding edge `a b`.
+    fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
+        self.star(a)
+            .into_iter()
+            .find(|&t| self.mesh.tets[t as usize].contains(&b))
+    }
+
+    /// Whether `a b c` is a face.
+    pub fn has_face(&mut self, f: [u32; 3]) -> bool {
+        match self.find_edge(f[0], f[1]) {
+            None => false,
+            Some(t) => {
+                let (tets, _) = self.mesh.ring(t, f[0], f[1]);
+                tets.iter()
+                    .any(|&t| self.mesh.tets[t as usize].contains(&f[2]))
+            }
+        }
+    }
+
+    /// The tets near the missing piece: the stars of its corners, grown across every face
+    /// that `meets` says touches it.
+    fn region(&mut self, corners: &[u32], meets: impl Fn(&Mesh, [u32; 3]) -> bool) -> Vec<u32> {
+        let mut set: Vec<u32> = Vec::new();
+        for &c in corners {
+            for t in self.star(c) {
+                if !set.contains(&t) {
+                    set.push(t);
+                }
+            }
+        }
+        let mut k = 0;
+        while k < set.len() && set.len() < 4000 {
+            let t = set[k];
+            k += 1;
+            for i in 0..4 {
+                let f = face_of(self.mesh.tets[t as usize], i);
+                let n = self.mesh.neighbour(t, i);
+                if !f.contains(&GHOST) && !set.contains(&n) && meets(self.mesh, f) {
+                    set.push(n);
+                }
+            }
+        }
+        set.retain(|&t| !self.mesh.is_ghost(t));
+        set
+    }
+
+    /// What crosses segment `a b`.
+    fn edge_crossings(&mut self, a: u32, b: u32) -> Crossings {
+        let (pa, pb) = (self.mesh.p(a), self.mesh.p(b));
+        let region = self.region(&[a, b], |m, f| {
+            !f.contains(&a)
+                && !f.contains(&b)
+                && segment_meets_triangle(pa, pb, m.p(f[0]), m.p(f[1]), m.p(f[2]))
+        });
+        let mut c = Crossings::default();
+        for &t in &region {
+            let v = self.mesh.tets[t as usize];
+            for i in 0..4 {
+                let f = face_of(v, i);
+                if f.contains(&a) || f.contains(&b) {
+                    continue;
+                }
+                let [x, y, z] = f.map(|w| self.mesh.p(w));
+                let o = [
+                    orient3d(pa, pb, x, y),
+                    orient3d(pa, pb, y, z),
+                    orient3d(pa, pb, z, x),
+                ];
+                let sides = (orient3d(x, y, z, pa), orient3d(x, y, z, pb));
+                let inside = o.iter().all(|&s| s > 0.0) || o.iter().all(|&s| s < 0.0);
+                if inside && sides.0 * sides.1 < 0.0 {
+                    c.faces.push((t, i));
+                }
+            }
+            for (k, m) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                let (x, y) = (v[k], v[m]);
+                if [a, b].contains(&x) || [a, b].contains(&y) {
+                    continue;
+                }
+                if segments_cross_3d(pa, pb, self.mesh.p(x), self.mesh.p(y)) {
+                    c.edges.push((x.min(y), x.max(y), t));
+                }
+            }
+            for &w in &v {
+                if w != a && w != b && on_segment(pa, pb, self.mesh.p(w)) {
+                    c.vertex = Some(w);
+                }
+            }
+        }
+        c.edges.sort_unstable_by_key(|e| (e.0, e.1));
+        c.edges.dedup_by_key(|e| (e.0, e.1));
+        c
+    }
+
+    /// What crosses triangle `f` (whose edges are all present).
+    fn facet_crossings(&mut self, f: [u32; 3]) -> Crossings {
+        let [pa, pb, pc] = f.map(|w| self.mesh.p(w));
+        let region = self.region(&f, |m, g| {
+            geom_predicates::triangles_meet(g.map(|w| m.p(w)), [pa, pb, pc])
+        });
+        let mut c = Crossings::default();
+        for &t in &region {
+            let v = self.mesh.tets[t as usize];
+            for (k, m) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                let (x, y) = (v[k], v[m]);
+                if f.contains(&x) || f.contains(&y) {
+                    continue;
+                }
+                let (px, py) = (self.mesh.p(x), self.mesh.p(y));
+                let (sx, sy) = (orient3d(pa, pb, pc, px), orient3d(pa, pb, pc, py));
+                if sx * sy < 0.0 && segment_meets_triangle(px, py, pa, pb, pc) {
+                    c.edges.push((x.min(y), x.max(y), t));
+                }
+            }
+            for &w in &v {
+                let pw = self.mesh.p(w);
+                if !f.contains(&w)
+                    && orient3d(pa, pb, pc, pw) == 0.0
+                    && segment_meets_triangle(pw, pw, pa, pb, pc)
+                {
+                    c.vertex = Some(w);
+                }
+            }
+        }
+        c.edges.sort_unstable_by_key(|e| (e.0, e.1));
+        c.edges.dedup_by_key(|e| (e.0, e.1));
+        c
+    }
+
+    /// One flip that reduces the crossings that `cross` lists (None: the piece is there):
+    /// 2-3 flips of crossed faces, removals of crossed edges and of the crossed faces' edges,
+    /// each tried and undone unless the crossings drop. False when none helps.
+    fn flip_once(
+        &mut self,
+        cross: &dyn Fn(&mut Self) -> Option<Crossings>,
+        sideways: bool,
+    ) -> bool {
+        let Some(c) = cross(self) else {
+            return true;
+        };
+        let count = c.faces.len() + c.edges.len();
+        // an undone flip leaves the same tets in other slots: the candidates are listed anew,
+        // in an order that does not depend on the slots
+        for k in 0.. {
+            let Some(c) = cross(self) else {
+                return true;
+            };
+            let mut candidates = self.flip_candidates(&c);
+            candidates.sort_by_cached_key(|(_, new)| {
+                let mut key: Vec<[u32; 4]> = new
+                    .iter()
+                    .map(|t| {
+                        let mut t = *t;
+                        t.sort_unstable();
+                        t
+                    })
+                    .collect();
+                key.sort_unstable();
+                key
+            });
+            if sideways {
+                // a random flip that does not add crossings: a way out of a dead end
+                if candidates.is_empty() || k >= 8 {
+                    return false;
+                }
+                let pick = (self.mesh.random() % candidates.len() as u64) as usize;
+                candidates.swap(0, pick);
+            }
+            let Some((old, new)) = candidates.into_iter().nth(if sideways { 0 } else { k }) else {
+                return false;
+            };
+            let before: Vec<[u32; 4]> = old.iter().map(|&t| self.mesh.tets[t as usize]).collect();
+            let made = self.mesh.replace(&old, &new);
+            match cross(self) {
+                None => return true,
+                Some(after)
+                    if after.faces.len() + after.edges.len() < count + usize::from(sideways) =>
+                {
+                    return true;
+                }
+                _ => {}
+            }
+            self.mesh.replace(&made, &before);
+        }
+        false
+    }
+
+    /// The flips that may remove crossings `c`: old tets and new corners.
+    fn flip_candidates(&self, c: &Crossings) -> Vec<(Vec<u32>, Vec<[u32; 4]>)> {
+        let mut candidates: Vec<(Vec<u32>, Vec<[u32; 4]>)> = Vec::new();
+        let kept = Kept {
+            faces: &self.faces,
+            edges: &self.edges,
+        };
+        let score = |m: &Mesh, t: [u32; 4]| shape(t.map(|v| m.p(v)));
+        let mut edges: Vec<(u32, u32, u32)> = c.edges.clone();
+        for &(t, i) in &c.faces {
+            if let Some((old, new)) = self.mesh.flip23(t, i, &kept) {
+                candidates.push((old.to_vec(), new.to_vec()));
+            }
+            let f = face_of(self.mesh.tets[t as usize], i);
+            for k in 0..3 {
+                edges.push((f[k], f[(k + 1) % 3], t));
+            }
+        }
+        for &(x, y, t) in &c.edges {
+            let (tets, _) = self.mesh.ring(t, x, y);
+            for u in tets {
+                let v = self.mesh.tets[u as usize];
+                for i in 0..4 {
+                    if let Some((old, new)) = self.mesh.flip23(u, i, &kept) {
+                        candidates.push((old.to_vec(), new.to_vec()));
+                    }
+                }
+                for (k, m) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                    edges.push((v[k], v[m], u));
+                }
+            }
+        }
+        edges.sort_unstable_by_key(|e| (e.0.min(e.1), e.0.max(e.1)));
+        edges.dedup_by_key(|e| (e.0.min(e.1), e.0.max(e.1)));
+        for (x, y, t) in edges {
+            if let Some(way) = self.mesh.edge_removal(t, x, y, &kept, &score) {
+                candidates.push(way);
+            }
+        }
+        candidates
+    }
+
+    /// Recovers edge `a b` by flips. Err: why not.
+    fn recover_edge_by_flips(&mut self, a: u32, b: u32) -> Result<(), String> {
+        let cross = |r: &mut Self| {
+            if r.find_edge(a, b).is_some() {
+                None
+            } else {
+                Some(r.edge_crossings(a, b))
+            }
+        };
+        for _ in 0..200 {
+            let Some(c) = cross(self) else {
+                self.edges.insert(edge_key(a, b));
+                return Ok(());
+            };
+            if let Some(w) = c.vertex {
+                return Err(format!("edge {a}-{b} passes through point {w}"));
+            }
+            if !self.flip_once(&cross, false) && !self.flip_once(&cross, true) {
+                return Err(format!(
+                    "edge {a}-{b} is crossed by {} faces and {} edges that no flip removes",
+                    c.faces.len(),
+                    c.edges.len()
+                ));
+            }
+        }
+        Err(format!("edge {a}-{b}: flips do not converge"))
+    }
+
+    /// Recovers facet `f` (edges present) by flips. Err: why not.
+    fn recover_facet_by_flips(&mut self, f: [u32; 3]) -> Result<(), String> {
+        let cross = |r: &mut Self| {
+            if r.has_face(f) {
+                None
+            } else {
+                Some(r.facet_crossings(f))
+            }
+        };
+        for _ in 0..200 {
+            let Some(c) = cross(self) else {
+                return Ok(());
+            };
+            if let Some(w) = c.vertex {
+                return Err(format!("point {w} lies on the facet"));
+            }
+            if !self.flip_once(&cross, false) && !self.flip_once(&cross, true) {
+                return Err(format!(
+                    "crossed by {} edges that no flip removes",
+                    c.edges.len()
+                ));
+            }
+        }
+        Err("flips do not converge".into())
+    }
+
+    /// Recovers facet `f` (corners counter-clockwise seen from the fill): its edges, then
+    /// itself, by flips and then with Steiner points off it on the fill's side.
+    pub fn recover_facet(&mut self, f: [u32; 3]) -> Result<(), String> {
+        let mut last = String::new();
+        for attempt in 0..6 {
+            let flipped = (|| {
+                for k in 0..3 {
+                    self.recover_edge_by_flips(f[k], f[(k + 1) % 3])?;
+                }
+                self.recover_facet_by_flips(f)
+            })();
+            match flipped {
+                Ok(()) => {
+                    self.faces.insert(face_key(f));
+                    return Ok(());
+                }
+                Err(why) => last = why,
+            }
+            if attempt < 5 && !self.add_steiner(f, attempt)? {
+                break;
+            }
+        }
+        Err(last)
+    }
+
+    /// Inserts a point off facet `f` on the fill's side (further at each attempt), keeping the
+    /// recovered facets. False when it could not be inserted.
+    fn add_steiner(&mut self, f: [u32; 3], attempt: usize) -> Result<bool, String> {
+        if self.mesh.points.len() >= self.max_points {
+            return Err(format!("the cap of {} points is reached", self.max_points));
+        }
+        let [a, b, c] = f.map(|w| self.mesh.p(w));
+        let u = [0, 1, 2].map(|k| b[k] - a[k]);
+        let v = [0, 1, 2].map(|k| c[k] - a[k]);
+        // the normal of a counter-clockwise facet seen from the fill points into the fill
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let size = len.sqrt();
+        let off = size * [0.3, 0.15, 0.6, 0.08, 1.0][attempt % 5];
+        let q = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0 + n[k] / len * off);
+        let Located::Tet(t) = self.mesh.locate(q) else {
+            return Ok(false);
+        };
+        if self.mesh.is_ghost(t) {
+            return Ok(false);
+        }
+        self.mesh.points.push(q);
+        let v = (self.mesh.points.len() - 1) as u32;
+        let mut new = Vec::new();
+        if self
+            .mesh
+            .insert(v, t, Some(&self.faces), &mut self.scratch, &mut new)
+        {
+            self.steiner += 1;
+            Ok(true)
+        } else {
+            self.mesh.points.pop();
+            Ok(false)
+        }
+    }
+
+    /// Marks the input edges and facets already present as kept.
+    pub fn keep_present(&mut self, facets: &[[u32; 3]]) {
+        for &f in facets {
+            for k in 0..3 {
+                let (a, b) = (f[k], f[(k + 1) % 3]);
+                if self.find_edge(a, b).is_some() {
+                    self.edges.insert(edge_key(a, b));
+                }
+            }
+            if self.has_face(f) {
+                self.faces.insert(face_key(f));
+            }
+        }
+    }
+}
+
+/// Whether point `p` lies on the closed segment `a b` (exact collinearity, then the box).
+fn on_segment(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
+    let (k, m) = drop_axis_of(a, b, p);
+    let proj = |q: [f64; 3]| [q[k], q[m]];
+    geom_predicates::orient2d(proj(a), proj(b), proj(p)) == 0.0
+        && collinear3(a, b, p)
+        && (0..3).all(|i| p[i] >= a[i].min(b[i]) && p[i] <= a[i].max(b[i]))
+}
+
+/// Exact collinearity in 3D (all three axis projections).
+fn collinear3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    [(0, 1), (1, 2), (2, 0)]
+        .iter()
+        .all(|&(k, m)| geom_predicates::orient2d([a[k], a[m]], [b[k], b[m]], [c[k], c[m]]) == 0.0)
+}
+
+/// The two axes to keep when projecting the plane through the points (the normal's largest
+/// component dropped; any pair for a degenerate normal).
+fn drop_axis_of(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> (usize, usize) {
+    let u = [0, 1, 2].map(|k| b[k] - a[k]);
+    let v = [0, 1, 2].map(|k| c[k] - a[k]);
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let big = (0..3)
+        .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+        .unwrap_or(2);
+    ((big + 1) % 3, (big + 2) % 3)
+}
+
+/// Whether segments `a b` and `x y` (no shared end) meet: coplanar and meeting in the
+/// projection that keeps their plane's extent.
+fn segments_cross_3d(a: [f64; 3], b: [f64; 3], x: [f64; 3], y: [f64; 3]) -> bool {
+    if orient3d(a, b, x, y) != 0.0 {
+        return false;
+    }
+    // a projection in which the four points' plane is not seen edge-on
+    let (mut k, mut m) = drop_axis_of(a, b, x);
+    if collinear3(a, b, x) {
+        (k, m) = drop_axis_of(a, b, y);
+    }
+    let proj = |q: [f64; 3]| [q[k], q[m]];
+    if collinear3(a, b, x) && collinear3(a, b, y) {
+        // all on one line: overlap means a vertex on the segment, found elsewhere
+        return false;
+    }
+    segment_meet(proj(a), proj(b), proj(x), proj(y)) != SegmentMeet::Disjoint
+}

@@ -1,0 +1,171 @@
+//! The constrained fill: nested cubes, nested spheres, two bodies in a box; conformity and
+//! volume balance, and the errors.
+
+use crate::common::*;
+use tet_fill::{Fill, FillError, FillInput, FillOptions, fill};
+
+/// Options with refinement and sliver removal off: the recovery and the region alone.
+fn plain() -> FillOptions {
+    FillOptions {
+        max_radius_edge: 0.0,
+        max_dihedral_deg: 180.0,
+        ..FillOptions::default()
+    }
+}
+
+fn run(points: &[[f64; 3]], facets: &[[u32; 3]], options: &FillOptions) -> Fill {
+    let out = fill(&FillInput { points, facets }, options).unwrap();
+    check_fill(points, facets, &out);
+    out
+}
+
+/// A surface: points and facets.
+type Surface = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+/// An outer surface (normals turned inwards) around inner bodies (normals outwards).
+fn nest(outer: Surface, inner: Vec<Surface>) -> Surface {
+    let (mut p, mut f) = (Vec::new(), Vec::new());
+    append(&mut p, &mut f, outer, true);
+    for body in inner {
+        append(&mut p, &mut f, body, false);
+    }
+    (p, f)
+}
+
+#[test]
+fn cube_in_cube() {
+    for n in [1, 2, 3] {
+        let (p, f) = nest(
+            grid_box([-2.0; 3], [3.0; 3], n),
+            vec![grid_box([0.0; 3], [1.0; 3], n)],
+        );
+        let out = run(&p, &f, &plain());
+        assert_eq!(out.points.len(), p.len() + out.steiner_points);
+    }
+}
+
+#[test]
+fn sphere_in_sphere() {
+    for level in [1, 2, 3] {
+        let (p, f) = nest(
+            icosphere([0.0; 3], 3.0, level),
+            vec![icosphere([0.1, 0.0, -0.2], 1.0, level)],
+        );
+        run(&p, &f, &plain());
+    }
+}
+
+#[test]
+fn two_bodies_in_a_box() {
+    let (p, f) = nest(
+        grid_box([-3.0; 3], [3.0; 3], 4),
+        vec![
+            icosphere([-1.0, 0.0, 0.0], 0.8, 2),
+            grid_box([0.5, -0.5, -0.5], [1.5, 0.5, 0.5], 3),
+        ],
+    );
+    run(&p, &f, &plain());
+}
+
+#[test]
+fn a_single_closed_body_is_filled_inside() {
+    // normals inwards: the body's inside is the region
+    let (mut p, mut f) = (Vec::new(), Vec::new());
+    append(&mut p, &mut f, icosphere([0.0; 3], 1.0, 2), true);
+    run(&p, &f, &plain());
+}
+
+#[test]
+fn errors_name_the_culprit() {
+    let (p, f) = nest(
+        grid_box([-2.0; 3], [3.0; 3], 1),
+        vec![grid_box([0.0; 3], [1.0; 3], 1)],
+    );
+    // the inner cube turned inside out
+    let mut bad = f.clone();
+    for t in bad.iter_mut().skip(12) {
+        t.swap(1, 2);
+    }
+    let e = fill(
+        &FillInput {
+            points: &p,
+            facets: &bad,
+        },
+        &plain(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, FillError::InconsistentOrientation { .. }),
+        "{e}"
+    );
+    let mut out_of_range = f.clone();
+    out_of_range[5][1] = 99;
+    let e = fill(
+        &FillInput {
+            points: &p,
+            facets: &out_of_range,
+        },
+        &plain(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            FillError::FacetIndexOutOfRange {
+                facet: 5,
+                index: 99,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("facet 5"));
+    let mut dup = p.clone();
+    dup[3] = dup[0];
+    let e = fill(
+        &FillInput {
+            points: &dup,
+            facets: &f,
+        },
+        &plain(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            FillError::DuplicatePoint {
+                first: 0,
+                second: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let e = fill(
+        &FillInput {
+            points: &p,
+            facets: &f,
+        },
+        &FillOptions {
+            max_points: 10,
+            ..plain()
+        },
+    )
+    .unwrap_err();
+    assert!(matches!(e, FillError::TooManyPoints { limit: 10 }), "{e}");
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    /// Random star-shaped polyhedra (an icosphere's corners pushed in and out) inside a sphere.
+    #[test]
+    fn random_polyhedra_in_a_sphere(radii in proptest::collection::vec(0.6f64..1.4, 42), shift in [-0.5f64..0.5, -0.5f64..0.5, -0.5f64..0.5]) {
+        let (mut body, facets) = icosphere([0.0; 3], 1.0, 1);
+        for (q, r) in body.iter_mut().zip(&radii) {
+            *q = [0, 1, 2].map(|k| q[k] * r + shift[k]);
+        }
+        let (p, f) = nest(icosphere([0.0; 3], 4.0, 2), vec![(body, facets)]);
+        run(&p, &f, &plain());
+    }
+}
