@@ -52,7 +52,9 @@ pub struct FillOptions {
     /// No tet edge longer than this where the size field allows (default infinite).
     pub max_size: f64,
     /// Growth of the size field away from the facets: a point's size is at most the nearest
-    /// facet point's size plus `(grading - 1)` times the distance to it (default 1.3).
+    /// facet point's size plus `(grading - 1)` times the distance to it (default 1.3); a
+    /// facet point's size is the mean length of its facets' edges. Infinite: no refinement
+    /// for size.
     pub grading: f64,
     /// Sliver removal target: the largest dihedral angle in degrees (default 150).
     pub max_dihedral_deg: f64,

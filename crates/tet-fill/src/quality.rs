@@ -22,7 +22,6 @@ pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 /// The distance between two points.
 #[inline]
-#[allow(dead_code)] // refinement uses it (next stage)
 pub(crate) fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     let d = sub(a, b);
     dot(d, d).sqrt()
@@ -77,7 +76,6 @@ pub(crate) fn shape(p: [[f64; 3]; 4]) -> f64 {
 }
 
 /// The circumcentre of a tet (None when flat).
-#[allow(dead_code)] // refinement uses it (next stage)
 pub(crate) fn circumcentre(p: [[f64; 3]; 4]) -> Option<[f64; 3]> {
     let (a, b, c) = (sub(p[0], p[1]), sub(p[0], p[2]), sub(p[0], p[3]));
     let det = 2.0 * dot(a, cross(b, c));
@@ -90,7 +88,6 @@ pub(crate) fn circumcentre(p: [[f64; 3]; 4]) -> Option<[f64; 3]> {
 }
 
 /// The shortest and longest edge of a tet.
-#[allow(dead_code)] // refinement uses it (next stage)
 pub(crate) fn edge_range(p: [[f64; 3]; 4]) -> (f64, f64) {
     let mut lo = f64::INFINITY;
     let mut hi: f64 = 0.0;

@@ -1,18 +1,180 @@
-//! Refinement (stage 3; a stub until then).
+//! Delaunay refinement of the region: a tet too large for the size field, or whose
+//! circumradius over shortest edge exceeds the bound, gets its circumcentre inserted
+//! (constrained Bowyer–Watson: the facets bound every cavity) — unless the circumcentre lies in
+//! an input facet's diametral sphere or outside the region, for the facets are never split.
+//! The size field: each input point's mean input edge length, growing by `grading - 1` per
+//! unit distance from the nearest input point, capped by `max_size`.
 
 use crate::error::FillError;
-use crate::insert::FaceSet;
+use crate::insert::{FaceSet, Located, Scratch};
 use crate::mesh::Mesh;
+use crate::quality::{circumcentre, dist, edge_range};
 use crate::region::Side;
 use crate::{FillInput, FillOptions};
+use geom_predicates::PointTree;
+
+/// The size field from the input surfaces.
+struct SizeField {
+    tree: PointTree<3>,
+    size: Vec<f64>,
+    slope: f64,
+    cap: f64,
+}
+
+impl SizeField {
+    fn new(input: &FillInput, options: &FillOptions) -> Self {
+        let n = input.points.len();
+        let (mut sum, mut count) = (vec![0.0; n], vec![0u32; n]);
+        for f in input.facets {
+            for k in 0..3 {
+                let (a, b) = (f[k] as usize, f[(k + 1) % 3] as usize);
+                let l = dist(input.points[a], input.points[b]);
+                // each edge is seen from its two facets: both ends counted twice alike
+                for v in [a, b] {
+                    sum[v] += l;
+                    count[v] += 1;
+                }
+            }
+        }
+        let size = (0..n)
+            .map(|v| {
+                if count[v] > 0 {
+                    sum[v] / f64::from(count[v])
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .collect();
+        Self {
+            tree: PointTree::new(input.points),
+            size,
+            // an infinite grading: no size refinement at all
+            slope: (options.grading - 1.0).max(0.0),
+            cap: if options.max_size > 0.0 {
+                options.max_size
+            } else {
+                f64::INFINITY
+            },
+        }
+    }
+
+    /// The size wanted at `p`.
+    fn at(&self, p: [f64; 3]) -> f64 {
+        let h = match self.tree.nearest(p) {
+            Some((v, d)) if self.slope.is_finite() => self.size[v] + self.slope * d,
+            Some(_) => f64::INFINITY,
+            None => f64::INFINITY,
+        };
+        h.min(self.cap)
+    }
+}
+
+/// The input facets' diametral spheres, searched by centre.
+struct Facets {
+    tree: PointTree<3>,
+    centre: Vec<[f64; 3]>,
+    radius: Vec<f64>,
+    largest: f64,
+}
+
+impl Facets {
+    fn new(input: &FillInput) -> Self {
+        let mut centre = Vec::with_capacity(input.facets.len());
+        let mut radius = Vec::with_capacity(input.facets.len());
+        for f in input.facets {
+            let [a, b, c] = f.map(|v| input.points[v as usize]);
+            // the circumcircle's centre: the circumcentre of the tet with a far apex on the normal
+            let u = crate::quality::sub(a, b);
+            let w = crate::quality::sub(a, c);
+            let n = crate::quality::cross(u, w);
+            let apex = [0, 1, 2].map(|k| a[k] + n[k]);
+            let o = circumcentre([a, b, c, apex]).unwrap_or(a);
+            // the tet's circumcentre lies on the circle's axis: project onto the plane
+            let len2 = crate::quality::dot(n, n);
+            let t = crate::quality::dot(crate::quality::sub(a, o), n) / len2;
+            let o = [0, 1, 2].map(|k| o[k] - t * n[k]);
+            centre.push(o);
+            radius.push(dist(o, a));
+        }
+        let largest = radius.iter().copied().fold(0.0, f64::max);
+        Self {
+            tree: PointTree::new(&centre),
+            centre,
+            radius,
+            largest,
+        }
+    }
+
+    /// Whether `p` lies strictly inside some facet's diametral sphere.
+    fn encroached(&self, p: [f64; 3]) -> bool {
+        self.tree
+            .within(p, self.largest)
+            .iter()
+            .any(|&(k, d)| d < self.radius[k] && dist(p, self.centre[k]) < self.radius[k])
+    }
+}
 
 /// Refines the inside tets; the number of points added.
 pub(crate) fn refine(
-    _mesh: &mut Mesh,
-    _side: &mut Vec<Side>,
-    _faces: &FaceSet,
-    _input: &FillInput,
-    _options: &FillOptions,
+    mesh: &mut Mesh,
+    side: &mut Vec<Side>,
+    faces: &FaceSet,
+    input: &FillInput,
+    options: &FillOptions,
 ) -> Result<usize, FillError> {
-    Ok(0)
+    let bound = options.max_radius_edge;
+    let by_shape = bound > 0.0 && bound.is_finite();
+    let sizes = SizeField::new(input, options);
+    let facets = Facets::new(input);
+    let bad = |mesh: &Mesh, t: u32| {
+        let p = mesh.tets[t as usize].map(|v| mesh.p(v));
+        let c = circumcentre(p)?;
+        let r = dist(c, p[0]);
+        let (short, _) = edge_range(p);
+        let centroid = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
+        let big = r > sizes.at(centroid);
+        (big || (by_shape && r > bound * short)).then_some(c)
+    };
+    let mut queue: Vec<u32> = (0..mesh.tets.len() as u32)
+        .filter(|&t| side[t as usize] == Side::Inside)
+        .collect();
+    let (mut scratch, mut new) = (Scratch::default(), Vec::new());
+    let mut added = 0;
+    while let Some(t) = queue.pop() {
+        if mesh.is_dead(t) || side[t as usize] != Side::Inside {
+            continue;
+        }
+        let Some(c) = bad(mesh, t) else {
+            continue;
+        };
+        if facets.encroached(c) {
+            continue;
+        }
+        // the circumcentre must be in the region: start the walk at the tet itself
+        mesh.hint = t;
+        let Located::Tet(at) = mesh.locate(c) else {
+            continue;
+        };
+        if side.get(at as usize) != Some(&Side::Inside) {
+            continue;
+        }
+        if mesh.points.len() >= options.max_points {
+            return Err(FillError::TooManyPoints {
+                limit: options.max_points,
+            });
+        }
+        mesh.points.push(c);
+        let v = (mesh.points.len() - 1) as u32;
+        if !mesh.insert(v, at, Some(faces), &mut scratch, &mut new) {
+            mesh.points.pop();
+            continue;
+        }
+        added += 1;
+        side.resize(mesh.tets.len(), Side::Unknown);
+        for &n in &new {
+            side[n as usize] = Side::Inside;
+            queue.push(n);
+        }
+    }
+    Ok(added)
 }

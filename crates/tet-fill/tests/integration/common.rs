@@ -303,3 +303,34 @@ pub fn icosphere(centre: [f64; 3], radius: f64, level: usize) -> (Vec<[f64; 3]>,
         .collect();
     (p, f)
 }
+
+/// A tet's circumradius over its shortest edge.
+pub fn radius_edge(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
+    let q = t.map(|v| p[v as usize]);
+    let d = |a: [f64; 3], b: [f64; 3]| {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    };
+    // the circumcentre solves 2 (q_i - q_0) · c = |q_i|² - |q_0|²
+    let r = |i: usize| [0, 1, 2].map(|k| q[i][k] - q[0][k]);
+    let (a, b, c) = (r(1), r(2), r(3));
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let det = 2.0 * dot(a, cross(b, c));
+    let num = [0, 1, 2].map(|k| {
+        dot(a, a) * cross(b, c)[k] + dot(b, b) * cross(c, a)[k] + dot(c, c) * cross(a, b)[k]
+    });
+    let radius = dot(num, num).sqrt() / det.abs();
+    let mut short = f64::INFINITY;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            short = short.min(d(q[i], q[j]));
+        }
+    }
+    radius / short
+}

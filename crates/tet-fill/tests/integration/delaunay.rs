@@ -2,15 +2,31 @@
 //! coplanar degeneracies), checked exactly.
 
 use crate::common::*;
+use geom_predicates::orient3d;
 use proptest::prelude::*;
 use tet_fill::{FillError, delaunay};
 
 fn check_all(p: &[[f64; 3]]) -> Vec<[u32; 4]> {
     let tets = delaunay(p).unwrap();
+    if tets.is_empty() {
+        // no tet only when no four points span a volume
+        for (i, j, k, l) in quads(p.len()) {
+            assert_eq!(orient3d(p[i], p[j], p[k], p[l]), 0.0);
+        }
+        return tets;
+    }
     let boundary = check_valid(p, &tets);
     check_empty_spheres(p, &tets);
     check_tiles_hull(p, &tets, &boundary);
     tets
+}
+
+/// Every quadruple of indices below `n` (for small `n`).
+fn quads(n: usize) -> impl Iterator<Item = (usize, usize, usize, usize)> {
+    (0..n).flat_map(move |i| {
+        (i + 1..n)
+            .flat_map(move |j| (j + 1..n).flat_map(move |k| (k + 1..n).map(move |l| (i, j, k, l))))
+    })
 }
 
 fn grid(n: [usize; 3], h: f64) -> Vec<[f64; 3]> {
