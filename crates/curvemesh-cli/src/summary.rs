@@ -64,6 +64,18 @@ pub fn table(r: &Report) -> String {
     if let Some(c) = r.coverage {
         let _ = writeln!(s, "  {:<22} {:>11.1}%", "coverage", 100.0 * c);
     }
+    if let Some(f) = &r.fill {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>12}  ({} pyramids on the front's quads, {} Steiner and {} refinement points, max dihedral {:.1} deg)",
+            "fill tets",
+            f.tets,
+            f.pyramids,
+            f.steiner_points,
+            f.refinement_points,
+            f.max_dihedral_deg
+        );
+    }
     let _ = writeln!(s, "  time: {}", timings(r).join(", "));
     for n in &r.notes {
         let _ = writeln!(s, "  note: {n}");

@@ -40,6 +40,12 @@ pub struct Columns {
     pub coverage: f64,
     /// The run's floor (`[layers] min_coverage`): below it the run fails (exit 1).
     pub min_coverage: f64,
+    /// With a far field, the fraction of wall nodes whose columns did not stop for a failure
+    /// (an inverted cell, fronts crossing): columns stopped to keep a gap for the fill, and
+    /// their neighbours stepping down, are by design; this, not `coverage`, is held to
+    /// `min_coverage` then.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coverage_without_gaps: Option<f64>,
     /// The fewest layers of any column at a node of each boundary group's wall facets.
     pub least_layers: BTreeMap<String, usize>,
     /// How many columns stopped, by why.
@@ -49,8 +55,9 @@ pub struct Columns {
 }
 
 /// The columns of `grown`, grown from `wall` (its patches the boundary groups), against the
-/// floor `min_coverage`.
-pub fn columns(wall: &Surface, grown: &afsf3d::Grown3d, min_coverage: f64) -> Columns {
+/// floor `min_coverage`; `gaps`: a fill follows, so columns stopped to keep a gap for it are
+/// not held against the floor.
+pub fn columns(wall: &Surface, grown: &afsf3d::Grown3d, min_coverage: f64, gaps: bool) -> Columns {
     let n = grown.stops.len();
     let layers = |v: usize| grown.columns[v].len() - 1;
     // a group per wall node (its first facet's), and the least layers per group
@@ -84,6 +91,18 @@ pub fn columns(wall: &Surface, grown: &afsf3d::Grown3d, min_coverage: f64) -> Co
         })
         .collect();
     let full = n - stopped.len();
+    let failed = grown
+        .stops
+        .iter()
+        .flatten()
+        .filter(|s| {
+            matches!(
+                s.why,
+                afsf3d::StopWhy::InvertedCell | afsf3d::StopWhy::FrontsCross
+            )
+        })
+        .count();
+    let coverage_without_gaps = gaps.then(|| (n - failed) as f64 / n.max(1) as f64);
     Columns {
         of: "the wall nodes' columns of layers: where a column could not take its next layer \
              (an inverted cell, fronts crossing) it stopped, its neighbours stepping down to \
@@ -92,6 +111,7 @@ pub fn columns(wall: &Surface, grown: &afsf3d::Grown3d, min_coverage: f64) -> Co
         full,
         coverage: grown.coverage(),
         min_coverage,
+        coverage_without_gaps,
         least_layers,
         stopped_by_why,
         first_stopped,
@@ -120,7 +140,7 @@ impl Columns {
     /// The run's error when the coverage is below the floor: one line naming the first place
     /// a column stopped and why (`origin`: the case, for the message).
     pub fn check(&self, origin: &str) -> Result<(), Error> {
-        if self.coverage >= self.min_coverage {
+        if self.coverage_without_gaps.unwrap_or(self.coverage) >= self.min_coverage {
             return Ok(());
         }
         let first = self.first_stopped.first();

@@ -17,7 +17,11 @@ use crate::error::{Result, input_error};
 /// The wall surface of a file's triangles, a patch per group, named as boundary groups (an
 /// unnamed group is `wall`). Not checked: call [`Surface::check`].
 pub fn surface_of_file(read: GroupedSurface) -> Surface {
-    let mut taken: Vec<String> = vec![Role::Farfield.name().into(), "fluid".into()];
+    let mut taken: Vec<String> = vec![
+        Role::Farfield.name().into(),
+        "fluid".into(),
+        OUTER_GROUP.into(),
+    ];
     let patches = read
         .groups
         .into_iter()
@@ -43,10 +47,14 @@ pub fn surface_of_file(read: GroupedSurface) -> Surface {
     }
 }
 
+/// The boundary group of a near-body mesh's outer boundary, the layers' final front
+/// ([`mesh_model::OUTER_GROUP`]); a fill to a far field renames it `farfield` (`fill3d`).
+pub use mesh_model::OUTER_GROUP;
+
 /// Puts every wall facet of `mesh` (cut from the layers grown from `surface`, whose nodes
-/// are the mesh's first) in the patch of the surface facet it lies on, and the far-field
-/// facets in a last patch `farfield`: the mesh's patches become the surface's, then
-/// `farfield`.
+/// are the mesh's first) in the patch of the surface facet it lies on, and the outer
+/// facets (the final front) in a last patch [`OUTER_GROUP`] of role far field: the mesh's
+/// patches become the surface's, then that one.
 pub fn wall_groups(surface: &Surface, mesh: &mut Mesh) -> Result<()> {
     let facets_at = facets_at_nodes(surface);
     let far = surface.patches.len() as u32;
@@ -79,7 +87,7 @@ pub fn wall_groups(surface: &Surface, mesh: &mut Mesh) -> Result<()> {
     }
     mesh.patches = surface.patches.clone();
     mesh.patches.push(Patch {
-        name: Role::Farfield.name().into(),
+        name: OUTER_GROUP.into(),
         role: Role::Farfield,
     });
     Ok(())
@@ -175,7 +183,7 @@ mod tests {
             [
                 ("wall", Role::Wall),
                 ("top", Role::Wall),
-                ("farfield", Role::Farfield)
+                ("outer", Role::Farfield)
             ]
         );
         // a wall facet on no surface facet is an error, not a guess

@@ -34,6 +34,7 @@ pub mod case3d;
 pub mod columns3d;
 pub mod error;
 pub mod estimate;
+pub mod fill3d;
 mod groups3d;
 pub mod load;
 mod mesh2d;

@@ -46,11 +46,25 @@ pub(crate) fn mesh(
     timed(r, o, ("check", "surface check"), |_| {
         pipeline3d::check_surface(case, &surface)
     })?;
+    // with a far field, the layers stop where they turn isotropic or near it
+    let far = case
+        .farfield
+        .as_ref()
+        .map(|f| crate::fill3d::farfield_for(case, f, &surface))
+        .transpose()?;
+    let with_far;
+    let case = match &far {
+        Some((_, max_thickness)) => {
+            with_far = crate::fill3d::layers_before_fill(case, *max_thickness);
+            &with_far
+        }
+        None => case,
+    };
     let grown = timed(r, o, ("grow", "layers (AFSF 3D)"), |_| {
         pipeline3d::grow(case, &surface)
     })?;
     // columns that stopped: too few full ones fail the run here, before any output
-    let columns = crate::columns3d::columns(&surface, &grown, case.min_coverage);
+    let columns = crate::columns3d::columns(&surface, &grown, case.min_coverage, far.is_some());
     columns.check(&case.origin)?;
     // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
     let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
@@ -60,12 +74,28 @@ pub(crate) fn mesh(
         crate::groups3d::wall_groups(&surface, &mut mesh)?;
         Ok::<_, crate::error::Error>((mesh, flagged, front))
     })?;
+    let grown_layers = grown.layer_heights.len();
+    let filled = match &far {
+        Some((far, _)) => Some(timed(r, o, ("fill", "volume fill"), |_| {
+            crate::fill3d::fill(&mesh, far, &crate::fill3d::options(case))
+        })?),
+        None => None,
+    };
+    let layers_mesh = mesh;
+    let mut mesh = layers_mesh.clone();
+    if let Some(f) = &filled {
+        crate::fill3d::apply_linear(&mut mesh, f);
+    }
     let mut measures = timed(r, o, ("measure", "measures"), |_| {
-        pipeline3d::measure(&surface, &grown, &front, &mesh, case.layers.layers)
+        pipeline3d::measure(&surface, &grown, &front, &mesh, grown_layers)
     });
     let curved = if order >= 2 {
         let curved = timed(r, o, ("curving", &format!("curving to P{order}")), |_| {
-            pipeline3d::curve(case, &shape, &grown, &mesh, order)
+            let mut c = pipeline3d::curve(case, &shape, &grown, &layers_mesh, order)?;
+            if let Some(f) = &filled {
+                crate::fill3d::apply_curved(&mut c.mesh, f)?;
+            }
+            Ok::<_, crate::error::Error>(c)
         })?;
         timed(r, o, ("volume", "curved volumes"), |_| {
             pipeline3d::curved_volumes(&curved.mesh, &mut measures)
@@ -82,8 +112,14 @@ pub(crate) fn mesh(
             None => Ok(()),
         }
     })?;
-    report.layers = Some(case.layers.layers as u32);
-    push_notes(&mut report, curved.is_none(), grown.stats.converged);
+    report.layers = Some(grown_layers as u32);
+    report.fill = filled.as_ref().map(|f| f.stats);
+    push_notes(
+        &mut report,
+        curved.is_none(),
+        grown.stats.converged,
+        filled.is_some(),
+    );
     report.notes.extend(columns.note());
     report.columns = Some(columns);
     push_height_note(&mut report, &case.layers, &grown);
@@ -125,12 +161,14 @@ fn timed<T>(
 
 /// The report's notes on what the mesh is: near-body, how validity was judged, balances that
 /// ran out of iterations.
-fn push_notes(report: &mut Report, linear: bool, converged: bool) {
-    report.notes.push(
-        "a near-body mesh: the domain is the region the layers cover, its outer boundary \
-         (farfield) the final front"
-            .into(),
-    );
+fn push_notes(report: &mut Report, linear: bool, converged: bool, filled: bool) {
+    if !filled {
+        report.notes.push(
+            "a near-body mesh: the domain is the region the layers cover, its outer boundary \
+             (farfield) the final front"
+                .into(),
+        );
+    }
     if linear {
         report.notes.push(crate::report::P1_VALIDITY.into());
     }

@@ -116,7 +116,11 @@ pub fn surface(case: &Case3d) -> Result<(Surface, TrueShape)> {
         facet_patch: Vec::new(),
         patches: Vec::new(),
     };
-    let mut taken: Vec<String> = vec![Role::Farfield.name().into(), "fluid".into()];
+    let mut taken: Vec<String> = vec![
+        Role::Farfield.name().into(),
+        "fluid".into(),
+        crate::groups3d::OUTER_GROUP.into(),
+    ];
     let mut shapes = Vec::with_capacity(case.bodies.len());
     for body in &case.bodies {
         let (s, shape) = body_surface(case, &body.source)?;

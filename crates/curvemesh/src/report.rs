@@ -64,6 +64,9 @@ pub struct Report {
     /// columns stopped and why.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub columns: Option<crate::columns3d::Columns>,
+    /// 3D with a far field: the volume fill between the layers' final front and the far field.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fill: Option<crate::fill3d::FillStats>,
     /// Each boundary loop: name, role, node count, corner count.
     pub loops: Vec<LoopReport>,
     /// The files written.

@@ -1,0 +1,424 @@
+//! The volume fill of a 3D case with a far field (`[farfield]`): the space between the layers'
+//! final front and the far field's triangles meshed with tetrahedra (`tet-fill`), then put into
+//! the mesh — the front's facets become inner faces, the far field's the `farfield` group.
+//!
+//! The fill conforms to triangles only, so each quadrilateral of the front (the top of a kept
+//! prism or hexahedron) is first capped by a pyramid whose apex stands over its centre, and the
+//! pyramid's four sides join the fill's front. At orders 2 and 3 the fill's cells are straight
+//! and take the curved mesh's own nodes on the front's edges and faces, so the mesh conforms
+//! at every order; their other high-order nodes are new, where the straight cell puts them.
+
+use std::collections::HashMap;
+
+use geom_surface::Surface;
+use mesh_model::{CellType, Mesh, NONE, Role, Shape};
+
+use crate::case3d::Case3d;
+use crate::error::{Result, bail, input_error};
+
+/// What the fill added to the linear mesh: new points (numbered after the mesh's nodes),
+/// cells (pyramid caps, then tetrahedra) and the far field's facets, and its figures.
+#[derive(Debug, Clone)]
+pub struct Filled {
+    /// The linear mesh's node count: the new points are numbered from it.
+    pub first_point: usize,
+    /// The new points: the pyramids' apexes, the far field's nodes, then the fill's own.
+    pub points: Vec<[f64; 3]>,
+    /// The new linear cells, each a shape and its corners.
+    pub cells: Vec<(Shape, Vec<u32>)>,
+    /// The far field's triangles, facing out of the domain (as boundary facets do).
+    pub far_facets: Vec<[u32; 3]>,
+    /// The figures of the fill, for the report.
+    pub stats: FillStats,
+}
+
+/// The report's `fill` section.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct FillStats {
+    /// Tetrahedra made by the fill.
+    pub tets: usize,
+    /// Pyramids capping the front's quadrilaterals.
+    pub pyramids: usize,
+    /// Points added off the front to recover its facets.
+    pub steiner_points: usize,
+    /// Points added by the refinement towards the size field.
+    pub refinement_points: usize,
+    /// The largest dihedral angle of the fill's tetrahedra, degrees.
+    pub max_dihedral_deg: f64,
+    /// Triangles of the far field.
+    pub farfield_facets: usize,
+}
+
+/// The fill's front, as it is collected from the mesh's far-field-role facets.
+struct Front {
+    /// Triangles facing into the fill, over mesh node indices and new points.
+    tris: Vec<[u32; 3]>,
+    /// The pyramid caps (base quad, then apex).
+    pyramids: Vec<[u32; 5]>,
+    /// The apexes' coordinates, numbered from the mesh's node count.
+    apexes: Vec<[f64; 3]>,
+}
+
+/// Fills the space between the linear layer mesh `mesh`'s final front (its far-field-role
+/// boundary facets) and the far field `far` (triangles facing into the domain).
+pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Result<Filled> {
+    let n0 = mesh.nodes.len();
+    let front = front(mesh)?;
+    // the fill's input: the front's nodes, the apexes, the far field's nodes
+    let mut index: HashMap<u32, u32> = HashMap::new();
+    let mut global: Vec<u32> = Vec::new();
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let far_first = n0 + front.apexes.len();
+    let node_at = |v: u32| match v as usize {
+        v if v < n0 => mesh.nodes[v],
+        v if v < far_first => front.apexes[v - n0],
+        v => far.nodes[v - far_first],
+    };
+    let mut local = |v: u32, points: &mut Vec<[f64; 3]>| {
+        *index.entry(v).or_insert_with(|| {
+            global.push(v);
+            points.push(node_at(v));
+            (points.len() - 1) as u32
+        })
+    };
+    let mut facets: Vec<[u32; 3]> = front
+        .tris
+        .iter()
+        .map(|t| t.map(|v| local(v, &mut points)))
+        .collect();
+    for f in &far.facets {
+        let k = f.nodes();
+        if k.len() != 3 {
+            bail!(
+                "the far field has a facet of {} nodes (triangles only)",
+                k.len()
+            );
+        }
+        facets.push([0, 1, 2].map(|i| local((far_first as u32) + k[i], &mut points)));
+    }
+    let input = tet_fill::FillInput {
+        points: &points,
+        facets: &facets,
+    };
+    let filled =
+        tet_fill::fill(&input, options).map_err(|e| input_error!("the volume fill: {e}"))?;
+    // back to mesh numbering: the input points by `global`, the fill's own after the far field
+    let fill_first = far_first + far.nodes.len();
+    let to_mesh = |v: u32| -> u32 {
+        match global.get(v as usize) {
+            Some(&g) => g,
+            None => (fill_first + v as usize - points.len()) as u32,
+        }
+    };
+    let mut new_points = front.apexes.clone();
+    new_points.extend_from_slice(&far.nodes);
+    new_points.extend_from_slice(&filled.points[points.len()..]);
+    let mut cells: Vec<(Shape, Vec<u32>)> = front
+        .pyramids
+        .iter()
+        .map(|p| (Shape::Pyramid, p.to_vec()))
+        .collect();
+    for t in &filled.tets {
+        let k = t.map(to_mesh);
+        cells.push((
+            Shape::Tet,
+            positive_tet(k, |v| node_of(mesh, &new_points, n0, v)),
+        ));
+    }
+    // the far field faces the domain; a boundary facet faces out of it
+    let far_facets = far
+        .facets
+        .iter()
+        .map(|f| {
+            let k = f.nodes();
+            let g = |i: usize| (far_first as u32) + k[i];
+            [g(0), g(2), g(1)]
+        })
+        .collect();
+    let stats = FillStats {
+        tets: filled.tets.len(),
+        pyramids: front.pyramids.len(),
+        steiner_points: filled.steiner_points,
+        refinement_points: filled.refinement_points,
+        max_dihedral_deg: filled.max_dihedral_deg,
+        farfield_facets: far.facets.len(),
+    };
+    Ok(Filled {
+        first_point: n0,
+        points: new_points,
+        cells,
+        far_facets,
+        stats,
+    })
+}
+
+/// Node `v`'s coordinates: a mesh node, or a new point numbered from `n0`.
+fn node_of(mesh: &Mesh, new: &[[f64; 3]], n0: usize, v: u32) -> [f64; 3] {
+    match mesh.nodes.get(v as usize) {
+        Some(&p) if (v as usize) < n0 => p,
+        _ => new[v as usize - n0],
+    }
+}
+
+/// The tetrahedron `k` in the mesh's orientation (Gmsh's: `orient3d` negative), two corners
+/// swapped where it is the other way.
+fn positive_tet(k: [u32; 4], x: impl Fn(u32) -> [f64; 3]) -> Vec<u32> {
+    let [a, b, c, d] = k.map(&x);
+    if geom_predicates::orient3d(a, b, c, d) > 0.0 {
+        vec![k[0], k[2], k[1], k[3]]
+    } else {
+        k.to_vec()
+    }
+}
+
+/// The mesh's final front as the fill takes it: its triangles, and its quadrilaterals each
+/// capped by a pyramid (apex over the centre at 0.6 × the mean side, along the quad's normal)
+/// whose four sides join the front.
+fn front(mesh: &Mesh) -> Result<Front> {
+    let n0 = mesh.nodes.len() as u32;
+    let mut out = Front {
+        tris: Vec::new(),
+        pyramids: Vec::new(),
+        apexes: Vec::new(),
+    };
+    for (f, facet) in mesh.boundary.iter().enumerate() {
+        let patch = mesh.boundary_patch[f] as usize;
+        if mesh.patches.get(patch).map(|p| p.role) != Some(Role::Farfield) {
+            continue;
+        }
+        let k = facet.corners();
+        match k.len() {
+            3 => out.tris.push([k[0], k[1], k[2]]),
+            4 => {
+                let x: [[f64; 3]; 4] = std::array::from_fn(|i| mesh.nodes[k[i] as usize]);
+                let apex = apex_over(&x);
+                let a = n0 + out.apexes.len() as u32;
+                out.apexes.push(apex);
+                out.pyramids.push([k[0], k[1], k[2], k[3], a]);
+                for i in 0..4 {
+                    out.tris.push([k[i], k[(i + 1) % 4], a]);
+                }
+            }
+            n => bail!("the final front has a facet of {n} corners"),
+        }
+    }
+    Ok(out)
+}
+
+/// The apex of the pyramid capping the quad `x` (facing out of the layers): over its centre,
+/// along its normal, 0.6 × its mean side high (a pyramid of equal edges is 0.71 × high).
+fn apex_over(x: &[[f64; 3]; 4]) -> [f64; 3] {
+    let c: [f64; 3] = std::array::from_fn(|d| x.iter().map(|p| p[d]).sum::<f64>() / 4.0);
+    let n = geom_surface::unit(geom_predicates::vector::cross3(
+        geom_predicates::vector::sub(x[2], x[0]),
+        geom_predicates::vector::sub(x[3], x[1]),
+    ));
+    let side = (0..4)
+        .map(|i| geom_predicates::vector::dist(x[i], x[(i + 1) % 4]))
+        .sum::<f64>()
+        / 4.0;
+    std::array::from_fn(|d| c[d] + 0.6 * side * n[d])
+}
+
+/// Puts the fill into the linear `mesh` it was made from: the new points and cells (layer and
+/// pipe [`NONE`]), the front's facets dropped from the boundary, the far field's in the mesh's
+/// `farfield` patch.
+pub fn apply_linear(mesh: &mut Mesh, filled: &Filled) {
+    mesh.nodes.extend_from_slice(&filled.points);
+    for (shape, k) in &filled.cells {
+        mesh.cells.push(CellType::new(*shape, 1), k);
+        mesh.cell_layer.push(NONE);
+        mesh.cell_pipe.push(NONE);
+    }
+    let far = replace_front(mesh);
+    for t in &filled.far_facets {
+        mesh.boundary.push(CellType::new(Shape::Tri, 1), t);
+        mesh.boundary_patch.push(far);
+    }
+}
+
+/// Drops the far-field-role facets (the final front) from `mesh`'s boundary; the index of the
+/// patch they were in (`outer`), renamed `farfield`, which the far field's facets join.
+fn replace_front(mesh: &mut Mesh) -> u32 {
+    let far = mesh
+        .patches
+        .iter()
+        .position(|p| p.role == Role::Farfield)
+        .unwrap_or(mesh.patches.len()) as u32;
+    if far as usize == mesh.patches.len() {
+        mesh.patches.push(mesh_model::Patch {
+            name: String::new(),
+            role: Role::Farfield,
+        });
+    }
+    mesh.patches[far as usize].name = Role::Farfield.name().into();
+    let patches = &mesh.patches;
+    let drop: Vec<usize> = (0..mesh.boundary.len())
+        .filter(|&f| patches[mesh.boundary_patch[f] as usize].role == Role::Farfield)
+        .collect();
+    mesh.boundary.remove_sorted(&drop);
+    mesh_model::cells::remove_sorted(&mut mesh.boundary_patch, &drop);
+    far
+}
+
+/// Puts the fill into the curved mesh (order 2 or 3) made from the linear mesh it was made
+/// from (whose nodes are its first): each new cell and far-field facet straight, at the curved
+/// mesh's order, its high-order nodes on the front the curved mesh's own (found by their
+/// weights on the front facets' corners), the others new.
+pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<()> {
+    let order = curved.order;
+    let shift = curved.nodes.len() - filled.first_point;
+    let renum = |v: u32| -> u32 {
+        if (v as usize) < filled.first_point {
+            v
+        } else {
+            v + shift as u32
+        }
+    };
+    curved.nodes.extend_from_slice(&filled.points);
+    // the front's high-order nodes by their weights on its corners
+    let mut nodes: HashMap<Vec<(u32, i64)>, u32> = HashMap::new();
+    for (f, facet) in curved.boundary.iter().enumerate() {
+        if curved.patches[curved.boundary_patch[f] as usize].role != Role::Farfield {
+            continue;
+        }
+        let refs = reference(facet.ty)?;
+        let k = facet.corners();
+        for (r, &v) in refs.iter().zip(facet.nodes) {
+            nodes.insert(key(&weights(facet.ty.shape, *r), k), v);
+        }
+    }
+    let far = replace_front(curved);
+    let mut buf = Vec::new();
+    let mut lift = |shape: Shape, corners: &[u32], curved: &mut Mesh| -> Result<Vec<u32>> {
+        let ty = CellType::new(shape, order);
+        let k: Vec<u32> = corners.iter().map(|&v| renum(v)).collect();
+        buf.clear();
+        for r in reference(ty)? {
+            let w = weights(shape, r);
+            let id = key(&w, &k);
+            let v = *nodes.entry(id).or_insert_with(|| {
+                let x = w.iter().fold([0.0; 3], |acc, &(i, wi)| {
+                    let p = curved.nodes[k[i] as usize];
+                    std::array::from_fn(|d| acc[d] + wi * p[d])
+                });
+                curved.nodes.push(x);
+                (curved.nodes.len() - 1) as u32
+            });
+            buf.push(v);
+        }
+        Ok(buf.clone())
+    };
+    for (shape, k) in &filled.cells {
+        let all = lift(*shape, k, curved)?;
+        curved.cells.push(CellType::new(*shape, order), &all);
+        curved.cell_layer.push(NONE);
+        curved.cell_pipe.push(NONE);
+    }
+    for t in &filled.far_facets {
+        let all = lift(Shape::Tri, t, curved)?;
+        curved.boundary.push(CellType::new(Shape::Tri, order), &all);
+        curved.boundary_patch.push(far);
+    }
+    Ok(())
+}
+
+/// The reference coordinates of `ty`'s nodes.
+fn reference(ty: CellType) -> Result<Vec<[f64; 3]>> {
+    mesh_model::reference::reference_nodes(ty)
+        .ok_or_else(|| input_error!("the volume fill: no reference nodes for {ty:?}"))
+}
+
+/// The weights of a straight cell's corners at reference point `r` (Gmsh's reference cells):
+/// barycentric on triangles and tetrahedra, bilinear on quadrilaterals, and on the pyramid the
+/// base's bilinear weights shrunk towards the apex. Zero weights left out.
+fn weights(shape: Shape, r: [f64; 3]) -> Vec<(usize, f64)> {
+    let [x, y, z] = r;
+    let bilinear = |x: f64, y: f64| {
+        [
+            (1.0 - x) * (1.0 - y) / 4.0,
+            (1.0 + x) * (1.0 - y) / 4.0,
+            (1.0 + x) * (1.0 + y) / 4.0,
+            (1.0 - x) * (1.0 + y) / 4.0,
+        ]
+    };
+    let w: Vec<f64> = match shape {
+        Shape::Tri => vec![1.0 - x - y, x, y],
+        Shape::Tet => vec![1.0 - x - y - z, x, y, z],
+        Shape::Quad => bilinear(x, y).to_vec(),
+        Shape::Pyramid if z >= 1.0 => vec![0.0, 0.0, 0.0, 0.0, 1.0],
+        Shape::Pyramid => {
+            let s = 1.0 - z;
+            let mut w: Vec<f64> = bilinear(x / s, y / s).iter().map(|b| b * s).collect();
+            w.push(z);
+            w
+        }
+        _ => Vec::new(),
+    };
+    w.into_iter()
+        .enumerate()
+        .filter(|&(_, wi)| wi.abs() > 1e-12)
+        .collect()
+}
+
+/// A node's key: its corners' global numbers with their weights (to 1e-9), sorted.
+fn key(w: &[(usize, f64)], corners: &[u32]) -> Vec<(u32, i64)> {
+    let mut k: Vec<(u32, i64)> = w
+        .iter()
+        .map(|&(i, wi)| (corners[i], (wi * 1e9).round() as i64))
+        .collect();
+    k.sort_unstable();
+    k
+}
+
+/// Growth stops before a layer higher than this × the front's mean edge where a fill follows:
+/// the layers end about isotropic, the fill's first tetrahedra as tall as they are wide.
+pub const STOP_ASPECT: f64 = 1.0;
+
+/// The far field of `case` (`[farfield]` `f`) triangulated, and the thickness the layers must
+/// stay under: half the least depth of a wall node inside it. A body not strictly inside it
+/// is refused, naming the body's first node outside.
+pub fn farfield_for(
+    case: &Case3d,
+    f: &crate::case3d::Farfield,
+    wall: &Surface,
+) -> Result<(Surface, f64)> {
+    let mut least = f64::INFINITY;
+    for (i, &p) in wall.nodes.iter().enumerate() {
+        let depth = f.shape.depth(p);
+        if depth <= 0.0 {
+            bail!(
+                "{}: [farfield]: the wall's node {i} at ({:.4}, {:.4}, {:.4}) is not inside the far field: every body must lie strictly inside it",
+                case.origin,
+                p[0],
+                p[1],
+                p[2]
+            );
+        }
+        least = least.min(depth);
+    }
+    Ok((Surface::farfield(&f.shape, f.max_size), least / 2.0))
+}
+
+/// Where a fill follows, a column facing another front nearer than this × its next layer's
+/// height stops ([`afsf3d::LayerParams::stop_gap`]): both fronts could still grow a layer, and
+/// a gap of a layer's height is left for the fill.
+pub const STOP_GAP: f64 = 3.0;
+
+/// `case` with its layers set to stop before the fill: at [`STOP_ASPECT`], facing another
+/// front at [`STOP_GAP`], and under `max_thickness`.
+pub fn layers_before_fill(case: &Case3d, max_thickness: f64) -> Case3d {
+    let mut c = case.clone();
+    c.layers.stop_aspect = STOP_ASPECT;
+    c.layers.stop_gap = STOP_GAP;
+    c.layers.max_thickness = max_thickness;
+    c
+}
+
+/// The fill's options for `case`: its far field's `max_size`, the crate's defaults otherwise.
+pub fn options(case: &Case3d) -> tet_fill::FillOptions {
+    tet_fill::FillOptions {
+        max_size: case.farfield.map_or(f64::INFINITY, |f| f.max_size),
+        ..tet_fill::FillOptions::default()
+    }
+}
