@@ -228,7 +228,7 @@ def test_airfoil_coordinates_with_the_airfoil_options():
 def test_a_3d_case_and_an_stl_surface(tmp_path):
     sphere = curvemesh.mesh("sphere", order=1)
     assert sphere.valid and sphere.dimension == 3 and sphere.points.shape[1] == 3
-    assert list(sphere.groups) == ["wall", "farfield"]
+    assert list(sphere.groups) == ["wall", "outer"]
     assert len(sphere.scaled_jacobian) == 0
     # its wall, turned to face out of the body, as an STL file: the same surface meshed again
     wall = sphere.groups["wall"][0][1][:, ::-1]
