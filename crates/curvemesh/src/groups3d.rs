@@ -1,8 +1,9 @@
-//! The boundary groups of a 3D mesh: one per patch of its wall surface, then `farfield` (the
-//! final front). A surface read from a file gets a patch per group the file gives (an STL's
-//! solids, a `.msh`'s physical surfaces: `mesh_io::stl::GroupedSurface`), named as 2D names
-//! its walls (`case::wall_group_name`: identifiers, unique; an unnamed solid is `wall`,
-//! `wall_2`, …); the built-in surfaces bring their own (`wall`; the wing's `wall`, `tip-root`
+//! The boundary groups of a 3D mesh: one per patch of its wall surface, then `outer` (the
+//! final front; `farfield` once a fill reaches a far field). A surface read from a file gets a
+//! patch per group the file gives (an STL's solids, a `.msh`'s physical surfaces:
+//! `mesh_io::stl::GroupedSurface`), named as 2D names its walls (`case::wall_group_name`:
+//! identifiers, unique; an unnamed solid is `wall`, `wall_2`, …), and an unnamed group holding
+//! several closed bodies (a binary STL of two spheres) a patch per body; the built-in surfaces bring their own (`wall`; the wing's `wall`, `tip-root`
 //! and `tip-far`). The cut mesh's wall facets are put back in their surface facet's patch
 //! ([`wall_groups`]), so the `.msh` physical groups, `.vtu` `boundary_group` and SU2 markers
 //! follow the surface's patches.
@@ -16,7 +17,8 @@ use crate::error::{Result, input_error};
 
 /// The wall surface of a file's triangles, a patch per group, named as boundary groups (an
 /// unnamed group is `wall`). Not checked: call [`Surface::check`].
-pub fn surface_of_file(read: GroupedSurface) -> Surface {
+pub fn surface_of_file(mut read: GroupedSurface) -> Surface {
+    split_unnamed_bodies(&mut read);
     let mut taken: Vec<String> = vec![
         Role::Farfield.name().into(),
         "fluid".into(),
@@ -44,6 +46,51 @@ pub fn surface_of_file(read: GroupedSurface) -> Surface {
             .collect(),
         facet_patch: read.triangle_group,
         patches,
+    }
+}
+
+/// Each unnamed group (`""`) of `read` that holds several bodies (components joined by no
+/// node) becomes one group per body, in the order of their first triangles: several closed
+/// components of one STL are several bodies, each its own boundary group (`wall`, `wall_2`,
+/// …). Named groups stay whole: solids given one name share their group.
+fn split_unnamed_bodies(read: &mut GroupedSurface) {
+    let n = read.nodes.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut v: u32) -> u32 {
+        while parent[v as usize] != v {
+            let up = parent[parent[v as usize] as usize];
+            parent[v as usize] = up;
+            v = up;
+        }
+        v
+    }
+    for t in &read.triangles {
+        for i in 1..3 {
+            let (a, b) = (root(&mut parent, t[0]), root(&mut parent, t[i]));
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    // (group, body root) → new group, the first body of a group keeping it
+    let mut seen: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
+    let mut first_body: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    for (t, g) in read.triangles.iter().zip(read.triangle_group.iter_mut()) {
+        let group = &read.groups[*g as usize];
+        if !(group.name.is_empty() && group.role == Role::Wall) {
+            continue;
+        }
+        let body = root(&mut parent, t[0]);
+        let first = *first_body.entry(*g).or_insert(body);
+        if body == first {
+            continue;
+        }
+        let new = *seen.entry((*g, body)).or_insert_with(|| {
+            read.groups.push(Patch {
+                name: String::new(),
+                role: Role::Wall,
+            });
+            (read.groups.len() - 1) as u32
+        });
+        *g = new;
     }
 }
 
@@ -132,6 +179,29 @@ mod tests {
             triangle_group,
             groups,
         }
+    }
+
+    /// Two tetrahedra apart in one unnamed group are two bodies, `wall` and `wall_2`; named
+    /// alike they stay one group.
+    #[test]
+    fn an_unnamed_group_of_two_bodies_is_two_groups() {
+        let mut read = tet(vec![patch("", Role::Wall)], vec![0; 4]);
+        let far: Vec<[f64; 3]> = read
+            .nodes
+            .iter()
+            .map(|p| [p[0] + 5.0, p[1], p[2]])
+            .collect();
+        read.nodes.extend(far);
+        let more: Vec<[u32; 3]> = read.triangles.iter().map(|t| t.map(|v| v + 4)).collect();
+        read.triangles.extend(more);
+        read.triangle_group.extend([0; 4]);
+        let mut named = read.clone();
+        let s = surface_of_file(read);
+        assert_eq!(names(&s), ["wall", "wall_2"]);
+        assert_eq!(s.facet_patch, [0, 0, 0, 0, 1, 1, 1, 1]);
+        assert_eq!(s.check(), Ok(()));
+        named.groups[0].name = "pods".into();
+        assert_eq!(names(&surface_of_file(named)), ["pods"]);
     }
 
     #[test]
