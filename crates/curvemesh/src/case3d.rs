@@ -565,9 +565,10 @@ fn farfield(k: &FarfieldKeys, origin: &str) -> Result<Farfield> {
     let extent = shape.extent();
     let max_size = positive(k.max_size, extent / 10.0, &at, "max_size")?;
     // a sphere's area 4πr², a box's six faces at most 6 e²: two triangles per size²
-    let triangles = 2.0 * 6.0 * (extent / max_size).powi(2);
+    let too_many =
+        2.0 * 6.0 * (extent / max_size).powi(2) > geom_surface::MAX_FARFIELD_TRIANGLES as f64;
     ensure!(
-        triangles <= geom_surface::MAX_FARFIELD_TRIANGLES as f64,
+        !too_many,
         "{at} max_size = {max_size}: too small for a far field {extent} across (at most {} triangles; at least {:.3e})",
         geom_surface::MAX_FARFIELD_TRIANGLES,
         extent * (12.0 / geom_surface::MAX_FARFIELD_TRIANGLES as f64).sqrt()
