@@ -111,6 +111,9 @@ pub enum SurfaceSource {
         /// `cap` (default `"fill"`: isotropic triangles; `"layers"`: the 2D mesher's layers
         /// inside the section), [`crate::wing::CapMesh`].
         cap: crate::wing::CapMesh,
+        /// `element`: of a 2D case with several wall loops, the one (by its name) extruded
+        /// (`None`: the case's only wall loop).
+        element: Option<String>,
     },
 }
 
@@ -155,6 +158,7 @@ struct SurfaceKeys {
     divisions: Option<usize>,
     triangles: Option<bool>,
     cap: Option<crate::wing::CapMesh>,
+    element: Option<String>,
     translate: Option<[f64; 3]>,
     name: Option<String>,
 }
@@ -430,6 +434,7 @@ fn wing_source(
         first_height,
         triangles,
         cap: k.cap.unwrap_or_default(),
+        element: k.element.clone(),
     })
 }
 
@@ -583,6 +588,7 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, at: &str) -> Result<S
         return wing_source(k, name, files, &at);
     }
     let wing_only = [
+        ("element", k.element.is_some()),
         ("span", k.span.is_some()),
         ("first_height", k.first_height.is_some()),
         ("cap", k.cap.is_some()),

@@ -192,9 +192,29 @@ fn body_surface(case: &Case3d, source: &SurfaceSource) -> Result<(Surface, TrueS
             first_height,
             triangles,
             cap,
+            element,
         } => {
             let at = || format!("{}: [surface] wing = {section:?}", case.origin);
             let mut section_case = crate::load::load_2d(section).with_context(at)?;
+            if let Some(name) = element {
+                // that wall loop alone (the far field's loops stay: they shape nothing here)
+                let walls: Vec<String> = section_case
+                    .loops
+                    .iter()
+                    .filter(|l| l.role == Role::Wall)
+                    .map(|l| l.name.clone())
+                    .collect();
+                if !walls.contains(name) {
+                    return Err(input_error!(
+                        "{}: [surface] element = {name:?}: the case {section:?} has no wall loop of that name (it has {})",
+                        case.origin,
+                        walls.join(", ")
+                    ));
+                }
+                section_case
+                    .loops
+                    .retain(|l| l.role != Role::Wall || &l.name == name);
+            }
             if let Some(h) = first_height {
                 section_case.layers.first_height = *h;
             }
