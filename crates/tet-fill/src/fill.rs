@@ -73,6 +73,7 @@ fn box_corners(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
 pub(crate) fn run(input: &FillInput, options: &FillOptions) -> Result<Fill, FillError> {
     check_points(input.points)?;
     check_facets(input)?;
+    crate::intersect::check_disjoint(input)?;
     let n = input.points.len();
     if n + 8 > options.max_points {
         return Err(FillError::TooManyPoints {
@@ -99,6 +100,10 @@ fn recover_all(
 ) -> Result<(FaceSet, usize), FillError> {
     let mut rec = Recovery::new(mesh, max_points);
     rec.keep_present(input.facets);
+    // every edge first: facets kept early would wall in the edges' cavities
+    for &f in input.facets {
+        rec.recover_edges(f);
+    }
     // a Steiner point may take back an earlier facet's edges: a few passes
     for pass in 0..4 {
         let mut missing = 0;

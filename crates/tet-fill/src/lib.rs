@@ -28,10 +28,12 @@
 //! ```
 
 mod build;
+mod cavity;
 mod error;
 mod fill;
 mod flip;
 mod insert;
+mod intersect;
 mod mesh;
 mod order;
 mod quality;

@@ -6,10 +6,11 @@
 //! the flips are tried again. Recovered facets and input edges are kept from then on.
 
 use crate::flip::{EdgeSet, Kept, edge_key};
-use crate::insert::{FaceSet, Located, Scratch};
+use crate::insert::{BuildFx, FaceSet, Located, Scratch};
 use crate::mesh::{GHOST, Mesh, face_key, face_of};
 use crate::quality::shape;
 use geom_predicates::{SegmentMeet, orient3d, segment_meet, segment_meets_triangle};
+use std::collections::HashSet;
 
 /// What recovery works with: the mesh, the kept faces and edges, a tet per vertex.
 pub(crate) struct Recovery<'m> {
@@ -59,17 +60,41 @@ impl<'m> Recovery<'m> {
         {
             return cached;
         }
+        // rare: the first call, or a vertex missed by `note_tets`
         self.vt = vec![GHOST; self.mesh.points.len()];
         for t in 0..self.mesh.tets.len() as u32 {
             if !self.mesh.is_dead(t) {
-                for &w in &self.mesh.tets[t as usize] {
-                    if w != GHOST {
-                        self.vt[w as usize] = t;
-                    }
-                }
+                self.note_tet(t);
             }
         }
         self.vt[v as usize]
+    }
+
+    /// Records `t` as a tet holding each of its corners.
+    fn note_tet(&mut self, t: u32) {
+        for &w in &self.mesh.tets[t as usize] {
+            if w != GHOST {
+                if self.vt.len() <= w as usize {
+                    self.vt
+                        .resize(self.mesh.points.len().max(w as usize + 1), GHOST);
+                }
+                self.vt[w as usize] = t;
+            }
+        }
+    }
+
+    /// Records new tets: every corner of a replaced tet is a corner of one of them.
+    pub(crate) fn note_tets(&mut self, made: &[u32]) {
+        for &t in made {
+            self.note_tet(t);
+        }
+    }
+
+    /// `mesh.replace`, keeping the tet of each vertex.
+    fn swap_tets(&mut self, old: &[u32], new: &[[u32; 4]]) -> Vec<u32> {
+        let made = self.mesh.replace(old, new);
+        self.note_tets(&made);
+        made
     }
 
     /// The tets holding `v`.
@@ -115,9 +140,10 @@ impl<'m> Recovery<'m> {
     /// that `meets` says touches it.
     fn region(&mut self, corners: &[u32], meets: impl Fn(&Mesh, [u32; 3]) -> bool) -> Vec<u32> {
         let mut set: Vec<u32> = Vec::new();
+        let mut seen: HashSet<u32, BuildFx> = HashSet::default();
         for &c in corners {
             for t in self.star(c) {
-                if !set.contains(&t) {
+                if seen.insert(t) {
                     set.push(t);
                 }
             }
@@ -129,7 +155,8 @@ impl<'m> Recovery<'m> {
             for i in 0..4 {
                 let f = face_of(self.mesh.tets[t as usize], i);
                 let n = self.mesh.neighbour(t, i);
-                if !f.contains(&GHOST) && !set.contains(&n) && meets(self.mesh, f) {
+                if !f.contains(&GHOST) && !seen.contains(&n) && meets(self.mesh, f) {
+                    seen.insert(n);
                     set.push(n);
                 }
             }
@@ -264,7 +291,7 @@ impl<'m> Recovery<'m> {
                 return false;
             };
             let before: Vec<[u32; 4]> = old.iter().map(|&t| self.mesh.tets[t as usize]).collect();
-            let made = self.mesh.replace(&old, &new);
+            let made = self.swap_tets(&old, &new);
             match cross(self) {
                 None => return true,
                 Some(after)
@@ -274,7 +301,7 @@ impl<'m> Recovery<'m> {
                 }
                 _ => {}
             }
-            self.mesh.replace(&made, &before);
+            self.swap_tets(&made, &before);
         }
         false
     }
@@ -321,6 +348,27 @@ impl<'m> Recovery<'m> {
         candidates
     }
 
+    /// The tets that the segment crossing `c` passes through: both sides of each crossed face
+    /// and the rings of the crossed edges.
+    fn edge_cavity(&self, c: &Crossings) -> Vec<u32> {
+        let mut set = Vec::new();
+        for &(t, i) in &c.faces {
+            set.push(t);
+            set.push(self.mesh.neighbour(t, i));
+        }
+        self.rings(&c.edges, set)
+    }
+
+    /// `set` with the tets around each edge added, deduplicated.
+    fn rings(&self, edges: &[(u32, u32, u32)], mut set: Vec<u32>) -> Vec<u32> {
+        for &(x, y, t) in edges {
+            set.extend(self.mesh.ring(t, x, y).0);
+        }
+        set.sort_unstable();
+        set.dedup();
+        set
+    }
+
     /// Recovers edge `a b` by flips. Err: why not.
     fn recover_edge_by_flips(&mut self, a: u32, b: u32) -> Result<(), String> {
         let cross = |r: &mut Self| {
@@ -337,6 +385,10 @@ impl<'m> Recovery<'m> {
             };
             if let Some(w) = c.vertex {
                 return Err(format!("edge {a}-{b} passes through point {w}"));
+            }
+            let cavity = self.edge_cavity(&c);
+            if self.edge_by_cone(a, b, &cavity) {
+                continue;
             }
             if !self.flip_once(&cross, false) && !self.flip_once(&cross, true) {
                 return Err(format!(
@@ -365,6 +417,10 @@ impl<'m> Recovery<'m> {
             if let Some(w) = c.vertex {
                 return Err(format!("point {w} lies on the facet"));
             }
+            let cavity = self.rings(&c.edges, Vec::new());
+            if self.facet_by_cavity(f, &cavity) {
+                continue;
+            }
             if !self.flip_once(&cross, false) && !self.flip_once(&cross, true) {
                 return Err(format!(
                     "crossed by {} edges that no flip removes",
@@ -373,6 +429,14 @@ impl<'m> Recovery<'m> {
             }
         }
         Err("flips do not converge".into())
+    }
+
+    /// Recovers the edges of facet `f` by cones and flips (no Steiner point); kept once there.
+    pub fn recover_edges(&mut self, f: [u32; 3]) {
+        for k in 0..3 {
+            // a failure is retried with the facet, Steiner points allowed
+            let _ = self.recover_edge_by_flips(f[k], f[(k + 1) % 3]);
+        }
     }
 
     /// Recovers facet `f` (corners counter-clockwise seen from the fill): its edges, then
@@ -433,6 +497,7 @@ impl<'m> Recovery<'m> {
             .insert(v, t, Some(&self.faces), &mut self.scratch, &mut new)
         {
             self.steiner += 1;
+            self.note_tets(&new);
             Ok(true)
         } else {
             self.mesh.points.pop();
