@@ -88,8 +88,10 @@ pub(crate) fn run(input: &FillInput, options: &FillOptions) -> Result<Fill, Fill
     let (faces, steiner) = recover_all(&mut mesh, input, options.max_points)?;
     let mut side = classify(&mesh, input.facets, &faces)?;
     let refinement_points = crate::refine::refine(&mut mesh, &mut side, &faces, input, options)?;
-    crate::sliver::improve(&mut mesh, &mut side, &faces, n + 8, options);
-    Ok(output(&mesh, &side, n, steiner, refinement_points))
+    let facets = crate::refine::Facets::new(input);
+    let encroached = |q: [f64; 3]| facets.encroached(q);
+    let added = crate::sliver::improve(&mut mesh, &mut side, &faces, n + 8, options, &encroached);
+    Ok(output(&mesh, &side, n, steiner, refinement_points + added))
 }
 
 /// Recovers every facet; the kept faces and the Steiner points added.
@@ -141,16 +143,44 @@ fn recover_all(
     Ok((rec.faces, steiner))
 }
 
-/// The inside tets, with the box's corners dropped from the numbering.
-fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize, refinement_points: usize) -> Fill {
-    let remap = |v: u32| if (v as usize) < n { v } else { v - 8 };
-    let mut points = mesh.points[..n].to_vec();
-    points.extend_from_slice(&mesh.points[n + 8..]);
-    let tets: Vec<[u32; 4]> = (0..mesh.tets.len())
+/// The inside tets, with the box's corners dropped from the numbering and so are the added
+/// points no inside tet uses (Steiner points that fell outside the region); `steiner` added
+/// points come first, the refinement's after.
+fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize, added: usize) -> Fill {
+    let inside: Vec<[u32; 4]> = (0..mesh.tets.len())
         .filter(|&t| side.get(t) == Some(&Side::Inside) && !mesh.is_dead(t as u32))
-        .map(|t| mesh.tets[t].map(remap))
+        .map(|t| mesh.tets[t])
         .collect();
-    debug_assert!(tets.iter().all(|t| !t.contains(&GHOST)));
+    debug_assert!(inside.iter().all(|t| !t.contains(&GHOST)));
+    let mut remap = vec![u32::MAX; mesh.points.len()];
+    for (v, r) in remap.iter_mut().enumerate().take(n) {
+        *r = v as u32;
+    }
+    for t in &inside {
+        for &v in t {
+            if v as usize >= n {
+                remap[v as usize] = 0;
+            }
+        }
+    }
+    let mut points = mesh.points[..n].to_vec();
+    let (mut steiner_points, mut refinement_points) = (0, 0);
+    for (v, r) in remap.iter_mut().enumerate().skip(n + 8) {
+        if *r == 0 {
+            *r = points.len() as u32;
+            points.push(mesh.points[v]);
+            if v < n + 8 + steiner {
+                steiner_points += 1;
+            } else {
+                refinement_points += 1;
+            }
+        }
+    }
+    debug_assert!(steiner + added >= steiner_points + refinement_points);
+    let tets: Vec<[u32; 4]> = inside
+        .iter()
+        .map(|t| t.map(|v| remap[v as usize]))
+        .collect();
     let max_dihedral_deg = tets
         .iter()
         .map(|t| max_dihedral_deg(t.map(|v| points[v as usize])))
@@ -158,7 +188,7 @@ fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize, refinement_point
     Fill {
         points,
         tets,
-        steiner_points: steiner,
+        steiner_points,
         refinement_points,
         max_dihedral_deg,
     }

@@ -29,34 +29,38 @@ pub(crate) fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// The largest of a tet's six dihedral angles, in degrees (180 for a flat tet).
 pub(crate) fn max_dihedral_deg(p: [[f64; 3]; 4]) -> f64 {
-    // the outward normals of the faces opposite each corner; the dihedral angle at the edge
-    // between faces i and j is π minus the angle between their outward normals
-    let normals: Vec<[f64; 3]> = (0..4)
-        .map(|i| {
-            let f: Vec<usize> = (0..4).filter(|&k| k != i).collect();
-            let n = cross(sub(p[f[0]], p[f[1]]), sub(p[f[0]], p[f[2]]));
-            let towards = sub(p[f[0]], p[i]);
-            let s = if dot(n, towards) > 0.0 { -1.0 } else { 1.0 };
-            let len = dot(n, n).sqrt();
-            if len == 0.0 {
-                [0.0; 3]
-            } else {
-                n.map(|x| s * x / len)
-            }
-        })
-        .collect();
-    let mut worst: f64 = 0.0;
+    dihedral_worst(p)
+}
+
+/// The largest of a tet's six dihedral angles, in degrees (180 for a flat tet), either
+/// orientation: no allocation, one `acos`.
+pub(crate) fn dihedral_worst(p: [[f64; 3]; 4]) -> f64 {
+    // the outward unit normals of the faces opposite each corner; the dihedral angle at the
+    // edge between faces i and j is π minus the angle between their outward normals, so the
+    // largest angle is where two normals align most
+    let mut normals = [[0.0; 3]; 4];
+    for (i, n) in normals.iter_mut().enumerate() {
+        let [a, b, c] = crate::mesh::FACE[i].map(|k| p[k]);
+        let m = cross(sub(a, b), sub(a, c));
+        let len = dot(m, m).sqrt();
+        if len == 0.0 || !len.is_finite() {
+            return 180.0;
+        }
+        // away from corner i
+        let s = if dot(m, sub(p[i], a)) > 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        *n = m.map(|x| s * x / len);
+    }
+    let mut most = -1.0f64;
     for i in 0..4 {
         for j in i + 1..4 {
-            let c = dot(normals[i], normals[j]).clamp(-1.0, 1.0);
-            worst = worst.max(180.0 - c.acos().to_degrees());
+            most = most.max(dot(normals[i], normals[j]));
         }
     }
-    if normals.contains(&[0.0; 3]) {
-        180.0
-    } else {
-        worst
-    }
+    180.0 - most.clamp(-1.0, 1.0).acos().to_degrees()
 }
 
 /// A shape measure in (0, 1]: 1 for the regular tet, towards 0 for flat ones (6√2 times the

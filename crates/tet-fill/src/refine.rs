@@ -70,7 +70,7 @@ impl SizeField {
 }
 
 /// The input facets' diametral spheres, searched by centre.
-struct Facets {
+pub(crate) struct Facets {
     tree: PointTree<3>,
     centre: Vec<[f64; 3]>,
     radius: Vec<f64>,
@@ -78,7 +78,7 @@ struct Facets {
 }
 
 impl Facets {
-    fn new(input: &FillInput) -> Self {
+    pub(crate) fn new(input: &FillInput) -> Self {
         let mut centre = Vec::with_capacity(input.facets.len());
         let mut radius = Vec::with_capacity(input.facets.len());
         for f in input.facets {
@@ -106,7 +106,7 @@ impl Facets {
     }
 
     /// Whether `p` lies strictly inside some facet's diametral sphere.
-    fn encroached(&self, p: [f64; 3]) -> bool {
+    pub(crate) fn encroached(&self, p: [f64; 3]) -> bool {
         self.tree
             .within(p, self.largest)
             .iter()

@@ -334,3 +334,34 @@ pub fn radius_edge(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
     }
     radius / short
 }
+
+/// A tet's largest dihedral angle in degrees: at each edge, the angle between the other two
+/// corners' offsets perpendicular to it.
+pub fn max_dihedral(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
+    let q = t.map(|v| p[v as usize]);
+    let sub = |a: [f64; 3], b: [f64; 3]| [0, 1, 2].map(|k| a[k] - b[k]);
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut worst: f64 = 0.0;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            // the edge shared by the faces opposite i and j, and the two other corners
+            let e: Vec<usize> = (0..4).filter(|&k| k != i && k != j).collect();
+            let axis = sub(q[e[1]], q[e[0]]);
+            // the components of the other corners perpendicular to the edge
+            let perp = |x: [f64; 3]| {
+                let d = sub(x, q[e[0]]);
+                let s = dot(d, axis) / dot(axis, axis);
+                [0, 1, 2].map(|k| d[k] - s * axis[k])
+            };
+            let (u, w) = (perp(q[i]), perp(q[j]));
+            let c = dot(u, w) / (dot(u, u) * dot(w, w)).sqrt();
+            let angle = if c.is_finite() {
+                c.clamp(-1.0, 1.0).acos().to_degrees()
+            } else {
+                180.0
+            };
+            worst = worst.max(angle);
+        }
+    }
+    worst
+}

@@ -5,3 +5,4 @@ mod common;
 
 mod delaunay;
 mod fill;
+mod sliver;
