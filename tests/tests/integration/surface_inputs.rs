@@ -1,6 +1,6 @@
 //! 3D surfaces from files and their boundary groups, through the command as `main` runs it:
 //! each named solid of an ASCII STL is a group of its own in the `.msh`, `.vtu` and `.su2`
-//! (unnamed solids `wall`, `wall_2`; a binary STL one `wall`), each physical surface of an
+//! (unnamed solids `wall`, `wall_2`; a binary STL's bodies likewise), each physical surface of an
 //! input `.msh` (facets in none: `wall`), the built-in wing's tips apart from its side; and
 //! the surfaces refused with exit 1 and one line: a body inside another, a degenerate facet,
 //! an extension no reader knows.
@@ -160,15 +160,15 @@ fn each_named_solid_of_an_ascii_stl_is_a_group() {
     ]);
     std::fs::write(d.join("two.stl"), stl).unwrap();
     let g = mesh_groups(d, &case(d, "file = \"two.stl\""));
-    assert_eq!(g.physical, ["fluid", "left_body", "right", "farfield"]);
-    assert_eq!(g.markers, ["left_body", "right", "farfield"]);
-    assert_eq!(g.vtu, ["left_body", "right", "farfield"]);
+    assert_eq!(g.physical, ["fluid", "left_body", "right", "outer"]);
+    assert_eq!(g.markers, ["left_body", "right", "outer"]);
+    assert_eq!(g.vtu, ["left_body", "right", "outer"]);
     let walls = [("left_body".to_string(), 80), ("right".to_string(), 80)];
     assert_eq!(g.walls, walls);
 }
 
 #[test]
-fn unnamed_solids_are_walls_and_a_binary_stl_is_one_wall() {
+fn unnamed_solids_are_walls_and_a_binary_stls_bodies_are_walls_too() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let (a, b) = (sphere(0.5, [0.0; 3]), sphere(0.3, [0.0, 2.0, 0.0]));
@@ -178,11 +178,13 @@ fn unnamed_solids_are_walls_and_a_binary_stl_is_one_wall() {
     )
     .unwrap();
     let g = mesh_groups(d, &case(d, "file = \"u.stl\""));
-    assert_eq!(g.markers, ["wall", "wall_2", "farfield"]);
+    assert_eq!(g.markers, ["wall", "wall_2", "outer"]);
     let both: Vec<_> = a.iter().chain(&b).copied().collect();
     std::fs::write(d.join("b.stl"), binary_stl(&both)).unwrap();
     let g = mesh_groups(d, &case(d, "file = \"b.stl\""));
-    assert_eq!(g.walls, [("wall".to_string(), 160)]);
+    // a binary STL names no solid: its two closed bodies are two groups all the same
+    let walls = [("wall".to_string(), 80), ("wall_2".to_string(), 80)];
+    assert_eq!(g.walls, walls);
 }
 
 /// A `.msh` surface of the triangles `tris`, triangle `i` in physical group `group[i]` (0:
@@ -263,10 +265,10 @@ fn the_wings_tips_are_groups_apart_from_its_side() {
     let d = dir.path();
     let surface = "wing = \"naca0012\"\nspan = 0.5\nfirst_height = 1e-2";
     let g = mesh_groups(d, &case(d, surface));
-    assert_eq!(g.markers, ["wall", "tip-root", "tip-far", "farfield"]);
+    assert_eq!(g.markers, ["wall", "tip-root", "tip-far", "outer"]);
     assert_eq!(
         g.physical,
-        ["fluid", "wall", "tip-root", "tip-far", "farfield"]
+        ["fluid", "wall", "tip-root", "tip-far", "outer"]
     );
     // the two caps alike, and far fewer facets than the side
     let (side, root, far) = (g.walls[0].1, g.walls[1].1, g.walls[2].1);
@@ -278,7 +280,7 @@ fn a_sphere_inside_a_sphere_is_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let stl = ascii_stl(&[
-        ("outer", sphere(1.0, [0.0; 3])),
+        ("shell", sphere(1.0, [0.0; 3])),
         ("inner", sphere(0.4, [0.1, 0.0, 0.0])),
     ]);
     std::fs::write(d.join("nested.stl"), stl).unwrap();
@@ -287,7 +289,7 @@ fn a_sphere_inside_a_sphere_is_refused_in_one_line() {
         &case(d, "file = \"nested.stl\""),
         &[
             "nested.stl",
-            "body 2 (group \"inner\", facet 80) lies inside body 1 (group \"outer\", facet 0)",
+            "body 2 (group \"inner\", facet 80) lies inside body 1 (group \"shell\", facet 0)",
         ],
     );
 }
