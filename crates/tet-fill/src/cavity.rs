@@ -304,6 +304,10 @@ impl Recovery<'_> {
         }
         for &t in old {
             let v = self.mesh.tets[t as usize];
+            // a vertex inside the cavity would be dropped by the cones
+            if v.iter().any(|w| !new.iter().any(|n| n.contains(w))) {
+                return false;
+            }
             let lost_face = FACE.iter().any(|f| {
                 let key = face_key(f.map(|k| v[k]));
                 self.faces.contains(&key) && !new_faces.contains(&key)

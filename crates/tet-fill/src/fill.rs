@@ -87,8 +87,9 @@ pub(crate) fn run(input: &FillInput, options: &FillOptions) -> Result<Fill, Fill
     tetrahedralise(&mut mesh, &all)?;
     let (faces, steiner) = recover_all(&mut mesh, input, options.max_points)?;
     let mut side = classify(&mesh, input.facets, &faces)?;
-    let refinement_points = crate::refine::refine(&mut mesh, &mut side, &faces, input, options)?;
     let facets = crate::refine::Facets::new(input);
+    let refinement_points =
+        crate::refine::refine(&mut mesh, &mut side, &faces, input, &facets, options)?;
     let encroached = |q: [f64; 3]| facets.encroached(q);
     let added = crate::sliver::improve(&mut mesh, &mut side, &faces, n + 8, options, &encroached);
     Ok(output(&mesh, &side, n, steiner, refinement_points + added))

@@ -19,6 +19,9 @@ pub(crate) struct Recovery<'m> {
     pub edges: EdgeSet,
     /// A tet holding each vertex, refreshed when stale.
     vt: Vec<u32>,
+    /// Per tet slot: the last search that saw it.
+    mark: Vec<u32>,
+    round: u32,
     /// Points added off the surfaces.
     pub steiner: usize,
     /// The cap on the mesh's points.
@@ -45,6 +48,8 @@ impl<'m> Recovery<'m> {
             faces: FaceSet::default(),
             edges: EdgeSet::default(),
             vt: Vec::new(),
+            mark: Vec::new(),
+            round: 0,
             steiner: 0,
             max_points,
             scratch: Scratch::default(),
@@ -100,7 +105,17 @@ impl<'m> Recovery<'m> {
     /// The tets holding `v`.
     fn star(&mut self, v: u32) -> Vec<u32> {
         let t0 = self.tet_of(v);
+        // a round number per search marks the tets seen, so no set is needed
+        self.round = self.round.wrapping_add(1);
+        if self.round == 0 {
+            self.mark.fill(0);
+            self.round = 1;
+        }
+        if self.mark.len() < self.mesh.tets.len() {
+            self.mark.resize(self.mesh.tets.len(), 0);
+        }
         let mut star = vec![t0];
+        self.mark[t0 as usize] = self.round;
         let mut k = 0;
         while k < star.len() {
             let t = star[k];
@@ -108,7 +123,8 @@ impl<'m> Recovery<'m> {
             for i in 0..4 {
                 if self.mesh.tets[t as usize][i] != v {
                     let n = self.mesh.neighbour(t, i);
-                    if !star.contains(&n) {
+                    if self.mark[n as usize] != self.round {
+                        self.mark[n as usize] = self.round;
                         star.push(n);
                     }
                 }

@@ -19,6 +19,8 @@ struct SizeField {
     size: Vec<f64>,
     slope: f64,
     cap: f64,
+    /// The field at each mesh point, NaN until looked up.
+    at_vertex: Vec<f64>,
 }
 
 impl SizeField {
@@ -55,7 +57,25 @@ impl SizeField {
             } else {
                 f64::INFINITY
             },
+            at_vertex: Vec::new(),
         }
+    }
+
+    /// The size wanted at `p` inside the tet with corners `v`: the field at the corners (each
+    /// looked up once) grown to `p` by the grading, which the field itself never exceeds.
+    fn near(&mut self, mesh: &Mesh, v: [u32; 4], p: [f64; 3]) -> f64 {
+        let mut h = f64::INFINITY;
+        for w in v {
+            if self.at_vertex.len() <= w as usize {
+                self.at_vertex.resize(mesh.points.len(), f64::NAN);
+            }
+            let q = mesh.p(w);
+            if self.at_vertex[w as usize].is_nan() {
+                self.at_vertex[w as usize] = self.at(q);
+            }
+            h = h.min(self.at_vertex[w as usize] + self.slope * dist(p, q));
+        }
+        h.min(self.cap)
     }
 
     /// The size wanted at `p`.
@@ -69,8 +89,15 @@ impl SizeField {
     }
 }
 
-/// The input facets' diametral spheres, searched by centre.
+/// The input facets' diametral spheres, searched by centre: grouped by radius (within a
+/// factor of two), so that each group's search radius fits its spheres and a far field's large
+/// facets do not make every search return the small ones.
 pub(crate) struct Facets {
+    groups: Vec<Group>,
+}
+
+/// Spheres of similar radii.
+struct Group {
     tree: PointTree<3>,
     centre: Vec<[f64; 3]>,
     radius: Vec<f64>,
@@ -79,39 +106,55 @@ pub(crate) struct Facets {
 
 impl Facets {
     pub(crate) fn new(input: &FillInput) -> Self {
-        let mut centre = Vec::with_capacity(input.facets.len());
-        let mut radius = Vec::with_capacity(input.facets.len());
-        for f in input.facets {
-            let [a, b, c] = f.map(|v| input.points[v as usize]);
-            // the circumcircle's centre: the circumcentre of the tet with a far apex on the normal
-            let u = crate::quality::sub(a, b);
-            let w = crate::quality::sub(a, c);
-            let n = crate::quality::cross(u, w);
-            let apex = [0, 1, 2].map(|k| a[k] + n[k]);
-            let o = circumcentre([a, b, c, apex]).unwrap_or(a);
-            // the tet's circumcentre lies on the circle's axis: project onto the plane
-            let len2 = crate::quality::dot(n, n);
-            let t = crate::quality::dot(crate::quality::sub(a, o), n) / len2;
-            let o = [0, 1, 2].map(|k| o[k] - t * n[k]);
-            centre.push(o);
-            radius.push(dist(o, a));
-        }
-        let largest = radius.iter().copied().fold(0.0, f64::max);
-        Self {
-            tree: PointTree::new(&centre),
-            centre,
-            radius,
-            largest,
-        }
+        let mut spheres: Vec<(i32, [f64; 3], f64)> = input
+            .facets
+            .iter()
+            .map(|f| {
+                let (o, r) = diametral(f.map(|v| input.points[v as usize]));
+                (r.log2().floor() as i32, o, r)
+            })
+            .collect();
+        spheres.sort_unstable_by_key(|s| s.0);
+        let groups = spheres
+            .chunk_by(|a, b| a.0 == b.0)
+            .map(|g| {
+                let centre: Vec<[f64; 3]> = g.iter().map(|s| s.1).collect();
+                let radius: Vec<f64> = g.iter().map(|s| s.2).collect();
+                Group {
+                    tree: PointTree::new(&centre),
+                    largest: radius.iter().copied().fold(0.0, f64::max),
+                    centre,
+                    radius,
+                }
+            })
+            .collect();
+        Self { groups }
     }
 
     /// Whether `p` lies strictly inside some facet's diametral sphere.
     pub(crate) fn encroached(&self, p: [f64; 3]) -> bool {
-        self.tree
-            .within(p, self.largest)
-            .iter()
-            .any(|&(k, d)| d < self.radius[k] && dist(p, self.centre[k]) < self.radius[k])
+        self.groups.iter().any(|g| {
+            g.tree
+                .within(p, g.largest)
+                .iter()
+                .any(|&(k, d)| d < g.radius[k] && dist(p, g.centre[k]) < g.radius[k])
+        })
     }
+}
+
+/// A triangle's diametral sphere: its circumcircle's centre and radius.
+fn diametral([a, b, c]: [[f64; 3]; 3]) -> ([f64; 3], f64) {
+    // the circumcircle's centre: the circumcentre of the tet with a far apex on the normal
+    let u = crate::quality::sub(a, b);
+    let w = crate::quality::sub(a, c);
+    let n = crate::quality::cross(u, w);
+    let apex = [0, 1, 2].map(|k| a[k] + n[k]);
+    let o = circumcentre([a, b, c, apex]).unwrap_or(a);
+    // the tet's circumcentre lies on the circle's axis: project onto the plane
+    let len2 = crate::quality::dot(n, n);
+    let t = crate::quality::dot(crate::quality::sub(a, o), n) / len2;
+    let o = [0, 1, 2].map(|k| o[k] - t * n[k]);
+    (o, dist(o, a))
 }
 
 /// Refines the inside tets; the number of points added.
@@ -120,19 +163,20 @@ pub(crate) fn refine(
     side: &mut Vec<Side>,
     faces: &FaceSet,
     input: &FillInput,
+    facets: &Facets,
     options: &FillOptions,
 ) -> Result<usize, FillError> {
     let bound = options.max_radius_edge;
     let by_shape = bound > 0.0 && bound.is_finite();
-    let sizes = SizeField::new(input, options);
-    let facets = Facets::new(input);
-    let bad = |mesh: &Mesh, t: u32| {
-        let p = mesh.tets[t as usize].map(|v| mesh.p(v));
+    let mut sizes = SizeField::new(input, options);
+    let mut bad = |mesh: &Mesh, t: u32| {
+        let v = mesh.tets[t as usize];
+        let p = v.map(|w| mesh.p(w));
         let c = circumcentre(p)?;
         let r = dist(c, p[0]);
         let (short, _) = edge_range(p);
         let centroid = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
-        let big = r > sizes.at(centroid);
+        let big = r > sizes.near(mesh, v, centroid);
         (big || (by_shape && r > bound * short)).then_some(c)
     };
     let mut queue: Vec<u32> = (0..mesh.tets.len() as u32)
