@@ -246,8 +246,8 @@ impl Improver<'_> {
     }
 
     /// Inserts a point where it takes sliver `t` into its cavity: its circumcentre when near
-    /// and not encroaching a facet, else beyond one of its faces that are not facets; true
-    /// when the sliver is gone.
+    /// and not encroaching a facet, else beyond one of its faces that are not facets (the
+    /// first that falls in the region); true when the sliver is gone.
     fn insert_near(&mut self, t: u32, encroached: &dyn Fn([f64; 3]) -> bool) -> bool {
         let v = self.mesh.tets[t as usize];
         let p = v.map(|w| self.mesh.p(w));
@@ -269,9 +269,10 @@ impl Improver<'_> {
                 candidates.push(q);
             }
         }
+        // one point per sliver: a point that leaves it is not followed by more
         for q in candidates {
-            if self.insert_at(t, q) && self.mesh.is_dead(t) {
-                return true;
+            if self.insert_at(t, q) {
+                return self.mesh.is_dead(t);
             }
         }
         false
