@@ -131,7 +131,7 @@ fn grow_layer(
     let mut stopped = state.stopped.clone();
     let mut why: Vec<Option<StopWhy>> = vec![None; n];
     if params.stop_gap > 0.0 {
-        let reach = params.stop_gap * height;
+        let reach = (params.stop_gap * height, params.stop_gap_spacing);
         let near = facing_fronts(topo, &front.nodes, &dir, &stopped, reach);
         for v in (0..n).filter(|&v| near[v]) {
             stopped[v] = true;
@@ -592,6 +592,9 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     }
     if !(p.stop_aspect >= 0.0 && p.stop_aspect.is_finite()) {
         return bad("stop_aspect must be finite and at least 0");
+    }
+    if !(p.stop_gap_spacing >= 0.0 && p.stop_gap_spacing.is_finite()) {
+        return bad("stop_gap_spacing must be finite and at least 0");
     }
     if !(p.stop_gap >= 0.0 && p.stop_gap.is_finite()) {
         return bad("stop_gap must be finite and at least 0");

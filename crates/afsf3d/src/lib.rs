@@ -188,6 +188,10 @@ pub struct LayerParams {
     /// fronts keep a gap for a volume fill (`proximity`). Default 0: none stops so; fronts
     /// that would cross stop their columns all the same.
     pub stop_gap: f64,
+    /// With [`LayerParams::stop_gap`]: the gap kept is at least this × the front's spacing at
+    /// the node (the mean length of its front edges), so a fill's cells across it are not
+    /// flat against the front's curving. Default 0.
+    pub stop_gap_spacing: f64,
 }
 
 impl Default for LayerParams {
@@ -213,6 +217,7 @@ impl Default for LayerParams {
             stop_aspect: 0.0,
             max_thickness: f64::INFINITY,
             stop_gap: 0.0,
+            stop_gap_spacing: 0.0,
         }
     }
 }

@@ -28,12 +28,15 @@ const AHEAD_COS: f64 = 0.5;
 
 /// Which front nodes (positions `x`, edges `topo`, directions `dir`) face another part of the
 /// front nearer than `reach`; nodes already `stopped` are not asked (but stop others).
+/// `spacing`: a node's reach is at least this × the mean length of its front edges, so the gap
+/// kept is no thinner than a fraction of the front's spacing there (a fill's cells across it
+/// then stay thicker than the curving's bulge of their faces).
 pub(crate) fn facing_fronts(
     topo: &Topo,
     x: &[[f64; 3]],
     dir: &[[f64; 3]],
     stopped: &[bool],
-    reach: f64,
+    (reach, spacing): (f64, f64),
 ) -> Vec<bool> {
     let n = x.len();
     let mut near = vec![false; n];
@@ -46,6 +49,9 @@ pub(crate) fn facing_fronts(
         if stopped[v] {
             continue;
         }
+        let mean_edge =
+            adjacency[v].iter().map(|e| e.1).sum::<f64>() / adjacency[v].len().max(1) as f64;
+        let reach = reach.max(spacing * mean_edge);
         let facing: Vec<usize> = tree
             .within(x[v], reach)
             .into_iter()
@@ -151,7 +157,7 @@ mod tests {
         let topo = Topo::new(&a);
         let normals = a.node_normals();
         let stopped = vec![false; a.nodes.len()];
-        let near = facing_fronts(&topo, &a.nodes, &normals, &stopped, 0.2);
+        let near = facing_fronts(&topo, &a.nodes, &normals, &stopped, (0.2, 0.0));
         let count = near.iter().filter(|&&s| s).count();
         assert!(count >= 2, "{count}");
         for (v, &s) in near.iter().enumerate() {
@@ -166,7 +172,7 @@ mod tests {
             &one.nodes,
             &one.node_normals(),
             &vec![false; one.nodes.len()],
-            0.4,
+            (0.4, 0.0),
         );
         assert!(!near.contains(&true));
     }
@@ -181,7 +187,7 @@ mod tests {
             &s.nodes,
             &s.node_normals(),
             &vec![false; s.nodes.len()],
-            0.3,
+            (0.3, 0.0),
         );
         assert!(!near.contains(&true));
     }

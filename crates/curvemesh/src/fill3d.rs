@@ -181,6 +181,17 @@ fn front(mesh: &Mesh) -> Result<Front> {
         pyramids: Vec::new(),
         apexes: Vec::new(),
     };
+    // the front's nodes, for the apexes' clearance
+    let mut on_front: Vec<u32> = Vec::new();
+    for (f, facet) in mesh.boundary.iter().enumerate() {
+        if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Farfield {
+            on_front.extend_from_slice(facet.corners());
+        }
+    }
+    on_front.sort_unstable();
+    on_front.dedup();
+    let at: Vec<[f64; 3]> = on_front.iter().map(|&v| mesh.nodes[v as usize]).collect();
+    let tree = geom_predicates::PointTree::new(&at);
     for (f, facet) in mesh.boundary.iter().enumerate() {
         let patch = mesh.boundary_patch[f] as usize;
         if mesh.patches.get(patch).map(|p| p.role) != Some(Role::Farfield) {
@@ -191,7 +202,11 @@ fn front(mesh: &Mesh) -> Result<Front> {
             3 => out.tris.push([k[0], k[1], k[2]]),
             4 => {
                 let x: [[f64; 3]; 4] = std::array::from_fn(|i| mesh.nodes[k[i] as usize]);
-                let apex = apex_over(&x);
+                let apex = apex_over(&x, |p, r| {
+                    tree.within(p, r)
+                        .iter()
+                        .any(|&(i, _)| !k.contains(&on_front[i]))
+                });
                 let a = n0 + out.apexes.len() as u32;
                 out.apexes.push(apex);
                 out.pyramids.push([k[0], k[1], k[2], k[3], a]);
@@ -206,8 +221,11 @@ fn front(mesh: &Mesh) -> Result<Front> {
 }
 
 /// The apex of the pyramid capping the quad `x` (facing out of the layers): over its centre,
-/// along its normal, 0.6 × its mean side high (a pyramid of equal edges is 0.71 × high).
-fn apex_over(x: &[[f64; 3]; 4]) -> [f64; 3] {
+/// along its normal, 0.6 × its mean side high (a pyramid of equal edges is 0.71 × high), or
+/// lower, halved (down to a twentieth of the side) while `crowded(apex, r)` finds another
+/// front's node within twice its height `r` of it — across a narrow gap the caps of two
+/// facing quads keep apart.
+fn apex_over(x: &[[f64; 3]; 4], crowded: impl Fn([f64; 3], f64) -> bool) -> [f64; 3] {
     let c: [f64; 3] = std::array::from_fn(|d| x.iter().map(|p| p[d]).sum::<f64>() / 4.0);
     let n = geom_surface::unit(geom_predicates::vector::cross3(
         geom_predicates::vector::sub(x[2], x[0]),
@@ -217,7 +235,12 @@ fn apex_over(x: &[[f64; 3]; 4]) -> [f64; 3] {
         .map(|i| geom_predicates::vector::dist(x[i], x[(i + 1) % 4]))
         .sum::<f64>()
         / 4.0;
-    std::array::from_fn(|d| c[d] + 0.6 * side * n[d])
+    let mut h = 0.6 * side;
+    let at = |h: f64| std::array::from_fn(|d| c[d] + h * n[d]);
+    while h > 0.05 * side && crowded(at(h), 2.0 * h) {
+        h *= 0.5;
+    }
+    at(h)
 }
 
 /// Puts the fill into the linear `mesh` it was made from: the new points and cells (layer and
@@ -265,7 +288,7 @@ fn replace_front(mesh: &mut Mesh) -> u32 {
 /// from (whose nodes are its first): each new cell and far-field facet straight, at the curved
 /// mesh's order, its high-order nodes on the front the curved mesh's own (found by their
 /// weights on the front facets' corners), the others new.
-pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<()> {
+pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<Mended> {
     let order = curved.order;
     let shift = curved.nodes.len() - filled.first_point;
     let renum = |v: u32| -> u32 {
@@ -276,6 +299,7 @@ pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<()> {
         }
     };
     curved.nodes.extend_from_slice(&filled.points);
+    let free_from = curved.nodes.len();
     // the front's high-order nodes by their weights on its corners
     let mut nodes: HashMap<Vec<(u32, i64)>, u32> = HashMap::new();
     for (f, facet) in curved.boundary.iter().enumerate() {
@@ -320,7 +344,195 @@ pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<()> {
         curved.boundary.push(CellType::new(Shape::Tri, order), &all);
         curved.boundary_patch.push(far);
     }
-    Ok(())
+    let first_fill = curved.cells.len() - filled.cells.len();
+    let first_far = curved.boundary.len() - filled.far_facets.len();
+    let fixed: std::collections::HashSet<u32> = (first_far..curved.boundary.len())
+        .flat_map(|f| curved.boundary.get(f).nodes.to_vec())
+        .collect();
+    extend_curving(curved, first_fill, |v| {
+        v as usize >= free_from && !fixed.contains(&v)
+    });
+    Ok(mend(curved, first_fill))
+}
+
+/// Rounds of averaging that carry the front's curving into the fill.
+const EXTEND_ROUNDS: usize = 30;
+
+/// The fill's cells curved as the front beside them: each of their high-order nodes that is
+/// `free` (made for the fill, not on the far field) takes the mean displacement (node minus
+/// its place on the straight cell) of the high-order nodes it shares a cell with, over
+/// [`EXTEND_ROUNDS`] rounds, starting straight; the front's nodes keep their curving and the
+/// far field's stay straight. So a thin fill cell on a curved front edge bends with it instead
+/// of folding; the certification judges the result.
+fn extend_curving(m: &mut Mesh, first_fill: usize, free: impl Fn(u32) -> bool) {
+    let mut straight: HashMap<u32, [f64; 3]> = HashMap::new();
+    let mut cells: Vec<Vec<u32>> = Vec::new();
+    for c in first_fill..m.cells.len() {
+        let cell = m.cells.get(c);
+        let Ok(refs) = reference(cell.ty) else {
+            continue;
+        };
+        let k = cell.corners();
+        let high: Vec<u32> = cell.nodes[k.len()..].to_vec();
+        for (r, &v) in refs.iter().zip(cell.nodes).skip(k.len()) {
+            straight.entry(v).or_insert_with(|| {
+                weights(cell.ty.shape, *r)
+                    .iter()
+                    .fold([0.0; 3], |acc, &(i, wi)| {
+                        let p = m.nodes[k[i] as usize];
+                        std::array::from_fn(|d| acc[d] + wi * p[d])
+                    })
+            });
+        }
+        cells.push(high);
+    }
+    let disp = |m: &Mesh, v: u32| -> [f64; 3] {
+        let (x, s) = (m.nodes[v as usize], straight[&v]);
+        std::array::from_fn(|d| x[d] - s[d])
+    };
+    let mut delta: HashMap<u32, [f64; 3]> = straight
+        .keys()
+        .map(|&v| (v, if free(v) { [0.0; 3] } else { disp(m, v) }))
+        .collect();
+    if delta.values().all(|d| *d == [0.0; 3]) {
+        return;
+    }
+    for _ in 0..EXTEND_ROUNDS {
+        let mut sum: HashMap<u32, ([f64; 3], usize)> = HashMap::new();
+        for high in &cells {
+            for &v in high.iter().filter(|&&v| free(v)) {
+                let e = sum.entry(v).or_insert(([0.0; 3], 0));
+                for &u in high.iter().filter(|&&u| u != v) {
+                    let du = delta[&u];
+                    (0..3).for_each(|d| e.0[d] += du[d]);
+                    e.1 += 1;
+                }
+            }
+        }
+        for (v, (s, n)) in sum {
+            delta.insert(v, s.map(|x| x / n.max(1) as f64));
+        }
+    }
+    for (&v, d) in &delta {
+        if free(v) {
+            let s = straight[&v];
+            m.nodes[v as usize] = std::array::from_fn(|k| s[k] + d[k]);
+        }
+    }
+}
+
+/// How many front edges and faces [`mend`] straightened, in part or whole.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Mended {
+    /// Fill cells the certified check found invalid on the curved front.
+    pub invalid_fill_cells: usize,
+    /// Curved front edges and faces whose displacement was scaled down (to ½, ¼ or 0).
+    pub straightened: usize,
+    /// Fill cells still invalid after it (the mesh's certification reports them).
+    pub still_invalid: usize,
+}
+
+/// The fill's straight cells on a curved front are invalid where a thin one sits on an edge
+/// curved more than its height (a column stopped low, its wall or first layers curved): for
+/// each such cell (from `first_fill` on), the displacement of each of its curved edges and
+/// faces (curved minus straight node) is scaled to ½, ¼, then 0 — the first that leaves every
+/// cell holding those nodes certified valid is kept (the curving's own rule for the layers).
+fn mend(curved: &mut Mesh, first_fill: usize) -> Mended {
+    let params = jacobian_check::CertifyParams::default();
+    let valid = |m: &Mesh, c: usize| {
+        let cell = m.cells.get(c);
+        let x: Vec<[f64; 3]> = cell.nodes.iter().map(|&v| m.nodes[v as usize]).collect();
+        jacobian_check::certify_cell(cell.ty, &x, &params).is_ok_and(|c| c.is_valid())
+    };
+    let bad: Vec<usize> = (first_fill..curved.cells.len())
+        .filter(|&c| !valid(curved, c))
+        .collect();
+    let mut out = Mended {
+        invalid_fill_cells: bad.len(),
+        ..Mended::default()
+    };
+    if bad.is_empty() {
+        return out;
+    }
+    // the cells around each node of the bad cells
+    let mut around: HashMap<u32, Vec<usize>> = HashMap::new();
+    for &c in &bad {
+        for &v in curved.cells.get(c).nodes {
+            around.entry(v).or_default();
+        }
+    }
+    for c in 0..curved.cells.len() {
+        for &v in curved.cells.get(c).nodes {
+            if let Some(list) = around.get_mut(&v) {
+                list.push(c);
+            }
+        }
+    }
+    for &c in &bad {
+        for (nodes, straight) in curved_entities(curved, c) {
+            if valid(curved, c) {
+                break;
+            }
+            let cells: Vec<usize> = nodes.iter().flat_map(|v| around[v].clone()).collect();
+            let was: Vec<[f64; 3]> = nodes.iter().map(|&v| curved.nodes[v as usize]).collect();
+            for scale in [0.5, 0.25, 0.0] {
+                for (k, &v) in nodes.iter().enumerate() {
+                    curved.nodes[v as usize] = std::array::from_fn(|d| {
+                        straight[k][d] + scale * (was[k][d] - straight[k][d])
+                    });
+                }
+                if cells.iter().all(|&o| valid(curved, o)) {
+                    out.straightened += 1;
+                    break;
+                }
+                if scale == 0.0 {
+                    // no scale mends it: back as it was
+                    for (k, &v) in nodes.iter().enumerate() {
+                        curved.nodes[v as usize] = was[k];
+                    }
+                }
+            }
+        }
+        if !valid(curved, c) {
+            out.still_invalid += 1;
+        }
+    }
+    out
+}
+
+/// Cell `c`'s curved high-order nodes, grouped by the edge or face they lie on (nodes with the
+/// same corners), each with the straight places of its nodes.
+fn curved_entities(m: &Mesh, c: usize) -> Vec<(Vec<u32>, Vec<[f64; 3]>)> {
+    let cell = m.cells.get(c);
+    let Ok(refs) = reference(cell.ty) else {
+        return Vec::new();
+    };
+    let k = cell.corners();
+    // (the corners a group lies on, its nodes, their straight places)
+    type Group = (Vec<u32>, Vec<u32>, Vec<[f64; 3]>);
+    let mut groups: Vec<Group> = Vec::new();
+    for (r, &v) in refs.iter().zip(cell.nodes).skip(k.len()) {
+        let w = weights(cell.ty.shape, *r);
+        let straight = w.iter().fold([0.0; 3], |acc, &(i, wi)| {
+            let p = m.nodes[k[i] as usize];
+            std::array::from_fn(|d| acc[d] + wi * p[d])
+        });
+        if geom_predicates::vector::dist(straight, m.nodes[v as usize]) == 0.0 {
+            continue;
+        }
+        let mut on: Vec<u32> = w.iter().map(|&(i, _)| k[i]).collect();
+        on.sort_unstable();
+        match groups.iter_mut().find(|g| g.0 == on) {
+            Some(g) => {
+                g.1.push(v);
+                g.2.push(straight);
+            }
+            None => groups.push((on, vec![v], vec![straight])),
+        }
+    }
+    // edges before faces: an edge's change may mend the cell alone
+    groups.sort_by_key(|g| g.0.len());
+    groups.into_iter().map(|(_, v, x)| (v, x)).collect()
 }
 
 /// The reference coordinates of `ty`'s nodes.
@@ -405,12 +617,18 @@ pub fn farfield_for(
 /// a gap of a layer's height is left for the fill.
 pub const STOP_GAP: f64 = 3.0;
 
+/// Where a fill follows, the gap kept between facing fronts is at least this × the front's
+/// spacing there ([`afsf3d::LayerParams::stop_gap_spacing`]): the fill's cells across it stay
+/// thicker than the P2 front's bulge.
+pub const STOP_GAP_SPACING: f64 = 0.5;
+
 /// `case` with its layers set to stop before the fill: at [`STOP_ASPECT`], facing another
 /// front at [`STOP_GAP`], and under `max_thickness`.
 pub fn layers_before_fill(case: &Case3d, max_thickness: f64) -> Case3d {
     let mut c = case.clone();
     c.layers.stop_aspect = STOP_ASPECT;
     c.layers.stop_gap = STOP_GAP;
+    c.layers.stop_gap_spacing = STOP_GAP_SPACING;
     c.layers.max_thickness = max_thickness;
     c
 }

@@ -92,11 +92,20 @@ pub(crate) fn mesh(
     let curved = if order >= 2 {
         let curved = timed(r, o, ("curving", &format!("curving to P{order}")), |_| {
             let mut c = pipeline3d::curve(case, &shape, &grown, &layers_mesh, order)?;
-            if let Some(f) = &filled {
-                crate::fill3d::apply_curved(&mut c.mesh, f)?;
-            }
-            Ok::<_, crate::error::Error>(c)
+            let mended = match &filled {
+                Some(f) => Some(crate::fill3d::apply_curved(&mut c.mesh, f)?),
+                None => None,
+            };
+            Ok::<_, crate::error::Error>((c, mended))
         })?;
+        let (curved, mended) = curved;
+        if let Some(m) = mended.filter(|m| m.invalid_fill_cells > 0) {
+            r.notes.push(format!(
+                "{} of the fill's straight cells on the curved last front were invalid: {} front \
+                 edges and faces straightened in part or whole to mend them ({} cells not mended)",
+                m.invalid_fill_cells, m.straightened, m.still_invalid
+            ));
+        }
         timed(r, o, ("volume", "curved volumes"), |_| {
             pipeline3d::curved_volumes(&curved.mesh, &mut measures)
         })?;
