@@ -67,10 +67,11 @@ pub fn table(r: &Report) -> String {
     if let Some(f) = &r.fill {
         let _ = writeln!(
             s,
-            "  {:<22} {:>12}  ({} pyramids on the front's quads, {} Steiner and {} refinement points, max dihedral {:.1} deg)",
+            "  {:<22} {:>12}  ({} pyramids on the front's quads, {} front edges capped, {} Steiner and {} refinement points, max dihedral {:.1} deg)",
             "fill tets",
             f.tets,
             f.pyramids,
+            f.caps,
             f.steiner_points,
             f.refinement_points,
             f.max_dihedral_deg

@@ -47,6 +47,9 @@ pub struct FillStats {
     pub max_dihedral_deg: f64,
     /// Triangles of the far field.
     pub farfield_facets: usize,
+    /// Front edges capped (two tetrahedra from an apex over their two triangles) because the
+    /// fill could not recover them.
+    pub caps: usize,
 }
 
 /// The fill's front, as it is collected from the mesh's far-field-role facets.
@@ -55,6 +58,9 @@ struct Front {
     tris: Vec<[u32; 3]>,
     /// The pyramid caps (base quad, then apex).
     pyramids: Vec<[u32; 5]>,
+    /// The caps of front edges the fill could not recover (two tetrahedra each, corners
+    /// as in the mesh's orientation, [`cap_edge`]).
+    caps: Vec<[u32; 4]>,
     /// The apexes' coordinates, numbered from the mesh's node count.
     apexes: Vec<[f64; 3]>,
 }
@@ -62,8 +68,41 @@ struct Front {
 /// Fills the space between the linear layer mesh `mesh`'s final front (its far-field-role
 /// boundary facets) and the far field `far` (triangles facing into the domain).
 pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Result<Filled> {
+    let mut front = front(mesh)?;
+    for round in 0..=MAX_CAPS {
+        match fill_once(mesh, &front, far, options)? {
+            Attempt::Done(mut filled) => {
+                filled.stats.caps = round;
+                return Ok(filled);
+            }
+            Attempt::Edge(edge, e) if round < MAX_CAPS => {
+                cap_edge(mesh, &mut front, edge)
+                    .map_err(|why| input_error!("the volume fill: {e} (and capping it: {why})"))?;
+            }
+            Attempt::Edge(_, e) => bail!("the volume fill: {e} (after {MAX_CAPS} caps)"),
+        }
+    }
+    unreachable!("the loop returns")
+}
+
+/// The most front edges [`fill`] caps to get round edges `tet-fill` cannot recover.
+pub const MAX_CAPS: usize = 64;
+
+/// What one try of the fill gave: the fill, or a front edge it could not recover (mesh
+/// numbering) with its error.
+enum Attempt {
+    Done(Filled),
+    Edge([u32; 2], tet_fill::FillError),
+}
+
+/// One try of the fill over `front` (see [`fill`]).
+fn fill_once(
+    mesh: &Mesh,
+    front: &Front,
+    far: &Surface,
+    options: &tet_fill::FillOptions,
+) -> Result<Attempt> {
     let n0 = mesh.nodes.len();
-    let front = front(mesh)?;
     // the fill's input: the front's nodes, the apexes, the far field's nodes
     let mut index: HashMap<u32, u32> = HashMap::new();
     let mut global: Vec<u32> = Vec::new();
@@ -100,8 +139,21 @@ pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Resu
         points: &points,
         facets: &facets,
     };
-    let filled =
-        tet_fill::fill(&input, options).map_err(|e| input_error!("the volume fill: {e}"))?;
+    let filled = match tet_fill::fill(&input, options) {
+        Ok(f) => f,
+        // an edge of the front (not of the far field) it could not recover: cap it and retry
+        Err(
+            e @ tet_fill::FillError::Unrecoverable {
+                edge: Some([a, b]), ..
+            },
+        ) if [a, b]
+            .iter()
+            .all(|&v| (global[v as usize] as usize) < far_first) =>
+        {
+            return Ok(Attempt::Edge([global[a as usize], global[b as usize]], e));
+        }
+        Err(e) => bail!("the volume fill: {e}"),
+    };
     // back to mesh numbering: the input points by `global`, the fill's own after the far field
     let fill_first = far_first + far.nodes.len();
     let to_mesh = |v: u32| -> u32 {
@@ -117,6 +169,7 @@ pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Resu
         .pyramids
         .iter()
         .map(|p| (Shape::Pyramid, p.to_vec()))
+        .chain(front.caps.iter().map(|t| (Shape::Tet, t.to_vec())))
         .collect();
     for t in &filled.tets {
         let k = t.map(to_mesh);
@@ -142,14 +195,91 @@ pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Resu
         refinement_points: filled.refinement_points,
         max_dihedral_deg: filled.max_dihedral_deg,
         farfield_facets: far.facets.len(),
+        caps: 0,
     };
-    Ok(Filled {
+    Ok(Attempt::Done(Filled {
         first_point: n0,
         points: new_points,
         cells,
         far_facets,
         stats,
-    })
+    }))
+}
+
+/// Caps the two front triangles on `edge` (which `tet-fill` could not recover: the diagonal
+/// of a flat quadrilateral the Delaunay tetrahedralisation splits the other way) with a
+/// tetrahedron each from one new apex over them, so the edge leaves the front; the cap's four
+/// outer sides join the front in their place. Err: why it cannot.
+fn cap_edge(mesh: &Mesh, front: &mut Front, [a, b]: [u32; 2]) -> std::result::Result<(), String> {
+    let n0 = mesh.nodes.len();
+    let on = |t: &[u32; 3]| t.contains(&a) && t.contains(&b);
+    let pair: Vec<usize> = (0..front.tris.len())
+        .filter(|&i| on(&front.tris[i]))
+        .collect();
+    let [i, j] = pair[..] else {
+        return Err(format!(
+            "edge {a}-{b} is on {} front triangles, not 2",
+            pair.len()
+        ));
+    };
+    let x = |v: u32| {
+        if (v as usize) < n0 {
+            mesh.nodes[v as usize]
+        } else {
+            front.apexes[v as usize - n0]
+        }
+    };
+    let (t1, t2) = (front.tris[i], front.tris[j]);
+    let corners: Vec<u32> = {
+        let mut c: Vec<u32> = t1.iter().chain(&t2).copied().collect();
+        c.sort_unstable();
+        c.dedup();
+        c
+    };
+    let centre: [f64; 3] = std::array::from_fn(|d| {
+        corners.iter().map(|&v| x(v)[d]).sum::<f64>() / corners.len() as f64
+    });
+    let normal = |t: [u32; 3]| {
+        geom_predicates::vector::cross3(
+            geom_predicates::vector::sub(x(t[1]), x(t[0])),
+            geom_predicates::vector::sub(x(t[2]), x(t[0])),
+        )
+    };
+    let (n1, n2) = (normal(t1), normal(t2));
+    let n = geom_surface::unit(std::array::from_fn(|d| {
+        geom_surface::unit(n1)[d] + geom_surface::unit(n2)[d]
+    }));
+    let side = [t1, t2]
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+        .map(|(u, v)| geom_predicates::vector::dist(x(u), x(v)))
+        .sum::<f64>()
+        / 6.0;
+    let apex: [f64; 3] = std::array::from_fn(|d| centre[d] + 0.4 * side * n[d]);
+    // the apex strictly on the fill's side of both triangles
+    for t in [t1, t2] {
+        if geom_predicates::orient3d(x(t[0]), x(t[1]), x(t[2]), apex) >= 0.0 {
+            return Err(format!("edge {a}-{b}: no apex sees both its triangles"));
+        }
+    }
+    let p = (n0 + front.apexes.len()) as u32;
+    front.apexes.push(apex);
+    let shared = |u: u32, v: u32| (u == a && v == b) || (u == b && v == a);
+    let mut sides = Vec::new();
+    for t in [t1, t2] {
+        front.caps.push([t[0], t[1], t[2], p]);
+        for k in 0..3 {
+            let (u, v) = (t[k], t[(k + 1) % 3]);
+            if !shared(u, v) {
+                sides.push([u, v, p]);
+            }
+        }
+    }
+    for k in [i.max(j), i.min(j)] {
+        front.tris.swap_remove(k);
+    }
+    front.tris.extend(sides);
+    Ok(())
 }
 
 /// Node `v`'s coordinates: a mesh node, or a new point numbered from `n0`.
@@ -179,6 +309,7 @@ fn front(mesh: &Mesh) -> Result<Front> {
     let mut out = Front {
         tris: Vec::new(),
         pyramids: Vec::new(),
+        caps: Vec::new(),
         apexes: Vec::new(),
     };
     // the front's nodes, for the apexes' clearance

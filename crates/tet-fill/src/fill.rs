@@ -95,6 +95,13 @@ pub(crate) fn run(input: &FillInput, options: &FillOptions) -> Result<Fill, Fill
     Ok(output(&mesh, &side, n, steiner, refinement_points + added))
 }
 
+/// The first edge of facet `f` missing from the tetrahedralisation, if one is.
+fn missing_edge(rec: &mut Recovery, f: [u32; 3]) -> Option<[u32; 2]> {
+    (0..3)
+        .map(|i| [f[i], f[(i + 1) % 3]])
+        .find(|&[a, b]| rec.find_edge(a, b).is_none())
+}
+
 /// Recovers every facet; the kept faces and the Steiner points added.
 fn recover_all(
     mesh: &mut Mesh,
@@ -118,10 +125,12 @@ fn recover_all(
             // a failure may clear on a later pass, after other facets' flips and points
             match rec.recover_facet(f) {
                 Err(why) if pass == 3 || why.contains("cap of") => {
+                    let edge = missing_edge(&mut rec, f);
                     return Err(FillError::Unrecoverable {
                         facet: k,
                         corners: f.map(|v| rec.mesh.p(v)),
                         why,
+                        edge,
                     });
                 }
                 _ => {}
@@ -133,10 +142,12 @@ fn recover_all(
     }
     for (k, &f) in input.facets.iter().enumerate() {
         if !rec.has_face(f) {
+            let edge = missing_edge(&mut rec, f);
             return Err(FillError::Unrecoverable {
                 facet: k,
                 corners: f.map(|v| rec.mesh.p(v)),
                 why: "lost again while recovering others".into(),
+                edge,
             });
         }
     }

@@ -26,6 +26,7 @@ pub(crate) fn check_disjoint(input: &FillInput) -> Result<(), FillError> {
                 "it meets facet {j} {:?}: the input surfaces intersect",
                 corners(input.facets[j])
             ),
+            edge: None,
         }),
     }
 }

@@ -134,7 +134,7 @@ impl<'m> Recovery<'m> {
     }
 
     /// A tet holding edge `a b`.
-    fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
+    pub(crate) fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
         self.star(a)
             .into_iter()
             .find(|&t| self.mesh.tets[t as usize].contains(&b))
