@@ -88,11 +88,12 @@ pub(crate) fn run(input: &FillInput, options: &FillOptions) -> Result<Fill, Fill
     let (faces, steiner) = recover_all(&mut mesh, input, options.max_points)?;
     let mut side = classify(&mesh, input.facets, &faces)?;
     let facets = crate::refine::Facets::new(input);
-    let refinement_points =
-        crate::refine::refine(&mut mesh, &mut side, &faces, input, &facets, options)?;
+    // (the points the refinement and the sliver removal add are counted by `output` among
+    // those the region's tets use)
+    crate::refine::refine(&mut mesh, &mut side, &faces, input, &facets, options)?;
     let encroached = |q: [f64; 3]| facets.encroached(q);
-    let added = crate::sliver::improve(&mut mesh, &mut side, &faces, n + 8, options, &encroached);
-    Ok(output(&mesh, &side, n, steiner, refinement_points + added))
+    crate::sliver::improve(&mut mesh, &mut side, &faces, n + 8, options, &encroached);
+    Ok(output(&mesh, &side, n, steiner))
 }
 
 /// The first edge of facet `f` missing from the tetrahedralisation, if one is.
@@ -156,9 +157,10 @@ fn recover_all(
 }
 
 /// The inside tets, with the box's corners dropped from the numbering and so are the added
-/// points no inside tet uses (Steiner points that fell outside the region); `steiner` added
-/// points come first, the refinement's after.
-fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize, added: usize) -> Fill {
+/// points no inside tet uses (Steiner points that fell outside the region); the first
+/// `steiner` added points are the recovery's, the others the refinement's and the sliver
+/// removal's.
+fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize) -> Fill {
     let inside: Vec<[u32; 4]> = (0..mesh.tets.len())
         .filter(|&t| side.get(t) == Some(&Side::Inside) && !mesh.is_dead(t as u32))
         .map(|t| mesh.tets[t])
@@ -188,7 +190,9 @@ fn output(mesh: &Mesh, side: &[Side], n: usize, steiner: usize, added: usize) ->
             }
         }
     }
-    debug_assert!(steiner + added >= steiner_points + refinement_points);
+    // (every added point is counted by the stage that made it, or is one of the cavities'
+    // kernel points: at most all the points past the box's corners are used)
+    debug_assert!(steiner_points + refinement_points <= mesh.points.len() - n - 8);
     let tets: Vec<[u32; 4]> = inside
         .iter()
         .map(|t| t.map(|v| remap[v as usize]))

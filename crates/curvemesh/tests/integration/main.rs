@@ -3,4 +3,5 @@
 //! `cargo test -p curvemesh --test integration -- MODULE::` runs one of them.
 
 mod curved_walls;
+mod far_field;
 mod library;
