@@ -119,6 +119,44 @@ pub const FIGURES: &[&[&str]] = &[
         "--png",
         "{fig}/swept-wing-tip-slice-y.png@1.2,0.45,1.75,1.25",
     ],
+    // 3D docs: two spheres in a far field, cut through the gap between them: the layers
+    // stopped where the fronts face each other, the fill between
+    &[
+        "mesh",
+        "fixtures/cases/two-spheres.toml",
+        "--out",
+        "{tmp}/two-spheres.msh",
+        "--slice",
+        "z=0",
+        "--colour",
+        "layer",
+        "--png",
+        "{fig}/two-spheres-gap-slice-z.png@-1.5,-1,1.5,1",
+    ],
+    // 3D docs: the two cubes' hexahedral layers, their pyramid caps and the fill
+    &[
+        "mesh",
+        "fixtures/cases/two-cubes.toml",
+        "--out",
+        "{tmp}/two-cubes.msh",
+        "--slice",
+        "z=0.0625",
+        "--png",
+        "{fig}/two-cubes-gap-slice-z.png@-0.35,-0.75,0.35,-0.25",
+    ],
+    // 3D docs: the wing in a far-field sphere at mid-span, layers to isotropic, then the fill
+    &[
+        "mesh",
+        "fixtures/cases/wing-sphere.toml",
+        "--out",
+        "{tmp}/wing-sphere.msh",
+        "--slice",
+        "z=0",
+        "--colour",
+        "layer",
+        "--png",
+        "{fig}/wing-sphere-slice-z.png@-0.6,-0.7,1.9,0.7",
+    ],
     // movement docs: the flap gap after the slat and the flap turned 10° each, by Jacobian
     &[
         "move",
