@@ -255,13 +255,22 @@ fn cap_edge(mesh: &Mesh, front: &mut Front, [a, b]: [u32; 2]) -> std::result::Re
         .map(|(u, v)| geom_predicates::vector::dist(x(u), x(v)))
         .sum::<f64>()
         / 6.0;
-    let apex: [f64; 3] = std::array::from_fn(|d| centre[d] + 0.4 * side * n[d]);
-    // the apex strictly on the fill's side of both triangles
-    for t in [t1, t2] {
-        if geom_predicates::orient3d(x(t[0]), x(t[1]), x(t[2]), apex) >= 0.0 {
-            return Err(format!("edge {a}-{b}: no apex sees both its triangles"));
-        }
-    }
+    // the apex strictly on the fill's side of both triangles, its cap clear of the rest of the
+    // front (lower, down to 0.4 / 32 of the side, where a front is near)
+    let sees = |apex: [f64; 3]| {
+        [t1, t2]
+            .iter()
+            .all(|t| geom_predicates::orient3d(x(t[0]), x(t[1]), x(t[2]), apex) < 0.0)
+    };
+    let apex = (0..6)
+        .map(|k| {
+            let h = 0.4 * side / f64::from(1u32 << k);
+            std::array::from_fn(|d| centre[d] + h * n[d])
+        })
+        .find(|&apex| sees(apex) && cap_clear(front, &x, [i, j], &corners, apex))
+        .ok_or_else(|| {
+            format!("edge {a}-{b}: no apex over its two triangles clear of the front")
+        })?;
     let p = (n0 + front.apexes.len()) as u32;
     front.apexes.push(apex);
     let shared = |u: u32, v: u32| (u == a && v == b) || (u == b && v == a);
@@ -670,6 +679,60 @@ fn curved_entities(m: &Mesh, c: usize) -> Vec<(Vec<u32>, Vec<[f64; 3]>)> {
 fn reference(ty: CellType) -> Result<Vec<[f64; 3]>> {
     mesh_model::reference::reference_nodes(ty)
         .ok_or_else(|| input_error!("the volume fill: no reference nodes for {ty:?}"))
+}
+
+/// Whether the cap from `apex` over front triangles `pair` (corners `corners`, coordinates by
+/// `x`) is clear of the rest of the front: no segment from the apex to a corner meets a front
+/// triangle without that corner, and no front edge away from the cap's base meets one of the
+/// cap's sides (two triangles meet exactly when an edge of one meets the other; pairs sharing
+/// a corner are left to `tet-fill`'s own check).
+fn cap_clear(
+    front: &Front,
+    x: &impl Fn(u32) -> [f64; 3],
+    pair: [usize; 2],
+    corners: &[u32],
+    apex: [f64; 3],
+) -> bool {
+    use geom_predicates::segment_meets_triangle as meets;
+    let mut lo = apex;
+    let mut hi = apex;
+    for &v in corners {
+        let p = x(v);
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let sides: Vec<[u32; 2]> = pair
+        .iter()
+        .flat_map(|&k| {
+            let t = front.tris[k];
+            (0..3).map(move |i| [t[i], t[(i + 1) % 3]])
+        })
+        .collect();
+    front.tris.iter().enumerate().all(|(k, t)| {
+        if pair.contains(&k) {
+            return true;
+        }
+        let p = t.map(x);
+        let outside =
+            (0..3).any(|d| p.iter().all(|q| q[d] < lo[d]) || p.iter().all(|q| q[d] > hi[d]));
+        if outside {
+            return true;
+        }
+        let spokes_clear = corners
+            .iter()
+            .filter(|v| !t.contains(v))
+            .all(|&v| !meets(apex, x(v), p[0], p[1], p[2]));
+        let edges_clear = (0..3).all(|i| {
+            let (u, w) = (t[i], t[(i + 1) % 3]);
+            sides
+                .iter()
+                .filter(|s| !s.contains(&u) && !s.contains(&w))
+                .all(|s| !meets(x(u), x(w), x(s[0]), x(s[1]), apex))
+        });
+        spokes_clear && edges_clear
+    })
 }
 
 /// The weights of a straight cell's corners at reference point `r` (Gmsh's reference cells):
