@@ -25,6 +25,7 @@ targets=(
   "crates/mesh-io snapshot crates/mesh-io/tests/data/*.snap"
   "crates/curvemesh case_toml fixtures/cases/*.toml"
   "crates/curvemesh motion_toml fixtures/motions/*.toml"
+  "crates/tet-fill fill_points"
 )
 failed=()
 for entry in "${targets[@]}"; do
