@@ -174,7 +174,7 @@ fn push_notes(report: &mut Report, linear: bool, converged: bool, filled: bool) 
     if !filled {
         report.notes.push(
             "a near-body mesh: the domain is the region the layers cover, its outer boundary \
-             (farfield) the final front"
+             (the group outer) the final front; a [farfield] fills the space to a far field"
                 .into(),
         );
     }
