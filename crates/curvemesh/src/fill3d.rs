@@ -72,12 +72,19 @@ pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Resu
     for round in 0..=MAX_CAPS {
         match fill_once(mesh, &front, far, options)? {
             Attempt::Done(mut filled) => {
-                filled.stats.caps = round;
+                filled.stats.caps = front.caps.len() / 2;
                 return Ok(filled);
             }
-            Attempt::Edge(edge, e) if round < MAX_CAPS => {
-                cap_edge(mesh, &mut front, edge)
+            Attempt::Edge(edges, e) if round < MAX_CAPS => {
+                // the first edge capped, or the run stops; the others where they still can be
+                let [first, rest @ ..] = edges.as_slice() else {
+                    bail!("the volume fill: {e}");
+                };
+                cap_edge(mesh, &mut front, *first)
                     .map_err(|why| input_error!("the volume fill: {e} (and capping it: {why})"))?;
+                for &edge in rest {
+                    let _ = cap_edge(mesh, &mut front, edge);
+                }
             }
             Attempt::Edge(_, e) => bail!("the volume fill: {e} (after {MAX_CAPS} caps)"),
         }
@@ -85,14 +92,14 @@ pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Resu
     unreachable!("the loop returns")
 }
 
-/// The most front edges [`fill`] caps to get round edges `tet-fill` cannot recover.
-pub const MAX_CAPS: usize = 64;
+/// The most rounds of capping [`fill`] tries to get round edges `tet-fill` cannot recover.
+pub const MAX_CAPS: usize = 16;
 
-/// What one try of the fill gave: the fill, or a front edge it could not recover (mesh
-/// numbering) with its error.
+/// What one try of the fill gave: the fill, or the front edges it could not recover (mesh
+/// numbering; the one it gave up on first) with its error.
 enum Attempt {
     Done(Filled),
-    Edge([u32; 2], tet_fill::FillError),
+    Edge(Vec<[u32; 2]>, tet_fill::FillError),
 }
 
 /// One try of the fill over `front` (see [`fill`]).
@@ -150,7 +157,15 @@ fn fill_once(
             .iter()
             .all(|&v| (global[v as usize] as usize) < far_first) =>
         {
-            return Ok(Attempt::Edge([global[a as usize], global[b as usize]], e));
+            let on_front = |[u, v]: [u32; 2]| {
+                let (u, v) = (global[u as usize], global[v as usize]);
+                ((u as usize) < far_first && (v as usize) < far_first).then_some([u, v])
+            };
+            let mut edges = vec![[global[a as usize], global[b as usize]]];
+            if let tet_fill::FillError::Unrecoverable { missing_edges, .. } = &e {
+                edges.extend(missing_edges.iter().filter_map(|&m| on_front(m)));
+            }
+            return Ok(Attempt::Edge(edges, e));
         }
         Err(e) => bail!("the volume fill: {e}"),
     };

@@ -52,13 +52,17 @@ pub enum FillError {
         /// The facet's index.
         facet: usize,
         /// Its corners.
-        corners: [[f64; 3]; 3],
+        corners: Box<[[f64; 3]; 3]>,
         /// What was missing (an edge, the facet itself) and why.
         why: String,
         /// The facet's edge missing from the tetrahedralisation (input point indices), when
         /// an edge is what could not be recovered: a caller may change its surfaces there
         /// (e.g. cap the two facets on that edge) and try again.
         edge: Option<[u32; 2]>,
+        /// Every input edge missing from the tetrahedralisation when the fill gave up (input
+        /// point indices, each once): a caller changing its surfaces can mend them all before
+        /// trying again.
+        missing_edges: Vec<[u32; 2]>,
     },
     /// The region is inconsistently oriented: a facet has the fill on both sides or on none
     /// (normals pointing into the fill on one surface and out of it on another, or a surface

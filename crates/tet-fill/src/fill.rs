@@ -103,6 +103,34 @@ fn missing_edge(rec: &mut Recovery, f: [u32; 3]) -> Option<[u32; 2]> {
         .find(|&[a, b]| rec.find_edge(a, b).is_none())
 }
 
+/// The error for input facet `k`, given up on for `why`: its missing edge, and every input
+/// edge missing at this point.
+fn unrecoverable(rec: &mut Recovery, input: &FillInput, k: usize, why: String) -> FillError {
+    let f = input.facets[k];
+    let edge = missing_edge(rec, f);
+    let mut missing_edges: Vec<[u32; 2]> = Vec::new();
+    for &g in input.facets {
+        if rec.has_face(g) {
+            continue;
+        }
+        for i in 0..3 {
+            let (a, b) = (g[i], g[(i + 1) % 3]);
+            if rec.find_edge(a, b).is_none() {
+                missing_edges.push([a.min(b), a.max(b)]);
+            }
+        }
+    }
+    missing_edges.sort_unstable();
+    missing_edges.dedup();
+    FillError::Unrecoverable {
+        facet: k,
+        corners: Box::new(f.map(|v| rec.mesh.p(v))),
+        why,
+        edge,
+        missing_edges,
+    }
+}
+
 /// Recovers every facet; the kept faces and the Steiner points added.
 fn recover_all(
     mesh: &mut Mesh,
@@ -126,13 +154,7 @@ fn recover_all(
             // a failure may clear on a later pass, after other facets' flips and points
             match rec.recover_facet(f) {
                 Err(why) if pass == 3 || why.contains("cap of") => {
-                    let edge = missing_edge(&mut rec, f);
-                    return Err(FillError::Unrecoverable {
-                        facet: k,
-                        corners: f.map(|v| rec.mesh.p(v)),
-                        why,
-                        edge,
-                    });
+                    return Err(unrecoverable(&mut rec, input, k, why));
                 }
                 _ => {}
             }
@@ -143,13 +165,8 @@ fn recover_all(
     }
     for (k, &f) in input.facets.iter().enumerate() {
         if !rec.has_face(f) {
-            let edge = missing_edge(&mut rec, f);
-            return Err(FillError::Unrecoverable {
-                facet: k,
-                corners: f.map(|v| rec.mesh.p(v)),
-                why: "lost again while recovering others".into(),
-                edge,
-            });
+            let why = "lost again while recovering others".to_string();
+            return Err(unrecoverable(&mut rec, input, k, why));
         }
     }
     let steiner = rec.steiner;

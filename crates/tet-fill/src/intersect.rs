@@ -21,12 +21,13 @@ pub(crate) fn check_disjoint(input: &FillInput) -> Result<(), FillError> {
         None => Ok(()),
         Some((i, j)) => Err(FillError::Unrecoverable {
             facet: i,
-            corners: corners(input.facets[i]),
+            corners: Box::new(corners(input.facets[i])),
             why: format!(
                 "it meets facet {j} {:?}: the input surfaces intersect",
                 corners(input.facets[j])
             ),
             edge: None,
+            missing_edges: Vec::new(),
         }),
     }
 }
