@@ -28,6 +28,10 @@ pub struct Filled {
     pub cells: Vec<(Shape, Vec<u32>)>,
     /// The far field's triangles, facing out of the domain (as boundary facets do).
     pub far_facets: Vec<[u32; 3]>,
+    /// Wall facets on which no cell stood (columns stopped at the wall): the fill's cells now
+    /// stand on them, so they join the mesh's boundary, each with its patch, facing out of the
+    /// domain.
+    pub wall_facets: Vec<(Vec<u32>, u32)>,
     /// The figures of the fill, for the report.
     pub stats: FillStats,
 }
@@ -66,12 +70,30 @@ struct Front {
 }
 
 /// Fills the space between the linear layer mesh `mesh`'s final front (its far-field-role
-/// boundary facets) and the far field `far` (triangles facing into the domain).
-pub fn fill(mesh: &Mesh, far: &Surface, options: &tet_fill::FillOptions) -> Result<Filled> {
-    let mut front = front(mesh)?;
+/// boundary facets, and the facets of the wall surface `wall` on which no cell stands) and the
+/// far field `far` (triangles facing into the domain).
+pub fn fill(
+    mesh: &Mesh,
+    wall: &Surface,
+    far: &Surface,
+    options: &tet_fill::FillOptions,
+) -> Result<Filled> {
+    let bare = bare_wall_facets(mesh, wall);
+    let bare_nodes: Vec<Vec<u32>> = bare
+        .iter()
+        .map(|&f| wall.facets[f].nodes().to_vec())
+        .collect();
+    let mut front = front(mesh, &bare_nodes)?;
     for round in 0..=MAX_CAPS {
         match fill_once(mesh, &front, far, options)? {
             Attempt::Done(mut filled) => {
+                filled.wall_facets = bare
+                    .iter()
+                    .map(|&f| {
+                        let k: Vec<u32> = wall.facets[f].nodes().iter().rev().copied().collect();
+                        (k, wall.facet_patch[f])
+                    })
+                    .collect();
                 filled.stats.caps = front.caps.len() / 2;
                 return Ok(filled);
             }
@@ -217,6 +239,7 @@ fn fill_once(
         points: new_points,
         cells,
         far_facets,
+        wall_facets: Vec::new(),
         stats,
     }))
 }
@@ -328,7 +351,7 @@ fn positive_tet(k: [u32; 4], x: impl Fn(u32) -> [f64; 3]) -> Vec<u32> {
 /// The mesh's final front as the fill takes it: its triangles, and its quadrilaterals each
 /// capped by a pyramid (apex over the centre at 0.6 × the mean side, along the quad's normal)
 /// whose four sides join the front.
-fn front(mesh: &Mesh) -> Result<Front> {
+fn front(mesh: &Mesh, bare: &[Vec<u32>]) -> Result<Front> {
     let n0 = mesh.nodes.len() as u32;
     let mut out = Front {
         tris: Vec::new(),
@@ -337,22 +360,21 @@ fn front(mesh: &Mesh) -> Result<Front> {
         apexes: Vec::new(),
     };
     // the front's nodes, for the apexes' clearance
-    let mut on_front: Vec<u32> = Vec::new();
-    for (f, facet) in mesh.boundary.iter().enumerate() {
-        if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Farfield {
-            on_front.extend_from_slice(facet.corners());
-        }
-    }
+    // the last front's facets and the bare wall's, all facing into the fill
+    let facets: Vec<Vec<u32>> = mesh
+        .boundary
+        .iter()
+        .enumerate()
+        .filter(|&(f, _)| mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Farfield)
+        .map(|(_, facet)| facet.corners().to_vec())
+        .chain(bare.iter().cloned())
+        .collect();
+    let mut on_front: Vec<u32> = facets.iter().flatten().copied().collect();
     on_front.sort_unstable();
     on_front.dedup();
     let at: Vec<[f64; 3]> = on_front.iter().map(|&v| mesh.nodes[v as usize]).collect();
     let tree = geom_predicates::PointTree::new(&at);
-    for (f, facet) in mesh.boundary.iter().enumerate() {
-        let patch = mesh.boundary_patch[f] as usize;
-        if mesh.patches.get(patch).map(|p| p.role) != Some(Role::Farfield) {
-            continue;
-        }
-        let k = facet.corners();
+    for k in &facets {
         match k.len() {
             3 => out.tris.push([k[0], k[1], k[2]]),
             4 => {
@@ -373,6 +395,33 @@ fn front(mesh: &Mesh) -> Result<Front> {
         }
     }
     Ok(out)
+}
+
+/// The facets of the wall surface `wall` (whose nodes are `mesh`'s first) on which no cell of
+/// `mesh` stands: where the columns of all its nodes stopped at the wall, the cut mesh has no
+/// wall facet there, and the wall itself bounds the space the fill meshes. Found as the wall
+/// facets none of whose mesh wall facets (itself, or the two triangles a quad was cut into)
+/// exists. Each as its index in `wall`.
+fn bare_wall_facets(mesh: &Mesh, wall: &Surface) -> Vec<usize> {
+    let mut at: Vec<Vec<u32>> = vec![Vec::new(); wall.nodes.len()];
+    for (f, facet) in mesh.boundary.iter().enumerate() {
+        if mesh.patches[mesh.boundary_patch[f] as usize].role == Role::Wall {
+            for &v in facet.corners() {
+                if let Some(list) = at.get_mut(v as usize) {
+                    list.push(f as u32);
+                }
+            }
+        }
+    }
+    (0..wall.facets.len())
+        .filter(|&s| {
+            let nodes = wall.facets[s].nodes();
+            !at[nodes[0] as usize].iter().any(|&f| {
+                let k = mesh.boundary.get(f as usize).corners();
+                k.iter().all(|v| nodes.contains(v))
+            })
+        })
+        .collect()
 }
 
 /// The apex of the pyramid capping the quad `x` (facing out of the layers): over its centre,
@@ -412,6 +461,19 @@ pub fn apply_linear(mesh: &mut Mesh, filled: &Filled) {
     for t in &filled.far_facets {
         mesh.boundary.push(CellType::new(Shape::Tri, 1), t);
         mesh.boundary_patch.push(far);
+    }
+    for (k, patch) in &filled.wall_facets {
+        mesh.boundary.push(CellType::new(facet_shape(k), 1), k);
+        mesh.boundary_patch.push(*patch);
+    }
+}
+
+/// A facet's shape by its corner count.
+fn facet_shape(k: &[u32]) -> Shape {
+    if k.len() == 4 {
+        Shape::Quad
+    } else {
+        Shape::Tri
     }
 }
 
@@ -457,10 +519,8 @@ pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<Mended> {
     let free_from = curved.nodes.len();
     // the front's high-order nodes by their weights on its corners
     let mut nodes: HashMap<Vec<(u32, i64)>, u32> = HashMap::new();
-    for (f, facet) in curved.boundary.iter().enumerate() {
-        if curved.patches[curved.boundary_patch[f] as usize].role != Role::Farfield {
-            continue;
-        }
+    // (every boundary facet's: a bare wall facet's edges are its neighbours')
+    for facet in curved.boundary.iter() {
         let refs = reference(facet.ty)?;
         let k = facet.corners();
         for (r, &v) in refs.iter().zip(facet.nodes) {
@@ -499,9 +559,16 @@ pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<Mended> {
         curved.boundary.push(CellType::new(Shape::Tri, order), &all);
         curved.boundary_patch.push(far);
     }
+    for (k, patch) in &filled.wall_facets {
+        let shape = facet_shape(k);
+        let all = lift(shape, k, curved)?;
+        curved.boundary.push(CellType::new(shape, order), &all);
+        curved.boundary_patch.push(*patch);
+    }
     let first_fill = curved.cells.len() - filled.cells.len();
-    let first_far = curved.boundary.len() - filled.far_facets.len();
-    let fixed: std::collections::HashSet<u32> = (first_far..curved.boundary.len())
+    // the far field's and the bare wall's new facets keep their straight high-order nodes
+    let first_new = curved.boundary.len() - filled.far_facets.len() - filled.wall_facets.len();
+    let fixed: std::collections::HashSet<u32> = (first_new..curved.boundary.len())
         .flat_map(|f| curved.boundary.get(f).nodes.to_vec())
         .collect();
     extend_curving(curved, first_fill, |v| {

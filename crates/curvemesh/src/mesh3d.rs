@@ -77,7 +77,7 @@ pub(crate) fn mesh(
     let grown_layers = grown.layer_heights.len();
     let filled = match &far {
         Some((far, _)) => Some(timed(r, o, ("fill", "volume fill"), |_| {
-            crate::fill3d::fill(&mesh, far, &crate::fill3d::options(case))
+            crate::fill3d::fill(&mesh, &surface, far, &crate::fill3d::options(case))
         })?),
         None => None,
     };

@@ -94,6 +94,34 @@ fn two_spheres_in_a_sphere() {
     });
 }
 
+/// Two spheres 0.01 apart: the columns facing across the gap stop at the wall itself, so the
+/// wall there bounds the fill directly (the cut mesh has no facet on it); the fill stands on
+/// it and it stays in its body's group.
+#[test]
+fn two_spheres_nearly_touching_fill_onto_their_bare_walls() {
+    let text = "dimension = 3\n\
+        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
+        translate = [-0.505, 0.0, 0.0]\nname = \"left\"\n\
+        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
+        translate = [0.505, 0.0, 0.0]\nname = \"right\"\n\
+        [farfield]\nsphere = { center = [0.0, 0.0, 0.0], radius = 10.0 }\n\
+        [layers]\nfirst_height = 1e-3\ngrowth = 1.25\nmax_layers = 16\n\
+        [cut]\ncells = \"tets\"\n";
+    check(
+        "spheres 0.01 apart",
+        text,
+        &["farfield", "left", "right"],
+        |p| {
+            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            (r - 10.0).abs() < 1e-9
+        },
+    );
+    // every wall facet of the icospheres (320 each) is in its group
+    let (_, report) = mesh(text, 1);
+    assert_eq!(report.boundary_groups["left"], 320);
+    assert_eq!(report.boundary_groups["right"], 320);
+}
+
 /// A cube of quads (the mixed cut keeps hexahedra, so the front has quadrilaterals, capped by
 /// pyramids) inside a box.
 #[test]
