@@ -10,13 +10,13 @@
 //! across a gap by their distance along the front: a pair is across a gap when the front's
 //! edges join them by no path shorter than [`DETOUR`] × their distance.
 
-use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 
 use geom_predicates::PointTree;
 use geom_predicates::vector::{dist, dot, sub};
 
 use crate::front::Topo;
+use crate::stop::Reach;
 
 /// A pair of front nodes is across a gap when the front joins them by no path shorter than
 /// this × their distance (the two sides of a 90° concave edge: at most √2).
@@ -89,24 +89,6 @@ fn adjacency(topo: &Topo, x: &[[f64; 3]], n: usize) -> Vec<Vec<(u32, f64)>> {
         adj[b as usize].push((a, l));
     }
     adj
-}
-
-/// A node and its distance along the front, for the heap (nearest first).
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Reach(f64, u32);
-
-impl Eq for Reach {}
-
-impl Ord for Reach {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
-    }
-}
-
-impl PartialOrd for Reach {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
 }
 
 /// The distances along the front's edges from `from` to every node within `limit` of it

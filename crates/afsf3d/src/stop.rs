@@ -27,9 +27,10 @@ pub(crate) const STOP_SLOPE: f64 = 1.0;
 /// instead: thinner cells would only be slivers.
 pub(crate) const MIN_RISE: f64 = 0.25;
 
-/// A node and its allowed thickness, for the heap (smallest first).
+/// A node and a distance (its allowed thickness here, its distance along the front in
+/// `proximity`), for a heap that pops the smallest first.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Reach(f64, u32);
+pub(crate) struct Reach(pub(crate) f64, pub(crate) u32);
 
 impl Eq for Reach {}
 

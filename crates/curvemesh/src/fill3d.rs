@@ -537,10 +537,7 @@ pub fn apply_curved(curved: &mut Mesh, filled: &Filled) -> Result<Mended> {
             let w = weights(shape, r);
             let id = key(&w, &k);
             let v = *nodes.entry(id).or_insert_with(|| {
-                let x = w.iter().fold([0.0; 3], |acc, &(i, wi)| {
-                    let p = curved.nodes[k[i] as usize];
-                    std::array::from_fn(|d| acc[d] + wi * p[d])
-                });
+                let x = place(&w, &k, &curved.nodes);
                 curved.nodes.push(x);
                 (curved.nodes.len() - 1) as u32
             });
@@ -597,14 +594,9 @@ fn extend_curving(m: &mut Mesh, first_fill: usize, free: impl Fn(u32) -> bool) {
         let k = cell.corners();
         let high: Vec<u32> = cell.nodes[k.len()..].to_vec();
         for (r, &v) in refs.iter().zip(cell.nodes).skip(k.len()) {
-            straight.entry(v).or_insert_with(|| {
-                weights(cell.ty.shape, *r)
-                    .iter()
-                    .fold([0.0; 3], |acc, &(i, wi)| {
-                        let p = m.nodes[k[i] as usize];
-                        std::array::from_fn(|d| acc[d] + wi * p[d])
-                    })
-            });
+            straight
+                .entry(v)
+                .or_insert_with(|| place(&weights(cell.ty.shape, *r), k, &m.nodes));
         }
         cells.push(high);
     }
@@ -735,10 +727,7 @@ fn curved_entities(m: &Mesh, c: usize) -> Vec<(Vec<u32>, Vec<[f64; 3]>)> {
     let mut groups: Vec<Group> = Vec::new();
     for (r, &v) in refs.iter().zip(cell.nodes).skip(k.len()) {
         let w = weights(cell.ty.shape, *r);
-        let straight = w.iter().fold([0.0; 3], |acc, &(i, wi)| {
-            let p = m.nodes[k[i] as usize];
-            std::array::from_fn(|d| acc[d] + wi * p[d])
-        });
+        let straight = place(&w, k, &m.nodes);
         if geom_predicates::vector::dist(straight, m.nodes[v as usize]) == 0.0 {
             continue;
         }
@@ -847,6 +836,15 @@ fn weights(shape: Shape, r: [f64; 3]) -> Vec<(usize, f64)> {
         .enumerate()
         .filter(|&(_, wi)| wi.abs() > 1e-12)
         .collect()
+}
+
+/// The point of corners `corners` (of `nodes`) with weights `w` ([`weights`]): a high-order
+/// node's place on its straight cell.
+fn place(w: &[(usize, f64)], corners: &[u32], nodes: &[[f64; 3]]) -> [f64; 3] {
+    w.iter().fold([0.0; 3], |acc, &(i, wi)| {
+        let p = nodes[corners[i] as usize];
+        std::array::from_fn(|d| acc[d] + wi * p[d])
+    })
 }
 
 /// A node's key: its corners' global numbers with their weights (to 1e-9), sorted.

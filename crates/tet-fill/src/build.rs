@@ -40,7 +40,7 @@ pub(crate) fn check_points(points: &[[f64; 3]]) -> Result<(), FillError> {
 }
 
 /// Whether three points lie on one line (exact: all three axis projections collinear).
-fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+pub(crate) fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     let xy = |p: [f64; 3]| [p[0], p[1]];
     let yz = |p: [f64; 3]| [p[1], p[2]];
     let zx = |p: [f64; 3]| [p[2], p[0]];

@@ -3,7 +3,7 @@
 //! the facets recovered, the region classified, refined and cleared of slivers; then the
 //! region's tets returned with the box's corners dropped.
 
-use crate::build::{check_points, tetrahedralise};
+use crate::build::{check_points, collinear, tetrahedralise};
 use crate::error::FillError;
 use crate::insert::FaceSet;
 use crate::mesh::{GHOST, Mesh, face_key};
@@ -35,23 +35,11 @@ fn check_facets(input: &FillInput) -> Result<(), FillError> {
     Ok(())
 }
 
-/// Exact collinearity in 3D.
-fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    [(0, 1), (1, 2), (2, 0)]
-        .iter()
-        .all(|&(k, m)| geom_predicates::orient2d([a[k], a[m]], [b[k], b[m]], [c[k], c[m]]) == 0.0)
-}
-
 /// The eight corners of a box around `points` with a margin of their extent on every side.
 fn box_corners(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
+    let Some(geom_predicates::Aabb { lo, hi }) = geom_predicates::Aabb::of_points(points) else {
+        return Vec::new();
+    };
     let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0);
     // each corner pushed out by its own odd amount: no box face parallel to an input plane,
     // no box corner co-spherical with input points (degeneracies that recovery would pay for)

@@ -27,14 +27,9 @@ pub(crate) fn brio(points: &[[f64; 3]]) -> Vec<u32> {
 
 /// Each point's Morton code on a 2^21 grid over the bounding box.
 fn morton_keys(points: &[[f64; 3]]) -> Vec<u64> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
+    let Some(geom_predicates::Aabb { lo, hi }) = geom_predicates::Aabb::of_points(points) else {
+        return Vec::new();
+    };
     let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
     let scale = if extent > 0.0 {
         ((1u64 << 21) - 1) as f64 / extent

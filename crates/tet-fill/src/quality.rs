@@ -6,26 +6,7 @@ pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
 }
 
-#[inline]
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline]
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// The distance between two points.
-#[inline]
-pub(crate) fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let d = sub(a, b);
-    dot(d, d).sqrt()
-}
+pub(crate) use geom_predicates::vector::{cross3 as cross, dist, dot};
 
 /// The largest of a tet's six dihedral angles, in degrees (180 for a flat tet).
 pub(crate) fn max_dihedral_deg(p: [[f64; 3]; 4]) -> f64 {

@@ -5,10 +5,11 @@
 //! fill's side of the facet (constrained Bowyer–Watson: recovered facets are never crossed) and
 //! the flips are tried again. Recovered facets and input edges are kept from then on.
 
+use crate::build::collinear;
 use crate::flip::{EdgeSet, Kept, edge_key};
 use crate::insert::{BuildFx, FaceSet, Located, Scratch};
 use crate::mesh::{GHOST, Mesh, face_key, face_of};
-use crate::quality::shape;
+use crate::quality::{cross, shape, sub};
 use geom_predicates::{SegmentMeet, orient3d, segment_meet, segment_meets_triangle};
 use std::collections::HashSet;
 
@@ -487,14 +488,8 @@ impl<'m> Recovery<'m> {
             return Err(format!("the cap of {} points is reached", self.max_points));
         }
         let [a, b, c] = f.map(|w| self.mesh.p(w));
-        let u = [0, 1, 2].map(|k| b[k] - a[k]);
-        let v = [0, 1, 2].map(|k| c[k] - a[k]);
         // the normal of a counter-clockwise facet seen from the fill points into the fill
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let n = cross(sub(a, b), sub(a, c));
         let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
         let size = len.sqrt();
         let off = size * [0.3, 0.15, 0.6, 0.08, 1.0][attempt % 5];
@@ -542,27 +537,14 @@ fn on_segment(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
     let (k, m) = drop_axis_of(a, b, p);
     let proj = |q: [f64; 3]| [q[k], q[m]];
     geom_predicates::orient2d(proj(a), proj(b), proj(p)) == 0.0
-        && collinear3(a, b, p)
+        && collinear(a, b, p)
         && (0..3).all(|i| p[i] >= a[i].min(b[i]) && p[i] <= a[i].max(b[i]))
-}
-
-/// Exact collinearity in 3D (all three axis projections).
-fn collinear3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    [(0, 1), (1, 2), (2, 0)]
-        .iter()
-        .all(|&(k, m)| geom_predicates::orient2d([a[k], a[m]], [b[k], b[m]], [c[k], c[m]]) == 0.0)
 }
 
 /// The two axes to keep when projecting the plane through the points (the normal's largest
 /// component dropped; any pair for a degenerate normal).
 fn drop_axis_of(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> (usize, usize) {
-    let u = [0, 1, 2].map(|k| b[k] - a[k]);
-    let v = [0, 1, 2].map(|k| c[k] - a[k]);
-    let n = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
+    let n = cross(sub(a, b), sub(a, c));
     let big = (0..3)
         .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
         .unwrap_or(2);
@@ -577,11 +559,11 @@ fn segments_cross_3d(a: [f64; 3], b: [f64; 3], x: [f64; 3], y: [f64; 3]) -> bool
     }
     // a projection in which the four points' plane is not seen edge-on
     let (mut k, mut m) = drop_axis_of(a, b, x);
-    if collinear3(a, b, x) {
+    if collinear(a, b, x) {
         (k, m) = drop_axis_of(a, b, y);
     }
     let proj = |q: [f64; 3]| [q[k], q[m]];
-    if collinear3(a, b, x) && collinear3(a, b, y) {
+    if collinear(a, b, x) && collinear(a, b, y) {
         // all on one line: overlap means a vertex on the segment, found elsewhere
         return false;
     }
