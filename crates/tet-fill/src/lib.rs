@@ -33,6 +33,7 @@ mod error;
 mod fill;
 mod flip;
 mod insert;
+mod insphere;
 mod intersect;
 mod mesh;
 mod order;

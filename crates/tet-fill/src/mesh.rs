@@ -125,7 +125,9 @@ impl Mesh {
     pub fn conflicts(&self, t: u32, p: [f64; 3]) -> bool {
         let v = self.tets[t as usize];
         match v.iter().position(|&x| x == GHOST) {
-            None => insphere(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(v[3]), p) > 0.0,
+            None => {
+                crate::insphere::inside(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(v[3]), p)
+            }
             Some(g) => {
                 let o = self.orient_face(t, g, p);
                 if o != 0.0 {
