@@ -193,13 +193,12 @@ impl Mesh {
                 {
                     continue;
                 }
-                if let Some(keep) = keep {
-                    let f = face_of(self.tets[t as usize], i);
-                    if !f.contains(&GHOST) && keep.contains(&face_key(f)) {
-                        continue;
-                    }
-                }
-                if self.conflicts(n, p) {
+                // (the kept faces looked up only for conflicting tets: hashing costs more)
+                let kept =
+                    |k: &FaceSet, f: [u32; 3]| !f.contains(&GHOST) && k.contains(&face_key(f));
+                if self.conflicts(n, p)
+                    && !keep.is_some_and(|keep| kept(keep, face_of(self.tets[t as usize], i)))
+                {
                     s.mark[n as usize] = round;
                     s.cavity.push(n);
                     s.stack.push(n);

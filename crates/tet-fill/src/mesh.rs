@@ -145,8 +145,14 @@ impl Mesh {
 
     /// Links the faces through `apex` (at corner `slot` of each tet) among `new` tets, by the
     /// edge each such face has opposite the apex: every such face must meet exactly one other.
-    pub fn link_around_apex(&mut self, new: &[(u32, usize)], scratch: &mut Vec<(u64, u32)>) {
-        scratch.clear();
+    /// `table` is scratch space: an open-addressing table of edges (cheaper than sorting them).
+    pub fn link_around_apex(&mut self, new: &[(u32, usize)], table: &mut Vec<(u64, u32)>) {
+        const EMPTY: u64 = u64::MAX;
+        const PAIRED: u32 = u32::MAX;
+        let bits = (6 * new.len()).next_power_of_two().trailing_zeros().max(4);
+        let wrap = (1usize << bits) - 1;
+        table.clear();
+        table.resize(wrap + 1, (EMPTY, 0));
         for &(t, slot) in new {
             let v = self.tets[t as usize];
             for k in 0..4 {
@@ -161,16 +167,31 @@ impl Mesh {
                         n += 1;
                     }
                 }
-                let (a, b) = (e[0].min(e[1]), e[0].max(e[1]));
-                scratch.push(((u64::from(a) << 32) | u64::from(b), t * 4 + k as u32));
+                // (an edge's smaller end is never the ghost: the key is never EMPTY)
+                let key = (u64::from(e[0].min(e[1])) << 32) | u64::from(e[0].max(e[1]));
+                let code = t * 4 + k as u32;
+                let mut h = (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits)) as usize;
+                loop {
+                    let entry = &mut table[h];
+                    if entry.0 == EMPTY {
+                        *entry = (key, code);
+                        break;
+                    }
+                    if entry.0 == key {
+                        let other = entry.1;
+                        debug_assert_ne!(other, PAIRED, "an edge in three faces of the cavity");
+                        entry.1 = PAIRED;
+                        self.link(t, k, other >> 2, (other & 3) as usize);
+                        break;
+                    }
+                    h = (h + 1) & wrap;
+                }
             }
         }
-        scratch.sort_unstable_by_key(|x| x.0);
-        for pair in scratch.chunks_exact(2) {
-            debug_assert_eq!(pair[0].0, pair[1].0, "cavity boundary not a closed surface");
-            let (a, b) = (pair[0].1, pair[1].1);
-            self.link(a >> 2, (a & 3) as usize, b >> 2, (b & 3) as usize);
-        }
+        debug_assert!(
+            table.iter().all(|e| e.0 == EMPTY || e.1 == PAIRED),
+            "cavity boundary not a closed surface"
+        );
     }
 
     /// Starts the tetrahedralisation with the positive tet on four non-coplanar points and

@@ -8,40 +8,42 @@ pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 pub(crate) use geom_predicates::vector::{cross3 as cross, dist, dot};
 
-/// The largest of a tet's six dihedral angles, in degrees (180 for a flat tet).
-pub(crate) fn max_dihedral_deg(p: [[f64; 3]; 4]) -> f64 {
-    dihedral_worst(p)
-}
-
 /// The largest of a tet's six dihedral angles, in degrees (180 for a flat tet), either
 /// orientation: no allocation, one `acos`.
-pub(crate) fn dihedral_worst(p: [[f64; 3]; 4]) -> f64 {
-    // the outward unit normals of the faces opposite each corner; the dihedral angle at the
-    // edge between faces i and j is π minus the angle between their outward normals, so the
-    // largest angle is where two normals align most
+pub(crate) fn max_dihedral_deg(p: [[f64; 3]; 4]) -> f64 {
+    180.0 - dihedral_rank(p).acos().to_degrees()
+}
+
+/// Minus the cosine of a tet's largest dihedral angle, either orientation: in [-1, 1],
+/// increasing with the angle, 1 for a flat tet — what comparisons of angles need, without the
+/// `acos` (a third of the angle's cost).
+pub(crate) fn dihedral_rank(p: [[f64; 3]; 4]) -> f64 {
+    // the faces' normals, all outward (a positive tet) or all inward (`FACE` orients every
+    // face alike); the dihedral angle at the edge between faces i and j is π minus the angle
+    // between their outward normals, so the largest angle is where two normals align most
     let mut normals = [[0.0; 3]; 4];
-    for (i, n) in normals.iter_mut().enumerate() {
+    let mut inverse = [0.0; 4];
+    for i in 0..4 {
         let [a, b, c] = crate::mesh::FACE[i].map(|k| p[k]);
-        let m = cross(sub(a, b), sub(a, c));
-        let len = dot(m, m).sqrt();
+        normals[i] = cross(sub(a, b), sub(a, c));
+        let len = dot(normals[i], normals[i]).sqrt();
         if len == 0.0 || !len.is_finite() {
-            return 180.0;
+            return 1.0;
         }
-        // away from corner i
-        let s = if dot(m, sub(p[i], a)) > 0.0 {
-            1.0
-        } else {
-            -1.0
-        };
-        *n = m.map(|x| s * x / len);
+        inverse[i] = 1.0 / len;
     }
     let mut most = -1.0f64;
     for i in 0..4 {
         for j in i + 1..4 {
-            most = most.max(dot(normals[i], normals[j]));
+            most = most.max(dot(normals[i], normals[j]) * inverse[i] * inverse[j]);
         }
     }
-    180.0 - most.clamp(-1.0, 1.0).acos().to_degrees()
+    most.clamp(-1.0, 1.0)
+}
+
+/// [`dihedral_rank`] of a tet whose largest dihedral angle is `deg` degrees.
+pub(crate) fn rank_of_deg(deg: f64) -> f64 {
+    -deg.to_radians().cos()
 }
 
 /// A shape measure in (0, 1]: 1 for the regular tet, towards 0 for flat ones (6√2 times the
@@ -63,12 +65,13 @@ pub(crate) fn shape(p: [[f64; 3]; 4]) -> f64 {
 /// The circumcentre of a tet (None when flat).
 pub(crate) fn circumcentre(p: [[f64; 3]; 4]) -> Option<[f64; 3]> {
     let (a, b, c) = (sub(p[0], p[1]), sub(p[0], p[2]), sub(p[0], p[3]));
-    let det = 2.0 * dot(a, cross(b, c));
+    let (bc, ca, ab) = (cross(b, c), cross(c, a), cross(a, b));
+    let det = 2.0 * dot(a, bc);
     if det == 0.0 || !det.is_finite() {
         return None;
     }
     let (la, lb, lc) = (dot(a, a), dot(b, b), dot(c, c));
-    let num = [0, 1, 2].map(|k| la * cross(b, c)[k] + lb * cross(c, a)[k] + lc * cross(a, b)[k]);
+    let num = [0, 1, 2].map(|k| la * bc[k] + lb * ca[k] + lc * ab[k]);
     Some([0, 1, 2].map(|k| p[0][k] + num[k] / det))
 }
 
@@ -104,5 +107,8 @@ mod tests {
         assert!(c.iter().all(|x| x.abs() < 1e-12));
         let corner = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         assert!((max_dihedral_deg(corner) - 90.0).abs() < 1e-9);
+        let rank = dihedral_rank(corner);
+        assert!((rank - rank_of_deg(90.0)).abs() < 1e-12);
+        assert!(rank_of_deg(150.0) > rank && rank > dihedral_rank(p));
     }
 }

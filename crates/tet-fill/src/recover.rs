@@ -105,6 +105,12 @@ impl<'m> Recovery<'m> {
 
     /// The tets holding `v`.
     fn star(&mut self, v: u32) -> Vec<u32> {
+        self.star_until(v, |_| false).0
+    }
+
+    /// The tets holding `v`, breadth first from the one `tet_of` knows, until one satisfies
+    /// `stop` (then also returned).
+    fn star_until(&mut self, v: u32, stop: impl Fn(&[u32; 4]) -> bool) -> (Vec<u32>, Option<u32>) {
         let t0 = self.tet_of(v);
         // a round number per search marks the tets seen, so no set is needed
         self.round = self.round.wrapping_add(1);
@@ -121,6 +127,9 @@ impl<'m> Recovery<'m> {
         while k < star.len() {
             let t = star[k];
             k += 1;
+            if stop(&self.mesh.tets[t as usize]) {
+                return (star, Some(t));
+            }
             for i in 0..4 {
                 if self.mesh.tets[t as usize][i] != v {
                     let n = self.mesh.neighbour(t, i);
@@ -131,14 +140,13 @@ impl<'m> Recovery<'m> {
                 }
             }
         }
-        star
+        (star, None)
     }
 
-    /// A tet holding edge `a b`.
+    /// A tet holding edge `a b` (the first in `star(a)`'s order).
     pub(crate) fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
-        self.star(a)
-            .into_iter()
-            .find(|&t| self.mesh.tets[t as usize].contains(&b))
+        // the star searched only as far as needed: most calls ask about present edges
+        self.star_until(a, |v| v.contains(&b)).1
     }
 
     /// Whether `a b c` is a face.

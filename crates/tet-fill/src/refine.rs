@@ -7,7 +7,7 @@
 
 use crate::error::FillError;
 use crate::insert::{FaceSet, Located, Scratch};
-use crate::mesh::Mesh;
+use crate::mesh::{GHOST, Mesh};
 use crate::quality::{circumcentre, dist, edge_range};
 use crate::region::Side;
 use crate::{FillInput, FillOptions};
@@ -183,12 +183,17 @@ pub(crate) fn refine(
         .filter(|&t| side[t as usize] == Side::Inside)
         .collect();
     let (mut scratch, mut new) = (Scratch::default(), Vec::new());
+    // per slot, the corners of the tet last found good there: a slot reused while its old
+    // entry waits in the queue is queued twice, and most entries are such repeats
+    let mut good = vec![[GHOST; 4]; mesh.tets.len()];
     let mut added = 0;
     while let Some(t) = queue.pop() {
-        if mesh.is_dead(t) || side[t as usize] != Side::Inside {
+        let corners = mesh.tets[t as usize];
+        if mesh.is_dead(t) || side[t as usize] != Side::Inside || good[t as usize] == corners {
             continue;
         }
         let Some(c) = bad(mesh, t) else {
+            good[t as usize] = corners;
             continue;
         };
         if facets.encroached(c) {
@@ -215,6 +220,7 @@ pub(crate) fn refine(
         }
         added += 1;
         side.resize(mesh.tets.len(), Side::Unknown);
+        good.resize(mesh.tets.len(), [GHOST; 4]);
         for &n in &new {
             side[n as usize] = Side::Inside;
             queue.push(n);

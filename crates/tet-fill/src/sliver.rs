@@ -12,7 +12,7 @@ use crate::cavity::EDGES;
 use crate::flip::{EdgeSet, Kept, edge_key};
 use crate::insert::{FaceSet, Located, Scratch};
 use crate::mesh::{GHOST, Mesh};
-use crate::quality::{circumcentre, cross, dihedral_worst, dist, dot, sub};
+use crate::quality::{circumcentre, cross, dihedral_rank, dist, dot, rank_of_deg, sub};
 use crate::region::Side;
 
 /// What improvement works with.
@@ -49,7 +49,8 @@ pub(crate) fn improve(
         first_free,
         scratch: Scratch::default(),
     };
-    let target = options.max_dihedral_deg;
+    // angles compared as ranks (minus their cosines): no `acos`
+    let target = rank_of_deg(options.max_dihedral_deg);
     let mut added = 0;
     for pass in 0..8 {
         let bad = imp.bad_tets(target);
@@ -77,9 +78,9 @@ pub(crate) fn improve(
 }
 
 impl Improver<'_> {
-    /// The worst dihedral angle of tet corners `v`, degrees.
+    /// The worst dihedral angle of tet corners `v`, as its [`dihedral_rank`].
     fn worst(&self, v: [u32; 4]) -> f64 {
-        dihedral_worst(v.map(|w| self.mesh.p(w)))
+        dihedral_rank(v.map(|w| self.mesh.p(w)))
     }
 
     fn inside(&self, t: u32) -> bool {
@@ -90,7 +91,7 @@ impl Improver<'_> {
         self.inside(t) && self.worst(self.mesh.tets[t as usize]) > target
     }
 
-    /// The inside tets worse than `target`, worst first.
+    /// The inside tets worse than `target` (a rank), worst first.
     fn bad_tets(&self, target: f64) -> Vec<u32> {
         let mut bad: Vec<(f64, u32)> = (0..self.mesh.tets.len() as u32)
             .filter(|&t| self.inside(t))
@@ -106,8 +107,11 @@ impl Improver<'_> {
         let before = old
             .iter()
             .map(|&t| self.worst(self.mesh.tets[t as usize]))
-            .fold(0.0, f64::max);
-        let after = new.iter().map(|&v| self.worst(v)).fold(0.0, f64::max);
+            .fold(f64::NEG_INFINITY, f64::max);
+        let after = new
+            .iter()
+            .map(|&v| self.worst(v))
+            .fold(f64::NEG_INFINITY, f64::max);
         if after >= before || !old.iter().all(|&t| self.inside(t)) {
             return false;
         }
@@ -130,7 +134,7 @@ impl Improver<'_> {
             faces: self.faces,
             edges: &self.edges,
         };
-        let score = |m: &Mesh, v: [u32; 4]| -dihedral_worst(v.map(|w| m.p(w)));
+        let score = |m: &Mesh, v: [u32; 4]| -dihedral_rank(v.map(|w| m.p(w)));
         let v = self.mesh.tets[t as usize];
         let mut ways: Vec<(Vec<u32>, Vec<[u32; 4]>)> = Vec::new();
         for (k, m) in EDGES {
@@ -147,7 +151,10 @@ impl Improver<'_> {
         let mut ranked: Vec<(f64, usize)> = ways
             .iter()
             .enumerate()
-            .map(|(k, (_, new))| (new.iter().map(|&v| self.worst(v)).fold(0.0, f64::max), k))
+            .map(|(k, (_, new))| {
+                let worst = new.iter().map(|&v| self.worst(v));
+                (worst.fold(f64::NEG_INFINITY, f64::max), k)
+            })
             .collect();
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         ranked
@@ -194,7 +201,7 @@ impl Improver<'_> {
     fn star_worst(&mut self, v: u32, p: [f64; 3], star: &[u32]) -> f64 {
         let old = self.mesh.points[v as usize];
         self.mesh.points[v as usize] = p;
-        let mut worst: f64 = 0.0;
+        let mut worst = f64::NEG_INFINITY;
         for &u in star {
             let c = self.mesh.tets[u as usize];
             if !self.mesh.positive(c) {
