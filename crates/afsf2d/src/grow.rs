@@ -8,7 +8,9 @@
 //! 1. plan: every node on an active edge gets one child on the bisector at the ideal length,
 //!    or a fan of children at a convex corner;
 //! 2. closing: a planned cell that would come nearer than its clearance to another part of the
-//!    fronts (another loop, or its own loop far away along the front) freezes its edge;
+//!    fronts (another loop, or its own loop far away along the front, measured on the current
+//!    front and on the planned one: the two sides of a concave corner are near along the
+//!    planned front, where their children meet) freezes its edge;
 //! 3. build: nodes and cells are created, new neighbour edges shorter than Coe_shrink times
 //!    their extrusion edges break (their nodes merge, the quad below becomes a triangle);
 //! 4. solve: the springs of the top layers are balanced (`springfield`);
@@ -238,10 +240,25 @@ struct Seg {
     base: [P2; 2],
     ids: [u64; 2],
     lp: u32,
-    arc: f64,
+    /// Its place along its loop: on the current front, and on the planned one (where a
+    /// concave corner's children meet, the planned front is shorter).
+    arc: [f64; 2],
     /// (edge, second edge) to freeze, or NONE for current-front segments.
     owner: [u32; 2],
     clearance: f64,
+}
+
+/// The distance along their loop between `a` and `b` (of loop lengths `total`): the shorter
+/// way round, on the current front or on the planned one, whichever is less. Measured on the
+/// planned front too, the two sides of a concave corner, whose children meet on its bisector,
+/// stay near each other however many layers fold round it.
+fn path(a: &Seg, b: &Seg, total: [f64; 2]) -> f64 {
+    (0..2)
+        .map(|k| {
+            let delta = (a.arc[k] - b.arc[k]).abs();
+            delta.min(total[k] - delta)
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Whether segments `a` and `b` are farther apart than `c` on some axis by more than the
@@ -674,11 +691,8 @@ impl<'p> Work<'p> {
                 // when that holds both ways, skip the distance (most candidate pairs)
                 let never_frozen = |a: &Seg, b: &Seg| {
                     a.owner[0] == NONE
-                        || (a.lp == b.lp && {
-                            let total = loop_len[a.lp as usize];
-                            let delta = (a.arc - b.arc).abs();
-                            delta.min(total - delta) < path_ratio * a.clearance
-                        })
+                        || (a.lp == b.lp
+                            && path(a, b, loop_len[a.lp as usize]) < path_ratio * a.clearance)
                 };
                 if never_frozen(sx, sy) && never_frozen(sy, sx) {
                     return;
@@ -701,13 +715,10 @@ impl<'p> Work<'p> {
                     if a.owner[0] == NONE || d >= a.clearance {
                         continue;
                     }
-                    if a.lp == b.lp {
-                        let total = loop_len[a.lp as usize];
-                        let delta = (a.arc - b.arc).abs();
-                        let path = delta.min(total - delta);
-                        if path < path_ratio * (d + a.clearance) {
-                            continue;
-                        }
+                    if a.lp == b.lp
+                        && path(a, b, loop_len[a.lp as usize]) < path_ratio * (d + a.clearance)
+                    {
+                        continue;
                     }
                     out.push((a.lp, a.owner));
                 }
@@ -722,8 +733,8 @@ impl<'p> Work<'p> {
     }
 
     /// The segments of the closing test (current front edges, planned cell sides and tops,
-    /// fan edges), into `segs`; returns the length of each loop.
-    fn closing_segments(&self, plans: &[Plan], segs: &mut Vec<Seg>) -> Vec<f64> {
+    /// fan edges), into `segs`; returns the length of each loop, current and planned.
+    fn closing_segments(&self, plans: &[Plan], segs: &mut Vec<Seg>) -> Vec<[f64; 2]> {
         let factor = self.params.closing_factor;
         // a front edge and the three sides of its planned cell, and a fan's edges
         let capacity = self
@@ -742,12 +753,21 @@ impl<'p> Work<'p> {
                 let (a, b) = (lp.items[i] as usize, lp.items[(i + 1) % m] as usize);
                 arc[i + 1] = arc[i] + dist(self.nodes.pos[a], self.nodes.pos[b]);
             }
-            loop_len.push(arc[m]);
+            let (planned, planned_len) = planned_arcs(&self.nodes.pos, lp, plan);
+            loop_len.push([arc[m], planned_len]);
             let child_id = |c: usize| ((li as u64 + 1) << 40) | c as u64;
             for i in 0..m {
                 let (a, b) = (lp.items[i], lp.items[(i + 1) % m]);
                 let (pa, pb) = (self.nodes.pos[a as usize], self.nodes.pos[b as usize]);
-                let mid = 0.5 * (arc[i] + arc[i + 1]);
+                let next_start = if i + 1 < m {
+                    planned[i + 1][0]
+                } else {
+                    planned_len
+                };
+                let mid = [
+                    0.5 * (arc[i] + arc[i + 1]),
+                    0.5 * (planned[i][1] + next_start),
+                ];
                 segs.push(Seg {
                     p: pa,
                     q: pb,
@@ -796,7 +816,7 @@ impl<'p> Work<'p> {
                             base: [pv, pv],
                             ids: [child_id(c), child_id(c + 1)],
                             lp: li as u32,
-                            arc: arc[i],
+                            arc: [arc[i], 0.5 * (planned[i][0] + planned[i][1])],
                             owner: [((i + m - 1) % m) as u32, i as u32],
                             clearance: factor * h.max(0.5 * dist(qa, qb)),
                         });
@@ -1277,6 +1297,39 @@ impl<'p> Work<'p> {
     }
 }
 
+/// Each node's place along the planned front of loop `lp` (its first and last child, or
+/// the node itself where it does not advance), and the planned front's length.
+fn planned_arcs(pos: &[P2], lp: &Loop, plan: &Plan) -> (Vec<[f64; 2]>, f64) {
+    let m = lp.items.len();
+    let mut out = Vec::with_capacity(m);
+    let (mut s, mut last): (f64, Option<P2>) = (0.0, None);
+    for i in 0..m {
+        let r = plan.children(i);
+        let own = [pos[lp.items[i] as usize]];
+        let points = if r.is_empty() { &own[..] } else { &plan.pos[r] };
+        let mut first = 0.0;
+        for (k, &q) in points.iter().enumerate() {
+            if let Some(l) = last {
+                s += dist(l, q);
+            }
+            if k == 0 {
+                first = s;
+            }
+            last = Some(q);
+        }
+        out.push([first, s]);
+    }
+    // the closing edge, from the last node back to the first
+    let first_point = match plan.children(0) {
+        r if r.is_empty() => pos[lp.items[0] as usize],
+        r => plan.pos[r.start],
+    };
+    if let Some(l) = last {
+        s += dist(l, first_point);
+    }
+    (out, s)
+}
+
 /// Removes repeated corners of a cell after a merge; a cell left with fewer than three
 /// corners is deleted (`len` = 0).
 fn compress(cell: &mut Cell) {
@@ -1408,7 +1461,7 @@ mod tests {
             base: [p, q],
             ids: [0, 0],
             lp: 0,
-            arc: 0.0,
+            arc: [0.0; 2],
             owner: [NONE, NONE],
             clearance: 0.0,
         };

@@ -67,3 +67,21 @@ fn thirty_p_thirty_n_real_boundary() {
 fn thirty_p_thirty_n_first_height_5e_5() {
     three_growths("30p30n", 5e-5);
 }
+
+/// Concave corners are layered: the L-shape's 90° inner corner and the 30P30N main element's
+/// cove corner (87°, facets of 5e-6) keep every wall facet under a layer, the layers of the two
+/// sides meeting on the corner's bisector (before, the closing test took the two sides for
+/// fronts about to collide and left the corner's facets to the fill).
+#[test]
+fn concave_corners_leave_no_wall_bare() {
+    for name in ["lshape", "30p30n"] {
+        let case = real_case(name);
+        let (loops, params) = mesher_input(&case);
+        let out = grow_mesh(&loops, &params).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(
+            out.stats.bare_wall_facets, 0,
+            "{name}: bare at {:?}",
+            out.stats.bare_wall_facets_at
+        );
+    }
+}
