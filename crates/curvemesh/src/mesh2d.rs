@@ -298,3 +298,35 @@ fn loop_report(input: &LoopInput, nodes: &BoundaryNodes) -> LoopReport {
         spacing_max: max,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::growth_notes;
+    use afsf2d::{AfsfStats, LayerStats};
+
+    /// The layers whose balance stopped at its limit are named, and the first bare wall
+    /// facet is located, with what to change.
+    #[test]
+    fn growth_notes_name_the_layers_and_the_place() {
+        let layer = |layer, converged| LayerStats {
+            layer,
+            converged,
+            ..LayerStats::default()
+        };
+        let stats = AfsfStats {
+            layer_stats: vec![layer(1, true), layer(2, false), layer(5, false)],
+            bare_wall_facets: 3,
+            bare_wall_facets_at: vec![[0.7, 0.032094], [0.8, 0.0]],
+            ..AfsfStats::default()
+        };
+        let notes = growth_notes(&stats);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(notes[0].contains("layers 2, 5 stopped"), "{}", notes[0]);
+        assert!(
+            notes[1].contains("3 wall facets have no layers (at (0.700000, 0.032094) and 2 more)"),
+            "{}",
+            notes[1]
+        );
+        assert!(growth_notes(&AfsfStats::default()).is_empty());
+    }
+}

@@ -1,7 +1,6 @@
-//! The report's notes say where and what to do: on the default case (the 30P30N) the layers
-//! whose spring balance stopped at its limit are named, and no wall facet is left without
-//! layers (the main element's cove corner is layered); on the bat, meshed inside, the facets
-//! its narrow wing tips leave without layers are located.
+//! The report's notes: the default case (the 30P30N) has none (every wall facet layered,
+//! every spring balance converged); on the bat, meshed inside, the facets its narrow wing
+//! tips leave without layers are located, with what to change.
 
 use end_to_end::{Outcome, read_json, run_into};
 
@@ -18,22 +17,12 @@ fn notes_of(case: &str) -> Vec<String> {
         .collect()
 }
 
+/// The default case runs clean: no wall facet without layers (the main element's cove
+/// corner is layered) and every spring balance converged, so no note at all.
 #[test]
-fn the_default_cases_notes_say_where() {
+fn the_default_case_runs_without_notes() {
     let notes = notes_of("30p30n");
-    assert!(
-        !notes
-            .iter()
-            .any(|n| n.contains("wall facets have no layers")),
-        "{notes:?}"
-    );
-    if let Some(limit) = notes.iter().find(|n| n.contains("iteration limit")) {
-        assert!(limit.contains("layer"), "{limit}");
-        assert!(
-            limit.chars().any(|c| c.is_ascii_digit()),
-            "no layer named: {limit}"
-        );
-    }
+    assert!(notes.is_empty(), "{notes:?}");
 }
 
 #[test]
