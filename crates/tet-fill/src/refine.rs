@@ -157,6 +157,29 @@ fn diametral([a, b, c]: [[f64; 3]; 3]) -> ([f64; 3], f64) {
     (o, dist(o, a))
 }
 
+/// A tet is refined for its shape only when its circumradius is at least this fraction of
+/// the size wanted there: below, radius–edge refinement between constrained faces can cascade
+/// to ever smaller tets far from any input (millions of points at 1e-5 in a region sized 0.05,
+/// beside the fronts of an extruded 30P30N); the sliver removal that follows takes the shape.
+const SHAPE_FLOOR: f64 = 0.25;
+
+/// Whether a tet of circumradius `r` and shortest edge `short`, where the size field wants
+/// `h`, is refined: too large for `h`, or too skinny for the radius–edge bound `shape_bound`
+/// — but for its shape only above [`SHAPE_FLOOR`] × `h` and above `floor` (half the input's
+/// shortest edge).
+fn wants_refining(r: f64, short: f64, h: f64, floor: f64, shape_bound: Option<f64>) -> bool {
+    let skinny = |bound: f64| r > floor && r > SHAPE_FLOOR * h && r > bound * short;
+    r > h || shape_bound.is_some_and(skinny)
+}
+
+/// The shortest edge of the input's facets.
+fn shortest_input_edge(input: &FillInput) -> f64 {
+    let p = |v: u32| input.points[v as usize];
+    (input.facets.iter())
+        .flat_map(|f| (0..3).map(move |k| dist(p(f[k]), p(f[(k + 1) % 3]))))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// Refines the inside tets; the number of points added.
 pub(crate) fn refine(
     mesh: &mut Mesh,
@@ -169,6 +192,11 @@ pub(crate) fn refine(
     let bound = options.max_radius_edge;
     let by_shape = bound > 0.0 && bound.is_finite();
     let mut sizes = SizeField::new(input, options);
+    // no tet is refined for its shape below the input's own resolution, and no point goes
+    // nearer an existing one than a tenth of it: a circumcentre rounded onto a vertex (of a
+    // nearly flat tet, or across a constrained face) starts a cascade of ever smaller tets at
+    // one place (on an extruded 30P30N, millions of points within 1e-15 of each other)
+    let floor = 0.5 * shortest_input_edge(input);
     let mut bad = |mesh: &Mesh, t: u32| {
         let v = mesh.tets[t as usize];
         let p = v.map(|w| mesh.p(w));
@@ -176,8 +204,9 @@ pub(crate) fn refine(
         let r = dist(c, p[0]);
         let (short, _) = edge_range(p);
         let centroid = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
-        let big = r > sizes.near(mesh, v, centroid);
-        (big || (by_shape && r > bound * short)).then_some(c)
+        let h = sizes.near(mesh, v, centroid);
+        let shape_bound = by_shape.then_some(bound);
+        wants_refining(r, short, h, floor, shape_bound).then_some(c)
     };
     let mut queue: Vec<u32> = (0..mesh.tets.len() as u32)
         .filter(|&t| side[t as usize] == Side::Inside)
@@ -207,6 +236,12 @@ pub(crate) fn refine(
         if side.get(at as usize) != Some(&Side::Inside) {
             continue;
         }
+        if mesh.tets[at as usize]
+            .iter()
+            .any(|&w| dist(mesh.p(w), c) < 0.1 * floor)
+        {
+            continue;
+        }
         if mesh.points.len() >= options.max_points {
             return Err(FillError::TooManyPoints {
                 limit: options.max_points,
@@ -227,4 +262,28 @@ pub(crate) fn refine(
         }
     }
     Ok(added)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wants_refining;
+
+    /// Large tets are refined whatever their shape; skinny ones only while they are at least a
+    /// quarter of the size wanted and above the input's resolution.
+    #[test]
+    fn small_skinny_tets_are_left_to_the_sliver_removal() {
+        let (h, floor, bound) = (0.05, 1e-5, Some(2.0));
+        // larger than the size wanted: refined, skinny or not, shape bound or not
+        assert!(wants_refining(0.06, 0.05, h, floor, None));
+        // a skinny tet (radius 10 × its shortest edge) at a third of the size: refined
+        assert!(wants_refining(0.02, 0.002, h, floor, bound));
+        // a well-shaped one of the same size: not
+        assert!(!wants_refining(0.02, 0.015, h, floor, bound));
+        // the same skinny shape at a tenth of the size: left alone (the cascade's tets)
+        assert!(!wants_refining(0.005, 0.0005, h, floor, bound));
+        // below the input's resolution: left alone even where the size wanted is tiny
+        assert!(!wants_refining(4e-6, 1e-7, 1e-5, floor, bound));
+        // no shape bound: only size
+        assert!(!wants_refining(0.02, 0.002, h, floor, None));
+    }
 }
