@@ -101,6 +101,9 @@ pub enum SurfaceSource {
         case: String,
         /// `span` (default 2, chords of the section).
         span: f64,
+        /// `span_step`: the largest step between span stations (`None`: the section's
+        /// longest edge).
+        span_step: Option<f64>,
         /// `first_height`: the surface's first height — the section's spacing at corners, the span
         /// grading from each tip — in place of the 2D case's `[layers] first_height` (the
         /// dissertation's "surface" height of tables 5–7; `None`: the 2D case's).
@@ -151,6 +154,7 @@ struct SurfaceKeys {
     file: Option<String>,
     wing: Option<String>,
     span: Option<f64>,
+    span_step: Option<f64>,
     first_height: Option<f64>,
     radius: Option<f64>,
     refinement: Option<u32>,
@@ -395,6 +399,9 @@ pub fn check_order(order: u8, what: &str) -> Result<()> {
     }
 }
 
+/// The most span steps `span_step` may make.
+const MAX_SPAN_STATIONS: usize = 10_000;
+
 /// A wing's surface keys: the 2D case it is made from, its span, the surface's first height,
 /// whether the side is triangulated, how the tips are closed; a sphere's, cube's or step's key
 /// is refused.
@@ -414,6 +421,17 @@ fn wing_source(
         FileSource::Builtin => bail!("{at}: wing = {name:?}: not a built-in case"),
     };
     let span = positive(k.span, 2.0, at, "span")?;
+    let span_step = k
+        .span_step
+        .map(|h| positive(Some(h), h, at, "span_step"))
+        .transpose()?;
+    if let Some(step) = span_step
+        && span / step > MAX_SPAN_STATIONS as f64
+    {
+        bail!(
+            "{at}: span_step = {step} cuts the span {span} into more than {MAX_SPAN_STATIONS} steps"
+        );
+    }
     let first_height = k
         .first_height
         .map(|h| positive(Some(h), h, at, "first_height"))
@@ -431,6 +449,7 @@ fn wing_source(
     Ok(SurfaceSource::Wing {
         case,
         span,
+        span_step,
         first_height,
         triangles,
         cap: k.cap.unwrap_or_default(),
@@ -590,6 +609,7 @@ fn surface_source(k: &SurfaceKeys, files: &FileSource<'_>, at: &str) -> Result<S
     let wing_only = [
         ("element", k.element.is_some()),
         ("span", k.span.is_some()),
+        ("span_step", k.span_step.is_some()),
         ("first_height", k.first_height.is_some()),
         ("cap", k.cap.is_some()),
     ];

@@ -189,6 +189,7 @@ fn body_surface(case: &Case3d, source: &SurfaceSource) -> Result<(Surface, TrueS
         SurfaceSource::Wing {
             case: section,
             span,
+            span_step,
             first_height,
             triangles,
             cap,
@@ -219,7 +220,7 @@ fn body_surface(case: &Case3d, source: &SurfaceSource) -> Result<(Surface, TrueS
                 section_case.layers.first_height = *h;
             }
             let (surface, shape) =
-                crate::wing::wing_surface_with(&section_case, *span, *triangles, *cap)
+                crate::wing::wing_surface_with(&section_case, *span, *triangles, *cap, *span_step)
                     .with_context(at)?;
             let projector = crate::wing::WingProjector {
                 surface: surface.clone(),

@@ -141,7 +141,7 @@ pub fn wing_surface(
     span: f64,
     triangles: bool,
 ) -> Result<(Surface, WingShape<Section>)> {
-    wing_surface_with(case, span, triangles, CapMesh::default())
+    wing_surface_with(case, span, triangles, CapMesh::default(), None)
 }
 
 /// How the tip caps are meshed (`[surface] cap`).
@@ -160,12 +160,16 @@ pub enum CapMesh {
     Layers,
 }
 
-/// [`wing_surface`] with the tip caps meshed as `cap` says.
+/// [`wing_surface`] with the tip caps meshed as `cap` says, and the span stations at most
+/// `span_step` apart where given (`[surface] span_step`; else the section's longest
+/// segment): an extruded element facing another across a narrow gap wants span steps near
+/// the gap's width, so that the fronts across it are not long thin triangles.
 pub fn wing_surface_with(
     case: &Case,
     span: f64,
     triangles: bool,
     cap: CapMesh,
+    span_step: Option<f64>,
 ) -> Result<(Surface, WingShape<Section>)> {
     let walls: Vec<usize> = (0..case.loops.len())
         .filter(|&i| case.loops[i].role == Role::Wall)
@@ -203,7 +207,7 @@ pub fn wing_surface_with(
         span,
         case.layers.first_height,
         case.boundary.growth,
-        longest,
+        span_step.unwrap_or(longest),
     );
     let cap = Cap {
         nodes: &cap_nodes,
@@ -428,9 +432,30 @@ mod tests {
                 assert!(a >= 20.0, "h {h}: {patch}'s smallest angle {a:.2}°");
             }
             assert!((smallest_angle(&s, "wall") - 90.0).abs() < 1e-6);
-            let (s, _) = wing_surface_with(&case, 2.0, false, CapMesh::Layers).unwrap();
+            let (s, _) = wing_surface_with(&case, 2.0, false, CapMesh::Layers, None).unwrap();
             assert!(smallest_angle(&s, "tip-root") < 11.5);
         }
+    }
+
+    /// `span_step` caps the span stations' spacing (the default is the section's longest
+    /// segment), still graded from the tips.
+    #[test]
+    fn span_step_caps_the_stations_spacing() {
+        let mut case = crate::load::load_2d("naca0012").unwrap();
+        case.layers.first_height = 1e-3;
+        let step = |s: &WingShape<Section>| {
+            (s.stations.windows(2))
+                .map(|w| w[1] - w[0])
+                .fold(0.0, f64::max)
+        };
+        let (_, default) = wing_surface(&case, 2.0, true).unwrap();
+        let (surface, fine) =
+            wing_surface_with(&case, 2.0, true, CapMesh::Fill, Some(0.01)).unwrap();
+        surface.check().unwrap();
+        assert!(step(&default) > 0.05, "{}", step(&default));
+        assert!(step(&fine) <= 0.01 * (1.0 + 1e-12), "{}", step(&fine));
+        assert!((fine.stations[1] - 1e-3).abs() < 1e-15);
+        assert_eq!(*fine.stations.last().unwrap(), 2.0);
     }
 
     #[test]

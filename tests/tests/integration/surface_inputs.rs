@@ -276,6 +276,28 @@ fn the_wings_tips_are_groups_apart_from_its_side() {
 }
 
 #[test]
+fn a_bad_span_step_is_refused_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (keys, words) in [
+        (
+            "wing = \"naca0012\"\nspan_step = -0.1",
+            &["span_step", "positive"][..],
+        ),
+        (
+            "wing = \"naca0012\"\nspan = 2.0\nspan_step = 1e-6",
+            &["span_step", "more than 10000"],
+        ),
+        (
+            "builtin = \"sphere\"\nspan_step = 0.1",
+            &["span_step applies to a wing only"],
+        ),
+    ] {
+        refused(d, &case(d, keys), words);
+    }
+}
+
+#[test]
 fn a_sphere_inside_a_sphere_is_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
