@@ -144,6 +144,22 @@ pub const FIGURES: &[&[&str]] = &[
         "--png",
         "{fig}/two-cubes-gap-slice-z.png@-0.35,-0.75,0.35,-0.25",
     ],
+    // 3D docs: the 30P30N's extruded elements cut at mid-span through the slat cove, by the
+    // tets' largest dihedral angle
+    &[
+        "mesh",
+        "fixtures/cases/30p30n-3d.toml",
+        "--order",
+        "1",
+        "--out",
+        "{tmp}/30p30n-3d.msh",
+        "--slice",
+        "z=0",
+        "--colour",
+        "dihedral",
+        "--png",
+        "{fig}/30p30n-3d-slat-cove-slice-z.png@-0.06,-0.11,0.08,-0.005",
+    ],
     // 3D docs: the wing in a far-field sphere at mid-span, layers to isotropic, then the fill
     &[
         "mesh",
