@@ -89,8 +89,12 @@ pub(crate) fn tetrahedralise(mesh: &mut Mesh, vertices: &[u32]) -> Result<(), Fi
                 });
             }
             Located::Tet(t) => {
-                let done = mesh.insert(v, t, None, &mut scratch, &mut new);
-                debug_assert!(done, "an unconstrained insertion always finds its cavity");
+                if !mesh.insert(v, t, None, &mut scratch, &mut new) {
+                    return Err(FillError::PointNotInserted {
+                        index: v as usize,
+                        point: p,
+                    });
+                }
             }
         }
     }

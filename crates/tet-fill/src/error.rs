@@ -84,4 +84,14 @@ pub enum FillError {
         /// The cap.
         limit: usize,
     },
+    /// A point the Delaunay insertion could not place (its cavity came out empty): with exact
+    /// predicates it does not happen, but a lost input point would leave its facets
+    /// unrecoverable, so it is said rather than skipped.
+    #[error("point {index} {point:?} could not be inserted (an empty cavity): an internal fault")]
+    PointNotInserted {
+        /// The point's index.
+        index: usize,
+        /// Its coordinates.
+        point: [f64; 3],
+    },
 }
