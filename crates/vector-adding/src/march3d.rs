@@ -590,7 +590,8 @@ impl<'a> March<'a> {
 
     /// The repair's choices for cell `c` ([`March::repair`]): each edge above the wall given
     /// the displacement of the cell's most curved edge (the mean of its slots, which belongs to
-    /// no end, for every slot), or straight; then every such edge given it at once.
+    /// no end, for every slot), or straight; then every such edge given it at once; then every
+    /// such edge straight at once.
     fn choices(&self, c: usize) -> Vec<Vec<(u32, [f64; 3])>> {
         let layer = &self.layers.layer;
         let own = self.edges.of_cell(c);
@@ -618,6 +619,12 @@ impl<'a> March<'a> {
             choices.push(vec![(e, [0.0; 3])]);
         }
         choices.push(above.iter().map(|&e| (e, target)).collect());
+        // last, every edge above the wall straight: a cell left almost flat at P1 (at a sharp
+        // trailing edge's tip corner, 3e-6 thick under 2e-3 edges) cannot take any of its
+        // pipes' bulges, and straight above its wall it is its valid linear self
+        if above.len() > 1 {
+            choices.push(above.iter().map(|&e| (e, [0.0; 3])).collect());
+        }
         choices
     }
 }

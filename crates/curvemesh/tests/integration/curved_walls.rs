@@ -5,7 +5,9 @@
 //!   wall between its nodes as near as they are (the smooth surface's own distance to the
 //!   sphere, about 1e-5 here, bounds both orders); a cube's flat faces stay flat;
 //! - the built-in sphere at P3 (issue 47, item 4): the wall's P3 nodes on the sphere, its
-//!   curved wall nearer the sphere between the nodes than the P2 wall.
+//!   curved wall nearer the sphere between the nodes than the P2 wall;
+//! - the 30P30N's slat as a wing at P2: the almost flat layer tet at its sharp trailing edge's
+//!   tip corner is repaired valid.
 //!
 //! `cargo test -p curvemesh --test integration -- curved_walls:: --nocapture` prints the distances.
 
@@ -214,4 +216,30 @@ fn the_built_in_sphere_at_p3_has_its_wall_on_the_sphere() {
         deviation[0],
         deviation[1]
     );
+}
+
+/// The 30P30N's slat as a wing, one layer cut into tetrahedra, at P2: at its sharp trailing
+/// edge's tip corner a layer tet is left almost flat at P1 (3e-6 thick under 2e-3 edges) and
+/// no pipe's bulge fits it; the repair's last choice, every edge above the wall straight,
+/// leaves it valid (before, the run failed the certified check there).
+#[test]
+fn a_sharp_trailing_edges_tip_corner_is_valid_at_p2() {
+    let dir = tempfile::tempdir().unwrap();
+    let case_file = dir.path().join("slat.toml");
+    std::fs::write(
+        &case_file,
+        "dimension = 3\n\n[surface]\nwing = \"30p30n\"\nelement = \"slat\"\nspan = 1.0\n\
+         first_height = 2e-3\n\n[layers]\nfirst_height = 4.5e-5\ngrowth = 1.3\nmax_layers = 1\n\n\
+         [cut]\ncells = \"tets\"\n\n[curving]\norder = 2\n",
+    )
+    .unwrap();
+    let case = curvemesh::load(case_file.to_str().unwrap()).unwrap();
+    let meshed = curvemesh::mesh(
+        &case,
+        &curvemesh::Options::default(),
+        &mut curvemesh::Silent,
+    )
+    .unwrap();
+    assert!(meshed.report.is_valid(), "{:?}", meshed.report.problems);
+    assert_eq!(meshed.mesh.order, 2);
 }
