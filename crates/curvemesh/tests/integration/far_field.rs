@@ -16,7 +16,7 @@ const MAX_DIHEDRAL_DEG: f64 = 160.0;
 
 /// `text` (a 3D case file) meshed at `order` through the library; the run must succeed and be
 /// valid. The mesh and its report.
-fn mesh(text: &str, order: u8) -> (Mesh, curvemesh::report::Report) {
+pub(crate) fn mesh(text: &str, order: u8) -> (Mesh, curvemesh::report::Report) {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("case.toml");
     std::fs::write(&file, text).unwrap();
@@ -76,22 +76,33 @@ fn check(label: &str, text: &str, groups: &[&str], on_far_field: impl Fn([f64; 3
     }
 }
 
+/// Two spheres of radius 0.5, centred at ±`centre` on x, in a far-field sphere of radius 10:
+/// the case file.
+fn two_spheres(centre: f64) -> String {
+    format!(
+        "dimension = 3\n\
+        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
+        translate = [-{centre}, 0.0, 0.0]\nname = \"left\"\n\
+        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
+        translate = [{centre}, 0.0, 0.0]\nname = \"right\"\n\
+        [farfield]\nsphere = {{ center = [0.0, 0.0, 0.0], radius = 10.0 }}\n\
+        [layers]\nfirst_height = 1e-3\ngrowth = 1.25\nmax_layers = 16\n\
+        [cut]\ncells = \"tets\"\n"
+    )
+}
+
+/// Whether `p` lies on the far-field sphere of [`two_spheres`].
+fn on_far_sphere(p: [f64; 3]) -> bool {
+    let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    (r - 10.0).abs() < 1e-9
+}
+
 /// Two spheres 0.1 apart inside a far-field sphere: the gap's columns stop, the fill meets
 /// them there and reaches the far field.
 #[test]
 fn two_spheres_in_a_sphere() {
-    let text = "dimension = 3\n\
-        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
-        translate = [-0.55, 0.0, 0.0]\nname = \"left\"\n\
-        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
-        translate = [0.55, 0.0, 0.0]\nname = \"right\"\n\
-        [farfield]\nsphere = { center = [0.0, 0.0, 0.0], radius = 10.0 }\n\
-        [layers]\nfirst_height = 1e-3\ngrowth = 1.25\nmax_layers = 16\n\
-        [cut]\ncells = \"tets\"\n";
-    check("two spheres", text, &["farfield", "left", "right"], |p| {
-        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-        (r - 10.0).abs() < 1e-9
-    });
+    let groups = ["farfield", "left", "right"];
+    check("two spheres", &two_spheres(0.55), &groups, on_far_sphere);
 }
 
 /// Two spheres 0.01 apart: the columns facing across the gap stop at the wall itself, so the
@@ -99,25 +110,11 @@ fn two_spheres_in_a_sphere() {
 /// it and it stays in its body's group.
 #[test]
 fn two_spheres_nearly_touching_fill_onto_their_bare_walls() {
-    let text = "dimension = 3\n\
-        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
-        translate = [-0.505, 0.0, 0.0]\nname = \"left\"\n\
-        [[surface]]\nbuiltin = \"sphere\"\nradius = 0.5\nrefinement = 2\n\
-        translate = [0.505, 0.0, 0.0]\nname = \"right\"\n\
-        [farfield]\nsphere = { center = [0.0, 0.0, 0.0], radius = 10.0 }\n\
-        [layers]\nfirst_height = 1e-3\ngrowth = 1.25\nmax_layers = 16\n\
-        [cut]\ncells = \"tets\"\n";
-    check(
-        "spheres 0.01 apart",
-        text,
-        &["farfield", "left", "right"],
-        |p| {
-            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-            (r - 10.0).abs() < 1e-9
-        },
-    );
+    let text = two_spheres(0.505);
+    let groups = ["farfield", "left", "right"];
+    check("spheres 0.01 apart", &text, &groups, on_far_sphere);
     // every wall facet of the icospheres (320 each) is in its group
-    let (_, report) = mesh(text, 1);
+    let (_, report) = mesh(&text, 1);
     assert_eq!(report.boundary_groups["left"], 320);
     assert_eq!(report.boundary_groups["right"], 320);
 }
