@@ -5,11 +5,9 @@
 //! makes them tile exactly the old tets' union — and never removes a kept face or edge.
 
 use crate::insert::FaceSet;
+pub(crate) use crate::insert::{EdgeSet, edge_key};
 use crate::mesh::{GHOST, Mesh, face_key, face_of};
 use geom_predicates::orient3d;
-
-/// Edges that flips must keep (sorted pairs).
-pub(crate) type EdgeSet = std::collections::HashSet<[u32; 2], crate::insert::BuildFx>;
 
 /// The constraints flips respect.
 pub(crate) struct Kept<'a> {
@@ -17,12 +15,6 @@ pub(crate) struct Kept<'a> {
     pub faces: &'a FaceSet,
     /// Edges never flipped away.
     pub edges: &'a EdgeSet,
-}
-
-/// A sorted edge.
-#[inline]
-pub(crate) fn edge_key(a: u32, b: u32) -> [u32; 2] {
-    [a.min(b), a.max(b)]
 }
 
 impl Mesh {
@@ -150,6 +142,22 @@ impl Mesh {
         kept: &Kept,
         score: &dyn Fn(&Mesh, [u32; 4]) -> f64,
     ) -> Option<(Vec<u32>, Vec<[u32; 4]>)> {
+        self.edge_removal_with(t, a, b, kept, score, None)
+    }
+
+    /// [`Mesh::edge_removal`], with the ring's triangulation made to hold `diagonal` (two ring
+    /// corners that are not neighbours on the ring) when given: the edge a recovery wants,
+    /// where the best triangulation of the whole ring may take another diagonal (a flat
+    /// quadrilateral's two diagonals cross, so removing one need not make the other).
+    pub fn edge_removal_with(
+        &self,
+        t: u32,
+        a: u32,
+        b: u32,
+        kept: &Kept,
+        score: &dyn Fn(&Mesh, [u32; 4]) -> f64,
+        diagonal: Option<[u32; 2]>,
+    ) -> Option<(Vec<u32>, Vec<[u32; 4]>)> {
         if kept.edges.contains(&edge_key(a, b)) {
             return None;
         }
@@ -166,6 +174,41 @@ impl Mesh {
         }
         // the ring's orientation about a → b fixes that of the new tets
         let sigma = orient3d(self.p(a), self.p(b), self.p(ring[0]), self.p(ring[1])) > 0.0;
+        // the polygons to triangulate, each in the ring's order: the ring, or its two parts
+        // either side of the diagonal
+        let polygons: Vec<Vec<u32>> = match diagonal {
+            None => vec![ring],
+            Some([u, v]) => {
+                let i = ring.iter().position(|&r| r == u)?;
+                let j = ring.iter().position(|&r| r == v)?;
+                let (i, j) = (i.min(j), i.max(j));
+                if j - i < 2 || i + n - j < 2 {
+                    return None;
+                }
+                let other: Vec<u32> = ring[j..].iter().chain(&ring[..=i]).copied().collect();
+                vec![ring[i..=j].to_vec(), other]
+            }
+        };
+        let mut new = Vec::with_capacity(2 * n - 4);
+        for polygon in &polygons {
+            new.extend(self.triangulate_ring(polygon, a, b, sigma, score)?);
+        }
+        Some((tets, new))
+    }
+
+    /// The tets over the best triangulation of `ring` (a polygon around edge `a b`, in the
+    /// ring's order; `sigma` its orientation about a → b): two per triangle, one on each end
+    /// of the edge, every one positive and the smallest `score` largest. None when no
+    /// triangulation makes every tet positive.
+    fn triangulate_ring(
+        &self,
+        ring: &[u32],
+        a: u32,
+        b: u32,
+        sigma: bool,
+        score: &dyn Fn(&Mesh, [u32; 4]) -> f64,
+    ) -> Option<Vec<[u32; 4]>> {
+        let n = ring.len();
         let pair = |i: usize, k: usize, j: usize| {
             let (x, y, z) = (ring[i], ring[k], ring[j]);
             if sigma {
@@ -214,6 +257,6 @@ impl Mesh {
             todo.push((i, k));
             todo.push((k, j));
         }
-        Some((tets, new))
+        Some(new)
     }
 }

@@ -12,6 +12,15 @@ use std::collections::HashSet;
 /// Faces that insertion must keep (sorted corner triples).
 pub(crate) type FaceSet = HashSet<[u32; 3], BuildFx>;
 
+/// Edges that flips (and recovery's insertions) must keep (sorted pairs).
+pub(crate) type EdgeSet = HashSet<[u32; 2], BuildFx>;
+
+/// A sorted edge.
+#[inline]
+pub(crate) fn edge_key(a: u32, b: u32) -> [u32; 2] {
+    [a.min(b), a.max(b)]
+}
+
 /// A small, fast hasher for integer keys (Fx, as in rustc): no denial-of-service concern here.
 #[derive(Default, Clone, Copy)]
 pub(crate) struct BuildFx;
@@ -146,12 +155,29 @@ impl Mesh {
         s: &mut Scratch,
         new: &mut Vec<u32>,
     ) -> bool {
+        self.insert_keeping(v, start, keep, None, s, new)
+    }
+
+    /// [`Mesh::insert`], the cavity also leaving every edge of `keep_edges` in place (each on
+    /// its boundary, so the new tets keep it): recovery's Steiner points must not undo the
+    /// edges it has made.
+    pub fn insert_keeping(
+        &mut self,
+        v: u32,
+        start: u32,
+        keep: Option<&FaceSet>,
+        keep_edges: Option<&EdgeSet>,
+        s: &mut Scratch,
+        new: &mut Vec<u32>,
+    ) -> bool {
         let p = self.p(v);
         s.grow_marks(self.tets.len());
         s.excluded.clear();
         loop {
             self.find_cavity(p, start, keep, s);
-            let Some((t, _)) = self.first_hidden_face(p, s) else {
+            let hidden = self.first_hidden_face(p, s).map(|(t, _)| t);
+            let Some(t) = hidden.or_else(|| keep_edges.and_then(|e| self.lost_edge_tet(e, s)))
+            else {
                 break;
             };
             if keep.is_none() {
@@ -206,6 +232,41 @@ impl Mesh {
             }
         }
         self.refresh_boundary(s);
+    }
+
+    /// A cavity tet holding an edge of `keep` that the cavity would remove (on none of its
+    /// boundary faces); not the cavity's first tet, unless only it holds the edge.
+    fn lost_edge_tet(&self, keep: &EdgeSet, s: &Scratch) -> Option<u32> {
+        let mut kept_edges = HashSet::<[u32; 2], BuildFx>::default();
+        for &(t, i) in &s.boundary {
+            let f = face_of(self.tets[t as usize], i);
+            for k in 0..3 {
+                kept_edges.insert(edge_key(f[k], f[(k + 1) % 3]));
+            }
+        }
+        let mut lost: Option<[u32; 2]> = None;
+        'tets: for &t in &s.cavity {
+            let v = self.tets[t as usize];
+            for (k, m) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                let e = edge_key(v[k], v[m]);
+                if !e.contains(&GHOST) && keep.contains(&e) && !kept_edges.contains(&e) {
+                    lost = Some(e);
+                    break 'tets;
+                }
+            }
+        }
+        let e = lost?;
+        let holds = |t: &&u32| {
+            let v = self.tets[**t as usize];
+            v.contains(&e[0]) && v.contains(&e[1])
+        };
+        let first = s.cavity[0];
+        s.cavity
+            .iter()
+            .filter(holds)
+            .find(|&&t| t != first)
+            .or_else(|| s.cavity.iter().find(holds))
+            .copied()
     }
 
     /// Recomputes the cavity's boundary faces from its tets.

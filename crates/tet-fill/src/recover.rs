@@ -13,6 +13,12 @@ use crate::quality::{cross, shape, sub};
 use geom_predicates::{SegmentMeet, orient3d, segment_meet, segment_meets_triangle};
 use std::collections::HashSet;
 
+/// Where recovery's Steiner points go, in turn: off the facet's centroid along its normal, in
+/// multiples of its size; positive into the fill, negative behind the facet (inside the body,
+/// whose tets are dropped, so a point there is free: it breaks up flat configurations of the
+/// body's own points — an extruded surface's rectangles — that block the flips).
+const STEINER_OFFSETS: [f64; 10] = [0.3, -0.3, 0.15, -0.15, 0.6, -0.6, 0.08, -0.08, 1.0, -1.0];
+
 /// What recovery works with: the mesh, the kept faces and edges, a tet per vertex.
 pub(crate) struct Recovery<'m> {
     pub mesh: &'m mut Mesh,
@@ -39,6 +45,8 @@ struct Crossings {
     edges: Vec<(u32, u32, u32)>,
     /// A vertex on the missing piece (recovery impossible without splitting it).
     vertex: Option<u32>,
+    /// The missing piece when it is an edge.
+    segment: Option<[u32; 2]>,
 }
 
 impl<'m> Recovery<'m> {
@@ -198,7 +206,10 @@ impl<'m> Recovery<'m> {
                 && !f.contains(&b)
                 && segment_meets_triangle(pa, pb, m.p(f[0]), m.p(f[1]), m.p(f[2]))
         });
-        let mut c = Crossings::default();
+        let mut c = Crossings {
+            segment: Some([a, b]),
+            ..Crossings::default()
+        };
         for &t in &region {
             let v = self.mesh.tets[t as usize];
             for i in 0..4 {
@@ -350,6 +361,14 @@ impl<'m> Recovery<'m> {
             }
         }
         for &(x, y, t) in &c.edges {
+            // an edge crossing the missing one (a flat quadrilateral's other diagonal) is
+            // removed with the missing one made across its ring
+            if let Some(way) = c.segment.and_then(|ab| {
+                self.mesh
+                    .edge_removal_with(t, x, y, &kept, &score, Some(ab))
+            }) {
+                candidates.push(way);
+            }
             let (tets, _) = self.mesh.ring(t, x, y);
             for u in tets {
                 let v = self.mesh.tets[u as usize];
@@ -394,6 +413,33 @@ impl<'m> Recovery<'m> {
         set
     }
 
+    /// Makes edge `a b` by removing the one edge that crosses it when nothing else does (a flat
+    /// quadrilateral whose other diagonal the Delaunay took: its ring holds `a` and `b`), the
+    /// ring triangulated through `a b`. True when done.
+    fn edge_by_removal(&mut self, a: u32, b: u32, c: &Crossings) -> bool {
+        let [(x, y, t)] = c.edges[..] else {
+            return false;
+        };
+        if !c.faces.is_empty() {
+            return false;
+        }
+        let kept = Kept {
+            faces: &self.faces,
+            edges: &self.edges,
+        };
+        let score = |m: &Mesh, t: [u32; 4]| shape(t.map(|v| m.p(v)));
+        match self
+            .mesh
+            .edge_removal_with(t, x, y, &kept, &score, Some([a, b]))
+        {
+            Some((old, new)) => {
+                self.swap_tets(&old, &new);
+                true
+            }
+            None => false,
+        }
+    }
+
     /// Recovers edge `a b` by flips. Err: why not.
     fn recover_edge_by_flips(&mut self, a: u32, b: u32) -> Result<(), String> {
         let cross = |r: &mut Self| {
@@ -410,6 +456,9 @@ impl<'m> Recovery<'m> {
             };
             if let Some(w) = c.vertex {
                 return Err(format!("edge {a}-{b} passes through point {w}"));
+            }
+            if self.edge_by_removal(a, b, &c) {
+                continue;
             }
             let cavity = self.edge_cavity(&c);
             if self.edge_by_cone(a, b, &cavity) {
@@ -465,10 +514,11 @@ impl<'m> Recovery<'m> {
     }
 
     /// Recovers facet `f` (corners counter-clockwise seen from the fill): its edges, then
-    /// itself, by flips and then with Steiner points off it on the fill's side.
+    /// itself, by flips and then with Steiner points off it (one more after each failed
+    /// round, at the next place of [`STEINER_OFFSETS`] where one can be inserted).
     pub fn recover_facet(&mut self, f: [u32; 3]) -> Result<(), String> {
-        let mut last = String::new();
-        for attempt in 0..6 {
+        let mut next = 0;
+        loop {
             let flipped = (|| {
                 for k in 0..3 {
                     self.recover_edge_by_flips(f[k], f[(k + 1) % 3])?;
@@ -480,18 +530,26 @@ impl<'m> Recovery<'m> {
                     self.faces.insert(face_key(f));
                     return Ok(());
                 }
-                Err(why) => last = why,
-            }
-            if attempt < 5 && !self.add_steiner(f, attempt)? {
-                break;
+                Err(why) => {
+                    // the next Steiner point that can be inserted, else this failure
+                    loop {
+                        let Some(&off) = STEINER_OFFSETS.get(next) else {
+                            return Err(why);
+                        };
+                        next += 1;
+                        if self.add_steiner(f, off)? {
+                            break;
+                        }
+                    }
+                }
             }
         }
-        Err(last)
     }
 
-    /// Inserts a point off facet `f` on the fill's side (further at each attempt), keeping the
-    /// recovered facets. False when it could not be inserted.
-    fn add_steiner(&mut self, f: [u32; 3], attempt: usize) -> Result<bool, String> {
+    /// Inserts a point off facet `f`'s centroid along its normal, `off` times its size (the
+    /// square root of twice its area) into the fill (behind it when negative), keeping the
+    /// recovered facets and edges. False when it could not be inserted.
+    fn add_steiner(&mut self, f: [u32; 3], off: f64) -> Result<bool, String> {
         if self.mesh.points.len() >= self.max_points {
             return Err(format!("the cap of {} points is reached", self.max_points));
         }
@@ -499,8 +557,7 @@ impl<'m> Recovery<'m> {
         // the normal of a counter-clockwise facet seen from the fill points into the fill
         let n = cross(sub(a, b), sub(a, c));
         let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let size = len.sqrt();
-        let off = size * [0.3, 0.15, 0.6, 0.08, 1.0][attempt % 5];
+        let off = len.sqrt() * off;
         let q = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0 + n[k] / len * off);
         let Located::Tet(t) = self.mesh.locate(q) else {
             return Ok(false);
@@ -511,10 +568,14 @@ impl<'m> Recovery<'m> {
         self.mesh.points.push(q);
         let v = (self.mesh.points.len() - 1) as u32;
         let mut new = Vec::new();
-        if self
-            .mesh
-            .insert(v, t, Some(&self.faces), &mut self.scratch, &mut new)
-        {
+        if self.mesh.insert_keeping(
+            v,
+            t,
+            Some(&self.faces),
+            Some(&self.edges),
+            &mut self.scratch,
+            &mut new,
+        ) {
             self.steiner += 1;
             self.note_tets(&new);
             Ok(true)

@@ -196,20 +196,35 @@ pub fn append(
 /// An axis-aligned box, each face an `n × n` grid of squares split in two (alternating
 /// diagonals), facets counter-clockwise seen from outside.
 pub fn grid_box(lo: [f64; 3], hi: [f64; 3], n: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    box_grid(lo, hi, [n; 3], true, |p| p)
+}
+
+/// A box's faces as grids of `n[axis]` cells along each axis, every cell split in two
+/// (alternating diagonals when `alternate`, else all alike), each point then moved by `map`;
+/// facets counter-clockwise seen from outside.
+pub fn box_grid(
+    lo: [f64; 3],
+    hi: [f64; 3],
+    n: [usize; 3],
+    alternate: bool,
+    map: impl Fn([f64; 3]) -> [f64; 3],
+) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let mut points: Vec<[f64; 3]> = Vec::new();
     let mut index: HashMap<[usize; 3], u32> = HashMap::new();
     let mut id = |g: [usize; 3], points: &mut Vec<[f64; 3]>| {
         *index.entry(g).or_insert_with(|| {
-            points.push([0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) * g[k] as f64 / n as f64));
+            points.push(map(
+                [0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) * g[k] as f64 / n[k] as f64)
+            ));
             (points.len() - 1) as u32
         })
     };
     let mut facets = Vec::new();
     for axis in 0..3 {
         let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-        for side in [0, n] {
-            for i in 0..n {
-                for j in 0..n {
+        for side in [0, n[axis]] {
+            for i in 0..n[u] {
+                for j in 0..n[v] {
                     let at = |di: usize, dj: usize| {
                         let mut g = [0; 3];
                         g[axis] = side;
@@ -219,12 +234,12 @@ pub fn grid_box(lo: [f64; 3], hi: [f64; 3], n: usize) -> (Vec<[f64; 3]>, Vec<[u3
                     };
                     let q = [at(0, 0), at(1, 0), at(1, 1), at(0, 1)].map(|g| id(g, &mut points));
                     // (u, v, axis) is right-handed: q turns counter-clockwise seen from +axis
-                    let q = if side == n {
+                    let q = if side == n[axis] {
                         q
                     } else {
                         [q[0], q[3], q[2], q[1]]
                     };
-                    if (i + j) % 2 == 0 {
+                    if !alternate || (i + j) % 2 == 0 {
                         facets.push([q[0], q[1], q[2]]);
                         facets.push([q[0], q[2], q[3]]);
                     } else {

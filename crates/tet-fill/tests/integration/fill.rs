@@ -77,6 +77,38 @@ fn a_single_closed_body_is_filled_inside() {
 }
 
 #[test]
+fn bent_slabs_of_long_thin_facets_are_recovered() {
+    // two slabs bent by a sum of parabolas in x and z, so that every face's grid squares are
+    // planar (as an extruded wing's are) but not co-circular, with 0.01 × 0.1 cells, 0.003
+    // and 0.01 apart, in a coarse box: the Delaunay takes many squares' other diagonal, flat
+    // against the slab's end faces, and the flips alone cannot recover them
+    let bend = |p: [f64; 3]| {
+        [
+            p[0],
+            p[1] + 0.05 * (p[0] - 0.5).powi(2) + 0.02 * (p[2] - 0.3).powi(2),
+            p[2],
+        ]
+    };
+    for gap in [0.003, 0.01] {
+        let slab = |y0: f64| {
+            box_grid(
+                [0.0, y0, 0.0],
+                [1.0, y0 + 0.04, 0.6],
+                [100, 2, 6],
+                false,
+                bend,
+            )
+        };
+        let (p, f) = nest(
+            grid_box([-2.0; 3], [2.0; 3], 8),
+            vec![slab(0.0), slab(0.04 + gap)],
+        );
+        run(&p, &f, &plain());
+        run(&p, &f, &FillOptions::default());
+    }
+}
+
+#[test]
 fn errors_name_the_culprit() {
     let (p, f) = nest(
         grid_box([-2.0; 3], [3.0; 3], 1),
