@@ -1,9 +1,14 @@
 //! Boundary recovery: every input facet made a face of the tetrahedralisation without splitting
 //! it. Missing edges first, then missing facets, each by flips that remove what crosses them
 //! (2-3 flips of crossed faces, edge removals of crossed edges, preferring the flip that makes
-//! the missing piece); when no flip helps, a Steiner point is inserted off the surface on the
-//! fill's side of the facet (constrained Bowyer–Watson: recovered facets are never crossed) and
-//! the flips are tried again. Recovered facets and input edges are kept from then on.
+//! the missing piece; an edge crossed by one edge alone — a planar quadrilateral's other
+//! diagonal — by removing that edge with its ring triangulated through the missing one); when
+//! no flip helps, Steiner points are inserted off the surface, never splitting it: off the
+//! facet's centroid on the fill's side or behind it (inside the body, where a point is dropped
+//! with the body's tets), no further than halfway to the nearest other point, and as a last
+//! resort over the crossings of a missing edge. The insertions are constrained Bowyer–Watson:
+//! recovered facets are never crossed and recovered edges never removed. Recovered facets and
+//! input edges are kept from then on.
 
 use crate::build::collinear;
 use crate::flip::{EdgeSet, Kept, edge_key};
@@ -17,6 +22,9 @@ use std::collections::HashSet;
 /// multiples of its size; positive into the fill, negative behind the facet (inside the body,
 /// whose tets are dropped, so a point there is free: it breaks up flat configurations of the
 /// body's own points — an extruded surface's rectangles — that block the flips).
+/// The most Steiner points a facet's recovery puts over its missing edges' crossings.
+const MAX_CROSSING_POINTS: usize = 16;
+
 const STEINER_OFFSETS: [f64; 10] = [0.3, -0.3, 0.15, -0.15, 0.6, -0.6, 0.08, -0.08, 1.0, -1.0];
 
 /// What recovery works with: the mesh, the kept faces and edges, a tet per vertex.
@@ -514,10 +522,12 @@ impl<'m> Recovery<'m> {
     }
 
     /// Recovers facet `f` (corners counter-clockwise seen from the fill): its edges, then
-    /// itself, by flips and then with Steiner points off it (one more after each failed
-    /// round, at the next place of [`STEINER_OFFSETS`] where one can be inserted).
+    /// itself, by flips and then with Steiner points off it, one more after each failed
+    /// round: at the next place of [`STEINER_OFFSETS`] where one can be inserted, then over
+    /// the middle crossing of a missing edge (nearer the facet: the last resort).
     pub fn recover_facet(&mut self, f: [u32; 3]) -> Result<(), String> {
         let mut next = 0;
+        let mut over_crossings = 0;
         loop {
             let flipped = (|| {
                 for k in 0..3 {
@@ -525,40 +535,92 @@ impl<'m> Recovery<'m> {
                 }
                 self.recover_facet_by_flips(f)
             })();
-            match flipped {
+            let why = match flipped {
                 Ok(()) => {
                     self.faces.insert(face_key(f));
                     return Ok(());
                 }
-                Err(why) => {
-                    // the next Steiner point that can be inserted, else this failure
-                    loop {
-                        let Some(&off) = STEINER_OFFSETS.get(next) else {
-                            return Err(why);
-                        };
-                        next += 1;
-                        if self.add_steiner(f, off)? {
-                            break;
-                        }
+                Err(why) => why,
+            };
+            // the next Steiner point that can be inserted, else this failure
+            loop {
+                if let Some(&off) = STEINER_OFFSETS.get(next) {
+                    next += 1;
+                    if self.add_steiner(f, off)? {
+                        break;
                     }
+                } else if over_crossings < MAX_CROSSING_POINTS
+                    && self.add_steiner_over_crossing(f)?
+                {
+                    over_crossings += 1;
+                    break;
+                } else {
+                    return Err(why);
                 }
             }
         }
+    }
+
+    /// Inserts a point over the crossing nearest the middle of a missing edge of facet `f`
+    /// (where the edge passes through a face), off the facet into the fill by half the
+    /// distance from the crossing to that face's nearest corner. False when no edge is
+    /// crossed by a face or the point could not be inserted.
+    fn add_steiner_over_crossing(&mut self, f: [u32; 3]) -> Result<bool, String> {
+        let Some(k) = (0..3).find(|&k| self.find_edge(f[k], f[(k + 1) % 3]).is_none()) else {
+            return Ok(false);
+        };
+        let (a, b) = (f[k], f[(k + 1) % 3]);
+        let c = self.edge_crossings(a, b);
+        let (pa, pb) = (self.mesh.p(a), self.mesh.p(b));
+        let mut best: Option<(f64, [f64; 3], f64)> = None;
+        for &(t, i) in &c.faces {
+            let g = face_of(self.mesh.tets[t as usize], i).map(|w| self.mesh.p(w));
+            let (da, db) = (
+                orient3d(g[0], g[1], g[2], pa),
+                orient3d(g[0], g[1], g[2], pb),
+            );
+            let s = da / (da - db);
+            let x = [0, 1, 2].map(|m| pa[m] + s * (pb[m] - pa[m]));
+            let near = g
+                .iter()
+                .map(|q| norm(sub(*q, x)))
+                .fold(f64::INFINITY, f64::min);
+            if best.is_none_or(|(bs, _, _)| (s - 0.5).abs() < (bs - 0.5).abs()) {
+                best = Some((s, x, near));
+            }
+        }
+        let Some((_, x, near)) = best else {
+            return Ok(false);
+        };
+        let [fa, fb, fc] = f.map(|w| self.mesh.p(w));
+        // the normal of a counter-clockwise facet seen from the fill points into the fill
+        let n = cross(sub(fa, fb), sub(fa, fc));
+        let len = norm(n);
+        self.insert_steiner([0, 1, 2].map(|m| x[m] + n[m] / len * 0.5 * near))
     }
 
     /// Inserts a point off facet `f`'s centroid along its normal, `off` times its size (the
     /// square root of twice its area) into the fill (behind it when negative), keeping the
     /// recovered facets and edges. False when it could not be inserted.
     fn add_steiner(&mut self, f: [u32; 3], off: f64) -> Result<bool, String> {
-        if self.mesh.points.len() >= self.max_points {
-            return Err(format!("the cap of {} points is reached", self.max_points));
-        }
         let [a, b, c] = f.map(|w| self.mesh.p(w));
         // the normal of a counter-clockwise facet seen from the fill points into the fill
         let n = cross(sub(a, b), sub(a, c));
-        let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let off = len.sqrt() * off;
-        let q = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0 + n[k] / len * off);
+        let len = norm(n);
+        let centroid = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
+        // no further than halfway to the nearest point that is not the facet's (a front facing
+        // it, or the body's other side)
+        let off = (len.sqrt() * off.abs()).min(0.5 * self.clearance(f, centroid)) * off.signum();
+        let q = [0, 1, 2].map(|k| centroid[k] + n[k] / len * off);
+        self.insert_steiner(q)
+    }
+
+    /// Inserts Steiner point `q`, keeping the recovered facets and edges. False when it could
+    /// not be inserted (outside the box, on a point, or no cavity within the constraints).
+    fn insert_steiner(&mut self, q: [f64; 3]) -> Result<bool, String> {
+        if self.mesh.points.len() >= self.max_points {
+            return Err(format!("the cap of {} points is reached", self.max_points));
+        }
         let Located::Tet(t) = self.mesh.locate(q) else {
             return Ok(false);
         };
@@ -585,6 +647,22 @@ impl<'m> Recovery<'m> {
         }
     }
 
+    /// The distance from `p` to the nearest corner, other than `f`'s, of the tets around
+    /// `f`'s corners.
+    fn clearance(&mut self, f: [u32; 3], p: [f64; 3]) -> f64 {
+        let mut nearest = f64::INFINITY;
+        for &v in &f {
+            for t in self.star(v) {
+                for w in self.mesh.tets[t as usize] {
+                    if w != GHOST && !f.contains(&w) {
+                        nearest = nearest.min(norm(sub(self.mesh.p(w), p)));
+                    }
+                }
+            }
+        }
+        nearest
+    }
+
     /// Marks the input edges and facets already present as kept.
     pub fn keep_present(&mut self, facets: &[[u32; 3]]) {
         for &f in facets {
@@ -599,6 +677,11 @@ impl<'m> Recovery<'m> {
             }
         }
     }
+}
+
+/// The length of `v`.
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
 /// Whether point `p` lies on the closed segment `a b` (exact collinearity, then the box).

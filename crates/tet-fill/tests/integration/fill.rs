@@ -109,6 +109,30 @@ fn bent_slabs_of_long_thin_facets_are_recovered() {
 }
 
 #[test]
+fn facing_fronts_of_unlike_spacing_are_recovered() {
+    // two bent slabs 0.005 apart, one of 0.005 × 0.075 facets, the other of 0.0067 × 0.015
+    // (an extruded wing's long span steps facing another element's short ones): the Steiner
+    // points that recover the long facets must stay in the narrow gap
+    let bend = |p: [f64; 3]| {
+        [
+            p[0],
+            p[1] + 0.05 * (p[0] - 0.5).powi(2) + 0.02 * (p[2] - 0.3).powi(2),
+            p[2],
+        ]
+    };
+    let a = box_grid([0.0, 0.0, 0.0], [1.0, 0.04, 0.6], [200, 2, 8], false, bend);
+    let b = box_grid(
+        [0.0, 0.045, 0.0],
+        [1.0, 0.085, 0.6],
+        [150, 2, 40],
+        false,
+        bend,
+    );
+    let (p, f) = nest(grid_box([-2.0; 3], [2.0; 3], 8), vec![a, b]);
+    run(&p, &f, &plain());
+}
+
+#[test]
 fn errors_name_the_culprit() {
     let (p, f) = nest(
         grid_box([-2.0; 3], [3.0; 3], 1),
