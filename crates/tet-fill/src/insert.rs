@@ -86,6 +86,20 @@ pub(crate) struct Scratch {
 }
 
 impl Scratch {
+    /// The tets of the last cavity found.
+    pub fn cavity_tets(&self) -> &[u32] {
+        &self.cavity
+    }
+
+    /// The corners of the tets that would replace the last cavity found for point `v`.
+    pub fn new_tets<'a>(&'a self, mesh: &'a Mesh, v: u32) -> impl Iterator<Item = [u32; 4]> + 'a {
+        self.boundary.iter().map(move |&(t, i)| {
+            let mut c = mesh.tets[t as usize];
+            c[i] = v;
+            c
+        })
+    }
+
     fn grow_marks(&mut self, n: usize) {
         if self.mark.len() < n {
             self.mark.resize(n, 0);
@@ -170,6 +184,25 @@ impl Mesh {
         s: &mut Scratch,
         new: &mut Vec<u32>,
     ) -> bool {
+        if !self.star_cavity(v, start, keep, keep_edges, s) {
+            return false;
+        }
+        self.retriangulate(v, s, new);
+        true
+    }
+
+    /// Finds the cavity that inserting point `v` would replace (in `s`, see
+    /// [`Scratch::cavity_tets`] and [`Scratch::new_tets`]), without changing the mesh; false
+    /// when no star-shaped cavity exists within the constraints. [`Mesh::commit_cavity`]
+    /// then makes it.
+    pub fn star_cavity(
+        &self,
+        v: u32,
+        start: u32,
+        keep: Option<&FaceSet>,
+        keep_edges: Option<&EdgeSet>,
+        s: &mut Scratch,
+    ) -> bool {
         let p = self.p(v);
         s.grow_marks(self.tets.len());
         s.excluded.clear();
@@ -178,14 +211,11 @@ impl Mesh {
             let hidden = self.first_hidden_face(p, s).map(|(t, _)| t);
             let Some(t) = hidden.or_else(|| keep_edges.and_then(|e| self.lost_edge_tet(e, s)))
             else {
-                break;
+                return true;
             };
             if keep.is_none() {
                 // Delaunay: the tets beyond join the cavity (p is on their spheres)
-                if !self.grow_until_visible(p, s) {
-                    return false;
-                }
-                break;
+                return self.grow_until_visible(p, s);
             }
             // constrained: the cavity may not grow across a kept face, so it shrinks
             if t == start {
@@ -193,8 +223,12 @@ impl Mesh {
             }
             s.excluded.push(t);
         }
+    }
+
+    /// Replaces the cavity [`Mesh::star_cavity`] found for `v` by the tets joining its
+    /// boundary faces to `v`; the new tets in `new`.
+    pub fn commit_cavity(&mut self, v: u32, s: &mut Scratch, new: &mut Vec<u32>) {
         self.retriangulate(v, s, new);
-        true
     }
 
     /// The cavity: tets in conflict with `p` reached from `start` without crossing a kept face

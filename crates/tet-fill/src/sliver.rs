@@ -5,7 +5,9 @@
 //! moving one of the fill's own points (never an input point) to lower its star's worst angle,
 //! a pattern search that only accepts improvements and keeps every tet positive; and where a
 //! sliver still survives, a point inserted near it (constrained Bowyer–Watson, then the
-//! neighbourhood improved again).
+//! neighbourhood improved again), kept only when every tet it makes is better than the worst
+//! of the sliver and the tets it replaces: in a narrow gap between fronts an insertion that
+//! moves a sliver beside its own point starts a cascade of slivers among the fill's points.
 
 use crate::FillOptions;
 use crate::cavity::EDGES;
@@ -285,7 +287,9 @@ impl Improver<'_> {
         false
     }
 
-    /// Inserts `q` (walking from `t`) if it falls inside the region; true when inserted.
+    /// Inserts `q` (walking from `t`) if it falls inside the region and every tet it makes is
+    /// better than the worst of sliver `t` and the tets it replaces (an insertion that only
+    /// moves a sliver next to its own new point starts a cascade); true when inserted.
     fn insert_at(&mut self, t: u32, q: [f64; 3]) -> bool {
         self.mesh.hint = t;
         let Located::Tet(at) = self.mesh.locate(q) else {
@@ -296,15 +300,29 @@ impl Improver<'_> {
         }
         self.mesh.points.push(q);
         let v = (self.mesh.points.len() - 1) as u32;
-        let mut new = Vec::new();
         if self
             .mesh
-            .insert(v, at, Some(self.faces), &mut self.scratch, &mut new)
+            .star_cavity(v, at, Some(self.faces), None, &mut self.scratch)
         {
-            for &n in &new {
-                self.mark_inside(n);
+            let before = self
+                .scratch
+                .cavity_tets()
+                .iter()
+                .map(|&c| self.worst(self.mesh.tets[c as usize]))
+                .fold(self.worst(self.mesh.tets[t as usize]), f64::max);
+            let after = self
+                .scratch
+                .new_tets(self.mesh, v)
+                .map(|c| self.worst(c))
+                .fold(f64::NEG_INFINITY, f64::max);
+            if after < before {
+                let mut new = Vec::new();
+                self.mesh.commit_cavity(v, &mut self.scratch, &mut new);
+                for &n in &new {
+                    self.mark_inside(n);
+                }
+                return true;
             }
-            return true;
         }
         self.mesh.points.pop();
         false
