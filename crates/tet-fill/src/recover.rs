@@ -19,13 +19,14 @@ use geom_predicates::{SegmentMeet, orient3d, segment_meet, segment_meets_triangl
 use std::collections::HashSet;
 
 /// Where recovery's Steiner points go, in turn: off the facet's centroid along its normal, in
-/// multiples of its size; positive into the fill, negative behind the facet (inside the body,
-/// whose tets are dropped, so a point there is free: it breaks up flat configurations of the
-/// body's own points — an extruded surface's rectangles — that block the flips).
+/// multiples of its size (each no further than halfway to the nearest other point); positive
+/// into the fill, negative behind the facet (inside the body, whose tets are dropped, so a
+/// point there is free: it breaks up flat configurations of the body's own points — an
+/// extruded surface's rectangles — that block the flips).
+const STEINER_OFFSETS: [f64; 10] = [0.3, -0.3, 0.15, -0.15, 0.6, -0.6, 0.08, -0.08, 1.0, -1.0];
+
 /// The most Steiner points a facet's recovery puts over its missing edges' crossings.
 const MAX_CROSSING_POINTS: usize = 16;
-
-const STEINER_OFFSETS: [f64; 10] = [0.3, -0.3, 0.15, -0.15, 0.6, -0.6, 0.08, -0.08, 1.0, -1.0];
 
 /// What recovery works with: the mesh, the kept faces and edges, a tet per vertex.
 pub(crate) struct Recovery<'m> {
