@@ -14,14 +14,19 @@ case with a `[farfield]` works). The geometry is the case file's:
   extent; a sphere: the edge of the icosphere curvemesh makes for that size).
 - Other surfaces (the wing) are curvemesh's own wall triangles: the case meshed without its
   `[farfield]` and with one layer (DIR/NAME-wall.msh), every boundary group but the near-body
-  outer one taken as the wall. Gmsh takes them as discrete surfaces (joined by
+  outer one taken as the wall (a wall triangle whose column stopped in that layer is outside
+  that mesh: the hole it leaves is closed again). Gmsh takes them as discrete surfaces (joined by
   `createTopology`) beside the OCC far field; Netgen as a hand-made surface mesh (the far field's
   triangles Gmsh's mesh of the OCC shape), volume-meshed by `GenerateVolumeMesh`.
 
-The meshers (each in a child process, `--timeout` seconds, default 600, one at a time):
+The meshers (each in a child process, `--timeout` seconds, default 600, one at a time; the
+child, measuring included, killed with its descendants past `--timeout` + 300 s or, with
+`--max-memory GB`, when they hold more than that resident; its peak resident memory goes to
+DIR/NAME-MESHER.json):
 
-- `ours`: `target/release/curvemesh mesh CASE --out DIR/NAME-ours.msh --report ...` on the case
-  as it is; its time is the whole command's (writing included).
+- `ours`: `target/release/curvemesh mesh CASE --out DIR/NAME-ours.msh --report ...` (or the
+  binary `--bin` names) on the case as it is; its time is the whole command's (writing
+  included).
 - `gmsh`: Gmsh's layers by `gmsh.model.geo.extrudeBoundaryLayer` (one prism per layer at the
   stack's cumulative heights; Gmsh's `BoundaryLayer` field is 2D only) from the walls' surface
   mesh, the extrusion's top surfaces and the far field bounding a volume tetrahedralised by
@@ -29,7 +34,9 @@ The meshers (each in a child process, `--timeout` seconds, default 600, one at a
   the far field), so:
 - `gmsh-cap`: the same with the stack cut to the layers that fit: none taller than the wall's
   mesh size (where curvemesh's layers turn isotropic) and the whole stack under 0.45 times the
-  smallest gap between bodies (built-in bodies only). Run only when that cuts the stack.
+  smallest gap between bodies (built-in bodies: exact; other surfaces: the least distance
+  between the connected pieces of curvemesh's wall triangles). Run only when that cuts the
+  stack.
 - `netgen`: Netgen (`netgen-mesher`), `BoundaryLayerParameters(boundary="wall",
   thickness=the layer heights, domain="fluid")` given to `OCCGeometry.GenerateMesh` (or, for
   curvemesh's wall triangles, `Mesh.GenerateVolumeMesh`), maxh the far field's size.
@@ -57,7 +64,7 @@ Run from the repository root with `target/release/curvemesh` built
 (`cargo build --release -p curvemesh-cli --bin curvemesh`):
 
     .venv-checkers/bin/python tests/surfaces/compare_farfield.py TABLE.md [NAME ...]
-        [--timeout S] [--out DIR] [--meshers ours,gmsh,...]
+        [--timeout S] [--out DIR] [--meshers ours,gmsh,...] [--bin PATH] [--max-memory GB]
 
 It prints a Markdown table (one row per case and mesher) and writes it to TABLE.md, each run's
 figures in DIR/NAME-MESHER.json and the meshes in DIR/NAME-MESHER.msh (default DIR
@@ -165,12 +172,13 @@ def body_gap(a, b):
 
 def cap(c):
     """The layers that fit: none taller than the wall's mesh size, the stack under 0.45 times
-    the smallest gap between bodies."""
+    the smallest gap between bodies (built-in bodies' exact one, else the wall triangles')."""
     size = wall_size(c)
+    gap = c["gap"] if c["gap"] is not None else wall_gap(c)
     n = 0
     total = 0.0
     for h in c["heights"]:
-        if h > size or (c["gap"] is not None and total + h > 0.45 * c["gap"]):
+        if h > size or (gap is not None and total + h > 0.45 * gap):
             break
         total += h
         n += 1
@@ -186,11 +194,104 @@ def wall_size(c):
     return min(b["edge"] for b in c["bodies"])
 
 
+def wall_gap(c):
+    """The smallest gap between bodies from curvemesh's wall triangles (saved by export_wall;
+    None for one body or no export)."""
+    if not os.path.exists(c["wall"]):
+        return None
+    import numpy as np
+    w = np.load(c["wall"])
+    if "gap" not in w or not np.isfinite(w["gap"]):
+        return None
+    return float(w["gap"])
+
+
+def components(tri, n):
+    """Each point's body: the connected pieces of the triangles (points sharing triangles)."""
+    import numpy as np
+    label = np.arange(n)
+    while True:
+        m = label[tri].min(axis=1)
+        new = label.copy()
+        for k in range(3):
+            np.minimum.at(new, tri[:, k], m)
+        new = new[new]  # pointer jumping
+        if np.array_equal(new, label):
+            break
+        label = new
+    return np.unique(label, return_inverse=True)[1]
+
+
+def point_triangle_distance(p, a, b, c):
+    """Distances from points p (n, 3) to triangles a, b, c (each (m, 3)): (n, m)."""
+    import numpy as np
+    p = p[:, None, :]
+    nrm = np.cross(b - a, c - a)
+    area2 = np.einsum("ij,ij->i", nrm, nrm)
+    # the projection's barycentric coordinates: inside, the distance to the plane
+    inside = np.ones((p.shape[0], len(a)), dtype=bool)
+    for u, v in ((a, b), (b, c), (c, a)):
+        inside &= np.einsum("nmj,mj->nm", np.cross(v - u, p - u), nrm) >= 0
+    inside &= area2 > 0
+    plane = np.abs(np.einsum("nmj,mj->nm", p - a, nrm)) / np.sqrt(np.where(area2 > 0, area2, 1))
+    best = np.full(inside.shape, np.inf)
+    for u, v in ((a, b), (b, c), (c, a)):
+        e = v - u
+        ee = np.einsum("ij,ij->i", e, e)
+        t = np.clip(np.einsum("nmj,mj->nm", p - u, e) / np.where(ee > 0, ee, 1), 0, 1)
+        best = np.minimum(best, np.linalg.norm(p - (u + t[..., None] * e), axis=2))
+    return np.where(inside, plane, best)
+
+
+def triangles_gap(pts, tri):
+    """The smallest distance between two bodies of the triangles (their connected pieces): the
+    least point-to-triangle distance between any two, over the pairs of points and triangles
+    that can be that close (a triangle no further than the least point-to-point distance d0
+    plus its longest edge from the other body's points, a point no further than d0 plus the
+    longest edge of those triangles from their points). None for one body."""
+    import numpy as np
+    body = components(tri, len(pts))
+    nb = body.max() + 1
+    if nb < 2:
+        return None
+    x = pts[tri]
+    edge = np.max([np.linalg.norm(x[:, i] - x[:, (i + 1) % 3], axis=1) for i in range(3)],
+                  axis=0)
+    tbody = body[tri[:, 0]]
+    gap = np.inf
+    for i in range(nb):
+        for j in range(i + 1, nb):
+            ia, ib = np.flatnonzero(body == i), np.flatnonzero(body == j)
+            A, B = pts[ia], pts[ib]
+            near = np.full(len(pts), np.inf)  # each point's distance to the other's points
+            near_b = np.full(len(B), np.inf)
+            bb = np.einsum("ij,ij->i", B, B)
+            for k in range(0, len(A), 512):
+                a = A[k:k + 512]
+                d2 = np.einsum("ij,ij->i", a, a)[:, None] + bb[None, :] - 2 * a @ B.T
+                d = np.sqrt(np.maximum(d2, 0))
+                near[ia[k:k + 512]] = d.min(axis=1)
+                near_b = np.minimum(near_b, d.min(axis=0))
+            near[ib] = near_b
+            d0 = near[ia].min()
+            for src, dst in ((ia, j), (ib, i)):
+                ids = np.flatnonzero((tbody == dst) & (near[tri].min(axis=1) <= d0 + edge))
+                if not len(ids):
+                    continue
+                P = pts[src[near[src] <= d0 + edge[ids].max()]]
+                step = max(1, 1_000_000 // len(ids))
+                for k in range(0, len(P), step):
+                    d = point_triangle_distance(P[k:k + step],
+                                                *(pts[tri[ids, q]] for q in range(3)))
+                    gap = min(gap, float(d.min()))
+    return gap
+
+
 def export_wall(c, timeout):
     """curvemesh's wall triangles: the case without its far field and with one layer, meshed;
     every boundary group but the near-body outer one is wall. Saved to c["wall"] (nodes,
     triangles facing the fluid, a group index per triangle, the mean edge, the enclosed
-    volume)."""
+    volume, the smallest gap between bodies: NaN for one body)."""
     import gmsh
     import numpy as np
     with open(c["path"]) as f:
@@ -238,13 +339,55 @@ def export_wall(c, timeout):
     pos[tags.astype(int)] = xyz.reshape(-1, 3)
     pts = pos[used]
     tri = inv.reshape(-1, 3)
+    group = np.asarray(group)
+    tri, group, holes = close_holes(tri, group)
     x = pts[tri]
     vol = np.einsum("ij,ij->i", x[:, 0], np.cross(x[:, 1], x[:, 2])).sum() / 6
     if vol < 0:  # the triangles facing into the bodies: turn them to face the fluid
         tri = tri[:, [0, 2, 1]]
     edges = np.concatenate([x[:, 1] - x[:, 0], x[:, 2] - x[:, 1], x[:, 0] - x[:, 2]])
-    np.savez(c["wall"], points=pts, triangles=tri, group=np.asarray(group),
-             mean_edge=float(np.linalg.norm(edges, axis=1).mean()), volume=abs(vol))
+    gap = triangles_gap(pts, tri)
+    np.savez(c["wall"], points=pts, triangles=tri, group=group,
+             mean_edge=float(np.linalg.norm(edges, axis=1).mean()), volume=abs(vol),
+             gap=math.nan if gap is None else gap, holes_closed=holes)
+
+
+def close_holes(tri, group):
+    """The wall triangles closed where the export left holes (a wall triangle whose column
+    stopped in the first layer is outside the near-body domain, so in no boundary group): each
+    loop of open edges fanned into triangles turned as their neighbours, in the group most of
+    its neighbours are in. Returns the triangles, their groups and how many were added."""
+    import numpy as np
+    from collections import Counter
+    owner = {}
+    for k, t in enumerate(tri):
+        for i in range(3):
+            owner[(int(t[i]), int(t[(i + 1) % 3]))] = k
+    # the holes' edges run against their neighbours' open edges
+    nxt = {}
+    for (a, b), k in owner.items():
+        if (b, a) not in owner:
+            if b in nxt:  # a point on two holes (or an edge turned the wrong way): left
+                return tri, group, 0
+            nxt[b] = (a, k)
+    new_tri, new_group = [], []
+    while nxt:
+        start = next(iter(nxt))
+        loop, votes, v = [], Counter(), start
+        while v in nxt:
+            loop.append(v)
+            v, k = nxt.pop(v)
+            votes[int(group[k])] += 1
+        if v != start or len(loop) < 3:
+            return tri, group, 0
+        g = votes.most_common(1)[0][0]
+        for i in range(1, len(loop) - 1):
+            new_tri.append([loop[0], loop[i], loop[i + 1]])
+            new_group.append(g)
+    if not new_tri:
+        return tri, group, 0
+    return (np.concatenate([tri, np.asarray(new_tri, dtype=tri.dtype)]),
+            np.concatenate([group, np.asarray(new_group, dtype=group.dtype)]), len(new_tri))
 
 
 def exact_volume(c):
@@ -453,13 +596,22 @@ def far_triangles(c):
     return far_pts, far_tri
 
 
-def run_gmsh(c, out, mesher):
+def run_gmsh(c, out, mesher, timeout, result):
+    import threading
     import gmsh
     heights = c["heights"][:cap(c)] if mesher == "gmsh-cap" else c["heights"]
     res = {"layers": len(heights)}
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     t0 = time.time()
+
+    def stop():  # Gmsh meshing past the timeout: the result written, the process ended
+        res.update(ok=False, time_s=time.time() - t0, error=f"timeout after {timeout:g} s")
+        with open(result, "w") as f:
+            json.dump(res, f, indent=1)
+        os._exit(1)
+    timer = threading.Timer(timeout, stop)
+    timer.start()
     try:
         wall = gmsh_model(c, heights)
         res.update(ok=True, time_s=time.time() - t0)
@@ -467,6 +619,8 @@ def run_gmsh(c, out, mesher):
         res.update(ok=False, time_s=time.time() - t0, error=str(e))
         gmsh.finalize()
         return res
+    finally:
+        timer.cancel()
     res["wall_triangles"] = sum(len(gmsh.model.mesh.getElementsByType(2, t)[0]) for t in wall)
     gmsh.write(os.path.join(out, f"{c['name']}-{mesher}.msh"))
     res.update(measure())
@@ -521,8 +675,14 @@ def run_netgen(c, out, mesher, timeout):
         return {"ok": False, "error": f"timeout after {timeout:g} s", "time_s": time.time() - t0,
                 "layers": len(heights)}
     if not os.path.exists(job["npz"]):
-        return {"ok": False, "error": "crashed: " + last_line(p.stderr, p.returncode),
-                "time_s": time.time() - t0, "layers": len(heights)}
+        error = "crashed: " + last_line(p.stderr, p.returncode)
+        if os.path.exists(job["log"]):  # a failure Netgen reported before it crashed
+            with open(job["log"], errors="replace") as f:
+                failed = [line.strip() for line in f if "failed" in line.lower()]
+            if failed:
+                error += f", after: {failed[-1]}"
+        return {"ok": False, "error": error, "time_s": time.time() - t0,
+                "layers": len(heights)}
     d = np.load(job["npz"])
     res = json.loads(str(d["result"]))
     res["layers"] = len(heights)
@@ -694,7 +854,8 @@ def child(mesher, name, out, timeout):
         if mesher == "ours":
             res = run_ours(c, out, timeout)
         elif mesher.startswith("gmsh"):
-            res = run_gmsh(c, out, mesher)
+            res = run_gmsh(c, out, mesher, timeout,
+                           os.path.join(out, f"{name}-{mesher}.json"))
         else:
             res = run_netgen(c, out, mesher, timeout)
         if res.get("volume") is not None:
@@ -705,6 +866,51 @@ def child(mesher, name, out, timeout):
         res = {"ok": False, "error": f"{type(e).__name__}: {e}", "time_s": time.time() - t0}
     with open(os.path.join(out, f"{name}-{mesher}.json"), "w") as f:
         json.dump(res, f, indent=1)
+
+
+def run_child(cmd, limit, max_gb):
+    """Runs a child in a session of its own, killed with its descendants past `limit` seconds
+    or past `max_gb` GB resident (the session's, sampled twice a second). Returns its exit
+    code, its standard error, the peak resident GB and why it was killed (None)."""
+    import tempfile
+    page = os.sysconf("SC_PAGE_SIZE")
+
+    def rss(sid):
+        total = 0
+        for d in os.listdir("/proc"):
+            if not d.isdigit():
+                continue
+            try:
+                with open(f"/proc/{d}/stat") as f:
+                    st = f.read()
+            except OSError:
+                continue
+            fields = st[st.rfind(")") + 2:].split()  # from the state (field 3) on
+            if int(fields[3]) == sid:  # the session (field 6)
+                total += int(fields[21]) * page  # the resident pages (field 24)
+        return total
+
+    t0 = time.time()
+    peak, why = 0, None
+    with tempfile.TemporaryFile("w+") as err:
+        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, text=True,
+                             start_new_session=True)
+        while p.poll() is None:
+            peak = max(peak, rss(p.pid))
+            if max_gb and peak > max_gb * 2 ** 30:
+                why = f"out of memory above {max_gb:g} GB"
+            elif time.time() - t0 > limit:
+                why = f"timeout after {limit:g} s"
+            if why:
+                break
+            time.sleep(0.5)
+        try:  # the child, or what it left running
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        p.wait()
+        err.seek(0)
+        return p.returncode, err.read(), peak / 2 ** 30, why
 
 
 # ---------------------------------------------------------------------------------------------
@@ -764,15 +970,20 @@ def versions():
 
 
 def main():
+    global EXE
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("table", nargs="?", help="the Markdown table's file")
     ap.add_argument("names", nargs="*", help="cases (default: " + ", ".join(CASES) + ")")
     ap.add_argument("--timeout", type=float, default=600, help="seconds per mesher (600)")
     ap.add_argument("--out", default="/tmp/cmp-farfield", help="output folder")
     ap.add_argument("--meshers", default=",".join(MESHERS), help=",".join(MESHERS))
+    ap.add_argument("--bin", default=EXE, help="the curvemesh binary (target/release/curvemesh)")
+    ap.add_argument("--max-memory", type=float, metavar="GB",
+                    help="kill a mesher whose processes hold more (default: no limit)")
     ap.add_argument("--one", nargs=2, metavar=("MESHER", "NAME"), help=argparse.SUPPRESS)
     ap.add_argument("--netgen-job", help=argparse.SUPPRESS)
     args = ap.parse_args()
+    EXE = os.path.abspath(args.bin)
     if args.netgen_job:
         netgen_job(args.netgen_job)
         return
@@ -809,19 +1020,21 @@ def main():
             # the children time their mesher themselves, then measure
             limit = args.timeout + 300
             t0 = time.time()
-            try:
-                p = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", mesher,
-                                    name, "--out", args.out, "--timeout", str(args.timeout)],
-                                   capture_output=True, text=True, timeout=limit)
-                if os.path.exists(result):
-                    with open(result) as f:
-                        res = json.load(f)
-                else:
-                    res = {"ok": False, "time_s": time.time() - t0,
-                           "error": "crashed: " + last_line(p.stderr, p.returncode)}
-            except subprocess.TimeoutExpired:
-                res = {"ok": False, "error": f"timeout after {limit:g} s",
-                       "time_s": time.time() - t0}
+            code, err, peak, why = run_child(
+                [sys.executable, os.path.abspath(__file__), "--one", mesher, name, "--out",
+                 args.out, "--timeout", str(args.timeout), "--bin", EXE], limit,
+                args.max_memory)
+            if why:
+                res = {"ok": False, "error": why, "time_s": time.time() - t0}
+            elif os.path.exists(result):
+                with open(result) as f:
+                    res = json.load(f)
+            else:
+                res = {"ok": False, "time_s": time.time() - t0,
+                       "error": "crashed: " + last_line(err, code)}
+            res["peak_memory_gb"] = round(peak, 2)
+            with open(result, "w") as f:
+                json.dump(res, f, indent=1)
             if notes and not res.get("ok") and not c["bodies"]:
                 res["error"] = f"{res.get('error')} ({notes[0]})"
             line = row(c["name"], mesher, res)
