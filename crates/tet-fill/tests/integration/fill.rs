@@ -76,19 +76,22 @@ fn a_single_closed_body_is_filled_inside() {
     run(&p, &f, &plain());
 }
 
+/// A slab's bend: a sum of parabolas in x and z, so every face's grid squares stay planar (as
+/// an extruded wing's are) but not co-circular.
+fn bend(p: [f64; 3]) -> [f64; 3] {
+    [
+        p[0],
+        p[1] + 0.05 * (p[0] - 0.5).powi(2) + 0.02 * (p[2] - 0.3).powi(2),
+        p[2],
+    ]
+}
+
 #[test]
 fn bent_slabs_of_long_thin_facets_are_recovered() {
     // two slabs bent by a sum of parabolas in x and z, so that every face's grid squares are
     // planar (as an extruded wing's are) but not co-circular, with 0.01 × 0.1 cells, 0.003
     // and 0.01 apart, in a coarse box: the Delaunay takes many squares' other diagonal, flat
     // against the slab's end faces, and the flips alone cannot recover them
-    let bend = |p: [f64; 3]| {
-        [
-            p[0],
-            p[1] + 0.05 * (p[0] - 0.5).powi(2) + 0.02 * (p[2] - 0.3).powi(2),
-            p[2],
-        ]
-    };
     for gap in [0.003, 0.01] {
         let slab = |y0: f64| {
             box_grid(
@@ -113,13 +116,6 @@ fn facing_fronts_of_unlike_spacing_are_recovered() {
     // two bent slabs 0.005 apart, one of 0.005 × 0.075 facets, the other of 0.0067 × 0.015
     // (an extruded wing's long span steps facing another element's short ones): the Steiner
     // points that recover the long facets must stay in the narrow gap
-    let bend = |p: [f64; 3]| {
-        [
-            p[0],
-            p[1] + 0.05 * (p[0] - 0.5).powi(2) + 0.02 * (p[2] - 0.3).powi(2),
-            p[2],
-        ]
-    };
     let a = box_grid([0.0, 0.0, 0.0], [1.0, 0.04, 0.6], [200, 2, 8], false, bend);
     let b = box_grid(
         [0.0, 0.045, 0.0],
