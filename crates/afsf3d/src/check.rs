@@ -92,6 +92,10 @@ pub(crate) fn layer_cell_ok(front: &[[f64; 3]], layer: &Layer, facet: &Facet) ->
     if layer.is_bare(facet) {
         return true;
     }
+    if layer.is_fan(facet) {
+        // a fan's prism on its side (`fan`): its copies one node each
+        return strictly_convex(&layer.cell_faces(facet), |v| cell_node(front, layer, v));
+    }
     let kept: Vec<u32> = k.iter().copied().filter(|&v| layer.is_kept(v)).collect();
     if !kept.is_empty() {
         cones_ok(
@@ -234,11 +238,12 @@ pub(crate) fn turned_steps(
     for &f in bad {
         let facet = &facets[f];
         for (i, &v) in facet.nodes().iter().enumerate() {
-            // a stopped node has no step to turn
-            if balanced[v as usize] == front[v as usize] {
+            // a stopped node has no step to turn; a fan's zero-area corner no normal
+            let normal = corner(facet, i);
+            if balanced[v as usize] == front[v as usize] || normal == [0.0; 3] {
                 continue;
             }
-            if dot(corner(facet, i), step(v as usize)) <= 0.0 {
+            if dot(normal, step(v as usize)) <= 0.0 {
                 failing.push(v);
             }
         }
@@ -252,7 +257,10 @@ pub(crate) fn turned_steps(
     for facet in facets {
         for (i, v) in facet.nodes().iter().enumerate() {
             if let Ok(slot) = failing.binary_search(v) {
-                normals[slot].push(corner(facet, i));
+                let normal = corner(facet, i);
+                if normal != [0.0; 3] {
+                    normals[slot].push(normal);
+                }
             }
         }
     }
@@ -299,6 +307,7 @@ mod tests {
                 len: &[],
                 balanced: children,
                 stopped: &[],
+                fan: None,
             };
             let mut layer = Layer::new(&ideal, &facets, &[]);
             let mut stats = GrowStats::default();
@@ -329,6 +338,7 @@ mod tests {
                 len: &[],
                 balanced: top,
                 stopped: &[],
+                fan: None,
             };
             layer_cell_ok(&bottom, &Layer::new(&ideal, &[f], &[]), &f)
         };

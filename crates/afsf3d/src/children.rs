@@ -21,6 +21,32 @@ pub(crate) struct Ideal<'a> {
     pub balanced: &'a [[f64; 3]],
     /// The nodes whose columns have stopped: their child is the node itself (empty: none).
     pub stopped: &'a [bool],
+    /// The wall's fans, in the first layer (`fan`).
+    pub fan: Option<&'a FanTopo>,
+}
+
+/// What the first layer's cells need of the wall's fans (`fan`): which front nodes share a
+/// place, and the edges from a chain's unfanned end to the copies of its fanned neighbour.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct FanTopo {
+    /// For each front node, the node whose place it shares (itself but for a fan's copies).
+    pub origin: Vec<u32>,
+    /// Each edge (its two front nodes, lower first) from a chain's unfanned end `q` to a copy
+    /// of its fanned neighbour `p`, with `q`, sorted: the fan's cells over the edge `p q`
+    /// are tetrahedra from `p` to `q`'s one child, and the two cells either side of the
+    /// fan meet on the triangle `p q q'` (see [`Layer::cell_faces`]).
+    pub apex_edges: Vec<([u32; 2], u32)>,
+}
+
+impl FanTopo {
+    /// The chain's unfanned end on the edge `a b`, if it is one of [`FanTopo::apex_edges`].
+    pub fn apex(&self, a: u32, b: u32) -> Option<u32> {
+        let key = [a.min(b), a.max(b)];
+        self.apex_edges
+            .binary_search_by(|(e, _)| e.cmp(&key))
+            .ok()
+            .map(|i| self.apex_edges[i].1)
+    }
 }
 
 impl Ideal<'_> {
@@ -61,6 +87,8 @@ pub(crate) struct Layer {
     /// The front facets whose cells fail their check, when checked since the children last
     /// moved.
     pub failing: Option<Vec<usize>>,
+    /// The wall's fans, in the first layer (`fan`).
+    pub fan: Option<FanTopo>,
 }
 
 /// The cyclic sequence `k` without a node repeated next to itself.
@@ -147,7 +175,53 @@ impl Layer {
             top_of,
             kept,
             failing: None,
+            fan: front.fan.cloned(),
         }
+    }
+
+    /// The front node whose place front node `v` shares (`v` itself but for a fan's copies).
+    pub fn origin(&self, v: u32) -> u32 {
+        self.fan
+            .as_ref()
+            .and_then(|f| f.origin.get(v as usize).copied())
+            .unwrap_or(v)
+    }
+
+    /// Whether `facet` is one of the wall's zero-area fan facets (two of its corners share a
+    /// place): its cell is a prism of the fan lying on its side, or a tetrahedron next to a
+    /// chain's end, with no bottom.
+    pub fn is_fan(&self, facet: &Facet) -> bool {
+        if self.fan.is_none() {
+            return false;
+        }
+        let k = facet.nodes();
+        (0..k.len()).any(|i| self.origin(k[i]) == self.origin(k[(i + 1) % k.len()]))
+    }
+
+    /// The side faces of the cell over the front edge `a → b` (of its facet, counter-clockwise
+    /// seen from the fluid), its children `up`: the quadrilateral `a b b' a'` without the
+    /// repeated nodes of merged or kept children, or of a fan's copies. On an edge from a
+    /// chain's unfanned end `q` to a copy of its fanned neighbour `p` the quadrilateral is
+    /// split on its diagonal `p q'`: the triangle without `q` faces the fan's tetrahedron,
+    /// the triangle `p q q'` (the second face, only for a cell that is not the fan's) the
+    /// cell on the other side of the fan.
+    pub fn side_faces(&self, a: u32, b: u32, up: impl Fn(u32) -> u32) -> [Vec<u32>; 2] {
+        let (oa, ob) = (self.origin(a), self.origin(b));
+        let quad = [oa, ob, up(b), up(a)];
+        let apex = self.fan.as_ref().and_then(|f| f.apex(a, b));
+        let Some(q) = apex else {
+            return [dedup_cyclic(quad), Vec::new()];
+        };
+        // (the wall's `q` left out, not its child: a stopped `q` is its own child)
+        let (toward, pinch) = if q == b {
+            ([oa, up(b), up(a)], [oa, ob, up(b)])
+        } else {
+            ([ob, up(b), up(a)], [oa, ob, up(a)])
+        };
+        let pinch = dedup_cyclic(pinch);
+        let pinch = if pinch.len() == 3 { pinch } else { Vec::new() };
+        let toward = dedup_cyclic(toward);
+        [toward, pinch]
     }
 
     /// Whether the cell over `facet` has fewer distinct top nodes than bottom nodes.
@@ -184,28 +258,37 @@ impl Layer {
     }
 
     /// The outward faces of the cell over `facet`, nodes numbered front first (`0..n`),
-    /// then the children (`n + c`): the bottom (turned towards the wall), the top when it
-    /// keeps three nodes, then the sides along the bottom's edges (a triangle where the
-    /// edge's two children merged).
+    /// then the children (`n + c`): the bottom (turned towards the wall) when it keeps three
+    /// places, the top when it keeps three nodes, then the sides along the bottom's edges (a
+    /// triangle where the edge's two children merged, or its two nodes share a place). A
+    /// fan's copies are numbered by their [`origin`](Layer::origin).
     pub fn cell_faces(&self, facet: &Facet) -> Vec<Vec<u32>> {
         let n = self.child.len() as u32;
         // a kept child is its front node itself
         let up = |v: u32| {
             if self.is_kept(v) {
-                v
+                self.origin(v)
             } else {
                 n + self.child[v as usize]
             }
         };
         let k = facet.nodes();
-        let mut faces = vec![k.iter().rev().copied().collect::<Vec<u32>>()];
+        let mut faces = Vec::with_capacity(k.len() + 2);
+        let bottom = dedup_cyclic(k.iter().rev().map(|&v| self.origin(v)));
+        if bottom.len() >= 3 {
+            faces.push(bottom);
+        }
         let top = dedup_cyclic(k.iter().map(|&v| up(v)));
         if top.len() >= 3 {
             faces.push(top);
         }
+        let fan = self.is_fan(facet);
         for i in 0..k.len() {
             let (a, b) = (k[i], k[(i + 1) % k.len()]);
-            let side = dedup_cyclic([a, b, up(b), up(a)]);
+            let [side, pinch] = self.side_faces(a, b, up);
+            if !fan && pinch.len() == 3 {
+                faces.push(pinch);
+            }
             // the side of two kept nodes is an edge: no face
             if side.len() >= 3 {
                 faces.push(side);
@@ -240,6 +323,7 @@ mod tests {
             len: &[0.5; 5],
             balanced: &balanced,
             stopped: &flags,
+            fan: None,
         };
         let layer = Layer::new(&ideal, &facets, &[[1, 2]]);
         (nodes, facets, layer)

@@ -12,8 +12,8 @@ use springfield::{
 
 use crate::aspect::{limit_ratio, mean_edge};
 use crate::check::{Failed, INVERTED_SHRINKS, bad_cells, shrink_until_valid, turned_steps};
-use crate::children::dedup_cyclic;
-use crate::children::{Ideal, Layer};
+use crate::children::{FanTopo, Ideal, Layer};
+use crate::fan::{Fanned, fan_wall};
 use crate::front::{Topo, ideal_steps};
 use crate::layer::{add_twisted, choose_merges, merged_layer};
 use crate::proximity::facing_fronts;
@@ -34,19 +34,74 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
     if let Some(facet) = (0..surface.facets.len()).find(|&f| surface.role(f) != Role::Wall) {
         return Err(GrowError::NotWall { facet });
     }
-    let mut topo = Topo::new(surface);
-    let spacing = topo
-        .edges
-        .iter()
-        .map(|e| {
-            dist(
-                surface.nodes[e.nodes[0] as usize],
-                surface.nodes[e.nodes[1] as usize],
-            )
-        })
-        .sum::<f64>()
-        / topo.edges.len() as f64;
-    let mut state = State::new(surface);
+    let wall = Wall::new(surface);
+    let fans = (params.fan_threshold_deg, params.fan_max_angle_deg);
+    // a fan column that stops in the first layer would leave a zero-area facet on the front:
+    // its node grows one column instead, and the layers are grown again
+    let mut skip = vec![false; surface.nodes.len()];
+    let mut unfanned = 0;
+    loop {
+        let fanned = fan_wall(surface, &wall.topo, fans, &skip);
+        match grow_from(&wall, &fanned, params)? {
+            Ok(mut grown) => {
+                grown.stats.unfanned_nodes = unfanned;
+                return Ok(grown);
+            }
+            Err(stopped) => {
+                let fresh: Vec<u32> = stopped.into_iter().filter(|&v| !skip[v as usize]).collect();
+                if fresh.is_empty() {
+                    // not expected: the stopped fans are skipped already
+                    return Err(GrowError::LayerFailed {
+                        layer: 0,
+                        facet: 0,
+                        what: "a fan's column stops in the first layer",
+                    });
+                }
+                unfanned += fresh.len();
+                fresh.iter().for_each(|&v| skip[v as usize] = true);
+            }
+        }
+    }
+}
+
+/// The wall surface with its edges and mean edge length.
+struct Wall<'a> {
+    surface: &'a Surface,
+    topo: Topo,
+    spacing: f64,
+}
+
+impl Wall<'_> {
+    fn new(surface: &Surface) -> Wall<'_> {
+        let topo = Topo::new(surface);
+        let spacing = topo
+            .edges
+            .iter()
+            .map(|e| {
+                dist(
+                    surface.nodes[e.nodes[0] as usize],
+                    surface.nodes[e.nodes[1] as usize],
+                )
+            })
+            .sum::<f64>()
+            / topo.edges.len() as f64;
+        Wall {
+            surface,
+            topo,
+            spacing,
+        }
+    }
+}
+
+/// Grows the layers from the wall with its fans `fanned`; `Err` with the fanned surface
+/// nodes of which a column stopped in the first layer.
+fn grow_from(
+    wall: &Wall<'_>,
+    fanned: &Fanned,
+    params: &LayerParams,
+) -> Result<Result<Grown3d, Vec<u32>>, GrowError> {
+    let mut topo = Topo::new(&fanned.wall);
+    let mut state = State::new(wall.surface, fanned);
     let mut thickness = 0.0;
     // the last layer's height over `first_height × growth^k` (`aspect`; 1 unless limited)
     let mut height_ratio = 1.0;
@@ -75,18 +130,34 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
         }
         thickness += height;
         state.layer_heights.push(height);
-        let rounds = smoothing_rounds(params.smoothing, thickness, spacing);
+        let rounds = smoothing_rounds(params.smoothing, thickness, wall.spacing);
         // where the layers are as thick as half the wall's spacing, squeezed cells merge too
-        let squeezing = 2.0 * thickness >= spacing;
+        let squeezing = 2.0 * thickness >= wall.spacing;
         let at = (layer, height, rounds, squeezing);
-        let (next, stops) = grow_layer(&mut state, &topo, params, at)?;
+        let first = (layer == 0).then_some((wall, fanned));
+        let (next, stops) = match grow_layer(&mut state, &topo, params, at, first)? {
+            Ok(grown) => grown,
+            Err(unfan) => return Ok(Err(unfan)),
+        };
+        if layer == 0 {
+            let mut stopped: Vec<u32> = (0..fanned.fan.origin.len())
+                .filter(|&v| fanned.is_fanned(v) && next.is_kept(v as u32))
+                .map(|v| fanned.fan.origin[v])
+                .collect();
+            if !stopped.is_empty() {
+                stopped.sort_unstable();
+                stopped.dedup();
+                return Ok(Err(stopped));
+            }
+        }
         let merged = next.children.len() < state.front.nodes.len();
         state.push_layer(&topo, next, layer, &stops);
         if merged {
             topo = Topo::new(&state.front);
         }
     }
-    Ok(state.finish())
+    state.stats.fanned_nodes = fanned.fanned_nodes();
+    Ok(Ok(state.finish()))
 }
 
 /// Whether the growth stops before a layer of `height` over layers `thickness` thick, the
@@ -109,23 +180,41 @@ struct LayerStops {
 /// (the layers as thick as half the wall's spacing). The front nodes of stopped columns keep
 /// themselves, those near them rise less ([`rises`]); the children are balanced, merged
 /// (Coe_shrink, the squeeze, the twisted cells), settled ([`settle_layer`]) — where the layer
-/// still fails, its failing cells' nodes stop and it is settled again — and repaired.
+/// still fails, its failing cells' nodes stop and it is settled again — and repaired. The
+/// first layer (`first`: the wall and its fans) grows over the fanned wall: the copies'
+/// children stand at their fan directions, unbalanced, and the other steps are the wall's;
+/// where a failing cell has a fan's node, `Err` with those nodes (to be grown unfanned).
 fn grow_layer(
     state: &mut State,
     topo: &Topo,
     params: &LayerParams,
     (layer, height, rounds, squeezing): (usize, f64, usize, bool),
-) -> Result<(Layer, LayerStops), GrowError> {
+    first: Option<(&Wall<'_>, &Fanned)>,
+) -> Result<Result<(Layer, LayerStops), Vec<u32>>, GrowError> {
     let front = &state.front;
     let n = front.nodes.len();
-    let (dir, mut len) = ideal_steps(
-        front,
-        topo,
-        height,
-        rounds,
-        params.stand_off,
-        params.patch_normals,
-    );
+    let steps = |front: &Surface, topo: &Topo| {
+        let (s, b) = (params.stand_off, params.patch_normals);
+        ideal_steps(front, topo, height, rounds, s, b)
+    };
+    let (dir, mut len, fixed, fan): (_, _, Vec<bool>, Option<&FanTopo>) = match first {
+        Some((wall, fanned)) => {
+            // the wall's own steps (its fans' facets have no normal), the copies' fans
+            let (d, l) = steps(wall.surface, &wall.topo);
+            let o = |v: usize| fanned.fan.origin[v] as usize;
+            let dir = (0..n).map(|v| fanned.dir[v].unwrap_or(d[o(v)])).collect();
+            let len = (0..n)
+                .map(|v| if fanned.is_fanned(v) { height } else { l[o(v)] })
+                .collect();
+            let fixed = (0..n).map(|v| fanned.is_fanned(v)).collect();
+            let fan = (fanned.wall.facets.len() > fanned.real_facets).then_some(&fanned.fan);
+            (dir, len, fixed, fan)
+        }
+        None => {
+            let (d, l) = steps(front, topo);
+            (d, l, Vec::new(), None)
+        }
+    };
     // the stopped columns keep themselves; those facing another front too near stop now;
     // those near them rise less, or stop
     let mut stopped = state.stopped.clone();
@@ -152,6 +241,7 @@ fn grow_layer(
         dir: &dir,
         len: &len,
         stopped: &stopped,
+        fixed: &fixed,
         params,
         layer,
     };
@@ -169,6 +259,7 @@ fn grow_layer(
         len: &len,
         balanced: &balanced,
         stopped: &stopped,
+        fan,
     };
     let squeeze = (layer > 0 && params.squeeze > 0.0 && squeezing).then_some(params.squeeze);
     let twisted = layer > 0 && params.coe_shrink > 0.0;
@@ -182,6 +273,7 @@ fn grow_layer(
             len: &len,
             balanced: &balanced,
             stopped: &stopped,
+            fan,
         };
         let failed = match settle_layer(
             &ideal,
@@ -194,6 +286,21 @@ fn grow_layer(
             Ok(()) => break,
             Err(failed) => failed,
         };
+        if let Some((_, fanned)) = first {
+            // a fan's column must not stop in the first layer: its node grows one instead
+            let mut fans: Vec<u32> = failed
+                .bad
+                .iter()
+                .flat_map(|&f| front.facets[f].nodes())
+                .filter(|&&v| fanned.is_fanned(v as usize))
+                .map(|&v| fanned.fan.origin[v as usize])
+                .collect();
+            if !fans.is_empty() {
+                fans.sort_unstable();
+                fans.dedup();
+                return Ok(Err(fans));
+            }
+        }
         let mut newly = 0;
         for &f in &failed.bad {
             for &v in front.facets[f].nodes() {
@@ -217,6 +324,7 @@ fn grow_layer(
             len: &len,
             balanced: &balanced,
             stopped: &stopped,
+            fan,
         };
         next = merged_layer(&ideal, &front.facets, merges.clone());
     }
@@ -227,7 +335,7 @@ fn grow_layer(
         state.stats.repaired +=
             repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
     }
-    Ok((next, LayerStops { rise, why }))
+    Ok(Ok((next, LayerStops { rise, why })))
 }
 
 /// The layer of the balanced children of `ideal` (over `facets`) with Coe_shrink's `merges`,
@@ -351,7 +459,10 @@ struct State {
     /// For each front facet, its mesh face (the bottom of the next cell) and its pipe.
     front_faces: Vec<u32>,
     pipes: Vec<u32>,
-    /// For each wall node, its column so far, and the front node at its top.
+    /// The number of surface nodes: the columns after them are the fans' copies'.
+    wall_nodes: usize,
+    /// For each wall node (each copy of a fanned node apart), its column so far, and the
+    /// front node at its top.
     columns: Vec<Vec<u32>>,
     column_top: Vec<u32>,
     /// For each wall node, where its column stopped.
@@ -369,26 +480,44 @@ struct State {
 }
 
 impl State {
-    fn new(surface: &Surface) -> State {
+    /// The state before the first layer: the front is the wall `fanned` (the surface
+    /// `surface` with its fans), each copy of a fanned node on its node's mesh node, the
+    /// fans' zero-area facets without a face.
+    fn new(surface: &Surface, fanned: &Fanned) -> State {
         let n = surface.nodes.len();
+        let nf = fanned.wall.nodes.len();
         let mut mesh = PolyMesh::new();
         mesh.nodes = surface.nodes.clone();
-        let front_faces = surface
+        let front_faces = fanned
+            .wall
             .facets
             .iter()
-            .map(|f| mesh.push_face(f.nodes()))
+            .enumerate()
+            .map(|(f, facet)| {
+                if f < fanned.real_facets {
+                    let k: Vec<u32> = facet
+                        .nodes()
+                        .iter()
+                        .map(|&v| fanned.fan.origin[v as usize])
+                        .collect();
+                    mesh.push_face(&k)
+                } else {
+                    NONE
+                }
+            })
             .collect();
         State {
             mesh,
-            front: surface.clone(),
-            front_mesh: (0..n as u32).collect(),
+            front: fanned.wall.clone(),
+            front_mesh: fanned.fan.origin.clone(),
             front_faces,
-            pipes: (0..surface.facets.len() as u32).collect(),
-            columns: (0..n as u32).map(|i| vec![i]).collect(),
-            column_top: (0..n as u32).collect(),
-            stops: vec![None; n],
-            stopped: vec![false; n],
-            thick: vec![0.0; n],
+            pipes: fanned.pipe.clone(),
+            wall_nodes: n,
+            columns: fanned.fan.origin.iter().map(|&o| vec![o]).collect(),
+            column_top: (0..nf as u32).collect(),
+            stops: vec![None; nf],
+            stopped: vec![false; nf],
+            thick: vec![0.0; nf],
             node_layer: vec![0; n],
             node_parents: vec![[NONE; 2]; n],
             layer_merges: Vec::new(),
@@ -445,7 +574,8 @@ impl State {
             } else if let Some(why) = stops.why[was] {
                 // the column stops here (a column already stopped keeps its record)
                 self.stops[w] = Some(ColumnStop { layer, why });
-                self.stats.stopped_columns += 1;
+                // (a fan's other columns are counted with their node's first)
+                self.stats.stopped_columns += usize::from(w < self.wall_nodes);
             }
         }
         self.pipes = next
@@ -482,7 +612,6 @@ impl State {
     ) -> Vec<u32> {
         let (mesh, front, level) = (&mut self.mesh, &self.front, &self.front_mesh);
         let (bottom_faces, pipes) = (&self.front_faces, &self.pipes);
-        let up = |v: u32| mesh_node[layer.child[v as usize] as usize];
         let top_faces: Vec<u32> = layer
             .top
             .iter()
@@ -499,18 +628,52 @@ impl State {
         for (t, &f) in layer.top_of.iter().enumerate() {
             top_of_facet[f as usize] = top_faces[t];
         }
-        let side_faces: Vec<u32> = topo
+        // a face of `Layer::side_faces` (front nodes, children after them) as mesh nodes
+        let nf = layer.child.len() as u32;
+        let to_mesh = |v: u32| {
+            if v < nf {
+                level[v as usize]
+            } else {
+                mesh_node[(v - nf) as usize]
+            }
+        };
+        let up_front = |v: u32| {
+            if layer.is_kept(v) {
+                layer.origin(v)
+            } else {
+                nf + layer.child[v as usize]
+            }
+        };
+        // each edge's side face, and the triangle where the cells either side of a fan's
+        // end meet (one face for both, `pinches` by the edge's two places)
+        let mut pinches: Vec<([u32; 2], u32, Vec<u32>)> = Vec::new();
+        let side_faces: Vec<[(u32, bool); 2]> = topo
             .edges
             .iter()
             .map(|e| {
                 let [a, b] = e.nodes;
-                let (la, lb) = (level[a as usize], level[b as usize]);
-                let k = dedup_cyclic([la, lb, up(b), up(a)]);
-                if k.len() < 3 {
+                let [side, pinch] = layer.side_faces(a, b, up_front);
+                let side = if side.len() < 3 {
                     NONE
                 } else {
+                    let k: Vec<u32> = side.into_iter().map(to_mesh).collect();
                     mesh.push_face(&k)
-                }
+                };
+                let pinch = if pinch.len() == 3 {
+                    let k: Vec<u32> = pinch.into_iter().map(to_mesh).collect();
+                    let key = [k[0].min(k[1]), k[0].max(k[1])];
+                    match pinches.iter().find(|p| p.0 == key) {
+                        Some((_, face, first)) => (*face, first[0] != k[0]),
+                        None => {
+                            let face = mesh.push_face(&k);
+                            pinches.push((key, face, k));
+                            (face, false)
+                        }
+                    }
+                } else {
+                    (NONE, false)
+                };
+                [(side, false), pinch]
             })
             .collect();
         let mut faces = Vec::with_capacity(6);
@@ -519,33 +682,52 @@ impl State {
                 continue;
             }
             faces.clear();
-            faces.push(CellFace {
-                face: bottom_faces[f],
-                reversed: true,
+            let fan = layer.is_fan(facet);
+            let sides = facet.nodes().iter().zip(&topo.facet_edges[f]);
+            let mut sides = sides.flat_map(|(&v, &e)| {
+                let [(side, _), (pinch, turned)] = side_faces[e as usize];
+                let along = topo.edges[e as usize].nodes[0] == v;
+                let side = (side != NONE).then_some(CellFace {
+                    face: side,
+                    reversed: !along,
+                });
+                // the pinch is stored as the first cell to reach it sees it
+                let pinch = (!fan && pinch != NONE).then_some(CellFace {
+                    face: pinch,
+                    reversed: turned,
+                });
+                side.into_iter().chain(pinch)
             });
+            if bottom_faces[f] != NONE {
+                faces.push(CellFace {
+                    face: bottom_faces[f],
+                    reversed: true,
+                });
+            } else {
+                // a fan's cell has no bottom: its first side comes first (`topo-cut`'s face
+                // 0, between two columns of the fan, never on the boundary)
+                faces.extend(sides.next());
+            }
             if top_of_facet[f] != NONE {
                 faces.push(CellFace {
                     face: top_of_facet[f],
                     reversed: false,
                 });
             }
-            for (&v, &e) in facet.nodes().iter().zip(&topo.facet_edges[f]) {
-                if side_faces[e as usize] != NONE {
-                    faces.push(CellFace {
-                        face: side_faces[e as usize],
-                        reversed: topo.edges[e as usize].nodes[0] != v,
-                    });
-                }
-            }
+            faces.extend(sides);
             mesh.push_cell(&faces, layer_index as u32, pipes[f]);
         }
         top_faces
     }
 
-    fn finish(self) -> Grown3d {
+    fn finish(mut self) -> Grown3d {
+        let n = self.wall_nodes;
+        let fan_columns = self.columns.drain(n..).map(|c| (c[0], c)).collect();
+        self.stops.truncate(n);
         Grown3d {
             mesh: self.mesh,
             columns: self.columns,
+            fan_columns,
             stops: self.stops,
             front: self.front,
             front_nodes: self.front_mesh,
@@ -599,6 +781,12 @@ fn check_params(p: &LayerParams) -> Result<(), GrowError> {
     if !(p.stop_gap >= 0.0 && p.stop_gap.is_finite()) {
         return bad("stop_gap must be finite and at least 0");
     }
+    if !(p.fan_threshold_deg >= 0.0 && p.fan_threshold_deg < 180.0) {
+        return bad("fan_threshold_deg must be in [0, 180)");
+    }
+    if !(p.fan_max_angle_deg > 0.0 && p.fan_max_angle_deg < 180.0) {
+        return bad("fan_max_angle_deg must be in (0, 180)");
+    }
     if p.max_thickness.is_nan() || p.max_thickness <= 0.0 {
         return bad("max_thickness must be positive");
     }
@@ -619,6 +807,9 @@ struct Step<'a> {
     len: &'a [f64],
     /// The nodes whose columns stopped: their children stay on them.
     stopped: &'a [bool],
+    /// The nodes whose children stay at their ideal steps, unbalanced (a fan's, in the first
+    /// layer; empty: none).
+    fixed: &'a [bool],
     params: &'a LayerParams,
     layer: usize,
 }
@@ -638,13 +829,17 @@ fn balance(
         dir,
         len,
         stopped,
+        fixed,
         params,
         layer,
     } = *step;
     let n = x.len();
     let mut p: Vec<[f64; 3]> = x.to_vec();
     p.extend((0..n).map(|i| std::array::from_fn(|d| x[i][d] + len[i] * dir[i][d])));
-    let movable: Vec<bool> = (0..2 * n).map(|i| i >= n && !stopped[i - n]).collect();
+    let is_fixed = |i: usize| fixed.get(i).copied().unwrap_or(false);
+    let movable: Vec<bool> = (0..2 * n)
+        .map(|i| i >= n && !stopped[i - n] && !is_fixed(i - n))
+        .collect();
     // (a stopped node's scale is the largest step's: any positive length)
     let longest = len.iter().copied().fold(0.0, f64::max);
     let scale: Vec<f64> = (0..2 * n)

@@ -327,6 +327,7 @@ mod tests {
             len: &[1.0; 5],
             balanced: &balanced,
             stopped: &[],
+            fan: None,
         };
         let mut layer = Layer::new(&ideal, &facets, &[[1, 2]]);
         assert_eq!(layer.child, vec![0, 1, 1, 2, 3]);
@@ -414,6 +415,7 @@ mod tests {
             len: &[1.0; 4],
             balanced: &nodes,
             stopped: &[],
+            fan: None,
         };
         let layer = Layer::new(&ideal, &facets, &[[0, 1]]);
         assert_eq!(tangled_children(&layer), vec![0]);

@@ -98,6 +98,7 @@
 mod aspect;
 mod check;
 mod children;
+mod fan;
 mod front;
 mod grow;
 mod layer;
@@ -192,6 +193,16 @@ pub struct LayerParams {
     /// the node (the mean length of its front edges), so a fill's cells across it are not
     /// flat against the front's curving. Default 0.
     pub stop_gap_spacing: f64,
+    /// A convex wall edge whose two facets' normals turn by more than this (degrees) is
+    /// sharp, and each node of a chain of such edges grows a fan of columns around it
+    /// instead of one along the bisector (`fan`; 2D's `fan_threshold_deg`). Default 120 (a
+    /// wedge under 60°: a trailing edge, a slat's cusp; a 90° rim keeps one column); 0: no
+    /// fans.
+    pub fan_threshold_deg: f64,
+    /// The widest turn between two neighbouring columns of a fan (degrees): a fan turning by
+    /// θ has ⌈θ / this⌉ pieces. Default 60, as in 2D: narrower pieces make its first
+    /// layer's edges short against the next layer's height, and Coe_shrink merges them.
+    pub fan_max_angle_deg: f64,
 }
 
 impl Default for LayerParams {
@@ -218,6 +229,8 @@ impl Default for LayerParams {
             max_thickness: f64::INFINITY,
             stop_gap: 0.0,
             stop_gap_spacing: 0.0,
+            fan_threshold_deg: 120.0,
+            fan_max_angle_deg: 60.0,
         }
     }
 }
@@ -278,6 +291,11 @@ pub struct GrowStats {
     pub first_capped: Option<usize>,
     /// Wall nodes whose columns stopped before the last layer.
     pub stopped_columns: usize,
+    /// Wall nodes on sharp edges that grew a fan of columns (`fan`).
+    pub fanned_nodes: usize,
+    /// Nodes on sharp edges grown with one column because a column of their fan stopped in
+    /// the first layer.
+    pub unfanned_nodes: usize,
 }
 
 /// Why a column stopped before the last layer.
@@ -330,6 +348,10 @@ pub struct Grown3d {
     pub columns: Vec<Vec<u32>>,
     /// For each surface node, where and why its column stopped (`None`: every layer).
     pub stops: Vec<Option<ColumnStop>>,
+    /// The other columns of the fanned nodes at sharp edges (`fan`): each with its wall node
+    /// (whose own column, in `columns`, is the fan's first) and its nodes bottom-up, the wall
+    /// node first.
+    pub fan_columns: Vec<(u32, Vec<u32>)>,
     /// The final front, the outer boundary of the layers: the wall's facets over the top
     /// children, less those that collapsed to an edge (node `i` of the front is mesh node
     /// `front_nodes[i]`).
@@ -351,6 +373,13 @@ pub struct Grown3d {
 }
 
 impl Grown3d {
+    /// Every column, bottom-up: each wall node's ([`Grown3d::columns`]), then the fans'
+    /// other columns ([`Grown3d::fan_columns`]).
+    pub fn all_columns(&self) -> Vec<Vec<u32>> {
+        let fans = self.fan_columns.iter().map(|(_, c)| c.clone());
+        self.columns.iter().cloned().chain(fans).collect()
+    }
+
     /// The fraction of the wall nodes whose columns took every layer (1 without wall nodes).
     pub fn coverage(&self) -> f64 {
         if self.stops.is_empty() {

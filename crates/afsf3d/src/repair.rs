@@ -324,6 +324,7 @@ mod tests {
             len: &[],
             balanced: children,
             stopped: &[],
+            fan: None,
         };
         Layer::new(&ideal, facets, &[])
     }

@@ -173,6 +173,7 @@ mod tests {
             len: &[0.25; 6],
             balanced: &balanced,
             stopped: &[],
+            fan: None,
         };
         let normals = geom_surface::node_normals(&nodes, &facets);
         let around: Vec<u32> = (0..6).collect();

@@ -211,6 +211,11 @@ struct LayerKeys3d {
     smoothing: Option<i64>,
     /// [`Case3d::min_coverage`]; default [`MIN_COVERAGE`].
     min_coverage: Option<f64>,
+    /// [`afsf3d::LayerParams::fan_threshold_deg`]: a convex edge turning by more than this
+    /// grows a fan of columns; default 120, 0 none.
+    fan_threshold_deg: Option<f64>,
+    /// [`afsf3d::LayerParams::fan_max_angle_deg`]: the widest piece of a fan; default 60.
+    fan_max_angle_deg: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -348,6 +353,20 @@ pub(crate) fn parse(
             "{origin}: [layers] smoothing = {n}: must be 0 to {MAX_SMOOTHING} rounds"
         );
         layers.smoothing = n as usize;
+    }
+    if let Some(t) = l.fan_threshold_deg {
+        ensure!(
+            t.is_finite() && (t == 0.0 || (30.0..180.0).contains(&t)),
+            "{origin}: [layers] fan_threshold_deg = {t}: must be 0 (no fans) or 30 up to below 180 (degrees)"
+        );
+        layers.fan_threshold_deg = t;
+    }
+    if let Some(a) = l.fan_max_angle_deg {
+        ensure!(
+            a.is_finite() && (20.0..=90.0).contains(&a),
+            "{origin}: [layers] fan_max_angle_deg = {a}: must be 20 to 90 (degrees)"
+        );
+        layers.fan_max_angle_deg = a;
     }
     let min_coverage = l.min_coverage.unwrap_or(MIN_COVERAGE);
     ensure!(

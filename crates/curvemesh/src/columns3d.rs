@@ -52,6 +52,14 @@ pub struct Columns {
     pub stopped_by_why: BTreeMap<&'static str, usize>,
     /// The first [`LISTED_STOPS`] stopped columns (by layer, then wall node).
     pub first_stopped: Vec<StoppedColumn>,
+    /// Wall nodes on sharp convex edges (a trailing edge) that grew a fan of columns
+    /// (`[layers] fan_threshold_deg`); their first column is counted above.
+    pub fanned_nodes: usize,
+    /// The fans' other columns.
+    pub fan_columns: usize,
+    /// Wall nodes on sharp edges grown with one column because a column of their fan would
+    /// have stopped in the first layer.
+    pub unfanned_nodes: usize,
 }
 
 /// The columns of `grown`, grown from `wall` (its patches the boundary groups), against the
@@ -115,6 +123,9 @@ pub fn columns(wall: &Surface, grown: &afsf3d::Grown3d, min_coverage: f64, gaps:
         least_layers,
         stopped_by_why,
         first_stopped,
+        fanned_nodes: grown.stats.fanned_nodes,
+        fan_columns: grown.fan_columns.len(),
+        unfanned_nodes: grown.stats.unfanned_nodes,
     }
 }
 

@@ -244,7 +244,7 @@ pub fn curve(
         order,
         ..vector_adding::CurvingParams::default()
     };
-    vector_adding::curve_mesh_3d(mesh, &grown.columns, shape.projector(), &params)
+    vector_adding::curve_mesh_3d(mesh, &grown.all_columns(), shape.projector(), &params)
         .map_err(|e| input_error!("{}: curving to P{order}: {e}", case.origin))
 }
 
@@ -797,6 +797,7 @@ mod tests {
             mesh,
             columns: vec![vec![0, 4, 7], vec![1, 5, 8], vec![2, 5, 8], vec![3, 6, 9]],
             stops: vec![None; 4],
+            fan_columns: vec![],
             front: wall.clone(),
             front_nodes: vec![],
             node_layer: vec![],
