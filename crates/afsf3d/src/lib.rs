@@ -90,10 +90,16 @@
 //! # Ok::<(), afsf3d::GrowError>(())
 //! ```
 //!
+//! At a chain of sharp convex edges (a wing's trailing edge: the facets' normals turning by
+//! more than [`LayerParams::fan_threshold_deg`]) each node grows a fan of columns instead of
+//! one along the bisector (`fan`): its copies' first children turned evenly from one side's
+//! normal to the other's, the first layer's cells between two copies prisms lying on their
+//! side (no bottom face: their first side is face 0), tetrahedra next to the chain's end.
+//!
 //! Modules, bottom up (each uses only modules before it, and the parameter, error and result
 //! types here at the crate root): the leaves `front` and `children` (a layer's children and
-//! cells); then `aspect`, `check`, `repair`, `upright`, `layer` (the merging), `squeeze`,
-//! `stop` (columns that stop), `grow`.
+//! cells); then `fan` (the wall opened at its sharp edges), `aspect`, `check`, `repair`,
+//! `upright`, `layer` (the merging), `squeeze`, `stop` (columns that stop), `grow`.
 
 mod aspect;
 mod check;
