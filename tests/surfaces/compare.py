@@ -267,10 +267,12 @@ def run_ours(name, cut, out, timeout):
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.open(msh)
-    # the wall's nodes (every boundary group but `farfield`) and the final front's (`farfield`)
+    # the wall's nodes (every boundary group but the outer front's, `outer` without a far
+    # field) and the final front's
     groups = {}
     for dim, tag in gmsh.model.getPhysicalGroups(2):
-        nodes = groups.setdefault(gmsh.model.getPhysicalName(dim, tag) == "farfield", set())
+        name = gmsh.model.getPhysicalName(dim, tag)
+        nodes = groups.setdefault(name in ("outer", "farfield"), set())
         for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
             for tags in gmsh.model.mesh.getElements(2, entity)[2]:
                 nodes.update(int(v) for v in tags)
