@@ -99,7 +99,7 @@ pub(crate) fn ideal_steps(
     height: f64,
     smoothing: usize,
     floor: f64,
-    by_patch: bool,
+    (by_patch, coarse): (bool, &[bool]),
 ) -> (Vec<[f64; 3]>, Vec<f64>) {
     let mut dir = if by_patch {
         patch_normals(front)
@@ -114,7 +114,10 @@ pub(crate) fn ideal_steps(
         rise[a] += geom_predicates::vector::dot(d, dir[a]);
         rise[b] -= geom_predicates::vector::dot(d, dir[b]);
     }
-    let mut near = vec![false; n];
+    // smoothed: nodes near concave ones, and those grown from a coarsely faceted wall curve
+    let mut near: Vec<bool> = (0..n)
+        .map(|v| coarse.get(v).copied().unwrap_or(false))
+        .collect();
     for e in &topo.edges {
         let [a, b] = e.nodes.map(|v| v as usize);
         if rise[a] > 0.0 || rise[b] > 0.0 {
@@ -156,6 +159,53 @@ pub(crate) fn ideal_steps(
         })
         .collect();
     (dir, len)
+}
+
+/// Off the wall's feature edges, a wall node with an edge whose facets' normals turn by more
+/// than this (degrees) is on a coarsely faceted curve: the directions of its column are
+/// smoothed whatever the front's shape round them. The normals of facets ten times a curve's radius (a swept
+/// wing's leading edge, faceted by a CAD kernel's uniform triangles, turns by 20°–50° from
+/// facet to facet) diverge and twist once the layers outgrow the radius, and the columns stop
+/// there; smoothed, the swept wing keeps every column (`docs/3d.md`). Finer fronts (the
+/// built-in wing, a sphere of 1 280 triangles: under 10°) and flat faces keep their normals.
+pub(crate) const COARSE_TURN_DEG: f64 = 20.0;
+
+/// A wall edge whose two facets' normals turn by more than this (degrees) is a feature edge
+/// (a cube's edge, a wing tip's rim, a trailing edge): its nodes are not smoothed for
+/// [`COARSE_TURN_DEG`] (the cube's edges keep columns normal to their faces). The wall's,
+/// not the front's: on the front a cube's edge rounds into facets turning by 30°–45°, which
+/// smoothed lean the step's columns at its tower until 36 of them stop (first height 3e-3).
+pub(crate) const FEATURE_TURN_DEG: f64 = 60.0;
+
+/// The wall nodes whose columns' directions are smoothed whatever the front's shape round
+/// them: those with an edge turning by more than [`COARSE_TURN_DEG`] and none by more than
+/// [`FEATURE_TURN_DEG`].
+pub(crate) fn coarse_nodes(front: &Surface, topo: &Topo) -> Vec<bool> {
+    let normals: Vec<[f64; 3]> = front
+        .facets
+        .iter()
+        .map(|f| unit(fan_normal(&front.nodes, f.nodes())))
+        .collect();
+    let mut first = vec![None; topo.edges.len()];
+    // each node's largest edge turn
+    let mut turn = vec![0.0f64; front.nodes.len()];
+    for (f, sides) in topo.facet_edges.iter().enumerate() {
+        for &e in sides.iter().take(front.facets[f].nodes().len()) {
+            match first[e as usize] {
+                None => first[e as usize] = Some(f),
+                Some(g) => {
+                    let t = geom_surface::angle_between(normals[f], normals[g]);
+                    for v in topo.edges[e as usize].nodes {
+                        turn[v as usize] = turn[v as usize].max(t);
+                    }
+                }
+            }
+        }
+    }
+    let (coarse, feature) = (COARSE_TURN_DEG.to_radians(), FEATURE_TURN_DEG.to_radians());
+    turn.into_iter()
+        .map(|t| t > coarse && t <= feature)
+        .collect()
 }
 
 /// Each node's normal: the sum over the patches of its facets of each patch's unit

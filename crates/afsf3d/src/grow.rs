@@ -14,7 +14,7 @@ use crate::aspect::{limit_ratio, mean_edge};
 use crate::check::{Failed, INVERTED_SHRINKS, bad_cells, shrink_until_valid, turned_steps};
 use crate::children::{FanTopo, Ideal, Layer};
 use crate::fan::{Fanned, fan_wall};
-use crate::front::{Topo, ideal_steps};
+use crate::front::{Topo, coarse_nodes, ideal_steps};
 use crate::layer::{add_twisted, choose_merges, merged_layer};
 use crate::proximity::facing_fronts;
 use crate::repair::{CUT_LIMIT, repair_layer};
@@ -64,11 +64,13 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
     }
 }
 
-/// The wall surface with its edges and mean edge length.
+/// The wall surface with its edges, mean edge length and the nodes on coarsely faceted
+/// curves (`front::coarse_nodes`).
 struct Wall<'a> {
     surface: &'a Surface,
     topo: Topo,
     spacing: f64,
+    coarse: Vec<bool>,
 }
 
 impl Wall<'_> {
@@ -85,10 +87,12 @@ impl Wall<'_> {
             })
             .sum::<f64>()
             / topo.edges.len() as f64;
+        let coarse = coarse_nodes(surface, &topo);
         Wall {
             surface,
             topo,
             spacing,
+            coarse,
         }
     }
 }
@@ -101,7 +105,7 @@ fn grow_from(
     params: &LayerParams,
 ) -> Result<Result<Grown3d, Vec<u32>>, GrowError> {
     let mut topo = Topo::new(&fanned.wall);
-    let mut state = State::new(wall.surface, fanned);
+    let mut state = State::new(wall.surface, fanned, &wall.coarse);
     let mut thickness = 0.0;
     // the last layer's height over `first_height × growth^k` (`aspect`; 1 unless limited)
     let mut height_ratio = 1.0;
@@ -193,14 +197,14 @@ fn grow_layer(
 ) -> Result<Result<(Layer, LayerStops), Vec<u32>>, GrowError> {
     let front = &state.front;
     let n = front.nodes.len();
-    let steps = |front: &Surface, topo: &Topo| {
+    let steps = |front: &Surface, topo: &Topo, coarse: &[bool]| {
         let (s, b) = (params.stand_off, params.patch_normals);
-        ideal_steps(front, topo, height, rounds, s, b)
+        ideal_steps(front, topo, height, rounds, s, (b, coarse))
     };
     let (dir, mut len, fixed, fan): (_, _, Vec<bool>, Option<&FanTopo>) = match first {
         Some((wall, fanned)) => {
             // the wall's own steps (its fans' facets have no normal), the copies' fans
-            let (d, l) = steps(wall.surface, &wall.topo);
+            let (d, l) = steps(wall.surface, &wall.topo, &wall.coarse);
             let o = |v: usize| fanned.fan.origin[v] as usize;
             let dir = (0..n).map(|v| fanned.dir[v].unwrap_or(d[o(v)])).collect();
             let len = (0..n)
@@ -211,7 +215,7 @@ fn grow_layer(
             (dir, len, fixed, fan)
         }
         None => {
-            let (d, l) = steps(front, topo);
+            let (d, l) = steps(front, topo, &state.coarse_front());
             (d, l, Vec::new(), None)
         }
     };
@@ -461,6 +465,9 @@ struct State {
     pipes: Vec<u32>,
     /// The number of surface nodes: the columns after them are the fans' copies'.
     wall_nodes: usize,
+    /// For each column, whether its wall node is on a coarsely faceted curve
+    /// (`front::coarse_nodes`).
+    coarse: Vec<bool>,
     /// For each wall node (each copy of a fanned node apart), its column so far, and the
     /// front node at its top.
     columns: Vec<Vec<u32>>,
@@ -483,7 +490,7 @@ impl State {
     /// The state before the first layer: the front is the wall `fanned` (the surface
     /// `surface` with its fans), each copy of a fanned node on its node's mesh node, the
     /// fans' zero-area facets without a face.
-    fn new(surface: &Surface, fanned: &Fanned) -> State {
+    fn new(surface: &Surface, fanned: &Fanned, coarse: &[bool]) -> State {
         let n = surface.nodes.len();
         let nf = fanned.wall.nodes.len();
         let mut mesh = PolyMesh::new();
@@ -513,6 +520,12 @@ impl State {
             front_faces,
             pipes: fanned.pipe.clone(),
             wall_nodes: n,
+            coarse: fanned
+                .fan
+                .origin
+                .iter()
+                .map(|&o| coarse[o as usize])
+                .collect(),
             columns: fanned.fan.origin.iter().map(|&o| vec![o]).collect(),
             column_top: (0..nf as u32).collect(),
             stops: vec![None; nf],
@@ -527,6 +540,15 @@ impl State {
                 ..GrowStats::default()
             },
         }
+    }
+
+    /// For each front node, whether a column through it grew from a coarsely faceted curve.
+    fn coarse_front(&self) -> Vec<bool> {
+        let mut out = vec![false; self.front.nodes.len()];
+        for (&top, &c) in self.column_top.iter().zip(&self.coarse) {
+            out[top as usize] |= c;
+        }
+        out
     }
 
     /// Appends the layer `next` grown over the current front (its edges `topo`): its nodes

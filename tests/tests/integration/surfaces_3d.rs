@@ -45,15 +45,6 @@ fn meshed(dir: &Path, name: &str, case: &Path, rest: &[&str]) -> Value {
     report
 }
 
-/// The coverage each body keeps at least: the swept wing the run's own floor (`[layers]
-/// min_coverage`, 0.9), the others 0.95. The swept wing's columns stop at its leading edge
-/// where the front wrapping it twists (layers 9–14), and how many stop is chaotic: its
-/// first height moved by 1e-4 of itself gives a coverage anywhere from 0.92 to 0.98, with or
-/// without the trailing edge's fans.
-fn floor(name: &str) -> f64 {
-    if name == "swept-wing" { 0.9 } else { 0.95 }
-}
-
 /// The report's columns: coverage at least `floor`, the same as the top-level `coverage`, the
 /// least layers per group between `least` and 15, every stopped column listed with its layer,
 /// why and where; returns how many stopped.
@@ -111,7 +102,7 @@ fn every_untuned_body_grows_at_the_default_keys() {
     for (name, least, stops) in bodies {
         let start = std::time::Instant::now();
         let r = meshed(d, name, &fixture(name), &["--order", "1"]);
-        let stopped = check_columns(name, &r, floor(name), least);
+        let stopped = check_columns(name, &r, 0.95, least);
         // the swept wing's 16° trailing edge grows fans (three columns or more per node)
         let fans = &r["columns"];
         let (nodes, columns) = (fans["fanned_nodes"].as_u64(), fans["fan_columns"].as_u64());
@@ -148,7 +139,7 @@ fn the_wing_the_fin_and_the_two_spheres_cut_into_valid_tetrahedra() {
     for name in ["swept-wing", "capsule-fin", "two-spheres"] {
         let case = variant(d, name, "[cut]\ncells = \"tets\"");
         let r = meshed(d, &format!("{name}-tets"), &case, &["--order", "1"]);
-        check_columns(name, &r, floor(name), 8);
+        check_columns(name, &r, 0.95, 8);
         let worst = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
         assert!(worst < 180.0, "{name}: {worst}");
         eprintln!(
@@ -172,7 +163,7 @@ fn every_untuned_body_curves_to_p2_with_every_cell_certified() {
     ];
     for name in bodies {
         let r = meshed(d, &format!("{name}-p2"), &fixture(name), &["--order", "2"]);
-        check_columns(name, &r, floor(name), 8);
+        check_columns(name, &r, 0.95, 8);
         assert_eq!(r["order"], 2, "{name}");
         assert_eq!(r["quality"]["certified"], true, "{name}: {}", r["quality"]);
     }
