@@ -342,6 +342,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn coarse_nodes_are_those_of_coarsely_faceted_curves_not_of_features_or_fine_fronts() {
+        let coarse = |s: &Surface| coarse_nodes(s, &Topo::new(s));
+        // an icosahedron's faces turn by 41.8° across each edge: every node on a coarse curve
+        let ico = Surface::sphere(1.0, 0);
+        assert!(coarse(&ico).iter().all(|&c| c));
+        // a sphere of 1 280 triangles turns by under 10°, a cube's faces by 0° and its edges
+        // by 90°: none
+        assert!(!coarse(&Surface::sphere(1.0, 3)).contains(&true));
+        assert!(!coarse(&Surface::cube(1.0, 4, false)).contains(&true));
+        assert!(!coarse(&Surface::cube(1.0, 4, true)).contains(&true));
+    }
+
+    #[test]
     fn patch_normals_weigh_each_patch_alike_however_sheared_its_facets_are() {
         // node 0 on a rim: a cap patch below (z = 0, facing -z, a right angle at node 0) and
         // a side patch (y = 0, facing -y) whose quad is sheared to a 20° angle at node 0
