@@ -8,6 +8,9 @@
 //! neighbourhood improved again), kept only when every tet it makes is better than the worst
 //! of the sliver and the tets it replaces: in a narrow gap between fronts an insertion that
 //! moves a sliver beside its own point starts a cascade of slivers among the fill's points.
+//! A flat tet (over 179°: four front points on two parallel front edges across a gap, the
+//! span stations of extruded bodies facing each other) is flipped only into other flat tets
+//! and its faces' offsets leave the gap, so points close to its own plane are tried last.
 
 use crate::FillOptions;
 use crate::cavity::EDGES;
@@ -16,6 +19,14 @@ use crate::insert::{FaceSet, Located, Scratch};
 use crate::mesh::{GHOST, Mesh};
 use crate::quality::{circumcentre, cross, dihedral_rank, dist, dot, rank_of_deg, sub};
 use crate::region::Side;
+
+/// A tet with a dihedral angle over this (degrees) is flat: its corners lie in one plane up
+/// to rounding.
+const FLAT_DEG: f64 = 179.0;
+
+/// The offsets (× the longest edge) from a flat tet's centroid along the normal of its
+/// largest face where [`Improver::insert_near`] tries a point last.
+const FLAT_OFFSETS: [f64; 3] = [0.2, 0.1, 0.05];
 
 /// What improvement works with.
 struct Improver<'a> {
@@ -276,6 +287,28 @@ impl Improver<'_> {
             for d in [0.3, 0.6, 1.0] {
                 let q = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0 + d * long * n[k] / len);
                 candidates.push(q);
+            }
+        }
+        // last, a flat tet's own plane (`FLAT_DEG`): four points on two parallel front edges
+        // (the spans of an extruded body facing each other across a gap) make a tet of no
+        // volume, every flip of which is flat too, and whose faces' offsets above all leave
+        // the gap; points close to its plane stay in it
+        if self.worst(v) > rank_of_deg(FLAT_DEG) {
+            let mid: [f64; 3] =
+                std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
+            let n = (0..4)
+                .map(|i| {
+                    let [a, b, c] = crate::mesh::face_of(v, i).map(|w| self.mesh.p(w));
+                    cross(sub(a, b), sub(a, c))
+                })
+                .fold([0.0; 3], |m, x| if dot(x, x) > dot(m, m) { x } else { m });
+            let len = dot(n, n).sqrt();
+            for d in FLAT_OFFSETS.iter().filter(|_| len > 0.0) {
+                for sign in [1.0, -1.0] {
+                    candidates.push(std::array::from_fn(|k| {
+                        mid[k] + sign * d * long * n[k] / len
+                    }));
+                }
             }
         }
         // one point per sliver: a point that leaves it is not followed by more

@@ -128,6 +128,76 @@ fn facing_fronts_of_unlike_spacing_are_recovered() {
     run(&p, &f, &plain());
 }
 
+/// The fill input of `fixtures/cases/30p30n-3d.toml` as the pipeline hands it over (the
+/// layers' final fronts and the far field's triangles), gzipped: a line `points facets`,
+/// then each point's coordinates, then each facet's three points.
+fn extruded_30p30n() -> Surface {
+    use std::io::Read;
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/30p30n-3d-fill.txt.gz"
+    );
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(path).unwrap())
+        .read_to_string(&mut text)
+        .unwrap();
+    let mut lines = text.lines();
+    let head: Vec<usize> = lines
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let mut numbers = |n: usize| -> Vec<Vec<f64>> {
+        (0..n)
+            .map(|_| {
+                lines
+                    .next()
+                    .unwrap()
+                    .split_whitespace()
+                    .map(|x| x.parse().unwrap())
+                    .collect()
+            })
+            .collect()
+    };
+    let points = numbers(head[0])
+        .iter()
+        .map(|v| [v[0], v[1], v[2]])
+        .collect();
+    let facets = numbers(head[1])
+        .iter()
+        .map(|v| [v[0], v[1], v[2]].map(|x| x as u32))
+        .collect();
+    (points, facets)
+}
+
+#[test]
+fn the_extruded_30p30n_has_no_flat_tet_across_its_gaps() {
+    // four front points on two parallel spanwise front edges across the flap's gap (an
+    // extruded body's span stations face another's) made a tet of no volume, 180.0°, whose
+    // every flip was flat too, and the case's P2 mesh failed its certification there; a
+    // point inserted near the tet's own plane removes it
+    let (p, f) = extruded_30p30n();
+    let options = FillOptions {
+        max_size: 4.0, // the case's far field: a tenth of its 40-chord box
+        ..FillOptions::default()
+    };
+    let out = fill(
+        &FillInput {
+            points: &p,
+            facets: &f,
+        },
+        &options,
+    )
+    .unwrap();
+    eprintln!(
+        "extruded 30P30N: {} tets, max dihedral {:.3}°",
+        out.tets.len(),
+        out.max_dihedral_deg
+    );
+    assert!(out.max_dihedral_deg < 179.9, "{}", out.max_dihedral_deg);
+}
+
 #[test]
 fn errors_name_the_culprit() {
     let (p, f) = nest(
