@@ -228,6 +228,40 @@ pub(crate) fn fan_wall(
         }
     }
     let candidate = |v: usize| sharp_at[v].len() == 2 && !skip.get(v).copied().unwrap_or(false);
+    let (mut nodes, components) = chains(surface, topo, (&sharp_at, &edge_facets), candidate);
+    if nodes.is_empty() {
+        return Fanned::plain(surface);
+    }
+    // one number of pieces per chain: the most its widest turn needs
+    let max_angle = max_angle_deg.to_radians();
+    for chain in &components {
+        let widest = chain
+            .iter()
+            .filter_map(|v| nodes.get(v))
+            .map(|x| angle_between(x.normals[0], x.normals[1]))
+            .fold(0.0, f64::max);
+        let pieces = ((widest / max_angle).ceil() as usize).max(1);
+        for v in chain {
+            if let Some(x) = nodes.get_mut(v) {
+                x.pieces = pieces;
+            }
+        }
+    }
+    build(surface, topo, (&sharp, &edge_facets), &nodes)
+}
+
+/// The fanned nodes (`candidate`: two sharp edges, not skipped) whose sharp edges split their
+/// facets in two sides, each with its sides, and the chains of them (joined by sharp edges),
+/// side 0 carried along each chain from node to node (the edge's facet on side 0 at one end
+/// is on side 0 at the other). `sharp_at`: each node's sharp edges; `edge_facets`: each
+/// edge's two facets.
+fn chains(
+    surface: &Surface,
+    topo: &Topo,
+    (sharp_at, edge_facets): (&[Vec<u32>], &[[u32; 2]]),
+    candidate: impl Fn(usize) -> bool,
+) -> (HashMap<u32, Node>, Vec<Vec<u32>>) {
+    let n = surface.nodes.len();
     let (start, list) = facets_around(surface);
     // each chain of candidates, side 0 carried along it from node to node
     let mut nodes: HashMap<u32, Node> = HashMap::new();
@@ -285,25 +319,7 @@ pub(crate) fn fan_wall(
             }
         }
     }
-    if nodes.is_empty() {
-        return Fanned::plain(surface);
-    }
-    // one number of pieces per chain: the most its widest turn needs
-    let max_angle = max_angle_deg.to_radians();
-    for chain in &components {
-        let widest = chain
-            .iter()
-            .filter_map(|v| nodes.get(v))
-            .map(|x| angle_between(x.normals[0], x.normals[1]))
-            .fold(0.0, f64::max);
-        let pieces = ((widest / max_angle).ceil() as usize).max(1);
-        for v in chain {
-            if let Some(x) = nodes.get_mut(v) {
-                x.pieces = pieces;
-            }
-        }
-    }
-    build(surface, topo, (&sharp, &edge_facets), &nodes)
+    (nodes, components)
 }
 
 /// The fanned wall from the fanned nodes `nodes` (each with the facet on its side 0).

@@ -197,28 +197,7 @@ fn grow_layer(
 ) -> Result<Result<(Layer, LayerStops), Vec<u32>>, GrowError> {
     let front = &state.front;
     let n = front.nodes.len();
-    let steps = |front: &Surface, topo: &Topo, coarse: &[bool]| {
-        let (s, b) = (params.stand_off, params.patch_normals);
-        ideal_steps(front, topo, height, rounds, s, (b, coarse))
-    };
-    let (dir, mut len, fixed, fan): (_, _, Vec<bool>, Option<&FanTopo>) = match first {
-        Some((wall, fanned)) => {
-            // the wall's own steps (its fans' facets have no normal), the copies' fans
-            let (d, l) = steps(wall.surface, &wall.topo, &wall.coarse);
-            let o = |v: usize| fanned.fan.origin[v] as usize;
-            let dir = (0..n).map(|v| fanned.dir[v].unwrap_or(d[o(v)])).collect();
-            let len = (0..n)
-                .map(|v| if fanned.is_fanned(v) { height } else { l[o(v)] })
-                .collect();
-            let fixed = (0..n).map(|v| fanned.is_fanned(v)).collect();
-            let fan = (fanned.wall.facets.len() > fanned.real_facets).then_some(&fanned.fan);
-            (dir, len, fixed, fan)
-        }
-        None => {
-            let (d, l) = steps(front, topo, &state.coarse_front());
-            (d, l, Vec::new(), None)
-        }
-    };
+    let (dir, mut len, fixed, fan) = layer_steps(state, topo, params, (height, rounds), first);
     // the stopped columns keep themselves; those facing another front too near stop now;
     // those near them rise less, or stop
     let mut stopped = state.stopped.clone();
@@ -340,6 +319,42 @@ fn grow_layer(
             repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
     }
     Ok(Ok((next, LayerStops { rise, why })))
+}
+
+/// A layer's ideal steps: each front node's direction and length, which children stay at
+/// their steps unbalanced, and the wall's fans (the first layer's).
+type Steps<'a> = (Vec<[f64; 3]>, Vec<f64>, Vec<bool>, Option<&'a FanTopo>);
+
+/// The ideal steps of a layer `height` high over `state`'s front (its edges `topo`), the
+/// directions smoothed `rounds` times: each front node's direction and length, which
+/// children stay at their steps unbalanced, and the wall's fans. The first layer (`first`:
+/// the wall and its fans) takes the wall's own steps (its fans' facets have no normal) and
+/// each fan's copies their turned directions, unbalanced.
+fn layer_steps<'a>(
+    state: &State,
+    topo: &Topo,
+    params: &LayerParams,
+    (height, rounds): (f64, usize),
+    first: Option<(&Wall<'_>, &'a Fanned)>,
+) -> Steps<'a> {
+    let steps = |front: &Surface, topo: &Topo, coarse: &[bool]| {
+        let (s, b) = (params.stand_off, params.patch_normals);
+        ideal_steps(front, topo, height, rounds, s, (b, coarse))
+    };
+    let Some((wall, fanned)) = first else {
+        let (d, l) = steps(&state.front, topo, &state.coarse_front());
+        return (d, l, Vec::new(), None);
+    };
+    let n = state.front.nodes.len();
+    let (d, l) = steps(wall.surface, &wall.topo, &wall.coarse);
+    let o = |v: usize| fanned.fan.origin[v] as usize;
+    let dir = (0..n).map(|v| fanned.dir[v].unwrap_or(d[o(v)])).collect();
+    let len = (0..n)
+        .map(|v| if fanned.is_fanned(v) { height } else { l[o(v)] })
+        .collect();
+    let fixed = (0..n).map(|v| fanned.is_fanned(v)).collect();
+    let fan = (fanned.wall.facets.len() > fanned.real_facets).then_some(&fanned.fan);
+    (dir, len, fixed, fan)
 }
 
 /// The layer of the balanced children of `ideal` (over `facets`) with Coe_shrink's `merges`,
