@@ -36,13 +36,53 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
     }
     let wall = Wall::new(surface);
     let fans = (params.fan_threshold_deg, params.fan_max_angle_deg);
-    // a fan column that stops in the first layer would leave a zero-area facet on the front:
-    // its node grows one column instead, and the layers are grown again
+    if fan_wall(surface, &wall.topo, fans, &[]).fanned_nodes() == 0 {
+        return grow_fanned(&wall, params, false);
+    }
+    // fans whose copies' children stand unbalanced at their turned directions, else balanced
+    // by the springs: the first whose first layer stops no column and keeps fans; else the
+    // unbalanced fans, unless the first layer without fans stops fewer columns. Next to a
+    // chain's end at a tip, where the first layer is as high as the span step, an unbalanced
+    // fan may fold its neighbours' cells (the built-in section's sharp form at 1e-3), and a
+    // column stopped in the first layer then stops every column around as a thick stack
+    // grows; where columns stop there whatever the fans (the extruded 30P30N's slat at its
+    // tips), the fans stay.
+    let first_layer = |p: &LayerParams, free: bool| {
+        let one = LayerParams {
+            layers: 1,
+            ..p.clone()
+        };
+        grow_fanned(&wall, &one, free).map(|g| (g.stats.stopped_columns, g.stats.fanned_nodes))
+    };
+    let fixed = first_layer(params, false)?;
+    if fixed.0 == 0 && fixed.1 > 0 {
+        return grow_fanned(&wall, params, false);
+    }
+    if first_layer(params, true).is_ok_and(|(stops, fans)| stops == 0 && fans > 0) {
+        return grow_fanned(&wall, params, true);
+    }
+    let plain = LayerParams {
+        fan_threshold_deg: 0.0,
+        ..params.clone()
+    };
+    match first_layer(&plain, false) {
+        Ok((stops, _)) if stops < fixed.0 => grow_fanned(&wall, &plain, false),
+        _ => grow_fanned(&wall, params, false),
+    }
+}
+
+/// Grows the layers with the wall's fans (none when [`LayerParams::fan_threshold_deg`] is 0),
+/// their copies' first children balanced by the springs when `free`: a fan column that would
+/// stop in the first layer, or a column beside a fan, makes its node grow one column instead,
+/// and the layers are grown again.
+fn grow_fanned(wall: &Wall<'_>, params: &LayerParams, free: bool) -> Result<Grown3d, GrowError> {
+    let surface = wall.surface;
+    let fans = (params.fan_threshold_deg, params.fan_max_angle_deg);
     let mut skip = vec![false; surface.nodes.len()];
     let mut unfanned = 0;
     loop {
         let fanned = fan_wall(surface, &wall.topo, fans, &skip);
-        match grow_from(&wall, &fanned, params)? {
+        match grow_from(wall, &fanned, params, free)? {
             Ok(mut grown) => {
                 grown.stats.unfanned_nodes = unfanned;
                 return Ok(grown);
@@ -103,6 +143,7 @@ fn grow_from(
     wall: &Wall<'_>,
     fanned: &Fanned,
     params: &LayerParams,
+    free: bool,
 ) -> Result<Result<Grown3d, Vec<u32>>, GrowError> {
     let mut topo = Topo::new(&fanned.wall);
     let mut state = State::new(wall.surface, fanned, &wall.coarse);
@@ -138,7 +179,7 @@ fn grow_from(
         // where the layers are as thick as half the wall's spacing, squeezed cells merge too
         let squeezing = 2.0 * thickness >= wall.spacing;
         let at = (layer, height, rounds, squeezing);
-        let first = (layer == 0).then_some((wall, fanned));
+        let first = (layer == 0).then_some((wall, fanned, free));
         let (next, stops) = match grow_layer(&mut state, &topo, params, at, first)? {
             Ok(grown) => grown,
             Err(unfan) => return Ok(Err(unfan)),
@@ -193,7 +234,7 @@ fn grow_layer(
     topo: &Topo,
     params: &LayerParams,
     (layer, height, rounds, squeezing): (usize, f64, usize, bool),
-    first: Option<(&Wall<'_>, &Fanned)>,
+    first: Option<(&Wall<'_>, &Fanned, bool)>,
 ) -> Result<Result<(Layer, LayerStops), Vec<u32>>, GrowError> {
     let front = &state.front;
     let n = front.nodes.len();
@@ -269,18 +310,10 @@ fn grow_layer(
             Ok(()) => break,
             Err(failed) => failed,
         };
-        if let Some((_, fanned)) = first {
+        if let Some((_, fanned, _)) = first {
             // a fan's column must not stop in the first layer: its node grows one instead
-            let mut fans: Vec<u32> = failed
-                .bad
-                .iter()
-                .flat_map(|&f| front.facets[f].nodes())
-                .filter(|&&v| fanned.is_fanned(v as usize))
-                .map(|&v| fanned.fan.origin[v as usize])
-                .collect();
+            let fans = fans_at(&failed.bad, front, fanned);
             if !fans.is_empty() {
-                fans.sort_unstable();
-                fans.dedup();
                 return Ok(Err(fans));
             }
         }
@@ -335,13 +368,13 @@ fn layer_steps<'a>(
     topo: &Topo,
     params: &LayerParams,
     (height, rounds): (f64, usize),
-    first: Option<(&Wall<'_>, &'a Fanned)>,
+    first: Option<(&Wall<'_>, &'a Fanned, bool)>,
 ) -> Steps<'a> {
     let steps = |front: &Surface, topo: &Topo, coarse: &[bool]| {
         let (s, b) = (params.stand_off, params.patch_normals);
         ideal_steps(front, topo, height, rounds, s, (b, coarse))
     };
-    let Some((wall, fanned)) = first else {
+    let Some((wall, fanned, free)) = first else {
         let (d, l) = steps(&state.front, topo, &state.coarse_front());
         return (d, l, Vec::new(), None);
     };
@@ -352,9 +385,22 @@ fn layer_steps<'a>(
     let len = (0..n)
         .map(|v| if fanned.is_fanned(v) { height } else { l[o(v)] })
         .collect();
-    let fixed = (0..n).map(|v| fanned.is_fanned(v)).collect();
+    let fixed = (0..n).map(|v| fanned.is_fanned(v) && !free).collect();
     let fan = (fanned.wall.facets.len() > fanned.real_facets).then_some(&fanned.fan);
     (dir, len, fixed, fan)
+}
+
+/// The fanned surface nodes (of `fanned`) of the front facets `bad` (of `front`), sorted.
+fn fans_at(bad: &[usize], front: &Surface, fanned: &Fanned) -> Vec<u32> {
+    let mut fans: Vec<u32> = bad
+        .iter()
+        .flat_map(|&f| front.facets[f].nodes())
+        .filter(|&&v| fanned.is_fanned(v as usize))
+        .map(|&v| fanned.fan.origin[v as usize])
+        .collect();
+    fans.sort_unstable();
+    fans.dedup();
+    fans
 }
 
 /// The layer of the balanced children of `ideal` (over `facets`) with Coe_shrink's `merges`,

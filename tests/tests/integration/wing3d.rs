@@ -90,3 +90,29 @@ fn the_trailing_edge_cells_of_a_wing_with_quads_stay_above_the_bar() {
         "trailing edge: min corner scaled Jacobian {worst}"
     );
 }
+
+#[test]
+fn a_sharp_trailing_edge_grows_fans_and_every_column_of_a_thick_stack() {
+    // the NACA 0012 with its sharp trailing edge (a 16° wedge), span 2, its span stations
+    // graded from 1e-3 at the tips, 45 layers from 1e-3 at growth 1.3: the trailing edge's
+    // nodes grow fans; next to its ends at the tips, where the first layer is as high as the
+    // span step, unbalanced fans fold the tip's first cells, and one column stopped in the
+    // first layer stopped every column of the thick stack (the fans' copies are balanced then)
+    let text = "[[loop]]\nrole = \"wall\"\nnaca = \"0012\"\n\n[[loop]]\nrole = \"farfield\"\n\
+                circle = { center = [0.5, 0.0], radius = 20.0 }\n\n[layers]\nfirst_height = 1e-3\n";
+    let curvemesh::load::AnyCase::Two(case) = curvemesh::load::parse_str(text).unwrap() else {
+        panic!("a 2D case");
+    };
+    let (wall, _) = curvemesh::wing::wing_surface(&case, 2.0, true).unwrap();
+    let params = LayerParams {
+        first_height: 1e-3,
+        growth: 1.3,
+        layers: 45,
+        ..LayerParams::default()
+    };
+    let grown = grow_layers(&wall, &params).unwrap();
+    assert!(grown.stats.fanned_nodes > 40, "{:?}", grown.stats);
+    assert_eq!(grown.stats.unfanned_nodes, 0);
+    assert_eq!(grown.coverage(), 1.0, "{:?}", grown.stats);
+    assert!(grown.mesh.validate().is_empty());
+}
