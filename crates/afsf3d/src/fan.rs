@@ -78,37 +78,25 @@ impl Fanned {
 }
 
 /// For each edge of `topo` (over `surface`), whether it is sharp: convex, its two facets'
-/// normals more than `threshold` (radians) apart; and its two facets (the first running the
-/// edge's direction).
-fn sharp_edges(surface: &Surface, topo: &Topo, threshold: f64) -> (Vec<bool>, Vec<[u32; 2]>) {
+/// normals more than `threshold` (radians) apart.
+fn sharp_edges(surface: &Surface, topo: &Topo, threshold: f64) -> Vec<bool> {
     let normals: Vec<[f64; 3]> = surface
         .facets
         .iter()
         .map(|f| unit(fan_normal(&surface.nodes, f.nodes())))
         .collect();
-    let mut facets = vec![[NONE; 2]; topo.edges.len()];
-    for (f, sides) in topo.facet_edges.iter().enumerate() {
-        let k = surface.facets[f].nodes();
-        for (i, &e) in sides.iter().take(k.len()).enumerate() {
-            let forward = k[i] == topo.edges[e as usize].nodes[0];
-            facets[e as usize][usize::from(!forward)] = f as u32;
-        }
-    }
-    let sharp = topo
-        .edges
+    topo.edges
         .iter()
-        .zip(&facets)
-        .map(|(e, &[f, g])| {
-            let (nf, ng) = (normals[f as usize], normals[g as usize]);
-            // convex: the far side of g lies below f's plane
+        .map(|e| {
+            let [nf, ng] = e.facets.map(|f| normals[f as usize]);
+            // convex: the far side of the second facet lies below the first's plane
             let a = surface.nodes[e.nodes[0] as usize];
             let far = surface.nodes[e.far[1][0] as usize];
             let below =
                 geom_predicates::vector::dot(nf, geom_predicates::vector::sub(far, a)) < 0.0;
             below && angle_between(nf, ng) > threshold
         })
-        .collect();
-    (sharp, facets)
+        .collect()
 }
 
 /// The facets around each node (CSR: `start[v]..start[v + 1]` into `list`).
@@ -219,7 +207,7 @@ pub(crate) fn fan_wall(
     if threshold_deg <= 0.0 {
         return Fanned::plain(surface);
     }
-    let (sharp, edge_facets) = sharp_edges(surface, topo, threshold_deg.to_radians());
+    let sharp = sharp_edges(surface, topo, threshold_deg.to_radians());
     let n = surface.nodes.len();
     let mut sharp_at: Vec<Vec<u32>> = vec![Vec::new(); n];
     for (e, edge) in topo.edges.iter().enumerate().filter(|(e, _)| sharp[*e]) {
@@ -228,7 +216,7 @@ pub(crate) fn fan_wall(
         }
     }
     let candidate = |v: usize| sharp_at[v].len() == 2 && !skip.get(v).copied().unwrap_or(false);
-    let (mut nodes, components) = chains(surface, topo, (&sharp_at, &edge_facets), candidate);
+    let (mut nodes, components) = chains(surface, topo, &sharp_at, candidate);
     if nodes.is_empty() {
         return Fanned::plain(surface);
     }
@@ -247,18 +235,17 @@ pub(crate) fn fan_wall(
             }
         }
     }
-    build(surface, topo, (&sharp, &edge_facets), &nodes)
+    build(surface, topo, &sharp, &nodes)
 }
 
 /// The fanned nodes (`candidate`: two sharp edges, not skipped) whose sharp edges split their
 /// facets in two sides, each with its sides, and the chains of them (joined by sharp edges),
 /// side 0 carried along each chain from node to node (the edge's facet on side 0 at one end
-/// is on side 0 at the other). `sharp_at`: each node's sharp edges; `edge_facets`: each
-/// edge's two facets.
+/// is on side 0 at the other). `sharp_at`: each node's sharp edges.
 fn chains(
     surface: &Surface,
     topo: &Topo,
-    (sharp_at, edge_facets): (&[Vec<u32>], &[[u32; 2]]),
+    sharp_at: &[Vec<u32>],
     candidate: impl Fn(usize) -> bool,
 ) -> (HashMap<u32, Node>, Vec<Vec<u32>>) {
     let n = surface.nodes.len();
@@ -273,7 +260,7 @@ fn chains(
         }
         let id = components.len() as u32;
         components.push(Vec::new());
-        let first = edge_facets[sharp_at[seed][0] as usize][0];
+        let first = topo.edges[sharp_at[seed][0] as usize].facets[0];
         let mut stack = vec![(seed as u32, first)];
         component[seed] = id;
         while let Some((v, first)) = stack.pop() {
@@ -312,7 +299,7 @@ fn chains(
                     continue;
                 }
                 // the edge's facet on side 0 at v is on side 0 at w too
-                let [f, g] = edge_facets[e as usize];
+                let [f, g] = topo.edges[e as usize].facets;
                 let near = if on(0).any(|x| x == f) { f } else { g };
                 component[w as usize] = id;
                 stack.push((w, near));
@@ -323,12 +310,7 @@ fn chains(
 }
 
 /// The fanned wall from the fanned nodes `nodes` (each with the facet on its side 0).
-fn build(
-    surface: &Surface,
-    topo: &Topo,
-    (sharp, edge_facets): (&[bool], &[[u32; 2]]),
-    nodes: &HashMap<u32, Node>,
-) -> Fanned {
+fn build(surface: &Surface, topo: &Topo, sharp: &[bool], nodes: &HashMap<u32, Node>) -> Fanned {
     let n = surface.nodes.len();
     let mut wall = surface.clone();
     let mut origin: Vec<u32> = (0..n as u32).collect();
@@ -359,7 +341,13 @@ fn build(
     }
     let mut pipe: Vec<u32> = (0..surface.facets.len() as u32).collect();
     let mut apex_edges = Vec::new();
-    for (e, edge) in topo.edges.iter().enumerate().filter(|(e, _)| sharp[*e]) {
+    for edge in topo
+        .edges
+        .iter()
+        .zip(sharp)
+        .filter(|(_, s)| **s)
+        .map(|(e, _)| e)
+    {
         let [p, q] = edge.nodes;
         let (cp, cq) = (copies.get(&p), copies.get(&q));
         let Some(pieces) = cp.or(cq).map(|c| c.len() - 1) else {
@@ -371,13 +359,13 @@ fn build(
         // the edge's facet on side 0 (copy 0) and the direction it runs the edge
         let fanned_end = if cp.is_some() { p } else { q };
         let far = &nodes[&fanned_end].far_side;
-        let pair = edge_facets[e];
+        let pair = edge.facets;
         let side0 = if far.contains(&pair[0]) {
             pair[1]
         } else {
             pair[0]
         };
-        let forward = edge_facets[e][0] == side0;
+        let forward = pair[0] == side0;
         let (p, q) = if forward { (p, q) } else { (q, p) };
         let copy = |v: u32, j: usize| copies.get(&v).map_or(v, |c| c[j]);
         if cp.is_none() || cq.is_none() {

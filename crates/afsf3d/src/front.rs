@@ -10,6 +10,8 @@ pub(crate) struct Edge {
     pub nodes: [u32; 2],
     /// The far side of each of its facets (see [`far_side`]), first facet first.
     pub far: [[u32; 2]; 2],
+    /// Its two facets, the first running the edge's direction.
+    pub facets: [u32; 2],
 }
 
 /// The edges of a closed surface and, for each facet, the edge of each of its sides.
@@ -56,13 +58,16 @@ impl Topo {
             let (f, i) = (pair[0].2 as usize, pair[0].3 as usize);
             let k = facets[f].nodes();
             let mut far = [[0; 2]; 2];
+            let mut two = [pair[0].2; 2];
             for (slot, s) in pair.iter().take(2).enumerate() {
                 far[slot] = far_side(&facets[s.2 as usize], s.3 as usize);
+                two[slot] = s.2;
                 facet_edges[s.2 as usize][s.3 as usize] = id;
             }
             edges.push(Edge {
                 nodes: [k[i], k[(i + 1) % k.len()]],
                 far,
+                facets: two,
             });
         }
         Topo { edges, facet_edges }
@@ -186,20 +191,13 @@ pub(crate) fn coarse_nodes(front: &Surface, topo: &Topo) -> Vec<bool> {
         .iter()
         .map(|f| unit(fan_normal(&front.nodes, f.nodes())))
         .collect();
-    let mut first = vec![None; topo.edges.len()];
     // each node's largest edge turn
     let mut turn = vec![0.0f64; front.nodes.len()];
-    for (f, sides) in topo.facet_edges.iter().enumerate() {
-        for &e in sides.iter().take(front.facets[f].nodes().len()) {
-            match first[e as usize] {
-                None => first[e as usize] = Some(f),
-                Some(g) => {
-                    let t = geom_surface::angle_between(normals[f], normals[g]);
-                    for v in topo.edges[e as usize].nodes {
-                        turn[v as usize] = turn[v as usize].max(t);
-                    }
-                }
-            }
+    for e in &topo.edges {
+        let [f, g] = e.facets.map(|f| normals[f as usize]);
+        let t = geom_surface::angle_between(f, g);
+        for v in e.nodes {
+            turn[v as usize] = turn[v as usize].max(t);
         }
     }
     let (coarse, feature) = (COARSE_TURN_DEG.to_radians(), FEATURE_TURN_DEG.to_radians());

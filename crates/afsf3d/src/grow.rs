@@ -73,8 +73,8 @@ pub fn grow_layers(surface: &Surface, params: &LayerParams) -> Result<Grown3d, G
 
 /// Grows the layers with the wall's fans (none when [`LayerParams::fan_threshold_deg`] is 0),
 /// their copies' first children balanced by the springs when `free`: a fan column that would
-/// stop in the first layer, or a column beside a fan, makes its node grow one column instead,
-/// and the layers are grown again.
+/// stop in the first layer makes its node grow one column instead, and the layers are grown
+/// again.
 fn grow_fanned(wall: &Wall<'_>, params: &LayerParams, free: bool) -> Result<Grown3d, GrowError> {
     let surface = wall.surface;
     let fans = (params.fan_threshold_deg, params.fan_max_angle_deg);

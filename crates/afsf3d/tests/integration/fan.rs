@@ -7,7 +7,7 @@
 use afsf3d::{Grown3d, LayerParams, grow_layers};
 use geom_surface::{Facet, Surface};
 use mesh_model::measure3d::tet_max_dihedral_deg;
-use mesh_model::{Layering, Mesh, Shape, validate};
+use mesh_model::{Mesh, Shape};
 
 /// A closed wedge: the triangle (0, ±0.1), (1, 0) in the x-z plane (its trailing edge at
 /// x = 1) extruded along y over `stations` stations 0.25 apart, its sides quads (or each
@@ -47,45 +47,12 @@ fn wedge(stations: usize, triangles: bool) -> Surface {
     surface
 }
 
-/// The layers of `grown` cut both ways: each cut valid, every cell positive, the volumes
-/// summing to the volume inside the cut mesh's boundary, the layering record checked.
-/// Returns the tetrahedral cut.
+/// The layers of `grown`, a valid polyhedral mesh, cut both ways and checked
+/// (`stop::cut_and_check`); the tetrahedral cut.
 fn cut_and_check(name: &str, grown: &Grown3d) -> Mesh {
-    assert!(
-        grown.mesh.validate().is_empty(),
-        "{name}: {:?}",
-        grown.mesh.validate()
-    );
-    let tets = topo_cut::cut_to_tets(&grown.mesh).unwrap();
-    let mixed = topo_cut::cut_to_mixed(&grown.mesh).unwrap();
-    for (kind, mesh) in [("tets", &tets), ("mixed", &mixed)] {
-        let problems = validate(mesh);
-        assert!(problems.is_empty(), "{name} {kind}: {}", problems[0]);
-        let volume = |c: usize| mesh_model::measure3d::cell_volume(mesh, c);
-        let sum: f64 = (0..mesh.cells.len()).map(volume).sum();
-        assert!(
-            (0..mesh.cells.len()).all(|c| volume(c) > 0.0),
-            "{name} {kind}"
-        );
-        let inside: f64 = mesh
-            .boundary
-            .iter()
-            .map(|f| geom_surface::facet_volume6(&mesh.nodes, f.corners(), [0.0; 3]))
-            .sum::<f64>()
-            / 6.0;
-        assert!(
-            (sum - inside).abs() <= 1e-9 * inside,
-            "{name} {kind}: {sum} vs {inside}"
-        );
-        let layering = Layering::new(
-            mesh,
-            grown.node_layer.clone(),
-            grown.node_parents.clone(),
-            mesh.cells.len(),
-        );
-        assert_eq!(layering.check(mesh), None, "{name} {kind}");
-    }
-    tets
+    let problems = grown.mesh.validate();
+    assert!(problems.is_empty(), "{name}: {problems:?}");
+    crate::stop::cut_and_check(name, grown)
 }
 
 /// The largest dihedral angle of the tetrahedra of `mesh` with a corner at the trailing edge

@@ -8,7 +8,7 @@
 
 use afsf3d::{Grown3d, LayerParams, StopWhy, grow_layers};
 use geom_surface::Surface;
-use mesh_model::{Layering, Shape, validate};
+use mesh_model::{Layering, Mesh, Shape, validate};
 
 /// Grows `params` from `surface` and checks the layers: valid, volumes balanced, the final
 /// front a valid surface, each column's length its layers (`stops` where short), the stopped
@@ -53,8 +53,10 @@ fn grow_and_check(name: &str, surface: &Surface, params: &LayerParams) -> Grown3
 
 /// Both cuts of `topo-cut`: valid (conforming, every corner Jacobian positive), every cell's
 /// volume positive, summing to the volume inside the cut mesh's boundary (the wall and the
-/// final front as the cut splits its quadrilaterals), the layering record checked.
-fn cut_and_check(name: &str, grown: &Grown3d) {
+/// final front as the cut splits its quadrilaterals), the layering record checked. Returns the
+/// tetrahedral cut.
+pub(crate) fn cut_and_check(name: &str, grown: &Grown3d) -> Mesh {
+    let mut tets = None;
     let cuts = [
         ("tets", topo_cut::cut_to_tets(&grown.mesh)),
         ("mixed", topo_cut::cut_to_mixed(&grown.mesh)),
@@ -92,7 +94,9 @@ fn cut_and_check(name: &str, grown: &Grown3d) {
             mesh.count(Shape::Tet),
             topo_cut::max_dihedral_deg(&mesh)
         );
+        tets.get_or_insert(mesh);
     }
+    tets.expect("the tetrahedral cut")
 }
 
 /// A block with a slot 0.1 wide through it: the slot's two sides grow towards each other.
