@@ -18,22 +18,36 @@
 //! It owns the shape balance of a moved mesh and its linearisation. It does not move the
 //! boundary (the caller), nor curve (Vector-Adding).
 
+use std::sync::Mutex;
+
 use geom_predicates::{PointTree, point_segment_distance};
 use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
-    BalanceSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams, ShapeLaw, SpringList,
-    SpringParams, shape_springs, solve_newton,
+    BalanceSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams, NewtonWorkspace,
+    ShapeLaw, SpringList, SpringParams, shape_springs, solve_newton_in,
 };
 
 use crate::MoveError;
 
 /// The shape springs of `original`, the length springs of its extrusion edges, and each
-/// node's length scale (its shortest edge).
+/// node's length scale (its shortest edge); and the Newton workspace of its last balance,
+/// which the next balance with the same held nodes starts from (a motion sequence balances
+/// one field once per step).
 pub struct ShapeField {
     springs: Vec<BalanceSpring>,
     scale: Vec<f64>,
     params: SpringParams,
+    workspace: Mutex<Option<NewtonWorkspace<2>>>,
+}
+
+impl std::fmt::Debug for ShapeField {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ShapeField")
+            .field("springs", &self.springs.len())
+            .field("nodes", &self.scale.len())
+            .finish_non_exhaustive()
+    }
 }
 
 impl ShapeField {
@@ -79,6 +93,7 @@ impl ShapeField {
             springs,
             scale,
             params: SpringParams::default(),
+            workspace: Mutex::new(None),
         })
     }
 
@@ -101,11 +116,20 @@ impl ShapeField {
         params: &NewtonParams,
     ) -> Result<NewtonOutcome, MoveError> {
         let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
-        solve_newton(&self.model(), x, &self.scale, &movable, params).map_err(|e| {
-            MoveError::Springs {
+        // a poisoned lock only means a balance panicked: its workspace is dropped
+        let mut kept = self.workspace.lock().map_or(None, |mut w| w.take());
+        let mut workspace = match kept.take() {
+            Some(w) if w.movable() == movable.as_slice() => w,
+            _ => NewtonWorkspace::new(&movable),
+        };
+        let outcome = solve_newton_in(&self.model(), x, &self.scale, &mut workspace, params)
+            .map_err(|e| MoveError::Springs {
                 what: format!("the shape balance: {e}"),
-            }
-        })
+            })?;
+        if let Ok(mut w) = self.workspace.lock() {
+            *w = Some(workspace);
+        }
+        Ok(outcome)
     }
 
     /// The linearised balance at `x` (a balance of this field with `fixed` held), for

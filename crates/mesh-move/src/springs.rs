@@ -53,6 +53,7 @@ use springfield::{
 };
 
 use crate::MoveError;
+use crate::balance::ShapeField;
 use crate::boundary::BoundaryMotion;
 use crate::movers::{Method, Rbf, Sources, check_boundary, move_mesh};
 pub use crate::outcome::SpringStats;
@@ -84,6 +85,10 @@ pub struct Warm<'a> {
     pub start: &'a [[f64; 2]],
     /// Its balanced nodes.
     pub balanced: &'a [[f64; 2]],
+    /// The shape field of its balance ([`ShapeField::of`] the same layered mesh with the
+    /// same law), kept for this one: built once for a sequence, and its last factor starts
+    /// this balance. `None`: built afresh.
+    pub field: Option<&'a ShapeField>,
 }
 
 /// [`move_layered`], the spring mover's balance started from this move's fill plus the
@@ -175,7 +180,14 @@ fn move_springs(
             x = y;
         }
     }
-    let field = crate::balance::ShapeField::of(layered, p.shape)?;
+    let own;
+    let field = match warm.and_then(|w| w.field) {
+        Some(field) => field,
+        None => {
+            own = ShapeField::of(layered, p.shape)?;
+            &own
+        }
+    };
     stats.newton = Some(field.balance(&mut x, &fixed, &p.newton)?);
     let mut moved = finish(mesh, boundary, &old, &x, stats);
     moved.start = Some(start);
@@ -217,7 +229,7 @@ fn start(
     };
     let mut fixed = vec![false; mid.len()];
     half.nodes.iter().for_each(|&k| fixed[k as usize] = true);
-    let field = crate::balance::ShapeField::of(layered, p.shape)?;
+    let field = ShapeField::of(layered, p.shape)?;
     if field.balance(&mut mid, &fixed, &p.newton).is_err() {
         return Ok(Err(x));
     }

@@ -74,7 +74,10 @@ pub use active::{Active, Influence};
 pub use error::SpringError;
 pub use length::{BalanceSpring, LengthSpring};
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
-pub use newton::{EnergyModel, Linearised, NewtonOutcome, NewtonParams, solve_newton};
+pub use newton::{
+    EnergyModel, Linearised, NewtonOutcome, NewtonParams, NewtonWorkspace, solve_newton,
+    solve_newton_in,
+};
 pub use params::{SolverParams, SpringParams};
 pub use problem::{LocalProblem, NO_NODE, Undo};
 pub use shape::{ShapeLaw, ShapeSpring, shape_springs};

@@ -350,6 +350,35 @@ fn solve_in(
 /// through the same factor, a solve each instead of a factorisation (ten times dearer).
 const CHORD_BELOW: f64 = 0.01;
 
+/// What a Newton solve keeps for the next solve of the same model with the same movable
+/// nodes (the steps of a motion sequence): the matrix's pattern, its ordering and symbolic
+/// factorisation, the buffers, and the last factor, which starts the next solve with chord
+/// steps (near the last balance, the next one's stiffness is close to it).
+pub struct NewtonWorkspace<const D: usize> {
+    movable: Vec<bool>,
+    assembly: Assembly<D>,
+    jacobian: Vec<Triplet>,
+    /// Whether the assembly holds a factor.
+    factored: bool,
+}
+
+impl<const D: usize> NewtonWorkspace<D> {
+    /// An empty workspace for the nodes `movable`.
+    pub fn new(movable: &[bool]) -> Self {
+        NewtonWorkspace {
+            movable: movable.to_vec(),
+            assembly: Assembly::new(movable),
+            jacobian: Vec::new(),
+            factored: false,
+        }
+    }
+
+    /// The movable nodes it is for.
+    pub fn movable(&self) -> &[bool] {
+        &self.movable
+    }
+}
+
 /// Balances `model` by Newton's method: the movable nodes of `positions` move, the others
 /// are held. `scale[i]` is node `i`'s length scale (convergence is relative to it). The
 /// positions must be admissible (finite energy) at the start.
@@ -363,8 +392,37 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
     movable: &[bool],
     params: &NewtonParams,
 ) -> Result<NewtonOutcome, SpringError> {
+    let mut workspace = NewtonWorkspace::new(movable);
+    solve_newton_in(model, positions, scale, &mut workspace, params)
+}
+
+/// [`solve_newton`] in `workspace`, whose movable nodes are the solve's: a workspace kept
+/// from the last solve of the same model starts from its factor and pattern.
+///
+/// # Errors
+/// Those of [`solve_newton`].
+pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
+    model: &M,
+    positions: &mut [[f64; D]],
+    scale: &[f64],
+    workspace: &mut NewtonWorkspace<D>,
+    params: &NewtonParams,
+) -> Result<NewtonOutcome, SpringError> {
     let n = positions.len();
-    let mut assembly = Assembly::<D>::new(movable);
+    if workspace.movable.len() != n {
+        return Err(SpringError::Solver(format!(
+            "a Newton workspace of {} nodes for {n}",
+            workspace.movable.len()
+        )));
+    }
+    let NewtonWorkspace {
+        movable,
+        assembly,
+        jacobian,
+        factored,
+    } = workspace;
+    let movable: &[bool] = movable;
+    let factorisations_before = assembly.factorisations;
     let mut energy = model
         .energy(positions)
         .ok_or_else(|| SpringError::Solver("the start of the Newton solve is inverted".into()))?;
@@ -376,22 +434,23 @@ pub fn solve_newton<const D: usize, M: EnergyModel<D>>(
         outcome.converged = true;
         return Ok(outcome);
     }
-    let mut jacobian = Vec::new();
     let (mut force, mut stiffness) = (vec![[0.0; D]; n], vec![0.0; n]);
     let mut trial = positions.to_vec();
     let mut previous = f64::INFINITY;
     // whether the next step may reuse the last factor (a chord step)
-    let mut chord = false;
+    let mut chord = *factored;
     for _ in 0..params.max_iterations {
         force.iter_mut().for_each(|f| *f = [0.0; D]);
         model.assemble(positions, &mut force, &mut stiffness);
         let reused = chord;
         if !reused {
             jacobian.clear();
-            model.jacobian(positions, movable, &mut jacobian);
-            let shifted = assembly.factorise(&jacobian, true)?;
+            model.jacobian(positions, movable, jacobian);
+            *factored = false;
+            let shifted = assembly.factorise(jacobian, true)?;
+            *factored = true;
             outcome.shifted += usize::from(shifted);
-            outcome.factorisations = assembly.factorisations;
+            outcome.factorisations = assembly.factorisations - factorisations_before;
         }
         let mut step = vec![0.0; assembly.dofs.count];
         for (node, f) in force.iter().enumerate() {
@@ -570,6 +629,75 @@ mod tests {
         let out = solve_newton(&model, &mut x, &scale, &movable, &NewtonParams::default()).unwrap();
         assert!(out.converged && out.iterations < 15, "{out:?}");
         for (a, b) in x.iter().zip(&rest) {
+            assert!(
+                (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12,
+                "{a:?} {b:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_kept_workspace_reaches_the_same_balance_with_fewer_factorisations() {
+        let (rest, tris, fixed) = grid(6);
+        let springs = shape_springs(
+            tris.iter().map(|t| &t[..]),
+            &rest,
+            ShapeLaw::default(),
+            &vec![1.0; tris.len()],
+        )
+        .unwrap();
+        let params = SpringParams::default();
+        let model = SpringList {
+            springs: &springs,
+            params: &params,
+        };
+        let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
+        let scale = vec![1.0; rest.len()];
+        // a sequence: the boundary's top row pushed right by 0.1, then by 0.2
+        let pushed = |by: f64| -> Vec<[f64; 2]> {
+            rest.iter()
+                .map(|p| [p[0] + by * p[1] / 6.0, p[1]])
+                .collect()
+        };
+        let mut workspace = NewtonWorkspace::new(&movable);
+        let mut x = pushed(0.1);
+        let first = solve_newton_in(
+            &model,
+            &mut x,
+            &scale,
+            &mut workspace,
+            &NewtonParams::default(),
+        );
+        assert!(first.unwrap().converged);
+        let mut start = pushed(0.2);
+        for (k, p) in start.iter_mut().enumerate() {
+            if movable[k] {
+                *p = [x[k][0] + 0.1 * rest[k][1] / 6.0, x[k][1]];
+            }
+        }
+        let (mut kept, mut fresh) = (start.clone(), start);
+        let again = solve_newton_in(
+            &model,
+            &mut kept,
+            &scale,
+            &mut workspace,
+            &NewtonParams::default(),
+        )
+        .unwrap();
+        let anew = solve_newton(
+            &model,
+            &mut fresh,
+            &scale,
+            &movable,
+            &NewtonParams::default(),
+        )
+        .unwrap();
+        assert!(again.converged && anew.converged);
+        assert!(
+            again.factorisations < anew.factorisations,
+            "{again:?} {anew:?}"
+        );
+        for (a, b) in kept.iter().zip(&fresh) {
             assert!(
                 (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12,
                 "{a:?} {b:?}"

@@ -236,7 +236,15 @@ pub fn move_sequence(
     ensure!(steps >= 1, "--steps must be at least 1, got {steps}");
     // the whole motion is checked before any meshing; each step's is checked again
     moved_geometry(case, motions)?;
-    let unmoved = unmoved(case, start, options, observer)?;
+    let mut unmoved = unmoved(case, start, options, observer)?;
+    // one shape field for every step: its springs and its Newton workspace (pattern,
+    // ordering, last factor) serve each step's balance
+    if let Method::Springs(p) = options.method() {
+        unmoved.field = Some(
+            mesh_move::ShapeField::of(&unmoved.layered, p.shape)
+                .map_err(|e| input_error!("moving the mesh: {e}"))?,
+        );
+    }
     let mut warm: Option<Balanced> = None;
     for k in 0..=steps {
         let at = motion::scaled(motions, k as f64 / steps as f64);
@@ -254,6 +262,8 @@ struct Unmoved {
     nodes: Vec<BoundaryNodes>,
     layered: LayeredMesh,
     report: Report,
+    /// The spring mover's shape field, kept across the steps of a sequence.
+    field: Option<mesh_move::ShapeField>,
 }
 
 fn unmoved(
@@ -276,6 +286,7 @@ fn unmoved(
         nodes,
         layered,
         report,
+        field: None,
     })
 }
 
@@ -308,6 +319,7 @@ fn move_from(
                 let warm = mesh_move::Warm {
                     start: &w.start,
                     balanced: &w.nodes,
+                    field: unmoved.field.as_ref(),
                 };
                 mesh_move::move_layered_from(layered, &boundary, &options.method(), warm)
             }
