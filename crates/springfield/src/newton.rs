@@ -257,11 +257,11 @@ impl<const D: usize> Assembly<D> {
         self.pattern(jacobian)?;
         self.scatter(jacobian);
         // consecutive steps tend to need similar shifts: start a decade below the last one
-        // and climb back by a decade; from no shift, climb by two decades from 10⁻⁶ (a
-        // factorisation each: the first step of a 30P30N move climbed 0, 10⁻⁸ … 10⁻² in
-        // eight, now four)
-        let below_last = self.last_shift > 1e-8;
-        let mut shift = if below_last {
+        // instead of climbing from no shift again (a factorisation each), and climb by
+        // decades from 10⁻⁶ (a relative shift that small changes a step as little as 10⁻⁸
+        // does, in two factorisations fewer; climbing by two decades overshot, and the
+        // steps shortened by the larger shifts cost more than the factorisations saved)
+        let mut shift = if self.last_shift > 1e-6 {
             self.last_shift / 10.0
         } else {
             0.0
@@ -296,11 +296,7 @@ impl<const D: usize> Assembly<D> {
                     "the balance is not stable (indefinite stiffness)".into(),
                 ));
             }
-            shift = match (shift == 0.0, below_last) {
-                (true, _) => 1e-6,
-                (false, true) => shift * 10.0,
-                (false, false) => shift * 100.0,
-            };
+            shift = if shift == 0.0 { 1e-6 } else { shift * 10.0 };
         }
         Err(SpringError::Solver(
             "the Newton matrix stays indefinite after shifting its diagonal".into(),
