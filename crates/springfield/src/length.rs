@@ -11,6 +11,7 @@
 //!
 //! It owns these two springs. It does not choose the edges nor the weights (the mover does).
 
+use crate::jump::JumpSpring;
 use crate::model::{FiniteDifference, Spring, SpringList, Triplet};
 use crate::newton::EnergyModel;
 use crate::params::SpringParams;
@@ -134,6 +135,8 @@ pub enum BalanceSpring {
     Shape(ShapeSpring),
     /// An edge held to its length.
     Length(LengthSpring),
+    /// Two neighbouring cells held to deform alike.
+    Jump(JumpSpring),
 }
 
 impl BalanceSpring {
@@ -142,6 +145,7 @@ impl BalanceSpring {
         match self {
             BalanceSpring::Shape(s) => s.energy(x),
             BalanceSpring::Length(s) => s.energy(x),
+            BalanceSpring::Jump(s) => Some(s.energy(x)),
         }
     }
 }
@@ -151,6 +155,7 @@ impl Spring<2> for BalanceSpring {
         match self {
             BalanceSpring::Shape(s) => s.reads(out),
             BalanceSpring::Length(s) => s.reads(out),
+            BalanceSpring::Jump(s) => s.reads(out),
         }
     }
 
@@ -158,6 +163,7 @@ impl Spring<2> for BalanceSpring {
         match self {
             BalanceSpring::Shape(s) => s.pushes(out),
             BalanceSpring::Length(s) => s.pushes(out),
+            BalanceSpring::Jump(s) => s.pushes(out),
         }
     }
 
@@ -171,6 +177,7 @@ impl Spring<2> for BalanceSpring {
         match self {
             BalanceSpring::Shape(s) => s.add_force(params, positions, force, stiffness),
             BalanceSpring::Length(s) => s.add_force(params, positions, force, stiffness),
+            BalanceSpring::Jump(s) => s.add_force(params, positions, force, stiffness),
         }
     }
 
@@ -184,6 +191,7 @@ impl Spring<2> for BalanceSpring {
         match self {
             BalanceSpring::Shape(s) => s.add_jacobian(params, movable, fd, out),
             BalanceSpring::Length(s) => s.add_jacobian(params, movable, fd, out),
+            BalanceSpring::Jump(s) => s.add_jacobian(params, movable, fd, out),
         }
     }
 }

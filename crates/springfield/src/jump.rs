@@ -1,0 +1,285 @@
+//! The jump spring of the shape balance: two neighbouring cells held to deform alike.
+//!
+//! Shape springs ([`crate::shape`]) weighted per cell leave a motion's strain where the cells
+//! are softest: where a stiff boundary-layer stack turns with its element beside soft cells
+//! (a deflected flap), the whole squeeze falls on the stack's outer cells. A [`JumpSpring`]
+//! joins two cells sharing an edge and costs the jump of the deformation gradient between
+//! them, `w ‖F₁ − F₂‖²` (Frobenius), each `F` the cell's mean deformation gradient from its
+//! rest shape — a discrete bending energy, as a thin-plate spline minimises, so the strain
+//! spreads smoothly over many cells instead of piling up at a change of stiffness. `F` is
+//! linear in the nodes (`F = Σ x_k ⊗ g_k` with constant rest gradients `g_k`), so the energy
+//! is a constant quadratic form: zero for any affine motion (a rigid turn of the whole pair
+//! costs nothing), its Hessian `2w (g_m · g_n) I`.
+//!
+//! It owns the jump spring and each cell's rest gradients. It does not choose the pairs nor
+//! the weights (the mover does).
+
+use crate::model::{FiniteDifference, Spring, Triplet};
+use crate::params::SpringParams;
+
+/// The most nodes of a pair of cells sharing an edge (two quadrilaterals).
+pub const JUMP_NODES: usize = 6;
+
+/// Two cells sharing an edge held to the same deformation gradient.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JumpSpring {
+    /// The nodes of both cells (`count` of them).
+    pub nodes: [u32; JUMP_NODES],
+    /// `g_k`: `F₁ − F₂ = Σ x_k ⊗ g_k` over the nodes.
+    pub gradients: [[f64; 2]; JUMP_NODES],
+    /// How many of `nodes` are used.
+    pub count: usize,
+    /// The weight `w` of its energy.
+    pub weight: f64,
+}
+
+/// The rest gradients of a cell's mean deformation gradient: `F = Σ x_k ⊗ g_k` over its
+/// corners (a triangle's own `F`; a quadrilateral's mean over its four corner triangles).
+/// `None` when a corner triangle is not positive at rest.
+pub fn cell_gradients(corners: &[[f64; 2]]) -> Option<Vec<[f64; 2]>> {
+    let n = corners.len();
+    let triangles: Vec<[usize; 3]> = match n {
+        3 => vec![[0, 1, 2]],
+        4 => (0..4).map(|i| [i, (i + 1) % 4, (i + 3) % 4]).collect(),
+        _ => return None,
+    };
+    let share = 1.0 / triangles.len() as f64;
+    let mut g = vec![[0.0; 2]; n];
+    for [a, b, c] in triangles {
+        let (pa, pb, pc) = (corners[a], corners[b], corners[c]);
+        let (e1, e2) = (
+            [pb[0] - pa[0], pb[1] - pa[1]],
+            [pc[0] - pa[0], pc[1] - pa[1]],
+        );
+        let det = e1[0] * e2[1] - e2[0] * e1[1];
+        if det.is_nan() || det <= 0.0 || !det.is_finite() {
+            return None;
+        }
+        // rows of Dm⁻¹: F = [b − a, c − a] Dm⁻¹, so g_b = m₀, g_c = m₁, g_a = −m₀ − m₁
+        let m0 = [e2[1] / det, -e2[0] / det];
+        let m1 = [-e1[1] / det, e1[0] / det];
+        for i in 0..2 {
+            g[b][i] += share * m0[i];
+            g[c][i] += share * m1[i];
+            g[a][i] -= share * (m0[i] + m1[i]);
+        }
+    }
+    Some(g)
+}
+
+impl JumpSpring {
+    /// The spring between the cells `first` and `second` (their corners and rest gradients
+    /// from [`cell_gradients`]) with weight `weight`.
+    pub fn between(
+        first: (&[u32], &[[f64; 2]]),
+        second: (&[u32], &[[f64; 2]]),
+        weight: f64,
+    ) -> Option<JumpSpring> {
+        let mut spring = JumpSpring {
+            nodes: [u32::MAX; JUMP_NODES],
+            gradients: [[0.0; 2]; JUMP_NODES],
+            count: 0,
+            weight,
+        };
+        for ((nodes, grads), sign) in [(first, 1.0), (second, -1.0)] {
+            for (&k, g) in nodes.iter().zip(grads) {
+                let slot = match spring.nodes[..spring.count].iter().position(|&m| m == k) {
+                    Some(s) => s,
+                    None if spring.count < JUMP_NODES => {
+                        spring.nodes[spring.count] = k;
+                        spring.count += 1;
+                        spring.count - 1
+                    }
+                    None => return None,
+                };
+                for i in 0..2 {
+                    spring.gradients[slot][i] += sign * g[i];
+                }
+            }
+        }
+        Some(spring)
+    }
+
+    /// `F₁ − F₂` at `x`, row-major.
+    fn jump(&self, x: &[[f64; 2]]) -> [[f64; 2]; 2] {
+        let mut d = [[0.0; 2]; 2];
+        for (&k, g) in self.nodes[..self.count].iter().zip(&self.gradients) {
+            let p = x[k as usize];
+            for (r, row) in d.iter_mut().enumerate() {
+                row[0] += p[r] * g[0];
+                row[1] += p[r] * g[1];
+            }
+        }
+        d
+    }
+
+    /// Its energy `w ‖F₁ − F₂‖²`.
+    pub fn energy(&self, x: &[[f64; 2]]) -> f64 {
+        let d = self.jump(x);
+        self.weight
+            * (d[0][0] * d[0][0] + d[0][1] * d[0][1] + d[1][0] * d[1][0] + d[1][1] * d[1][1])
+    }
+}
+
+impl Spring<2> for JumpSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend(&self.nodes[..self.count]);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend(&self.nodes[..self.count]);
+    }
+
+    /// The force `−∂E/∂x_m = −2w (F₁ − F₂) g_m`; the stiffness is the Hessian's diagonal.
+    fn add_force(
+        &self,
+        _: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        let d = self.jump(positions);
+        let w = self.weight;
+        for (&k, g) in self.nodes[..self.count].iter().zip(&self.gradients) {
+            let f = &mut force[k as usize];
+            for (r, fr) in f.iter_mut().enumerate() {
+                *fr -= 2.0 * w * (d[r][0] * g[0] + d[r][1] * g[1]);
+            }
+            stiffness[k as usize] += 2.0 * w * (g[0] * g[0] + g[1] * g[1]);
+        }
+    }
+
+    fn add_jacobian(
+        &self,
+        _: &SpringParams,
+        movable: &[bool],
+        _: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let n = self.count;
+        for (m, &p) in self.nodes[..n].iter().enumerate() {
+            if !movable[p as usize] {
+                continue;
+            }
+            for (k, &q) in self.nodes[..n].iter().enumerate() {
+                if !movable[q as usize] {
+                    continue;
+                }
+                let (gm, gk) = (self.gradients[m], self.gradients[k]);
+                let v = -2.0 * self.weight * (gm[0] * gk[0] + gm[1] * gk[1]);
+                for a in 0..2u32 {
+                    out.push(Triplet {
+                        row: 2 * p + a,
+                        col: 2 * q + a,
+                        value: v,
+                    });
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_affine_motion_of_two_cells_costs_nothing() {
+        let rest = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.0],
+            [0.0, 1.0],
+            [2.0, 0.0],
+            [2.0, 1.2],
+        ];
+        let quad = [0u32, 1, 2, 3];
+        let other = [1u32, 4, 5, 2];
+        let pick = |c: &[u32]| c.iter().map(|&k| rest[k as usize]).collect::<Vec<_>>();
+        let (g1, g2) = (
+            cell_gradients(&pick(&quad)).unwrap(),
+            cell_gradients(&pick(&other)).unwrap(),
+        );
+        let s = JumpSpring::between((&quad, &g1), (&other, &g2), 1.0).unwrap();
+        assert_eq!(s.count, 6);
+        let moved: Vec<[f64; 2]> = rest
+            .iter()
+            .map(|p| {
+                [
+                    0.3 + 0.8 * p[0] - 0.6 * p[1],
+                    -1.0 + 0.6 * p[0] + 0.9 * p[1],
+                ]
+            })
+            .collect();
+        assert!(s.energy(&moved) < 1e-24);
+        let mut bent = moved.clone();
+        bent[5][1] += 0.1;
+        assert!(s.energy(&bent) > 1e-4);
+    }
+
+    #[test]
+    fn force_and_jacobian_are_the_energy_derivatives() {
+        use crate::ForceModel;
+        use crate::length::BalanceSpring;
+        use crate::model::SpringList;
+        use crate::newton::EnergyModel;
+        let rest = [[0.0, 0.0], [1.0, 0.1], [0.9, 1.0], [0.0, 1.2], [1.1, -0.9]];
+        let quad = [0u32, 1, 2, 3];
+        let tri = [0u32, 4, 1];
+        let pick = |c: &[u32]| c.iter().map(|&k| rest[k as usize]).collect::<Vec<_>>();
+        let (g1, g2) = (
+            cell_gradients(&pick(&quad)).unwrap(),
+            cell_gradients(&pick(&tri)).unwrap(),
+        );
+        let spring = [BalanceSpring::Jump(
+            JumpSpring::between((&quad, &g1), (&tri, &g2), 2.5).unwrap(),
+        )];
+        let params = SpringParams::default();
+        let model = SpringList {
+            springs: &spring,
+            params: &params,
+        };
+        let x: Vec<[f64; 2]> = rest
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                [
+                    p[0] + 0.1 * (k as f64).sin(),
+                    p[1] + 0.07 * (k as f64).cos(),
+                ]
+            })
+            .collect();
+        let (mut f, mut k) = (vec![[0.0; 2]; 5], vec![0.0; 5]);
+        model.assemble(&x, &mut f, &mut k);
+        let mut jac = Vec::new();
+        model.jacobian(&x, &[true; 5], &mut jac);
+        let mut dense = [[0.0; 10]; 10];
+        for t in &jac {
+            dense[t.row as usize][t.col as usize] += t.value;
+        }
+        let h = 1e-6;
+        for n in 0..5 {
+            for c in 0..2 {
+                let (mut xp, mut xm) = (x.clone(), x.clone());
+                xp[n][c] += h;
+                xm[n][c] -= h;
+                let de = (model.energy(&xp).unwrap() - model.energy(&xm).unwrap()) / (2.0 * h);
+                assert!(
+                    (f[n][c] + de).abs() < 1e-6 * (1.0 + de.abs()),
+                    "{} {de}",
+                    f[n][c]
+                );
+                let (mut fp, mut fm) = (vec![[0.0; 2]; 5], vec![[0.0; 2]; 5]);
+                model.assemble(&xp, &mut fp, &mut k);
+                model.assemble(&xm, &mut fm, &mut k);
+                for m in 0..5 {
+                    for d in 0..2 {
+                        let df = (fp[m][d] - fm[m][d]) / (2.0 * h);
+                        let v = dense[2 * m + d][2 * n + c];
+                        assert!((v - df).abs() < 1e-5 * (1.0 + df.abs()), "{v} {df}");
+                    }
+                }
+            }
+        }
+    }
+}
