@@ -92,9 +92,9 @@ impl JumpSpring {
                     }
                     None => return None,
                 };
-                for i in 0..2 {
-                    spring.gradients[slot][i] += sign * g[i];
-                }
+                let own = &mut spring.gradients[slot];
+                own[0] += sign * g[0];
+                own[1] += sign * g[1];
             }
         }
         Some(spring)
