@@ -575,7 +575,7 @@ mod tests {
     use super::*;
     use crate::model::SpringList;
     use crate::params::SpringParams;
-    use crate::shape::{ShapeLaw, shape_springs};
+    use crate::shape::{ShapeLaw, ShapeSpring, shape_springs};
 
     /// An n×n grid of unit squares, each cut into two triangles, and its boundary flags.
     fn grid(n: usize) -> (Vec<[f64; 2]>, Vec<[u32; 3]>, Vec<bool>) {
@@ -598,9 +598,9 @@ mod tests {
         (x, tris, fixed)
     }
 
-    #[test]
-    fn newton_returns_a_disturbed_grid_to_its_rest_shape_quadratically() {
-        let (rest, tris, fixed) = grid(6);
+    /// [`grid`]'s nodes, the shape springs of its triangles (weight 1) and its boundary flags.
+    fn grid_springs(n: usize) -> (Vec<[f64; 2]>, Vec<ShapeSpring>, Vec<bool>) {
+        let (rest, tris, fixed) = grid(n);
         let springs = shape_springs(
             tris.iter().map(|t| &t[..]),
             &rest,
@@ -608,6 +608,12 @@ mod tests {
             &vec![1.0; tris.len()],
         )
         .unwrap();
+        (rest, springs, fixed)
+    }
+
+    #[test]
+    fn newton_returns_a_disturbed_grid_to_its_rest_shape_quadratically() {
+        let (rest, springs, fixed) = grid_springs(6);
         let params = SpringParams::default();
         let model = SpringList {
             springs: &springs,
@@ -634,14 +640,7 @@ mod tests {
 
     #[test]
     fn a_kept_workspace_reaches_the_same_balance_with_fewer_factorisations() {
-        let (rest, tris, fixed) = grid(6);
-        let springs = shape_springs(
-            tris.iter().map(|t| &t[..]),
-            &rest,
-            ShapeLaw::default(),
-            &vec![1.0; tris.len()],
-        )
-        .unwrap();
+        let (rest, springs, fixed) = grid_springs(6);
         let params = SpringParams::default();
         let model = SpringList {
             springs: &springs,
