@@ -105,4 +105,5 @@ pub use curved::curved_edge_fraction;
 pub use error::JacobianError;
 pub use jacobian::{Jacobian, jacobian, physical_from_reference};
 pub use lagrange::{reference_nodes, shape_functions, shape_gradients};
+pub use matrix::matrix_from_gradients;
 pub use types::{Capabilities, capabilities, supported_types};

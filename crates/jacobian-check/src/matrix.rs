@@ -4,7 +4,7 @@
 //! the pyramid's volume all evaluate their determinants here.
 
 /// `Σ_i x_i ⊗ ∇N_i`: the Jacobian matrix from node coordinates and shape gradients.
-pub(crate) fn matrix_from_gradients<const D: usize>(
+pub fn matrix_from_gradients<const D: usize>(
     nodes: &[[f64; D]],
     grads: &[[f64; 3]],
 ) -> [[f64; D]; D] {

@@ -126,8 +126,8 @@ impl ShapeField {
     ) -> Result<NewtonOutcome, MoveError> {
         let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
         // a poisoned lock only means a balance panicked: its workspace is dropped
-        let mut kept = self.workspace.lock().map_or(None, |mut w| w.take());
-        let mut workspace = match kept.take() {
+        let kept = self.workspace.lock().ok().and_then(|mut w| w.take());
+        let mut workspace = match kept {
             Some(w) if w.movable() == movable.as_slice() => w,
             _ => NewtonWorkspace::new(&movable),
         };

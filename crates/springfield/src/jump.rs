@@ -16,6 +16,7 @@
 
 use crate::model::{FiniteDifference, Spring, Triplet};
 use crate::params::SpringParams;
+use crate::shape::{ShapeLaw, ShapeSpring, corner_triangles};
 
 /// The most nodes of a pair of cells sharing an edge (two quadrilaterals).
 pub const JUMP_NODES: usize = 6;
@@ -37,31 +38,15 @@ pub struct JumpSpring {
 /// corners (a triangle's own `F`; a quadrilateral's mean over its four corner triangles).
 /// `None` when a corner triangle is not positive at rest.
 pub fn cell_gradients(corners: &[[f64; 2]]) -> Option<Vec<[f64; 2]>> {
-    let n = corners.len();
-    let triangles: Vec<[usize; 3]> = match n {
-        3 => vec![[0, 1, 2]],
-        4 => (0..4).map(|i| [i, (i + 1) % 4, (i + 3) % 4]).collect(),
-        _ => return None,
-    };
+    let triangles = corner_triangles(corners.len())?;
     let share = 1.0 / triangles.len() as f64;
-    let mut g = vec![[0.0; 2]; n];
-    for [a, b, c] in triangles {
-        let (pa, pb, pc) = (corners[a], corners[b], corners[c]);
-        let (e1, e2) = (
-            [pb[0] - pa[0], pb[1] - pa[1]],
-            [pc[0] - pa[0], pc[1] - pa[1]],
-        );
-        let det = e1[0] * e2[1] - e2[0] * e1[1];
-        if det.is_nan() || det <= 0.0 || !det.is_finite() {
-            return None;
-        }
-        // rows of Dm⁻¹: F = [b − a, c − a] Dm⁻¹, so g_b = m₀, g_c = m₁, g_a = −m₀ − m₁
-        let m0 = [e2[1] / det, -e2[0] / det];
-        let m1 = [-e1[1] / det, e1[0] / det];
-        for i in 0..2 {
-            g[b][i] += share * m0[i];
-            g[c][i] += share * m1[i];
-            g[a][i] -= share * (m0[i] + m1[i]);
+    let mut g = vec![[0.0; 2]; corners.len()];
+    for t in triangles {
+        // the shape spring of the corner triangle gives its corners' rest gradients
+        let spring = ShapeSpring::at_rest(t.map(|i| i as u32), corners, 1.0, ShapeLaw::default())?;
+        for (&k, gk) in t.iter().zip(spring.gradients()) {
+            g[k][0] += share * gk[0];
+            g[k][1] += share * gk[1];
         }
     }
     Some(g)

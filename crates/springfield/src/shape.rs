@@ -65,7 +65,7 @@ impl ShapeSpring {
     }
 
     /// `∂F_ab/∂x_{k,a} = g_k[b]`: the rest-shape gradients of the three corners.
-    fn gradients(&self) -> [[f64; 2]; 3] {
+    pub(crate) fn gradients(&self) -> [[f64; 2]; 3] {
         let m = self.inverse_rest;
         let (g1, g2) = (m[0], m[1]);
         [[-g1[0] - g2[0], -g1[1] - g2[1]], g1, g2]
@@ -297,18 +297,26 @@ pub fn shape_springs<'c>(
 ) -> Option<Vec<ShapeSpring>> {
     let mut out = Vec::new();
     for (c, &w) in cells.into_iter().zip(weight) {
-        match *c {
-            [a, b, d] => out.push(ShapeSpring::at_rest([a, b, d], rest, w, law)?),
-            [_, _, _, _] => {
-                for i in 0..4 {
-                    let corners = [c[i], c[(i + 1) % 4], c[(i + 3) % 4]];
-                    out.push(ShapeSpring::at_rest(corners, rest, 0.5 * w, law)?);
-                }
-            }
-            _ => return None,
+        let triangles = corner_triangles(c.len())?;
+        // a triangle at its weight, a quadrilateral's four corners at half
+        let share = if c.len() == 3 { w } else { 0.5 * w };
+        for t in triangles {
+            let corners = t.map(|i| c[i]);
+            out.push(ShapeSpring::at_rest(corners, rest, share, law)?);
         }
     }
     Some(out)
+}
+
+/// The triangles a cell of `n` corners is held by, as corner positions: a triangle itself,
+/// a quadrilateral its four corner triangles (each corner with its two neighbours,
+/// counter-clockwise); `None` for other cells.
+pub(crate) fn corner_triangles(n: usize) -> Option<&'static [[usize; 3]]> {
+    match n {
+        3 => Some(&[[0, 1, 2]]),
+        4 => Some(&[[0, 1, 3], [1, 2, 0], [2, 3, 1], [3, 0, 2]]),
+        _ => None,
+    }
 }
 
 /// The influence table of shape springs over `n` nodes (every corner on every other).

@@ -13,7 +13,7 @@
 
 use std::collections::HashMap;
 
-use jacobian_check::{reference_nodes, shape_gradients};
+use jacobian_check::{matrix_from_gradients, reference_nodes, shape_gradients};
 use mesh_model::{CellType, Mesh, Shape};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -137,14 +137,7 @@ fn cell_measures(
         return [lin, f64::NAN, f64::NAN, edge];
     }
     for grads in table {
-        // ∂x_r/∂ξ_s = Σ_k x_k[r] ∂N_k/∂ξ_s
-        let mut j = [[0.0; 2]; 2];
-        for (p, g) in nodes.iter().zip(grads) {
-            for (r, row) in j.iter_mut().enumerate() {
-                row[0] += p[r] * g[0];
-                row[1] += p[r] * g[1];
-            }
-        }
+        let j = matrix_from_gradients(&nodes, grads);
         let m = if c.ty.shape == Shape::Tri {
             equilateral(j)
         } else {
