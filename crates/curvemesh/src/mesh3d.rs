@@ -81,11 +81,22 @@ pub(crate) fn mesh(
         })?),
         None => None,
     };
-    let layers_mesh = mesh;
+    let mut layers_mesh = mesh;
     let mut mesh = layers_mesh.clone();
     if let Some(f) = &filled {
         crate::fill3d::apply_linear(&mut mesh, f);
     }
+    // the tetrahedra no cut mends (steps down to stopped columns, fronts facing each other)
+    // mended by moving their free nodes, in the layers and the fill alike
+    let mut filled = filled;
+    let smoothed = timed(r, o, ("smooth", "worst tetrahedra"), |_| {
+        Ok::<_, crate::error::Error>(pipeline3d::smooth(
+            &mut mesh,
+            &grown,
+            &mut layers_mesh,
+            filled.as_mut(),
+        ))
+    })?;
     let mut measures = timed(r, o, ("measure", "measures"), |_| {
         pipeline3d::measure(&surface, &grown, &front, &mesh, grown_layers)
     });
@@ -133,6 +144,7 @@ pub(crate) fn mesh(
     report.columns = Some(columns);
     push_height_note(&mut report, &case.layers, &grown);
     push_cut_note(&mut report, case, cut_anyway);
+    push_smooth_note(&mut report, &smoothed);
     if let Some(plan) = plan {
         timed(&mut report, observer, ("write", "writing"), |r| {
             for (path, format) in plan.write_meshes(out)? {
@@ -153,6 +165,22 @@ pub(crate) fn mesh(
         linear,
         fill_cells: 0,
     })
+}
+
+/// The report's note on the tetrahedra mended by moving nodes, when any was.
+fn push_smooth_note(report: &mut Report, s: &topo_cut::smooth::Smoothed) {
+    if s.moves > 0 {
+        report.notes.push(format!(
+            "{} node moves took the tetrahedra's largest dihedral angle from {:.1}° to {:.1}° \
+             ({} over {}° before, {} after; walls and far field fixed, the first layer sliding across its extrusion edges)",
+            s.moves,
+            s.before_deg,
+            s.after_deg,
+            s.over_before,
+            pipeline3d::SMOOTH_TARGET_DEG,
+            s.over_after
+        ));
+    }
 }
 
 /// Runs `work` on `report` as the stage `what` and records its seconds in the report's

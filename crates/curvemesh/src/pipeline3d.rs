@@ -339,6 +339,56 @@ pub fn cut(
     Ok((mesh, flagged))
 }
 
+/// The largest dihedral angle (degrees) over which [`smooth`] moves a tetrahedron's nodes:
+/// the aim (150°), under its bar (160°).
+pub const SMOOTH_TARGET_DEG: f64 = 150.0;
+
+/// Moves the free nodes of `mesh`'s tetrahedra over [`SMOOTH_TARGET_DEG`]
+/// (`topo_cut::smooth`): every node but the walls', their columns' first children (the first
+/// layer's height stays what the user asked) and a far field's. `mesh` is the linear mesh,
+/// the layers `layers` (its first nodes) and their fill `filled` (its points after them);
+/// both take the moved positions.
+pub fn smooth(
+    mesh: &mut Mesh,
+    grown: &afsf3d::Grown3d,
+    layers: &mut Mesh,
+    filled: Option<&mut crate::fill3d::Filled>,
+) -> topo_cut::smooth::Smoothed {
+    use topo_cut::smooth::Freedom;
+    let mut freedom = vec![Freedom::Free; mesh.nodes.len()];
+    for column in grown.all_columns() {
+        if let [wall, first, ..] = column[..] {
+            let e =
+                geom_predicates::vector::sub(mesh.nodes[first as usize], mesh.nodes[wall as usize]);
+            freedom[first as usize] = Freedom::Across(e);
+        }
+    }
+    for (f, facet) in mesh.boundary.iter().enumerate() {
+        let patch = &mesh.patches[mesh.boundary_patch[f] as usize];
+        if patch.role == Role::Wall || patch.name != crate::groups3d::OUTER_GROUP {
+            for &v in facet.corners() {
+                freedom[v as usize] = Freedom::Fixed;
+            }
+        }
+    }
+    let smoothed = topo_cut::smooth::smooth_worst_tets(mesh, &freedom, SMOOTH_TARGET_DEG);
+    if smoothed.moves > 0 {
+        let n = layers.nodes.len();
+        layers.nodes.copy_from_slice(&mesh.nodes[..n]);
+        if let Some(f) = filled {
+            f.points.copy_from_slice(&mesh.nodes[n..]);
+            let x = |v: u32| mesh.nodes[v as usize];
+            f.stats.max_dihedral_deg = f
+                .cells
+                .iter()
+                .filter(|(shape, _)| *shape == Shape::Tet)
+                .map(|(_, k)| measure3d::tet_max_dihedral_deg_of([0, 1, 2, 3].map(|j| x(k[j]))))
+                .fold(0.0, f64::max);
+        }
+    }
+    smoothed
+}
+
 /// How many prisms and hexahedra the mixed cut was asked to cut rather than keep, by reason
 /// (a cell may have both).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -42,6 +42,9 @@
 //!   [`cut_to_mixed_cutting`] round-cuts the standard cells a caller flags as well (a
 //!   judgement this crate cannot make, e.g. prisms leaning too far off the wall's normal).
 //!
+//! - [`smooth::smooth_worst_tets`]: after a cut (and a fill), the tetrahedra that no cut
+//!   mends (their cell's own shape flat) mended by moving their free nodes.
+//!
 //! Every output cell keeps the layer and pipe of the cell it comes from. The boundary facets
 //! are the bottoms of layer-0 cells (patch `wall`) and the other faces of one cell (the outer
 //! front, patch `farfield`), turned out of the domain; when the pipes number the wall facets
@@ -85,6 +88,7 @@ pub mod improve;
 pub mod order;
 pub mod quality;
 pub mod refine;
+pub mod smooth;
 
 mod assemble;
 

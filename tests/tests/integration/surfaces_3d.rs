@@ -117,6 +117,8 @@ fn every_untuned_body_grows_at_the_default_keys() {
         // the mixed cut's prisms keep the default corner floor, 0.2
         let sj = &r["quality"]["min_corner_scaled_jacobian"]["value"];
         assert!(sj.as_f64().unwrap() >= 0.2, "{name}: {sj}");
+        let worst = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
+        assert!(worst <= MAX_DIHEDRAL_DEG, "{name}: {worst}");
         let note = r["notes"].as_array().unwrap().iter();
         let noted = note
             .filter_map(Value::as_str)
@@ -132,16 +134,19 @@ fn every_untuned_body_grows_at_the_default_keys() {
     }
 }
 
+/// The bar on every tetrahedron: a largest dihedral angle of 160°.
+const MAX_DIHEDRAL_DEG: f64 = 160.0;
+
 #[test]
-fn the_wing_the_fin_and_the_two_spheres_cut_into_valid_tetrahedra() {
+fn the_untuned_bodies_cut_into_tetrahedra_under_160_degrees() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    for name in ["swept-wing", "capsule-fin", "two-spheres"] {
+    for name in ["swept-wing", "capsule-fin", "box-tower", "two-spheres"] {
         let case = variant(d, name, "[cut]\ncells = \"tets\"");
         let r = meshed(d, &format!("{name}-tets"), &case, &["--order", "1"]);
         check_columns(name, &r, 0.95, 8);
         let worst = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
-        assert!(worst < 180.0, "{name}: {worst}");
+        assert!(worst <= MAX_DIHEDRAL_DEG, "{name}: {worst}");
         eprintln!(
             "{name} tets: {} cells, max dihedral {worst:.1}°",
             r["cells"]

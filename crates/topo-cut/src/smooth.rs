@@ -1,0 +1,308 @@
+//! The worst tetrahedra of a cut mesh mended by moving nodes: what no cut can mend. Where
+//! columns stop early (issue 47) the step down to them is closed by pyramids and tetrahedra
+//! over front facets that lean steeply, and where two fronts face each other across a gap the
+//! fill's tetrahedra join points of both; a cell whose own shape is flat cuts badly whatever
+//! its apex and diagonals. Moving one of its nodes a fraction of an edge mends it.
+//!
+//! Each sweep visits the free nodes of the tetrahedra over the target, worst tetrahedron
+//! first, and moves each by a compass search (± each axis, from a quarter of its shortest
+//! edge, halving [`HALVINGS`] times, never farther than half that edge from where it
+//! started) to lower the largest dihedral angle of the tetrahedra around it. A move is kept
+//! only when it lowers that angle (or keeps it and lowers the tetrahedra's summed excess over
+//! the target: a node between two bad tetrahedra mends one while another node mends the
+//! other), every cell around stays positive (each corner's
+//! tetrahedron by the exact `orient3d`) and the prisms and hexahedra around keep their
+//! smallest corner scaled Jacobian at [`SJ_FLOOR`] or at what it was, if lower. Each node
+//! has its [`Freedom`]: the caller fixes some (a wall, a far field) and lets others slide only
+//! across an edge (the first layer's nodes across their extrusion edges, so that the first
+//! layer keeps its height, leaning at most [`MAX_LEAN_DEG`]); a mesh without a tetrahedron
+//! over the target is left to the bit.
+
+use geom_predicates::vector::{cross3, dist, dot};
+use mesh_model::measure3d::{corner_determinants, tet_max_dihedral_deg_of};
+use mesh_model::{Mesh, Shape, is_positive_tet};
+
+/// The quality of a star with an inverted cell (or a prism or hexahedron under its floor).
+const REJECTED: f64 = f64::INFINITY;
+
+/// How many times the compass step halves.
+const HALVINGS: usize = 8;
+
+/// How many sweeps over the tetrahedra still over the target.
+const SWEEPS: usize = 8;
+
+/// A move may lower the smallest corner scaled Jacobian of the prisms and hexahedra around
+/// a node to this, or to its value before the move if that is lower: the issue's bar for a
+/// wing's prisms.
+pub const SJ_FLOOR: f64 = 0.2;
+
+/// How far a node sliding across an edge may lean it (degrees).
+pub const MAX_LEAN_DEG: f64 = 15.0;
+
+/// How a node may move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Freedom {
+    /// Anywhere (within half its shortest edge).
+    Free,
+    /// Not at all.
+    Fixed,
+    /// Only across this edge vector (from the edge's other end to the node), leaning it at
+    /// most [`MAX_LEAN_DEG`].
+    Across([f64; 3]),
+}
+
+/// What the smoothing did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Smoothed {
+    /// The nodes moved (a node moved in several sweeps counts once a sweep).
+    pub moves: usize,
+    /// The largest dihedral angle of the tetrahedra before and after, degrees.
+    pub before_deg: f64,
+    /// See `before_deg`.
+    pub after_deg: f64,
+    /// The tetrahedra over the target before and after.
+    pub over_before: usize,
+    /// See `over_before`.
+    pub over_after: usize,
+}
+
+/// The cells around each node (compressed rows).
+struct Stars {
+    start: Vec<u32>,
+    cells: Vec<u32>,
+}
+
+impl Stars {
+    fn new(mesh: &Mesh) -> Stars {
+        let n = mesh.nodes.len();
+        let mut start = vec![0u32; n + 1];
+        for c in mesh.cells.iter() {
+            for &v in c.corners() {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut cells = vec![0u32; start[n] as usize];
+        for (i, c) in mesh.cells.iter().enumerate() {
+            for &v in c.corners() {
+                cells[fill[v as usize] as usize] = i as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        Stars { start, cells }
+    }
+
+    fn of(&self, v: u32) -> &[u32] {
+        &self.cells[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+    }
+}
+
+/// Lowers the largest dihedral angle of `mesh`'s linear tetrahedra over `target_deg` by
+/// moving its nodes as `freedom` lets them (see the module's doc).
+pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) -> Smoothed {
+    let is_tet = |mesh: &Mesh, i: usize| mesh.cells.get(i).ty.shape == Shape::Tet;
+    // each tetrahedron's quality (0 for other cells), kept up to date as nodes move
+    let mut quality: Vec<f64> = (0..mesh.cells.len())
+        .map(|i| {
+            if is_tet(mesh, i) {
+                tet_quality(mesh, i)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let worst = |q: &[f64]| q.iter().copied().fold(0.0, f64::max);
+    let mut bad: Vec<usize> = (0..quality.len())
+        .filter(|&i| quality[i] > target_deg)
+        .collect();
+    let before = worst(&quality);
+    let mut out = Smoothed {
+        before_deg: before,
+        after_deg: before,
+        over_before: bad.len(),
+        over_after: bad.len(),
+        moves: 0,
+    };
+    if bad.is_empty() {
+        return out;
+    }
+    let stars = Stars::new(mesh);
+    for _ in 0..SWEEPS {
+        // the movable nodes of the bad tetrahedra, worst tetrahedron first
+        bad.sort_by(|&a, &b| quality[b].total_cmp(&quality[a]).then(a.cmp(&b)));
+        let mut seen = vec![false; mesh.nodes.len()];
+        let mut nodes = Vec::new();
+        for &i in &bad {
+            for &v in mesh.cells.get(i).corners() {
+                if freedom[v as usize] != Freedom::Fixed && !seen[v as usize] {
+                    seen[v as usize] = true;
+                    nodes.push(v);
+                }
+            }
+        }
+        let mut moved = Vec::new();
+        for v in nodes {
+            if move_node(mesh, stars.of(v), v, freedom[v as usize], target_deg) {
+                moved.push(v);
+            }
+        }
+        out.moves += moved.len();
+        // only the tetrahedra around the moved nodes changed
+        let mut changed: Vec<usize> = moved
+            .iter()
+            .flat_map(|&v| stars.of(v).iter().map(|&c| c as usize))
+            .filter(|&c| is_tet(mesh, c))
+            .collect();
+        changed.sort_unstable();
+        changed.dedup();
+        for &c in &changed {
+            quality[c] = tet_quality(mesh, c);
+        }
+        bad.extend(changed);
+        bad.sort_unstable();
+        bad.dedup();
+        bad.retain(|&i| quality[i] > target_deg);
+        if moved.is_empty() || bad.is_empty() {
+            break;
+        }
+    }
+    out.after_deg = worst(&quality);
+    out.over_after = bad.len();
+    out
+}
+
+/// The largest dihedral angle of tetrahedron `i`, or [`REJECTED`] when it is not positive.
+fn tet_quality(mesh: &Mesh, i: usize) -> f64 {
+    let k = mesh.cells.get(i).corners();
+    let p = [0, 1, 2, 3].map(|j| mesh.nodes[k[j] as usize]);
+    if !is_positive_tet(p[0], p[1], p[2], p[3]) {
+        return REJECTED;
+    }
+    tet_max_dihedral_deg_of(p)
+}
+
+/// Whether cell `i` is positive at every corner, and its smallest corner scaled Jacobian
+/// when a prism or hexahedron (1 otherwise).
+fn cell_check(mesh: &Mesh, i: usize) -> Option<f64> {
+    let c = mesh.cells.get(i);
+    let k = c.corners();
+    let x = |j: usize| mesh.nodes[k[j] as usize];
+    for t in c.ty.shape.corner_tets() {
+        if !is_positive_tet(x(t[0]), x(t[1]), x(t[2]), x(t[3])) {
+            return None;
+        }
+    }
+    Some(match c.ty.shape {
+        Shape::Prism | Shape::Hex => {
+            let p: Vec<[f64; 3]> = (0..k.len()).map(x).collect();
+            corner_determinants(&p, true)
+                .into_iter()
+                .fold(f64::INFINITY, f64::min)
+        }
+        _ => 1.0,
+    })
+}
+
+/// The quality of the cells `star` around a node, for a target of `target` degrees: the
+/// largest dihedral angle of its tetrahedra ([`REJECTED`] when a cell is not positive), their
+/// excess over the target summed (so that a move may mend one of several bad tetrahedra
+/// around the node), and the smallest corner scaled Jacobian of its prisms and hexahedra.
+fn star_quality(mesh: &Mesh, star: &[u32], target: f64) -> (f64, f64, f64) {
+    let mut worst = 0.0f64;
+    let mut excess = 0.0;
+    let mut sj = 1.0f64;
+    for &c in star {
+        let c = c as usize;
+        if mesh.cells.get(c).ty.shape == Shape::Tet {
+            let q = tet_quality(mesh, c);
+            worst = worst.max(q);
+            excess += (q - target).max(0.0);
+        } else {
+            match cell_check(mesh, c) {
+                Some(q) => sj = sj.min(q),
+                None => return (REJECTED, REJECTED, sj),
+            }
+        }
+    }
+    (worst, excess, sj)
+}
+
+/// The compass search of node `v` (moving as `freedom` lets it) over the cells `star`
+/// around it; whether it moved.
+fn move_node(mesh: &mut Mesh, star: &[u32], v: u32, freedom: Freedom, target: f64) -> bool {
+    let start = mesh.nodes[v as usize];
+    let shortest = star
+        .iter()
+        .flat_map(|&c| mesh.cells.get(c as usize).corners().to_vec())
+        .filter(|&w| w != v)
+        .map(|w| dist(start, mesh.nodes[w as usize]))
+        .fold(f64::INFINITY, f64::min);
+    if !(shortest.is_finite() && shortest > 0.0) {
+        return false;
+    }
+    let (moves, reach) = match freedom {
+        Freedom::Fixed => return false,
+        Freedom::Free => (
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].to_vec(),
+            0.5 * shortest,
+        ),
+        Freedom::Across(e) => {
+            let len = dot(e, e).sqrt();
+            if !(len > 0.0) {
+                return false;
+            }
+            let lean = len * MAX_LEAN_DEG.to_radians().tan();
+            (across(e).to_vec(), lean.min(0.5 * shortest))
+        }
+    };
+    let (worst, excess, sj_before) = star_quality(mesh, star, target);
+    let floor = sj_before.min(SJ_FLOOR);
+    // lexicographic: the worst angle never rises, the excess falls where it stays
+    let mut best = (worst, excess);
+    let mut at = start;
+    let mut step = 0.25 * shortest;
+    for _ in 0..HALVINGS {
+        let mut improved = true;
+        while improved {
+            improved = false;
+            for m in &moves {
+                for sign in [1.0, -1.0] {
+                    let p = std::array::from_fn(|d| at[d] + sign * step * m[d]);
+                    if dist(p, start) > reach {
+                        continue;
+                    }
+                    mesh.nodes[v as usize] = p;
+                    let (q, e, sj) = star_quality(mesh, star, target);
+                    let better = q < best.0 - 1e-9 || (q <= best.0 && e < best.1 - 1e-9);
+                    if better && sj >= floor {
+                        best = (q, e);
+                        at = p;
+                        improved = true;
+                    }
+                }
+            }
+        }
+        step *= 0.5;
+    }
+    mesh.nodes[v as usize] = at;
+    at != start
+}
+
+/// Two unit vectors across `e` (non-zero), square to it and to each other.
+fn across(e: [f64; 3]) -> [[f64; 3]; 2] {
+    let unit = |v: [f64; 3]| {
+        let l = dot(v, v).sqrt();
+        v.map(|x| x / l)
+    };
+    let e = unit(e);
+    let other = if e[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let t1 = unit(cross3(e, other));
+    [t1, cross3(e, t1)]
+}
