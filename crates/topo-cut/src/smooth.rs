@@ -251,7 +251,7 @@ fn move_node(mesh: &mut Mesh, star: &[u32], v: u32, freedom: Freedom, target: f6
         ),
         Freedom::Across(e) => {
             let len = dot(e, e).sqrt();
-            if !(len > 0.0) {
+            if len.is_nan() || len <= 0.0 {
                 return false;
             }
             let lean = len * MAX_LEAN_DEG.to_radians().tan();

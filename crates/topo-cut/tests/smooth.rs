@@ -28,7 +28,7 @@ fn octahedron(centre: [f64; 3]) -> Mesh {
             for z in [4u32, 5] {
                 // (x, y, z) turns positively when an even number of them are negative
                 let flips = (x == 1) as u32 + (y == 3) as u32 + (z == 5) as u32;
-                let k = if flips % 2 == 0 {
+                let k = if flips.is_multiple_of(2) {
                     [6, x, y, z]
                 } else {
                     [6, y, x, z]
