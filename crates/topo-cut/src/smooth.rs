@@ -9,8 +9,8 @@
 //! edge, halving [`HALVINGS`] times, never farther than half that edge from where it
 //! started) to lower the largest dihedral angle of the tetrahedra around it. A move is kept
 //! only when it lowers that angle (or keeps it and lowers the tetrahedra's summed excess over
-//! the target: a node between two bad tetrahedra mends one while another node mends the
-//! other), every cell around stays positive (each corner's
+//! the target with no more of them over it: a node between two bad tetrahedra mends one
+//! while another node mends the other), every cell around stays positive (each corner's
 //! tetrahedron by the exact `orient3d`) and the prisms and hexahedra around keep their
 //! smallest corner scaled Jacobian at [`SJ_FLOOR`] or at what it was, if lower. Each node
 //! has its [`Freedom`]: the caller fixes some (a wall, a far field) and lets others slide only
@@ -24,6 +24,10 @@ use mesh_model::{Mesh, Shape, is_positive_tet};
 
 /// The quality of a star with an inverted cell (or a prism or hexahedron under its floor).
 const REJECTED: f64 = f64::INFINITY;
+
+/// The bar (degrees) over which a tetrahedron is mended whatever it does to the count of
+/// those over the target: the issues' bar on every tetrahedron.
+pub const BAR_DEG: f64 = 160.0;
 
 /// How many times the compass step halves.
 const HALVINGS: usize = 8;
@@ -66,59 +70,70 @@ pub struct Smoothed {
     pub over_after: usize,
 }
 
-/// The cells around each node (compressed rows).
+/// The cells around some nodes (compressed rows): only the nodes a sweep visits, so that a
+/// mesh of millions of cells pays for the few hundred nodes it moves.
 struct Stars {
+    /// Each node's row, `u32::MAX` for the nodes left out.
+    row: Vec<u32>,
     start: Vec<u32>,
     cells: Vec<u32>,
 }
 
 impl Stars {
-    fn new(mesh: &Mesh) -> Stars {
-        let n = mesh.nodes.len();
-        let mut start = vec![0u32; n + 1];
-        for c in mesh.cells.iter() {
-            for &v in c.corners() {
-                start[v as usize + 1] += 1;
-            }
+    /// The stars of `nodes` (distinct) in `mesh`.
+    fn of_nodes(mesh: &Mesh, nodes: &[u32]) -> Stars {
+        let mut row = vec![u32::MAX; mesh.nodes.len()];
+        for (r, &v) in nodes.iter().enumerate() {
+            row[v as usize] = r as u32;
         }
-        for v in 0..n {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut cells = vec![0u32; start[n] as usize];
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
         for (i, c) in mesh.cells.iter().enumerate() {
             for &v in c.corners() {
-                cells[fill[v as usize] as usize] = i as u32;
-                fill[v as usize] += 1;
+                if row[v as usize] != u32::MAX {
+                    pairs.push((row[v as usize], i as u32));
+                }
             }
         }
-        Stars { start, cells }
+        pairs.sort_unstable();
+        let mut start = vec![0u32; nodes.len() + 1];
+        pairs.iter().for_each(|&(r, _)| start[r as usize + 1] += 1);
+        for r in 0..nodes.len() {
+            start[r + 1] += start[r];
+        }
+        Stars {
+            row,
+            start,
+            cells: pairs.into_iter().map(|(_, c)| c).collect(),
+        }
     }
 
     fn of(&self, v: u32) -> &[u32] {
-        &self.cells[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+        let r = self.row[v as usize] as usize;
+        &self.cells[self.start[r] as usize..self.start[r + 1] as usize]
     }
+}
+
+/// The largest dihedral angle of `mesh`'s tetrahedra and those over `target` (with their
+/// angles).
+fn scan(mesh: &Mesh, target: f64) -> (f64, Vec<(f64, usize)>) {
+    let mut worst = 0.0f64;
+    let mut bad = Vec::new();
+    for i in 0..mesh.cells.len() {
+        if mesh.cells.get(i).ty.shape == Shape::Tet {
+            let q = tet_quality(mesh, i);
+            worst = worst.max(q);
+            if q > target {
+                bad.push((q, i));
+            }
+        }
+    }
+    (worst, bad)
 }
 
 /// Lowers the largest dihedral angle of `mesh`'s linear tetrahedra over `target_deg` by
 /// moving its nodes as `freedom` lets them (see the module's doc).
 pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) -> Smoothed {
-    let is_tet = |mesh: &Mesh, i: usize| mesh.cells.get(i).ty.shape == Shape::Tet;
-    // each tetrahedron's quality (0 for other cells), kept up to date as nodes move
-    let mut quality: Vec<f64> = (0..mesh.cells.len())
-        .map(|i| {
-            if is_tet(mesh, i) {
-                tet_quality(mesh, i)
-            } else {
-                0.0
-            }
-        })
-        .collect();
-    let worst = |q: &[f64]| q.iter().copied().fold(0.0, f64::max);
-    let mut bad: Vec<usize> = (0..quality.len())
-        .filter(|&i| quality[i] > target_deg)
-        .collect();
-    let before = worst(&quality);
+    let (before, bad) = scan(mesh, target_deg);
     let mut out = Smoothed {
         before_deg: before,
         after_deg: before,
@@ -129,13 +144,34 @@ pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) 
     if bad.is_empty() {
         return out;
     }
-    let stars = Stars::new(mesh);
+    // those over the bar first, each move free to push others over the target; then those
+    // over the target, no move pushing more over it (see `Star::better`)
+    if target_deg < BAR_DEG {
+        let (_, over_bar) = scan(mesh, BAR_DEG);
+        out.moves += sweeps(mesh, freedom, BAR_DEG, over_bar);
+        let (_, bad) = scan(mesh, target_deg);
+        out.moves += sweeps(mesh, freedom, target_deg, bad);
+    } else {
+        out.moves += sweeps(mesh, freedom, target_deg, bad);
+    }
+    let (after, bad) = scan(mesh, target_deg);
+    (out.after_deg, out.over_after) = (after, bad.len());
+    out
+}
+
+/// Up to [`SWEEPS`] sweeps over the tetrahedra over `target` (`bad`, with their angles);
+/// the node moves made.
+fn sweeps(mesh: &mut Mesh, freedom: &[Freedom], target: f64, mut bad: Vec<(f64, usize)>) -> usize {
+    let mut moves = 0;
     for _ in 0..SWEEPS {
+        if bad.is_empty() {
+            break;
+        }
         // the movable nodes of the bad tetrahedra, worst tetrahedron first
-        bad.sort_by(|&a, &b| quality[b].total_cmp(&quality[a]).then(a.cmp(&b)));
+        bad.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         let mut seen = vec![false; mesh.nodes.len()];
         let mut nodes = Vec::new();
-        for &i in &bad {
+        for &(_, i) in &bad {
             for &v in mesh.cells.get(i).corners() {
                 if freedom[v as usize] != Freedom::Fixed && !seen[v as usize] {
                     seen[v as usize] = true;
@@ -143,35 +179,32 @@ pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) 
                 }
             }
         }
+        let stars = Stars::of_nodes(mesh, &nodes);
         let mut moved = Vec::new();
-        for v in nodes {
-            if move_node(mesh, stars.of(v), v, freedom[v as usize], target_deg) {
+        for &v in &nodes {
+            if move_node(mesh, stars.of(v), v, freedom[v as usize], target) {
                 moved.push(v);
             }
         }
-        out.moves += moved.len();
-        // only the tetrahedra around the moved nodes changed
-        let mut changed: Vec<usize> = moved
-            .iter()
-            .flat_map(|&v| stars.of(v).iter().map(|&c| c as usize))
-            .filter(|&c| is_tet(mesh, c))
-            .collect();
-        changed.sort_unstable();
-        changed.dedup();
-        for &c in &changed {
-            quality[c] = tet_quality(mesh, c);
-        }
-        bad.extend(changed);
-        bad.sort_unstable();
-        bad.dedup();
-        bad.retain(|&i| quality[i] > target_deg);
-        if moved.is_empty() || bad.is_empty() {
+        moves += moved.len();
+        if moved.is_empty() {
             break;
         }
+        // the bad tetrahedra now: the old ones and any around a moved node
+        let mut now: Vec<usize> = bad.iter().map(|b| b.1).collect();
+        for &v in &moved {
+            now.extend(stars.of(v).iter().map(|&c| c as usize));
+        }
+        now.sort_unstable();
+        now.dedup();
+        bad = now
+            .into_iter()
+            .filter(|&i| mesh.cells.get(i).ty.shape == Shape::Tet)
+            .map(|i| (tet_quality(mesh, i), i))
+            .filter(|b| b.0 > target)
+            .collect();
     }
-    out.after_deg = worst(&quality);
-    out.over_after = bad.len();
-    out
+    moves
 }
 
 /// The largest dihedral angle of tetrahedron `i`, or [`REJECTED`] when it is not positive.
@@ -209,10 +242,12 @@ fn cell_check(mesh: &Mesh, i: usize) -> Option<f64> {
 /// The quality of the cells `star` around a node, for a target of `target` degrees: the
 /// largest dihedral angle of its tetrahedra ([`REJECTED`] when a cell is not positive), their
 /// excess over the target summed (so that a move may mend one of several bad tetrahedra
-/// around the node), and the smallest corner scaled Jacobian of its prisms and hexahedra.
-fn star_quality(mesh: &Mesh, star: &[u32], target: f64) -> (f64, f64, f64) {
+/// around the node) and how many are over it, and the smallest corner scaled Jacobian of its
+/// prisms and hexahedra.
+fn star_quality(mesh: &Mesh, star: &[u32], target: f64) -> (Star, f64) {
     let mut worst = 0.0f64;
     let mut excess = 0.0;
+    let mut over = 0;
     let mut sj = 1.0f64;
     for &c in star {
         let c = c as usize;
@@ -220,14 +255,50 @@ fn star_quality(mesh: &Mesh, star: &[u32], target: f64) -> (f64, f64, f64) {
             let q = tet_quality(mesh, c);
             worst = worst.max(q);
             excess += (q - target).max(0.0);
+            over += usize::from(q > target);
         } else {
             match cell_check(mesh, c) {
                 Some(q) => sj = sj.min(q),
-                None => return (REJECTED, REJECTED, sj),
+                None => return (Star::REJECTED, sj),
             }
         }
     }
-    (worst, excess, sj)
+    (
+        Star {
+            worst,
+            excess,
+            over,
+        },
+        sj,
+    )
+}
+
+/// The tetrahedra around a node: their largest dihedral angle, their summed excess over the
+/// target and how many are over it.
+#[derive(Debug, Clone, Copy)]
+struct Star {
+    worst: f64,
+    excess: f64,
+    over: usize,
+}
+
+impl Star {
+    const REJECTED: Star = Star {
+        worst: REJECTED,
+        excess: REJECTED,
+        over: usize::MAX,
+    };
+
+    /// Whether `self` is better than `than`: a lower worst angle with no more tetrahedra
+    /// over the target (any number where the worst was over [`BAR_DEG`]), or the same worst
+    /// angle and a lower excess with no more over the target. Else lowering a tetrahedron
+    /// just over the target pushes others over it: the step's tetrahedral cut went from 112
+    /// over 150° to 183.
+    fn better(&self, than: &Star) -> bool {
+        let no_more = self.over <= than.over;
+        (self.worst < than.worst - 1e-9 && (no_more || than.worst > BAR_DEG))
+            || (self.worst <= than.worst && no_more && self.excess < than.excess - 1e-9)
+    }
 }
 
 /// The compass search of node `v` (moving as `freedom` lets it) over the cells `star`
@@ -258,10 +329,8 @@ fn move_node(mesh: &mut Mesh, star: &[u32], v: u32, freedom: Freedom, target: f6
             (across(e).to_vec(), lean.min(0.5 * shortest))
         }
     };
-    let (worst, excess, sj_before) = star_quality(mesh, star, target);
+    let (mut best, sj_before) = star_quality(mesh, star, target);
     let floor = sj_before.min(SJ_FLOOR);
-    // lexicographic: the worst angle never rises, the excess falls where it stays
-    let mut best = (worst, excess);
     let mut at = start;
     let mut step = 0.25 * shortest;
     for _ in 0..HALVINGS {
@@ -275,10 +344,9 @@ fn move_node(mesh: &mut Mesh, star: &[u32], v: u32, freedom: Freedom, target: f6
                         continue;
                     }
                     mesh.nodes[v as usize] = p;
-                    let (q, e, sj) = star_quality(mesh, star, target);
-                    let better = q < best.0 - 1e-9 || (q <= best.0 && e < best.1 - 1e-9);
-                    if better && sj >= floor {
-                        best = (q, e);
+                    let (q, sj) = star_quality(mesh, star, target);
+                    if q.better(&best) && sj >= floor {
+                        best = q;
                         at = p;
                         improved = true;
                     }
