@@ -6,6 +6,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 
 use testkit::layered as fixture;
+use topo_cut::smooth::{Freedom, smooth_worst_tets};
 
 fn bench(c: &mut Criterion) {
     for quads in [false, true] {
@@ -45,6 +46,26 @@ fn bench(c: &mut Criterion) {
             cut
         })
     });
+    // the smoothing of the tetrahedral cut's worst tetrahedra (walls fixed), to a target
+    // under which the cut leaves some
+    let tets = topo_cut::cut_to_tets(&poly).expect("cut");
+    let mut freedom = vec![Freedom::Free; tets.nodes.len()];
+    for f in tets.boundary.iter() {
+        for &v in f.corners() {
+            freedom[v as usize] = Freedom::Fixed;
+        }
+    }
+    let target = 145.0;
+    let once = smooth_worst_tets(&mut tets.clone(), &freedom, target);
+    c.bench_function(
+        &format!("smooth_worst_tets/{}_over_{target}", once.over_before),
+        |b| {
+            b.iter(|| {
+                let mut mesh = tets.clone();
+                smooth_worst_tets(&mut mesh, &freedom, target)
+            })
+        },
+    );
 }
 
 criterion_group!(benches, bench);

@@ -30,7 +30,7 @@ const REJECTED: f64 = f64::INFINITY;
 pub const BAR_DEG: f64 = 160.0;
 
 /// How many times the compass step halves.
-const HALVINGS: usize = 8;
+const HALVINGS: usize = 5;
 
 /// How many sweeps over the tetrahedra still over the target.
 const SWEEPS: usize = 8;
