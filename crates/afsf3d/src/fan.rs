@@ -207,14 +207,21 @@ pub(crate) fn fan_wall(
     if threshold_deg <= 0.0 {
         return Fanned::plain(surface);
     }
-    let sharp = sharp_edges(surface, topo, threshold_deg.to_radians());
+    let mut sharp = sharp_edges(surface, topo, threshold_deg.to_radians());
     let n = surface.nodes.len();
-    let mut sharp_at: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for (e, edge) in topo.edges.iter().enumerate().filter(|(e, _)| sharp[*e]) {
-        for v in edge.nodes {
-            sharp_at[v as usize].push(e as u32);
+    let at = |sharp: &[bool]| {
+        let mut sharp_at: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for (e, edge) in topo.edges.iter().enumerate().filter(|(e, _)| sharp[*e]) {
+            for v in edge.nodes {
+                sharp_at[v as usize].push(e as u32);
+            }
         }
+        sharp_at
+    };
+    for e in rim_edges(surface, topo, &at(&sharp), skip) {
+        sharp[e as usize] = true;
     }
+    let sharp_at = at(&sharp);
     let candidate = |v: usize| sharp_at[v].len() == 2 && !skip.get(v).copied().unwrap_or(false);
     let (mut nodes, components) = chains(surface, topo, &sharp_at, candidate);
     if nodes.is_empty() {
@@ -236,6 +243,70 @@ pub(crate) fn fan_wall(
         }
     }
     build(surface, topo, &sharp, &nodes)
+}
+
+/// The least turn (radians) of a rim edge that a chain's end fans across: a flat tip's
+/// edge turns by 90°.
+const RIM_TURN: f64 = std::f64::consts::FRAC_PI_4;
+
+/// For each end of a chain of sharp edges (a node with one sharp edge whose other end has
+/// two: the corner where a trailing edge meets a flat tip), its convex edge that turns most
+/// (the tip's rim), if it turns by more than [`RIM_TURN`]: fanned across it as across a
+/// second sharp edge, the end's columns turn from one side over the tip to the other instead
+/// of one column along the mean of all its facets' normals.
+fn rim_edges(surface: &Surface, topo: &Topo, sharp_at: &[Vec<u32>], skip: &[bool]) -> Vec<u32> {
+    let turn = sharp_edges(surface, topo, RIM_TURN);
+    // how many turning edges each node has
+    let mut turning = vec![0usize; surface.nodes.len()];
+    for edge in topo
+        .edges
+        .iter()
+        .zip(&turn)
+        .filter(|(_, t)| **t)
+        .map(|(e, _)| e)
+    {
+        edge.nodes.iter().for_each(|&w| turning[w as usize] += 1);
+    }
+    let mut rims = Vec::new();
+    for (v, edges) in sharp_at.iter().enumerate() {
+        if edges.len() != 1 || skip.get(v).copied().unwrap_or(false) {
+            continue;
+        }
+        let [a, b] = topo.edges[edges[0] as usize].nodes;
+        let other = if a as usize == v { b } else { a };
+        if sharp_at[other as usize].len() != 2 {
+            continue;
+        }
+        let normals = |e: &crate::front::Edge| {
+            e.facets.map(|f| {
+                unit(fan_normal(
+                    &surface.nodes,
+                    surface.facets[f as usize].nodes(),
+                ))
+            })
+        };
+        // the rim's far end must lie on the rim (two turning edges), not at a corner of its
+        // own: on a wedge whose end cap is one triangle the rim edge runs to the far corner,
+        // where the fan's thin cells then fold
+        let corner = |w: u32| turning[w as usize] > 2;
+        let best = topo
+            .edges
+            .iter()
+            .enumerate()
+            .filter(|(e, edge)| {
+                turn[*e] && edge.nodes.contains(&(v as u32)) && *e != edges[0] as usize
+            })
+            .filter(|(_, edge)| !edge.nodes.iter().any(|&w| w != v as u32 && corner(w)))
+            .map(|(e, edge)| {
+                let [nf, ng] = normals(edge);
+                (angle_between(nf, ng), e)
+            })
+            .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)));
+        if let Some((_, e)) = best {
+            rims.push(e as u32);
+        }
+    }
+    rims
 }
 
 /// The fanned nodes (`candidate`: two sharp edges, not skipped) whose sharp edges split their

@@ -70,6 +70,10 @@ pub(crate) enum Located {
     Vertex(u32),
 }
 
+/// How near (times the shortest edge of the tet holding it) a new point may come to a corner
+/// of that tet: nearer, it is not inserted.
+pub(crate) const NEAR_VERTEX: f64 = 1e-6;
+
 /// Reusable buffers of the insertion.
 #[derive(Default)]
 pub(crate) struct Scratch {
@@ -142,6 +146,25 @@ impl Mesh {
             Some(&v) => Located::Vertex(v),
             None => Located::Tet(t),
         }
+    }
+
+    /// Whether `p` lies within [`NEAR_VERTEX`] times the shortest edge of real tet `t` of one of
+    /// its corners: a point inserted there would make tetrahedra flat to within rounding yet
+    /// positive by the exact predicates (a refinement point 1e-16 from another in the extruded
+    /// 30P30N's fill).
+    pub fn near_vertex(&self, t: u32, p: [f64; 3]) -> bool {
+        let k = self.tets[t as usize];
+        if k.contains(&GHOST) {
+            return false;
+        }
+        let x = k.map(|v| self.p(v));
+        let d2 = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
+        let shortest = (0..4)
+            .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+            .map(|(i, j)| d2(x[i], x[j]))
+            .fold(f64::INFINITY, f64::min);
+        x.iter()
+            .any(|&c| d2(c, p) <= NEAR_VERTEX * NEAR_VERTEX * shortest)
     }
 
     /// The walk's fallback (it never needed so far): every tet tried.

@@ -625,7 +625,7 @@ impl<'m> Recovery<'m> {
         let Located::Tet(t) = self.mesh.locate(q) else {
             return Ok(false);
         };
-        if self.mesh.is_ghost(t) {
+        if self.mesh.is_ghost(t) || self.mesh.near_vertex(t, q) {
             return Ok(false);
         }
         self.mesh.points.push(q);

@@ -233,7 +233,7 @@ pub(crate) fn refine(
         let Located::Tet(at) = mesh.locate(c) else {
             continue;
         };
-        if side.get(at as usize) != Some(&Side::Inside) {
+        if side.get(at as usize) != Some(&Side::Inside) || mesh.near_vertex(at, c) {
             continue;
         }
         if mesh.tets[at as usize]

@@ -328,7 +328,7 @@ impl Improver<'_> {
         let Located::Tet(at) = self.mesh.locate(q) else {
             return false;
         };
-        if !self.inside(at) {
+        if !self.inside(at) || self.mesh.near_vertex(at, q) {
             return false;
         }
         self.mesh.points.push(q);

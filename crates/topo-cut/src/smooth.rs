@@ -11,8 +11,11 @@
 //! only when it lowers that angle (or keeps it and lowers the tetrahedra's summed excess over
 //! the target with no more of them over it: a node between two bad tetrahedra mends one
 //! while another node mends the other), every cell around stays positive (each corner's
-//! tetrahedron by the exact `orient3d`) and the prisms and hexahedra around keep their
-//! smallest corner scaled Jacobian at [`SJ_FLOOR`] or at what it was, if lower. Each node
+//! tetrahedron by the exact `orient3d`), the prisms and hexahedra around keep their
+//! smallest corner scaled Jacobian at [`SJ_FLOOR`] or at what it was, if lower, and the node
+//! stays at least half the shorter of its own and each neighbour's shortest edge (in the mesh
+//! as it came) from that neighbour: a needle's largest dihedral angle is small, so the angles
+//! alone let two nodes close in on each other, sweep after sweep, until they met. Each node
 //! has its [`Freedom`]: the caller fixes some (a wall, a far field) and lets others slide only
 //! across an edge (the first layer's nodes across their extrusion edges, so that the first
 //! layer keeps its height, leaning at most [`MAX_LEAN_DEG`]); a mesh without a tetrahedron
@@ -130,6 +133,22 @@ fn scan(mesh: &Mesh, target: f64) -> (f64, Vec<(f64, usize)>) {
     (worst, bad)
 }
 
+/// Each node's shortest edge (over the edges of the cells around it; infinite for a node in
+/// no cell).
+fn shortest_edges(mesh: &Mesh) -> Vec<f64> {
+    let mut scale = vec![f64::INFINITY; mesh.nodes.len()];
+    for c in mesh.cells.iter() {
+        let k = c.corners();
+        for [i, j] in c.ty.shape.edges() {
+            let (a, b) = (k[*i] as usize, k[*j] as usize);
+            let d = dist(mesh.nodes[a], mesh.nodes[b]);
+            scale[a] = scale[a].min(d);
+            scale[b] = scale[b].min(d);
+        }
+    }
+    scale
+}
+
 /// Lowers the largest dihedral angle of `mesh`'s linear tetrahedra over `target_deg` by
 /// moving its nodes as `freedom` lets them (see the module's doc).
 pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) -> Smoothed {
@@ -144,6 +163,8 @@ pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) 
     if bad.is_empty() {
         return out;
     }
+    let scale = shortest_edges(mesh);
+    let freedom = (freedom, scale.as_slice());
     // those over the bar first, each move free to push others over the target; then those
     // over the target, no move pushing more over it (see `Star::better`)
     if target_deg < BAR_DEG {
@@ -161,7 +182,12 @@ pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) 
 
 /// Up to [`SWEEPS`] sweeps over the tetrahedra over `target` (`bad`, with their angles);
 /// the node moves made.
-fn sweeps(mesh: &mut Mesh, freedom: &[Freedom], target: f64, mut bad: Vec<(f64, usize)>) -> usize {
+fn sweeps(
+    mesh: &mut Mesh,
+    (freedom, scale): (&[Freedom], &[f64]),
+    target: f64,
+    mut bad: Vec<(f64, usize)>,
+) -> usize {
     let mut moves = 0;
     for _ in 0..SWEEPS {
         if bad.is_empty() {
@@ -182,7 +208,7 @@ fn sweeps(mesh: &mut Mesh, freedom: &[Freedom], target: f64, mut bad: Vec<(f64, 
         let stars = Stars::of_nodes(mesh, &nodes);
         let mut moved = Vec::new();
         for &v in &nodes {
-            if move_node(mesh, stars.of(v), v, freedom[v as usize], target) {
+            if move_node(mesh, (stars.of(v), v, freedom[v as usize]), target, scale) {
                 moved.push(v);
             }
         }
@@ -303,8 +329,28 @@ impl Star {
 
 /// The compass search of node `v` (moving as `freedom` lets it) over the cells `star`
 /// around it; whether it moved.
-fn move_node(mesh: &mut Mesh, star: &[u32], v: u32, freedom: Freedom, target: f64) -> bool {
+fn move_node(
+    mesh: &mut Mesh,
+    (star, v, freedom): (&[u32], u32, Freedom),
+    target: f64,
+    scale: &[f64],
+) -> bool {
     let start = mesh.nodes[v as usize];
+    // the nodes around, each kept at least half the shorter of its and `v`'s original
+    // shortest edge away: the angles alone would let two nodes close in on each other
+    // (a needle's largest dihedral angle is small) until they meet
+    let mut near: Vec<(u32, f64)> = star
+        .iter()
+        .flat_map(|&c| mesh.cells.get(c as usize).corners().to_vec())
+        .filter(|&w| w != v)
+        .map(|w| (w, 0.5 * scale[v as usize].min(scale[w as usize])))
+        .collect();
+    near.sort_unstable_by_key(|n| n.0);
+    near.dedup_by_key(|n| n.0);
+    let apart = |mesh: &Mesh, p: [f64; 3]| {
+        near.iter()
+            .all(|&(w, floor)| dist(p, mesh.nodes[w as usize]) >= floor)
+    };
     let shortest = star
         .iter()
         .flat_map(|&c| mesh.cells.get(c as usize).corners().to_vec())
@@ -340,7 +386,7 @@ fn move_node(mesh: &mut Mesh, star: &[u32], v: u32, freedom: Freedom, target: f6
             for m in &moves {
                 for sign in [1.0, -1.0] {
                     let p = std::array::from_fn(|d| at[d] + sign * step * m[d]);
-                    if dist(p, start) > reach {
+                    if dist(p, start) > reach || !apart(mesh, p) {
                         continue;
                     }
                     mesh.nodes[v as usize] = p;

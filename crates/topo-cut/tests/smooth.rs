@@ -102,7 +102,7 @@ fn a_mesh_under_the_target_is_left_to_the_bit() {
 
 proptest! {
     /// Anywhere inside the octahedron, the smoothing keeps every tetrahedron positive and
-    /// the volume, and never makes the worst angle worse.
+    /// the volume, never makes the worst angle worse and never brings two nodes together.
     #[test]
     fn never_worse_never_inverted(a in 0.0f64..1.0, b in 0.0f64..1.0, c in 0.0f64..1.0, s in 0.0f64..0.999) {
         // a point of the face x + y + z = 1 (barycentric a, b, c), scaled inside
@@ -112,6 +112,13 @@ proptest! {
         prop_assume!(positive(&mesh));
         let before = max_dihedral_deg(&mesh);
         let out = smooth_worst_tets(&mut mesh, &freedom(Freedom::Free), 150.0);
+        // no node comes nearer another than half the shorter of their shortest edges before
+        let d = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+        let start = octahedron(centre).nodes;
+        let shortest = (0..6).map(|j| d(start[6], start[j])).fold(f64::INFINITY, f64::min);
+        for j in 0..6 {
+            prop_assert!(d(mesh.nodes[6], mesh.nodes[j]) >= 0.5 * shortest.min(2f64.sqrt()) - 1e-15);
+        }
         prop_assert!(positive(&mesh));
         prop_assert!(out.after_deg <= before);
         prop_assert!((volume(&mesh) - 4.0 / 3.0).abs() < 1e-12);
