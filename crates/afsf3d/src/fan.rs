@@ -18,8 +18,11 @@
 //!
 //! A node is fanned when exactly two of its edges are sharp: convex, their facets' normals
 //! more than [`crate::LayerParams::fan_threshold_deg`] apart. The end of a chain (a node with
-//! one sharp edge, the corner where a trailing edge meets a wing's flat tip) and a node where
-//! three or more meet keep one column; the fan's last facets before it are triangles.
+//! one sharp edge, the corner where a trailing edge meets a wing's flat tip) counts its rim
+//! edge as a second one (`rim_edges`: its convex edge that turns most, over 45°, whose far end
+//! lies on the rim), so its fan turns from one side over the tip to the other, the rim edge
+//! opened like a chain's; a chain's end without such a rim and a node where three or more
+//! sharp edges meet keep one column, the fan's last facets before it triangles.
 
 use std::collections::HashMap;
 
