@@ -343,9 +343,7 @@ fn key_hash(jacobian: &[Triplet]) -> u64 {
         }
     }
     let h = tail.iter().fold(lanes[0], |h, t| mix(h, key(t)));
-    [lanes[1], lanes[2], lanes[3]]
-        .into_iter()
-        .fold(h, |h, l| mix(h, l))
+    [lanes[1], lanes[2], lanes[3]].into_iter().fold(h, mix)
 }
 
 /// Solves `L Lᵀ x = rhs` in place with the factor `values` of `cholesky`, in `scratch`.
