@@ -4,7 +4,8 @@
 //! fill's tetrahedra join points of both; a cell whose own shape is flat cuts badly whatever
 //! its apex and diagonals. Moving one of its nodes a fraction of an edge mends it.
 //!
-//! Each sweep visits the free nodes of the tetrahedra over the target, worst tetrahedron
+//! Two passes of up to [`SWEEPS`] sweeps: the tetrahedra over [`BAR_DEG`] first, then those
+//! over the target. Each sweep visits the free nodes of the bad tetrahedra, worst tetrahedron
 //! first, and moves each by a compass search (± each axis, from a quarter of its shortest
 //! edge, halving [`HALVINGS`] times, never farther than half that edge from where it
 //! started) to lower the largest dihedral angle of the tetrahedra around it. A move is kept
@@ -28,8 +29,9 @@ use mesh_model::{Mesh, Shape, is_positive_tet};
 /// The quality of a star with an inverted cell (or a prism or hexahedron under its floor).
 const REJECTED: f64 = f64::INFINITY;
 
-/// The bar (degrees) over which a tetrahedron is mended whatever it does to the count of
-/// those over the target: the issues' bar on every tetrahedron.
+/// The bar (degrees) over which a tetrahedron is mended first, and may be mended at the cost
+/// of pushing others over the target (by [`BAR_GAIN_DEG`] at least): the issues' bar on
+/// every tetrahedron.
 pub const BAR_DEG: f64 = 160.0;
 
 /// How much (degrees) a move that pushes more tetrahedra over the target must lower a worst
