@@ -80,9 +80,10 @@ impl Fanned {
     }
 }
 
-/// For each edge of `topo` (over `surface`), whether it is sharp: convex, its two facets'
-/// normals more than `threshold` (radians) apart.
-fn sharp_edges(surface: &Surface, topo: &Topo, threshold: f64) -> Vec<bool> {
+/// For each edge of `topo` (over `surface`), how far (radians) its two facets' normals turn
+/// when it is convex, 0 when it is not: an edge is sharp when it turns by more than
+/// [`crate::LayerParams::fan_threshold_deg`], a rim's when by more than [`RIM_TURN`].
+fn convex_turns(surface: &Surface, topo: &Topo) -> Vec<f64> {
     let normals: Vec<[f64; 3]> = surface
         .facets
         .iter()
@@ -97,7 +98,7 @@ fn sharp_edges(surface: &Surface, topo: &Topo, threshold: f64) -> Vec<bool> {
             let far = surface.nodes[e.far[1][0] as usize];
             let below =
                 geom_predicates::vector::dot(nf, geom_predicates::vector::sub(far, a)) < 0.0;
-            below && angle_between(nf, ng) > threshold
+            if below { angle_between(nf, ng) } else { 0.0 }
         })
         .collect()
 }
@@ -210,7 +211,9 @@ pub(crate) fn fan_wall(
     if threshold_deg <= 0.0 {
         return Fanned::plain(surface);
     }
-    let mut sharp = sharp_edges(surface, topo, threshold_deg.to_radians());
+    let turns = convex_turns(surface, topo);
+    let threshold = threshold_deg.to_radians();
+    let mut sharp: Vec<bool> = turns.iter().map(|&t| t > threshold).collect();
     let n = surface.nodes.len();
     let at = |sharp: &[bool]| {
         let mut sharp_at: Vec<Vec<u32>> = vec![Vec::new(); n];
@@ -221,7 +224,7 @@ pub(crate) fn fan_wall(
         }
         sharp_at
     };
-    for e in rim_edges(surface, topo, &at(&sharp), skip) {
+    for e in rim_edges(topo, &turns, &at(&sharp), skip) {
         sharp[e as usize] = true;
     }
     let sharp_at = at(&sharp);
@@ -257,18 +260,12 @@ const RIM_TURN: f64 = std::f64::consts::FRAC_PI_4;
 /// (the tip's rim), if it turns by more than [`RIM_TURN`]: fanned across it as across a
 /// second sharp edge, the end's columns turn from one side over the tip to the other instead
 /// of one column along the mean of all its facets' normals.
-fn rim_edges(surface: &Surface, topo: &Topo, sharp_at: &[Vec<u32>], skip: &[bool]) -> Vec<u32> {
-    let turn = sharp_edges(surface, topo, RIM_TURN);
+fn rim_edges(topo: &Topo, turns: &[f64], sharp_at: &[Vec<u32>], skip: &[bool]) -> Vec<u32> {
+    let turning = |e: usize| turns[e] > RIM_TURN;
     // how many turning edges each node has
-    let mut turning = vec![0usize; surface.nodes.len()];
-    for edge in topo
-        .edges
-        .iter()
-        .zip(&turn)
-        .filter(|(_, t)| **t)
-        .map(|(e, _)| e)
-    {
-        edge.nodes.iter().for_each(|&w| turning[w as usize] += 1);
+    let mut count = vec![0usize; sharp_at.len()];
+    for (edge, _) in topo.edges.iter().zip(turns).filter(|(_, t)| **t > RIM_TURN) {
+        edge.nodes.iter().for_each(|&w| count[w as usize] += 1);
     }
     let mut rims = Vec::new();
     for (v, edges) in sharp_at.iter().enumerate() {
@@ -280,30 +277,19 @@ fn rim_edges(surface: &Surface, topo: &Topo, sharp_at: &[Vec<u32>], skip: &[bool
         if sharp_at[other as usize].len() != 2 {
             continue;
         }
-        let normals = |e: &crate::front::Edge| {
-            e.facets.map(|f| {
-                unit(fan_normal(
-                    &surface.nodes,
-                    surface.facets[f as usize].nodes(),
-                ))
-            })
-        };
         // the rim's far end must lie on the rim (two turning edges), not at a corner of its
         // own: on a wedge whose end cap is one triangle the rim edge runs to the far corner,
         // where the fan's thin cells then fold
-        let corner = |w: u32| turning[w as usize] > 2;
+        let corner = |w: u32| w != v as u32 && count[w as usize] > 2;
         let best = topo
             .edges
             .iter()
             .enumerate()
             .filter(|(e, edge)| {
-                turn[*e] && edge.nodes.contains(&(v as u32)) && *e != edges[0] as usize
+                turning(*e) && *e != edges[0] as usize && edge.nodes.contains(&(v as u32))
             })
-            .filter(|(_, edge)| !edge.nodes.iter().any(|&w| w != v as u32 && corner(w)))
-            .map(|(e, edge)| {
-                let [nf, ng] = normals(edge);
-                (angle_between(nf, ng), e)
-            })
+            .filter(|(_, edge)| !edge.nodes.iter().any(|&w| corner(w)))
+            .map(|(e, _)| (turns[e], e))
             .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)));
         if let Some((_, e)) = best {
             rims.push(e as u32);

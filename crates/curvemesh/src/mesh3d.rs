@@ -75,7 +75,7 @@ pub(crate) fn mesh(
         Ok::<_, crate::error::Error>((mesh, flagged, front))
     })?;
     let grown_layers = grown.layer_heights.len();
-    let filled = match &far {
+    let mut filled = match &far {
         Some((far, _)) => Some(timed(r, o, ("fill", "volume fill"), |_| {
             crate::fill3d::fill(&mesh, &surface, far, &crate::fill3d::options(case))
         })?),
@@ -88,7 +88,6 @@ pub(crate) fn mesh(
     }
     // the tetrahedra no cut mends (steps down to stopped columns, fronts facing each other)
     // mended by moving their free nodes, in the layers and the fill alike
-    let mut filled = filled;
     let smoothed = timed(r, o, ("smooth", "worst tetrahedra"), |_| {
         Ok::<_, crate::error::Error>(pipeline3d::smooth(
             &mut mesh,

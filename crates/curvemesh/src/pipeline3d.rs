@@ -343,9 +343,9 @@ pub fn cut(
 /// the aim (150°), under its bar (160°).
 pub const SMOOTH_TARGET_DEG: f64 = 150.0;
 
-/// Moves the free nodes of `mesh`'s tetrahedra over [`SMOOTH_TARGET_DEG`]
-/// (`topo_cut::smooth`): every node but the walls', their columns' first children (the first
-/// layer's height stays what the user asked) and a far field's. `mesh` is the linear mesh,
+/// Moves the nodes of `mesh`'s tetrahedra over [`SMOOTH_TARGET_DEG`] (`topo_cut::smooth`):
+/// every node but the walls' and a far field's, the columns' first children only across their
+/// extrusion edges (the first layer's height stays what the user asked). `mesh` is the linear mesh,
 /// the layers `layers` (its first nodes) and their fill `filled` (its points after them);
 /// both take the moved positions.
 pub fn smooth(

@@ -7,6 +7,7 @@
 
 use crate::mesh::{GHOST, Mesh, face_key, face_of};
 use geom_predicates::orient3d;
+use geom_predicates::vector::dist;
 use std::collections::HashSet;
 
 /// Faces that insertion must keep (sorted corner triples).
@@ -158,13 +159,11 @@ impl Mesh {
             return false;
         }
         let x = k.map(|v| self.p(v));
-        let d2 = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
-        let shortest = (0..4)
-            .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
-            .map(|(i, j)| d2(x[i], x[j]))
+        let shortest = crate::cavity::EDGES
+            .iter()
+            .map(|&(i, j)| dist(x[i], x[j]))
             .fold(f64::INFINITY, f64::min);
-        x.iter()
-            .any(|&c| d2(c, p) <= NEAR_VERTEX * NEAR_VERTEX * shortest)
+        x.iter().any(|&c| dist(c, p) <= NEAR_VERTEX * shortest)
     }
 
     /// The walk's fallback (it never needed so far): every tet tried.

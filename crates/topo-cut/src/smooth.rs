@@ -23,11 +23,11 @@
 //! over the target is left to the bit.
 
 use geom_predicates::vector::{cross3, dist, dot};
-use mesh_model::measure3d::{corner_determinants, tet_max_dihedral_deg_of};
-use mesh_model::{Mesh, Shape, is_positive_tet};
+use mesh_model::measure3d::min_corner_scaled_jacobian;
+use mesh_model::{Mesh, Shape};
 
-/// The quality of a star with an inverted cell (or a prism or hexahedron under its floor).
-const REJECTED: f64 = f64::INFINITY;
+use crate::cone::Piece;
+use crate::improve::piece_quality;
 
 /// The bar (degrees) over which a tetrahedron is mended first, and may be mended at the cost
 /// of pushing others over the target (by [`BAR_GAIN_DEG`] at least): the issues' bar on
@@ -132,7 +132,7 @@ fn scan(mesh: &Mesh, target: f64) -> (f64, Vec<(f64, usize)>) {
     let mut bad = Vec::new();
     for i in 0..mesh.cells.len() {
         if mesh.cells.get(i).ty.shape == Shape::Tet {
-            let q = tet_quality(mesh, i);
+            let q = cell_quality(mesh, i);
             worst = worst.max(q);
             if q > target {
                 bad.push((q, i));
@@ -177,7 +177,7 @@ pub fn smooth_worst_tets(mesh: &mut Mesh, freedom: &[Freedom], target_deg: f64) 
     // those over the bar first, each move free to push others over the target; then those
     // over the target, no move pushing more over it (see `Star::better`)
     if target_deg < BAR_DEG {
-        let (_, over_bar) = scan(mesh, BAR_DEG);
+        let over_bar = bad.iter().copied().filter(|b| b.0 > BAR_DEG).collect();
         out.moves += sweeps(mesh, freedom, BAR_DEG, over_bar);
         let (_, bad) = scan(mesh, target_deg);
         out.moves += sweeps(mesh, freedom, target_deg, bad);
@@ -235,50 +235,28 @@ fn sweeps(
         bad = now
             .into_iter()
             .filter(|&i| mesh.cells.get(i).ty.shape == Shape::Tet)
-            .map(|i| (tet_quality(mesh, i), i))
+            .map(|i| (cell_quality(mesh, i), i))
             .filter(|b| b.0 > target)
             .collect();
     }
     moves
 }
 
-/// The largest dihedral angle of tetrahedron `i`, or [`REJECTED`] when it is not positive.
-fn tet_quality(mesh: &Mesh, i: usize) -> f64 {
-    let k = mesh.cells.get(i).corners();
-    let p = [0, 1, 2, 3].map(|j| mesh.nodes[k[j] as usize]);
-    if !is_positive_tet(p[0], p[1], p[2], p[3]) {
-        return REJECTED;
-    }
-    tet_max_dihedral_deg_of(p)
-}
-
-/// Whether cell `i` is positive at every corner, and its smallest corner scaled Jacobian
-/// when a prism or hexahedron (1 otherwise).
-fn cell_check(mesh: &Mesh, i: usize) -> Option<f64> {
+/// The largest dihedral angle of cell `i` if a tetrahedron, 0 for another positive cell,
+/// `improve::INVERTED` for a cell with a corner that is not positive (`piece_quality`).
+fn cell_quality(mesh: &Mesh, i: usize) -> f64 {
     let c = mesh.cells.get(i);
-    let k = c.corners();
-    let x = |j: usize| mesh.nodes[k[j] as usize];
-    for t in c.ty.shape.corner_tets() {
-        if !is_positive_tet(x(t[0]), x(t[1]), x(t[2]), x(t[3])) {
-            return None;
-        }
-    }
-    Some(match c.ty.shape {
-        Shape::Prism | Shape::Hex => {
-            let p: Vec<[f64; 3]> = (0..k.len()).map(x).collect();
-            corner_determinants(&p, true)
-                .into_iter()
-                .fold(f64::INFINITY, f64::min)
-        }
-        _ => 1.0,
-    })
+    let mut k = [0u32; 8];
+    k[..c.corners().len()].copy_from_slice(c.corners());
+    let piece: Piece = (c.ty.shape, k);
+    piece_quality(&mesh.nodes, &piece)
 }
 
 /// The quality of the cells `star` around a node, for a target of `target` degrees: the
-/// largest dihedral angle of its tetrahedra ([`REJECTED`] when a cell is not positive), their
-/// excess over the target summed (so that a move may mend one of several bad tetrahedra
-/// around the node) and how many are over it, and the smallest corner scaled Jacobian of its
-/// prisms and hexahedra.
+/// largest [`cell_quality`] (a cell that is not positive puts it out of reach of any move),
+/// the tetrahedra's excess over the target summed (so that a move may mend one of several bad
+/// tetrahedra around the node) and how many are over it, and the smallest corner scaled
+/// Jacobian of its prisms and hexahedra.
 fn star_quality(mesh: &Mesh, star: &[u32], target: f64) -> (Star, f64) {
     let mut worst = 0.0f64;
     let mut excess = 0.0;
@@ -286,16 +264,12 @@ fn star_quality(mesh: &Mesh, star: &[u32], target: f64) -> (Star, f64) {
     let mut sj = 1.0f64;
     for &c in star {
         let c = c as usize;
-        if mesh.cells.get(c).ty.shape == Shape::Tet {
-            let q = tet_quality(mesh, c);
-            worst = worst.max(q);
-            excess += (q - target).max(0.0);
-            over += usize::from(q > target);
-        } else {
-            match cell_check(mesh, c) {
-                Some(q) => sj = sj.min(q),
-                None => return (Star::REJECTED, sj),
-            }
+        let q = cell_quality(mesh, c);
+        worst = worst.max(q);
+        excess += (q - target).max(0.0);
+        over += usize::from(q > target);
+        if let Some(s) = min_corner_scaled_jacobian(mesh, c) {
+            sj = sj.min(s);
         }
     }
     (
@@ -318,12 +292,6 @@ struct Star {
 }
 
 impl Star {
-    const REJECTED: Star = Star {
-        worst: REJECTED,
-        excess: REJECTED,
-        over: usize::MAX,
-    };
-
     /// Whether `self` is better than `than`: a lower worst angle with no more tetrahedra
     /// over the target (any number where the worst was over [`BAR_DEG`] and falls by
     /// [`BAR_GAIN_DEG`]), or the same worst
@@ -346,15 +314,18 @@ fn move_node(
     target: f64,
     scale: &[f64],
 ) -> bool {
+    if freedom == Freedom::Fixed {
+        return false;
+    }
     let start = mesh.nodes[v as usize];
     // the nodes around, each kept at least half the shorter of its and `v`'s original
     // shortest edge away: the angles alone would let two nodes close in on each other
     // (a needle's largest dihedral angle is small) until they meet
     let mut near: Vec<(u32, f64)> = star
         .iter()
-        .flat_map(|&c| mesh.cells.get(c as usize).corners().to_vec())
-        .filter(|&w| w != v)
-        .map(|w| (w, 0.5 * scale[v as usize].min(scale[w as usize])))
+        .flat_map(|&c| mesh.cells.get(c as usize).corners())
+        .filter(|&&w| w != v)
+        .map(|&w| (w, 0.5 * scale[v as usize].min(scale[w as usize])))
         .collect();
     near.sort_unstable_by_key(|n| n.0);
     near.dedup_by_key(|n| n.0);
@@ -362,11 +333,9 @@ fn move_node(
         near.iter()
             .all(|&(w, floor)| dist(p, mesh.nodes[w as usize]) >= floor)
     };
-    let shortest = star
+    let shortest = near
         .iter()
-        .flat_map(|&c| mesh.cells.get(c as usize).corners().to_vec())
-        .filter(|&w| w != v)
-        .map(|w| dist(start, mesh.nodes[w as usize]))
+        .map(|&(w, _)| dist(start, mesh.nodes[w as usize]))
         .fold(f64::INFINITY, f64::min);
     if !(shortest.is_finite() && shortest > 0.0) {
         return false;
