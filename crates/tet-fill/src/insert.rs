@@ -159,9 +159,10 @@ impl Mesh {
             return false;
         }
         let x = k.map(|v| self.p(v));
-        let shortest = crate::cavity::EDGES
-            .iter()
-            .map(|&(i, j)| dist(x[i], x[j]))
+        // (the pairs by hand: `cavity`'s edge list would make insert → cavity → flip → insert)
+        let shortest = (0..4)
+            .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+            .map(|(i, j)| dist(x[i], x[j]))
             .fold(f64::INFINITY, f64::min);
         x.iter().any(|&c| dist(c, p) <= NEAR_VERTEX * shortest)
     }
