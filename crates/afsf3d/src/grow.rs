@@ -18,6 +18,7 @@ use crate::front::{Topo, coarse_nodes, ideal_steps};
 use crate::layer::{add_twisted, choose_merges, merged_layer};
 use crate::proximity::facing_fronts;
 use crate::repair::{CUT_LIMIT, repair_layer};
+use crate::shape::{RESHAPE_SPACINGS, reshape_layer, shape_bars};
 use crate::squeeze::squeezed_layer;
 use crate::stop::{MIN_RISE, rises, why_failed};
 use crate::{ColumnStop, GrowError, GrowStats, Grown3d, LayerParams, StopWhy};
@@ -178,7 +179,9 @@ fn grow_from(
         let rounds = smoothing_rounds(params.smoothing, thickness, wall.spacing);
         // where the layers are as thick as half the wall's spacing, squeezed cells merge too
         let squeezing = 2.0 * thickness >= wall.spacing;
-        let at = (layer, height, rounds, squeezing);
+        // the facets kept in shape while the layers are a boundary layer's (`shape`)
+        let reshaping = thickness <= RESHAPE_SPACINGS * wall.spacing;
+        let at = (layer, height, rounds, squeezing, reshaping);
         let first = (layer == 0).then_some((wall, fanned, free));
         let (next, stops) = match grow_layer(&mut state, &topo, params, at, first)? {
             Ok(grown) => grown,
@@ -233,7 +236,7 @@ fn grow_layer(
     state: &mut State,
     topo: &Topo,
     params: &LayerParams,
-    (layer, height, rounds, squeezing): (usize, f64, usize, bool),
+    (layer, height, rounds, squeezing, reshaping): (usize, f64, usize, bool, bool),
     first: Option<(&Wall<'_>, &Fanned, bool)>,
 ) -> Result<Result<(Layer, LayerStops), Vec<u32>>, GrowError> {
     let front = &state.front;
@@ -350,6 +353,10 @@ fn grow_layer(
     if layer > 0 {
         state.stats.repaired +=
             repair_layer(&front.nodes, &front.facets, &dir, &mut next, CUT_LIMIT);
+    }
+    if layer > 0 && reshaping {
+        state.stats.reshaped +=
+            reshape_layer(&front.nodes, &front.facets, &state.shape_bars, &mut next);
     }
     Ok(Ok((next, LayerStops { rise, why })))
 }
@@ -524,6 +531,9 @@ struct State {
     /// For each front facet, its mesh face (the bottom of the next cell) and its pipe.
     front_faces: Vec<u32>,
     pipes: Vec<u32>,
+    /// For each front facet, the corner scaled Jacobian its cell is held to (`shape`): what
+    /// its wall facet allows.
+    shape_bars: Vec<f64>,
     /// The number of surface nodes: the columns after them are the fans' copies'.
     wall_nodes: usize,
     /// For each column, whether its wall node is on a coarsely faceted curve
@@ -580,6 +590,7 @@ impl State {
             front_mesh: fanned.fan.origin.clone(),
             front_faces,
             pipes: fanned.pipe.clone(),
+            shape_bars: shape_bars(&fanned.wall.nodes, &fanned.wall.facets, fanned.real_facets),
             wall_nodes: n,
             coarse: fanned
                 .fan
@@ -665,6 +676,11 @@ impl State {
             .top_of
             .iter()
             .map(|&f| self.pipes[f as usize])
+            .collect();
+        self.shape_bars = next
+            .top_of
+            .iter()
+            .map(|&f| self.shape_bars[f as usize])
             .collect();
         self.front.facet_patch = next
             .top_of

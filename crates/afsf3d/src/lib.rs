@@ -110,6 +110,7 @@ mod grow;
 mod layer;
 mod proximity;
 mod repair;
+mod shape;
 mod squeeze;
 mod stop;
 mod upright;
@@ -290,6 +291,8 @@ pub struct GrowStats {
     pub merges: usize,
     /// Children moved by the repair of cells without a good cone cut (`docs/3d.md`).
     pub repaired: usize,
+    /// Children moved to give cells that lost their shape their angles back (`shape`).
+    pub reshaped: usize,
     /// Layers whose height the limit of [`LayerParams::max_aspect`] held below
     /// `first_height × growth^k`.
     pub capped_layers: usize,

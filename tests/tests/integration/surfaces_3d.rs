@@ -114,9 +114,18 @@ fn every_untuned_body_grows_at_the_default_keys() {
         }
         assert_eq!(stopped > 0, stops, "{name}: {stopped} columns stopped");
         assert_eq!(r["problems"].as_array().unwrap().len(), 0, "{name}");
-        // the mixed cut's prisms keep the default corner floor, 0.2
+        // the mixed cut's prisms keep the default corner floor, 0.2; on the smooth bodies,
+        // issue 47's 0.5 where the wall allows it (a prism's corner is at most its wall
+        // triangle's corner sine: 0.63 on the torus, 0.50 on the fused spheres, 0.45 on the
+        // two spheres), kept by the reshaping of the fronts (0.37, 0.21, 0.44 without)
+        let floor = match name {
+            "torus" => 0.5,
+            "fused-spheres" => 0.45,
+            "two-spheres" => 0.43,
+            _ => 0.2,
+        };
         let sj = &r["quality"]["min_corner_scaled_jacobian"]["value"];
-        assert!(sj.as_f64().unwrap() >= 0.2, "{name}: {sj}");
+        assert!(sj.as_f64().unwrap() >= floor, "{name}: {sj}");
         let worst = r["quality"]["max_dihedral_deg"].as_f64().unwrap();
         assert!(worst <= MAX_DIHEDRAL_DEG, "{name}: {worst}");
         let note = r["notes"].as_array().unwrap().iter();
