@@ -180,7 +180,7 @@ fn grow_from(
         // where the layers are as thick as half the wall's spacing, squeezed cells merge too
         let squeezing = 2.0 * thickness >= wall.spacing;
         // the facets kept in shape while the layers are a boundary layer's (`shape`)
-        let reshaping = thickness <= RESHAPE_SPACINGS * wall.spacing;
+        let reshaping = params.reshape && thickness <= RESHAPE_SPACINGS * wall.spacing;
         let at = (layer, height, rounds, squeezing, reshaping);
         let first = (layer == 0).then_some((wall, fanned, free));
         let (next, stops) = match grow_layer(&mut state, &topo, params, at, first)? {

@@ -200,6 +200,10 @@ pub struct LayerParams {
     /// the node (the mean length of its front edges), so a fill's cells across it are not
     /// flat against the front's curving. Default 0.
     pub stop_gap_spacing: f64,
+    /// Whether the children of cells whose facets lost their shape slide to give them their
+    /// angles back (`shape`; default true). Off, the layers are those of the springs alone
+    /// (a caller whose fill cannot recover a reshaped front grows them again so).
+    pub reshape: bool,
     /// A convex wall edge whose two facets' normals turn by more than this (degrees) is
     /// sharp, and each node of a chain of such edges grows a fan of columns around it
     /// instead of one along the bisector (`fan`; 2D's `fan_threshold_deg`). Default 120 (a
@@ -236,6 +240,7 @@ impl Default for LayerParams {
             max_thickness: f64::INFINITY,
             stop_gap: 0.0,
             stop_gap_spacing: 0.0,
+            reshape: true,
             fan_threshold_deg: 120.0,
             fan_max_angle_deg: 60.0,
         }

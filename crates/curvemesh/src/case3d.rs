@@ -385,6 +385,11 @@ pub(crate) fn parse(
     );
     let order = file.curving.order.unwrap_or(1);
     check_order(order, &format!("{origin}: [curving] order = {order}"))?;
+    let cells = file.cut.cells.unwrap_or(CutCells::Mixed);
+    // the fronts' facets kept in shape for the prisms the mixed cut keeps (`afsf3d`'s
+    // `shape`); a tetrahedral cut is judged by its dihedral angles, which the reshaped fronts
+    // do not lower, and the extruded 30P30N's fill could not recover its reshaped fronts
+    layers.reshape = cells == CutCells::Mixed;
     Ok(Case3d {
         name: file.name.unwrap_or_else(|| default_name.to_string()),
         origin: origin.to_string(),
@@ -392,7 +397,7 @@ pub(crate) fn parse(
         farfield,
         layers,
         min_coverage,
-        cells: file.cut.cells.unwrap_or(CutCells::Mixed),
+        cells,
         max_lean_deg,
         min_corner_sj,
         order,

@@ -60,27 +60,19 @@ pub(crate) fn mesh(
         }
         None => case,
     };
-    let grown = timed(r, o, ("grow", "layers (AFSF 3D)"), |_| {
-        pipeline3d::grow(case, &surface)
-    })?;
-    // columns that stopped: too few full ones fail the run here, before any output
-    let columns = crate::columns3d::columns(&surface, &grown, case.min_coverage, far.is_some());
-    columns.check(&case.origin)?;
-    // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
-    let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
-        let front = pipeline3d::front_measures(&surface, &grown);
-        let (mut mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
-        // the wall's facets in their surface patches' groups (the wing's tips apart)
-        crate::groups3d::wall_groups(&surface, &mut mesh)?;
-        Ok::<_, crate::error::Error>((mesh, flagged, front))
-    })?;
-    let grown_layers = grown.layer_heights.len();
+    let mut layered = grow_and_cut(case, &surface, far.is_some(), r, o)?;
     let mut filled = match &far {
-        Some((far, _)) => Some(timed(r, o, ("fill", "volume fill"), |_| {
-            crate::fill3d::fill(&mesh, &surface, far, &crate::fill3d::options(case))
-        })?),
+        Some((far, _)) => Some(fill_or_regrow(case, &surface, far, &mut layered, r, o)?),
         None => None,
     };
+    let Layered {
+        grown,
+        columns,
+        mesh,
+        cut_anyway,
+        front,
+    } = layered;
+    let grown_layers = grown.layer_heights.len();
     let mut layers_mesh = mesh;
     let mut mesh = layers_mesh.clone();
     if let Some(f) = &filled {
@@ -164,6 +156,79 @@ pub(crate) fn mesh(
         linear,
         fill_cells: 0,
     })
+}
+
+/// The layers grown and cut, with what the report needs of them.
+struct Layered {
+    grown: afsf3d::Grown3d,
+    columns: crate::columns3d::Columns,
+    mesh: mesh_model::Mesh,
+    cut_anyway: pipeline3d::CutAnyway,
+    front: pipeline3d::FrontMeasures,
+}
+
+/// Grows `case`'s layers over `surface` (`filled`: a far field's fill follows) and cuts them
+/// into standard cells; too few full columns fail here, before any output.
+fn grow_and_cut(
+    case: &Case3d,
+    surface: &geom_surface::Surface,
+    filled: bool,
+    r: &mut Report,
+    o: &mut dyn Observer,
+) -> Result<Layered> {
+    let grown = timed(r, o, ("grow", "layers (AFSF 3D)"), |_| {
+        pipeline3d::grow(case, surface)
+    })?;
+    let columns = crate::columns3d::columns(surface, &grown, case.min_coverage, filled);
+    columns.check(&case.origin)?;
+    // (the fronts' measures are taken once: the mixed cut's leaning test reads them too)
+    let (mesh, cut_anyway, front) = timed(r, o, ("cut", "cut into standard cells"), |_| {
+        let front = pipeline3d::front_measures(surface, &grown);
+        let (mut mesh, flagged) = pipeline3d::cut(case, &grown, &front)?;
+        // the wall's facets in their surface patches' groups (the wing's tips apart)
+        crate::groups3d::wall_groups(surface, &mut mesh)?;
+        Ok::<_, crate::error::Error>((mesh, flagged, front))
+    })?;
+    Ok(Layered {
+        grown,
+        columns,
+        mesh,
+        cut_anyway,
+        front,
+    })
+}
+
+/// Fills the space between `layered`'s last fronts and the far field `far`. Where the fill
+/// cannot recover a front the growth reshaped (`afsf3d`'s `shape`: on the extruded 30P30N its
+/// boundary recovery met an edge it could not flip clear), the layers are grown again
+/// unreshaped and filled (a note says so); a second failure is the run's error.
+fn fill_or_regrow(
+    case: &Case3d,
+    surface: &geom_surface::Surface,
+    far: &geom_surface::Surface,
+    layered: &mut Layered,
+    r: &mut Report,
+    o: &mut dyn Observer,
+) -> Result<crate::fill3d::Filled> {
+    let options = crate::fill3d::options(case);
+    let fill = |mesh: &mesh_model::Mesh, r: &mut Report, o: &mut dyn Observer| {
+        timed(r, o, ("fill", "volume fill"), |_| {
+            crate::fill3d::fill(mesh, surface, far, &options)
+        })
+    };
+    match fill(&layered.mesh, r, o) {
+        Err(e) if case.layers.reshape && layered.grown.stats.reshaped > 0 => {
+            let mut unshaped = case.clone();
+            unshaped.layers.reshape = false;
+            *layered = grow_and_cut(&unshaped, surface, true, r, o)?;
+            r.notes.push(format!(
+                "the layers grown again without reshaping their fronts' facets: the fill \
+                 could not recover the reshaped fronts ({e})"
+            ));
+            fill(&layered.mesh, r, o)
+        }
+        other => other,
+    }
 }
 
 /// The report's note on the tetrahedra mended by moving nodes, when any was.
