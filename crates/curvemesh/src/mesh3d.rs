@@ -62,7 +62,15 @@ pub(crate) fn mesh(
     };
     let mut layered = grow_and_cut(case, &surface, far.is_some(), r, o)?;
     let mut filled = match &far {
-        Some((far, _)) => Some(fill_or_regrow(case, &surface, far, &mut layered, r, o)?),
+        Some((far, _)) => {
+            let options = crate::fill3d::options(case);
+            let fill = |l: &Layered, r: &mut Report, o: &mut dyn Observer| {
+                timed(r, o, ("fill", "volume fill"), |_| {
+                    crate::fill3d::fill(&l.mesh, &surface, far, &options)
+                })
+            };
+            Some(fill_or_regrow(case, &surface, &mut layered, (r, o), fill)?)
+        }
         None => None,
     };
     let Layered {
@@ -198,25 +206,19 @@ fn grow_and_cut(
     })
 }
 
-/// Fills the space between `layered`'s last fronts and the far field `far`. Where the fill
-/// cannot recover a front the growth reshaped (`afsf3d`'s `shape`: on the extruded 30P30N its
-/// boundary recovery met an edge it could not flip clear), the layers are grown again
-/// unreshaped and filled (a note says so); a second failure is the run's error.
-fn fill_or_regrow(
+/// Fills the space between `layered`'s last fronts and the far field by `fill`. Where the
+/// fill cannot recover a front the growth reshaped (`afsf3d`'s `shape`: on the extruded
+/// 30P30N cut into mixed cells its boundary recovery met an edge it could not flip clear),
+/// the layers are grown again unreshaped and filled (a note says so); a second failure is
+/// the run's error.
+fn fill_or_regrow<T>(
     case: &Case3d,
     surface: &geom_surface::Surface,
-    far: &geom_surface::Surface,
     layered: &mut Layered,
-    r: &mut Report,
-    o: &mut dyn Observer,
-) -> Result<crate::fill3d::Filled> {
-    let options = crate::fill3d::options(case);
-    let fill = |mesh: &mesh_model::Mesh, r: &mut Report, o: &mut dyn Observer| {
-        timed(r, o, ("fill", "volume fill"), |_| {
-            crate::fill3d::fill(mesh, surface, far, &options)
-        })
-    };
-    match fill(&layered.mesh, r, o) {
+    (r, o): (&mut Report, &mut dyn Observer),
+    fill: impl Fn(&Layered, &mut Report, &mut dyn Observer) -> Result<T>,
+) -> Result<T> {
+    match fill(layered, r, o) {
         Err(e) if case.layers.reshape && layered.grown.stats.reshaped > 0 => {
             let mut unshaped = case.clone();
             unshaped.layers.reshape = false;
@@ -225,7 +227,7 @@ fn fill_or_regrow(
                 "the layers grown again without reshaping their fronts' facets: the fill \
                  could not recover the reshaped fronts ({e})"
             ));
-            fill(&layered.mesh, r, o)
+            fill(layered, r, o)
         }
         other => other,
     }
@@ -320,5 +322,44 @@ fn push_cut_note(report: &mut Report, case: &Case3d, cut: pipeline3d::CutAnyway)
              hexahedra: {}",
             why.join(", ")
         ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::observer::Silent;
+
+    /// A fill that refuses reshaped fronts gets the layers grown again unreshaped, with a
+    /// note; one that takes them keeps them.
+    #[test]
+    fn a_fill_that_cannot_recover_reshaped_fronts_gets_them_grown_again_unreshaped() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/cases3d/torus.toml");
+        let crate::load::AnyCase::Three(case) = crate::load::load(path).unwrap() else {
+            panic!("a 3D case")
+        };
+        assert!(case.layers.reshape, "the mixed cut reshapes");
+        let surface = pipeline3d::surface(&case).unwrap().0;
+        let (mut r, mut o) = (Report::new("torus", 1), Silent);
+        let mut layered = grow_and_cut(&case, &surface, true, &mut r, &mut o).unwrap();
+        let reshaped = layered.grown.stats.reshaped;
+        assert!(reshaped > 0);
+        let refuse = |l: &Layered, _: &mut Report, _: &mut dyn Observer| {
+            if l.grown.stats.reshaped > 0 {
+                bail!("the volume fill: facet 0 cannot be recovered")
+            }
+            Ok(l.mesh.cells.len())
+        };
+        let cells = fill_or_regrow(&case, &surface, &mut layered, (&mut r, &mut o), refuse);
+        assert_eq!(cells.unwrap(), layered.mesh.cells.len());
+        assert_eq!(layered.grown.stats.reshaped, 0);
+        assert!(r.notes.iter().any(|n| n.contains("grown again without reshaping")));
+        // a fill that takes them: the reshaped layers stay, no note
+        let mut r = Report::new("torus", 1);
+        let mut layered = grow_and_cut(&case, &surface, true, &mut r, &mut o).unwrap();
+        let take = |l: &Layered, _: &mut Report, _: &mut dyn Observer| Ok(l.grown.stats.reshaped);
+        let kept = fill_or_regrow(&case, &surface, &mut layered, (&mut r, &mut o), take);
+        assert_eq!(kept.unwrap(), reshaped);
+        assert!(r.notes.is_empty());
     }
 }
