@@ -371,6 +371,61 @@ mod tests {
         (front, facets, layer)
     }
 
+    /// The shortfall of every cell's corners under their bars, as the search sums it.
+    fn shortfall(front: &[[f64; 3]], facets: &[Facet], bars: &[f64], layer: &Layer) -> f64 {
+        let around: Vec<u32> = (0..facets.len() as u32).collect();
+        let star = Star {
+            front,
+            facets,
+            around: &around,
+            bar: bars,
+        };
+        star.score(layer).1
+    }
+
+    proptest::proptest! {
+        /// Any star of six triangles around a node, its children lifted 0.2 and pushed
+        /// sideways: the reshaped layer keeps every cell valid and every child's height, and
+        /// its summed shortfall never rises.
+        #[test]
+        fn reshaping_keeps_every_cell_valid_and_never_worsens_the_shortfall(
+            radii in proptest::collection::vec(0.6f64..1.4, 6),
+            turns in proptest::collection::vec(-0.25f64..0.25, 6),
+            pushes in proptest::collection::vec((-0.15f64..0.15, -0.15f64..0.15), 7),
+        ) {
+            let mut front = vec![[0.0, 0.0, 0.0]];
+            front.extend((0..6).map(|i| {
+                let a = std::f64::consts::FRAC_PI_3 * (i as f64 + turns[i]);
+                [radii[i] * a.cos(), radii[i] * a.sin(), 0.0]
+            }));
+            let facets: Vec<Facet> =
+                (0..6u32).map(|i| Facet::tri(0, 1 + i, 1 + (i + 1) % 6)).collect();
+            let children: Vec<[f64; 3]> = front
+                .iter()
+                .zip(&pushes)
+                .map(|(p, &(dx, dy))| [p[0] + dx, p[1] + dy, 0.2])
+                .collect();
+            let ideal = Ideal {
+                nodes: &front,
+                dir: &[],
+                len: &[],
+                balanced: &children,
+                stopped: &[],
+                fan: None,
+            };
+            let mut layer = Layer::new(&ideal, &facets, &[]);
+            proptest::prop_assume!(facets.iter().all(|f| layer_cell_ok(&front, &layer, f)));
+            let bars = shape_bars(&front, &facets, facets.len());
+            let before = shortfall(&front, &facets, &bars, &layer);
+            let moved = reshape_layer(&front, &facets, &bars, &mut layer);
+            let after = shortfall(&front, &facets, &bars, &layer);
+            proptest::prop_assert!(after <= before, "{before} -> {after}");
+            proptest::prop_assert!(moved == 0 || after < before);
+            proptest::prop_assert!(facets.iter().all(|f| layer_cell_ok(&front, &layer, f)));
+            proptest::prop_assert!(layer.children.iter().all(|c| c[2] == 0.2));
+        }
+    }
+
     fn least_top_corner(front: &[[f64; 3]], facets: &[Facet], layer: &Layer) -> f64 {
         facets
             .iter()

@@ -334,7 +334,10 @@ mod tests {
     /// note; one that takes them keeps them.
     #[test]
     fn a_fill_that_cannot_recover_reshaped_fronts_gets_them_grown_again_unreshaped() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/cases3d/torus.toml");
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/cases3d/torus.toml"
+        );
         let crate::load::AnyCase::Three(case) = crate::load::load(path).unwrap() else {
             panic!("a 3D case")
         };
@@ -353,7 +356,11 @@ mod tests {
         let cells = fill_or_regrow(&case, &surface, &mut layered, (&mut r, &mut o), refuse);
         assert_eq!(cells.unwrap(), layered.mesh.cells.len());
         assert_eq!(layered.grown.stats.reshaped, 0);
-        assert!(r.notes.iter().any(|n| n.contains("grown again without reshaping")));
+        assert!(
+            r.notes
+                .iter()
+                .any(|n| n.contains("grown again without reshaping"))
+        );
         // a fill that takes them: the reshaped layers stay, no note
         let mut r = Report::new("torus", 1);
         let mut layered = grow_and_cut(&case, &surface, true, &mut r, &mut o).unwrap();
