@@ -48,11 +48,9 @@ pub(crate) const SHAPE_TARGET: f64 = 0.6;
 /// spacings thick).
 pub(crate) const RESHAPE_SPACINGS: f64 = 4.0;
 
-/// A cell is reshaped when a top corner falls under this share of its bar: with 0.99 or 0.95
-/// the extruded 30P30N's fronts in its gaps were reshaped too, and the fill between them
-/// reached 166°–169° (20 to 26 tetrahedra over 160°, none unreshaped); at 0.9 its layers are
-/// left to the bit, and the torus keeps 0.53 (0.56 at 0.99).
-const SLACK: f64 = 0.9;
+/// A cell is reshaped when a top corner falls under this share of its bar (at 0.9 the torus
+/// kept 0.53 against 0.56).
+const SLACK: f64 = 0.99;
 
 /// How far (degrees) a moved child's extrusion edge may lean off its front's normal (or as
 /// far as it already did): under the mixed cut's 30°, so that no reshaped prism is cut.

@@ -117,7 +117,7 @@ fn every_untuned_body_grows_at_the_default_keys() {
         // the mixed cut's prisms keep the default corner floor, 0.2; on the smooth bodies,
         // issue 47's 0.5 where the wall allows it (a prism's corner is at most its wall
         // triangle's corner sine: 0.63 on the torus, 0.50 on the fused spheres, 0.45 on the
-        // two spheres), kept by the reshaping of the fronts (torus 0.53, fused spheres 0.44;
+        // two spheres), kept by the reshaping of the fronts (torus 0.56, fused spheres 0.45;
         // 0.37 and 0.21 without)
         let floor = match name {
             "torus" => 0.5,
