@@ -246,6 +246,45 @@ impl Layer {
         facet.nodes().iter().all(|&v| self.is_kept(v))
     }
 
+    /// The unmerged layer of `children` over the front `front`, `facets` (for tests).
+    #[cfg(test)]
+    pub fn unmerged(front: &[[f64; 3]], facets: &[Facet], children: &[[f64; 3]]) -> Layer {
+        let ideal = Ideal {
+            nodes: front,
+            dir: &[],
+            len: &[],
+            balanced: children,
+            stopped: &[],
+            fan: None,
+        };
+        Layer::new(&ideal, facets, &[])
+    }
+
+    /// The front facets (cells) around each child, each once.
+    pub fn cells_around(&self, facets: &[Facet]) -> Vec<Vec<u32>> {
+        let mut around: Vec<Vec<u32>> = vec![Vec::new(); self.children.len()];
+        for (f, facet) in facets.iter().enumerate() {
+            for &v in facet.nodes() {
+                let c = self.child[v as usize] as usize;
+                if around[c].last() != Some(&(f as u32)) {
+                    around[c].push(f as u32);
+                }
+            }
+        }
+        around
+    }
+
+    /// The sum over child `c`'s parents (one, or two when merged) of their vectors in
+    /// `per_node` (one per front node): a merged child's direction or normal, unnormalised.
+    pub fn parents_sum(&self, c: usize, per_node: &[[f64; 3]]) -> [f64; 3] {
+        self.parents[c]
+            .iter()
+            .filter(|&&v| v != NONE)
+            .fold([0.0; 3], |s, &v| {
+                std::array::from_fn(|d| s[d] + per_node[v as usize][d])
+            })
+    }
+
     /// The point child `c` shrinks towards: its parent, or the midpoint of its two parents.
     pub fn base(&self, front: &[[f64; 3]], c: usize) -> [f64; 3] {
         match self.parents[c] {

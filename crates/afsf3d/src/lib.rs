@@ -104,6 +104,7 @@
 mod aspect;
 mod check;
 mod children;
+mod compass;
 mod fan;
 mod front;
 mod grow;

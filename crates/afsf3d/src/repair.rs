@@ -18,12 +18,13 @@
 
 use geom_predicates::vector::{cross3, dist, dot, sub};
 use geom_surface::{Facet, first_self_intersection, unit};
+use mesh_model::is_positive_tet;
 use mesh_model::measure3d::tet_max_dihedral_deg_of;
-use mesh_model::{NONE, is_positive_tet};
 use rayon::prelude::*;
 
 use crate::check::{cell_node, cell_sj, layer_cell_ok};
 use crate::children::Layer;
+use crate::compass::compass_search;
 
 /// The quality given to a cut with an inverted or flat tetrahedron.
 const INVERTED: f64 = 360.0;
@@ -152,16 +153,7 @@ pub(crate) fn repair_layer(
     if bad.is_empty() {
         return 0;
     }
-    // the cells around each child
-    let mut around: Vec<Vec<u32>> = vec![Vec::new(); layer.children.len()];
-    for (f, facet) in facets.iter().enumerate() {
-        for &v in facet.nodes() {
-            let c = layer.child[v as usize] as usize;
-            if around[c].last() != Some(&(f as u32)) {
-                around[c].push(f as u32);
-            }
-        }
-    }
+    let around = layer.cells_around(facets);
     let mut todo: Vec<u32> = bad
         .iter()
         .flat_map(|&f| facets[f].nodes().iter().map(|&v| layer.child[v as usize]))
@@ -172,14 +164,7 @@ pub(crate) fn repair_layer(
     let mut moved = 0;
     for &c in &todo {
         let c = c as usize;
-        let ideal = unit(
-            layer.parents[c]
-                .iter()
-                .filter(|&&v| v != NONE)
-                .fold([0.0; 3], |s, &v| {
-                    std::array::from_fn(|d| s[d] + dir[v as usize][d])
-                }),
-        );
+        let ideal = unit(layer.parents_sum(c, dir));
         if improve_child(front, facets, &around[c], ideal, c, layer, limit) {
             moved += 1;
         }
@@ -248,35 +233,22 @@ fn improve_child(
         return false;
     }
     let mut best = first;
-    let mut step = 0.25;
-    for _ in 0..6 {
-        let mut improved = true;
-        let mut rounds = 0;
-        while improved && rounds < 8 {
-            improved = false;
-            rounds += 1;
-            for m in &moves {
-                for sign in [1.0, -1.0] {
-                    let x = layer.children[c];
-                    let y: [f64; 3] = std::array::from_fn(|d| x[d] + sign * step * m[d]);
-                    let length = dist(y, base);
-                    if angle(sub(y, base), ideal) > max_dev || (length - h).abs() > LENGTH_BAND * h
-                    {
-                        continue;
-                    }
-                    layer.children[c] = y;
-                    let s = score(layer);
-                    if s.0 < best.0 - 1e-9 || (s.0 <= best.0 && s.1 < best.1 - 1e-9) {
-                        best = s;
-                        improved = true;
-                    } else {
-                        layer.children[c] = x;
-                    }
-                }
-            }
+    compass_search(start, &moves, (6, 8), |y| {
+        let length = dist(y, base);
+        if angle(sub(y, base), ideal) > max_dev || (length - h).abs() > LENGTH_BAND * h {
+            return false;
         }
-        step /= 2.0;
-    }
+        let x = layer.children[c];
+        layer.children[c] = y;
+        let s = score(layer);
+        if s.0 < best.0 - 1e-9 || (s.0 <= best.0 && s.1 < best.1 - 1e-9) {
+            best = s;
+            true
+        } else {
+            layer.children[c] = x;
+            false
+        }
+    });
     if best.0 < first.0 {
         true
     } else {
@@ -294,7 +266,6 @@ pub(crate) fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::children::Ideal;
 
     /// A triangle of the front (and its neighbours: a fan of four around node 0) grown by
     /// 0.2 along z, its top a cap: the child of node 2 pushed across, next to the
@@ -317,22 +288,10 @@ mod tests {
         (front, facets, children)
     }
 
-    fn layer_of(front: &[[f64; 3]], facets: &[Facet], children: &[[f64; 3]]) -> Layer {
-        let ideal = Ideal {
-            nodes: front,
-            dir: &[],
-            len: &[],
-            balanced: children,
-            stopped: &[],
-            fan: None,
-        };
-        Layer::new(&ideal, facets, &[])
-    }
-
     #[test]
     fn a_capped_top_is_repaired_by_moving_its_child_and_the_layer_stays_checked() {
         let (front, facets, children) = capped();
-        let mut layer = layer_of(&front, &facets, &children);
+        let mut layer = Layer::unmerged(&front, &facets, &children);
         // valid by the growth's checks, but no cut of the capped cell stays under 160°
         assert!(facets.iter().all(|f| layer_cell_ok(&front, &layer, f)));
         let capped = cell_cut(&front, &layer, &facets[0], 0.0);

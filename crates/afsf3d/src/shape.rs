@@ -29,11 +29,11 @@
 
 use geom_predicates::vector::{cross3, dist, sub};
 use geom_surface::{Facet, fan_normal, first_self_intersection, node_normals, unit};
-use mesh_model::NONE;
 use mesh_model::measure3d::corner_determinants;
 
 use crate::check::layer_cell_ok;
 use crate::children::Layer;
+use crate::compass::compass_search;
 use crate::repair::angle;
 
 /// The corner scaled Jacobian a cell is held to where its wall facet allows it: above issue
@@ -156,15 +156,7 @@ pub(crate) fn reshape_layer(
                 < SLACK * bar[f]
         }
     };
-    let mut around: Vec<Vec<u32>> = vec![Vec::new(); layer.children.len()];
-    for (f, facet) in facets.iter().enumerate() {
-        for &v in facet.nodes() {
-            let c = layer.child[v as usize] as usize;
-            if around[c].last() != Some(&(f as u32)) {
-                around[c].push(f as u32);
-            }
-        }
-    }
+    let around = layer.cells_around(facets);
     let normals = node_normals(front, facets);
     let sharp = near_sharp(front, facets, &normals);
     // the children that may move: every cell around them plain, with a bar, off sharp nodes
@@ -190,14 +182,7 @@ pub(crate) fn reshape_layer(
         let mut moved_now = 0;
         for &c in &todo {
             let c = c as usize;
-            let normal = unit(
-                layer.parents[c]
-                    .iter()
-                    .filter(|&&v| v != NONE)
-                    .fold([0.0; 3], |s, &v| {
-                        std::array::from_fn(|d| s[d] + normals[v as usize][d])
-                    }),
-            );
+            let normal = unit(layer.parents_sum(c, &normals));
             let star = Star {
                 front,
                 facets,
@@ -304,33 +289,21 @@ fn reshape_child(star: &Star<'_>, normal: [f64; 3], c: usize, layer: &mut Layer)
     // the least corner may fall a little, to trade one corner for its neighbours
     let floor = first.0.min(SHAPE_TARGET) * FLOOR;
     let mut best = first;
-    let mut step = 0.25;
-    for _ in 0..HALVINGS {
-        let mut improved = true;
-        let mut rounds = 0;
-        while improved && rounds < ROUNDS {
-            improved = false;
-            rounds += 1;
-            for m in &moves {
-                for sign in [1.0, -1.0] {
-                    let x = layer.children[c];
-                    let y: [f64; 3] = std::array::from_fn(|d| x[d] + sign * step * m[d]);
-                    if angle(sub(y, base), normal) > max_lean {
-                        continue;
-                    }
-                    layer.children[c] = y;
-                    let s = star.score(layer);
-                    if s.1 < best.1 && s.0 >= floor && star.valid(layer) {
-                        best = s;
-                        improved = true;
-                    } else {
-                        layer.children[c] = x;
-                    }
-                }
-            }
+    compass_search(start, &moves, (HALVINGS, ROUNDS), |y| {
+        if angle(sub(y, base), normal) > max_lean {
+            return false;
         }
-        step /= 2.0;
-    }
+        let x = layer.children[c];
+        layer.children[c] = y;
+        let s = star.score(layer);
+        if s.1 < best.1 && s.0 >= floor && star.valid(layer) {
+            best = s;
+            true
+        } else {
+            layer.children[c] = x;
+            false
+        }
+    });
     if best.1 < GAIN * first.1 {
         true
     } else {
@@ -342,7 +315,6 @@ fn reshape_child(star: &Star<'_>, normal: [f64; 3], c: usize, layer: &mut Layer)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::children::Ideal;
 
     /// A flat hexagon of six equilateral triangles around node 0, grown by 0.2 along z, the
     /// child of node 0 pushed sideways by `push`.
@@ -357,15 +329,7 @@ mod tests {
             .collect();
         let mut children: Vec<[f64; 3]> = front.iter().map(|p| [p[0], p[1], 0.2]).collect();
         children[0][0] += push;
-        let ideal = Ideal {
-            nodes: &front,
-            dir: &[],
-            len: &[],
-            balanced: &children,
-            stopped: &[],
-            fan: None,
-        };
-        let layer = Layer::new(&ideal, &facets, &[]);
+        let layer = Layer::unmerged(&front, &facets, &children);
         (front, facets, layer)
     }
 
@@ -403,15 +367,7 @@ mod tests {
                 .zip(&pushes)
                 .map(|(p, &(dx, dy))| [p[0] + dx, p[1] + dy, 0.2])
                 .collect();
-            let ideal = Ideal {
-                nodes: &front,
-                dir: &[],
-                len: &[],
-                balanced: &children,
-                stopped: &[],
-                fan: None,
-            };
-            let mut layer = Layer::new(&ideal, &facets, &[]);
+            let mut layer = Layer::unmerged(&front, &facets, &children);
             proptest::prop_assume!(facets.iter().all(|f| layer_cell_ok(&front, &layer, f)));
             let bars = shape_bars(&front, &facets, facets.len());
             let before = shortfall(&front, &facets, &bars, &layer);
