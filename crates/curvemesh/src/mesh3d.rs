@@ -208,9 +208,9 @@ fn grow_and_cut(
 
 /// Fills the space between `layered`'s last fronts and the far field by `fill`. Where the
 /// fill cannot recover a front the growth reshaped (`afsf3d`'s `shape`: on the extruded
-/// 30P30N cut into mixed cells its boundary recovery met an edge it could not flip clear),
-/// the layers are grown again unreshaped and filled (a note says so); a second failure is
-/// the run's error.
+/// 30P30N, its cells reshaped from 0.9 of their bars, the boundary recovery met an edge it
+/// could not flip clear), the layers are grown again unreshaped and filled (a note says so);
+/// a second failure is the run's error.
 fn fill_or_regrow<T>(
     case: &Case3d,
     surface: &geom_surface::Surface,
