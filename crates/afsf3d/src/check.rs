@@ -38,9 +38,13 @@ pub(crate) fn cell_node(front: &[[f64; 3]], layer: &Layer, v: u32) -> [f64; 3] {
     }
 }
 
-/// The smallest edge-normalised corner scaled Jacobian of the prism or hexahedron over the
-/// front facet `facet` (nodes `nodes`) whose node `v` has the child `top(v)`.
-pub(crate) fn cell_sj(nodes: &[[f64; 3]], facet: &Facet, top: impl Fn(u32) -> [f64; 3]) -> f64 {
+/// The edge-normalised corner scaled Jacobians of the prism or hexahedron over the front
+/// facet `facet` (nodes `nodes`) whose node `v` has the child `top(v)`, bottom corners first.
+pub(crate) fn cell_corners(
+    nodes: &[[f64; 3]],
+    facet: &Facet,
+    top: impl Fn(u32) -> [f64; 3],
+) -> Vec<f64> {
     let k = facet.nodes();
     let p: Vec<[f64; 3]> = k
         .iter()
@@ -48,6 +52,11 @@ pub(crate) fn cell_sj(nodes: &[[f64; 3]], facet: &Facet, top: impl Fn(u32) -> [f
         .chain(k.iter().map(|&v| top(v)))
         .collect();
     corner_determinants(&p, true)
+}
+
+/// The smallest of [`cell_corners`].
+pub(crate) fn cell_sj(nodes: &[[f64; 3]], facet: &Facet, top: impl Fn(u32) -> [f64; 3]) -> f64 {
+    cell_corners(nodes, facet, top)
         .into_iter()
         .fold(f64::INFINITY, f64::min)
 }

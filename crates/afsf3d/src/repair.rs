@@ -258,7 +258,7 @@ fn improve_child(
 }
 
 /// The angle between `a` and `b`, in radians.
-pub(crate) fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
     let c = dot(a, b) / (dot(a, a) * dot(b, b)).sqrt();
     c.clamp(-1.0, 1.0).acos()
 }

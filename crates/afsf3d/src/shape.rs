@@ -28,13 +28,11 @@
 //! are unchanged to the bit.
 
 use geom_predicates::vector::{cross3, dist, sub};
-use geom_surface::{Facet, fan_normal, first_self_intersection, node_normals, unit};
-use mesh_model::measure3d::corner_determinants;
+use geom_surface::{Facet, angle_between, fan_normal, first_self_intersection, node_normals, unit};
 
-use crate::check::layer_cell_ok;
+use crate::check::{cell_corners, layer_cell_ok};
 use crate::children::Layer;
 use crate::compass::compass_search;
-use crate::repair::angle;
 
 /// The corner scaled Jacobian a cell is held to where its wall facet allows it: above issue
 /// 47's 0.5 for the prisms of smooth bodies, with a margin for the layers above (0.7 and 0.8
@@ -83,27 +81,17 @@ fn least_corner_sine(x: &[[f64; 3]], facet: &Facet) -> f64 {
     (0..m)
         .map(|i| {
             let o = x[k[i] as usize];
-            let a = sub(x[k[(i + 1) % m] as usize], o);
-            let b = sub(x[k[(i + m - 1) % m] as usize], o);
-            let n = cross3(a, b);
-            let na = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            na / (dist(a, [0.0; 3]) * dist(b, [0.0; 3]))
+            let (a, b) = (x[k[(i + 1) % m] as usize], x[k[(i + m - 1) % m] as usize]);
+            angle_between(sub(a, o), sub(b, o)).sin()
         })
         .fold(1.0, f64::min)
 }
 
 /// The corner scaled Jacobians of the plain cell over `facet` (bottom corners first).
 fn corners(front: &[[f64; 3]], layer: &Layer, facet: &Facet) -> Vec<f64> {
-    let k = facet.nodes();
-    let p: Vec<[f64; 3]> = k
-        .iter()
-        .map(|&v| front[v as usize])
-        .chain(
-            k.iter()
-                .map(|&v| layer.children[layer.child[v as usize] as usize]),
-        )
-        .collect();
-    corner_determinants(&p, true)
+    cell_corners(front, facet, |v| {
+        layer.children[layer.child[v as usize] as usize]
+    })
 }
 
 /// Each wall facet's bar (`facets` over `nodes`, the first `real` of them the wall's, the
@@ -156,6 +144,10 @@ pub(crate) fn reshape_layer(
                 < SLACK * bar[f]
         }
     };
+    // a layer whose cells all keep their shape costs one look at each
+    if !(0..facets.len()).any(|f| low(layer, f)) {
+        return 0;
+    }
     let around = layer.cells_around(facets);
     let normals = node_normals(front, facets);
     let sharp = near_sharp(front, facets, &normals);
@@ -215,7 +207,7 @@ fn near_sharp(nodes: &[[f64; 3]], facets: &[Facet], normals: &[[f64; 3]]) -> Vec
     for f in facets {
         let n = unit(fan_normal(nodes, f.nodes()));
         for &v in f.nodes() {
-            sharp[v as usize] |= angle(n, normals[v as usize]) > max_turn;
+            sharp[v as usize] |= angle_between(n, normals[v as usize]) > max_turn;
         }
     }
     let mut near = sharp.clone();
@@ -274,7 +266,7 @@ fn reshape_child(star: &Star<'_>, normal: [f64; 3], c: usize, layer: &mut Layer)
     if first.1 <= 0.0 {
         return false;
     }
-    let max_lean = angle(edge, normal).max(MAX_LEAN_DEG.to_radians());
+    let max_lean = angle_between(edge, normal).max(MAX_LEAN_DEG.to_radians());
     // the moves slide the child parallel to the front: its height over it stays
     let t1 = unit(cross3(
         normal,
@@ -290,7 +282,7 @@ fn reshape_child(star: &Star<'_>, normal: [f64; 3], c: usize, layer: &mut Layer)
     let floor = first.0.min(SHAPE_TARGET) * FLOOR;
     let mut best = first;
     compass_search(start, &moves, (HALVINGS, ROUNDS), |y| {
-        if angle(sub(y, base), normal) > max_lean {
+        if angle_between(sub(y, base), normal) > max_lean {
             return false;
         }
         let x = layer.children[c];
