@@ -306,7 +306,10 @@ HIGH_3D = (("sphere-mixed", "sphere.toml", (("refinement = 3", "refinement = 2")
          # parallelograms, as the caps over the cubes' layers are: "Pyramids with
          # non-parallelogram bases are currently unsupported")
          ("two-spheres", "two-spheres.toml", (("max_layers = 30", "max_layers = 14"),), True),
-         ("two-cubes", "two-cubes.toml", (("max_layers = 20", "max_layers = 8"),), False))
+         ("two-cubes", "two-cubes.toml", (("max_layers = 20", "max_layers = 8"),), False),
+         # the prism cut: the cubes' hexahedra halved into prisms, no pyramid; PyFR imports it
+         ("two-cubes-prisms", "two-cubes.toml", (("max_layers = 20", "max_layers = 8"),
+                                                 ('cells = "mixed"', 'cells = "prisms"')), True))
 # meshio 5.3.5 reads VTK's quadratic pyramid (27) as its "pyramid13" but has no dimension for
 # that type, so any .vtu with a P2 pyramid fails in meshio with this error (nschloe/meshio#1300,
 # never merged); e2e.py accepts exactly this failure for files with P2 pyramids.

@@ -128,6 +128,9 @@ pub enum CutCells {
     Tets,
     /// Prisms and hexahedra kept, the rest tetrahedra and pyramids (`topo_cut::cut_to_mixed`).
     Mixed,
+    /// Prisms kept, hexahedra halved into prisms, the rest tetrahedra: no pyramid, for solvers
+    /// that take none (`topo_cut::cut_to_prisms`).
+    Prisms,
 }
 
 #[derive(Debug, Deserialize)]
@@ -389,7 +392,7 @@ pub(crate) fn parse(
     // the fronts' facets kept in shape for the prisms the mixed cut keeps (`afsf3d`'s
     // `shape`); a tetrahedral cut is judged by its dihedral angles, which the reshaped fronts
     // do not lower, and the extruded 30P30N's fill could not recover its reshaped fronts
-    layers.reshape = cells == CutCells::Mixed;
+    layers.reshape = cells != CutCells::Tets;
     Ok(Case3d {
         name: file.name.unwrap_or_else(|| default_name.to_string()),
         origin: origin.to_string(),

@@ -334,6 +334,10 @@ pub fn cut(
             let (flags, flagged) = cut_anyway(case, grown, front);
             (topo_cut::cut_to_mixed_cutting(&grown.mesh, &flags), flagged)
         }
+        CutCells::Prisms => {
+            let (flags, flagged) = cut_anyway(case, grown, front);
+            (topo_cut::cut_to_prisms(&grown.mesh, &flags), flagged)
+        }
     };
     let mesh = mesh.map_err(|e| input_error!("{}: cutting the layer cells: {e}", case.origin))?;
     Ok((mesh, flagged))

@@ -18,7 +18,10 @@ pub fn cut(poly: &PolyMesh, cut: &Cut) -> Result<Mesh, CutError> {
         crate::load_checked(&mut faces, poly, c)?;
         pieces.clear();
         match cut.apex[c] {
-            UNRANKED => pieces.push(faces.standard().ok_or(CutError::NotStandard { cell: c })?),
+            UNRANKED => {
+                let piece = faces.standard().ok_or(CutError::NotStandard { cell: c })?;
+                crate::prisms::kept_pieces(&faces, piece, &cut.split, c, &mut pieces)?;
+            }
             _ => cut.pieces(&faces, c, &mut pieces),
         }
         let layer = poly.cell_layer.get(c).copied().unwrap_or(NONE);

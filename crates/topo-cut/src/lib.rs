@@ -41,6 +41,8 @@
 //!   tetrahedron), which breaks the chains of diagonals neighbours force on a cell.
 //!   [`cut_to_mixed_cutting`] round-cuts the standard cells a caller flags as well (a
 //!   judgement this crate cannot make, e.g. prisms leaning too far off the wall's normal).
+//! - [`cut_to_prisms`]: tetrahedra and prisms only, no pyramid ([`prisms`]): the hexahedra
+//!   halved, every cell joined by quadrilaterals to one that has to be cut cut too.
 //!
 //! - [`smooth::smooth_worst_tets`]: after a cut (and a fill), the tetrahedra that no cut
 //!   mends (their cell's own shape flat) mended by moving their free nodes.
@@ -86,6 +88,7 @@
 pub mod cone;
 pub mod improve;
 pub mod order;
+pub mod prisms;
 pub mod quality;
 pub mod refine;
 pub mod smooth;
@@ -149,6 +152,20 @@ pub fn cut_to_mixed_cutting(poly: &PolyMesh, cut_anyway: &[bool]) -> Result<Mesh
     check(poly)?;
     let rank = order::sweep_ranks(poly);
     finish(poly, order::round_cut_ranks(poly, &rank, cut_anyway)?, true)
+}
+
+/// [`cut_to_mixed_cutting`] without pyramids or hexahedra: tetrahedra and prisms only, for
+/// solvers that take no others ([`prisms`]). Each hexahedron is halved into two prisms; the
+/// cells joined by quadrilaterals to a cell that has to be cut (a layer of prisms, a shell of
+/// hexahedral columns) are cut whole into tetrahedra, refined as [`cut_to_tets`] refines.
+pub fn cut_to_prisms(poly: &PolyMesh, cut_anyway: &[bool]) -> Result<Mesh, CutError> {
+    check(poly)?;
+    let rank = order::sweep_ranks(poly);
+    let mut cut = prisms::prism_cut(poly, cut_anyway, &rank);
+    refine::refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 2);
+    refine::refine(poly, &mut cut, BAR_DIHEDRAL_DEG, REFINE_PASSES, 3);
+    refine::refine(poly, &mut cut, TARGET_DIHEDRAL_DEG, REFINE_PASSES, 4);
+    assemble::cut(poly, &cut)
 }
 
 /// The cut of the ranks, refined cell by cell where it is worse than the target

@@ -31,7 +31,7 @@ pub struct Cut {
 }
 
 /// Normalises the node a quadrilateral's diagonal runs through to one of its first two.
-fn normal_split(k: &[u32], w: u32) -> u32 {
+pub(crate) fn normal_split(k: &[u32], w: u32) -> u32 {
     match k.iter().position(|&x| x == w) {
         Some(at) => k[at % 2],
         None => UNRANKED,
@@ -39,7 +39,7 @@ fn normal_split(k: &[u32], w: u32) -> u32 {
 }
 
 /// Whether quadrilateral `k`'s diagonal through `s` runs through `a` (a node of `k`).
-fn through(k: &[u32], s: u32, a: u32) -> bool {
+pub(crate) fn through(k: &[u32], s: u32, a: u32) -> bool {
     let (Some(i), Some(j)) = (
         k.iter().position(|&x| x == s),
         k.iter().position(|&x| x == a),
@@ -217,7 +217,7 @@ fn cut_quality(
 }
 
 /// The two cells of each face (the second [`UNRANKED`] on the boundary).
-fn face_cells(poly: &PolyMesh) -> Vec<[u32; 2]> {
+pub(crate) fn face_cells(poly: &PolyMesh) -> Vec<[u32; 2]> {
     let mut out = vec![[UNRANKED; 2]; poly.face_count()];
     for c in 0..poly.cell_count() {
         for cf in poly.cell(c) {

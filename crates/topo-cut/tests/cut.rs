@@ -167,12 +167,26 @@ fn check(poly: &PolyMesh, mesh: &Mesh) -> Stats {
     }
 }
 
+/// The tetrahedral and the mixed cut of the spec's mesh, checked; the prism cut checked too
+/// (tetrahedra and prisms only, every prism of the mixed cut kept unless its layer has a cut
+/// cell, every hexahedron a pair of prisms where its layer has none).
 fn both(spec: &Spec) -> (Stats, Stats) {
     let poly = fixture::poly(spec);
     let tets = topo_cut::cut_to_tets(&poly).expect("tets");
     let mixed = topo_cut::cut_to_mixed(&poly).expect("mixed");
     let (t, m) = (check(&poly, &tets), check(&poly, &mixed));
     assert_eq!(t.pyramids + t.prisms + t.hexes, 0);
+    let prisms = topo_cut::cut_to_prisms(&poly, &[]).expect("prisms");
+    let p = check(&poly, &prisms);
+    assert_eq!(p.pyramids + p.hexes, 0, "prism cut: {p}");
+    assert!(prisms.boundary.iter().all(|f| f.corners().len() == 3));
+    if m.pyramids + m.tets == 0 {
+        assert_eq!(
+            p.prisms,
+            m.prisms + 2 * m.hexes,
+            "nothing cut: {m} against {p}"
+        );
+    }
     (t, m)
 }
 
@@ -507,4 +521,42 @@ fn the_mixed_refining_keeps_a_shared_side_whole_where_every_tet_cut_is_worse() {
         topo_cut::cone::UNRANKED,
         "the shared side is whole"
     );
+}
+
+/// The prism cut with one cell flagged in a layer: the triangles' layers without a flag keep
+/// every prism, the flagged layer is tetrahedra whole (a prism beside a cut cell would need a
+/// pyramid); the hexahedra are halved into prisms, and one flag cuts every hexahedron joined
+/// to it by quadrilaterals (their columns and the layers beside them: the whole shell).
+#[test]
+fn the_prism_cut_cuts_a_layer_with_a_flag_whole_and_keeps_the_others() {
+    for quads in [false, true] {
+        let spec = Spec::new(3, quads, 4);
+        let poly = fixture::poly(&spec);
+        let flagged_layer = 2;
+        let first = (0..poly.cell_count())
+            .find(|&c| poly.cell_layer[c] == flagged_layer)
+            .unwrap();
+        let flags: Vec<bool> = (0..poly.cell_count()).map(|c| c == first).collect();
+        let mesh = topo_cut::cut_to_prisms(&poly, &flags).expect("prisms");
+        let p = check(&poly, &mesh);
+        assert_eq!(p.pyramids + p.hexes, 0, "quads {quads}: {p}");
+        for i in 0..mesh.cells.len() {
+            let shape = mesh.cells.get(i).ty.shape;
+            let want = if quads || mesh.cell_layer[i] == flagged_layer {
+                Shape::Tet
+            } else {
+                Shape::Prism
+            };
+            assert_eq!(
+                shape, want,
+                "quads {quads}: cell {i} in layer {}",
+                mesh.cell_layer[i]
+            );
+        }
+        let unflagged = topo_cut::cut_to_prisms(&poly, &[]).expect("prisms");
+        let u = check(&poly, &unflagged);
+        let cells = poly.cell_count();
+        assert_eq!((u.prisms, u.tets), (cells * if quads { 2 } else { 1 }, 0));
+        println!("quads {quads}: flagged {p}; unflagged {u}");
+    }
 }

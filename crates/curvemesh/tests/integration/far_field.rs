@@ -9,7 +9,7 @@
 //!
 //! `cargo test -p curvemesh --test integration -- far_field:: --nocapture` prints the figures.
 
-use mesh_model::{Mesh, Role};
+use mesh_model::{Mesh, Role, Shape};
 
 /// The largest dihedral angle the fill's tetrahedra may have (the issue's bar).
 const MAX_DIHEDRAL_DEG: f64 = 160.0;
@@ -131,6 +131,57 @@ fn a_cube_of_hexahedra_in_a_box() {
     check("cube in a box", text, &["farfield", "wall"], |p| {
         p.iter().any(|&x| x == -4.0 || x == 5.0)
     });
+}
+
+/// The prism cut of the same cube: every hexahedron halved into two prisms, the wall's and the
+/// front's quadrilaterals split, no pyramid anywhere (the fill meets triangles only).
+#[test]
+fn the_prism_cut_of_a_cube_of_hexahedra_has_no_pyramid() {
+    let text = "dimension = 3\n\
+        [surface]\nbuiltin = \"cube\"\ndivisions = 4\n\
+        [farfield]\nbox = { min = [-4.0, -4.0, -4.0], max = [5.0, 5.0, 5.0] }\n\
+        [layers]\nfirst_height = 1e-2\ngrowth = 1.2\nmax_layers = 8\n\
+        [cut]\ncells = \"prisms\"\n";
+    check("cube in a box, prisms", text, &["farfield", "wall"], |p| {
+        p.iter().any(|&x| x == -4.0 || x == 5.0)
+    });
+    let (m, report) = mesh(text, 1);
+    let (mixed, _) = mesh(&text.replace("\"prisms\"", "\"mixed\""), 1);
+    assert_eq!(m.count(Shape::Pyramid) + m.count(Shape::Hex), 0);
+    assert_eq!(m.count(Shape::Prism), 2 * mixed.count(Shape::Hex));
+    assert!(m.boundary.iter().all(|f| f.corners().len() == 3));
+    assert_eq!(report.fill.unwrap().pyramids, 0);
+}
+
+/// The prism cut of two spheres whose gap stops columns: the layers under the first stop keep
+/// their prisms, those from it up are tetrahedra (a prism beside a cut cell would need a
+/// pyramid), and no pyramid is left.
+#[test]
+fn the_prism_cut_keeps_the_layers_under_the_first_stop() {
+    let text = two_spheres(0.55).replace("\"tets\"", "\"prisms\"");
+    let (m, _) = mesh(&text, 1);
+    assert_eq!(m.count(Shape::Pyramid) + m.count(Shape::Hex), 0);
+    let layers = m
+        .cell_layer
+        .iter()
+        .filter(|&&l| l != mesh_model::NONE)
+        .max()
+        .unwrap();
+    let prism_layers: Vec<u32> = (0..m.cells.len())
+        .filter(|&i| m.cells.get(i).ty.shape == Shape::Prism)
+        .map(|i| m.cell_layer[i])
+        .collect();
+    let top = *prism_layers.iter().max().unwrap();
+    assert!(
+        top > 0 && top < *layers,
+        "prisms up to layer {top} of {layers}"
+    );
+    // every cell of a layer under the top prism layer is a prism
+    for i in 0..m.cells.len() {
+        if m.cell_layer[i] <= top {
+            assert_eq!(m.cells.get(i).ty.shape, Shape::Prism, "cell {i}");
+        }
+    }
 }
 
 /// Without a far field the domain is the layers' shell, its outer boundary `outer`.

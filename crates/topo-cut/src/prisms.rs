@@ -1,0 +1,265 @@
+//! The prism cut: the mixed cut without pyramids or hexahedra, for solvers that take only
+//! tetrahedra and prisms (PyFR, for one, refuses a pyramid whose base is not an exact
+//! parallelogram, which a curved front's quadrilaterals never are).
+//!
+//! A pyramid of the mixed cut sits on a quadrilateral kept whole beside a cut cell, so no
+//! cell may be cut while a cell across one of its quadrilaterals is kept. The cells joined
+//! by quadrilaterals make *groups* ([`cut_groups`]): the prisms of a layer with their side
+//! faces, a column of hexahedra with their tops and bottoms and its neighbours across its
+//! sides. A group is cut whole into tetrahedra, by the tetrahedral cut's sweep (each cell the
+//! cone from its first node, each quadrilateral split through its first node: conforming by
+//! construction, then refined as the tetrahedral cut is), when a cell of it has to be cut (a
+//! merged cell, a pyramid, a cell the caller flags), or would leave
+//! it a quadrilateral no prism can take (on the boundary, where a fill beyond the layers
+//! would cap it with a pyramid; a hexahedron's side there, or its top on another cell);
+//! otherwise its prisms are kept and its hexahedra halved into two prisms each
+//! ([`kept_pieces`]), across their tops and bottoms, by one diagonal up each column.
+//! Nothing joins through a triangle, so the layers under the first stop keep their prisms
+//! and the layers above are tetrahedra — the only pyramid-free mesh with prisms kept.
+
+use mesh_model::Shape;
+use mesh_model::poly::PolyMesh;
+
+use crate::CutError;
+use crate::cone::{CellFaces, Piece, UNRANKED, first_ranked};
+use crate::improve::{INVERTED, piece_quality};
+use crate::order::cells_by_layer;
+use crate::refine::{Cut, face_cells, normal_split, through};
+
+/// The cut of `poly` without pyramids or hexahedra, the cells `cut_anyway` flags (one flag per
+/// cell, or none) cut as well, from the sweep's ranks of every node `sweep`: the groups it must cut ([`cut_groups`]) cut whole by
+/// the sweep, the others kept, their hexahedra halved (the splits [`kept_pieces`] reads) up
+/// each column by the diagonal of its wall's quadrilateral that keeps its triangles best.
+pub fn prism_cut(poly: &PolyMesh, cut_anyway: &[bool], sweep: &[u32]) -> Cut {
+    let cut_cells = cut_groups(poly, cut_anyway);
+    let mut faces = CellFaces::default();
+    let mut cut = Cut {
+        apex: vec![UNRANKED; poly.cell_count()],
+        split: vec![UNRANKED; poly.face_count()],
+    };
+    for c in cells_by_layer(poly) {
+        let c = c as usize;
+        faces.load(poly, c);
+        if !cut_cells[c] {
+            if is_hex(&faces) {
+                halve(poly, &faces, &mut cut.split);
+            }
+            continue;
+        }
+        cut.apex[c] = faces.first_ranked(sweep).unwrap_or(UNRANKED);
+        for i in 0..faces.len() {
+            let f = faces.id(i) as usize;
+            let k = poly.face(f);
+            if let (4, Some(w)) = (k.len(), first_ranked(k, sweep)) {
+                cut.split[f] = normal_split(k, w);
+            }
+        }
+    }
+    cut
+}
+
+/// Splits the bottom (face 0) and top (face 1) of the hexahedron in `faces` by parallel
+/// diagonals: the bottom's as the hexahedron under it split its top, or else the one whose
+/// triangles' smallest angle, with the top's above them, is largest.
+fn halve(poly: &PolyMesh, faces: &CellFaces, split: &mut [u32]) {
+    let (f0, f1) = (faces.id(0) as usize, faces.id(1) as usize);
+    let (bottom, top) = (faces.face(0), faces.face(1));
+    let above: Vec<u32> = bottom.iter().map(|&v| partner(faces, v, top)).collect();
+    let s = match split[f0] {
+        UNRANKED => {
+            let x = |v: u32| poly.nodes[v as usize];
+            let sine = |q: &[u32], i: usize| {
+                let t =
+                    |a: usize, b: usize, d: usize| min_sine(x(q[a % 4]), x(q[b % 4]), x(q[d % 4]));
+                t(i, i + 1, i + 2).min(t(i, i + 2, i + 3))
+            };
+            let best =
+                if sine(bottom, 1).min(sine(&above, 1)) > sine(bottom, 0).min(sine(&above, 0)) {
+                    1
+                } else {
+                    0
+                };
+            split[f0] = normal_split(poly.face(f0), bottom[best]);
+            bottom[best]
+        }
+        s => s,
+    };
+    let at = bottom.iter().position(|&v| v == s).unwrap_or(0);
+    split[f1] = normal_split(poly.face(f1), above[at]);
+}
+
+/// The node joined to `v` by an edge of the cell in `faces` and in `top`.
+fn partner(faces: &CellFaces, v: u32, top: &[u32]) -> u32 {
+    faces
+        .faces()
+        .skip(2)
+        .find_map(|k| {
+            let at = k.iter().position(|&x| x == v)?;
+            [k[(at + 1) % k.len()], k[(at + k.len() - 1) % k.len()]]
+                .into_iter()
+                .find(|x| top.contains(x))
+        })
+        .unwrap_or(top[0])
+}
+
+/// The smallest sine of the triangle (a, b, c)'s angles.
+fn min_sine(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    use geom_predicates::vector::{cross3, dist, dot, sub};
+    let n = cross3(sub(b, a), sub(c, a));
+    let area2 = dot(n, n).sqrt();
+    let (ab, bc, ca) = (dist(a, b), dist(b, c), dist(c, a));
+    // a corner's sine is twice the area over its two sides; the smallest angle is opposite
+    // the shortest side, between the two longest
+    let shortest = ab.min(bc).min(ca);
+    if shortest > 0.0 {
+        area2 * shortest / (ab * bc * ca)
+    } else {
+        0.0
+    }
+}
+
+/// Which cells lie in a group of cells joined by quadrilaterals that the prism cut cuts into
+/// tetrahedra: a group with a cell `cut_anyway` flags, a cell no standard one (or with a corner
+/// not positive, as the mixed cut judges them), a pyramid, or a cell [`fits_prisms`] refuses.
+pub fn cut_groups(poly: &PolyMesh, cut_anyway: &[bool]) -> Vec<bool> {
+    let across = face_cells(poly);
+    let mut group: Vec<u32> = (0..poly.cell_count() as u32).collect();
+    for (f, &[a, b]) in across.iter().enumerate() {
+        if b != UNRANKED && poly.face(f).len() == 4 {
+            union(&mut group, a, b);
+        }
+    }
+    let mut must = vec![false; poly.cell_count()];
+    let mut faces = CellFaces::default();
+    for c in 0..poly.cell_count() {
+        faces.load(poly, c);
+        let root = find(&mut group, c as u32) as usize;
+        let flagged = cut_anyway.get(c).copied().unwrap_or(false);
+        if flagged || !fits_prisms(poly, &faces, &across) {
+            must[root] = true;
+        }
+    }
+    (0..poly.cell_count())
+        .map(|c| must[find(&mut group, c as u32) as usize])
+        .collect()
+}
+
+/// Whether the kept cell in `faces` can stay (a prism or tetrahedron) or be halved (a
+/// hexahedron whose top and bottom are on hexahedra or the boundary) and leaves no
+/// quadrilateral whole on the boundary.
+fn fits_prisms(poly: &PolyMesh, faces: &CellFaces, across: &[[u32; 2]]) -> bool {
+    let Some(piece) = faces.standard() else {
+        return false;
+    };
+    if piece_quality(&poly.nodes, &piece) >= INVERTED {
+        return false;
+    }
+    let shape = piece.0;
+    let hex = is_hex(faces);
+    let on_boundary = |i: usize| across[faces.id(i) as usize][1] == UNRANKED;
+    match shape {
+        Shape::Tet => true,
+        Shape::Prism => (0..faces.len()).all(|i| faces.face(i).len() == 3 || !on_boundary(i)),
+        Shape::Hex if hex => {
+            let sides_inside = (2..6).all(|i| !on_boundary(i));
+            let ends_on_hexes = (0..2).all(|i| {
+                let [a, b] = across[faces.id(i) as usize];
+                [a, b].into_iter().filter(|&d| d != UNRANKED).all(|d| {
+                    let mut other = CellFaces::default();
+                    other.load(poly, d as usize);
+                    is_hex(&other)
+                })
+            });
+            sides_inside && ends_on_hexes
+        }
+        _ => false,
+    }
+}
+
+/// Whether the cell in `faces` has six quadrilaterals, its bottom (face 0) opposite its top
+/// (face 1), as the layers' hexahedra do.
+fn is_hex(faces: &CellFaces) -> bool {
+    faces.len() == 6
+        && faces.faces().all(|k| k.len() == 4)
+        && faces.face(0).iter().all(|v| !faces.face(1).contains(v))
+}
+
+fn find(group: &mut [u32], mut c: u32) -> u32 {
+    while group[c as usize] != c {
+        let up = group[group[c as usize] as usize];
+        group[c as usize] = up;
+        c = up;
+    }
+    c
+}
+
+fn union(group: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(group, a), find(group, b));
+    if ra != rb {
+        group[ra.max(rb) as usize] = ra.min(rb);
+    }
+}
+
+/// The kept cell loaded in `faces` (its standard piece `piece`) as it goes into the mesh:
+/// itself, or a hexahedron [`close`] halved, its two prisms.
+pub fn kept_pieces(
+    faces: &CellFaces,
+    piece: Piece,
+    split: &[u32],
+    c: usize,
+    out: &mut Vec<Piece>,
+) -> Result<(), CutError> {
+    let split_of = |i: usize| split[faces.id(i) as usize];
+    if (0..faces.len()).all(|i| split_of(i) == UNRANKED) {
+        out.push(piece);
+        return Ok(());
+    }
+    if piece.0 != Shape::Hex {
+        return Err(CutError::NotStandard { cell: c });
+    }
+    let h = piece.1;
+    let face_of = |nodes: &[u32]| {
+        (0..faces.len()).find(|&i| {
+            let k = faces.face(i);
+            k.len() == 4 && nodes.iter().all(|v| k.contains(v))
+        })
+    };
+    for turn in HEX_TURNS {
+        let g: [u32; 8] = turn.map(|j| h[j]);
+        let (Some(a), Some(b)) = (face_of(&g[..4]), face_of(&g[4..])) else {
+            continue;
+        };
+        let others_whole = (0..faces.len()).all(|i| i == a || i == b || split_of(i) == UNRANKED);
+        if !others_whole || split_of(a) == UNRANKED || split_of(b) == UNRANKED {
+            continue;
+        }
+        let on_first = through(faces.face(a), split_of(a), g[0]);
+        let top_fits = through(faces.face(b), split_of(b), g[if on_first { 4 } else { 5 }]);
+        if !top_fits {
+            break;
+        }
+        let prism = |k: [usize; 6]| {
+            let mut c = [0u32; 8];
+            (0..6).for_each(|j| c[j] = g[k[j]]);
+            (Shape::Prism, c)
+        };
+        if on_first {
+            out.push(prism([0, 1, 2, 4, 5, 6]));
+            out.push(prism([0, 2, 3, 4, 6, 7]));
+        } else {
+            out.push(prism([1, 2, 3, 5, 6, 7]));
+            out.push(prism([1, 3, 0, 5, 7, 4]));
+        }
+        return Ok(());
+    }
+    Err(CutError::NotStandard { cell: c })
+}
+
+/// The hexahedron's corners (Gmsh's order) relabelled so that each opposite pair of faces in
+/// turn is the bottom (0–3) and the top (4–7), corner `j + 4` above corner `j`: rotations, so
+/// the orientation is kept.
+const HEX_TURNS: [[usize; 8]; 3] = [
+    [0, 1, 2, 3, 4, 5, 6, 7],
+    [0, 4, 5, 1, 3, 7, 6, 2],
+    [0, 3, 7, 4, 1, 2, 6, 5],
+];
