@@ -20,9 +20,10 @@ fn bench(c: &mut Criterion) {
         c.bench_function(&format!("cut_to_mixed/{name}/{}", poly.cell_count()), |b| {
             b.iter(|| topo_cut::cut_to_mixed(&poly).expect("cut"))
         });
-        c.bench_function(&format!("cut_to_prisms/{name}/{}", poly.cell_count()), |b| {
-            b.iter(|| topo_cut::cut_to_prisms(&poly, &[]).expect("cut"))
-        });
+        c.bench_function(
+            &format!("cut_to_prisms/{name}/{}", poly.cell_count()),
+            |b| b.iter(|| topo_cut::cut_to_prisms(&poly, &[]).expect("cut")),
+        );
     }
     // the stages of cut_to_tets, to see where its time goes (improve is now only the fallback
     // when a piece stays inverted)
