@@ -119,34 +119,49 @@ fn two_spheres_nearly_touching_fill_onto_their_bare_walls() {
     assert_eq!(report.boundary_groups["right"], 320);
 }
 
+/// A cube of quads (4 × 4 per face) in a box 9 across, 8 layers, cut into `cells`: the case
+/// file.
+fn cube_in_a_box(cells: &str) -> String {
+    format!(
+        "dimension = 3\n\
+        [surface]\nbuiltin = \"cube\"\ndivisions = 4\n\
+        [farfield]\nbox = {{ min = [-4.0, -4.0, -4.0], max = [5.0, 5.0, 5.0] }}\n\
+        [layers]\nfirst_height = 1e-2\ngrowth = 1.2\nmax_layers = 8\n\
+        [cut]\ncells = \"{cells}\"\n"
+    )
+}
+
+/// Whether `p` lies on the box of [`cube_in_a_box`].
+fn on_the_box(p: [f64; 3]) -> bool {
+    p.iter().any(|&x| x == -4.0 || x == 5.0)
+}
+
 /// A cube of quads (the mixed cut keeps hexahedra, so the front has quadrilaterals, capped by
 /// pyramids) inside a box.
 #[test]
 fn a_cube_of_hexahedra_in_a_box() {
-    let text = "dimension = 3\n\
-        [surface]\nbuiltin = \"cube\"\ndivisions = 4\n\
-        [farfield]\nbox = { min = [-4.0, -4.0, -4.0], max = [5.0, 5.0, 5.0] }\n\
-        [layers]\nfirst_height = 1e-2\ngrowth = 1.2\nmax_layers = 8\n\
-        [cut]\ncells = \"mixed\"\n";
-    check("cube in a box", text, &["farfield", "wall"], |p| {
-        p.iter().any(|&x| x == -4.0 || x == 5.0)
-    });
+    let groups = ["farfield", "wall"];
+    check(
+        "cube in a box",
+        &cube_in_a_box("mixed"),
+        &groups,
+        on_the_box,
+    );
 }
 
 /// The prism cut of the same cube: every hexahedron halved into two prisms, the wall's and the
 /// front's quadrilaterals split, no pyramid anywhere (the fill meets triangles only).
 #[test]
 fn the_prism_cut_of_a_cube_of_hexahedra_has_no_pyramid() {
-    let text = "dimension = 3\n\
-        [surface]\nbuiltin = \"cube\"\ndivisions = 4\n\
-        [farfield]\nbox = { min = [-4.0, -4.0, -4.0], max = [5.0, 5.0, 5.0] }\n\
-        [layers]\nfirst_height = 1e-2\ngrowth = 1.2\nmax_layers = 8\n\
-        [cut]\ncells = \"prisms\"\n";
-    check("cube in a box, prisms", text, &["farfield", "wall"], |p| {
-        p.iter().any(|&x| x == -4.0 || x == 5.0)
-    });
-    let (m, report) = mesh(text, 1);
-    let (mixed, _) = mesh(&text.replace("\"prisms\"", "\"mixed\""), 1);
+    let text = cube_in_a_box("prisms");
+    check(
+        "cube in a box, prisms",
+        &text,
+        &["farfield", "wall"],
+        on_the_box,
+    );
+    let (m, report) = mesh(&text, 1);
+    let (mixed, _) = mesh(&cube_in_a_box("mixed"), 1);
     assert_eq!(m.count(Shape::Pyramid) + m.count(Shape::Hex), 0);
     assert_eq!(m.count(Shape::Prism), 2 * mixed.count(Shape::Hex));
     assert!(m.boundary.iter().all(|f| f.corners().len() == 3));
