@@ -6,16 +6,16 @@
 //! cell may be cut while a cell across one of its quadrilaterals is kept. The cells joined
 //! by quadrilaterals make *groups* ([`cut_groups`]): the prisms of a layer with their side
 //! faces, a column of hexahedra with their tops and bottoms and its neighbours across its
-//! sides. A group is cut whole into tetrahedra, by the tetrahedral cut's sweep (each cell the
+//! sides. A group is cut whole into tetrahedra — by the tetrahedral cut's sweep (each cell the
 //! cone from its first node, each quadrilateral split through its first node: conforming by
-//! construction, then refined as the tetrahedral cut is), when a cell of it has to be cut (a
-//! merged cell, a pyramid, a cell the caller flags), or would leave
-//! it a quadrilateral no prism can take (on the boundary, where a fill beyond the layers
-//! would cap it with a pyramid; a hexahedron's side there, or its top on another cell);
-//! otherwise its prisms are kept and its hexahedra halved into two prisms each
-//! ([`kept_pieces`]), across their tops and bottoms, by one diagonal up each column.
-//! Nothing joins through a triangle, so the layers under the first stop keep their prisms
-//! and the layers above are tetrahedra — the only pyramid-free mesh with prisms kept.
+//! construction), then refined as the tetrahedral cut is — when a cell of it has to be cut (a
+//! merged cell, a pyramid, a cell the caller flags) or would leave a quadrilateral that no
+//! prism can take (a prism's or a hexahedron's side on the boundary, where a fill beyond the
+//! layers would cap it with a pyramid; a hexahedron's top on another kind of cell). In the
+//! other groups the prisms are kept and each hexahedron is halved into two prisms
+//! ([`kept_pieces`]) across its top and bottom, by one diagonal up each column. Nothing joins
+//! through a triangle, so the layers under the first stop keep their prisms and the layers
+//! above are tetrahedra: the only pyramid-free mesh with prisms kept.
 
 use mesh_model::Shape;
 use mesh_model::poly::PolyMesh;
@@ -26,10 +26,11 @@ use crate::improve::{INVERTED, piece_quality};
 use crate::order::cells_by_layer;
 use crate::refine::{Cut, face_cells, normal_split, through};
 
-/// The cut of `poly` without pyramids or hexahedra, the cells `cut_anyway` flags (one flag per
-/// cell, or none) cut as well, from the sweep's ranks of every node `sweep`: the groups it must cut ([`cut_groups`]) cut whole by
-/// the sweep, the others kept, their hexahedra halved (the splits [`kept_pieces`] reads) up
-/// each column by the diagonal of its wall's quadrilateral that keeps its triangles best.
+/// The cut of `poly` without pyramids or hexahedra, from the sweep's ranks of every node
+/// `sweep`, the cells `cut_anyway` flags (one flag per cell, or none) cut as well: the groups
+/// that must be cut ([`cut_groups`]) cut whole by the sweep, the others kept, their hexahedra
+/// halved up each column (the splits [`kept_pieces`] reads) by the diagonal of its wall's
+/// quadrilateral that keeps the triangles best.
 pub fn prism_cut(poly: &PolyMesh, cut_anyway: &[bool], sweep: &[u32]) -> Cut {
     let cut_cells = cut_groups(poly, cut_anyway);
     let mut faces = CellFaces::default();
@@ -200,8 +201,9 @@ fn union(group: &mut [u32], a: u32, b: u32) {
     }
 }
 
-/// The kept cell loaded in `faces` (its standard piece `piece`) as it goes into the mesh:
-/// itself, or a hexahedron [`close`] halved, its two prisms.
+/// The kept cell loaded in `faces` (its standard piece `piece`, in Gmsh's order: a layer
+/// hexahedron's bottom is its corners 0–3, corner `j + 4` above corner `j`) as it goes into the
+/// mesh: itself, or a hexahedron [`prism_cut`] halved across its bottom and top, its two prisms.
 pub fn kept_pieces(
     faces: &CellFaces,
     piece: Piece,
@@ -210,12 +212,12 @@ pub fn kept_pieces(
     out: &mut Vec<Piece>,
 ) -> Result<(), CutError> {
     let split_of = |i: usize| split[faces.id(i) as usize];
-    if (0..faces.len()).all(|i| split_of(i) == UNRANKED) {
+    let split_faces: Vec<usize> = (0..faces.len())
+        .filter(|&i| split_of(i) != UNRANKED)
+        .collect();
+    if split_faces.is_empty() {
         out.push(piece);
         return Ok(());
-    }
-    if piece.0 != Shape::Hex {
-        return Err(CutError::NotStandard { cell: c });
     }
     let h = piece.1;
     let face_of = |nodes: &[u32]| {
@@ -224,42 +226,25 @@ pub fn kept_pieces(
             k.len() == 4 && nodes.iter().all(|v| k.contains(v))
         })
     };
-    for turn in HEX_TURNS {
-        let g: [u32; 8] = turn.map(|j| h[j]);
-        let (Some(a), Some(b)) = (face_of(&g[..4]), face_of(&g[4..])) else {
-            continue;
-        };
-        let others_whole = (0..faces.len()).all(|i| i == a || i == b || split_of(i) == UNRANKED);
-        if !others_whole || split_of(a) == UNRANKED || split_of(b) == UNRANKED {
-            continue;
-        }
-        let on_first = through(faces.face(a), split_of(a), g[0]);
-        let top_fits = through(faces.face(b), split_of(b), g[if on_first { 4 } else { 5 }]);
-        if !top_fits {
-            break;
-        }
-        let prism = |k: [usize; 6]| {
-            let mut c = [0u32; 8];
-            (0..6).for_each(|j| c[j] = g[k[j]]);
-            (Shape::Prism, c)
-        };
-        if on_first {
-            out.push(prism([0, 1, 2, 4, 5, 6]));
-            out.push(prism([0, 2, 3, 4, 6, 7]));
-        } else {
-            out.push(prism([1, 2, 3, 5, 6, 7]));
-            out.push(prism([1, 3, 0, 5, 7, 4]));
-        }
-        return Ok(());
+    let (Some(a), Some(b)) = (face_of(&h[..4]), face_of(&h[4..8])) else {
+        return Err(CutError::NotStandard { cell: c });
+    };
+    let on_first = through(faces.face(a), split_of(a), h[0]);
+    let parallel = through(faces.face(b), split_of(b), h[if on_first { 4 } else { 5 }]);
+    if piece.0 != Shape::Hex || split_faces != [a.min(b), a.max(b)] || !parallel {
+        return Err(CutError::NotStandard { cell: c });
     }
-    Err(CutError::NotStandard { cell: c })
+    let prism = |k: [usize; 6]| {
+        let mut p = [0u32; 8];
+        (0..6).for_each(|j| p[j] = h[k[j]]);
+        (Shape::Prism, p)
+    };
+    if on_first {
+        out.push(prism([0, 1, 2, 4, 5, 6]));
+        out.push(prism([0, 2, 3, 4, 6, 7]));
+    } else {
+        out.push(prism([1, 2, 3, 5, 6, 7]));
+        out.push(prism([1, 3, 0, 5, 7, 4]));
+    }
+    Ok(())
 }
-
-/// The hexahedron's corners (Gmsh's order) relabelled so that each opposite pair of faces in
-/// turn is the bottom (0–3) and the top (4–7), corner `j + 4` above corner `j`: rotations, so
-/// the orientation is kept.
-const HEX_TURNS: [[usize; 8]; 3] = [
-    [0, 1, 2, 3, 4, 5, 6, 7],
-    [0, 4, 5, 1, 3, 7, 6, 2],
-    [0, 3, 7, 4, 1, 2, 6, 5],
-];
