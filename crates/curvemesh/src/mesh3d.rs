@@ -4,7 +4,7 @@
 //! caller's reserved outputs. Bad input (a surface that is open, inverted,
 //! self-intersecting; an option that does not apply in 3D) is an error before any output.
 
-use crate::case3d::{Case3d, check_order};
+use crate::case3d::{Case3d, CutCells, check_order};
 use crate::error::{Result, bail};
 use crate::meshed::{Meshed, Options};
 use crate::observer::{Observer, stage};
@@ -61,6 +61,18 @@ pub(crate) fn mesh(
         None => case,
     };
     let mut layered = grow_and_cut(case, &surface, far.is_some(), r, o)?;
+    if prism_cut_kept_none(case, &layered) {
+        // the fronts are reshaped for the prisms a cut keeps, and cost the tetrahedra of a
+        // fill between close fronts: with none kept, the layers grow as the tetrahedral cut's
+        let mut unshaped = case.clone();
+        unshaped.layers.reshape = false;
+        layered = grow_and_cut(&unshaped, &surface, far.is_some(), r, o)?;
+        r.notes.push(
+            "the prism cut kept no prism (every layer has a cell to cut): the layers grown \
+             again without reshaping their fronts' facets, as for the tetrahedral cut"
+                .into(),
+        );
+    }
     let mut filled = match &far {
         Some((far, _)) => {
             let options = crate::fill3d::options(case);
@@ -204,6 +216,15 @@ fn grow_and_cut(
         cut_anyway,
         front,
     })
+}
+
+/// Whether `layered` is a prism cut ([`CutCells::Prisms`]) of reshaped layers that kept no
+/// prism: its layers are better grown unreshaped.
+fn prism_cut_kept_none(case: &Case3d, layered: &Layered) -> bool {
+    case.cells == CutCells::Prisms
+        && case.layers.reshape
+        && layered.grown.stats.reshaped > 0
+        && layered.mesh.count(mesh_model::Shape::Prism) == 0
 }
 
 /// Fills the space between `layered`'s last fronts and the far field by `fill`. Where the

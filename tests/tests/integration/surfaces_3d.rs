@@ -163,6 +163,40 @@ fn the_untuned_bodies_cut_into_tetrahedra_under_160_degrees() {
     }
 }
 
+/// The prism cut (`[cut] cells = "prisms"`, no pyramid for PyFR): the smooth bodies keep
+/// every prism at the mixed cut's corners; where every layer has a cell to cut (the swept
+/// wing) no prism is kept and the layers are grown again unreshaped, as for the tetrahedral
+/// cut, its tetrahedra under the bar.
+#[test]
+fn the_untuned_bodies_cut_into_prisms_have_no_pyramid() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (name, floor) in [("torus", 0.5), ("fused-spheres", 0.4), ("swept-wing", 0.0)] {
+        let case = variant(d, name, "[cut]\ncells = \"prisms\"");
+        let r = meshed(d, &format!("{name}-prisms"), &case, &["--order", "1"]);
+        let cells = &r["cells"];
+        assert_eq!((&cells["pyramid"], &cells["hex"]), (&0.into(), &0.into()), "{name}");
+        let regrown = r["notes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(Value::as_str)
+            .any(|n| n.contains("kept no prism"));
+        if floor > 0.0 {
+            assert_eq!(cells["tet"], 0, "{name}: {cells}");
+            let sj = &r["quality"]["min_corner_scaled_jacobian"]["value"];
+            assert!(sj.as_f64().unwrap() >= floor, "{name}: {sj}");
+            assert!(!regrown, "{name}");
+        } else {
+            assert_eq!(cells["prism"], 0, "{name}: {cells}");
+            assert!(regrown, "{name}: {:?}", r["notes"]);
+        }
+        let worst = r["quality"]["max_dihedral_deg"].as_f64().unwrap_or(0.0);
+        assert!(worst <= MAX_DIHEDRAL_DEG, "{name}: {worst}");
+        eprintln!("{name} prisms: {cells}, max dihedral {worst:.1}°");
+    }
+}
+
 #[test]
 fn every_untuned_body_curves_to_p2_with_every_cell_certified() {
     let dir = tempfile::tempdir().unwrap();
