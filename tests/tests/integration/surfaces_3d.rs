@@ -175,7 +175,11 @@ fn the_untuned_bodies_cut_into_prisms_have_no_pyramid() {
         let case = variant(d, name, "[cut]\ncells = \"prisms\"");
         let r = meshed(d, &format!("{name}-prisms"), &case, &["--order", "1"]);
         let cells = &r["cells"];
-        assert_eq!((&cells["pyramid"], &cells["hex"]), (&0.into(), &0.into()), "{name}");
+        assert_eq!(
+            (&cells["pyramid"], &cells["hex"]),
+            (&0.into(), &0.into()),
+            "{name}"
+        );
         let regrown = r["notes"]
             .as_array()
             .unwrap()
