@@ -28,7 +28,7 @@ use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
     BalanceSpring, JumpSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
-    NewtonWorkspace, ShapeLaw, SpringList, SpringParams, cell_gradients, shape_springs,
+    NewtonWorkspace, ShapeLaw, SpringList, SpringParams, cell_gradients, quad_jumps, shape_springs,
     solve_newton_in,
 };
 
@@ -81,6 +81,11 @@ impl ShapeField {
         );
         springs.extend(
             jump_springs(original, &rest, &weight)
+                .into_iter()
+                .map(BalanceSpring::Jump),
+        );
+        springs.extend(
+            quad_springs(layered, &rest, &weight)
                 .into_iter()
                 .map(BalanceSpring::Jump),
         );
@@ -294,6 +299,57 @@ fn jump_springs(mesh: &Mesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<JumpSprin
             )
         })
         .collect()
+}
+
+/// The weight of a quadrilateral's jump springs ([`quad_springs`]) over the quadrilateral's.
+const QUAD_AFFINITY: f64 = 100.0;
+/// The layers whose quadrilaterals keep no jump springs of their own ([`quad_springs`]): those
+/// with every node in the first four layers.
+const QUAD_AFFINITY_ABOVE: u32 = 4;
+
+/// Each quadrilateral's opposite corner triangles held to the same deformation gradient
+/// (`springfield::quad_jumps`), weighted by [`QUAD_AFFINITY`] times the cell's weight, but
+/// for the first layers' ([`QUAD_AFFINITY_ABOVE`]).
+///
+/// Why: the shape springs hold each corner triangle to its shape, but a quadrilateral's
+/// triangles may each stay nearly similar while the quadrilateral keystones, and then its
+/// Jacobian varies over it: Gmsh's minSJ at P3, issue 43's `sj`, fell to 0.875 on the 30P30N
+/// flap and slat where IDW and the thin-plate RBF, whose maps are smooth, keep 0.90–0.97.
+/// These springs cost only the quadrilateral's non-affine part, and couple no node outside it
+/// (no fill-in of the Newton factor). Measured at P3 (`tests/movement/measures.sh`, lin / sj /
+/// sicn / edge), weights 0 → 30 → 50 → 100 → 300: the flap +10° 0.890/0.875/0.791/0.859 →
+/// 0.872/0.921/0.768/0.870 → 0.863/0.928/0.771/0.872 → 0.842/0.937/0.775/0.855 →
+/// 0.803/0.952/0.749/0.825; the slat 10° 0.905/0.876/0.884/0.893 → 0.912/0.921/0.908/0.916 →
+/// 0.911/0.930/0.904/0.922 → 0.893/0.942/0.899/0.930 → 0.831/0.958/0.900/0.919; the NACA0012
+/// pitched 90° in 20 chords 0.760/0.770/0.755/0.634 → 0.777/0.834/0.777/0.661 →
+/// 0.782/0.840/0.777/0.672 → 0.790/0.853/0.769/0.675 → 0.768/0.895/0.740/0.683. At 100 the
+/// pitches are above IDW and the RBF on all four measures and the flap's skew still above
+/// them; past it the flap's skew falls under the RBF's. The first layers go without: a wall
+/// that bends (a bump, a scaled body's blunt trailing edge) bends its layers, and held affine
+/// they drifted by 7.7° (8 bumps of 1 % chord) and 2.8 % and 8.0° (the NACA0012 ×1.5) where
+/// without the springs there they keep 2.1° and 1.5 % and 6.4°; the measures above are the
+/// same to 0.002 either way.
+fn quad_springs(layered: &LayeredMesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<JumpSpring> {
+    let mesh = &layered.mesh;
+    let layer = &layered.layering.node_layer;
+    let mut out = Vec::new();
+    for (c, cell) in mesh.cells.iter().enumerate() {
+        if cell.nodes.len() != 4 {
+            continue;
+        }
+        let near_wall = cell.nodes.iter().all(|&k| {
+            let l = layer.get(k as usize).copied().unwrap_or(NONE);
+            l != NONE && l <= QUAD_AFFINITY_ABOVE
+        });
+        if near_wall {
+            continue;
+        }
+        let corners: Vec<[f64; 2]> = cell.nodes.iter().map(|&k| rest[k as usize]).collect();
+        if let Some(pair) = quad_jumps(cell.nodes, &corners, QUAD_AFFINITY * weight[c]) {
+            out.extend(pair);
+        }
+    }
+    out
 }
 
 /// How much an extrusion edge's length counts against its cells' shapes: its spring's weight

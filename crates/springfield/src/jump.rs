@@ -52,6 +52,27 @@ pub fn cell_gradients(corners: &[[f64; 2]]) -> Option<Vec<[f64; 2]>> {
     Some(g)
 }
 
+/// The jump springs across a quadrilateral (its `nodes`, counter-clockwise, at rest at
+/// `corners`): each pair of opposite corner triangles held to the same deformation gradient,
+/// with weight `weight`. Zero for any affine motion of the quadrilateral; what they cost is its
+/// non-affine part (a keystone, an hourglass), which makes its Jacobian vary over it. `None`
+/// when a corner triangle is not positive at rest.
+pub fn quad_jumps(nodes: &[u32], corners: &[[f64; 2]], weight: f64) -> Option<[JumpSpring; 2]> {
+    let triangles = corner_triangles(4)?;
+    if nodes.len() != 4 || corners.len() != 4 {
+        return None;
+    }
+    let mut own = Vec::with_capacity(4);
+    for t in triangles {
+        let spring = ShapeSpring::at_rest(t.map(|i| i as u32), corners, 1.0, ShapeLaw::default())?;
+        own.push((t.map(|i| nodes[i]), spring.gradients()));
+    }
+    let pair = |a: usize, b: usize| {
+        JumpSpring::between((&own[a].0, &own[a].1), (&own[b].0, &own[b].1), weight)
+    };
+    Some([pair(0, 2)?, pair(1, 3)?])
+}
+
 impl JumpSpring {
     /// The spring between the cells `first` and `second` (their corners and rest gradients
     /// from [`cell_gradients`]) with weight `weight`.
@@ -167,6 +188,31 @@ impl Spring<2> for JumpSpring {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A quadrilateral's own jump springs cost nothing for an affine motion of it, and its
+    /// keystone (one side shortened, the other kept) costs.
+    #[test]
+    fn a_quadrilateral_s_jumps_cost_its_non_affine_part() {
+        let rest = [[0.0, 0.0], [2.0, 0.1], [2.2, 1.0], [-0.1, 1.1]];
+        let nodes = [0u32, 1, 2, 3];
+        let springs = quad_jumps(&nodes, &rest, 1.0).unwrap();
+        let energy = |x: &[[f64; 2]]| springs.iter().map(|s| s.energy(x)).sum::<f64>();
+        assert!(energy(&rest) < 1e-24);
+        let affine: Vec<[f64; 2]> = rest
+            .iter()
+            .map(|p| {
+                [
+                    0.3 + 1.4 * p[0] - 0.6 * p[1],
+                    -1.0 + 0.2 * p[0] + 0.7 * p[1],
+                ]
+            })
+            .collect();
+        assert!(energy(&affine) < 1e-20, "{}", energy(&affine));
+        let mut keystone = rest;
+        keystone[2][1] -= 0.3; // the right side shortened
+        assert!(energy(&keystone) > 1e-3, "{}", energy(&keystone));
+        assert!(quad_jumps(&nodes[..3], &rest[..3], 1.0).is_none());
+    }
 
     #[test]
     fn an_affine_motion_of_two_cells_costs_nothing() {
