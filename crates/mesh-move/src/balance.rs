@@ -28,8 +28,8 @@ use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
     BalanceSpring, JumpSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
-    NewtonWorkspace, ShapeLaw, SpringList, SpringParams, cell_gradients, quad_jumps, shape_springs,
-    solve_newton_in,
+    NewtonWorkspace, QuadSpring, ShapeLaw, ShapeSpring, SpringList, SpringParams, cell_gradients,
+    quad_jumps, shape_springs, solve_newton_in,
 };
 
 use crate::MoveError;
@@ -67,13 +67,12 @@ impl ShapeField {
             .collect();
         let weight = weights(original, &rest);
 
-        let springs = shape_springs(original.cells.iter().map(|c| c.nodes), &rest, law, &weight)
+        let shapes = shape_springs(original.cells.iter().map(|c| c.nodes), &rest, law, &weight)
             .ok_or_else(|| MoveError::Springs {
                 what: "a cell of the original mesh is not a positive triangle or quadrilateral"
                     .into(),
             })?;
-        let mut springs: Vec<BalanceSpring> =
-            springs.into_iter().map(BalanceSpring::Shape).collect();
+        let mut springs = cell_springs(layered, &rest, &weight, shapes);
         springs.extend(
             extrusion_springs(layered, &rest, &weight)
                 .into_iter()
@@ -81,11 +80,6 @@ impl ShapeField {
         );
         springs.extend(
             jump_springs(original, &rest, &weight)
-                .into_iter()
-                .map(BalanceSpring::Jump),
-        );
-        springs.extend(
-            quad_springs(layered, &rest, &weight)
                 .into_iter()
                 .map(BalanceSpring::Jump),
         );
@@ -301,15 +295,15 @@ fn jump_springs(mesh: &Mesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<JumpSprin
         .collect()
 }
 
-/// The weight of a quadrilateral's jump springs ([`quad_springs`]) over the quadrilateral's.
+/// The weight of a quadrilateral's jump springs ([`quad_jumps_of`]) over the quadrilateral's.
 const QUAD_AFFINITY: f64 = 100.0;
-/// The layers whose quadrilaterals keep no jump springs of their own ([`quad_springs`]): those
+/// The layers whose quadrilaterals keep no jump springs of their own ([`quad_jumps_of`]): those
 /// with every node in the first four layers.
 const QUAD_AFFINITY_ABOVE: u32 = 4;
 
-/// Each quadrilateral's opposite corner triangles held to the same deformation gradient
-/// (`springfield::quad_jumps`), weighted by [`QUAD_AFFINITY`] times the cell's weight, but
-/// for the first layers' ([`QUAD_AFFINITY_ABOVE`]).
+/// Quadrilateral `c`'s opposite corner triangles held to the same deformation gradient
+/// (`springfield::quad_jumps`), weighted by [`QUAD_AFFINITY`] times the cell's weight; none
+/// in the first layers ([`QUAD_AFFINITY_ABOVE`]).
 ///
 /// Why: the shape springs hold each corner triangle to its shape, but a quadrilateral's
 /// triangles may each stay nearly similar while the quadrilateral keystones, and then its
@@ -329,24 +323,51 @@ const QUAD_AFFINITY_ABOVE: u32 = 4;
 /// they drifted by 7.7° (8 bumps of 1 % chord) and 2.8 % and 8.0° (the NACA0012 ×1.5) where
 /// without the springs there they keep 2.1° and 1.5 % and 6.4°; the measures above are the
 /// same to 0.002 either way.
-fn quad_springs(layered: &LayeredMesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<JumpSpring> {
-    let mesh = &layered.mesh;
+fn quad_jumps_of(
+    layered: &LayeredMesh,
+    rest: &[[f64; 2]],
+    weight: &[f64],
+    c: usize,
+) -> Option<[JumpSpring; 2]> {
+    let cell = layered.mesh.cells.get(c);
     let layer = &layered.layering.node_layer;
-    let mut out = Vec::new();
-    for (c, cell) in mesh.cells.iter().enumerate() {
-        if cell.nodes.len() != 4 {
-            continue;
-        }
-        let near_wall = cell.nodes.iter().all(|&k| {
-            let l = layer.get(k as usize).copied().unwrap_or(NONE);
-            l != NONE && l <= QUAD_AFFINITY_ABOVE
-        });
-        if near_wall {
-            continue;
-        }
-        let corners: Vec<[f64; 2]> = cell.nodes.iter().map(|&k| rest[k as usize]).collect();
-        if let Some(pair) = quad_jumps(cell.nodes, &corners, QUAD_AFFINITY * weight[c]) {
-            out.extend(pair);
+    let near_wall = cell.nodes.iter().all(|&k| {
+        let l = layer.get(k as usize).copied().unwrap_or(NONE);
+        l != NONE && l <= QUAD_AFFINITY_ABOVE
+    });
+    if near_wall || cell.nodes.len() != 4 {
+        return None;
+    }
+    let corners: Vec<[f64; 2]> = cell.nodes.iter().map(|&k| rest[k as usize]).collect();
+    quad_jumps(cell.nodes, &corners, QUAD_AFFINITY * weight[c])
+}
+
+/// The springs of each cell of `layered`: a triangle's shape spring, a quadrilateral's four
+/// corner triangles' with its jump springs ([`quad_jumps_of`]) as one spring (`shapes`: the
+/// cells' shape springs in order, as `springfield::shape_springs` makes them).
+fn cell_springs(
+    layered: &LayeredMesh,
+    rest: &[[f64; 2]],
+    weight: &[f64],
+    shapes: Vec<ShapeSpring>,
+) -> Vec<BalanceSpring> {
+    let mut shapes = shapes.into_iter();
+    let mut out = Vec::with_capacity(layered.mesh.cells.len());
+    for (c, cell) in layered.mesh.cells.iter().enumerate() {
+        match (cell.nodes, shapes.next()) {
+            ([a, b, c4, d], Some(first)) => {
+                let rest_of: Vec<ShapeSpring> = shapes.by_ref().take(3).collect();
+                let [s1, s2, s3] = rest_of[..] else {
+                    break;
+                };
+                out.push(BalanceSpring::Quad(Box::new(QuadSpring {
+                    corners: [*a, *b, *c4, *d],
+                    shapes: [first, s1, s2, s3],
+                    jumps: quad_jumps_of(layered, rest, weight, c),
+                })));
+            }
+            (_, Some(s)) => out.push(BalanceSpring::Shape(s)),
+            (_, None) => break,
         }
     }
     out

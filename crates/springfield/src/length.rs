@@ -15,6 +15,7 @@ use crate::jump::JumpSpring;
 use crate::model::{FiniteDifference, Spring, SpringList, Triplet};
 use crate::newton::EnergyModel;
 use crate::params::SpringParams;
+use crate::quad::QuadSpring;
 use crate::shape::ShapeSpring;
 
 /// An edge `ends[0] → ends[1]` held to its rest length `rest` with energy `w (l/rest − 1)²`.
@@ -129,10 +130,12 @@ impl Spring<2> for LengthSpring {
 }
 
 /// A spring of the shape balance: a cell's shape or an edge's length.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum BalanceSpring {
     /// A triangle held to its shape.
     Shape(ShapeSpring),
+    /// A quadrilateral held to its shape (boxed: four times a triangle's).
+    Quad(Box<QuadSpring>),
     /// An edge held to its length.
     Length(LengthSpring),
     /// Two neighbouring cells held to deform alike.
@@ -144,6 +147,7 @@ impl BalanceSpring {
     pub fn energy(&self, x: &[[f64; 2]]) -> Option<f64> {
         match self {
             BalanceSpring::Shape(s) => s.energy(x),
+            BalanceSpring::Quad(s) => s.energy(x),
             BalanceSpring::Length(s) => s.energy(x),
             BalanceSpring::Jump(s) => Some(s.energy(x)),
         }
@@ -154,6 +158,7 @@ impl Spring<2> for BalanceSpring {
     fn reads(&self, out: &mut Vec<u32>) {
         match self {
             BalanceSpring::Shape(s) => s.reads(out),
+            BalanceSpring::Quad(s) => s.reads(out),
             BalanceSpring::Length(s) => s.reads(out),
             BalanceSpring::Jump(s) => s.reads(out),
         }
@@ -162,6 +167,7 @@ impl Spring<2> for BalanceSpring {
     fn pushes(&self, out: &mut Vec<u32>) {
         match self {
             BalanceSpring::Shape(s) => s.pushes(out),
+            BalanceSpring::Quad(s) => s.pushes(out),
             BalanceSpring::Length(s) => s.pushes(out),
             BalanceSpring::Jump(s) => s.pushes(out),
         }
@@ -176,6 +182,7 @@ impl Spring<2> for BalanceSpring {
     ) {
         match self {
             BalanceSpring::Shape(s) => s.add_force(params, positions, force, stiffness),
+            BalanceSpring::Quad(s) => s.add_force(params, positions, force, stiffness),
             BalanceSpring::Length(s) => s.add_force(params, positions, force, stiffness),
             BalanceSpring::Jump(s) => s.add_force(params, positions, force, stiffness),
         }
@@ -190,6 +197,7 @@ impl Spring<2> for BalanceSpring {
     ) {
         match self {
             BalanceSpring::Shape(s) => s.add_jacobian(params, movable, fd, out),
+            BalanceSpring::Quad(s) => s.add_jacobian(params, movable, fd, out),
             BalanceSpring::Length(s) => s.add_jacobian(params, movable, fd, out),
             BalanceSpring::Jump(s) => s.add_jacobian(params, movable, fd, out),
         }

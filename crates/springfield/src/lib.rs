@@ -66,6 +66,7 @@ pub mod model;
 pub mod newton;
 mod params;
 pub mod problem;
+pub mod quad;
 pub mod shape;
 mod solver;
 pub mod springs;
@@ -83,6 +84,7 @@ pub use newton::{
 };
 pub use params::{SolverParams, SpringParams};
 pub use problem::{LocalProblem, NO_NODE, Undo};
+pub use quad::QuadSpring;
 pub use shape::{ShapeLaw, ShapeSpring, shape_springs};
 pub use solver::{SolveOutcome, solve, solve_active, solve_model, solve_model_active};
 pub use springs::{

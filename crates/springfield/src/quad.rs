@@ -1,0 +1,202 @@
+//! A quadrilateral of the shape balance as one spring: its four corner triangles' shape
+//! springs and its own jump springs ([`crate::jump::quad_jumps`]) summed.
+//!
+//! The parts alone give a Newton matrix 272 entries per quadrilateral (four triangles of three
+//! nodes, two jumps of four), most of them repeated; summed over its four nodes they are one
+//! 8 × 8 block, 64 entries. On a 30P30N move (20 000 quadrilaterals) the Jacobian's triplets,
+//! the memory and the time to assemble and scatter them are what this saves; the energy, the
+//! forces and the matrix are the parts' sums.
+//!
+//! It owns the summing. It does not choose the weights (the mover does).
+
+use crate::jump::JumpSpring;
+use crate::model::{FiniteDifference, Spring, Triplet};
+use crate::params::SpringParams;
+use crate::shape::ShapeSpring;
+
+/// A quadrilateral held by its four corner triangles' shape springs and, where the mover
+/// asks, its two jump springs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuadSpring {
+    /// Its corners, counter-clockwise.
+    pub corners: [u32; 4],
+    /// The shape springs of its corner triangles.
+    pub shapes: [ShapeSpring; 4],
+    /// Its opposite corner triangles held to the same deformation gradient, if at all.
+    pub jumps: Option<[JumpSpring; 2]>,
+}
+
+impl QuadSpring {
+    /// Its energy; `None` when a corner triangle is flat or inverted.
+    pub fn energy(&self, x: &[[f64; 2]]) -> Option<f64> {
+        let shapes: Option<f64> = self.shapes.iter().map(|s| s.energy(x)).sum();
+        let jumps: f64 = self.jumps.iter().flatten().map(|j| j.energy(x)).sum();
+        Some(shapes? + jumps)
+    }
+
+    /// The local index (0 to 3) of global coordinate `g`'s node, and its axis.
+    fn local(&self, g: u32) -> Option<usize> {
+        let at = self.corners.iter().position(|&k| k == g / 2)?;
+        Some(2 * at + (g % 2) as usize)
+    }
+}
+
+impl Spring<2> for QuadSpring {
+    fn reads(&self, out: &mut Vec<u32>) {
+        out.extend(self.corners);
+    }
+
+    fn pushes(&self, out: &mut Vec<u32>) {
+        out.extend(self.corners);
+    }
+
+    fn add_force(
+        &self,
+        params: &SpringParams,
+        positions: &[[f64; 2]],
+        force: &mut [[f64; 2]],
+        stiffness: &mut [f64],
+    ) {
+        for s in &self.shapes {
+            s.add_force(params, positions, force, stiffness);
+        }
+        for j in self.jumps.iter().flatten() {
+            j.add_force(params, positions, force, stiffness);
+        }
+    }
+
+    /// The parts' entries summed into one 8 × 8 block over the movable corners (the parts
+    /// write theirs into `out`, which are then taken back).
+    fn add_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let start = out.len();
+        for s in &self.shapes {
+            s.add_jacobian(params, movable, fd, out);
+        }
+        for j in self.jumps.iter().flatten() {
+            j.add_jacobian(params, movable, fd, out);
+        }
+        let mut block = [[0.0; 8]; 8];
+        for t in &out[start..] {
+            if let (Some(r), Some(c)) = (self.local(t.row), self.local(t.col)) {
+                block[r][c] += t.value;
+            }
+        }
+        out.truncate(start);
+        let free = |i: &usize| movable[self.corners[*i] as usize];
+        for i in (0..4).filter(free) {
+            for j in (0..4).filter(free) {
+                for a in 0..2 {
+                    for b in 0..2 {
+                        out.push(Triplet {
+                            row: 2 * self.corners[i] + a as u32,
+                            col: 2 * self.corners[j] + b as u32,
+                            value: block[2 * i + a][2 * j + b],
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::jump::quad_jumps;
+    use crate::length::{BalanceSpring, derivative_errors};
+    use crate::model::{ForceModel, SpringList};
+    use crate::shape::{ShapeLaw, shape_springs};
+
+    /// A skewed quadrilateral's spring at rest and its nodes moved off it.
+    fn quad() -> (QuadSpring, Vec<[f64; 2]>, Vec<[f64; 2]>) {
+        let rest = vec![[0.0, 0.0], [1.0, 0.1], [0.9, 1.0], [0.0, 1.2]];
+        let corners = [0u32, 1, 2, 3];
+        let law = ShapeLaw::default();
+        let shapes = shape_springs([&corners[..]], &rest, law, &[1.7]).unwrap();
+        let spring = QuadSpring {
+            corners,
+            shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
+            jumps: quad_jumps(&corners, &rest, 30.0),
+        };
+        let x = rest
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                [
+                    p[0] + 0.1 * (k as f64).sin(),
+                    p[1] + 0.07 * (k as f64).cos(),
+                ]
+            })
+            .collect();
+        (spring, rest, x)
+    }
+
+    #[test]
+    fn force_and_jacobian_are_the_energy_derivatives() {
+        let (spring, _, x) = quad();
+        let (force, jacobian, asymmetry) =
+            derivative_errors(&[BalanceSpring::Quad(Box::new(spring))], &x);
+        assert!(force < 1e-6 && jacobian < 1e-5, "{force} {jacobian}");
+        assert!(asymmetry < 1e-12, "{asymmetry}");
+    }
+
+    /// Its energy, forces and matrix are its parts' sums, the matrix in 64 entries (48 with a
+    /// node held).
+    #[test]
+    fn it_sums_its_parts() {
+        let (spring, _, x) = quad();
+        let mut parts: Vec<BalanceSpring> = spring
+            .shapes
+            .iter()
+            .map(|&s| BalanceSpring::Shape(s))
+            .collect();
+        parts.extend(
+            spring
+                .jumps
+                .iter()
+                .flatten()
+                .map(|&j| BalanceSpring::Jump(j)),
+        );
+        let whole = [BalanceSpring::Quad(Box::new(spring.clone()))];
+        let params = SpringParams::default();
+        fn model<'a>(
+            springs: &'a [BalanceSpring],
+            params: &'a SpringParams,
+        ) -> SpringList<'a, BalanceSpring> {
+            SpringList { springs, params }
+        }
+        let e_parts: f64 = parts.iter().map(|s| s.energy(&x).unwrap()).sum();
+        assert!((whole[0].energy(&x).unwrap() - e_parts).abs() < 1e-12 * e_parts);
+        let dense = |springs: &[BalanceSpring], movable: &[bool]| {
+            let mut t = Vec::new();
+            model(springs, &params).jacobian(&x, movable, &mut t);
+            let mut m = [[0.0; 8]; 8];
+            for e in &t {
+                m[e.row as usize][e.col as usize] += e.value;
+            }
+            (m, t.len())
+        };
+        let all = [true; 4];
+        let ((a, n), (b, _)) = (dense(&whole, &all), dense(&parts, &all));
+        assert_eq!(n, 64);
+        for i in 0..8 {
+            for j in 0..8 {
+                assert!((a[i][j] - b[i][j]).abs() < 1e-12 * (1.0 + b[i][j].abs()));
+            }
+        }
+        let (_, held) = dense(&whole, &[true, false, true, true]);
+        assert_eq!(held, 36);
+        let (mut f1, mut f2, mut k) = ([[0.0; 2]; 4], [[0.0; 2]; 4], [0.0; 4]);
+        model(&whole, &params).assemble(&x, &mut f1, &mut k);
+        model(&parts, &params).assemble(&x, &mut f2, &mut k);
+        for (p, q) in f1.iter().zip(&f2) {
+            assert!((p[0] - q[0]).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12);
+        }
+    }
+}
