@@ -322,8 +322,8 @@ const QUAD_AFFINITY_ABOVE: u32 = 12;
 /// far field of 50 chords (first height 5e-5, 60 layers), against 2.1°, 1.5 % and 6.3°, 0.3 %
 /// and 1.1° without them. Leaving out the quadrilaterals of the first 4, 8, 10 and 12 layers:
 /// that flap's drift 1.7 %, 1.2 %, 1.0 %, 0.8 %, the 30P30N's flap sj 0.937, 0.937, 0.937,
-/// 0.906, the slat's and the pitch's unchanged (the NACA0012 at 5 chords, with fewer layers,
-/// 0.834 → 0.673: its quadrilaterals are mostly in the first twelve). So 100, above the
+/// 0.906, the slat's and the pitch's unchanged (but the NACA0012's pitch in a far field of 5
+/// chords: sj 0.840 → 0.673). So 100, above the
 /// twelfth layer: every first layer within 1 % and 5° but for the ×1.5 body's (1.5 %, 6.3°,
 /// as without).
 fn quad_jumps_of(

@@ -262,16 +262,7 @@ mod tests {
         let spring = [BalanceSpring::Jump(
             JumpSpring::between((&quad, &g1), (&tri, &g2), 2.5).unwrap(),
         )];
-        let x: Vec<[f64; 2]> = rest
-            .iter()
-            .enumerate()
-            .map(|(k, p)| {
-                [
-                    p[0] + 0.1 * (k as f64).sin(),
-                    p[1] + 0.07 * (k as f64).cos(),
-                ]
-            })
-            .collect();
+        let x = crate::length::nudged(&rest);
         let (force, jacobian, asymmetry) = derivative_errors(&spring, &x);
         assert!(force < 1e-6 && jacobian < 1e-5, "{force} {jacobian}");
         assert!(asymmetry < 1e-12, "{asymmetry}");

@@ -210,6 +210,20 @@ impl EnergyModel<2> for SpringList<'_, BalanceSpring> {
     }
 }
 
+/// `rest` with each node nudged off it (a fixed, uneven motion), for derivative tests.
+#[cfg(test)]
+pub(crate) fn nudged(rest: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    rest.iter()
+        .enumerate()
+        .map(|(k, p)| {
+            [
+                p[0] + 0.1 * (k as f64).sin(),
+                p[1] + 0.07 * (k as f64).cos(),
+            ]
+        })
+        .collect()
+}
+
 /// How far the forces and the Jacobian of `springs` at `x` are from the central differences
 /// of their energy and forces (largest relative errors), and the Jacobian from symmetric.
 #[cfg(test)]

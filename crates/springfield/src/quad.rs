@@ -124,16 +124,7 @@ mod tests {
             shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
             jumps: quad_jumps(&corners, &rest, 30.0),
         };
-        let x = rest
-            .iter()
-            .enumerate()
-            .map(|(k, p)| {
-                [
-                    p[0] + 0.1 * (k as f64).sin(),
-                    p[1] + 0.07 * (k as f64).cos(),
-                ]
-            })
-            .collect();
+        let x = crate::length::nudged(&rest);
         (spring, rest, x)
     }
 
