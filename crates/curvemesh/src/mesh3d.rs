@@ -64,9 +64,7 @@ pub(crate) fn mesh(
     if prism_cut_kept_none(case, &layered) {
         // the fronts are reshaped for the prisms a cut keeps, and cost the tetrahedra of a
         // fill between close fronts: with none kept, the layers grow as the tetrahedral cut's
-        let mut unshaped = case.clone();
-        unshaped.layers.reshape = false;
-        layered = grow_and_cut(&unshaped, &surface, far.is_some(), r, o)?;
+        layered = grow_unreshaped_and_cut(case, &surface, far.is_some(), r, o)?;
         r.notes.push(
             "the prism cut kept no prism (every layer has a cell to cut): the layers grown \
              again without reshaping their fronts' facets, as for the tetrahedral cut"
@@ -218,6 +216,20 @@ fn grow_and_cut(
     })
 }
 
+/// [`grow_and_cut`] with the fronts' facets not reshaped (`afsf3d`'s `shape`), whatever the
+/// case asks: the second growth when the reshaped fronts served no prism or no fill.
+fn grow_unreshaped_and_cut(
+    case: &Case3d,
+    surface: &geom_surface::Surface,
+    filled: bool,
+    r: &mut Report,
+    o: &mut dyn Observer,
+) -> Result<Layered> {
+    let mut unshaped = case.clone();
+    unshaped.layers.reshape = false;
+    grow_and_cut(&unshaped, surface, filled, r, o)
+}
+
 /// Whether `layered` is a prism cut ([`CutCells::Prisms`]) of reshaped layers that kept no
 /// prism: its layers are better grown unreshaped.
 fn prism_cut_kept_none(case: &Case3d, layered: &Layered) -> bool {
@@ -241,9 +253,7 @@ fn fill_or_regrow<T>(
 ) -> Result<T> {
     match fill(layered, r, o) {
         Err(e) if case.layers.reshape && layered.grown.stats.reshaped > 0 => {
-            let mut unshaped = case.clone();
-            unshaped.layers.reshape = false;
-            *layered = grow_and_cut(&unshaped, surface, true, r, o)?;
+            *layered = grow_unreshaped_and_cut(case, surface, true, r, o)?;
             r.notes.push(format!(
                 "the layers grown again without reshaping their fronts' facets: the fill \
                  could not recover the reshaped fronts ({e})"

@@ -336,7 +336,7 @@ fn lower_pattern<const D: usize>(
         let entries = &mut bucket[start[c]..start[c + 1]];
         entries.sort_unstable();
         for &(r, i) in entries.iter() {
-            if row_idx.len() as u32 == col_ptr[c] || *row_idx.last().expect("one") != r {
+            if row_idx.len() as u32 == col_ptr[c] || row_idx.last() != Some(&r) {
                 row_idx.push(r);
             }
             let at = row_idx.len() as u32 - 1;

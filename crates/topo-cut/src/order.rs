@@ -35,7 +35,7 @@ fn kept(faces: &CellFaces, v: u32) -> bool {
 
 /// The child of bottom node `v` in a cell: the node joined to it by an edge of the cell and
 /// not on the bottom (face 0); none for a kept node ([`kept`]).
-fn child(faces: &CellFaces, v: u32) -> Option<u32> {
+pub(crate) fn child(faces: &CellFaces, v: u32) -> Option<u32> {
     let bottom = faces.face(0);
     if kept(faces, v) {
         return None;

@@ -23,7 +23,7 @@ use mesh_model::poly::PolyMesh;
 use crate::CutError;
 use crate::cone::{CellFaces, Piece, UNRANKED, first_ranked};
 use crate::improve::{INVERTED, piece_quality};
-use crate::order::cells_by_layer;
+use crate::order::{cells_by_layer, child};
 use crate::refine::{Cut, face_cells, normal_split, through};
 
 /// The cut of `poly` without pyramids or hexahedra, from the sweep's ranks of every node
@@ -64,8 +64,14 @@ pub fn prism_cut(poly: &PolyMesh, cut_anyway: &[bool], sweep: &[u32]) -> Cut {
 /// triangles' smallest angle, with the top's above them, is largest.
 fn halve(poly: &PolyMesh, faces: &CellFaces, split: &mut [u32]) {
     let (f0, f1) = (faces.id(0) as usize, faces.id(1) as usize);
-    let (bottom, top) = (faces.face(0), faces.face(1));
-    let above: Vec<u32> = bottom.iter().map(|&v| partner(faces, v, top)).collect();
+    let bottom = faces.face(0);
+    let Some(above) = bottom
+        .iter()
+        .map(|&v| child(faces, v))
+        .collect::<Option<Vec<u32>>>()
+    else {
+        return; // no hexahedron of the layers: every bottom node has a child
+    };
     let s = match split[f0] {
         UNRANKED => {
             let x = |v: u32| poly.nodes[v as usize];
@@ -87,20 +93,6 @@ fn halve(poly: &PolyMesh, faces: &CellFaces, split: &mut [u32]) {
     };
     let at = bottom.iter().position(|&v| v == s).unwrap_or(0);
     split[f1] = normal_split(poly.face(f1), above[at]);
-}
-
-/// The node joined to `v` by an edge of the cell in `faces` and in `top`.
-fn partner(faces: &CellFaces, v: u32, top: &[u32]) -> u32 {
-    faces
-        .faces()
-        .skip(2)
-        .find_map(|k| {
-            let at = k.iter().position(|&x| x == v)?;
-            [k[(at + 1) % k.len()], k[(at + k.len() - 1) % k.len()]]
-                .into_iter()
-                .find(|x| top.contains(x))
-        })
-        .unwrap_or(top[0])
 }
 
 /// The smallest sine of the triangle (a, b, c)'s angles.
@@ -130,13 +122,19 @@ pub fn cut_groups(poly: &PolyMesh, cut_anyway: &[bool]) -> Vec<bool> {
             union(&mut group, a, b);
         }
     }
-    let mut must = vec![false; poly.cell_count()];
     let mut faces = CellFaces::default();
+    let hexes: Vec<bool> = (0..poly.cell_count())
+        .map(|c| {
+            faces.load(poly, c);
+            is_hex(&faces)
+        })
+        .collect();
+    let mut must = vec![false; poly.cell_count()];
     for c in 0..poly.cell_count() {
         faces.load(poly, c);
         let root = find(&mut group, c as u32) as usize;
         let flagged = cut_anyway.get(c).copied().unwrap_or(false);
-        if flagged || !fits_prisms(poly, &faces, &across) {
+        if flagged || !fits_prisms(poly, &faces, &across, &hexes) {
             must[root] = true;
         }
     }
@@ -146,9 +144,9 @@ pub fn cut_groups(poly: &PolyMesh, cut_anyway: &[bool]) -> Vec<bool> {
 }
 
 /// Whether the kept cell in `faces` can stay (a prism or tetrahedron) or be halved (a
-/// hexahedron whose top and bottom are on hexahedra or the boundary) and leaves no
-/// quadrilateral whole on the boundary.
-fn fits_prisms(poly: &PolyMesh, faces: &CellFaces, across: &[[u32; 2]]) -> bool {
+/// hexahedron whose top and bottom are on hexahedra, `hexes` flagging them, or on the
+/// boundary) and leaves no quadrilateral whole on the boundary.
+fn fits_prisms(poly: &PolyMesh, faces: &CellFaces, across: &[[u32; 2]], hexes: &[bool]) -> bool {
     let Some(piece) = faces.standard() else {
         return false;
     };
@@ -165,11 +163,10 @@ fn fits_prisms(poly: &PolyMesh, faces: &CellFaces, across: &[[u32; 2]]) -> bool 
             let sides_inside = (2..6).all(|i| !on_boundary(i));
             let ends_on_hexes = (0..2).all(|i| {
                 let [a, b] = across[faces.id(i) as usize];
-                [a, b].into_iter().filter(|&d| d != UNRANKED).all(|d| {
-                    let mut other = CellFaces::default();
-                    other.load(poly, d as usize);
-                    is_hex(&other)
-                })
+                [a, b]
+                    .into_iter()
+                    .filter(|&d| d != UNRANKED)
+                    .all(|d| hexes[d as usize])
             });
             sides_inside && ends_on_hexes
         }
