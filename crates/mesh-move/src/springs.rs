@@ -1029,9 +1029,11 @@ fn screw(old: &[[f64; 2]], x: &mut [[f64; 2]], sources: &Sources, nodes: &[u32],
             let (mut sum, mut total) = ([0.0; 4], 0.0);
             for (i, b) in sources.at.iter().enumerate() {
                 let r2 = (p[0] - b[0]).powi(2) + (p[1] - b[1]).powi(2);
-                // the default exponent 2 by a division: the same bits as powf (both correctly
-                // rounded), without its cost in this nodes × sources loop
-                let inverse = if exponent == 2.0 {
+                // the default exponent 2.5 (and 2) by a division and square roots: powf was
+                // this nodes × sources loop's largest cost
+                let inverse = if exponent == 2.5 {
+                    1.0 / (r2 * r2.sqrt().sqrt())
+                } else if exponent == 2.0 {
                     1.0 / r2
                 } else {
                     r2.powf(-0.5 * exponent)

@@ -49,6 +49,12 @@ impl LengthSpring {
     /// `∂E/∂x_b` (the first end's is its opposite) and the Hessian block `∂²E/∂x_b²`
     /// (`∂²E/∂x_a∂x_b` is its opposite): `H = 2w/l₀ [u uᵀ/l₀ + (l/l₀ − 1)(I − u uᵀ)/l]`.
     fn derivatives(&self, x: &[[f64; 2]]) -> Option<([f64; 2], [[f64; 2]; 2])> {
+        self.derivatives_of(x, false)
+    }
+
+    /// [`LengthSpring::derivatives`]; `convex`: without the negative transverse term of a
+    /// compressed edge (the Hessian made positive semidefinite).
+    fn derivatives_of(&self, x: &[[f64; 2]], convex: bool) -> Option<([f64; 2], [[f64; 2]; 2])> {
         let (u, l) = self.direction(x)?;
         let (w, r) = (self.weight, self.rest);
         let s = l / r - 1.0;
@@ -58,7 +64,8 @@ impl LengthSpring {
             for (j, v) in row.iter_mut().enumerate() {
                 let uu = u[i] * u[j];
                 let eye = if i == j { 1.0 } else { 0.0 };
-                *v = 2.0 * w / r * (uu / r + s * (eye - uu) / l);
+                let transverse = if convex { s.max(0.0) } else { s };
+                *v = 2.0 * w / r * (uu / r + transverse * (eye - uu) / l);
             }
         }
         Some((g, h))
@@ -102,7 +109,30 @@ impl Spring<2> for LengthSpring {
         fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
-        let Some((_, h)) = self.derivatives(fd.positions()) else {
+        self.push_jacobian(fd.positions(), false, movable, out);
+    }
+
+    fn add_convex_jacobian(
+        &self,
+        _: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        self.push_jacobian(fd.positions(), true, movable, out);
+    }
+}
+
+impl LengthSpring {
+    /// Appends its Jacobian at `x` over the movable ends (`convex`: of the convex Hessian).
+    fn push_jacobian(
+        &self,
+        x: &[[f64; 2]],
+        convex: bool,
+        movable: &[bool],
+        out: &mut Vec<Triplet>,
+    ) {
+        let Some((_, h)) = self.derivatives_of(x, convex) else {
             return;
         };
         for (i, &p) in self.ends.iter().enumerate() {
@@ -202,11 +232,34 @@ impl Spring<2> for BalanceSpring {
             BalanceSpring::Jump(s) => s.add_jacobian(params, movable, fd, out),
         }
     }
+
+    fn add_convex_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        match self {
+            BalanceSpring::Shape(s) => s.add_convex_jacobian(params, movable, fd, out),
+            BalanceSpring::Quad(s) => s.add_convex_jacobian(params, movable, fd, out),
+            BalanceSpring::Length(s) => s.add_convex_jacobian(params, movable, fd, out),
+            BalanceSpring::Jump(s) => s.add_convex_jacobian(params, movable, fd, out),
+        }
+    }
 }
 
 impl EnergyModel<2> for SpringList<'_, BalanceSpring> {
     fn energy(&self, positions: &[[f64; 2]]) -> Option<f64> {
         self.springs.iter().map(|s| s.energy(positions)).sum()
+    }
+
+    fn convex_jacobian(&self, positions: &[[f64; 2]], movable: &[bool], out: &mut Vec<Triplet>) {
+        crate::model::reserve_jacobian(self.springs, out);
+        let mut fd = FiniteDifference::new(positions);
+        for s in self.springs {
+            s.add_convex_jacobian(self.params, movable, &mut fd, out);
+        }
     }
 }
 
@@ -291,6 +344,72 @@ mod tests {
             prop_assert!(force < 1e-5 && jacobian < 1e-4, "{force} {jacobian}");
             prop_assert!(asymmetry < 1e-12, "{asymmetry}");
         }
+    }
+
+    /// The dense matrix of `springs`' Jacobian at `x` (exact or convex), its entries' count
+    /// and its largest eigenvalue.
+    fn largest_eigenvalue(
+        springs: &[BalanceSpring],
+        x: &[[f64; 2]],
+        convex: bool,
+    ) -> (Vec<(u32, u32)>, f64) {
+        let params = SpringParams::default();
+        let model = SpringList {
+            springs,
+            params: &params,
+        };
+        let mut t = Vec::new();
+        let movable = vec![true; x.len()];
+        if convex {
+            model.convex_jacobian(x, &movable, &mut t);
+        } else {
+            crate::ForceModel::jacobian(&model, x, &movable, &mut t);
+        }
+        let n = 2 * x.len();
+        let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
+        t.iter()
+            .for_each(|e| m[(e.row as usize, e.col as usize)] += e.value);
+        let scale = m.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let top = m
+            .symmetric_eigenvalues()
+            .iter()
+            .fold(f64::MIN, |a, &v| a.max(v));
+        (t.iter().map(|e| (e.row, e.col)).collect(), top / scale)
+    }
+
+    /// Where the exact Jacobian of a quadrilateral, a triangle and a compressed edge is not
+    /// negative semidefinite (the energy's Hessian indefinite), the convex one is, with the
+    /// same entries.
+    #[test]
+    fn the_convex_jacobian_is_negative_semidefinite_with_the_same_entries() {
+        let rest = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.5]];
+        let law = crate::ShapeLaw::default();
+        let quad = [0u32, 1, 2, 3];
+        let shapes = crate::shape_springs([&quad[..]], &rest, law, &[1.0]).unwrap();
+        let triangle = crate::ShapeSpring::at_rest([1, 4, 2], &rest, 2.0, law).unwrap();
+        let springs = [
+            BalanceSpring::Quad(Box::new(crate::QuadSpring {
+                corners: quad,
+                shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
+                jumps: crate::quad_jumps(&quad, &rest, 5.0),
+            })),
+            BalanceSpring::Shape(triangle),
+            BalanceSpring::Length(LengthSpring {
+                ends: [0, 4],
+                rest: 2.06,
+                weight: 3.0,
+            }),
+        ];
+        // the quadrilateral sheared and squeezed, the edge compressed
+        let x = [[0.0, 0.0], [1.0, 0.0], [1.6, 0.5], [0.7, 0.6], [1.5, 0.3]];
+        let (exact_entries, exact) = largest_eigenvalue(&springs, &x, false);
+        let (convex_entries, convex) = largest_eigenvalue(&springs, &x, true);
+        assert!(
+            exact > 1e-3,
+            "the exact Jacobian is already semidefinite: {exact}"
+        );
+        assert!(convex < 1e-12, "{convex}");
+        assert_eq!(exact_entries, convex_entries);
     }
 
     #[test]

@@ -60,6 +60,18 @@ pub trait Spring<const D: usize> {
     ) {
         fd.add(self, params, movable, out);
     }
+    /// [`Spring::add_jacobian`] of the energy's Hessian made positive semidefinite (its
+    /// negative curvature dropped), for Newton steps far from a balance. The default: the
+    /// Jacobian itself (a spring whose energy is convex, or that has none).
+    fn add_convex_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<D>,
+        out: &mut Vec<Triplet>,
+    ) {
+        self.add_jacobian(params, movable, fd, out);
+    }
 }
 
 /// Scratch space of a central-difference Jacobian over `n` nodes, made once per Jacobian: a
@@ -301,9 +313,32 @@ impl<const D: usize, S: Spring<D>> ForceModel<D> for SpringList<'_, S> {
     }
 
     fn jacobian(&self, positions: &[[f64; D]], movable: &[bool], out: &mut Vec<Triplet>) {
+        reserve_jacobian(self.springs, out);
         let mut fd = FiniteDifference::new(positions);
         jacobian_of(self.springs, self.params, movable, &mut fd, out);
     }
+}
+
+/// Reserves room in an empty `out` for every entry `springs` can write (each spring's pushed
+/// coordinates by each other's): a Newton matrix of a 30P30N move is 1.5 million entries,
+/// which grown by doubling cost a copy and twice the memory.
+pub(crate) fn reserve_jacobian<const D: usize, S: Spring<D>>(
+    springs: &[S],
+    out: &mut Vec<Triplet>,
+) {
+    if out.capacity() > 0 {
+        return;
+    }
+    let mut pushes = Vec::new();
+    let entries: usize = springs
+        .iter()
+        .map(|s| {
+            pushes.clear();
+            s.pushes(&mut pushes);
+            (D * pushes.len()).pow(2)
+        })
+        .sum();
+    out.reserve_exact(entries);
 }
 
 #[cfg(test)]

@@ -34,6 +34,12 @@ pub trait EnergyModel<const D: usize>: ForceModel<D> {
     /// The energy at `positions`; `None` where the field refuses to go (a cell flat or
     /// inverted).
     fn energy(&self, positions: &[[f64; D]]) -> Option<f64>;
+    /// The Jacobian of the energy's Hessian made positive semidefinite spring by spring
+    /// ([`crate::Spring::add_convex_jacobian`]), with the same entries as
+    /// [`ForceModel::jacobian`]'s. The default: the Jacobian itself.
+    fn convex_jacobian(&self, positions: &[[f64; D]], movable: &[bool], out: &mut Vec<Triplet>) {
+        self.jacobian(positions, movable, out);
+    }
 }
 
 /// Parameters of [`solve_newton`].
@@ -70,6 +76,9 @@ pub struct NewtonOutcome {
     pub residual: f64,
     /// The energy at the end.
     pub energy: f64,
+    /// Steps that took the convex Hessian ([`EnergyModel::convex_jacobian`]): the exact one
+    /// was not positive definite.
+    pub convex: usize,
     /// Steps that needed a diagonal shift (the matrix was not positive definite).
     pub shifted: usize,
     /// Cholesky factorisations, the failed ones of the shifts included.
@@ -231,28 +240,8 @@ impl<const D: usize> Assembly<D> {
         } else {
             0.0
         };
-        let pattern = self.pattern.as_ref().expect("found");
         for _ in 0..24 {
-            for (&s, d) in self.diagonal_slot.iter().zip(&self.diagonal) {
-                self.values[s as usize] = d + shift * d.abs();
-            }
-            let a = SparseColMatRef::new(pattern.matrix.as_ref(), &self.values);
-            self.factorisations += 1;
-            // a failed attempt leaves a partial factor: the supernodal factorisation starts
-            // from zeros itself, the simplicial one is given them
-            if matches!(pattern.cholesky.raw(), SymbolicCholeskyRaw::Simplicial(_)) {
-                self.factor.iter_mut().for_each(|v| *v = 0.0);
-            }
-            let factored = pattern.cholesky.factorize_numeric_llt(
-                &mut self.factor,
-                a,
-                Side::Lower,
-                Default::default(),
-                self.par,
-                MemStack::new(&mut self.scratch),
-                Default::default(),
-            );
-            if factored.is_ok() {
+            if self.factorise_shifted(shift) {
                 self.last_shift = shift;
                 return Ok(shift > 0.0);
             }
@@ -266,6 +255,46 @@ impl<const D: usize> Assembly<D> {
         Err(SpringError::Solver(
             "the Newton matrix stays indefinite after shifting its diagonal".into(),
         ))
+    }
+
+    /// A Cholesky factorisation of `−∂F/∂X` as it is: whether it is positive definite (the
+    /// factor is then [`Assembly::solve`]'s).
+    fn factorise_exact(&mut self, jacobian: &[Triplet]) -> Result<bool, SpringError> {
+        self.pattern(jacobian)?;
+        self.scatter(jacobian);
+        let factored = self.factorise_shifted(0.0);
+        if factored {
+            self.last_shift = 0.0;
+        }
+        Ok(factored)
+    }
+
+    /// One attempt at factorising the scattered matrix with its diagonal `d` made
+    /// `d + shift·|d|`.
+    fn factorise_shifted(&mut self, shift: f64) -> bool {
+        let pattern = self.pattern.as_ref().expect("found");
+        for (&s, d) in self.diagonal_slot.iter().zip(&self.diagonal) {
+            self.values[s as usize] = d + shift * d.abs();
+        }
+        let a = SparseColMatRef::new(pattern.matrix.as_ref(), &self.values);
+        self.factorisations += 1;
+        // a failed attempt leaves a partial factor: the supernodal factorisation starts
+        // from zeros itself, the simplicial one is given them
+        if matches!(pattern.cholesky.raw(), SymbolicCholeskyRaw::Simplicial(_)) {
+            self.factor.iter_mut().for_each(|v| *v = 0.0);
+        }
+        pattern
+            .cholesky
+            .factorize_numeric_llt(
+                &mut self.factor,
+                a,
+                Side::Lower,
+                Default::default(),
+                self.par,
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            )
+            .is_ok()
     }
 
     /// Solves `L Lᵀ x = rhs` in place with the last factor.
@@ -496,7 +525,18 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
             jacobian.clear();
             model.jacobian(positions, movable, jacobian);
             *factored = false;
-            let shifted = assembly.factorise(jacobian, true)?;
+            // the exact Hessian where it is positive definite (Newton's quadratic
+            // convergence); where it is not, far from the balance, each spring's convex part
+            // (a descent direction that keeps the curvature of every other direction, where a
+            // shift of the whole diagonal damps them all)
+            let shifted = if assembly.factorise_exact(jacobian)? {
+                false
+            } else {
+                jacobian.clear();
+                model.convex_jacobian(positions, movable, jacobian);
+                outcome.convex += 1;
+                assembly.factorise(jacobian, true)?
+            };
             *factored = true;
             outcome.shifted += usize::from(shifted);
             outcome.factorisations = assembly.factorisations - factorisations_before;

@@ -74,9 +74,39 @@ impl Spring<2> for QuadSpring {
         fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
+        self.push_jacobian(params, false, movable, fd, out);
+    }
+
+    /// The block with the corner triangles' convex Hessians (the jumps' are convex).
+    fn add_convex_jacobian(
+        &self,
+        params: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        self.push_jacobian(params, true, movable, fd, out);
+    }
+}
+
+impl QuadSpring {
+    /// Appends its 8 × 8 block ([`Spring::add_jacobian`]); `convex`: of the corner triangles'
+    /// convex Hessians.
+    fn push_jacobian(
+        &self,
+        params: &SpringParams,
+        convex: bool,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
         let start = out.len();
         for s in &self.shapes {
-            s.add_jacobian(params, movable, fd, out);
+            if convex {
+                s.add_convex_jacobian(params, movable, fd, out);
+            } else {
+                s.add_jacobian(params, movable, fd, out);
+            }
         }
         for j in self.jumps.iter().flatten() {
             j.add_jacobian(params, movable, fd, out);

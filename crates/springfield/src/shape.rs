@@ -244,10 +244,31 @@ impl Spring<2> for ShapeSpring {
         out: &mut Vec<Triplet>,
     ) {
         let f = self.deformation(fd.positions());
-        if !positive(&f) {
-            return;
+        if positive(&f) {
+            self.push_hessian(&self.derivatives(&f).1, movable, out);
         }
-        let (_, h) = self.derivatives(&f);
+    }
+
+    /// The Jacobian of the energy's Hessian with its negative curvature dropped
+    /// ([`ShapeSpring::convex_hessian`]).
+    fn add_convex_jacobian(
+        &self,
+        _: &SpringParams,
+        movable: &[bool],
+        fd: &mut FiniteDifference<2>,
+        out: &mut Vec<Triplet>,
+    ) {
+        let f = self.deformation(fd.positions());
+        if positive(&f) {
+            let (_, h) = self.derivatives(&f);
+            self.push_hessian(&self.convex_hessian(&f, h), movable, out);
+        }
+    }
+}
+
+impl ShapeSpring {
+    /// Appends `−Bᵀ h B` over the movable corners (`h`: a Hessian in `f`).
+    fn push_hessian(&self, h: &[[f64; 4]; 4], movable: &[bool], out: &mut Vec<Triplet>) {
         let g = self.gradients();
         for (k, &p) in self.corners.iter().enumerate() {
             if !movable[p as usize] {
@@ -276,6 +297,88 @@ impl Spring<2> for ShapeSpring {
             }
         }
     }
+
+    /// `h`, the energy's Hessian in `f` at `f` (`J > 0`), with its negative eigenvalues
+    /// dropped: positive semidefinite, so that far from the balance a Newton step is a
+    /// descent direction without shifting the whole matrix's diagonal.
+    ///
+    /// The energy depends on `F` through `a = ‖F‖²` and `J` only, so with `F = U Σ Vᵀ` (`U`,
+    /// `V` rotations) its Hessian's eigenvectors are known (Smith, de Goes & Kim 2019,
+    /// *Analytic eigensystems for isotropic distortion energies*, in 2D): the twist
+    /// `U [[0, −1], [1, 0]] Vᵀ/√2` with eigenvalue `2W_a + W_J`, the flip `U [[0, 1], [1, 0]]
+    /// Vᵀ/√2` with `2W_a − W_J` (along either, `a` grows by `2ε²` and `J` by `±ε²`, the first
+    /// derivatives vanish), and in the plane of `U diag(c, s) Vᵀ` the 2 × 2 Hessian of
+    /// `Ψ(σ₁, σ₂) = W(σ₁² + σ₂², σ₁σ₂)`.
+    pub(crate) fn convex_hessian(&self, f: &[f64; 4], mut h: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
+        for (lambda, v) in self.eigensystem(f) {
+            if lambda < 0.0 {
+                for (i, row) in h.iter_mut().enumerate() {
+                    for (k, e) in row.iter_mut().enumerate() {
+                        *e -= lambda * v[i] * v[k];
+                    }
+                }
+            }
+        }
+        h
+    }
+
+    /// The eigenvalues and unit eigenvectors of the energy's Hessian in `f` at `f`
+    /// ([`ShapeSpring::convex_hessian`]).
+    fn eigensystem(&self, f: &[f64; 4]) -> [(f64, [f64; 4]); 4] {
+        let (u, s, vt) = svd2(f);
+        let a = s[0] * s[0] + s[1] * s[1];
+        let d = self.law.partials(a, s[0] * s[1]);
+        let w = self.weight;
+        // the mode U·m·Vᵀ (m row-major) as a vector in f
+        let mode = |m: [f64; 4]| -> [f64; 4] {
+            let um = [
+                u[0] * m[0] + u[1] * m[2],
+                u[0] * m[1] + u[1] * m[3],
+                u[2] * m[0] + u[3] * m[2],
+                u[2] * m[1] + u[3] * m[3],
+            ];
+            [
+                um[0] * vt[0] + um[1] * vt[2],
+                um[0] * vt[1] + um[1] * vt[3],
+                um[2] * vt[0] + um[3] * vt[2],
+                um[2] * vt[1] + um[3] * vt[3],
+            ]
+        };
+        let half = std::f64::consts::FRAC_1_SQRT_2;
+        let (twist, flip) = (
+            (w * (2.0 * d.a + d.j), mode([0.0, -half, half, 0.0])),
+            (w * (2.0 * d.a - d.j), mode([0.0, half, half, 0.0])),
+        );
+        // Ψ's Hessian in (σ₁, σ₂)
+        let (s1, s2) = (s[0], s[1]);
+        let p11 = 2.0 * d.a + 4.0 * s1 * s1 * d.aa + 4.0 * s1 * s2 * d.aj + s2 * s2 * d.jj;
+        let p22 = 2.0 * d.a + 4.0 * s2 * s2 * d.aa + 4.0 * s1 * s2 * d.aj + s1 * s1 * d.jj;
+        let p12 = 4.0 * s1 * s2 * d.aa + 2.0 * a * d.aj + s1 * s2 * d.jj + d.j;
+        let (mean, radius) = (0.5 * (p11 + p22), (0.5 * (p11 - p22)).hypot(p12));
+        let angle = 0.5 * p12.atan2(0.5 * (p11 - p22));
+        let (sn, cs) = angle.sin_cos();
+        [
+            twist,
+            flip,
+            (w * (mean + radius), mode([cs, 0.0, 0.0, sn])),
+            (w * (mean - radius), mode([-sn, 0.0, 0.0, cs])),
+        ]
+    }
+}
+
+/// The singular value decomposition `F = U diag(σ₁, σ₂) Vᵀ` of a 2 × 2 matrix with
+/// `det F > 0` (row-major), `U` and `Vᵀ` rotations, as `(U, [σ₁, σ₂], Vᵀ)`.
+fn svd2(f: &[f64; 4]) -> ([f64; 4], [f64; 2], [f64; 4]) {
+    let (e, fq) = (0.5 * (f[0] + f[3]), 0.5 * (f[0] - f[3]));
+    let (g, h) = (0.5 * (f[2] + f[1]), 0.5 * (f[2] - f[1]));
+    let (q, r) = (e.hypot(h), fq.hypot(g));
+    let (a1, a2) = (g.atan2(fq), h.atan2(e));
+    let (theta, phi) = (0.5 * (a2 - a1), 0.5 * (a2 + a1));
+    let rot = |t: f64| {
+        let (s, c) = t.sin_cos();
+        [c, -s, s, c]
+    };
+    (rot(phi), [q + r, q - r], rot(theta))
 }
 
 impl EnergyModel<2> for SpringList<'_, ShapeSpring> {
@@ -391,6 +494,67 @@ mod tests {
                     prop_assert!((e[r][c] - e[c][r]).abs() <= 1e-12 * scale, "not symmetric");
                 }
             }
+        }
+    }
+
+    proptest! {
+        /// The analytic eigensystem is the Hessian's (`h v = λ v`, unit, orthogonal), and the
+        /// convex Hessian is the Hessian with the negative eigenvalues set to zero.
+        #[test]
+        fn the_eigensystem_is_the_hessians_and_the_convex_part_drops_the_negative(
+            f in prop::array::uniform4(-2.0..2.0f64),
+            exponent in 1.0..9.0f64,
+            size in 0.0..1.0f64,
+        ) {
+            prop_assume!(f[0] * f[3] - f[1] * f[2] > 0.05);
+            let law = ShapeLaw { exponent, size };
+            let s = ShapeSpring::at_rest([0, 1, 2], &[[0.0, 0.0], [1.0, 0.0], [0.3, 0.8]], 0.7, law).unwrap();
+            let (_, h) = s.derivatives(&f);
+            let norm = h.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+            let modes = s.eigensystem(&f);
+            let apply = |m: &[[f64; 4]; 4], v: &[f64; 4]| -> [f64; 4] {
+                std::array::from_fn(|i| (0..4).map(|k| m[i][k] * v[k]).sum())
+            };
+            for (i, (lambda, v)) in modes.iter().enumerate() {
+                let hv = apply(&h, v);
+                for k in 0..4 {
+                    prop_assert!((hv[k] - lambda * v[k]).abs() <= 1e-9 * norm, "mode {i}: {hv:?} vs {lambda} {v:?}");
+                }
+                for (j, (_, w)) in modes.iter().enumerate() {
+                    let dot: f64 = (0..4).map(|k| v[k] * w[k]).sum();
+                    let expected = if i == j { 1.0 } else { 0.0 };
+                    prop_assert!((dot - expected).abs() < 1e-12, "modes {i}, {j}: {dot}");
+                }
+            }
+            let convex = s.convex_hessian(&f, h);
+            for (lambda, v) in &modes {
+                let cv = apply(&convex, v);
+                for k in 0..4 {
+                    prop_assert!((cv[k] - lambda.max(0.0) * v[k]).abs() <= 1e-9 * norm);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_svd_reconstructs_its_matrix() {
+        for f in [
+            [1.0, 0.2, -0.3, 0.9],
+            [0.1, -2.0, 1.5, 0.05],
+            [2.0, 0.0, 0.0, 2.0],
+        ] {
+            let (u, s, vt) = svd2(&f);
+            let us = [u[0] * s[0], u[1] * s[1], u[2] * s[0], u[3] * s[1]];
+            let back = [
+                us[0] * vt[0] + us[1] * vt[2],
+                us[0] * vt[1] + us[1] * vt[3],
+                us[2] * vt[0] + us[3] * vt[2],
+                us[2] * vt[1] + us[3] * vt[3],
+            ];
+            for k in 0..4 {
+                assert!((back[k] - f[k]).abs() < 1e-12, "{f:?}: {back:?}");
+            }
+            assert!(s[0] >= s[1] && s[1] > 0.0);
         }
     }
 
