@@ -245,12 +245,13 @@ pub fn move_sequence(
                 .map_err(|e| input_error!("moving the mesh: {e}"))?,
         );
     }
-    let mut warm: Option<Balanced> = None;
+    // the last two steps' balances: the next one starts from their line
+    let (mut warm, mut before): (Option<Balanced>, Option<Balanced>) = (None, None);
     for k in 0..=steps {
         let at = motion::scaled(motions, k as f64 / steps as f64);
-        let (moved, balanced) =
-            move_from(case, &unmoved, &at, options, observer, None, warm.as_ref())?;
-        warm = Some(balanced);
+        let last = warm.as_ref().map(|w| (w, before.as_ref()));
+        let (moved, balanced) = move_from(case, &unmoved, &at, options, observer, None, last)?;
+        before = warm.replace(balanced);
         each(k, moved)?;
     }
     Ok(())
@@ -306,7 +307,7 @@ fn move_from(
     options: &MoveOptions,
     observer: &mut dyn Observer,
     plan: Option<&mut Plan>,
-    warm: Option<&Balanced>,
+    warm: Option<(&Balanced, Option<&Balanced>)>,
 ) -> Result<(Moved, Balanced)> {
     let order = case.order_of(options.order)?;
     let moved = moved_geometry(case, motions)?;
@@ -315,11 +316,12 @@ fn move_from(
     let boundary = boundary_targets(&moved, nodes, layered)?;
     let (linear, seconds) = stage(observer, "moving the linear nodes", || {
         match warm {
-            Some(w) => {
+            Some((w, before)) => {
                 let warm = mesh_move::Warm {
                     start: &w.start,
                     balanced: &w.nodes,
                     field: unmoved.field.as_ref(),
+                    before: before.map(|b| (&b.start[..], &b.nodes[..])),
                 };
                 mesh_move::move_layered_from(layered, &boundary, &options.method(), warm)
             }
