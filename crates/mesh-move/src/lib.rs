@@ -88,5 +88,6 @@ pub use motion::{
 pub use movers::{IdwParams, Kernel, Method, MoveStats, Moved, RbfParams, move_mesh};
 pub use quality::{Comparison, FirstLayerDrift, compare, scaled_jacobian};
 pub use springs::{
-    Fill, SpringMoveParams, SpringStats, Strategy, Warm, move_layered, move_layered_from,
+    Fill, SpringMoveParams, SpringStats, StartAndBalance, Strategy, Warm, move_layered,
+    move_layered_from,
 };

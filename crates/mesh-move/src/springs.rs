@@ -92,8 +92,11 @@ pub struct Warm<'a> {
     /// The start and the balanced nodes of the step before it, when the steps are equal
     /// steps of one motion: this balance then starts from the line through their
     /// corrections extended ([`move_layered_from`]).
-    pub before: Option<(&'a [[f64; 2]], &'a [[f64; 2]])>,
+    pub before: Option<StartAndBalance<'a>>,
 }
+
+/// A step's start of its balance and its balanced nodes.
+pub type StartAndBalance<'a> = (&'a [[f64; 2]], &'a [[f64; 2]]);
 
 /// [`move_layered`], the spring mover's balance started from this move's fill plus the
 /// previous step's correction (`warm.balanced − warm.start`), or with [`Warm::before`] the
