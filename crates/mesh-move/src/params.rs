@@ -102,11 +102,11 @@ pub struct SpringMoveParams {
     /// The fill is only the balance's start (inside its basin the balance does not depend
     /// on it), so this is a matter of Newton steps. Measured over the fourteen motions of
     /// `tests/movement/measures.sh` and `cases.sh` (Cholesky factorisations, 2 → 2.5 → 3):
-    /// the 30P30N flap 13 → 4 → 4 (a weight falling as the square leaves a tenth of the
+    /// the 30P30N flap 9 → 4 → 4 (a weight falling as the square leaves a tenth of the
     /// flap's motion in the main element's trailing-edge fan, whose cells are 10⁻⁵ wide),
-    /// the slat 11 → 4 → 4, the NACA0012 turned 30° 8 → 9 → 12 and 180° 18 → 19 → 57 (a
+    /// the slat 14 → 4 → 4, the NACA0012 turned 30° 11 → 20 → 18 and 180° 23 → 17 → 50 (a
     /// whole body's turn spreads far out, which a steeper weight confines), all fourteen
-    /// 416 → 308 → 391.
+    /// 461 → 363 → 445.
     pub screw_exponent: f64,
     /// Most as-rigid-as-possible iterations.
     pub arap_iterations: usize,

@@ -283,7 +283,10 @@ fn start(
     let mut fixed = vec![false; mid.len()];
     half.nodes.iter().for_each(|&k| fixed[k as usize] = true);
     let field = ShapeField::of(layered, p.shape)?;
-    if field.balance(&mut mid, &fixed, &p.newton).is_err() {
+    let tq = std::time::Instant::now();
+    let o = field.balance(&mut mid, &fixed, &p.newton);
+    eprintln!("INNER halvings {halvings} {:?} {:?}", tq.elapsed(), o);
+    if o.is_err() {
         return Ok(Err(x));
     }
     let from = LayeredMesh {

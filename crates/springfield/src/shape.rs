@@ -310,6 +310,16 @@ impl ShapeSpring {
     /// derivatives vanish), and in the plane of `U diag(c, s) Vᵀ` the 2 × 2 Hessian of
     /// `Ψ(σ₁, σ₂) = W(σ₁² + σ₂², σ₁σ₂)`.
     pub(crate) fn convex_hessian(&self, f: &[f64; 4], mut h: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
+        // the eigenvalues first, from a and J alone: most triangles of a step have none
+        // negative, and the eigenvectors' decomposition (trigonometric) is then not needed
+        let a: f64 = f.iter().map(|v| v * v).sum();
+        let j = f[0] * f[3] - f[1] * f[2];
+        let s1 = (0.5 * (a + (a * a - 4.0 * j * j).max(0.0).sqrt())).sqrt();
+        let d = self.law.partials(a, j);
+        let (_, least) = scaling_block(&d, [s1, j / s1]);
+        if 2.0 * d.a - d.j.abs() >= 0.0 && least >= 0.0 {
+            return h;
+        }
         for (lambda, v) in self.eigensystem(f) {
             if lambda < 0.0 {
                 for (i, row) in h.iter_mut().enumerate() {
@@ -326,8 +336,7 @@ impl ShapeSpring {
     /// ([`ShapeSpring::convex_hessian`]).
     fn eigensystem(&self, f: &[f64; 4]) -> [(f64, [f64; 4]); 4] {
         let (u, s, vt) = svd2(f);
-        let a = s[0] * s[0] + s[1] * s[1];
-        let d = self.law.partials(a, s[0] * s[1]);
+        let d = self.law.partials(s[0] * s[0] + s[1] * s[1], s[0] * s[1]);
         let w = self.weight;
         // the mode U·m·Vᵀ (m row-major) as a vector in f
         let mode = |m: [f64; 4]| -> [f64; 4] {
@@ -349,21 +358,38 @@ impl ShapeSpring {
             (w * (2.0 * d.a + d.j), mode([0.0, -half, half, 0.0])),
             (w * (2.0 * d.a - d.j), mode([0.0, half, half, 0.0])),
         );
-        // Ψ's Hessian in (σ₁, σ₂)
-        let (s1, s2) = (s[0], s[1]);
-        let p11 = 2.0 * d.a + 4.0 * s1 * s1 * d.aa + 4.0 * s1 * s2 * d.aj + s2 * s2 * d.jj;
-        let p22 = 2.0 * d.a + 4.0 * s2 * s2 * d.aa + 4.0 * s1 * s2 * d.aj + s1 * s1 * d.jj;
-        let p12 = 4.0 * s1 * s2 * d.aa + 2.0 * a * d.aj + s1 * s2 * d.jj + d.j;
-        let (mean, radius) = (0.5 * (p11 + p22), (0.5 * (p11 - p22)).hypot(p12));
-        let angle = 0.5 * p12.atan2(0.5 * (p11 - p22));
+        let ((largest, least), angle) = (scaling_block(&d, s), scaling_angle(&d, s));
         let (sn, cs) = angle.sin_cos();
         [
             twist,
             flip,
-            (w * (mean + radius), mode([cs, 0.0, 0.0, sn])),
-            (w * (mean - radius), mode([-sn, 0.0, 0.0, cs])),
+            (w * largest, mode([cs, 0.0, 0.0, sn])),
+            (w * least, mode([-sn, 0.0, 0.0, cs])),
         ]
     }
+}
+
+/// The Hessian of `Ψ(σ₁, σ₂) = W(σ₁² + σ₂², σ₁σ₂)` in the singular values `s`, from `W`'s
+/// partials `d`, as `[p11, p22, p12]`.
+fn scaling_hessian(d: &Partials, s: [f64; 2]) -> [f64; 3] {
+    let (s1, s2) = (s[0], s[1]);
+    let p11 = 2.0 * d.a + 4.0 * s1 * s1 * d.aa + 4.0 * s1 * s2 * d.aj + s2 * s2 * d.jj;
+    let p22 = 2.0 * d.a + 4.0 * s2 * s2 * d.aa + 4.0 * s1 * s2 * d.aj + s1 * s1 * d.jj;
+    let p12 = 4.0 * s1 * s2 * d.aa + 2.0 * (s1 * s1 + s2 * s2) * d.aj + s1 * s2 * d.jj + d.j;
+    [p11, p22, p12]
+}
+
+/// The two eigenvalues of [`scaling_hessian`], largest first.
+fn scaling_block(d: &Partials, s: [f64; 2]) -> (f64, f64) {
+    let [p11, p22, p12] = scaling_hessian(d, s);
+    let (mean, radius) = (0.5 * (p11 + p22), (0.5 * (p11 - p22)).hypot(p12));
+    (mean + radius, mean - radius)
+}
+
+/// The angle of the largest eigenvalue's eigenvector `(cos, sin)` of [`scaling_hessian`].
+fn scaling_angle(d: &Partials, s: [f64; 2]) -> f64 {
+    let [p11, p22, p12] = scaling_hessian(d, s);
+    0.5 * p12.atan2(0.5 * (p11 - p22))
 }
 
 /// The singular value decomposition `F = U diag(σ₁, σ₂) Vᵀ` of a 2 × 2 matrix with
