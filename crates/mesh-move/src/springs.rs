@@ -1078,33 +1078,76 @@ fn screw(old: &[[f64; 2]], x: &mut [[f64; 2]], sources: &Sources, nodes: &[u32],
             screw_log(o, (z, sources.turn[i], sources.log_scale[i]), b, to)
         })
         .collect();
+    let columns = Columns::of(&sources.at, &sources.area, &logs);
+    // the default exponent 2.5 (and 2) by a division and square roots: powf was this
+    // nodes × sources loop's largest cost
+    let blend = |p: [f64; 2]| match exponent {
+        2.5 => columns.blend(p, |r2| 1.0 / (r2 * r2.sqrt().sqrt())),
+        2.0 => columns.blend(p, |r2| 1.0 / r2),
+        _ => columns.blend(p, |r2| r2.powf(-0.5 * exponent)),
+    };
     let moved: Vec<[f64; 2]> = nodes
         .par_iter()
         .map(|&k| {
             let p = old[k as usize];
-            let (mut sum, mut total) = ([0.0; 4], 0.0);
-            for (i, b) in sources.at.iter().enumerate() {
-                let r2 = (p[0] - b[0]).powi(2) + (p[1] - b[1]).powi(2);
-                // the default exponent 2.5 (and 2) by a division and square roots: powf was
-                // this nodes × sources loop's largest cost
-                let inverse = if exponent == 2.5 {
-                    1.0 / (r2 * r2.sqrt().sqrt())
-                } else if exponent == 2.0 {
-                    1.0 / r2
-                } else {
-                    r2.powf(-0.5 * exponent)
-                };
-                let w = sources.area[i] * inverse;
-                for c in 0..4 {
-                    sum[c] += w * logs[i][c];
-                }
-                total += w;
-            }
-            screw_exp(o, sum.map(|v| v / total), p)
+            screw_exp(o, blend(p), p)
         })
         .collect();
     for (&k, m) in nodes.iter().zip(moved) {
         x[k as usize] = m;
+    }
+}
+
+/// The lanes of [`Columns::blend`]'s sums.
+const LANES: usize = 4;
+
+/// The screw fill's sources by columns (position, weight, logarithm), padded to a multiple
+/// of [`LANES`] with weightless copies of the first, so that the weighted sums run in lanes
+/// the compiler vectorises (a node's blend is a sum over every source).
+struct Columns {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    area: Vec<f64>,
+    log: [Vec<f64>; 4],
+}
+
+impl Columns {
+    fn of(at: &[[f64; 2]], area: &[f64], logs: &[[f64; 4]]) -> Columns {
+        let n = at.len().div_ceil(LANES) * LANES;
+        let padded = |i: usize| i.min(at.len().saturating_sub(1));
+        let column = |f: &dyn Fn(usize) -> f64| -> Vec<f64> { (0..n).map(f).collect() };
+        Columns {
+            x: column(&|i| at.get(padded(i)).map_or(0.0, |p| p[0])),
+            y: column(&|i| at.get(padded(i)).map_or(0.0, |p| p[1])),
+            area: column(&|i| if i < at.len() { area[i] } else { 0.0 }),
+            log: std::array::from_fn(|c| column(&|i| logs.get(padded(i)).map_or(0.0, |l| l[c]))),
+        }
+    }
+
+    /// The mean of the sources' logarithms at `p`, weighted by their areas times
+    /// `inverse(r²)`.
+    fn blend(&self, p: [f64; 2], inverse: impl Fn(f64) -> f64) -> [f64; 4] {
+        let (mut sum, mut total) = ([[0.0; LANES]; 4], [0.0; LANES]);
+        let chunks = self.x.len() / LANES;
+        for ch in 0..chunks {
+            let at = ch * LANES..(ch + 1) * LANES;
+            let (x, y, area) = (
+                &self.x[at.clone()],
+                &self.y[at.clone()],
+                &self.area[at.clone()],
+            );
+            let log: [&[f64]; 4] = std::array::from_fn(|c| &self.log[c][at.clone()]);
+            for l in 0..LANES {
+                let r2 = (p[0] - x[l]) * (p[0] - x[l]) + (p[1] - y[l]) * (p[1] - y[l]);
+                let w = area[l] * inverse(r2);
+                for c in 0..4 {
+                    sum[c][l] += w * log[c][l];
+                }
+                total[l] += w;
+            }
+        }
+        let total: f64 = total.iter().sum();
+        sum.map(|lanes| lanes.iter().sum::<f64>() / total)
     }
 }
 
