@@ -72,6 +72,8 @@ pub struct NewtonReport {
     pub residual: f64,
     /// Steps whose matrix needed a diagonal shift (not positive definite).
     pub shifted: usize,
+    /// Steps that took the springs' convex Hessian (not positive definite after 20 steps).
+    pub convex: usize,
     /// Cholesky factorisations (failed ones of the shifts included).
     pub factorisations: usize,
     /// Energy evaluations of the line search.
@@ -89,6 +91,7 @@ fn springs_report(s: &mesh_move::SpringStats) -> SpringsReport {
             converged: n.converged,
             residual: n.residual,
             shifted: n.shifted,
+            convex: n.convex,
             factorisations: n.factorisations,
             energy_evaluations: n.energy_evaluations,
         }),

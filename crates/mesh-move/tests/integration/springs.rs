@@ -245,9 +245,13 @@ fn springs_keep_the_first_layer_of_a_scaled_body() {
     println!("×1.5 and 5 chords left: {c:?} {s:?}");
     assert_eq!(c.inverted_cells, 0);
     let fl = c.first_layer.expect("walls");
-    // the shape balance keeps 1.6 % and 6.7° here (at the blunt trailing edge's corner
+    // the shape balance keeps 1.8 % and 6.6° here (at the blunt trailing edge's corner
     // fans), above the 1 % and 5° of the other motions
     assert!(fl.height < 0.02 && fl.angle_deg < 7.0, "{fl:?}");
-    // 0.72 (the weights over distance^1.5 that spread a squeezed gap cost this case 0.877)
-    assert!(c.worst_cell_ratio > 0.7, "{c:?}");
+    // 0.867 (0.742 when the shifted Newton steps stopped unconverged)
+    assert!(c.worst_cell_ratio > 0.8, "{c:?}");
+    // the Newton balance converges: its shifted steps crept here, and after 20 steps the
+    // convex Hessian takes over (`springfield::newton`)
+    let newton = s.springs.and_then(|p| p.newton).expect("the balance ran");
+    assert!(newton.converged && newton.convex > 0, "{newton:?}");
 }
