@@ -243,10 +243,7 @@ impl Spring<2> for ShapeSpring {
         fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
-        let f = self.deformation(fd.positions());
-        if positive(&f) {
-            self.push_hessian(&self.derivatives(&f).1, movable, out);
-        }
+        self.push_jacobian(fd.positions(), false, movable, out);
     }
 
     /// The Jacobian of the energy's Hessian with its negative curvature dropped
@@ -258,15 +255,32 @@ impl Spring<2> for ShapeSpring {
         fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
-        let f = self.deformation(fd.positions());
-        if positive(&f) {
-            let (_, h) = self.derivatives(&f);
-            self.push_hessian(&self.convex_hessian(&f, h), movable, out);
-        }
+        self.push_jacobian(fd.positions(), true, movable, out);
     }
 }
 
 impl ShapeSpring {
+    /// Appends its Jacobian at `x` over the movable corners (`convex`: of the convex Hessian);
+    /// nothing when the triangle is flat or inverted.
+    fn push_jacobian(
+        &self,
+        x: &[[f64; 2]],
+        convex: bool,
+        movable: &[bool],
+        out: &mut Vec<Triplet>,
+    ) {
+        let f = self.deformation(x);
+        if positive(&f) {
+            let (_, h) = self.derivatives(&f);
+            let h = if convex {
+                self.convex_hessian(&f, h)
+            } else {
+                h
+            };
+            self.push_hessian(&h, movable, out);
+        }
+    }
+
     /// Appends `−Bᵀ h B` over the movable corners (`h`: a Hessian in `f`).
     fn push_hessian(&self, h: &[[f64; 4]; 4], movable: &[bool], out: &mut Vec<Triplet>) {
         let g = self.gradients();
