@@ -21,6 +21,8 @@ pub mod motion;
 pub mod report;
 pub mod sensitivities;
 
+use std::cell::OnceCell;
+
 use boundary1d::BoundaryNodes;
 use mesh_model::{LayeredMesh, Mesh};
 use mesh_move::{
@@ -265,6 +267,35 @@ struct Unmoved {
     report: Report,
     /// The spring mover's shape field, kept across the steps of a sequence.
     field: Option<mesh_move::ShapeField>,
+    /// The unmoved mesh at the moves' order (its curving decisions, which the moved meshes
+    /// keep) and its cells' measures, made by the first move and kept for the next steps.
+    baseline: OnceCell<(Option<vector_adding::Decisions>, measures::Baseline)>,
+}
+
+impl Unmoved {
+    /// [`Unmoved::baseline`], made at the first call (`order` and `triangles` are a
+    /// sequence's, the same at every step).
+    fn baseline(
+        &self,
+        case: &Case,
+        (order, triangles): (u8, bool),
+    ) -> Result<&(Option<vector_adding::Decisions>, measures::Baseline)> {
+        if let Some(made) = self.baseline.get() {
+            return Ok(made);
+        }
+        let made = if order == 1 {
+            let mut scratch = Report::default();
+            let mesh = mesh2d::linear_at_order(&self.layered, triangles, &mut scratch);
+            (None, measures::Baseline::of(mesh))
+        } else {
+            let curves = pipeline::curves(case)?;
+            let layered = std::borrow::Cow::Borrowed(&self.layered);
+            let before =
+                pipeline::curved_mesh(case, &curves, &self.nodes, layered, order, triangles)?;
+            (Some(before.decisions), measures::Baseline::of(before.mesh))
+        };
+        Ok(self.baseline.get_or_init(|| made))
+    }
 }
 
 fn unmoved(
@@ -288,6 +319,7 @@ fn unmoved(
         layered,
         report,
         field: None,
+        baseline: OnceCell::new(),
     })
 }
 
@@ -349,24 +381,20 @@ fn move_from(
         ));
         moved_layered.mesh.clone()
     } else if order == 1 {
-        let mut scratch = Report::default();
-        unmoved_mesh = Some(mesh2d::linear_at_order(
-            layered,
-            options.triangles,
-            &mut scratch,
-        ));
+        unmoved_mesh = Some(unmoved.baseline(case, (order, options.triangles))?);
         mesh2d::linear_at_order(&moved_layered, options.triangles, &mut report)
     } else {
-        let (curved, before) = curve_keeping(
-            (case, &moved),
+        let baseline = unmoved.baseline(case, (order, options.triangles))?;
+        let curved = curve_keeping(
+            &moved,
             nodes,
-            (layered, &moved_layered),
+            (&moved_layered, &baseline.0),
             (order, options.triangles),
             observer,
             &mut report,
         )?;
         decisions = Some(curved.decisions);
-        unmoved_mesh = Some(before);
+        unmoved_mesh = Some(baseline);
         curved.mesh
     };
     let sensitivities = if options.sensitivities && !inverted {
@@ -392,7 +420,7 @@ fn move_from(
         &comparison,
         (&layered.mesh, &moved_layered.mesh),
     );
-    movement.measures = unmoved_mesh.and_then(|before| measures::measures(&before, &mesh));
+    movement.measures = unmoved_mesh.and_then(|(_, before)| measures::measures(before, &mesh));
     report.movement = Some(movement);
     let scaled_jacobian = mesh2d::certify_and_write(
         (&mesh, LinearAngles::Of(&moved_layered.mesh)),
@@ -481,28 +509,27 @@ fn balance_at(
 /// that had to change (a cell the kept decision would leave invalid) are counted in the
 /// report and the first ones named in its notes.
 fn curve_keeping(
-    (case, moved): (&Case, &MovedGeometry),
+    moved: &MovedGeometry,
     nodes: &[BoundaryNodes],
-    (original, layered): (&LayeredMesh, &LayeredMesh),
+    (layered, decisions): (&LayeredMesh, &Option<vector_adding::Decisions>),
     (order, triangles): (u8, bool),
     observer: &mut dyn Observer,
     report: &mut Report,
-) -> Result<(vector_adding::Curved, Mesh)> {
+) -> Result<vector_adding::Curved> {
     let what = "curving (Vector-Adding, the original's decisions kept)";
     let (curved, seconds) = stage(observer, what, || {
-        let curves = pipeline::curves(case)?;
-        let original = std::borrow::Cow::Borrowed(original);
-        let before = pipeline::curved_mesh(case, &curves, nodes, original, order, triangles)?;
+        let decisions = decisions
+            .as_ref()
+            .ok_or_else(|| input_error!("curving: no decisions of the unmoved mesh"))?;
         vector_adding::curve_mesh_keeping(
             layered,
             &pipeline::loop_curves(&moved.curves, nodes),
             &pipeline::curving_params(&moved.case, order, triangles),
-            &before.decisions,
+            decisions,
         )
-        .map(|moved| (moved, before.mesh))
         .map_err(|e| input_error!("curving: {e}"))
     });
-    let ((curved, changes), before) = curved?;
+    let (curved, changes) = curved?;
     report.timings_s.insert("curving", seconds);
     report.curved_edge_fraction = Some(curved.stats.curved_edge_fraction);
     report.curving = Some(curved.stats.clone());
@@ -512,7 +539,7 @@ fn curve_keeping(
             "curving decision changed by the motion: {change:?}"
         ));
     }
-    Ok((curved, before))
+    Ok(curved)
 }
 
 /// The boundary nodes and the layered linear mesh of `snapshot`, checked to be this case's:
