@@ -162,6 +162,20 @@ impl Spring<2> for JumpSpring {
         _: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
+        self.push_entries(movable, out);
+    }
+}
+
+impl JumpSpring {
+    /// `∂F_p/∂x_q` between its nodes `m` and `k` (the same on both axes, zero across them;
+    /// constant: the energy is quadratic).
+    pub(crate) fn entry(&self, m: usize, k: usize) -> f64 {
+        let (gm, gk) = (self.gradients[m], self.gradients[k]);
+        -2.0 * self.weight * (gm[0] * gk[0] + gm[1] * gk[1])
+    }
+
+    /// Appends its Jacobian over the movable nodes.
+    fn push_entries(&self, movable: &[bool], out: &mut Vec<Triplet>) {
         let n = self.count;
         for (m, &p) in self.nodes[..n].iter().enumerate() {
             if !movable[p as usize] {
@@ -171,8 +185,7 @@ impl Spring<2> for JumpSpring {
                 if !movable[q as usize] {
                     continue;
                 }
-                let (gm, gk) = (self.gradients[m], self.gradients[k]);
-                let v = -2.0 * self.weight * (gm[0] * gk[0] + gm[1] * gk[1]);
+                let v = self.entry(m, k);
                 for a in 0..2u32 {
                     out.push(Triplet {
                         row: 2 * p + a,

@@ -33,12 +33,6 @@ impl QuadSpring {
         let jumps: f64 = self.jumps.iter().flatten().map(|j| j.energy(x)).sum();
         Some(shapes? + jumps)
     }
-
-    /// The local index (0 to 3) of global coordinate `g`'s node, and its axis.
-    fn local(&self, g: u32) -> Option<usize> {
-        let at = self.corners.iter().position(|&k| k == g / 2)?;
-        Some(2 * at + (g % 2) as usize)
-    }
 }
 
 impl Spring<2> for QuadSpring {
@@ -65,27 +59,27 @@ impl Spring<2> for QuadSpring {
         }
     }
 
-    /// The parts' entries summed into one 8 × 8 block over the movable corners (the parts
-    /// write theirs into `out`, which are then taken back).
+    /// The parts' entries summed into one 8 × 8 block over the movable corners (each corner
+    /// triangle's 6 × 6 block and the jumps' entries added at their corners' places).
     fn add_jacobian(
         &self,
-        params: &SpringParams,
+        _: &SpringParams,
         movable: &[bool],
         fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
-        self.push_jacobian(params, false, movable, fd, out);
+        self.push_jacobian(fd.positions(), false, movable, out);
     }
 
     /// The block with the corner triangles' convex Hessians (the jumps' are convex).
     fn add_convex_jacobian(
         &self,
-        params: &SpringParams,
+        _: &SpringParams,
         movable: &[bool],
         fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
-        self.push_jacobian(params, true, movable, fd, out);
+        self.push_jacobian(fd.positions(), true, movable, out);
     }
 }
 
@@ -94,30 +88,48 @@ impl QuadSpring {
     /// convex Hessians.
     fn push_jacobian(
         &self,
-        params: &SpringParams,
+        x: &[[f64; 2]],
         convex: bool,
         movable: &[bool],
-        fd: &mut FiniteDifference<2>,
         out: &mut Vec<Triplet>,
     ) {
-        let start = out.len();
-        for s in &self.shapes {
-            if convex {
-                s.add_convex_jacobian(params, movable, fd, out);
-            } else {
-                s.add_jacobian(params, movable, fd, out);
-            }
-        }
-        for j in self.jumps.iter().flatten() {
-            j.add_jacobian(params, movable, fd, out);
-        }
         let mut block = [[0.0; 8]; 8];
-        for t in &out[start..] {
-            if let (Some(r), Some(c)) = (self.local(t.row), self.local(t.col)) {
-                block[r][c] += t.value;
+        for s in &self.shapes {
+            let Some(part) = s.jacobian_block(x, convex) else {
+                continue;
+            };
+            let at = s.corners.map(|k| self.corners.iter().position(|&c| c == k));
+            for (k, &i) in at.iter().enumerate() {
+                for (m, &j) in at.iter().enumerate() {
+                    let (Some(i), Some(j)) = (i, j) else {
+                        continue;
+                    };
+                    for a in 0..2 {
+                        for b in 0..2 {
+                            block[2 * i + a][2 * j + b] += part[2 * k + a][2 * m + b];
+                        }
+                    }
+                }
             }
         }
-        out.truncate(start);
+        for jump in self.jumps.iter().flatten() {
+            let n = jump.count;
+            let at: Vec<Option<usize>> = jump.nodes[..n]
+                .iter()
+                .map(|&k| self.corners.iter().position(|&c| c == k))
+                .collect();
+            for (m, &i) in at.iter().enumerate() {
+                for (k, &j) in at.iter().enumerate() {
+                    let (Some(i), Some(j)) = (i, j) else {
+                        continue;
+                    };
+                    let v = jump.entry(m, k);
+                    for a in 0..2 {
+                        block[2 * i + a][2 * j + a] += v;
+                    }
+                }
+            }
+        }
         let free = |i: &usize| movable[self.corners[*i] as usize];
         for i in (0..4).filter(free) {
             for j in (0..4).filter(free) {

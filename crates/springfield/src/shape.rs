@@ -269,21 +269,9 @@ impl ShapeSpring {
         movable: &[bool],
         out: &mut Vec<Triplet>,
     ) {
-        let f = self.deformation(x);
-        if positive(&f) {
-            let (_, h) = self.derivatives(&f);
-            let h = if convex {
-                self.convex_hessian(&f, h)
-            } else {
-                h
-            };
-            self.push_hessian(&h, movable, out);
-        }
-    }
-
-    /// Appends `−Bᵀ h B` over the movable corners (`h`: a Hessian in `f`).
-    fn push_hessian(&self, h: &[[f64; 4]; 4], movable: &[bool], out: &mut Vec<Triplet>) {
-        let g = self.gradients();
+        let Some(block) = self.jacobian_block(x, convex) else {
+            return;
+        };
         for (k, &p) in self.corners.iter().enumerate() {
             if !movable[p as usize] {
                 continue;
@@ -294,6 +282,37 @@ impl ShapeSpring {
                 }
                 for a in 0..2 {
                     for b in 0..2 {
+                        out.push(Triplet {
+                            row: (2 * p + a as u32),
+                            col: (2 * q + b as u32),
+                            value: block[2 * k + a][2 * m + b],
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+    /// Its Jacobian at `x` as a 6 × 6 block over its corners (row `2k + a`: corner `k`'s
+    /// axis `a`), `−Bᵀ h B` with `h` the energy's Hessian in `f` (`convex`: its convex
+    /// part); `None` when the triangle is flat or inverted.
+    pub(crate) fn jacobian_block(&self, x: &[[f64; 2]], convex: bool) -> Option<[[f64; 6]; 6]> {
+        let f = self.deformation(x);
+        if !positive(&f) {
+            return None;
+        }
+        let (_, h) = self.derivatives(&f);
+        let h = if convex {
+            self.convex_hessian(&f, h)
+        } else {
+            h
+        };
+        let g = self.gradients();
+        let mut block = [[0.0; 6]; 6];
+        for k in 0..3 {
+            for m in 0..3 {
+                for a in 0..2 {
+                    for b in 0..2 {
                         // Σ_{c,d} H[(a,c),(b,d)] g_k[c] g_m[d]
                         let mut v = 0.0;
                         for c in 0..2 {
@@ -301,15 +320,12 @@ impl ShapeSpring {
                                 v += h[2 * a + c][2 * b + d] * g[k][c] * g[m][d];
                             }
                         }
-                        out.push(Triplet {
-                            row: (2 * p + a as u32),
-                            col: (2 * q + b as u32),
-                            value: -v,
-                        });
+                        block[2 * k + a][2 * m + b] = -v;
                     }
                 }
             }
         }
+        Some(block)
     }
 
     /// `h`, the energy's Hessian in `f` at `f` (`J > 0`), with its negative eigenvalues
