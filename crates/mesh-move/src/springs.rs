@@ -283,10 +283,7 @@ fn start(
     let mut fixed = vec![false; mid.len()];
     half.nodes.iter().for_each(|&k| fixed[k as usize] = true);
     let field = ShapeField::of(layered, p.shape)?;
-    let tq = std::time::Instant::now();
-    let o = field.balance(&mut mid, &fixed, &p.newton);
-    eprintln!("INNER halvings {halvings} {:?} {:?}", tq.elapsed(), o);
-    if o.is_err() {
+    if field.balance(&mut mid, &fixed, &p.newton).is_err() {
         return Ok(Err(x));
     }
     let from = LayeredMesh {
