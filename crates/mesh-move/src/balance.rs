@@ -298,12 +298,16 @@ fn jump_springs(mesh: &Mesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<JumpSprin
 /// The weight of a quadrilateral's jump springs ([`quad_jumps_of`]) over the quadrilateral's.
 const QUAD_AFFINITY: f64 = 100.0;
 /// The layers whose quadrilaterals keep no jump springs of their own ([`quad_jumps_of`]): those
-/// with every node in the first twelve layers.
-const QUAD_AFFINITY_ABOVE: u32 = 12;
+/// with every node in the first four layers.
+const QUAD_AFFINITY_FROM: u32 = 4;
+/// The layer from which a quadrilateral's jump springs have their whole weight; between the
+/// two, the weight grows as the square of the layer ([`quad_jumps_of`]).
+const QUAD_AFFINITY_FULL: u32 = 14;
 
 /// Quadrilateral `c`'s opposite corner triangles held to the same deformation gradient
 /// (`springfield::quad_jumps`), weighted by [`QUAD_AFFINITY`] times the cell's weight; none
-/// in the first layers ([`QUAD_AFFINITY_ABOVE`]).
+/// in the first layers, growing from [`QUAD_AFFINITY_FROM`] to [`QUAD_AFFINITY_FULL`] (the
+/// cell's layer: its deepest node's).
 ///
 /// Why: the shape springs hold each corner triangle to its shape, but a quadrilateral's
 /// triangles may each stay nearly similar while the quadrilateral keystones, and then its
@@ -320,12 +324,17 @@ const QUAD_AFFINITY_ABOVE: u32 = 12;
 /// wall that bends or a squeezed gap: the first layer drifted by 7.7° under 8 bumps of 1 %
 /// chord, by 2.8 % and 8.0° on the NACA0012 ×1.5, by 1.7 % and 4.7° on the 30P30N's flap in a
 /// far field of 50 chords (first height 5e-5, 60 layers), against 2.1°, 1.5 % and 6.3°, 0.3 %
-/// and 1.1° without them. Leaving out the quadrilaterals of the first 4, 8, 10 and 12 layers:
-/// that flap's drift 1.7 %, 1.2 %, 1.0 %, 0.8 %, the 30P30N's flap sj 0.937, 0.937, 0.937,
-/// 0.906, the slat's and the pitch's unchanged (but the NACA0012's pitch in a far field of 5
-/// chords: sj 0.840 → 0.673). So 100, above the
-/// twelfth layer: every first layer within 1 % and 5° but for the ×1.5 body's (1.5 %, 6.3°,
-/// as without).
+/// and 1.1° without them.
+///
+/// Where they start is a trade between the NACA0012's pitch in a far field of 5 chords, whose
+/// quadrilaterals of layers 5 to 12 keystone (sj 0.673 with none below the thirteenth layer,
+/// 0.840 from the fifth), and that far-field flap's first layer. With the first three layers'
+/// extrusion edges at [`LENGTH_STIFFNESS`] 150, the weight ramped from layer 4 (squared) to
+/// 12, 14, 16, 18 and 20 gave that pitch's sj 0.815, –, 0.765, 0.748, 0.735 and the flap's
+/// drift 1.31 %, –, 1.04 %, 0.94 %, 0.85 %: no ramp both above the thin-plate RBF's 0.763 and
+/// under 1 %. With the edges at 300, the ramp to 14 gives 0.785 and 0.65 % (4.5° with the
+/// flap turned the other way; 12: 0.813 but 5.04°), and every first layer within 1 % and 5°
+/// but the ×1.5 body's angle (0.98 %, 6.6°); the 30P30N flap's sj 0.906 → 0.937.
 fn quad_jumps_of(
     layered: &LayeredMesh,
     rest: &[[f64; 2]],
@@ -334,15 +343,24 @@ fn quad_jumps_of(
 ) -> Option<[JumpSpring; 2]> {
     let cell = layered.mesh.cells.get(c);
     let layer = &layered.layering.node_layer;
-    let near_wall = cell.nodes.iter().all(|&k| {
-        let l = layer.get(k as usize).copied().unwrap_or(NONE);
-        l != NONE && l <= QUAD_AFFINITY_ABOVE
-    });
-    if near_wall || cell.nodes.len() != 4 {
+    // the cell's layer: its deepest node's (a node of no layer is above them all)
+    let depth = cell
+        .nodes
+        .iter()
+        .map(|&k| layer.get(k as usize).copied().unwrap_or(NONE))
+        .map(|l| if l == NONE { u32::MAX } else { l })
+        .max()?;
+    if depth <= QUAD_AFFINITY_FROM || cell.nodes.len() != 4 {
         return None;
     }
+    let ramp = if depth > QUAD_AFFINITY_FULL {
+        1.0
+    } else {
+        let span = f64::from(QUAD_AFFINITY_FULL - QUAD_AFFINITY_FROM + 1);
+        (f64::from(depth - QUAD_AFFINITY_FROM) / span).powi(2)
+    };
     let corners: Vec<[f64; 2]> = cell.nodes.iter().map(|&k| rest[k as usize]).collect();
-    quad_jumps(cell.nodes, &corners, QUAD_AFFINITY * weight[c])
+    quad_jumps(cell.nodes, &corners, QUAD_AFFINITY * ramp * weight[c])
 }
 
 /// The springs of each cell of `layered`: a triangle's shape spring, a quadrilateral's four
@@ -377,8 +395,8 @@ fn cell_springs(
 }
 
 /// How much an extrusion edge's length counts against its cells' shapes: its spring's weight
-/// over the sum of the weights of the (one or two) cells beside it (why 150: below).
-const LENGTH_STIFFNESS: f64 = 150.0;
+/// over the sum of the weights of the (one or two) cells beside it (why 300: below).
+const LENGTH_STIFFNESS: f64 = 300.0;
 /// The layers whose extrusion edges are held (1: the first layer's).
 const LENGTH_LAYERS: u32 = 3;
 
@@ -394,7 +412,9 @@ const LENGTH_LAYERS: u32 = 3;
 /// 90° 0.723 (from 0.774); the first three layers at 40: bumps 2.0 %, 0.979, ×1.5 and moved
 /// 6.2 % (from 49 %), 0.877, 90° 0.773; at 150 (with the cells' weights over distance^1.5):
 /// bumps under 1 %, ×1.5 1.6 % and 6.7°, the four measures of the 30P30N flap and slat and
-/// the 90° pitch unchanged; at 400: bumps 0.5 %, but ×1.5 no longer converges.
+/// the 90° pitch unchanged; at 400: bumps 0.5 %, but ×1.5 no longer converged (it does since
+/// the Newton solve's convex steps). At 300 the quadrilaterals can be held affine from lower
+/// layers ([`quad_jumps_of`]): bumps 0.7 %, ×1.5 0.98 % and 6.6°, the far-field flap 0.65 %.
 fn extrusion_springs(
     layered: &LayeredMesh,
     rest: &[[f64; 2]],
