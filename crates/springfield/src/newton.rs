@@ -272,7 +272,9 @@ impl<const D: usize> Assembly<D> {
     /// One attempt at factorising the scattered matrix with its diagonal `d` made
     /// `d + shift·|d|`.
     fn factorise_shifted(&mut self, shift: f64) -> bool {
-        let pattern = self.pattern.as_ref().expect("found");
+        let Some(pattern) = self.pattern.as_ref() else {
+            return false;
+        };
         for (&s, d) in self.diagonal_slot.iter().zip(&self.diagonal) {
             self.values[s as usize] = d + shift * d.abs();
         }
