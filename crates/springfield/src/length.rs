@@ -255,11 +255,7 @@ impl EnergyModel<2> for SpringList<'_, BalanceSpring> {
     }
 
     fn convex_jacobian(&self, positions: &[[f64; 2]], movable: &[bool], out: &mut Vec<Triplet>) {
-        crate::model::reserve_jacobian(self.springs, out);
-        let mut fd = FiniteDifference::new(positions);
-        for s in self.springs {
-            s.add_convex_jacobian(self.params, movable, &mut fd, out);
-        }
+        self.jacobian_in(positions, movable, true, out);
     }
 }
 

@@ -313,19 +313,38 @@ impl<const D: usize, S: Spring<D>> ForceModel<D> for SpringList<'_, S> {
     }
 
     fn jacobian(&self, positions: &[[f64; D]], movable: &[bool], out: &mut Vec<Triplet>) {
+        self.jacobian_in(positions, movable, false, out);
+    }
+}
+
+impl<S> SpringList<'_, S> {
+    /// Appends every spring's Jacobian entries at `positions` (`convex`: of its convex
+    /// Hessian, [`Spring::add_convex_jacobian`]), `out` reserved first.
+    pub(crate) fn jacobian_in<const D: usize>(
+        &self,
+        positions: &[[f64; D]],
+        movable: &[bool],
+        convex: bool,
+        out: &mut Vec<Triplet>,
+    ) where
+        S: Spring<D>,
+    {
         reserve_jacobian(self.springs, out);
         let mut fd = FiniteDifference::new(positions);
-        jacobian_of(self.springs, self.params, movable, &mut fd, out);
+        if convex {
+            for s in self.springs {
+                s.add_convex_jacobian(self.params, movable, &mut fd, out);
+            }
+        } else {
+            jacobian_of(self.springs, self.params, movable, &mut fd, out);
+        }
     }
 }
 
 /// Reserves room in an empty `out` for every entry `springs` can write (each spring's pushed
 /// coordinates by each other's): a Newton matrix of a 30P30N move is 1.5 million entries,
 /// which grown by doubling cost a copy and twice the memory.
-pub(crate) fn reserve_jacobian<const D: usize, S: Spring<D>>(
-    springs: &[S],
-    out: &mut Vec<Triplet>,
-) {
+fn reserve_jacobian<const D: usize, S: Spring<D>>(springs: &[S], out: &mut Vec<Triplet>) {
     if out.capacity() > 0 {
         return;
     }

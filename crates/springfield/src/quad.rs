@@ -113,11 +113,10 @@ impl QuadSpring {
             }
         }
         for jump in self.jumps.iter().flatten() {
-            let n = jump.count;
-            let at: Vec<Option<usize>> = jump.nodes[..n]
-                .iter()
-                .map(|&k| self.corners.iter().position(|&c| c == k))
-                .collect();
+            let at = jump
+                .nodes
+                .map(|k| self.corners.iter().position(|&c| c == k));
+            let at = &at[..jump.count];
             for (m, &i) in at.iter().enumerate() {
                 for (k, &j) in at.iter().enumerate() {
                     let (Some(i), Some(j)) = (i, j) else {
