@@ -27,7 +27,7 @@ use geom_predicates::{PointTree, point_segment_distance};
 use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
-    BalanceSpring, JumpSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
+    BalanceSpring, CornerSpring, JumpSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
     NewtonWorkspace, QuadSpring, ShapeLaw, ShapeSpring, SpringList, SpringParams, cell_gradients,
     quad_jumps, shape_springs, solve_newton_in,
 };
@@ -77,6 +77,11 @@ impl ShapeField {
             extrusion_springs(layered, &rest, &weight)
                 .into_iter()
                 .map(BalanceSpring::Length),
+        );
+        springs.extend(
+            corner_springs(original, &rest, &weight)
+                .into_iter()
+                .map(BalanceSpring::Corner),
         );
         springs.extend(
             jump_springs(original, &rest, &weight)
@@ -334,7 +339,8 @@ const QUAD_AFFINITY_FULL: u32 = 14;
 /// drift 1.31 %, –, 1.04 %, 0.94 %, 0.85 %: no ramp both above the thin-plate RBF's 0.763 and
 /// under 1 %. With the edges at 300, the ramp to 14 gives 0.785 and 0.65 % (4.5° with the
 /// flap turned the other way; 12: 0.813 but 5.04°), and every first layer within 1 % and 5°
-/// but the ×1.5 body's angle (0.98 %, 6.6°); the 30P30N flap's sj 0.906 → 0.937.
+/// but the ×1.5 body's angle (0.98 %, 6.6°; 1.9° with [`corner_springs`]); the 30P30N flap's
+/// sj 0.906 → 0.937.
 fn quad_jumps_of(
     layered: &LayeredMesh,
     rest: &[[f64; 2]],
@@ -448,6 +454,57 @@ fn extrusion_springs(
             })
         })
         .collect()
+}
+
+/// How much a wall corner's angle counts against its cell's shape: its spring's weight over
+/// the cell's (why: below).
+const CORNER_STIFFNESS: f64 = 100.0;
+
+/// The corner springs of the wall quadrilaterals of `mesh`: at both wall nodes of each, the
+/// angle between the wall facet and the extrusion edge held, weighted by the cell.
+///
+/// Why: where the wall stretches under its layers (a scaled body), the extrusion springs
+/// ([`extrusion_springs`]) keep the layers' heights and the shape springs would keep their
+/// aspect; the balance settled that disagreement by shearing the first layer where the
+/// wall's columns meet a corner's fan: the NACA0012 scaled 1.5× turned the first layer's
+/// edges at the blunt trailing edge's corners by 6.6° (the bar is 5°). Holding the angles
+/// at the wall moves that shear off the wall.
+fn corner_springs(mesh: &Mesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<CornerSpring> {
+    use std::collections::HashMap;
+    let mut edge_cell: HashMap<[u32; 2], (usize, usize)> = HashMap::new();
+    for (i, cell) in mesh.cells.iter().enumerate() {
+        if cell.nodes.len() == 4 {
+            for j in 0..4 {
+                edge_cell.insert([cell.nodes[j], cell.nodes[(j + 1) % 4]], (i, j));
+            }
+        }
+    }
+    let angle = |[a, b, c]: [u32; 3]| {
+        let (p, q, r) = (rest[a as usize], rest[b as usize], rest[c as usize]);
+        let (u, v) = ([p[0] - q[0], p[1] - q[1]], [r[0] - q[0], r[1] - q[1]]);
+        (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1])
+    };
+    let mut out = Vec::new();
+    for f in 0..mesh.boundary.len() {
+        if mesh.patches[mesh.boundary_patch[f] as usize].role != Role::Wall {
+            continue;
+        }
+        let k = mesh.boundary.get(f).corners();
+        // a wall facet a → b is its cell's edge a → b (the domain on its left)
+        let Some(&(cell, j)) = edge_cell.get(&[k[0], k[1]]) else {
+            continue;
+        };
+        let q = mesh.cells.get(cell).nodes;
+        // at b: from the facet (b → a) to the edge b → q[j + 2]; at a: from a → q[j + 3] to a → b
+        for nodes in [[k[0], k[1], q[(j + 2) % 4]], [q[(j + 3) % 4], k[0], k[1]]] {
+            out.push(CornerSpring {
+                nodes,
+                rest: angle(nodes),
+                weight: CORNER_STIFFNESS * weight[cell],
+            });
+        }
+    }
+    out
 }
 
 /// The balance linearised at a moved mesh: the motion of every node for a motion of the

@@ -11,6 +11,7 @@
 //!
 //! It owns these two springs. It does not choose the edges nor the weights (the mover does).
 
+use crate::corner::CornerSpring;
 use crate::jump::JumpSpring;
 use crate::model::{FiniteDifference, Spring, SpringList, Triplet};
 use crate::newton::EnergyModel;
@@ -159,7 +160,7 @@ impl LengthSpring {
     }
 }
 
-/// A spring of the shape balance: a cell's shape or an edge's length.
+/// A spring of the shape balance: a cell's shape, an edge's length or its angle to its wall.
 #[derive(Debug, Clone, PartialEq)]
 pub enum BalanceSpring {
     /// A triangle held to its shape.
@@ -170,6 +171,8 @@ pub enum BalanceSpring {
     Length(LengthSpring),
     /// Two neighbouring cells held to deform alike.
     Jump(JumpSpring),
+    /// An extrusion edge held to its angle with its wall.
+    Corner(CornerSpring),
 }
 
 impl BalanceSpring {
@@ -180,6 +183,7 @@ impl BalanceSpring {
             BalanceSpring::Quad(s) => s.energy(x),
             BalanceSpring::Length(s) => s.energy(x),
             BalanceSpring::Jump(s) => Some(s.energy(x)),
+            BalanceSpring::Corner(s) => s.energy(x),
         }
     }
 }
@@ -191,6 +195,7 @@ impl Spring<2> for BalanceSpring {
             BalanceSpring::Quad(s) => s.reads(out),
             BalanceSpring::Length(s) => s.reads(out),
             BalanceSpring::Jump(s) => s.reads(out),
+            BalanceSpring::Corner(s) => s.reads(out),
         }
     }
 
@@ -200,6 +205,7 @@ impl Spring<2> for BalanceSpring {
             BalanceSpring::Quad(s) => s.pushes(out),
             BalanceSpring::Length(s) => s.pushes(out),
             BalanceSpring::Jump(s) => s.pushes(out),
+            BalanceSpring::Corner(s) => s.pushes(out),
         }
     }
 
@@ -215,6 +221,7 @@ impl Spring<2> for BalanceSpring {
             BalanceSpring::Quad(s) => s.add_force(params, positions, force, stiffness),
             BalanceSpring::Length(s) => s.add_force(params, positions, force, stiffness),
             BalanceSpring::Jump(s) => s.add_force(params, positions, force, stiffness),
+            BalanceSpring::Corner(s) => s.add_force(params, positions, force, stiffness),
         }
     }
 
@@ -230,6 +237,7 @@ impl Spring<2> for BalanceSpring {
             BalanceSpring::Quad(s) => s.add_jacobian(params, movable, fd, out),
             BalanceSpring::Length(s) => s.add_jacobian(params, movable, fd, out),
             BalanceSpring::Jump(s) => s.add_jacobian(params, movable, fd, out),
+            BalanceSpring::Corner(s) => s.add_jacobian(params, movable, fd, out),
         }
     }
 
@@ -245,6 +253,7 @@ impl Spring<2> for BalanceSpring {
             BalanceSpring::Quad(s) => s.add_convex_jacobian(params, movable, fd, out),
             BalanceSpring::Length(s) => s.add_convex_jacobian(params, movable, fd, out),
             BalanceSpring::Jump(s) => s.add_convex_jacobian(params, movable, fd, out),
+            BalanceSpring::Corner(s) => s.add_convex_jacobian(params, movable, fd, out),
         }
     }
 }

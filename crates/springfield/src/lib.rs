@@ -12,9 +12,9 @@
 //!   [`Spring`] per kind), with the forces' sparse Jacobian for a Newton solver, and the
 //!   place where the 3D spring set goes; [`solve_model`] and [`solve_model_active`] take a
 //!   model instead of a callback;
-//! - [`shape`], [`length`], [`jump`] and [`newton`]: the springs of the shape balance (a cell
-//!   held to its rest shape, an edge to its length, two cells to the same deformation; each
-//!   the gradient of an energy) and Newton's method with a sparse Cholesky factorisation on such a
+//! - [`shape`], [`length`], [`jump`], [`corner`] and [`newton`]: the springs of the shape
+//!   balance (a cell held to its rest shape, an edge to its length, two cells to the same
+//!   deformation, an extrusion edge to its angle with the wall; each the gradient of an energy) and Newton's method with a sparse Cholesky factorisation on such a
 //!   conservative field, with its linearisation for sensitivities (mesh movement);
 //! - [`problem`]: the local spring problem of a layered mesher (which nodes of the top
 //!   layers move, local numbering, solve on copies, undo), shared by every mesher.
@@ -59,6 +59,7 @@
 //! ```
 
 mod active;
+pub mod corner;
 mod error;
 pub mod jump;
 pub mod length;
@@ -74,6 +75,7 @@ pub mod springs3d;
 mod vec;
 
 pub use active::{Active, Influence};
+pub use corner::CornerSpring;
 pub use error::SpringError;
 pub use jump::{JumpSpring, cell_gradients, quad_jumps};
 pub use length::{BalanceSpring, LengthSpring};
