@@ -245,9 +245,9 @@ fn springs_keep_the_first_layer_of_a_scaled_body() {
     println!("×1.5 and 5 chords left: {c:?} {s:?}");
     assert_eq!(c.inverted_cells, 0);
     let fl = c.first_layer.expect("walls");
-    // the shape balance keeps 1.8 % and 6.6° here (at the blunt trailing edge's corner
-    // fans), above the 1 % and 5° of the other motions
-    assert!(fl.height < 0.02 && fl.angle_deg < 7.0, "{fl:?}");
+    // within the 1 % and 5° of every motion: 0.98 % and 1.9° (6.6° at the blunt trailing
+    // edge's corner fans before the corner springs held the first layer's angles)
+    assert!(fl.height < 0.01 && fl.angle_deg < 5.0, "{fl:?}");
     // 0.867 (0.742 when the shifted Newton steps stopped unconverged)
     assert!(c.worst_cell_ratio > 0.8, "{c:?}");
     // the Newton balance converges: its shifted steps crept here, and after 20 steps the
