@@ -6,11 +6,10 @@
 //! it by 10⁻⁵, which is what broke the dissertation's shape optimisation. This phase then
 //! holds every cell to its original shape with `springfield`'s shape springs (a triangle by
 //! itself, a quadrilateral by its four corner triangles; the energy of each is its
-//! distortion from the original, zero for a rigid motion and infinite for a flat cell),
-//! joins neighbouring cells of very different weights by jump springs (their deformations
-//! held alike, so the strain spreads from a stiff cell into its soft neighbour instead of
-//! piling up in it) and balances them by Newton's method to machine precision, boundary
-//! nodes held. The balance
+//! distortion from the original, zero for a rigid motion and infinite for a flat cell; a
+//! quadrilateral's opposite corners held to the same deformation above the first layers),
+//! the first layers' extrusion edges to their lengths and their angles with the wall, and
+//! balances them by Newton's method to machine precision, boundary nodes held. The balance
 //! is a smooth function of the boundary (the implicit function theorem, wherever its
 //! stiffness is positive definite), does not depend on where the predictor put the nodes as
 //! long as it is in the balance's basin, and never inverts a cell (the energy would be
@@ -28,8 +27,8 @@ use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
     BalanceSpring, CornerSpring, JumpSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
-    NewtonWorkspace, QuadSpring, ShapeLaw, ShapeSpring, SpringList, SpringParams, cell_gradients,
-    quad_jumps, shape_springs, solve_newton_in,
+    NewtonWorkspace, QuadSpring, ShapeLaw, ShapeSpring, SpringList, SpringParams, quad_jumps,
+    shape_springs, solve_newton_in,
 };
 
 use crate::MoveError;
@@ -82,11 +81,6 @@ impl ShapeField {
             corner_springs(original, &rest, &weight)
                 .into_iter()
                 .map(BalanceSpring::Corner),
-        );
-        springs.extend(
-            jump_springs(original, &rest, &weight)
-                .into_iter()
-                .map(BalanceSpring::Jump),
         );
         let mut scale = vec![f64::INFINITY; rest.len()];
         for c in original.cells.iter() {
@@ -162,39 +156,58 @@ impl ShapeField {
 /// How much stiffer a skewed cell is: its weight is divided by its original scaled Jacobian
 /// to this power (at most [`MAX_STIFFENING`] times).
 const SKEW_STIFFENING: f64 = 30.0;
-/// The most a cell is stiffened for its skewness (the Newton matrix stays well conditioned).
-const MAX_STIFFENING: f64 = 1e3;
+/// The most a cell is stiffened for its skewness (why 15: below).
+const MAX_STIFFENING: f64 = 15.0;
 
+/// The power of its area a cell's weight grows with (below).
+const AREA_POWER: f64 = 0.75;
 /// The power of the wall distance a cell's weight is divided by (below).
-const DISTANCE_POWER: f64 = 1.5;
+const DISTANCE_POWER: f64 = 0.9;
 
-/// Each cell's weight in the balance: its area over its distance to the nearest wall (to the
-/// nearest boundary when there is no wall) to the power 1.5, stiffened by its skewness.
+/// Each cell's weight in the balance: its area to the power 0.75 over its distance to the
+/// nearest wall (to the nearest boundary when there is no wall) to the power 0.9, stiffened
+/// by its skewness.
 ///
 /// Why: a body turned inside a fixed far field twists the mesh between them, and where the
 /// balance puts the twist depends on the weights. With equal weights it goes where cells are
 /// few (the coarse outer region, sheared hard); weighted by area, where cells are small (the
 /// first layers, crushed). Area over distance² gives every ring about the body the same
 /// weight per unit of log-distance, which for a twist spreads the shear evenly in
-/// log-distance — the smallest largest shear — and makes the thin wall cells stiff (their
-/// weight is about their aspect ratio), so the layers turn with their wall. But a flap or a
-/// slat deflected beside a fixed element squeezes the gap between them, and there area
-/// over distance² leaves the squeeze to the gap's larger middle cells: power 1.5 spreads it.
-/// Measured at P3 by the four measures of issue 43 (lin / sj / sicn / edge, worst cell
-/// ratios), power 2 → 1.5: the 30P30N flap +10° 0.84/0.83/0.71/0.76 → 0.86/0.85/0.72/0.78,
-/// its slat 10° 0.88/0.82/0.82/0.82 → 0.89/0.83/0.85/0.86, the NACA0012 pitched 90°
-/// 0.77/0.77/0.74/0.60 → 0.74/0.76/0.74/0.63 (power 1: the flap 0.89/0.86/0.74/0.81 but
-/// the pitch 0.66/0.64/0.59/0.67; power 0 breaks down: 0.31 on the flap).
+/// log-distance, and makes the thin wall cells stiff. But a flap or a slat deflected beside
+/// a fixed element squeezes the gap between them, where every cell is near a wall, and the
+/// worst-cell ratios are made by the smallest cells (a corner fan's, a trailing edge's):
+/// weighted by their area they are the cheapest to distort. Area^0.75 keeps a small cell
+/// dearer, and distance^0.9 keeps about the same balance between the near and the far
+/// field for cells graded with their distance (area ∝ d²: weight ∝ d^0.6, against d^0.5
+/// with area over d^1.5). Since the first layers' heights and angles have their own springs
+/// ([`extrusion_springs`], [`corner_springs`]), the weights need not hold the walls.
 ///
 /// The skewness: a balance minimises a sum, and any smooth energy is quadratic in a small
 /// strain, so a few cells may take a few per cent of it; a skewed cell's scaled Jacobian
 /// moves with its angles about cot θ times faster than a square's, so the worst-cell ratio
-/// is made there. Dividing the weight by sj^30 (sj = 0.9: ×24; at most ×1000, reached at
-/// sj = 0.79) leaves the strain to the well-shaped cells: on the NACA0012 pitched by 10° the
-/// worst-cell ratio goes from 0.915 to 0.990. With the default [`ShapeLaw`] (p = 8), powers
-/// 10, 20, 30 and 40 gave at 30° 0.890, 0.944, 0.954, 0.948 and at 90° 0.687, 0.770, 0.774,
-/// 0.771; caps of 10⁴ and 10⁶ gave the same quality but a noisier balance (the smoothness
-/// test failed at 10⁶).
+/// is made there. Dividing the weight by sj^30 (sj = 0.9: ×24) leaves the strain to the
+/// well-shaped cells: on the NACA0012 pitched by 10° the worst-cell ratio went from 0.915 to
+/// 0.990. But at ×1000 (the cap it had) the skewed cells of a fan or a trailing edge were so
+/// much stiffer than the fill beside them that the strain piled up in the fill and in their
+/// outer ring: a cap of 15 (reached at sj = 0.91) spreads it.
+///
+/// Measured at P3 by the four measures of issue 43 (lin / sj / sicn / edge, worst-cell
+/// ratios by Gmsh), from area/d^1.5 with the cap at 1000 (and the neighbouring cells of
+/// weights three times apart joined by jump springs, which made no difference since and
+/// were removed) to these: the 30P30N flap +10° 0.844/0.937/0.776/0.857 →
+/// 0.870/0.980/0.880/0.922, its slat 10° 0.893/0.942/0.900/0.930 → 0.899/0.983/0.912/0.945,
+/// slat + flap 0.845/0.936/0.776/0.856 → 0.870/0.980/0.880/0.922, the NACA0012 pitched 90°
+/// 0.791/0.854/0.769/0.675 → 0.738/0.873/0.732/0.775 (in 5 chords 0.683/0.785/0.639/0.654
+/// → 0.678/0.852/0.650/0.666); and on motions not used to choose them: the two-element flap
+/// 5° with a bump 0.947/0.837/0.773/0.711 → 0.845/0.837/0.842/0.812, the 30P30N flap −10°
+/// 0.823/0.893/0.788/0.699 → 0.825/0.960/0.833/0.794, the NACA0012 pitched 60° in 5 chords
+/// 0.801/0.906/0.754/0.781 → 0.817/0.900/0.782/0.784, the 30P30N turned 90° in 50 chords
+/// 0.606/0.721/0.627/0.444 → 0.662/0.841/0.650/0.570 (45 Newton steps → 28). Caps of 10, 20
+/// and 30 (with area/d^1.5): the flap 0.800/0.982/0.854/0.905, 0.838/0.976/0.852/0.901,
+/// 0.852/0.973/0.842/0.892; area^0.5/d^0.4: the flap 0.918/0.962/0.904/0.920 but the pitch
+/// 0.699/0.834/0.691/0.797. A larger size term of the quadrilaterals' shape law (2 to 3,
+/// against 0.05) held the NACA0012's leading-edge columns under 8 bumps (edge 0.846 → 0.96)
+/// but the ×1.5 body's balance then stopped unconverged.
 fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
     let has_wall = mesh.patches.iter().any(|p| p.role == Role::Wall);
     // the wall facets, and the facets at each of their nodes
@@ -247,55 +260,8 @@ fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
             let d = distance(centre).max(0.25 * area.abs().sqrt());
             let pts: Vec<[f64; 2]> = c.nodes.iter().map(|&k| rest[k as usize]).collect();
             let sj = crate::quality::scaled_jacobian(&pts).max(f64::MIN_POSITIVE);
-            area.abs() / d.powf(DISTANCE_POWER) * sj.powf(-SKEW_STIFFENING).min(MAX_STIFFENING)
-        })
-        .collect()
-}
-
-/// The weight of a jump spring over the mean weight of its two cells.
-const JUMP_WEIGHT: f64 = 0.1;
-/// The least ratio of two neighbouring cells' weights that joins them by a jump spring.
-const JUMP_CONTRAST: f64 = 3.0;
-
-/// The jump springs between two cells sharing an edge whose weights differ at least
-/// threefold, each weighted by a tenth of their mean weight.
-///
-/// Why: the weights stiffen the cells near the walls and the skewed ones, and where a stiff
-/// cell meets a soft one the soft one takes the strain — on the 30P30N's deflected flap, the
-/// outer cells of its turned boundary-layer stack and of the main element's trailing-edge
-/// fan. A jump spring there spreads it into both. Only these pairs: joining every pair gave
-/// the same quality at 2.4 times the Newton time (the matrix couples the nodes two cells
-/// apart, and its factor fills in), while a contrast of 3 or 10 keeps the time. Measured at
-/// P3, worst-cell ratios lin / sicn / edge (`tests/movement/measures.sh`): the flap +10°
-/// 0.864/0.720/0.800 → 0.890/0.791/0.859, the slat 10° 0.884/0.849/0.861 → 0.905/0.884/0.893,
-/// the NACA0012 pitched 90° 0.740/0.741/0.631 → 0.760/0.755/0.635, in a far field of 5 chords
-/// 0.698/0.648/0.654 → 0.696/0.658/0.649. Weights of 0.05 or 0.3 gave less on the flap, 1
-/// less everywhere; the smaller of the two cells' weights, or their geometric mean, less too.
-fn jump_springs(mesh: &Mesh, rest: &[[f64; 2]], weight: &[f64]) -> Vec<JumpSpring> {
-    let gradients: Vec<Option<Vec<[f64; 2]>>> = mesh
-        .cells
-        .iter()
-        .map(|c| {
-            let pts: Vec<[f64; 2]> = c.nodes.iter().map(|&k| rest[k as usize]).collect();
-            cell_gradients(&pts)
-        })
-        .collect();
-    let edges = Edges::build(mesh.cells.shapes_and_corners(), []);
-    (0..edges.len() as u32)
-        .filter_map(|e| {
-            let [a, b] = match edges.cells(e) {
-                [a, b] => [a.cell as usize, b.cell as usize],
-                _ => return None,
-            };
-            let (wa, wb) = (weight[a], weight[b]);
-            if wa.max(wb) < JUMP_CONTRAST * wa.min(wb) {
-                return None;
-            }
-            JumpSpring::between(
-                (mesh.cells.get(a).nodes, gradients[a].as_ref()?),
-                (mesh.cells.get(b).nodes, gradients[b].as_ref()?),
-                JUMP_WEIGHT * 0.5 * (wa + wb),
-            )
+            area.abs().powf(AREA_POWER) / d.powf(DISTANCE_POWER)
+                * sj.powf(-SKEW_STIFFENING).min(MAX_STIFFENING)
         })
         .collect()
 }
