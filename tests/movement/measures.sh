@@ -22,6 +22,13 @@ rows=(
   "30p30n|30p30n|--motion $m/30p30n-slat10.toml|30P30N slat 10°"
   "30p30n|30p30n|--motion $m/30p30n-slat-flap10.toml|30P30N slat + flap"
   "fixtures/movement/30p30n-far50.toml|far50|--motion $m/30p30n-rotate180-mid.toml|30P30N R50, exactly 180° about (0.5, 0)"
+  "fixtures/movement/naca0012-far5.toml|far5|--rotate -30 --about 0.25,0|NACA0012 R5, pitch 30°"
+  "fixtures/movement/naca0012-far5.toml|far5|--rotate -60 --about 0.25,0|NACA0012 R5, pitch 60°"
+  "naca0012|naca|--rotate -60 --about 0.25,0|NACA0012 R20, pitch 60°"
+  "naca0012|naca|--motion $m/naca0012-8bumps.toml|NACA0012, 8 bumps of 1 % chord"
+  "30p30n|30p30n|--motion $m/30p30n-flap-10.toml|30P30N flap −10°"
+  "fixtures/movement/30p30n-far50.toml|far50|--motion $m/30p30n-rotate90.toml|30P30N R50, 90° then (−10, 10)"
+  "two-element|two-element|--motion $m/two-element.toml|two-element, flap 5° and a bump"
 )
 
 secs() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.2f}')" "$@"; }
