@@ -205,9 +205,10 @@ const DISTANCE_POWER: f64 = 0.9;
 /// 0.606/0.721/0.627/0.444 → 0.662/0.841/0.650/0.570 (45 Newton steps → 28). Caps of 10, 20
 /// and 30 (with area/d^1.5): the flap 0.800/0.982/0.854/0.905, 0.838/0.976/0.852/0.901,
 /// 0.852/0.973/0.842/0.892; area^0.5/d^0.4: the flap 0.918/0.962/0.904/0.920 but the pitch
-/// 0.699/0.834/0.691/0.797. A larger size term of the quadrilaterals' shape law (2 to 3,
-/// against 0.05) held the NACA0012's leading-edge columns under 8 bumps (edge 0.846 → 0.96)
-/// but the ×1.5 body's balance then stopped unconverged.
+/// 0.699/0.834/0.691/0.797. A larger size term of the quadrilaterals' shape law (1 to 3,
+/// against 0.05) held the NACA0012's leading-edge columns under 8 bumps better (edge 0.846 →
+/// 0.90–0.96) but lowered the flap's sicn (0.880 → 0.853–0.867), and at 2 the ×1.5 body's
+/// balance stopped unconverged after 60 steps.
 fn weights(mesh: &Mesh, rest: &[[f64; 2]]) -> Vec<f64> {
     let has_wall = mesh.patches.iter().any(|p| p.role == Role::Wall);
     // the wall facets, and the facets at each of their nodes
