@@ -264,7 +264,17 @@ impl EnergyModel<2> for SpringList<'_, BalanceSpring> {
     }
 
     fn convex_jacobian(&self, positions: &[[f64; 2]], movable: &[bool], out: &mut Vec<Triplet>) {
-        self.jacobian_in(positions, movable, true, out);
+        self.jacobian_in(positions, movable, (true, false), out);
+    }
+
+    fn lower_jacobian(
+        &self,
+        positions: &[[f64; 2]],
+        movable: &[bool],
+        convex: bool,
+        out: &mut Vec<Triplet>,
+    ) {
+        self.jacobian_in(positions, movable, (convex, true), out);
     }
 }
 
@@ -415,6 +425,49 @@ mod tests {
         );
         assert!(convex < 1e-12, "{convex}");
         assert_eq!(exact_entries, convex_entries);
+    }
+
+    /// The lower Jacobian is the full one's entries on and below the diagonal, in order, for
+    /// the exact and the convex Hessian, with some nodes held.
+    #[test]
+    fn the_lower_jacobian_is_the_lower_triangle_of_the_full_one() {
+        let rest = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.5]];
+        let law = crate::ShapeLaw::default();
+        let quad = [0u32, 1, 2, 3];
+        let shapes = crate::shape_springs([&quad[..]], &rest, law, &[1.0]).unwrap();
+        let springs = [
+            BalanceSpring::Quad(Box::new(crate::QuadSpring {
+                corners: quad,
+                shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
+                jumps: crate::quad_jumps(&quad, &rest, 5.0),
+            })),
+            BalanceSpring::Shape(crate::ShapeSpring::at_rest([1, 4, 2], &rest, 2.0, law).unwrap()),
+            BalanceSpring::Corner(crate::CornerSpring {
+                nodes: [0, 1, 4],
+                rest: 0.3,
+                weight: 2.0,
+            }),
+        ];
+        let params = SpringParams::default();
+        let model = SpringList {
+            springs: &springs,
+            params: &params,
+        };
+        let x = [[0.0, 0.0], [1.0, 0.0], [1.6, 0.5], [0.7, 0.6], [1.5, 0.3]];
+        let movable = [true, false, true, true, true];
+        for convex in [false, true] {
+            let mut full = Vec::new();
+            if convex {
+                model.convex_jacobian(&x, &movable, &mut full);
+            } else {
+                crate::ForceModel::jacobian(&model, &x, &movable, &mut full);
+            }
+            full.retain(|t| t.row >= t.col);
+            let mut lower = Vec::new();
+            model.lower_jacobian(&x, &movable, convex, &mut lower);
+            assert!(!lower.is_empty());
+            assert_eq!(lower, full, "convex {convex}");
+        }
     }
 
     #[test]

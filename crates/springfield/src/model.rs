@@ -313,38 +313,60 @@ impl<const D: usize, S: Spring<D>> ForceModel<D> for SpringList<'_, S> {
     }
 
     fn jacobian(&self, positions: &[[f64; D]], movable: &[bool], out: &mut Vec<Triplet>) {
-        self.jacobian_in(positions, movable, false, out);
+        self.jacobian_in(positions, movable, (false, false), out);
     }
 }
 
 impl<S> SpringList<'_, S> {
     /// Appends every spring's Jacobian entries at `positions` (`convex`: of its convex
-    /// Hessian, [`Spring::add_convex_jacobian`]), `out` reserved first.
+    /// Hessian, [`Spring::add_convex_jacobian`]; `lower`: only those on and below the
+    /// diagonal, row ≥ column), `out` reserved first.
     pub(crate) fn jacobian_in<const D: usize>(
         &self,
         positions: &[[f64; D]],
         movable: &[bool],
-        convex: bool,
+        (convex, lower): (bool, bool),
         out: &mut Vec<Triplet>,
     ) where
         S: Spring<D>,
     {
-        reserve_jacobian(self.springs, out);
+        reserve_jacobian(self.springs, lower, out);
         let mut fd = FiniteDifference::new(positions);
-        if convex {
-            for s in self.springs {
+        for s in self.springs {
+            let start = out.len();
+            if convex {
                 s.add_convex_jacobian(self.params, movable, &mut fd, out);
+            } else {
+                s.add_jacobian(self.params, movable, &mut fd, out);
             }
-        } else {
-            jacobian_of(self.springs, self.params, movable, &mut fd, out);
+            if lower {
+                keep_lower(out, start);
+            }
         }
     }
 }
 
+/// Drops the entries above the diagonal (row < column) from `out[start..]`, in place and in
+/// order.
+fn keep_lower(out: &mut Vec<Triplet>, start: usize) {
+    let mut kept = start;
+    for i in start..out.len() {
+        if out[i].row >= out[i].col {
+            out[kept] = out[i];
+            kept += 1;
+        }
+    }
+    out.truncate(kept);
+}
+
 /// Reserves room in an empty `out` for every entry `springs` can write (each spring's pushed
-/// coordinates by each other's): a Newton matrix of a 30P30N move is 1.5 million entries,
-/// which grown by doubling cost a copy and twice the memory.
-fn reserve_jacobian<const D: usize, S: Spring<D>>(springs: &[S], out: &mut Vec<Triplet>) {
+/// nodes' coordinates squared; `lower`: those on and below the diagonal), so a Jacobian of a
+/// million entries does not grow by doubling.
+fn reserve_jacobian<const D: usize, S: Spring<D>>(
+    springs: &[S],
+    lower: bool,
+    out: &mut Vec<Triplet>,
+) {
     if out.capacity() > 0 {
         return;
     }
@@ -354,7 +376,8 @@ fn reserve_jacobian<const D: usize, S: Spring<D>>(springs: &[S], out: &mut Vec<T
         .map(|s| {
             pushes.clear();
             s.pushes(&mut pushes);
-            (D * pushes.len()).pow(2)
+            let n = D * pushes.len();
+            if lower { n * (n + 1) / 2 } else { n * n }
         })
         .sum();
     out.reserve_exact(entries);
