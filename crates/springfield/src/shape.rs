@@ -441,16 +441,6 @@ impl EnergyModel<2> for SpringList<'_, ShapeSpring> {
     fn energy(&self, positions: &[[f64; 2]]) -> Option<f64> {
         self.springs.iter().map(|s| s.energy(positions)).sum()
     }
-
-    fn lower_jacobian(
-        &self,
-        positions: &[[f64; 2]],
-        movable: &[bool],
-        convex: bool,
-        out: &mut Vec<Triplet>,
-    ) {
-        self.jacobian_in(positions, movable, (convex, true), out);
-    }
 }
 
 /// The shape springs holding every cell of a 2D linear mesh given by its cells' corners
