@@ -13,7 +13,7 @@
 //!
 //! It owns this spring. It does not choose the corners nor the weights (the mover does).
 
-use crate::model::{FiniteDifference, Spring, Triplet};
+use crate::model::{FiniteDifference, Spring, Triplet, push_block};
 use crate::params::SpringParams;
 
 /// The angle at `nodes[1]` from the edge to `nodes[0]` to the edge to `nodes[2]`
@@ -113,26 +113,10 @@ impl CornerSpring {
         };
         let curvature = if convex { 0.0 } else { d };
         let w2 = 2.0 * self.weight;
-        for (p, &np) in self.nodes.iter().enumerate() {
-            if !movable[np as usize] {
-                continue;
-            }
-            for (q, &nq) in self.nodes.iter().enumerate() {
-                if !movable[nq as usize] {
-                    continue;
-                }
-                for a in 0..2 {
-                    for b in 0..2 {
-                        let e = w2 * (g[p][a] * g[q][b] + curvature * h[p][q][a][b]);
-                        out.push(Triplet {
-                            row: 2 * np + a as u32,
-                            col: 2 * nq + b as u32,
-                            value: -e,
-                        });
-                    }
-                }
-            }
-        }
+        push_block(&self.nodes, movable, out, |i, j| {
+            let ((p, a), (q, b)) = ((i / 2, i % 2), (j / 2, j % 2));
+            -w2 * (g[p][a] * g[q][b] + curvature * h[p][q][a][b])
+        });
     }
 }
 

@@ -13,7 +13,7 @@
 
 use crate::corner::CornerSpring;
 use crate::jump::JumpSpring;
-use crate::model::{FiniteDifference, Spring, SpringList, Triplet};
+use crate::model::{FiniteDifference, Spring, SpringList, Triplet, push_block};
 use crate::newton::EnergyModel;
 use crate::params::SpringParams;
 use crate::quad::QuadSpring;
@@ -136,27 +136,11 @@ impl LengthSpring {
         let Some((_, h)) = self.derivatives_of(x, convex) else {
             return;
         };
-        for (i, &p) in self.ends.iter().enumerate() {
-            if !movable[p as usize] {
-                continue;
-            }
-            for (j, &q) in self.ends.iter().enumerate() {
-                if !movable[q as usize] {
-                    continue;
-                }
-                // ∂F_p/∂x_q = −∂²E/∂x_p∂x_q: −H on the diagonal blocks, +H off them
-                let sign = if i == j { -1.0 } else { 1.0 };
-                for (a, row) in h.iter().enumerate() {
-                    for (b, v) in row.iter().enumerate() {
-                        out.push(Triplet {
-                            row: 2 * p + a as u32,
-                            col: 2 * q + b as u32,
-                            value: sign * v,
-                        });
-                    }
-                }
-            }
-        }
+        // ∂F_p/∂x_q = −∂²E/∂x_p∂x_q: −H on the diagonal blocks, +H off them
+        push_block(&self.ends, movable, out, |i, j| {
+            let sign = if i / 2 == j / 2 { -1.0 } else { 1.0 };
+            sign * h[i % 2][j % 2]
+        });
     }
 }
 

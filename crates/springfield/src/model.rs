@@ -346,6 +346,36 @@ impl<S> SpringList<'_, S> {
     }
 }
 
+/// Appends a 2D spring's Jacobian block over its `nodes`, the movable ones only:
+/// `value(2k + a, 2m + b)` is `∂F/∂x` between node `k`'s axis `a` and node `m`'s axis `b`
+/// (the order the springs of the shape balance push theirs in: node by node, then axes).
+pub(crate) fn push_block(
+    nodes: &[u32],
+    movable: &[bool],
+    out: &mut Vec<Triplet>,
+    value: impl Fn(usize, usize) -> f64,
+) {
+    for (k, &p) in nodes.iter().enumerate() {
+        if !movable[p as usize] {
+            continue;
+        }
+        for (m, &q) in nodes.iter().enumerate() {
+            if !movable[q as usize] {
+                continue;
+            }
+            for a in 0..2 {
+                for b in 0..2 {
+                    out.push(Triplet {
+                        row: 2 * p + a as u32,
+                        col: 2 * q + b as u32,
+                        value: value(2 * k + a, 2 * m + b),
+                    });
+                }
+            }
+        }
+    }
+}
+
 /// Drops the entries above the diagonal (row < column) from `out[start..]`, in place and in
 /// order.
 fn keep_lower(out: &mut Vec<Triplet>, start: usize) {

@@ -10,7 +10,7 @@
 //! It owns the summing. It does not choose the weights (the mover does).
 
 use crate::jump::JumpSpring;
-use crate::model::{FiniteDifference, Spring, Triplet};
+use crate::model::{FiniteDifference, Spring, Triplet, push_block};
 use crate::params::SpringParams;
 use crate::shape::ShapeSpring;
 
@@ -129,20 +129,7 @@ impl QuadSpring {
                 }
             }
         }
-        let free = |i: &usize| movable[self.corners[*i] as usize];
-        for i in (0..4).filter(free) {
-            for j in (0..4).filter(free) {
-                for a in 0..2 {
-                    for b in 0..2 {
-                        out.push(Triplet {
-                            row: 2 * self.corners[i] + a as u32,
-                            col: 2 * self.corners[j] + b as u32,
-                            value: block[2 * i + a][2 * j + b],
-                        });
-                    }
-                }
-            }
-        }
+        push_block(&self.corners, movable, out, |i, j| block[i][j]);
     }
 }
 

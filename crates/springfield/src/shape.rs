@@ -22,7 +22,7 @@
 //! nor solve ([`crate::newton`]).
 
 use crate::active::Influence;
-use crate::model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
+use crate::model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet, push_block};
 use crate::newton::EnergyModel;
 use crate::params::SpringParams;
 
@@ -269,27 +269,8 @@ impl ShapeSpring {
         movable: &[bool],
         out: &mut Vec<Triplet>,
     ) {
-        let Some(block) = self.jacobian_block(x, convex) else {
-            return;
-        };
-        for (k, &p) in self.corners.iter().enumerate() {
-            if !movable[p as usize] {
-                continue;
-            }
-            for (m, &q) in self.corners.iter().enumerate() {
-                if !movable[q as usize] {
-                    continue;
-                }
-                for a in 0..2 {
-                    for b in 0..2 {
-                        out.push(Triplet {
-                            row: (2 * p + a as u32),
-                            col: (2 * q + b as u32),
-                            value: block[2 * k + a][2 * m + b],
-                        });
-                    }
-                }
-            }
+        if let Some(block) = self.jacobian_block(x, convex) {
+            push_block(&self.corners, movable, out, |i, j| block[i][j]);
         }
     }
 
