@@ -1,18 +1,15 @@
-//! The jump spring of the shape balance: two neighbouring cells held to deform alike.
+//! The jump spring of the shape balance: two triangles held to deform alike.
 //!
-//! Shape springs ([`crate::shape`]) weighted per cell leave a motion's strain where the cells
-//! are softest: where a stiff boundary-layer stack turns with its element beside soft cells
-//! (a deflected flap), the whole squeeze falls on the stack's outer cells. A [`JumpSpring`]
-//! joins two cells sharing an edge and costs the jump of the deformation gradient between
-//! them, `w ‖F₁ − F₂‖²` (Frobenius), each `F` the cell's mean deformation gradient from its
-//! rest shape — a discrete bending energy, as a thin-plate spline minimises, so the strain
-//! spreads smoothly over many cells instead of piling up at a change of stiffness. `F` is
-//! linear in the nodes (`F = Σ x_k ⊗ g_k` with constant rest gradients `g_k`), so the energy
-//! is a constant quadratic form: zero for any affine motion (a rigid turn of the whole pair
-//! costs nothing), its Hessian `2w (g_m · g_n) I`.
+//! A quadrilateral held by its four corner triangles' shape springs ([`crate::shape`]) can
+//! keep each of them nearly similar while it keystones, and its Jacobian then varies over it.
+//! A [`JumpSpring`] costs the jump of the deformation gradient between two cells, `w ‖F₁ −
+//! F₂‖²` (Frobenius); [`quad_jumps`] joins a quadrilateral's opposite corner triangles, so
+//! what they cost is its non-affine part. `F` is linear in the nodes (`F = Σ x_k ⊗ g_k` with
+//! constant rest gradients `g_k`), so the energy is a constant quadratic form: zero for any
+//! affine motion, its Hessian `2w (g_m · g_n) I`.
 //!
-//! It owns the jump spring and each cell's rest gradients. It does not choose the pairs nor
-//! the weights (the mover does).
+//! It owns the jump spring and a quadrilateral's pair of them. It does not choose the cells
+//! nor the weights (the mover does).
 
 use crate::model::{FiniteDifference, Spring, Triplet};
 use crate::params::SpringParams;
@@ -32,24 +29,6 @@ pub struct JumpSpring {
     pub count: usize,
     /// The weight `w` of its energy.
     pub weight: f64,
-}
-
-/// The rest gradients of a cell's mean deformation gradient: `F = Σ x_k ⊗ g_k` over its
-/// corners (a triangle's own `F`; a quadrilateral's mean over its four corner triangles).
-/// `None` when a corner triangle is not positive at rest.
-pub fn cell_gradients(corners: &[[f64; 2]]) -> Option<Vec<[f64; 2]>> {
-    let triangles = corner_triangles(corners.len())?;
-    let share = 1.0 / triangles.len() as f64;
-    let mut g = vec![[0.0; 2]; corners.len()];
-    for t in triangles {
-        // the shape spring of the corner triangle gives its corners' rest gradients
-        let spring = ShapeSpring::at_rest(t.map(|i| i as u32), corners, 1.0, ShapeLaw::default())?;
-        for (&k, gk) in t.iter().zip(spring.gradients()) {
-            g[k][0] += share * gk[0];
-            g[k][1] += share * gk[1];
-        }
-    }
-    Some(g)
 }
 
 /// The jump springs across a quadrilateral (its `nodes`, counter-clockwise, at rest at
@@ -74,8 +53,8 @@ pub fn quad_jumps(nodes: &[u32], corners: &[[f64; 2]], weight: f64) -> Option<[J
 }
 
 impl JumpSpring {
-    /// The spring between the cells `first` and `second` (their corners and rest gradients
-    /// from [`cell_gradients`]) with weight `weight`.
+    /// The spring between the cells `first` and `second` (their corners and the rest
+    /// gradients of their deformation, `F = Σ x_k ⊗ g_k`) with weight `weight`.
     pub fn between(
         first: (&[u32], &[[f64; 2]]),
         second: (&[u32], &[[f64; 2]]),
@@ -201,6 +180,25 @@ impl JumpSpring {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The rest gradients of a cell's mean deformation gradient: `F = Σ x_k ⊗ g_k` over its
+    /// corners (a triangle's own `F`; a quadrilateral's mean over its four corner triangles).
+    /// `None` when a corner triangle is not positive at rest.
+    fn cell_gradients(corners: &[[f64; 2]]) -> Option<Vec<[f64; 2]>> {
+        let triangles = corner_triangles(corners.len())?;
+        let share = 1.0 / triangles.len() as f64;
+        let mut g = vec![[0.0; 2]; corners.len()];
+        for t in triangles {
+            // the shape spring of the corner triangle gives its corners' rest gradients
+            let spring =
+                ShapeSpring::at_rest(t.map(|i| i as u32), corners, 1.0, ShapeLaw::default())?;
+            for (&k, gk) in t.iter().zip(spring.gradients()) {
+                g[k][0] += share * gk[0];
+                g[k][1] += share * gk[1];
+            }
+        }
+        Some(g)
+    }
 
     /// A quadrilateral's own jump springs cost nothing for an affine motion of it, and its
     /// keystone (one side shortened, the other kept) costs.

@@ -77,7 +77,7 @@ mod vec;
 pub use active::{Active, Influence};
 pub use corner::CornerSpring;
 pub use error::SpringError;
-pub use jump::{JumpSpring, cell_gradients, quad_jumps};
+pub use jump::{JumpSpring, quad_jumps};
 pub use length::{BalanceSpring, LengthSpring};
 pub use model::{FiniteDifference, ForceModel, Spring, SpringList, Triplet};
 pub use newton::{

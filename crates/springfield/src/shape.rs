@@ -247,7 +247,7 @@ impl Spring<2> for ShapeSpring {
     }
 
     /// The Jacobian of the energy's Hessian with its negative curvature dropped
-    /// ([`ShapeSpring::convex_hessian`]).
+    /// (`ShapeSpring::convex_hessian`).
     fn add_convex_jacobian(
         &self,
         _: &SpringParams,
