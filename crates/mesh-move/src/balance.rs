@@ -368,56 +368,90 @@ fn cell_springs(
 }
 
 /// How much an extrusion edge's length counts against its cells' shapes: its spring's weight
-/// over the sum of the weights of the (one or two) cells beside it (why 300: below).
+/// over the sum of the weights of the (one or two) cells beside it, in the first layer, in
+/// the next [`LENGTH_LAYERS`] − 1, and above them where a cell beside it is thin (why:
+/// below).
+const FIRST_LAYER_STIFFNESS: f64 = 600.0;
 const LENGTH_STIFFNESS: f64 = 300.0;
-/// The layers whose extrusion edges are held (1: the first layer's).
+const THIN_STIFFNESS: f64 = 10.0;
+/// The layers whose extrusion edges are all held (1: the first layer's).
 const LENGTH_LAYERS: u32 = 3;
+/// Above those, the width over height of a quadrilateral whose extrusion edges are held.
+const THIN_ASPECT: f64 = 10.0;
 
-/// The length springs of the extrusion edges of `layered` (each layer node and its parents),
-/// weighted by the cells beside them.
+/// The length springs of the extrusion edges of `layered` (each layer node and its parents):
+/// those of the first [`LENGTH_LAYERS`] layers, and above them those of the thin cells (width
+/// [`THIN_ASPECT`] times their height or more), weighted by the cells beside them.
 ///
 /// Why: a shape spring holds a cell's shape, not its height. Where a bump stretches the wall
 /// (near a leading edge by 15 %), the thin wall cells stayed similar and their height grew
 /// with their width: a first-layer height drift of 17 % with 8 bumps of 1 % chord on the
 /// NACA0012. Holding the extrusion edges keeps the layers' heights, the original layer
-/// geometry, as the dissertation's mover does with its extrusion springs. Measured on the
-/// NACA0012 (first-layer height drift, worst-cell ratio): all layers at 4: bumps 8.8 %, 0.983,
-/// 90° 0.723 (from 0.774); the first three layers at 40: bumps 2.0 %, 0.979, ×1.5 and moved
-/// 6.2 % (from 49 %), 0.877, 90° 0.773; at 150 (with the cells' weights over distance^1.5):
-/// bumps under 1 %, ×1.5 1.6 % and 6.7°, the four measures of the 30P30N flap and slat and
-/// the 90° pitch unchanged; at 400: bumps 0.5 %, but ×1.5 no longer converged (it does since
-/// the Newton solve's convex steps). At 300 the quadrilaterals can be held affine from lower
-/// layers ([`quad_jumps_of`]): bumps 0.7 %, ×1.5 0.98 % and 6.6°, the far-field flap 0.65 %.
+/// geometry, as the dissertation's mover does with its extrusion springs. Where the wall
+/// shrinks instead, the layers above the third kept their aspect and lost height with the
+/// wall's width: the bumps' shortest edges 0.846 of their length (IDW 0.952). Holding the
+/// thin cells' heights too (at 10, weaker than the wall's layers, which a scaled body's wall
+/// stretches under) makes that 0.943 and changes the other measures of the fourteen motions
+/// of `tests/movement` by at most 0.001, but the two-element gap's (lin, sicn and edge 0.004,
+/// 0.010, 0.008 lower). Every layer held instead (at 10): the 30P30N flap's lin 0.870 → 0.796;
+/// the layers to the twelfth: the NACA0012's pitch by 30° in 5 chords 0.932 → 0.910; thin
+/// cells from an aspect of 4: the two-element edge 0.812 → 0.784, of 25: the bumps 0.905.
+/// The first layer at 600 halves its height drift on every motion (×1.5: 0.98 % → 0.52 %)
+/// with the same measures; at 300 and layers 2 and 3 at 500 the flap's sicn fell 0.880 →
+/// 0.856. History of the stiffness at 300: 150 held the bumps' first layer under 1 %, 400
+/// stopped the ×1.5 body's convergence before the Newton solve's convex steps.
 fn extrusion_springs(
     layered: &LayeredMesh,
     rest: &[[f64; 2]],
     weight: &[f64],
 ) -> Vec<LengthSpring> {
     let (parents, layer) = (&layered.layering.node_parents, &layered.layering.node_layer);
-    // `child` is a node of the held layers and `parent` one of its parents
-    let extrudes = |child: u32, parent: u32| {
+    let mesh = &layered.mesh;
+    // the layer of `child` when it is a layer node extruded from `parent`
+    let extruded = |child: u32, parent: u32| {
         let l = layer.get(child as usize).copied().unwrap_or(NONE);
-        l != NONE
-            && l <= LENGTH_LAYERS
+        (l != NONE
             && parents
                 .get(child as usize)
-                .is_some_and(|p| p.contains(&parent))
+                .is_some_and(|p| p.contains(&parent)))
+        .then_some(l)
+    };
+    let length = |a: u32, b: u32| {
+        let (p, q) = (rest[a as usize], rest[b as usize]);
+        (q[0] - p[0]).hypot(q[1] - p[1])
     };
     // the mesh's unique edges (sorted by their nodes, so the springs come in a fixed order)
-    let edges = Edges::build(layered.mesh.cells.shapes_and_corners(), []);
+    let edges = Edges::build(mesh.cells.shapes_and_corners(), []);
     (0..edges.len() as u32)
         .filter_map(|e| {
             let [a, b] = edges.key(e);
-            if !(extrudes(a, b) || extrudes(b, a)) {
-                return None;
-            }
+            let child_layer = extruded(a, b).or_else(|| extruded(b, a))?;
+            let l = length(a, b);
+            // the widest quadrilateral beside the edge: its perimeter less this edge and the
+            // one opposite, over twice this edge
+            let aspect = || {
+                edges
+                    .cells(e)
+                    .iter()
+                    .map(|u| mesh.cells.get(u.cell as usize).corners())
+                    .filter(|c| c.len() == 4)
+                    .map(|c| {
+                        let perimeter: f64 = (0..4).map(|i| length(c[i], c[(i + 1) % 4])).sum();
+                        (perimeter - 2.0 * l) / (2.0 * l)
+                    })
+                    .fold(0.0, f64::max)
+            };
+            let stiffness = match child_layer {
+                1 => FIRST_LAYER_STIFFNESS,
+                k if k <= LENGTH_LAYERS => LENGTH_STIFFNESS,
+                _ if aspect() >= THIN_ASPECT => THIN_STIFFNESS,
+                _ => return None,
+            };
             let w: f64 = edges.cells(e).iter().map(|u| weight[u.cell as usize]).sum();
-            let (p, q) = (rest[a as usize], rest[b as usize]);
-            let l = ((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1])).sqrt();
             (l > 0.0).then_some(LengthSpring {
                 ends: [a, b],
                 rest: l,
-                weight: LENGTH_STIFFNESS * w,
+                weight: stiffness * w,
             })
         })
         .collect()
