@@ -227,6 +227,46 @@ fn springs_follow_hicks_henne_bumps_keeping_the_first_layer() {
     assert!(s.springs.is_some_and(|p| p.converged), "{s:?}");
 }
 
+/// The shortest corner-to-corner edge of each cell of `mesh`.
+fn shortest_edges(mesh: &mesh_model::Mesh) -> Vec<f64> {
+    mesh.cells
+        .iter()
+        .map(|c| {
+            let k = c.corners();
+            (0..k.len())
+                .map(|i| {
+                    let (p, q) = (mesh.xy(k[i]), mesh.xy(k[(i + 1) % k.len()]));
+                    (q[0] - p[0]).hypot(q[1] - p[1])
+                })
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect()
+}
+
+#[test]
+fn springs_keep_the_layers_heights_where_bumps_shrink_the_wall() {
+    // near the leading edge an inward bump shrinks the wall under the layers; holding only
+    // the first three layers' heights, the thin cells above kept their aspect and lost 15 %
+    // of their height with the wall's width (issue 43's edge measure 0.846, IDW 0.952); with
+    // the thin cells' extrusion edges held too the worst is 0.943 at P3, here at order 1
+    let morph = common::eight_bumps("naca0012");
+    let boundary = boundary_motion(&naca().mesh, &morph).expect("a valid motion");
+    let moved = move_layered(
+        naca(),
+        &boundary,
+        &Method::Springs(SpringMoveParams::default()),
+    )
+    .expect("moves");
+    let (before, after) = (shortest_edges(&naca().mesh), shortest_edges(&moved.mesh));
+    let worst = before
+        .iter()
+        .zip(&after)
+        .map(|(b, a)| a / b)
+        .fold(f64::INFINITY, f64::min);
+    println!("8 bumps: the worst shortest-edge ratio {worst:.4}");
+    assert!(worst > 0.93, "{worst}");
+}
+
 #[test]
 fn springs_keep_the_first_layer_of_a_scaled_body() {
     // NACA0012 ×1.5 about its quarter chord and carried five chords upstream: the walls
@@ -245,7 +285,7 @@ fn springs_keep_the_first_layer_of_a_scaled_body() {
     println!("×1.5 and 5 chords left: {c:?} {s:?}");
     assert_eq!(c.inverted_cells, 0);
     let fl = c.first_layer.expect("walls");
-    // within the 1 % and 5° of every motion: 0.98 % and 1.9° (6.6° at the blunt trailing
+    // within the 1 % and 5° of every motion: 0.52 % and 2.5° (6.6° at the blunt trailing
     // edge's corner fans before the corner springs held the first layer's angles)
     assert!(fl.height < 0.01 && fl.angle_deg < 5.0, "{fl:?}");
     // 0.867 (0.742 when the shifted Newton steps stopped unconverged)
