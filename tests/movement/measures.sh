@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The four measures of issue 43, cell by cell at P3 (tests/movement/measures.py, Gmsh's minSJ and
 # minSICN): every motion below moved by the spring mover and by the baselines IDW and thin-plate
-# RBF, from the same saved layered mesh; with the move's and the mesh's wall times. Prints a
-# Markdown table. Usage: bash tests/movement/measures.sh [OUT_DIR]   (a few minutes, release
-# build; needs the checkers' venv of tests/python/install.sh)
+# RBF, from the same saved layered mesh; with the move's and the mesh's wall times and peak
+# memory. Prints a Markdown table. Usage: bash tests/movement/measures.sh [OUT_DIR]   (a few
+# minutes, release build; needs the checkers' venv of tests/python/install.sh)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out="${1:-target/movement-measures}"
@@ -31,25 +31,31 @@ rows=(
   "two-element|two-element|--motion $m/two-element.toml|two-element, flap 5° and a bump"
 )
 
-secs() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.2f}')" "$@"; }
+# Runs a command quietly: its wall time in seconds and its peak memory (resident set) in MB.
+timed() {
+  python3 - "$@" <<'PY'
+import resource, subprocess, sys, time
+t = time.perf_counter()
+subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+print(f"{time.perf_counter() - t:.2f} {kb / 1024:.0f}")
+PY
+}
 
-echo "| motion (P3) | mover | lin | sj | sicn | edge | inverted | move | mesh |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| motion (P3) | mover | lin | sj | sicn | edge | inverted | move | mesh | move memory | mesh memory |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for row in "${rows[@]}"; do
   IFS='|' read -r case key args label <<< "$row"
-  t0=$(date +%s.%N)
-  "$bin" mesh "$case" --order 3 --out "$out/$key.msh" --snapshot "$out/$key.bin" --quiet > /dev/null
-  mesh_time=$(secs "$t0" "$(date +%s.%N)")
+  read -r mesh_time mesh_mb < <(timed "$bin" mesh "$case" --order 3 --out "$out/$key.msh" \
+      --snapshot "$out/$key.bin" --quiet)
   for mover in springs idw "rbf --kernel thin-plate"; do
-    t0=$(date +%s.%N)
     # shellcheck disable=SC2086
-    "$bin" move "$case" --snapshot "$out/$key.bin" $args --method $mover --order 3 \
-        --out "$out/moved.msh" --report "$out/moved.json" --quiet > /dev/null 2>&1 || true
-    move_time=$(secs "$t0" "$(date +%s.%N)")
+    read -r move_time move_mb < <(timed "$bin" move "$case" --snapshot "$out/$key.bin" $args \
+        --method $mover --order 3 --out "$out/moved.msh" --report "$out/moved.json" --quiet)
     "$py" tests/movement/measures.py "$out/$key.msh" "$out/moved.msh" | python3 -c "
 import json, sys
 r = json.loads(sys.stdin.read())
 print('| $label | ${mover%% *} | ' + ' | '.join(f'{r[k]:.3f}' for k in ['lin', 'sj', 'sicn', 'edge'])
-      + f\" | {r['inverted']} | $move_time s | $mesh_time s |\")"
+      + f\" | {r['inverted']} | $move_time s | $mesh_time s | $move_mb MB | $mesh_mb MB |\")"
   done
 done
