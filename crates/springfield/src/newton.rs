@@ -135,6 +135,16 @@ impl<const D: usize> Dofs<D> {
         let first = self.of_node[node];
         (first != u32::MAX).then(|| first as usize + a)
     }
+
+    /// The largest move of a node by `step` over its length scale `scale`.
+    fn largest_move(&self, step: &[f64], scale: &[f64]) -> f64 {
+        (0..self.of_node.len())
+            .filter_map(|i| self.of((D * i) as u32).map(|f| (i, f)))
+            .map(|(i, f)| {
+                crate::vec::norm(&std::array::from_fn::<f64, D, _>(|a| step[f + a])) / scale[i]
+            })
+            .fold(0.0f64, f64::max)
+    }
 }
 
 /// The assembly of `−∂F/∂X` over the movable nodes into a sparse matrix and its Cholesky
@@ -315,6 +325,19 @@ impl<const D: usize> Assembly<D> {
                 Default::default(),
             )
             .is_ok()
+    }
+
+    /// The Newton step for the forces `force` (every node's, held ones ignored) with the last
+    /// factor, over the unknowns.
+    fn step(&mut self, force: &[[f64; D]]) -> Vec<f64> {
+        let mut step = vec![0.0; self.dofs.count];
+        for (node, f) in force.iter().enumerate() {
+            if let Some(first) = self.dofs.of((D * node) as u32) {
+                step[first..first + D].copy_from_slice(f);
+            }
+        }
+        self.solve(&mut step);
+        step
     }
 
     /// Solves `L Lᵀ x = rhs` in place with the last factor.
@@ -555,40 +578,19 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
         model.assemble(positions, &mut force, &mut stiffness);
         let reused = chord;
         if !reused {
-            jacobian.clear();
-            model.lower_jacobian(positions, movable, false, jacobian);
             *factored = false;
-            // the exact Hessian where it is positive definite (Newton's quadratic
-            // convergence); where it is not, a diagonal shift, and after CONVEX_AFTER steps
-            // each spring's convex part instead
-            let shifted = if outcome.iterations < CONVEX_AFTER {
-                assembly.factorise(jacobian, true)?
-            } else if assembly.factorise_exact(jacobian)? {
-                false
-            } else {
-                jacobian.clear();
-                model.lower_jacobian(positions, movable, true, jacobian);
-                outcome.convex += 1;
-                assembly.factorise(jacobian, true)?
-            };
+            factorise_step(
+                model,
+                positions,
+                (movable, jacobian),
+                assembly,
+                &mut outcome,
+            )?;
             *factored = true;
-            outcome.shifted += usize::from(shifted);
             outcome.factorisations = assembly.factorisations - factorisations_before;
         }
-        let mut step = vec![0.0; assembly.dofs.count];
-        for (node, f) in force.iter().enumerate() {
-            if let Some(first) = assembly.dofs.of((D * node) as u32) {
-                step[first..first + D].copy_from_slice(f);
-            }
-        }
-        assembly.solve(&mut step);
-        let dofs = &assembly.dofs;
-        let largest = (0..n)
-            .filter_map(|i| dofs.of((D * i) as u32).map(|f| (i, f)))
-            .map(|(i, f)| {
-                crate::vec::norm(&std::array::from_fn::<f64, D, _>(|a| step[f + a])) / scale[i]
-            })
-            .fold(0.0f64, f64::max);
+        let step = assembly.step(&force);
+        let largest = assembly.dofs.largest_move(&step, scale);
         // converged: the step is within the tolerance, or it no longer halves while already
         // small (Newton's quadratic convergence stopped at the round-off of the solve)
         let done = largest <= params.tolerance
@@ -598,40 +600,25 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
         // step that did not shrink tenfold asks for a fresh factor
         chord = largest < CHORD_BELOW && !(reused && largest > 0.1 * previous);
         previous = largest;
-        let mut length = 1.0;
-        let mut accepted = false;
-        for _ in 0..=params.max_halvings {
-            for (i, t) in trial.iter_mut().enumerate() {
-                *t = positions[i];
-                if let Some(f) = dofs.of((D * i) as u32) {
-                    for a in 0..D {
-                        t[a] += length * step[f + a];
-                    }
-                }
-            }
-            // at the balance the energy no longer tells steps apart (its round-off is about
-            // ε times the number of terms times itself): a full step within the tolerance is
-            // taken as it is, and a step within the round-off is taken
-            outcome.energy_evaluations += 1;
-            let lower = model
-                .energy(&trial)
-                .filter(|&e| (length == 1.0 && done) || e <= energy * (1.0 + 1e-12));
-            if let Some(e) = lower {
-                energy = e;
-                accepted = true;
-                break;
-            }
-            length *= 0.5;
-        }
+        let search = (positions as &[[f64; D]], &step[..], &assembly.dofs);
+        let taken = line_search(
+            model,
+            search,
+            (energy, done),
+            params,
+            &mut trial,
+            &mut outcome,
+        );
         outcome.iterations += 1;
-        if !accepted && reused {
-            // the old factor's step went nowhere: factorise afresh from the same place
-            chord = false;
-            continue;
-        }
-        if !accepted {
+        let Some((length, e)) = taken else {
+            if reused {
+                // the old factor's step went nowhere: factorise afresh from the same place
+                chord = false;
+                continue;
+            }
             break;
-        }
+        };
+        energy = e;
         chord &= length == 1.0;
         positions.copy_from_slice(&trial);
         outcome.residual = largest * length;
@@ -642,6 +629,70 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
         }
     }
     Ok(outcome)
+}
+
+/// Factorises `model`'s `−∂F/∂X` at `positions` for a Newton step (`jacobian`: the triplets'
+/// buffer): the exact Hessian where it is positive definite (Newton's quadratic
+/// convergence); where it is not, a diagonal shift, and after [`CONVEX_AFTER`] steps each
+/// spring's convex part instead. Counts the shifted and convex steps in `outcome`.
+fn factorise_step<const D: usize, M: EnergyModel<D>>(
+    model: &M,
+    positions: &[[f64; D]],
+    (movable, jacobian): (&[bool], &mut Vec<Triplet>),
+    assembly: &mut Assembly<D>,
+    outcome: &mut NewtonOutcome,
+) -> Result<(), SpringError> {
+    jacobian.clear();
+    model.lower_jacobian(positions, movable, false, jacobian);
+    let shifted = if outcome.iterations < CONVEX_AFTER {
+        assembly.factorise(jacobian, true)?
+    } else if assembly.factorise_exact(jacobian)? {
+        false
+    } else {
+        jacobian.clear();
+        model.lower_jacobian(positions, movable, true, jacobian);
+        outcome.convex += 1;
+        assembly.factorise(jacobian, true)?
+    };
+    outcome.shifted += usize::from(shifted);
+    Ok(())
+}
+
+/// The backtracking along a Newton step `step` from `positions` (numbered by `dofs`): the
+/// longest of 1, ½, ¼, … whose energy is finite and not above `energy` (`done`: the full step
+/// is within the tolerance and taken as it is), placed in `trial`; its length and energy, or
+/// `None` when no halving gave one.
+fn line_search<const D: usize, M: EnergyModel<D>>(
+    model: &M,
+    (positions, step, dofs): (&[[f64; D]], &[f64], &Dofs<D>),
+    (energy, done): (f64, bool),
+    params: &NewtonParams,
+    trial: &mut [[f64; D]],
+    outcome: &mut NewtonOutcome,
+) -> Option<(f64, f64)> {
+    let mut length = 1.0;
+    for _ in 0..=params.max_halvings {
+        for (i, t) in trial.iter_mut().enumerate() {
+            *t = positions[i];
+            if let Some(f) = dofs.of((D * i) as u32) {
+                for a in 0..D {
+                    t[a] += length * step[f + a];
+                }
+            }
+        }
+        // at the balance the energy no longer tells steps apart (its round-off is about ε
+        // times the number of terms times itself): a full step within the tolerance is taken
+        // as it is, and a step within the round-off is taken
+        outcome.energy_evaluations += 1;
+        let lower = model
+            .energy(trial)
+            .filter(|&e| (length == 1.0 && done) || e <= energy * (1.0 + 1e-12));
+        if let Some(e) = lower {
+            return Some((length, e));
+        }
+        length *= 0.5;
+    }
+    None
 }
 
 /// The linearised balance at a converged `positions`: `−∂F/∂X` over the movable nodes,

@@ -269,17 +269,13 @@ struct Unmoved {
     field: Option<mesh_move::ShapeField>,
     /// The unmoved mesh at the moves' order (its curving decisions, which the moved meshes
     /// keep) and its cells' measures, made by the first move and kept for the next steps.
-    baseline: OnceCell<(Option<vector_adding::Decisions>, measures::Baseline)>,
+    baseline: OnceCell<UnmovedAtOrder>,
 }
 
 impl Unmoved {
     /// [`Unmoved::baseline`], made at the first call (`order` and `triangles` are a
     /// sequence's, the same at every step).
-    fn baseline(
-        &self,
-        case: &Case,
-        (order, triangles): (u8, bool),
-    ) -> Result<&(Option<vector_adding::Decisions>, measures::Baseline)> {
+    fn baseline(&self, case: &Case, (order, triangles): (u8, bool)) -> Result<&UnmovedAtOrder> {
         if let Some(made) = self.baseline.get() {
             return Ok(made);
         }
@@ -347,19 +343,7 @@ fn move_from(
     let (nodes, layered) = (&unmoved.nodes, &unmoved.layered);
     let boundary = boundary_targets(&moved, nodes, layered)?;
     let (linear, seconds) = stage(observer, "moving the linear nodes", || {
-        match warm {
-            Some((w, before)) => {
-                let warm = mesh_move::Warm {
-                    start: &w.start,
-                    balanced: &w.nodes,
-                    field: unmoved.field.as_ref(),
-                    before: before.map(|b| (&b.start[..], &b.nodes[..])),
-                };
-                mesh_move::move_layered_from(layered, &boundary, &options.method(), warm)
-            }
-            None => mesh_move::move_layered(layered, &boundary, &options.method()),
-        }
-        .map_err(|e| input_error!("moving the mesh: {e}"))
+        move_linear(unmoved, &boundary, &options.method(), warm)
     });
     let linear = linear?;
     report.timings_s.insert("move", seconds);
@@ -370,33 +354,13 @@ fn move_from(
     let comparison = mesh_move::compare(&layered.mesh, &moved_layered.mesh)
         .map_err(|e| input_error!("comparing the meshes: {e}"))?;
     let inverted = linear.stats.inverted_cells > 0;
-    let mut decisions = None;
-    let mut unmoved_mesh = None;
-    let mesh = if inverted {
-        // an inverted linear mesh cannot be curved: it is written as it is, and fails
-        report.order = 1;
-        report.notes.push(format!(
-            "the mover inverted {} linear cells: the moved linear mesh is written, not curved",
-            linear.stats.inverted_cells
-        ));
-        moved_layered.mesh.clone()
-    } else if order == 1 {
-        unmoved_mesh = Some(unmoved.baseline(case, (order, options.triangles))?);
-        mesh2d::linear_at_order(&moved_layered, options.triangles, &mut report)
-    } else {
-        let baseline = unmoved.baseline(case, (order, options.triangles))?;
-        let curved = curve_keeping(
-            &moved,
-            nodes,
-            (&moved_layered, &baseline.0),
-            (order, options.triangles),
-            observer,
-            &mut report,
-        )?;
-        decisions = Some(curved.decisions);
-        unmoved_mesh = Some(baseline);
-        curved.mesh
-    };
+    let (mesh, decisions, unmoved_mesh) = at_order(
+        (case, unmoved, &moved),
+        (&moved_layered, linear.stats.inverted_cells),
+        (order, options.triangles),
+        observer,
+        &mut report,
+    )?;
     let sensitivities = if options.sensitivities && !inverted {
         let at = (
             motions,
@@ -502,6 +466,71 @@ fn balance_at(
     field
         .linearise(&x, &fixed)
         .map_err(|e| input_error!("sensitivities: {e}"))
+}
+
+/// The linear nodes of `unmoved` moved to `boundary` by `method`, the spring mover's balance
+/// started from the steps before (`warm`) when given.
+fn move_linear(
+    unmoved: &Unmoved,
+    boundary: &BoundaryMotion,
+    method: &Method,
+    warm: Option<(&Balanced, Option<&Balanced>)>,
+) -> Result<mesh_move::Moved> {
+    let layered = &unmoved.layered;
+    match warm {
+        Some((w, before)) => {
+            let warm = mesh_move::Warm {
+                start: &w.start,
+                balanced: &w.nodes,
+                field: unmoved.field.as_ref(),
+                before: before.map(|b| (&b.start[..], &b.nodes[..])),
+            };
+            mesh_move::move_layered_from(layered, boundary, method, warm)
+        }
+        None => mesh_move::move_layered(layered, boundary, method),
+    }
+    .map_err(|e| input_error!("moving the mesh: {e}"))
+}
+
+/// The unmoved mesh at the moves' order (its curving decisions and its cells' measures).
+type UnmovedAtOrder = (Option<vector_adding::Decisions>, measures::Baseline);
+
+/// The moved linear mesh `moved_layered` at `order`: curved with the unmoved mesh's
+/// decisions kept (and those decisions), as it is at order 1 — or, when the mover inverted
+/// `inverted` of its cells, written linear as it is (it cannot be curved, and fails). With the
+/// unmoved mesh at that order, to measure the moved one against.
+fn at_order<'u>(
+    (case, unmoved, moved): (&Case, &'u Unmoved, &MovedGeometry),
+    (moved_layered, inverted): (&LayeredMesh, usize),
+    (order, triangles): (u8, bool),
+    observer: &mut dyn Observer,
+    report: &mut Report,
+) -> Result<(
+    Mesh,
+    Option<vector_adding::Decisions>,
+    Option<&'u UnmovedAtOrder>,
+)> {
+    if inverted > 0 {
+        report.order = 1;
+        report.notes.push(format!(
+            "the mover inverted {inverted} linear cells: the moved linear mesh is written, not curved"
+        ));
+        return Ok((moved_layered.mesh.clone(), None, None));
+    }
+    let baseline = unmoved.baseline(case, (order, triangles))?;
+    if order == 1 {
+        let mesh = mesh2d::linear_at_order(moved_layered, triangles, report);
+        return Ok((mesh, None, Some(baseline)));
+    }
+    let curved = curve_keeping(
+        moved,
+        &unmoved.nodes,
+        (moved_layered, &baseline.0),
+        (order, triangles),
+        observer,
+        report,
+    )?;
+    Ok((curved.mesh, Some(curved.decisions), Some(baseline)))
 }
 
 /// The moved layered mesh curved as the original one is (`vector_adding::curve_mesh_keeping`
