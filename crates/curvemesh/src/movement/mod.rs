@@ -240,7 +240,7 @@ pub fn move_sequence(
     moved_geometry(case, motions)?;
     let mut unmoved = unmoved(case, start, options, observer)?;
     // one shape field for every step: its springs and its Newton workspace (pattern,
-    // ordering, last factor) serve each step's balance
+    // ordering, buffers) serve each step's balance
     if let Method::Springs(p) = options.method() {
         unmoved.field = Some(
             mesh_move::ShapeField::of(&unmoved.layered, p.shape)
