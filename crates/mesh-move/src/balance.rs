@@ -367,12 +367,13 @@ fn cell_springs(
     out
 }
 
-/// How much an extrusion edge's length counts against its cells' shapes: its spring's weight
-/// over the sum of the weights of the (one or two) cells beside it, in the first layer, in
-/// the next [`LENGTH_LAYERS`] − 1, and above them where a cell beside it is thin (why:
-/// below).
+/// How much a first-layer extrusion edge's length counts against its cells' shapes: its
+/// spring's weight over the sum of the weights of the (one or two) cells beside it (why:
+/// [`extrusion_springs`]).
 const FIRST_LAYER_STIFFNESS: f64 = 600.0;
+/// [`FIRST_LAYER_STIFFNESS`] in the next [`LENGTH_LAYERS`] − 1 layers.
 const LENGTH_STIFFNESS: f64 = 300.0;
+/// [`FIRST_LAYER_STIFFNESS`] above those, where a cell beside the edge is thin.
 const THIN_STIFFNESS: f64 = 10.0;
 /// The layers whose extrusion edges are all held (1: the first layer's).
 const LENGTH_LAYERS: u32 = 3;
