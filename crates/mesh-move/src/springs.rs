@@ -89,10 +89,11 @@ pub struct Warm<'a> {
     /// same law), kept for this one: built once for a sequence, its Newton workspace (the
     /// matrix's pattern and ordering) serving every step's balance. `None`: built afresh.
     pub field: Option<&'a ShapeField>,
-    /// The start and the balanced nodes of the step before it, when the steps are equal
-    /// steps of one motion: this balance then starts from the line through their
-    /// corrections extended ([`move_layered_from`]).
-    pub before: Option<StartAndBalance<'a>>,
+    /// The starts and the balanced nodes of the steps before it, the latest first, when the
+    /// steps are equal steps of one motion: this balance then starts from the line through
+    /// the two latest corrections extended, or the parabola through the three latest
+    /// ([`move_layered_from`]).
+    pub before: &'a [StartAndBalance<'a>],
 }
 
 /// A step's start of its balance and its balanced nodes.
@@ -100,10 +101,10 @@ pub type StartAndBalance<'a> = (&'a [[f64; 2]], &'a [[f64; 2]]);
 
 /// [`move_layered`], the spring mover's balance started from this move's fill plus the
 /// previous step's correction (`warm.balanced − warm.start`), or with [`Warm::before`] the
-/// line through the two previous corrections extended: close to the balance, so fewer Newton
-/// steps, and the same balance (it does not depend on its start inside its basin). A start
-/// that inverts a cell falls back to the previous correction, then to the fill alone; IDW
-/// and RBF ignore `warm`.
+/// line through the two previous corrections or the parabola through the three previous
+/// extended: close to the balance, so fewer Newton steps, and the same balance (it does not
+/// depend on its start inside its basin). A start that inverts a cell falls back to the
+/// lower degrees, then to the fill alone; IDW and RBF ignore `warm`.
 ///
 /// # Errors
 /// Those of [`move_layered`]; [`MoveError::BadBoundaryMotion`] when `warm` does not have one
@@ -115,13 +116,10 @@ pub fn move_layered_from(
     warm: Warm<'_>,
 ) -> Result<Moved, MoveError> {
     let n = layered.mesh.nodes.len();
-    let (before_start, before_balanced) = warm.before.unwrap_or((warm.start, warm.balanced));
-    let lengths = [
-        warm.start.len(),
-        warm.balanced.len(),
-        before_start.len(),
-        before_balanced.len(),
-    ];
+    let lengths: Vec<usize> = std::iter::once((warm.start, warm.balanced))
+        .chain(warm.before.iter().copied())
+        .flat_map(|(s, b)| [s.len(), b.len()])
+        .collect();
     if lengths.iter().any(|&l| l != n) {
         return Err(MoveError::BadBoundaryMotion {
             what: format!("a warm start of {lengths:?} points for {n} nodes"),
@@ -199,53 +197,45 @@ fn move_springs(
 }
 
 /// The fill `x` of a step of a sequence corrected by the steps before ([`Warm`]): by the
-/// previous step's correction (its balance minus its fill), or when the step before it is
-/// given too ([`Warm::before`]), by the line through their two corrections extended; the
-/// first of these that inverts no cell, `None` when both do.
+/// parabola through the three latest corrections (each a step's balance minus its fill)
+/// extended, the line through the two latest, or the latest alone — the first of these the
+/// steps give that inverts no cell; `None` when all do.
 ///
 /// Why the corrections and not the balanced nodes: the line through two balanced steps of a
 /// turning flap misses the next one by the square of the step, but 10⁻⁴ of a chord is
 /// already through the first layers (32 cells inverted on every step of the 30P30N flap in
 /// 8 steps); the fill carries the layers with their wall exactly, and what the balance
-/// corrects it by is smooth. The line misses the next correction by the square of the step
-/// where the previous correction misses it by the step: on that flap the Newton solve then
-/// starts within 3·10⁻³ of the nodes' smallest edges, where one factorisation and three
-/// chord steps converge.
+/// corrects it by is smooth. The line misses the next correction by the square of the step,
+/// the parabola by its cube: on that flap the Newton solve then starts within 3–8·10⁻⁴ of
+/// the nodes' smallest edges (the line: 2.5·10⁻³), and one factorisation and two chord steps
+/// converge (three from the line).
 fn corrected(mesh: &Mesh, warm: Warm<'_>, x: &[[f64; 2]], fixed: &[bool]) -> Option<Vec<[f64; 2]>> {
-    let correction = |start: &[[f64; 2]], balanced: &[[f64; 2]], k: usize| {
-        [balanced[k][0] - start[k][0], balanced[k][1] - start[k][1]]
-    };
-    let mut tries = Vec::new();
-    if let Some((start, balanced)) = warm.before {
-        tries.push(
-            (0..x.len())
+    // the corrections of the latest steps, the latest first
+    let steps: Vec<StartAndBalance<'_>> = std::iter::once((warm.start, warm.balanced))
+        .chain(warm.before.iter().copied())
+        .take(3)
+        .collect();
+    // the extrapolation's weights of the corrections, the highest degree the steps allow first
+    let weights: &[&[f64]] = &[&[3.0, -3.0, 1.0], &[2.0, -1.0], &[1.0]];
+    weights
+        .iter()
+        .filter(|w| w.len() <= steps.len())
+        .find_map(|w| {
+            let y: Vec<[f64; 2]> = (0..x.len())
                 .map(|k| {
-                    let (c1, c2) = (
-                        correction(warm.start, warm.balanced, k),
-                        correction(start, balanced, k),
-                    );
-                    [2.0 * c1[0] - c2[0], 2.0 * c1[1] - c2[1]]
+                    if fixed[k] {
+                        return x[k];
+                    }
+                    let mut p = x[k];
+                    for (&c, (start, balanced)) in w.iter().zip(&steps) {
+                        p[0] += c * (balanced[k][0] - start[k][0]);
+                        p[1] += c * (balanced[k][1] - start[k][1]);
+                    }
+                    p
                 })
-                .collect::<Vec<_>>(),
-        );
-    }
-    tries.push(
-        (0..x.len())
-            .map(|k| correction(warm.start, warm.balanced, k))
-            .collect(),
-    );
-    tries.into_iter().find_map(|c| {
-        let y: Vec<[f64; 2]> = (0..x.len())
-            .map(|k| {
-                if fixed[k] {
-                    x[k]
-                } else {
-                    [x[k][0] + c[k][0], x[k][1] + c[k][1]]
-                }
-            })
-            .collect();
-        (crate::quality::inverted_cells(&with_nodes(mesh, &y)) == 0).then_some(y)
-    })
+                .collect();
+            (crate::quality::inverted_cells(&with_nodes(mesh, &y)) == 0).then_some(y)
+        })
 }
 
 /// A start of the balance (`Ok`), or the fill that inverted a cell (`Err`).

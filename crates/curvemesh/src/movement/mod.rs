@@ -216,7 +216,7 @@ pub fn move_into(
     options.check()?;
     moved_geometry(case, motions)?;
     let unmoved = unmoved(case, start, options, observer)?;
-    Ok(move_from(case, &unmoved, motions, options, observer, plan, None)?.0)
+    Ok(move_from(case, &unmoved, motions, options, observer, plan, &[])?.0)
 }
 
 /// Moves `case` by the motions `motions` scaled from 0 to their full amplitude in `steps`
@@ -247,13 +247,14 @@ pub fn move_sequence(
                 .map_err(|e| input_error!("moving the mesh: {e}"))?,
         );
     }
-    // the last two steps' balances: the next one starts from their line
-    let (mut warm, mut before): (Option<Balanced>, Option<Balanced>) = (None, None);
+    // the last three steps' balances, the latest first: the next one starts from their
+    // parabola
+    let mut last: Vec<Balanced> = Vec::with_capacity(3);
     for k in 0..=steps {
         let at = motion::scaled(motions, k as f64 / steps as f64);
-        let last = warm.as_ref().map(|w| (w, before.as_ref()));
-        let (moved, balanced) = move_from(case, &unmoved, &at, options, observer, None, last)?;
-        before = warm.replace(balanced);
+        let (moved, balanced) = move_from(case, &unmoved, &at, options, observer, None, &last)?;
+        last.truncate(2);
+        last.insert(0, balanced);
         each(k, moved)?;
     }
     Ok(())
@@ -326,8 +327,8 @@ struct Balanced {
     nodes: Vec<[f64; 2]>,
 }
 
-/// One move of `unmoved` by `motions` (the balance started with the previous step's
-/// correction `warm` when given): the moved case and its [`Balanced`] nodes.
+/// One move of `unmoved` by `motions` (the balance started from the corrections of the steps
+/// before, `warm`, the latest first, when given): the moved case and its [`Balanced`] nodes.
 fn move_from(
     case: &Case,
     unmoved: &Unmoved,
@@ -335,7 +336,7 @@ fn move_from(
     options: &MoveOptions,
     observer: &mut dyn Observer,
     plan: Option<&mut Plan>,
-    warm: Option<(&Balanced, Option<&Balanced>)>,
+    warm: &[Balanced],
 ) -> Result<(Moved, Balanced)> {
     let order = case.order_of(options.order)?;
     let moved = moved_geometry(case, motions)?;
@@ -474,20 +475,24 @@ fn move_linear(
     unmoved: &Unmoved,
     boundary: &BoundaryMotion,
     method: &Method,
-    warm: Option<(&Balanced, Option<&Balanced>)>,
+    warm: &[Balanced],
 ) -> Result<mesh_move::Moved> {
     let layered = &unmoved.layered;
     match warm {
-        Some((w, before)) => {
+        [w, before @ ..] => {
+            let before: Vec<_> = before
+                .iter()
+                .map(|b| (&b.start[..], &b.nodes[..]))
+                .collect();
             let warm = mesh_move::Warm {
                 start: &w.start,
                 balanced: &w.nodes,
                 field: unmoved.field.as_ref(),
-                before: before.map(|b| (&b.start[..], &b.nodes[..])),
+                before: &before,
             };
             mesh_move::move_layered_from(layered, boundary, method, warm)
         }
-        None => mesh_move::move_layered(layered, boundary, method),
+        [] => mesh_move::move_layered(layered, boundary, method),
     }
     .map_err(|e| input_error!("moving the mesh: {e}"))
 }
