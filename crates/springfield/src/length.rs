@@ -376,23 +376,33 @@ mod tests {
         (t.iter().map(|e| (e.row, e.col)).collect(), top / scale)
     }
 
-    /// Where the exact Jacobian of a quadrilateral, a triangle and a compressed edge is not
-    /// negative semidefinite (the energy's Hessian indefinite), the convex one is, with the
-    /// same entries.
-    #[test]
-    fn the_convex_jacobian_is_negative_semidefinite_with_the_same_entries() {
+    /// A unit square held by its corner triangles and its jumps, and a triangle beside it
+    /// (nodes 1, 4, 2), at rest on five nodes.
+    fn quad_and_triangle() -> [BalanceSpring; 2] {
         let rest = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.5]];
         let law = crate::ShapeLaw::default();
         let quad = [0u32, 1, 2, 3];
         let shapes = crate::shape_springs([&quad[..]], &rest, law, &[1.0]).unwrap();
         let triangle = crate::ShapeSpring::at_rest([1, 4, 2], &rest, 2.0, law).unwrap();
-        let springs = [
+        [
             BalanceSpring::Quad(Box::new(crate::QuadSpring {
                 corners: quad,
                 shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
                 jumps: crate::quad_jumps(&quad, &rest, 5.0),
             })),
             BalanceSpring::Shape(triangle),
+        ]
+    }
+
+    /// Where the exact Jacobian of a quadrilateral, a triangle and a compressed edge is not
+    /// negative semidefinite (the energy's Hessian indefinite), the convex one is, with the
+    /// same entries.
+    #[test]
+    fn the_convex_jacobian_is_negative_semidefinite_with_the_same_entries() {
+        let [quad, triangle] = quad_and_triangle();
+        let springs = [
+            quad,
+            triangle,
             BalanceSpring::Length(LengthSpring {
                 ends: [0, 4],
                 rest: 2.06,
@@ -415,17 +425,10 @@ mod tests {
     /// the exact and the convex Hessian, with some nodes held.
     #[test]
     fn the_lower_jacobian_is_the_lower_triangle_of_the_full_one() {
-        let rest = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.5]];
-        let law = crate::ShapeLaw::default();
-        let quad = [0u32, 1, 2, 3];
-        let shapes = crate::shape_springs([&quad[..]], &rest, law, &[1.0]).unwrap();
+        let [quad, triangle] = quad_and_triangle();
         let springs = [
-            BalanceSpring::Quad(Box::new(crate::QuadSpring {
-                corners: quad,
-                shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
-                jumps: crate::quad_jumps(&quad, &rest, 5.0),
-            })),
-            BalanceSpring::Shape(crate::ShapeSpring::at_rest([1, 4, 2], &rest, 2.0, law).unwrap()),
+            quad,
+            triangle,
             BalanceSpring::Corner(crate::CornerSpring {
                 nodes: [0, 1, 4],
                 rest: 0.3,
