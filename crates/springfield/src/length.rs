@@ -256,9 +256,9 @@ impl EnergyModel<2> for SpringList<'_, BalanceSpring> {
         positions: &[[f64; 2]],
         movable: &[bool],
         convex: bool,
-        out: &mut Vec<Triplet>,
+        sink: &mut dyn FnMut(&[Triplet]),
     ) {
-        self.jacobian_in(positions, movable, (convex, true), out);
+        self.jacobian_chunks(positions, movable, (convex, true), sink);
     }
 }
 
@@ -451,7 +451,7 @@ mod tests {
             }
             full.retain(|t| t.row >= t.col);
             let mut lower = Vec::new();
-            model.lower_jacobian(&x, &movable, convex, &mut lower);
+            model.lower_jacobian(&x, &movable, convex, &mut |c| lower.extend_from_slice(c));
             assert!(!lower.is_empty());
             assert_eq!(lower, full, "convex {convex}");
         }

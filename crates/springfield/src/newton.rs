@@ -41,22 +41,25 @@ pub trait EnergyModel<const D: usize>: ForceModel<D> {
         self.jacobian(positions, movable, out);
     }
     /// The entries on and below the diagonal (row ≥ column) of [`ForceModel::jacobian`]
-    /// (`convex`: of [`EnergyModel::convex_jacobian`]): all a Newton step's Cholesky
-    /// factorisation reads, in about half the memory (a 30P30N move's 1.6 million entries,
-    /// 26 MB, at the peak of its memory). The default: every entry (the assembly drops
-    /// those above).
+    /// (`convex`: of [`EnergyModel::convex_jacobian`]), in the same order, handed to `sink`
+    /// in chunks: all a Newton step's Cholesky factorisation reads, in about half the
+    /// entries, and never all in memory at once (a 30P30N move's 1.6 million entries were
+    /// 26 MB, at the peak of its memory). The default: every entry in one chunk (the
+    /// assembly drops those above).
     fn lower_jacobian(
         &self,
         positions: &[[f64; D]],
         movable: &[bool],
         convex: bool,
-        out: &mut Vec<Triplet>,
+        sink: &mut dyn FnMut(&[Triplet]),
     ) {
+        let mut out = Vec::new();
         if convex {
-            self.convex_jacobian(positions, movable, out);
+            self.convex_jacobian(positions, movable, &mut out);
         } else {
-            self.jacobian(positions, movable, out);
+            self.jacobian(positions, movable, &mut out);
         }
+        sink(&out);
     }
 }
 
@@ -152,10 +155,11 @@ impl<const D: usize> Dofs<D> {
 /// triplets in the same order at every step while no cell inverts, so the sort that merges
 /// duplicates and orders columns (most of the time of a Newton step when redone: profiled on
 /// the 30P30N) is done once: each step scatters the values straight into the matrix's value
-/// array and factorises into the same factor and workspace buffers (allocating them at every
-/// factorisation was a sixth of a 30P30N move, in page faults). When the triplets' positions
-/// change the pattern is found again. Only the lower triangle is kept: the matrix is
-/// symmetric and the Cholesky factorisation reads no more.
+/// array as the model emits them, never holding them all (a 30P30N flap move's peak memory
+/// 94 → 81 MB), and factorises into the same factor and workspace buffers (allocating them
+/// at every factorisation was a sixth of a 30P30N move, in page faults). When the triplets'
+/// positions change the pattern is found again. Only the lower triangle is kept: the matrix
+/// is symmetric and the Cholesky factorisation reads no more.
 struct Assembly<const D: usize> {
     dofs: Dofs<D>,
     /// How many triplets the pattern was found for, and a hash of their (row, column)s in
@@ -206,13 +210,46 @@ impl<const D: usize> Assembly<D> {
         }
     }
 
-    /// Finds the pattern of `jacobian` and its fill-reducing ordering, unless known.
-    fn pattern(&mut self, jacobian: &[Triplet]) -> Result<(), SpringError> {
-        let keys = (jacobian.len(), key_hash(jacobian));
-        if self.pattern.is_some() && self.keys == keys {
-            return Ok(());
+    /// Loads `−∂F/∂X` into the matrix: `emit` hands its triplets to the sink it is given
+    /// (the same entries in the same order at every call while the pattern holds). Known
+    /// the pattern, they are scattered as they come and their (row, column)s hashed; if
+    /// they turn out not to be the pattern's, or there is none yet, `emit` is called again
+    /// and the triplets gathered, the pattern found and the triplets dropped before the
+    /// factor is allocated.
+    fn load(
+        &mut self,
+        mut emit: impl FnMut(&mut dyn FnMut(&[Triplet])),
+    ) -> Result<(), SpringError> {
+        if self.pattern.is_some() {
+            self.values.iter_mut().for_each(|v| *v = 0.0);
+            let mut hash = KeyHash::new();
+            let (slot, values) = (&self.slot, &mut self.values);
+            emit(&mut |chunk| {
+                let at = hash.count;
+                hash.feed(chunk);
+                for (t, &s) in chunk.iter().zip(slot.get(at..).unwrap_or_default()) {
+                    if s != u32::MAX {
+                        values[s as usize] -= t.value;
+                    }
+                }
+            });
+            if (hash.count, hash.finish()) == self.keys {
+                self.keep_diagonal();
+                return Ok(());
+            }
         }
-        self.keys = keys;
+        let mut all = Vec::new();
+        emit(&mut |chunk| all.extend_from_slice(chunk));
+        self.pattern(&all)?;
+        self.scatter(&all);
+        Ok(())
+    }
+
+    /// Finds the pattern of `jacobian` and its fill-reducing ordering.
+    fn pattern(&mut self, jacobian: &[Triplet]) -> Result<(), SpringError> {
+        let mut hash = KeyHash::new();
+        hash.feed(jacobian);
+        self.keys = (hash.count, hash.finish());
         let n = self.dofs.count;
         let (col_ptr, row_idx, slot, diagonal_slot) = lower_pattern(&self.dofs, jacobian);
         self.slot = slot;
@@ -225,7 +262,8 @@ impl<const D: usize> Assembly<D> {
             Default::default(),
         )
         .map_err(|e| SpringError::Solver(format!("ordering the Newton matrix: {e:?}")))?;
-        self.factor = vec![0.0; cholesky.len_val()];
+        // allocated at the first factorisation, after the triplets are gone
+        self.factor = Vec::new();
         self.scratch = MemBuffer::new(StackReq::any_of(&[
             cholesky.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()),
             cholesky.solve_in_place_scratch::<f64>(1, self.par),
@@ -243,21 +281,21 @@ impl<const D: usize> Assembly<D> {
                 self.values[s as usize] -= t.value;
             }
         }
+        self.keep_diagonal();
+    }
+
+    /// Keeps the loaded matrix's diagonal, which the shifts change.
+    fn keep_diagonal(&mut self) {
         self.diagonal.clear();
         self.diagonal
             .extend(self.diagonal_slot.iter().map(|&s| self.values[s as usize]));
     }
 
-    /// A Cholesky factorisation of `−∂F/∂X` that shifts its diagonal until it is positive
-    /// definite; returns whether it had to. `shift_allowed` false: no shift, an indefinite
-    /// matrix is an error. The factor is then [`Assembly::solve`]'s.
-    fn factorise(
-        &mut self,
-        jacobian: &[Triplet],
-        shift_allowed: bool,
-    ) -> Result<bool, SpringError> {
-        self.pattern(jacobian)?;
-        self.scatter(jacobian);
+    /// A Cholesky factorisation of the loaded `−∂F/∂X` ([`Assembly::load`]) that shifts its
+    /// diagonal until it is positive definite; returns whether it had to. `shift_allowed`
+    /// false: no shift, an indefinite matrix is an error. The factor is then
+    /// [`Assembly::solve`]'s.
+    fn factorise(&mut self, shift_allowed: bool) -> Result<bool, SpringError> {
         // consecutive steps tend to need similar shifts: start a decade below the last one
         // instead of climbing from no shift again (a factorisation each), and climb by
         // decades from 10⁻⁶ (a relative shift that small changes a step as little as 10⁻⁸
@@ -285,16 +323,14 @@ impl<const D: usize> Assembly<D> {
         ))
     }
 
-    /// A Cholesky factorisation of `−∂F/∂X` as it is: whether it is positive definite (the
-    /// factor is then [`Assembly::solve`]'s).
-    fn factorise_exact(&mut self, jacobian: &[Triplet]) -> Result<bool, SpringError> {
-        self.pattern(jacobian)?;
-        self.scatter(jacobian);
+    /// A Cholesky factorisation of the loaded `−∂F/∂X` as it is: whether it is positive
+    /// definite (the factor is then [`Assembly::solve`]'s).
+    fn factorise_exact(&mut self) -> bool {
         let factored = self.factorise_shifted(0.0);
         if factored {
             self.last_shift = 0.0;
         }
-        Ok(factored)
+        factored
     }
 
     /// One attempt at factorising the scattered matrix with its diagonal `d` made
@@ -308,6 +344,9 @@ impl<const D: usize> Assembly<D> {
         }
         let a = SparseColMatRef::new(pattern.matrix.as_ref(), &self.values);
         self.factorisations += 1;
+        if self.factor.len() != pattern.cholesky.len_val() {
+            self.factor = vec![0.0; pattern.cholesky.len_val()];
+        }
         // a failed attempt leaves a partial factor: the supernodal factorisation starts
         // from zeros itself, the simplicial one is given them
         if matches!(pattern.cholesky.raw(), SymbolicCholeskyRaw::Simplicial(_)) {
@@ -422,31 +461,64 @@ fn lower_pattern<const D: usize>(
     (col_ptr, row_idx, slot, diagonal_slot)
 }
 
-/// A 64-bit hash of the (row, column)s of `jacobian` in order (a multiply-xorshift mix), in
-/// four interleaved lanes mixed at the end: one lane is a chain of dependent multiplies, and
-/// four let the processor overlap them (a 30P30N move's million entries hashed each Newton
-/// step took a fifth of its pattern check).
-fn key_hash(jacobian: &[Triplet]) -> u64 {
-    let mix = |h: u64, k: u64| {
-        let h = (h ^ k).wrapping_mul(0xff51_afd7_ed55_8ccd);
-        h ^ (h >> 29)
-    };
-    let key = |t: &Triplet| (u64::from(t.row) << 32) | u64::from(t.col);
-    let mut lanes = [
-        0x9e37_79b9_7f4a_7c15u64,
+/// A 64-bit hash of a Jacobian's (row, column)s in order (a multiply-xorshift mix), fed in
+/// chunks: entry `i` goes to lane `i mod 4`, the lanes mixed at the end. One lane would be a
+/// chain of dependent multiplies; four let the processor overlap them (a 30P30N move's
+/// million entries hashed each Newton step took a fifth of its pattern check).
+struct KeyHash {
+    lanes: [u64; 4],
+    /// Entries fed so far.
+    count: usize,
+}
+
+impl KeyHash {
+    const SEEDS: [u64; 4] = [
+        0x9e37_79b9_7f4a_7c15,
         0xc2b2_ae3d_27d4_eb4f,
         0x1656_67b1_9e37_79f9,
         0x27d4_eb2f_1656_67c5,
     ];
-    let chunks = jacobian.chunks_exact(4);
-    let tail = chunks.remainder();
-    for c in chunks {
-        for (lane, t) in lanes.iter_mut().zip(c) {
-            *lane = mix(*lane, key(t));
+
+    fn new() -> Self {
+        KeyHash {
+            lanes: Self::SEEDS,
+            count: 0,
         }
     }
-    let h = tail.iter().fold(lanes[0], |h, t| mix(h, key(t)));
-    [lanes[1], lanes[2], lanes[3]].into_iter().fold(h, mix)
+
+    fn mix(h: u64, k: u64) -> u64 {
+        let h = (h ^ k).wrapping_mul(0xff51_afd7_ed55_8ccd);
+        h ^ (h >> 29)
+    }
+
+    fn feed(&mut self, entries: &[Triplet]) {
+        let key = |t: &Triplet| (u64::from(t.row) << 32) | u64::from(t.col);
+        // up to the next multiple of four one by one, then four at a time
+        let lead = ((4 - self.count % 4) % 4).min(entries.len());
+        let (head, rest) = entries.split_at(lead);
+        for t in head {
+            let lane = self.count % 4;
+            self.lanes[lane] = Self::mix(self.lanes[lane], key(t));
+            self.count += 1;
+        }
+        let chunks = rest.chunks_exact(4);
+        let tail = chunks.remainder();
+        for c in chunks {
+            for (lane, t) in self.lanes.iter_mut().zip(c) {
+                *lane = Self::mix(*lane, key(t));
+            }
+        }
+        self.count += rest.len() - tail.len();
+        for t in tail {
+            let lane = self.count % 4;
+            self.lanes[lane] = Self::mix(self.lanes[lane], key(t));
+            self.count += 1;
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.lanes.into_iter().fold(self.count as u64, Self::mix)
+    }
 }
 
 /// Solves `L Lᵀ x = rhs` in place with the factor `values` of `cholesky`, in `scratch`.
@@ -499,7 +571,6 @@ const CHORD_BELOW: f64 = 0.01;
 pub struct NewtonWorkspace<const D: usize> {
     movable: Vec<bool>,
     assembly: Assembly<D>,
-    jacobian: Vec<Triplet>,
 }
 
 impl<const D: usize> NewtonWorkspace<D> {
@@ -508,7 +579,6 @@ impl<const D: usize> NewtonWorkspace<D> {
         NewtonWorkspace {
             movable: movable.to_vec(),
             assembly: Assembly::new(movable),
-            jacobian: Vec::new(),
         }
     }
 
@@ -554,11 +624,7 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
             workspace.movable.len()
         )));
     }
-    let NewtonWorkspace {
-        movable,
-        assembly,
-        jacobian,
-    } = workspace;
+    let NewtonWorkspace { movable, assembly } = workspace;
     let movable: &[bool] = movable;
     let factorisations_before = assembly.factorisations;
     let mut energy = model
@@ -582,13 +648,7 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
         model.assemble(positions, &mut force, &mut stiffness);
         let reused = chord;
         if !reused {
-            factorise_step(
-                model,
-                positions,
-                (movable, jacobian),
-                assembly,
-                &mut outcome,
-            )?;
+            factorise_step(model, (positions, movable), assembly, &mut outcome)?;
             outcome.factorisations = assembly.factorisations - factorisations_before;
         }
         let step = assembly.step(&force);
@@ -633,28 +693,30 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
     Ok(outcome)
 }
 
-/// Factorises `model`'s `−∂F/∂X` at `positions` for a Newton step (`jacobian`: the triplets'
-/// buffer): the exact Hessian where it is positive definite (Newton's quadratic
-/// convergence); where it is not, a diagonal shift, and after [`CONVEX_AFTER`] steps each
-/// spring's convex part instead. Counts the shifted and convex steps in `outcome`.
+/// Factorises `model`'s `−∂F/∂X` at `positions` for a Newton step: the exact Hessian
+/// where it is positive definite (Newton's quadratic convergence); where it is not, a
+/// diagonal shift, and after [`CONVEX_AFTER`] steps each spring's convex part instead.
+/// Counts the shifted and convex steps in `outcome`.
 fn factorise_step<const D: usize, M: EnergyModel<D>>(
     model: &M,
-    positions: &[[f64; D]],
-    (movable, jacobian): (&[bool], &mut Vec<Triplet>),
+    (positions, movable): (&[[f64; D]], &[bool]),
     assembly: &mut Assembly<D>,
     outcome: &mut NewtonOutcome,
 ) -> Result<(), SpringError> {
-    jacobian.clear();
-    model.lower_jacobian(positions, movable, false, jacobian);
+    let lower = |convex| {
+        move |sink: &mut dyn FnMut(&[Triplet])| {
+            model.lower_jacobian(positions, movable, convex, sink);
+        }
+    };
+    assembly.load(lower(false))?;
     let shifted = if outcome.iterations < CONVEX_AFTER {
-        assembly.factorise(jacobian, true)?
-    } else if assembly.factorise_exact(jacobian)? {
+        assembly.factorise(true)?
+    } else if assembly.factorise_exact() {
         false
     } else {
-        jacobian.clear();
-        model.lower_jacobian(positions, movable, true, jacobian);
+        assembly.load(lower(true))?;
         outcome.convex += 1;
-        assembly.factorise(jacobian, true)?
+        assembly.factorise(true)?
     };
     outcome.shifted += usize::from(shifted);
     Ok(())
@@ -720,7 +782,8 @@ impl<const D: usize> Linearised<D> {
         let mut assembly = Assembly::<D>::new(movable);
         let mut all = Vec::new();
         model.jacobian(positions, &vec![true; positions.len()], &mut all);
-        assembly.factorise(&all, false)?;
+        assembly.load(|sink| sink(&all))?;
+        assembly.factorise(false)?;
         let dofs = &assembly.dofs;
         let coupling = all
             .into_iter()
