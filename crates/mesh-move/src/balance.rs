@@ -26,9 +26,9 @@ use geom_predicates::{PointTree, point_segment_distance};
 use mesh_model::topology::Edges;
 use mesh_model::{LayeredMesh, Mesh, NONE, Role};
 use springfield::{
-    BalanceSpring, CornerSpring, JumpSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
-    NewtonWorkspace, QuadSpring, ShapeLaw, ShapeSpring, SpringList, SpringParams, quad_jumps,
-    shape_springs, solve_newton_in,
+    BalanceSpring, CornerSpring, LengthSpring, Linearised, NewtonOutcome, NewtonParams,
+    NewtonWorkspace, QuadSpring, ShapeLaw, ShapeSpring, SpringList, SpringParams, shape_springs,
+    solve_newton_in,
 };
 
 use crate::MoveError;
@@ -71,7 +71,7 @@ impl ShapeField {
                 what: "a cell of the original mesh is not a positive triangle or quadrilateral"
                     .into(),
             })?;
-        let mut springs = cell_springs(layered, &rest, &weight, shapes);
+        let mut springs = cell_springs(layered, &weight, shapes);
         springs.extend(
             extrusion_springs(layered, &rest, &weight)
                 .into_iter()
@@ -276,8 +276,9 @@ const QUAD_AFFINITY_FROM: u32 = 4;
 /// two, the weight grows as the square of the layer ([`quad_jumps_of`]).
 const QUAD_AFFINITY_FULL: u32 = 14;
 
-/// Quadrilateral `c`'s opposite corner triangles held to the same deformation gradient
-/// (`springfield::quad_jumps`), weighted by [`QUAD_AFFINITY`] times the cell's weight; none
+/// The weight of quadrilateral `c`'s jump springs, its opposite corner triangles held to the
+/// same deformation gradient (`springfield::quad_jumps`): [`QUAD_AFFINITY`] times the cell's
+/// weight; none
 /// in the first layers, growing from [`QUAD_AFFINITY_FROM`] to [`QUAD_AFFINITY_FULL`] (the
 /// cell's layer: its deepest node's).
 ///
@@ -308,12 +309,7 @@ const QUAD_AFFINITY_FULL: u32 = 14;
 /// flap turned the other way; 12: 0.813 but 5.04°), and every first layer within 1 % and 5°
 /// but the ×1.5 body's angle (0.98 %, 6.6°; 1.9° with [`corner_springs`]); the 30P30N flap's
 /// sj 0.906 → 0.937.
-fn quad_jumps_of(
-    layered: &LayeredMesh,
-    rest: &[[f64; 2]],
-    weight: &[f64],
-    c: usize,
-) -> Option<[JumpSpring; 2]> {
+fn quad_jumps_of(layered: &LayeredMesh, weight: &[f64], c: usize) -> Option<f64> {
     let cell = layered.mesh.cells.get(c);
     let layer = &layered.layering.node_layer;
     // the cell's layer: its deepest node's (a node of no layer is above them all)
@@ -332,8 +328,7 @@ fn quad_jumps_of(
         let span = f64::from(QUAD_AFFINITY_FULL - QUAD_AFFINITY_FROM + 1);
         (f64::from(depth - QUAD_AFFINITY_FROM) / span).powi(2)
     };
-    let corners: Vec<[f64; 2]> = cell.nodes.iter().map(|&k| rest[k as usize]).collect();
-    quad_jumps(cell.nodes, &corners, QUAD_AFFINITY * ramp * weight[c])
+    Some(QUAD_AFFINITY * ramp * weight[c])
 }
 
 /// The springs of each cell of `layered`: a triangle's shape spring, a quadrilateral's four
@@ -341,7 +336,6 @@ fn quad_jumps_of(
 /// cells' shape springs in order, as `springfield::shape_springs` makes them).
 fn cell_springs(
     layered: &LayeredMesh,
-    rest: &[[f64; 2]],
     weight: &[f64],
     shapes: Vec<ShapeSpring>,
 ) -> Vec<BalanceSpring> {
@@ -354,11 +348,12 @@ fn cell_springs(
                 let [s1, s2, s3] = rest_of[..] else {
                     break;
                 };
-                out.push(BalanceSpring::Quad(Box::new(QuadSpring {
-                    corners: [*a, *b, *c4, *d],
-                    shapes: [first, s1, s2, s3],
-                    jumps: quad_jumps_of(layered, rest, weight, c),
-                })));
+                let jumps = quad_jumps_of(layered, weight, c);
+                let Some(quad) = QuadSpring::new([*a, *b, *c4, *d], [first, s1, s2, s3], jumps)
+                else {
+                    break;
+                };
+                out.push(BalanceSpring::Quad(Box::new(quad)));
             }
             (_, Some(s)) => out.push(BalanceSpring::Shape(s)),
             (_, None) => break,

@@ -270,9 +270,9 @@ mod tests {
             cell_gradients(&pick(&quad)).unwrap(),
             cell_gradients(&pick(&tri)).unwrap(),
         );
-        let spring = [BalanceSpring::Jump(
+        let spring = [BalanceSpring::Jump(Box::new(
             JumpSpring::between((&quad, &g1), (&tri, &g2), 2.5).unwrap(),
-        )];
+        ))];
         let x = crate::length::nudged(&rest);
         let (force, jacobian, asymmetry) = derivative_errors(&spring, &x);
         assert!(force < 1e-6 && jacobian < 1e-5, "{force} {jacobian}");

@@ -153,8 +153,8 @@ pub enum BalanceSpring {
     Quad(Box<QuadSpring>),
     /// An edge held to its length.
     Length(LengthSpring),
-    /// Two neighbouring cells held to deform alike.
-    Jump(JumpSpring),
+    /// Two neighbouring cells held to deform alike (boxed: twice a triangle's).
+    Jump(Box<JumpSpring>),
     /// An extrusion edge held to its angle with its wall.
     Corner(CornerSpring),
 }
@@ -385,11 +385,14 @@ mod tests {
         let shapes = crate::shape_springs([&quad[..]], &rest, law, &[1.0]).unwrap();
         let triangle = crate::ShapeSpring::at_rest([1, 4, 2], &rest, 2.0, law).unwrap();
         [
-            BalanceSpring::Quad(Box::new(crate::QuadSpring {
-                corners: quad,
-                shapes: [shapes[0], shapes[1], shapes[2], shapes[3]],
-                jumps: crate::quad_jumps(&quad, &rest, 5.0),
-            })),
+            BalanceSpring::Quad(Box::new(
+                crate::QuadSpring::new(
+                    quad,
+                    [shapes[0], shapes[1], shapes[2], shapes[3]],
+                    Some(5.0),
+                )
+                .unwrap(),
+            )),
             BalanceSpring::Shape(triangle),
         ]
     }

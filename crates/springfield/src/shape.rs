@@ -448,13 +448,16 @@ pub fn shape_springs<'c>(
     Some(out)
 }
 
+/// A quadrilateral's corner triangles: corner `i` with its two neighbours.
+pub(crate) const QUAD_CORNERS: [[usize; 3]; 4] = [[0, 1, 3], [1, 2, 0], [2, 3, 1], [3, 0, 2]];
+
 /// The triangles a cell of `n` corners is held by, as corner positions: a triangle itself,
 /// a quadrilateral its four corner triangles (each corner with its two neighbours,
 /// counter-clockwise); `None` for other cells.
 pub(crate) fn corner_triangles(n: usize) -> Option<&'static [[usize; 3]]> {
     match n {
         3 => Some(&[[0, 1, 2]]),
-        4 => Some(&[[0, 1, 3], [1, 2, 0], [2, 3, 1], [3, 0, 2]]),
+        4 => Some(&QUAD_CORNERS),
         _ => None,
     }
 }
