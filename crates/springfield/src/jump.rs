@@ -18,13 +18,14 @@ use crate::shape::{ShapeLaw, ShapeSpring, corner_triangles};
 /// The most nodes of a pair of cells sharing an edge (two quadrilaterals).
 pub const JUMP_NODES: usize = 6;
 
-/// Two cells sharing an edge held to the same deformation gradient.
+/// Two cells sharing an edge held to the same deformation gradient, over at most `N` nodes
+/// (a quadrilateral's own pair: 4).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JumpSpring {
+pub struct JumpSpring<const N: usize = JUMP_NODES> {
     /// The nodes of both cells (`count` of them).
-    pub nodes: [u32; JUMP_NODES],
+    pub nodes: [u32; N],
     /// `g_k`: `F₁ − F₂ = Σ x_k ⊗ g_k` over the nodes.
-    pub gradients: [[f64; 2]; JUMP_NODES],
+    pub gradients: [[f64; 2]; N],
     /// How many of `nodes` are used.
     pub count: usize,
     /// The weight `w` of its energy.
@@ -84,7 +85,9 @@ impl JumpSpring {
         }
         Some(spring)
     }
+}
 
+impl<const N: usize> JumpSpring<N> {
     /// `F₁ − F₂` at `x`, row-major.
     fn jump(&self, x: &[[f64; 2]]) -> [[f64; 2]; 2] {
         let mut d = [[0.0; 2]; 2];
@@ -106,7 +109,7 @@ impl JumpSpring {
     }
 }
 
-impl Spring<2> for JumpSpring {
+impl<const N: usize> Spring<2> for JumpSpring<N> {
     fn reads(&self, out: &mut Vec<u32>) {
         out.extend(&self.nodes[..self.count]);
     }
@@ -145,7 +148,7 @@ impl Spring<2> for JumpSpring {
     }
 }
 
-impl JumpSpring {
+impl<const N: usize> JumpSpring<N> {
     /// `∂F_p/∂x_q` between its nodes `m` and `k` (the same on both axes, zero across them;
     /// constant: the energy is quadratic).
     pub(crate) fn entry(&self, m: usize, k: usize) -> f64 {

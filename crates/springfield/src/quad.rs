@@ -74,39 +74,56 @@ impl QuadSpring {
     }
 
     /// Its jump springs, if it has them: the same as [`crate::quad_jumps`] makes from its
-    /// rest corners, bit for bit. Corner triangles `i` (corners `i, i+1, i+3`) and `i + 2`
-    /// (corners `i+2, i+3, i+1`) with rest gradients `g` and `h`: nodes `i, i+1, i+3, i+2`,
-    /// gradients `g₀, g₁ − h₂, g₂ − h₁, −h₀`.
-    pub fn jumps(&self) -> Option<[JumpSpring; 2]> {
+    /// rest corners, bit for bit (over 4 nodes instead of 6).
+    pub fn jumps(&self) -> Option<[JumpSpring<4>; 2]> {
         let weight = self.jump_weight?;
         let shapes = self.shapes();
-        Some(std::array::from_fn(|i| {
-            let (g, h) = (shapes[i].gradients(), shapes[i + 2].gradients());
-            let mut nodes = [u32::MAX; crate::jump::JUMP_NODES];
-            let mut gradients = [[0.0; 2]; crate::jump::JUMP_NODES];
-            let q = |k: usize| self.corners[(i + k) % 4];
-            nodes[..4].copy_from_slice(&[q(0), q(1), q(3), q(2)]);
-            let minus = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
-            gradients[..4].copy_from_slice(&[
+        Some([0, 1].map(|i| self.jump(i, &shapes, weight)))
+    }
+
+    /// Its jump spring `i` (0 or 1) of weight `weight`, `shapes` its corner triangles'
+    /// springs. Corner triangles `i` (corners `i, i+1, i+3`) and `i + 2` (corners `i+2, i+3,
+    /// i+1`) with rest gradients `g` and `h`: nodes `i, i+1, i+3, i+2`, gradients `g₀,
+    /// g₁ − h₂, g₂ − h₁, −h₀` (as `JumpSpring::between` sums them).
+    fn jump(&self, i: usize, shapes: &[ShapeSpring; 4], weight: f64) -> JumpSpring<4> {
+        let (g, h) = (shapes[i].gradients(), shapes[i + 2].gradients());
+        let q = |k: usize| self.corners[(i + k) % 4];
+        let minus = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
+        JumpSpring {
+            nodes: [q(0), q(1), q(3), q(2)],
+            gradients: [
                 g[0],
                 minus(g[1], h[2]),
                 minus(g[2], h[1]),
                 [-h[0][0], -h[0][1]],
-            ]);
-            JumpSpring {
-                nodes,
-                gradients,
-                count: 4,
-                weight,
+            ],
+            count: 4,
+            weight,
+        }
+    }
+
+    /// Calls `each` with each of its parts as a spring.
+    fn for_each_part(&self, mut each: impl FnMut(&dyn Spring<2>)) {
+        let shapes = self.shapes();
+        for s in &shapes {
+            each(s);
+        }
+        if let Some(w) = self.jump_weight {
+            for i in 0..2 {
+                each(&self.jump(i, &shapes, w));
             }
-        }))
+        }
     }
 
     /// Its energy; `None` when a corner triangle is flat or inverted.
     pub fn energy(&self, x: &[[f64; 2]]) -> Option<f64> {
-        let shapes: Option<f64> = self.shapes().iter().map(|s| s.energy(x)).sum();
-        let jumps: f64 = self.jumps().iter().flatten().map(|j| j.energy(x)).sum();
-        Some(shapes? + jumps)
+        let shapes = self.shapes();
+        let on_shapes: Option<f64> = shapes.iter().map(|s| s.energy(x)).sum();
+        let jumps: f64 = match self.jump_weight {
+            Some(w) => (0..2).map(|i| self.jump(i, &shapes, w).energy(x)).sum(),
+            None => 0.0,
+        };
+        Some(on_shapes? + jumps)
     }
 }
 
@@ -126,12 +143,7 @@ impl Spring<2> for QuadSpring {
         force: &mut [[f64; 2]],
         stiffness: &mut [f64],
     ) {
-        for s in &self.shapes() {
-            s.add_force(params, positions, force, stiffness);
-        }
-        for j in self.jumps().iter().flatten() {
-            j.add_force(params, positions, force, stiffness);
-        }
+        self.for_each_part(|s| s.add_force(params, positions, force, stiffness));
     }
 
     /// The parts' entries summed into one 8 × 8 block over the movable corners (each corner
@@ -169,7 +181,8 @@ impl QuadSpring {
         out: &mut Vec<Triplet>,
     ) {
         let mut block = [[0.0; 8]; 8];
-        for s in &self.shapes() {
+        let shapes = self.shapes();
+        for s in &shapes {
             let Some(part) = s.jacobian_block(x, convex) else {
                 continue;
             };
@@ -187,7 +200,10 @@ impl QuadSpring {
                 }
             }
         }
-        for jump in self.jumps().iter().flatten() {
+        let jumps = self
+            .jump_weight
+            .map(|w| [0, 1].map(|i| self.jump(i, &shapes, w)));
+        for jump in jumps.iter().flatten() {
             let at = jump
                 .nodes
                 .map(|k| self.corners.iter().position(|&c| c == k));
@@ -237,7 +253,13 @@ mod tests {
         let law = ShapeLaw::default();
         let shapes = shape_springs([&corners[..]], &rest, law, &[1.7]).unwrap();
         assert_eq!(spring.shapes()[..], shapes[..]);
-        assert_eq!(spring.jumps(), quad_jumps(&corners, &rest, 30.0));
+        let alone = quad_jumps(&corners, &rest, 30.0).unwrap();
+        for (j, a) in spring.jumps().unwrap().iter().zip(&alone) {
+            assert_eq!(
+                (&j.nodes[..], &j.gradients[..], j.count, j.weight),
+                (&a.nodes[..4], &a.gradients[..4], a.count, a.weight)
+            );
+        }
         let mut other = [shapes[0], shapes[1], shapes[2], shapes[3]];
         assert!(
             QuadSpring::new(corners, other, None)
@@ -270,19 +292,14 @@ mod tests {
     /// node held).
     #[test]
     fn it_sums_its_parts() {
-        let (spring, _, x) = quad();
+        let (spring, rest, x) = quad();
         let mut parts: Vec<BalanceSpring> = spring
             .shapes()
             .iter()
             .map(|&s| BalanceSpring::Shape(s))
             .collect();
-        parts.extend(
-            spring
-                .jumps()
-                .iter()
-                .flatten()
-                .map(|&j| BalanceSpring::Jump(Box::new(j))),
-        );
+        let alone = quad_jumps(&spring.corners(), &rest, 30.0).unwrap();
+        parts.extend(alone.map(|j| BalanceSpring::Jump(Box::new(j))));
         let whole = [BalanceSpring::Quad(Box::new(spring.clone()))];
         let params = SpringParams::default();
         fn model<'a>(
