@@ -148,18 +148,22 @@ pub fn first_layer_drift(before: &Mesh, after: &Mesh) -> Option<FirstLayerDrift>
     if walls.is_empty() {
         return None;
     }
-    // a wall facet a → b is the cell edge a → b (domain on the facet's left)
-    let mut edge_cell: HashMap<[u32; 2], (usize, usize)> = HashMap::new();
+    // a wall facet a → b is the cell edge a → b (domain on the facet's left): the cells'
+    // edges looked up among the wall facets (a map of every cell edge was most of the time)
+    let wall_at: HashMap<[u32; 2], usize> =
+        walls.iter().enumerate().map(|(f, &w)| (w, f)).collect();
+    let mut facet_cell: Vec<Option<(usize, usize)>> = vec![None; walls.len()];
     for i in 0..before.cells.len() {
-        let cell = before.cells.get(i);
-        let k = cell.corners();
+        let k = before.cells.get(i).corners();
         for j in 0..k.len() {
-            edge_cell.insert([k[j], k[(j + 1) % k.len()]], (i, j));
+            if let Some(&f) = wall_at.get(&[k[j], k[(j + 1) % k.len()]]) {
+                facet_cell[f] = Some((i, j));
+            }
         }
     }
     let mut drift = FirstLayerDrift::default();
-    for w in &walls {
-        let Some(&(cell, j)) = edge_cell.get(w) else {
+    for (w, at) in walls.iter().zip(&facet_cell) {
+        let Some((cell, j)) = *at else {
             continue;
         };
         drift.cells += 1;
