@@ -940,4 +940,81 @@ mod tests {
             );
         }
     }
+
+    /// The lower Jacobian of [`grid_springs`] at its rest nodes nudged by `by`, gathered.
+    fn grid_jacobian(by: f64) -> (Vec<bool>, Vec<Triplet>) {
+        let (rest, springs, fixed) = grid_springs(3);
+        let params = SpringParams::default();
+        let model = SpringList {
+            springs: &springs,
+            params: &params,
+        };
+        let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
+        let x: Vec<[f64; 2]> = crate::length::nudged(&rest)
+            .iter()
+            .zip(&rest)
+            .map(|(n, r)| [r[0] + by * (n[0] - r[0]), r[1] + by * (n[1] - r[1])])
+            .collect();
+        let mut all = Vec::new();
+        model.lower_jacobian(&x, &movable, false, &mut |c| all.extend_from_slice(c));
+        (movable, all)
+    }
+
+    /// The hash of a Jacobian's (row, column)s is the same however it is chunked, and
+    /// changes with their order.
+    #[test]
+    fn the_key_hash_does_not_depend_on_the_chunks() {
+        let (_, all) = grid_jacobian(1.0);
+        let whole = {
+            let mut h = KeyHash::new();
+            h.feed(&all);
+            (h.count, h.finish())
+        };
+        for size in [1, 3, 4, 5, 7, 64] {
+            let mut h = KeyHash::new();
+            all.chunks(size).for_each(|c| h.feed(c));
+            assert_eq!((h.count, h.finish()), whole, "chunks of {size}");
+        }
+        let mut swapped = all.clone();
+        let last = swapped.len() - 1;
+        swapped.swap(1, last);
+        let mut h = KeyHash::new();
+        h.feed(&swapped);
+        assert_ne!(h.finish(), whole.1);
+    }
+
+    /// Streamed in chunks, a Jacobian with the known pattern is scattered as a gathered one
+    /// is; one whose entries differ is found a pattern again, as a new assembly finds it.
+    #[test]
+    fn a_streamed_load_is_the_gathered_one() {
+        let (movable, first) = grid_jacobian(1.0);
+        let (_, second) = grid_jacobian(0.5);
+        fn streamed(all: &[Triplet]) -> impl FnMut(&mut dyn FnMut(&[Triplet])) + '_ {
+            move |sink| all.chunks(5).for_each(|c| sink(c))
+        }
+        let gathered = |all: &[Triplet]| {
+            let mut a = Assembly::<2>::new(&movable);
+            a.load(|sink| sink(all)).unwrap();
+            a.values
+        };
+        let keys = |all: &[Triplet]| {
+            let mut h = KeyHash::new();
+            h.feed(all);
+            h.finish()
+        };
+        // the same pattern: the second load scatters as the entries come
+        assert_eq!(keys(&first), keys(&second));
+        let mut kept = Assembly::<2>::new(&movable);
+        kept.load(streamed(&first)).unwrap();
+        assert_eq!(kept.values, gathered(&first));
+        kept.load(streamed(&second)).unwrap();
+        assert_eq!(kept.values, gathered(&second));
+        assert!(kept.values != gathered(&first));
+        // fewer entries: another pattern
+        let fewer = &second[..second.len() - 7];
+        kept.load(streamed(fewer)).unwrap();
+        assert_eq!(kept.values, gathered(fewer));
+        assert_eq!(kept.keys.0, fewer.len());
+        assert!(kept.factorise(true).is_ok());
+    }
 }
