@@ -989,8 +989,9 @@ mod tests {
     fn a_streamed_load_is_the_gathered_one() {
         let (movable, first) = grid_jacobian(1.0);
         let (_, second) = grid_jacobian(0.5);
-        fn streamed(all: &[Triplet]) -> impl FnMut(&mut dyn FnMut(&[Triplet])) + '_ {
-            move |sink| all.chunks(5).for_each(|c| sink(c))
+        type Sink<'s> = &'s mut dyn FnMut(&[Triplet]);
+        fn streamed(all: &[Triplet]) -> impl FnMut(Sink<'_>) + '_ {
+            move |sink| all.chunks(5).for_each(sink)
         }
         let gathered = |all: &[Triplet]| {
             let mut a = Assembly::<2>::new(&movable);
