@@ -355,7 +355,7 @@ fn cell_springs(
                 };
                 out.push(BalanceSpring::Quad(Box::new(quad)));
             }
-            (_, Some(s)) => out.push(BalanceSpring::Shape(s)),
+            (_, Some(s)) => out.push(BalanceSpring::Shape(Box::new(s))),
             (_, None) => break,
         }
     }

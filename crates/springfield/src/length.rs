@@ -147,8 +147,9 @@ impl LengthSpring {
 /// A spring of the shape balance: a cell's shape, an edge's length or its angle to its wall.
 #[derive(Debug, Clone, PartialEq)]
 pub enum BalanceSpring {
-    /// A triangle held to its shape.
-    Shape(ShapeSpring),
+    /// A triangle held to its shape (boxed, as the larger kinds are: the list is mostly
+    /// length and corner springs, and each entry is as large as the largest kind inline).
+    Shape(Box<ShapeSpring>),
     /// A quadrilateral held to its shape (boxed: four times a triangle's).
     Quad(Box<QuadSpring>),
     /// An edge held to its length.
@@ -393,7 +394,7 @@ mod tests {
                 )
                 .unwrap(),
             )),
-            BalanceSpring::Shape(triangle),
+            BalanceSpring::Shape(Box::new(triangle)),
         ]
     }
 

@@ -296,7 +296,7 @@ mod tests {
         let mut parts: Vec<BalanceSpring> = spring
             .shapes()
             .iter()
-            .map(|&s| BalanceSpring::Shape(s))
+            .map(|&s| BalanceSpring::Shape(Box::new(s)))
             .collect();
         let alone = quad_jumps(&spring.corners(), &rest, 30.0).unwrap();
         parts.extend(alone.map(|j| BalanceSpring::Jump(Box::new(j))));
