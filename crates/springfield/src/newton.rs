@@ -364,30 +364,30 @@ impl<const D: usize> Assembly<D> {
     }
 
     /// The Newton step for the forces `force` (every node's, held ones ignored) with the last
-    /// factor, over the unknowns.
-    fn step(&mut self, force: &[[f64; D]]) -> Vec<f64> {
+    /// factor, over the unknowns, to the relative residual `accuracy` ([`Assembly::solve`]).
+    fn step(&mut self, force: &[[f64; D]], accuracy: f64) -> Vec<f64> {
         let mut step = vec![0.0; self.dofs.count];
         for (node, f) in force.iter().enumerate() {
             if let Some(first) = self.dofs.of((D * node) as u32) {
                 step[first..first + D].copy_from_slice(f);
             }
         }
-        self.solve(&mut step);
+        self.solve(&mut step, accuracy);
         step
     }
 
     /// Solves `A x = rhs` in place with the last factor: in double precision directly; in
     /// mixed, by iterative refinement — `x += L⁻ᵀ L⁻¹ r` in single precision, the residual
-    /// `r = rhs − A x` in double — until the residual stops halving (3 to 5 solves on every
-    /// motion of `tests/movement`, to 10⁻¹³–10⁻¹⁶ of `rhs`, as a double factor's). If the
-    /// residual stays above [`REFINED`] of `rhs` the matrix is factorised again in double
-    /// and the assembly stays there.
+    /// `r = rhs − A x` in double — until the residual is within `accuracy` of `rhs` or stops
+    /// halving (3 to 5 solves on every motion of `tests/movement`, to 10⁻¹³–10⁻¹⁶ of `rhs`,
+    /// as a double factor's). If the residual stays above [`REFINED`] of `rhs` (and
+    /// `accuracy`) the matrix is factorised again in double and the assembly stays there.
     ///
     /// Why single precision: the factor is most of a move's memory (the 30P30N flap's 30 of
     /// its 73 MB), and the Newton step only needs the solve's accuracy, which refinement in
     /// double gives: the same Newton steps and the same moved meshes to 10⁻¹² of their
     /// length scales, in half the factor's memory and no more time.
-    fn solve(&mut self, rhs: &mut [f64]) {
+    fn solve(&mut self, rhs: &mut [f64], accuracy: f64) {
         let pattern = self.pattern.as_ref().expect("factorised first");
         if !self.mixed {
             self.double.solve(&pattern.cholesky, rhs, self.par);
@@ -411,12 +411,12 @@ impl<const D: usize> Assembly<D> {
                 .zip(rhs.iter().zip(&ax))
                 .for_each(|(r, (b, a))| *r = b - a);
             residual = norm(&r) / size;
-            if residual > 0.5 * last {
+            if residual <= accuracy || residual > 0.5 * last {
                 break;
             }
             last = residual;
         }
-        if residual <= REFINED {
+        if residual <= REFINED.max(accuracy) {
             rhs.copy_from_slice(&x);
             return;
         }
@@ -606,6 +606,11 @@ fn solve_in<T: ComplexField>(
     );
 }
 
+/// The relative residual of a Newton step's solve while its last step was large (above
+/// 10⁻¹ of the length scales; below, the square of that step): a single-precision solve's
+/// is 10⁻³–10⁻⁴.
+const INEXACT: f64 = 1e-2;
+
 /// Most single-precision solves of a refinement ([`Assembly::solve`]).
 const MAX_REFINEMENTS: usize = 20;
 
@@ -780,7 +785,10 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
             factorise_step(model, (positions, movable), assembly, &mut outcome)?;
             outcome.factorisations = assembly.factorisations - factorisations_before;
         }
-        let step = assembly.step(&force);
+        // an inexact step far from the balance (Newton's convergence stays quadratic with
+        // a residual within the square of the last step): one single-precision solve there
+        let accuracy = (previous * previous).min(INEXACT);
+        let step = assembly.step(&force, accuracy);
         let largest = assembly.dofs.largest_move(&step, scale);
         // converged: the step is within the tolerance, or it no longer halves while already
         // small (Newton's quadratic convergence stopped at the round-off of the solve)
@@ -1158,7 +1166,7 @@ mod tests {
             a.load(|sink| sink(&all)).unwrap();
             assert!(!a.factorise(true).unwrap(), "positive definite unshifted");
             let mut x: Vec<f64> = (0..a.dofs.count).map(|i| (i as f64).sin()).collect();
-            a.solve(&mut x);
+            a.solve(&mut x, 0.0);
             assert_eq!(a.mixed, mixed);
             x
         };
@@ -1186,7 +1194,7 @@ mod tests {
         a.load(|sink| sink(&triplets)).unwrap();
         assert!(!a.factorise(false).unwrap());
         let mut x = diagonal.to_vec();
-        a.solve(&mut x);
+        a.solve(&mut x, 0.0);
         assert!(!a.mixed);
         for v in x {
             assert!((v - 1.0).abs() < 1e-15, "{v}");
