@@ -18,8 +18,6 @@
 //! its `ForceModel<3>` binding like [`crate::SpringField2d`]; the extrusion spring and everything in
 //! this module are reused as they are. Nothing of it exists yet.
 
-use rayon::prelude::*;
-
 use crate::active::{Active, Influence};
 use crate::params::SpringParams;
 
@@ -339,9 +337,6 @@ impl<S> SpringList<'_, S> {
     /// [`SpringList::jacobian_in`]'s entries in order, handed to `sink` a few thousand at a
     /// time instead of gathered: a Newton step scatters them straight into its matrix (the
     /// gathered million entries of a 30P30N move were 14 MB, at the peak of its memory).
-    /// With more than one thread, each thread computes the entries of a run of
-    /// [`JACOBIAN_RUN`] springs and the runs are handed over in order: the same entries in the
-    /// same order (computing them was a fifth of a NACA0012 pitch's balance).
     pub(crate) fn jacobian_chunks<const D: usize>(
         &self,
         positions: &[[f64; D]],
@@ -349,37 +344,18 @@ impl<S> SpringList<'_, S> {
         kind: (bool, bool),
         sink: &mut dyn FnMut(&[Triplet]),
     ) where
-        S: Spring<D> + Sync,
+        S: Spring<D>,
     {
-        let threads = rayon::current_num_threads();
-        if threads < 2 || self.springs.len() < 2 * JACOBIAN_RUN {
-            const CHUNK: usize = 4096;
-            let mut buffer = Vec::with_capacity(2 * CHUNK);
-            self.jacobian_blocks(positions, movable, kind, &mut buffer, &mut |b| {
-                if b.len() < CHUNK {
-                    return false;
-                }
-                sink(b);
-                true
-            });
-            sink(&buffer);
-            return;
-        }
-        let mut runs: Vec<Vec<Triplet>> = vec![Vec::new(); threads];
-        for springs in self.springs.chunks(threads * JACOBIAN_RUN) {
-            let count = springs.len().div_ceil(JACOBIAN_RUN);
-            runs.par_iter_mut()
-                .zip(springs.par_chunks(JACOBIAN_RUN))
-                .for_each(|(run, springs)| {
-                    run.clear();
-                    let list = SpringList {
-                        springs,
-                        params: self.params,
-                    };
-                    list.jacobian_blocks(positions, movable, kind, run, &mut |_| false);
-                });
-            runs[..count].iter().for_each(|run| sink(run));
-        }
+        const CHUNK: usize = 4096;
+        let mut buffer = Vec::with_capacity(2 * CHUNK);
+        self.jacobian_blocks(positions, movable, kind, &mut buffer, &mut |b| {
+            if b.len() < CHUNK {
+                return false;
+            }
+            sink(b);
+            true
+        });
+        sink(&buffer);
     }
 
     /// Appends every spring's entries to `out`, cleared after each spring whose entries
@@ -411,10 +387,6 @@ impl<S> SpringList<'_, S> {
         }
     }
 }
-
-/// The springs whose Jacobian entries one thread computes at a time
-/// ([`SpringList::jacobian_chunks`]): a run's entries, some 30 000, are the memory it takes.
-const JACOBIAN_RUN: usize = 1024;
 
 /// Appends a 2D spring's Jacobian block over its `nodes`, the movable ones only:
 /// `value(2k + a, 2m + b)` is `∂F/∂x` between node `k`'s axis `a` and node `m`'s axis `b`
