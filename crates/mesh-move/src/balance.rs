@@ -278,9 +278,8 @@ const QUAD_AFFINITY_FULL: u32 = 14;
 
 /// The weight of quadrilateral `c`'s jump springs, its opposite corner triangles held to the
 /// same deformation gradient (`springfield::quad_jumps`): [`QUAD_AFFINITY`] times the cell's
-/// weight; none
-/// in the first layers, growing from [`QUAD_AFFINITY_FROM`] to [`QUAD_AFFINITY_FULL`] (the
-/// cell's layer: its deepest node's).
+/// weight; none in the first layers, growing from [`QUAD_AFFINITY_FROM`] to
+/// [`QUAD_AFFINITY_FULL`] (the cell's layer: its deepest node's).
 ///
 /// Why: the shape springs hold each corner triangle to its shape, but a quadrilateral's
 /// triangles may each stay nearly similar while the quadrilateral keystones, and then its

@@ -152,6 +152,9 @@ impl<const D: usize> Dofs<D> {
     }
 }
 
+/// Where a Jacobian's triplets are handed, a chunk at a time and in order.
+type Sink<'a> = &'a mut dyn FnMut(&[Triplet]);
+
 /// The assembly of `−∂F/∂X` over the movable nodes into a sparse matrix and its Cholesky
 /// factor, the pattern and the fill-reducing ordering found once. A model emits its Jacobian
 /// triplets in the same order at every step while no cell inverts, so the sort that merges
@@ -232,36 +235,18 @@ impl<const D: usize> Assembly<D> {
         &mut self,
         mut emit: impl FnMut(&mut dyn FnMut(&[Triplet])),
     ) -> Result<(), SpringError> {
-        if self.pattern.is_some() {
-            self.values.iter_mut().for_each(|v| *v = 0.0);
-            let mut hash = KeyHash::new();
-            let (slot, values) = (&self.slot, &mut self.values);
-            emit(&mut |chunk| {
-                let at = hash.count;
-                hash.feed(chunk);
-                for (t, &s) in chunk.iter().zip(slot.get(at..).unwrap_or_default()) {
-                    if s != u32::MAX {
-                        values[s as usize] -= t.value;
-                    }
-                }
-            });
-            if (hash.count, hash.finish()) == self.keys {
-                self.keep_diagonal();
-                return Ok(());
-            }
+        if self.pattern.is_none() || self.scatter(&mut emit) != self.keys {
+            let mut all = Vec::new();
+            emit(&mut |chunk| all.extend_from_slice(chunk));
+            self.pattern(&all)?;
+            self.keys = self.scatter(&mut |sink| sink(&all));
         }
-        let mut all = Vec::new();
-        emit(&mut |chunk| all.extend_from_slice(chunk));
-        self.pattern(&all)?;
-        self.scatter(&all);
+        self.keep_diagonal();
         Ok(())
     }
 
     /// Finds the pattern of `jacobian` and its fill-reducing ordering.
     fn pattern(&mut self, jacobian: &[Triplet]) -> Result<(), SpringError> {
-        let mut hash = KeyHash::new();
-        hash.feed(jacobian);
-        self.keys = (hash.count, hash.finish());
         let n = self.dofs.count;
         let (col_ptr, row_idx, slot, diagonal_slot) = lower_pattern(&self.dofs, jacobian);
         self.slot = slot;
@@ -281,15 +266,23 @@ impl<const D: usize> Assembly<D> {
         Ok(())
     }
 
-    /// Scatters the values of `jacobian` (whose pattern [`Assembly::pattern`] found).
-    fn scatter(&mut self, jacobian: &[Triplet]) {
+    /// Scatters the triplets `emit` hands over into the matrix's values through their slots
+    /// (those past the slots dropped); their count and the hash of their (row, column)s,
+    /// which are the pattern's [`Assembly::keys`] when the triplets are its own.
+    fn scatter(&mut self, emit: &mut dyn FnMut(Sink<'_>)) -> (usize, u64) {
         self.values.iter_mut().for_each(|v| *v = 0.0);
-        for (t, &s) in jacobian.iter().zip(&self.slot) {
-            if s != u32::MAX {
-                self.values[s as usize] -= t.value;
+        let mut hash = KeyHash::new();
+        let (slot, values) = (&self.slot, &mut self.values);
+        emit(&mut |chunk| {
+            let at = hash.count;
+            hash.feed(chunk);
+            for (t, &s) in chunk.iter().zip(slot.get(at..).unwrap_or_default()) {
+                if s != u32::MAX {
+                    values[s as usize] -= t.value;
+                }
             }
-        }
-        self.keep_diagonal();
+        });
+        (hash.count, hash.finish())
     }
 
     /// Keeps the loaded matrix's diagonal, which the shifts change.
@@ -344,12 +337,18 @@ impl<const D: usize> Assembly<D> {
     /// One attempt at factorising the scattered matrix with its diagonal `d` made
     /// `d + shift·|d|`.
     fn factorise_shifted(&mut self, shift: f64) -> bool {
-        let Some(pattern) = self.pattern.as_ref() else {
-            return false;
-        };
         for (&s, d) in self.diagonal_slot.iter().zip(&self.diagonal) {
             self.values[s as usize] = d + shift * d.abs();
         }
+        self.factorise_loaded()
+    }
+
+    /// Factorises the matrix as it is loaded, in single precision when mixed: whether it is
+    /// positive definite.
+    fn factorise_loaded(&mut self) -> bool {
+        let Some(pattern) = self.pattern.as_ref() else {
+            return false;
+        };
         self.factorisations += 1;
         let (matrix, cholesky) = (pattern.matrix.as_ref(), &pattern.cholesky);
         if self.mixed {
@@ -388,17 +387,31 @@ impl<const D: usize> Assembly<D> {
     /// double gives: the same Newton steps and the same moved meshes to 10⁻¹² of their
     /// length scales, in half the factor's memory and no more time.
     fn solve(&mut self, rhs: &mut [f64], accuracy: f64) {
-        let pattern = self.pattern.as_ref().expect("factorised first");
-        if !self.mixed {
-            self.double.solve(&pattern.cholesky, rhs, self.par);
-            return;
+        if self.mixed {
+            let (x, refined) = self.refine(rhs, accuracy);
+            // the single factor does not refine: this matrix, and the next ones, in double
+            if !refined {
+                (self.mixed, self.single) = (false, Factor::new());
+            }
+            if refined || !self.factorise_loaded() {
+                rhs.copy_from_slice(&x);
+                return;
+            }
         }
+        let pattern = self.pattern.as_ref().expect("factorised first");
+        self.double.solve(&pattern.cholesky, rhs, self.par);
+    }
+
+    /// [`Assembly::solve`]'s refinement through the single factor: its solution, and
+    /// whether its residual is within [`REFINED`] (and `accuracy`) of `rhs`.
+    fn refine(&mut self, rhs: &[f64], accuracy: f64) -> (Vec<f64>, bool) {
+        let pattern = self.pattern.as_ref().expect("factorised first");
         let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let n = rhs.len();
         let size = norm(rhs);
         if size == 0.0 {
-            return;
+            return (vec![0.0; n], true);
         }
-        let n = rhs.len();
         let (mut x, mut r, mut ax) = (vec![0.0; n], rhs.to_vec(), vec![0.0; n]);
         let mut z = vec![0.0f32; n];
         let (mut residual, mut last) = (1.0, f64::INFINITY);
@@ -416,20 +429,7 @@ impl<const D: usize> Assembly<D> {
             }
             last = residual;
         }
-        if residual <= REFINED.max(accuracy) {
-            rhs.copy_from_slice(&x);
-            return;
-        }
-        // the single factor does not refine: this matrix, and the next ones, in double
-        self.mixed = false;
-        self.single = Factor::new();
-        self.factorisations += 1;
-        let a = SparseColMatRef::new(pattern.matrix.as_ref(), &self.values[..]);
-        if self.double.factorise(&pattern.cholesky, a, self.par) {
-            self.double.solve(&pattern.cholesky, rhs, self.par);
-        } else {
-            rhs.copy_from_slice(&x);
-        }
+        (x, residual <= REFINED.max(accuracy))
     }
 
     /// `y = A x` with the loaded matrix (its lower triangle, symmetric).
@@ -1126,7 +1126,6 @@ mod tests {
     fn a_streamed_load_is_the_gathered_one() {
         let (movable, first) = grid_jacobian(1.0);
         let (_, second) = grid_jacobian(0.5);
-        type Sink<'s> = &'s mut dyn FnMut(&[Triplet]);
         fn streamed(all: &[Triplet]) -> impl FnMut(Sink<'_>) + '_ {
             move |sink| all.chunks(5).for_each(sink)
         }
