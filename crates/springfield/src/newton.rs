@@ -611,6 +611,11 @@ fn solve_in<T: ComplexField>(
 /// is 10⁻³–10⁻⁴.
 const INEXACT: f64 = 1e-2;
 
+/// The relative residual of a chord step's solve: a hundredth of the slowest rate a chord
+/// step is taken at (a step shrinking tenfold, [`CHORD_BELOW`]), so that the solve's error
+/// never sets the rate; a single-precision solve's is 10⁻⁵–10⁻⁷, so one solve.
+const CHORD_ACCURACY: f64 = 1e-3;
+
 /// Most single-precision solves of a refinement ([`Assembly::solve`]).
 const MAX_REFINEMENTS: usize = 20;
 
@@ -786,8 +791,14 @@ pub fn solve_newton_in<const D: usize, M: EnergyModel<D>>(
             outcome.factorisations = assembly.factorisations - factorisations_before;
         }
         // an inexact step far from the balance (Newton's convergence stays quadratic with
-        // a residual within the square of the last step): one single-precision solve there
-        let accuracy = (previous * previous).min(INEXACT);
+        // a residual within the square of the last step): one single-precision solve there;
+        // a chord step converges only linearly, at the rate its factor is off by (at most
+        // a tenth, or it is not taken), so its solve needs no more than [`CHORD_ACCURACY`]
+        let accuracy = if reused {
+            CHORD_ACCURACY
+        } else {
+            (previous * previous).min(INEXACT)
+        };
         let step = assembly.step(&force, accuracy);
         let largest = assembly.dofs.largest_move(&step, scale);
         // converged: the step is within the tolerance, or it no longer halves while already
