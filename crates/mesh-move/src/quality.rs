@@ -54,8 +54,19 @@ pub fn cell_scaled_jacobians(mesh: &Mesh) -> Vec<f64> {
 /// The cells of the linear 2D mesh `mesh` that are inverted or degenerate: some corner does
 /// not turn left by the exact orientation predicate.
 pub fn inverted_cells(mesh: &Mesh) -> usize {
+    inverted_cells_at(mesh, |k| mesh.xy(k))
+}
+
+/// [`inverted_cells`] of `mesh` with its node `k` at `at(k)` (a mover's trial positions,
+/// without a copy of the mesh).
+pub(crate) fn inverted_cells_at(mesh: &Mesh, at: impl Fn(u32) -> [f64; 2]) -> usize {
+    let mut corners = Vec::with_capacity(4);
     (0..mesh.cells.len())
-        .filter(|&i| !is_positive_polygon(&corners(mesh, i)))
+        .filter(|&i| {
+            corners.clear();
+            corners.extend(mesh.cells.get(i).corners().iter().map(|&k| at(k)));
+            !is_positive_polygon(&corners)
+        })
         .count()
 }
 

@@ -234,7 +234,7 @@ fn corrected(mesh: &Mesh, warm: Warm<'_>, x: &[[f64; 2]], fixed: &[bool]) -> Opt
                     p
                 })
                 .collect();
-            (crate::quality::inverted_cells(&with_nodes(mesh, &y)) == 0).then_some(y)
+            (inverted(mesh, &y) == 0).then_some(y)
         })
 }
 
@@ -261,7 +261,7 @@ fn start(
     halvings: u32,
 ) -> Result<Start, MoveError> {
     let x = filled(layered, boundary, p, stats)?;
-    if crate::quality::inverted_cells(&with_nodes(&layered.mesh, &x)) == 0 {
+    if inverted(&layered.mesh, &x) == 0 {
         return Ok(Ok(x));
     }
     if halvings >= MAX_HALVINGS {
@@ -282,7 +282,7 @@ fn start(
         layering: layered.layering.clone(),
     };
     let y = filled(&from, &rest, p, stats)?;
-    if crate::quality::inverted_cells(&with_nodes(&layered.mesh, &y)) == 0 {
+    if inverted(&layered.mesh, &y) == 0 {
         Ok(Ok(y))
     } else {
         Ok(Err(x))
@@ -331,7 +331,7 @@ fn filled(
         held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
     }
     pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
-    let reference = reference_turns(&old, boundary);
+    let reference = reference_turns(&old, boundary, &bounding_nodes(mesh, &held));
     let placed = x.clone();
     let mut order = vec![p.fill];
     order.extend(
@@ -347,7 +347,7 @@ fn filled(
         };
         let turns = (&turn[..], &reference[..]);
         fill(mesh, &old, &mut x, turns, &held, &p, stats);
-        if crate::quality::inverted_cells(&with_nodes(mesh, &x)) == 0 {
+        if inverted(mesh, &x) == 0 {
             break;
         }
     }
@@ -382,6 +382,11 @@ fn halves(layered: &LayeredMesh, boundary: &BoundaryMotion) -> (BoundaryMotion, 
         turn: half.turn.clone(),
     };
     (half, rest)
+}
+
+/// The cells of `mesh` inverted with its nodes at `x`.
+fn inverted(mesh: &Mesh, x: &[[f64; 2]]) -> usize {
+    crate::quality::inverted_cells_at(mesh, |k| x[k as usize])
 }
 
 /// `mesh` with its nodes at `x`.
@@ -1139,14 +1144,33 @@ impl Columns {
     }
 }
 
-/// Each node's reference turn and log-scale: those of the nearest boundary node's body
-/// ([`BoundaryMotion::turn`], [`BoundaryMotion::linear`]); the branch on which its rotation
-/// angle is read, and the scale of its local similarity.
-fn reference_turns(old: &[[f64; 2]], boundary: &BoundaryMotion) -> Vec<[f64; 2]> {
+/// The held nodes that bound the filled region: the held corners of the cells with a free
+/// corner (the fill's sources are among them).
+fn bounding_nodes(mesh: &Mesh, held: &[bool]) -> Vec<bool> {
+    let mut bounding = vec![false; held.len()];
+    for c in 0..mesh.cells.len() {
+        let corners = mesh.cells.get(c).corners();
+        if corners.iter().any(|&k| !held[k as usize]) {
+            for &k in corners.iter().filter(|&&k| held[k as usize]) {
+                bounding[k as usize] = true;
+            }
+        }
+    }
+    bounding
+}
+
+/// Each `wanted` node's reference turn and log-scale (the others' `[0, 0]`): those of the
+/// nearest boundary node's body ([`BoundaryMotion::turn`], [`BoundaryMotion::linear`]); the
+/// branch on which its rotation angle is read, and the scale of its local similarity.
+fn reference_turns(old: &[[f64; 2]], boundary: &BoundaryMotion, wanted: &[bool]) -> Vec<[f64; 2]> {
     let points: Vec<[f64; 2]> = boundary.nodes.iter().map(|&k| old[k as usize]).collect();
     let tree = geom_predicates::PointTree::new(&points);
     old.iter()
-        .map(|&p| {
+        .zip(wanted)
+        .map(|(&p, &wanted)| {
+            if !wanted {
+                return [0.0, 0.0];
+            }
             tree.nearest(p).map_or([0.0, 0.0], |(i, _)| {
                 [
                     boundary.turn[i],
