@@ -43,12 +43,13 @@
 //!
 //! A motion that moves no boundary node returns the mesh unchanged, to the bit.
 
+use std::cell::OnceCell;
 use std::collections::HashMap;
 
 use mesh_model::{LayeredMesh, Layering, Mesh, NONE, Role};
 use rayon::prelude::*;
 use springfield::{
-    AngleSpring, ExtrusionSpring, NeighbourSpring, SpringField2d, SpringSet2d, bisector,
+    AngleSpring, ExtrusionSpring, NeighbourSpring, ShapeLaw, SpringField2d, SpringSet2d, bisector,
     solve_model_active,
 };
 
@@ -173,7 +174,13 @@ fn move_springs(
     if x == old {
         return Ok(finish(mesh, boundary, &old, &x, stats));
     }
-    let start = match start(layered, boundary, p, &mut stats, 0)? {
+    let field = LazyField {
+        given: warm.and_then(|w| w.field),
+        own: OnceCell::new(),
+        layered,
+        law: p.shape,
+    };
+    let start = match start(layered, boundary, (p, &field), &mut stats, 0)? {
         Ok(start) => start,
         // no start: the failure is reported as it is (the fill that inverted)
         Err(failed) => return Ok(finish(mesh, boundary, &old, &failed, stats)),
@@ -182,15 +189,7 @@ fn move_springs(
     if let Some(y) = warm.and_then(|w| corrected(mesh, w, &x, &fixed)) {
         x = y;
     }
-    let own;
-    let field = match warm.and_then(|w| w.field) {
-        Some(field) => field,
-        None => {
-            own = ShapeField::of(layered, p.shape)?;
-            &own
-        }
-    };
-    stats.newton = Some(field.balance(&mut x, &fixed, &p.newton)?);
+    stats.newton = Some(field.get()?.balance(&mut x, &fixed, &p.newton)?);
     let mut moved = finish(mesh, boundary, &old, &x, stats);
     moved.start = Some(start);
     Ok(moved)
@@ -238,6 +237,31 @@ fn corrected(mesh: &Mesh, warm: Warm<'_>, x: &[[f64; 2]], fixed: &[bool]) -> Opt
         })
 }
 
+/// The shape field of a move: the one given (a sequence's), or built at its first use and
+/// then shared by the balances of a halved motion's start and the move's own balance (the
+/// same springs and held nodes: one pattern, ordering and symbolic factorisation).
+struct LazyField<'a> {
+    given: Option<&'a ShapeField>,
+    own: OnceCell<ShapeField>,
+    layered: &'a LayeredMesh,
+    law: ShapeLaw,
+}
+
+impl LazyField<'_> {
+    fn get(&self) -> Result<&ShapeField, MoveError> {
+        if let Some(field) = self.given {
+            return Ok(field);
+        }
+        if self.own.get().is_none() {
+            // set only here, so never already set
+            let _ = self.own.set(ShapeField::of(self.layered, self.law)?);
+        }
+        self.own.get().ok_or_else(|| MoveError::Springs {
+            what: "the shape field was not built".into(),
+        })
+    }
+}
+
 /// A start of the balance (`Ok`), or the fill that inverted a cell (`Err`).
 type Start = Result<Vec<[f64; 2]>, Vec<[f64; 2]>>;
 
@@ -256,7 +280,7 @@ const MAX_HALVINGS: u32 = 3;
 fn start(
     layered: &LayeredMesh,
     boundary: &BoundaryMotion,
-    p: &SpringMoveParams,
+    (p, field): (&SpringMoveParams, &LazyField<'_>),
     stats: &mut SpringStats,
     halvings: u32,
 ) -> Result<Start, MoveError> {
@@ -268,13 +292,12 @@ fn start(
         return Ok(Err(x));
     }
     let (half, rest) = halves(layered, boundary);
-    let Ok(mut mid) = start(layered, &half, p, stats, halvings + 1)? else {
+    let Ok(mut mid) = start(layered, &half, (p, field), stats, halvings + 1)? else {
         return Ok(Err(x));
     };
     let mut fixed = vec![false; mid.len()];
     half.nodes.iter().for_each(|&k| fixed[k as usize] = true);
-    let field = ShapeField::of(layered, p.shape)?;
-    if field.balance(&mut mid, &fixed, &p.newton).is_err() {
+    if field.get()?.balance(&mut mid, &fixed, &p.newton).is_err() {
         return Ok(Err(x));
     }
     let from = LayeredMesh {
