@@ -43,10 +43,12 @@ __version__: str = _curvemesh.__version__
 __all__ = [
     "Case",
     "Mesh",
+    "Prepared",
     "builtin_cases",
     "load",
     "mesh",
     "move",
+    "prepare",
     "quality",
     "read",
 ]
@@ -377,14 +379,62 @@ def move(case_or_mesh: Union[Mesh, Case, PathLike, Mapping[str, Any], Sequence[P
     mover. ``sensitivities``: also compute every node's derivative with respect to each design
     variable (implies ``smooth``; springs only): :attr:`Mesh.sensitivities`.
     """
+    case, start, common = _move_from(case_or_mesh, order, sensitivities, method, kernel,
+                                      radius, smooth, triangles, max_cells)
+    native = _curvemesh.move_case(case, _motions_text(motions), start=start, threads=threads,
+                                  progress=progress, **common)
+    return Mesh(native)
+
+
+class Prepared:
+    """A 2D case prepared for many moves (a shape optimisation's designs, a solver's motions
+    one at a time), made by :func:`prepare`: its unmoved mesh, the spring mover's shape field
+    and its Newton workspace are made once, and each :meth:`move` moves from that same
+    unmoved mesh (no drift), as :func:`move` would, without making them again."""
+
+    def __init__(self, native: _curvemesh.NativePrepared):
+        self._native = native
+
+    def move(self, motions: Union[Mapping[str, Any], Sequence[Mapping[str, Any]]], *,
+             threads: Optional[int] = None, progress: Optional[Progress] = None) -> Mesh:
+        """The case moved by ``motions`` (as :func:`move` takes them) from its unmoved mesh."""
+        return Mesh(self._native.move_by(_motions_text(motions), threads=threads,
+                                         progress=progress))
+
+
+def prepare(case_or_mesh: Union[Mesh, Case, PathLike, Mapping[str, Any], Sequence[PathLike]],
+            order: Optional[int] = None, sensitivities: bool = False, *,
+            method: str = "springs", kernel: str = "wendland-c2",
+            radius: Optional[float] = None, smooth: bool = False,
+            triangles: Optional[bool] = None, max_cells: Optional[int] = None,
+            threads: Optional[int] = None, progress: Optional[Progress] = None) -> Prepared:
+    """A 2D case prepared for moves with :func:`move`'s arguments (but the motions)::
+
+        prepared = curvemesh.prepare(mesh)
+        for deg in (2.0, 4.0, 6.0):
+            moved = prepared.move({"loop": "naca0012", "rotate_deg": deg})
+    """
+    case, start, common = _move_from(case_or_mesh, order, sensitivities, method, kernel,
+                                      radius, smooth, triangles, max_cells)
+    return Prepared(_curvemesh.prepare(case, start=start, threads=threads, progress=progress,
+                                       **common))
+
+
+def _motions_text(motions: Union[Mapping[str, Any], Sequence[Mapping[str, Any]]]) -> str:
+    """The motion file's text of ``motions`` (one dict per loop, or a whole file's dict)."""
     if isinstance(motions, Mapping):
         document = motions if "motion" in motions else {"motion": [motions]}
     else:
         document = {"motion": list(motions)}
-    text = _toml(document, "motions")
+    return _toml(document, "motions")
+
+
+def _move_from(case_or_mesh, order, sensitivities, method, kernel, radius, smooth, triangles,
+               max_cells):
+    """What a move starts from — the native case (``None`` for a mesh), the mesh (or
+    ``None``) — and the native call's options."""
     common = dict(order=_order(order), method=method, kernel=kernel, radius=radius,
-                  smooth=smooth, sensitivities=sensitivities, max_cells=max_cells,
-                  threads=threads, progress=progress)
+                  smooth=smooth, sensitivities=sensitivities, max_cells=max_cells)
     if isinstance(case_or_mesh, Mesh):
         start = case_or_mesh._native
         if not start.movable:
@@ -392,12 +442,10 @@ def move(case_or_mesh: Union[Mesh, Case, PathLike, Mapping[str, Any], Sequence[P
                              "curvemesh.mesh of one")
         if common["order"] is None:
             common["order"] = start.order
-        tri = start.triangles if triangles is None else triangles
-        native = _curvemesh.move_case(None, text, start=start, triangles=tri, **common)
-    else:
-        case = load(case_or_mesh)
-        native = _curvemesh.move_case(case._native, text, triangles=bool(triangles), **common)
-    return Mesh(native)
+        common["triangles"] = start.triangles if triangles is None else triangles
+        return None, start, common
+    common["triangles"] = bool(triangles)
+    return load(case_or_mesh)._native, None, common
 
 
 def read(path: PathLike) -> Mesh:

@@ -84,6 +84,28 @@ def move_case(
     threads: Optional[int] = None,
     progress: Optional[_Progress] = None,
 ) -> NativeMesh: ...
+class NativePrepared:
+    def move_by(
+        self,
+        motions: str,
+        threads: Optional[int] = None,
+        progress: Optional[_Progress] = None,
+    ) -> NativeMesh: ...
+
+def prepare(
+    case: Optional[NativeCase],
+    start: Optional[NativeMesh] = None,
+    order: Optional[int] = None,
+    triangles: bool = False,
+    method: str = "springs",
+    kernel: str = "wendland-c2",
+    radius: Optional[float] = None,
+    smooth: bool = False,
+    sensitivities: bool = False,
+    max_cells: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: Optional[_Progress] = None,
+) -> NativePrepared: ...
 def read_msh(path: _Path) -> NativeMesh: ...
 def toml_of_json(json: str) -> str: ...
 def debug_build() -> bool: ...

@@ -12,7 +12,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
 use curvemesh::airfoil::{self, AirfoilOptions};
-use curvemesh::movement::{MoveOptions, Mover, RbfKernel, motion};
+use curvemesh::movement::{MoveOptions, Mover, Prepared, RbfKernel, motion};
 use curvemesh::{AnyCase, Case, ErrorKind, Observer, Options, Snapshot};
 use mesh_model::{CellType, Cells, Mesh, Shape};
 use numpy::ndarray::{Array2, Array3};
@@ -582,29 +582,20 @@ fn mesh(
     Ok(out)
 }
 
-/// Moves a 2D case by the motions of a motion file's text (`[[motion]]` tables): from the
-/// stages kept with `start` (a mesh of the case), else from the case meshed anew.
-#[pyfunction]
-#[pyo3(signature = (case, motions, start=None, order=None, triangles=false, method="springs",
-                    kernel="wendland-c2", radius=None, smooth=false, sensitivities=false,
-                    max_cells=None, threads=None, progress=None))]
+/// The case a move starts from and its options, from the arguments of `move_case` and
+/// `prepare`: the 2D case (given, or the one `start` was meshed from), the stages kept with
+/// `start`, and the options.
 #[allow(clippy::too_many_arguments)]
-fn move_case(
-    py: Python<'_>,
+fn move_setup(
     case: Option<&Bound<'_, NativeCase>>,
-    motions: &str,
     start: Option<&Bound<'_, NativeMesh>>,
     order: Option<u8>,
     triangles: bool,
-    method: &str,
-    kernel: &str,
-    radius: Option<f64>,
+    (method, kernel, radius): (&str, &str, Option<f64>),
     smooth: bool,
     sensitivities: bool,
     max_cells: Option<u64>,
-    threads: Option<usize>,
-    progress: Option<Py<PyAny>>,
-) -> PyResult<NativeMesh> {
+) -> PyResult<(Case, Option<Snapshot>, MoveOptions)> {
     let mover = match method {
         "springs" => Mover::Springs,
         "idw" => Mover::Idw,
@@ -652,15 +643,125 @@ fn move_case(
         sensitivities,
         max_cells: max_cells.unwrap_or(MoveOptions::default().max_cells),
     };
-    let moved = run(py, threads, progress, |observer| {
-        let motions = motion::parse_str(motions, "motions")?;
-        let start = snapshot.map(|s| (s, "the mesh moved"));
-        curvemesh::movement::move_case(case, &motions, start, &options, observer)
-    })?;
+    Ok((case.clone(), snapshot, options))
+}
+
+/// A moved mesh as the Python side takes it.
+fn moved_mesh(moved: curvemesh::movement::Moved, triangles: bool) -> PyResult<NativeMesh> {
     let mut out = NativeMesh::new(moved.mesh, &moved.report, moved.scaled_jacobian)?;
     out.sensitivities = moved.sensitivities;
     out.triangles = triangles;
     Ok(out)
+}
+
+/// Moves a 2D case by the motions of a motion file's text (`[[motion]]` tables): from the
+/// stages kept with `start` (a mesh of the case), else from the case meshed anew.
+#[pyfunction]
+#[pyo3(signature = (case, motions, start=None, order=None, triangles=false, method="springs",
+                    kernel="wendland-c2", radius=None, smooth=false, sensitivities=false,
+                    max_cells=None, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn move_case(
+    py: Python<'_>,
+    case: Option<&Bound<'_, NativeCase>>,
+    motions: &str,
+    start: Option<&Bound<'_, NativeMesh>>,
+    order: Option<u8>,
+    triangles: bool,
+    method: &str,
+    kernel: &str,
+    radius: Option<f64>,
+    smooth: bool,
+    sensitivities: bool,
+    max_cells: Option<u64>,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<NativeMesh> {
+    let (case, snapshot, options) = move_setup(
+        case,
+        start,
+        order,
+        triangles,
+        (method, kernel, radius),
+        smooth,
+        sensitivities,
+        max_cells,
+    )?;
+    let moved = run(py, threads, progress, |observer| {
+        let motions = motion::parse_str(motions, "motions")?;
+        let start = snapshot.map(|s| (s, "the mesh moved"));
+        curvemesh::movement::move_case(&case, &motions, start, &options, observer)
+    })?;
+    moved_mesh(moved, triangles)
+}
+
+/// A 2D case prepared for many moves (`curvemesh::movement::Prepared`): its unmoved mesh,
+/// the spring mover's field and Newton workspace made once.
+#[pyclass(frozen, module = "curvemesh._curvemesh")]
+struct NativePrepared {
+    prepared: Prepared,
+    triangles: bool,
+}
+
+#[pymethods]
+impl NativePrepared {
+    /// The case moved by the motions of a motion file's text, from the unmoved mesh.
+    #[pyo3(signature = (motions, threads=None, progress=None))]
+    fn move_by(
+        &self,
+        py: Python<'_>,
+        motions: &str,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<NativeMesh> {
+        let moved = run(py, threads, progress, |observer| {
+            let motions = motion::parse_str(motions, "motions")?;
+            self.prepared.move_by(&motions, observer)
+        })?;
+        moved_mesh(moved, self.triangles)
+    }
+}
+
+/// A 2D case prepared for moves with the options of `move_case`: from the stages kept with
+/// `start` (a mesh of the case), else from the case meshed anew.
+#[pyfunction]
+#[pyo3(signature = (case, start=None, order=None, triangles=false, method="springs",
+                    kernel="wendland-c2", radius=None, smooth=false, sensitivities=false,
+                    max_cells=None, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn prepare(
+    py: Python<'_>,
+    case: Option<&Bound<'_, NativeCase>>,
+    start: Option<&Bound<'_, NativeMesh>>,
+    order: Option<u8>,
+    triangles: bool,
+    method: &str,
+    kernel: &str,
+    radius: Option<f64>,
+    smooth: bool,
+    sensitivities: bool,
+    max_cells: Option<u64>,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<NativePrepared> {
+    let (case, snapshot, options) = move_setup(
+        case,
+        start,
+        order,
+        triangles,
+        (method, kernel, radius),
+        smooth,
+        sensitivities,
+        max_cells,
+    )?;
+    let prepared = run(py, threads, progress, |observer| {
+        let start = snapshot.map(|s| (s, "the mesh moved"));
+        Prepared::new(&case, start, &options, observer)
+    })?;
+    Ok(NativePrepared {
+        prepared,
+        triangles,
+    })
 }
 
 /// Reads a Gmsh `.msh` file (as `quality` does).
@@ -709,6 +810,7 @@ fn debug_build() -> bool {
 fn _curvemesh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeCase>()?;
     m.add_class::<NativeMesh>()?;
+    m.add_class::<NativePrepared>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(parse_case, m)?)?;
     m.add_function(wrap_pyfunction!(airfoil_case, m)?)?;
@@ -716,6 +818,7 @@ fn _curvemesh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(builtin_cases, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
     m.add_function(wrap_pyfunction!(move_case, m)?)?;
+    m.add_function(wrap_pyfunction!(prepare, m)?)?;
     m.add_function(wrap_pyfunction!(read_msh, m)?)?;
     m.add_function(wrap_pyfunction!(toml_of_json, m)?)?;
     m.add_function(wrap_pyfunction!(debug_build, m)?)?;

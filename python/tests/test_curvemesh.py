@@ -371,6 +371,26 @@ def test_moving_a_mesh_is_moving_its_case():
         curvemesh.move("sphere", {"loop": "wall", "rotate_deg": 1.0})
 
 
+def test_a_prepared_case_moves_as_move_does():
+    mesh = curvemesh.mesh("naca0012", order=2)
+    prepared = curvemesh.prepare(mesh, sensitivities=True)
+    with pytest.raises(ValueError, match="no-such-loop"):
+        prepared.move({"loop": "no-such-loop", "rotate_deg": 1.0})
+    for degrees in (4.0, -2.0, 4.0):
+        motion = {"loop": "naca0012", "rotate_deg": degrees, "about": [0.25, 0.0]}
+        again = prepared.move(motion)
+        fresh = curvemesh.move(mesh, motion, sensitivities=True)
+        assert again.valid and fresh.valid
+        # the same balance, to the Newton solve's tolerance
+        np.testing.assert_allclose(again.points, fresh.points, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(again.sensitivities, fresh.sensitivities, rtol=1e-8,
+                                   atol=1e-9)
+        assert again.design_variables == fresh.design_variables
+        assert "naca0012.rotate_deg" in again.design_variables
+    with pytest.raises(ValueError, match="2D"):
+        curvemesh.prepare("sphere")
+
+
 # --- the user guide ----------------------------------------------------------------------------
 
 def guide_examples():

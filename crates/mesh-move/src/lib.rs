@@ -89,5 +89,5 @@ pub use movers::{IdwParams, Kernel, Method, MoveStats, Moved, RbfParams, move_me
 pub use quality::{Comparison, FirstLayerDrift, compare, scaled_jacobian};
 pub use springs::{
     Fill, SpringMoveParams, SpringStats, StartAndBalance, Strategy, Warm, move_layered,
-    move_layered_from,
+    move_layered_from, move_layered_in,
 };

@@ -74,7 +74,28 @@ pub fn move_layered(
     method: &Method,
 ) -> Result<Moved, MoveError> {
     match method {
-        Method::Springs(p) => move_springs(layered, boundary, p, None),
+        Method::Springs(p) => move_springs(layered, boundary, p, (None, None)),
+        other => move_mesh(&layered.mesh, boundary, other),
+    }
+}
+
+/// [`move_layered`] with the spring mover's shape field given: built once by
+/// [`ShapeField::of`] the same layered mesh with the method's law, its springs and its
+/// Newton workspace (the matrix's pattern, ordering and symbolic factorisation, kept from its
+/// last balance) serve this move's balance — the same balance, in a move that does not build
+/// them again (many moves of one mesh: a shape optimisation's designs). IDW and RBF ignore
+/// `field`.
+///
+/// # Errors
+/// Those of [`move_layered`].
+pub fn move_layered_in(
+    layered: &LayeredMesh,
+    boundary: &BoundaryMotion,
+    method: &Method,
+    field: &ShapeField,
+) -> Result<Moved, MoveError> {
+    match method {
+        Method::Springs(p) => move_springs(layered, boundary, p, (None, Some(field))),
         other => move_mesh(&layered.mesh, boundary, other),
     }
 }
@@ -127,7 +148,7 @@ pub fn move_layered_from(
         });
     }
     match method {
-        Method::Springs(p) => move_springs(layered, boundary, p, Some(warm)),
+        Method::Springs(p) => move_springs(layered, boundary, p, (Some(warm), warm.field)),
         other => move_mesh(&layered.mesh, boundary, other),
     }
 }
@@ -142,7 +163,7 @@ fn move_springs(
     layered: &LayeredMesh,
     boundary: &BoundaryMotion,
     p: &SpringMoveParams,
-    warm: Option<Warm<'_>>,
+    (warm, given): (Option<Warm<'_>>, Option<&ShapeField>),
 ) -> Result<Moved, MoveError> {
     let (mesh, layering) = (&layered.mesh, &layered.layering);
     check_boundary(mesh, boundary)?;
@@ -175,7 +196,7 @@ fn move_springs(
         return Ok(finish(mesh, boundary, &old, &x, stats));
     }
     let field = LazyField {
-        given: warm.and_then(|w| w.field),
+        given,
         own: OnceCell::new(),
         layered,
         law: p.shape,

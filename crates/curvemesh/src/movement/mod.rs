@@ -21,7 +21,7 @@ pub mod motion;
 pub mod report;
 pub mod sensitivities;
 
-use std::cell::OnceCell;
+use std::sync::OnceLock;
 
 use boundary1d::BoundaryNodes;
 use mesh_model::{LayeredMesh, Mesh};
@@ -219,6 +219,74 @@ pub fn move_into(
     Ok(move_from(case, &unmoved, motions, options, observer, plan, &[])?.0)
 }
 
+/// A case prepared for many moves (a shape optimisation's designs, a solver's motions one
+/// at a time): its unmoved layered mesh (meshed or read from a snapshot), the spring mover's
+/// shape field with its Newton workspace (the matrix's pattern, ordering and symbolic
+/// factorisation) and the unmoved mesh at the moves' order are made once; each
+/// [`Prepared::move_by`] moves from that same unmoved mesh (no drift) and builds none of them
+/// again. A move's balance is the one [`move_case`] finds (the same basin, to the Newton
+/// solve's tolerance: the workspace keeps the last balance's diagonal shift).
+///
+/// ```
+/// use curvemesh::movement::{MoveOptions, Prepared, motion};
+/// let case = curvemesh::load::load_2d("naca0012")?;
+/// let options = MoveOptions { order: Some(2), ..Default::default() };
+/// let prepared = Prepared::new(&case, None, &options, &mut curvemesh::Silent)?;
+/// for degrees in [2.0, -3.0] {
+///     let text = format!("[[motion]]\nloop = \"naca0012\"\nrotate_deg = {degrees}\n");
+///     let motions = motion::parse_str(&text, "pitch")?;
+///     let moved = prepared.move_by(&motions, &mut curvemesh::Silent)?;
+///     assert!(moved.report.is_valid(), "{:?}", moved.report.problems);
+/// }
+/// # Ok::<(), curvemesh::Error>(())
+/// ```
+pub struct Prepared {
+    case: Case,
+    unmoved: Unmoved,
+    options: MoveOptions,
+}
+
+impl Prepared {
+    /// `case` prepared for moves with `options`: meshed with its own parameters, or read
+    /// from `start`, a snapshot of it (with where it came from, for messages).
+    ///
+    /// # Errors
+    /// Those of [`move_case`] before any motion: bad options, a mesh that fails, a snapshot
+    /// of another case.
+    pub fn new(
+        case: &Case,
+        start: Option<(Snapshot, &str)>,
+        options: &MoveOptions,
+        observer: &mut dyn Observer,
+    ) -> Result<Prepared> {
+        case.order_of(options.order)?;
+        options.check()?;
+        let mut unmoved = unmoved(case, start, options, observer)?;
+        if let Method::Springs(p) = options.method() {
+            unmoved.field = Some(
+                mesh_move::ShapeField::of(&unmoved.layered, p.shape)
+                    .map_err(|e| input_error!("moving the mesh: {e}"))?,
+            );
+        }
+        Ok(Prepared {
+            case: case.clone(),
+            unmoved,
+            options: options.clone(),
+        })
+    }
+
+    /// The case moved by `motions`, from the unmoved mesh, as [`move_case`] moves it.
+    ///
+    /// # Errors
+    /// Those of [`move_case`] for the motions: a motion that moves a loop across another,
+    /// a failed balance.
+    pub fn move_by(&self, motions: &[LoopMotion], observer: &mut dyn Observer) -> Result<Moved> {
+        moved_geometry(&self.case, motions)?;
+        let (case, unmoved, options) = (&self.case, &self.unmoved, &self.options);
+        Ok(move_from(case, unmoved, motions, options, observer, None, &[])?.0)
+    }
+}
+
 /// Moves `case` by the motions `motions` scaled from 0 to their full amplitude in `steps`
 /// equal steps (`steps + 1` meshes, the first the unmoved mesh; a rotation's angle, a
 /// translation and a bump's amplitude scaled by `k / steps`, a scale factor raised to that
@@ -238,21 +306,16 @@ pub fn move_sequence(
     ensure!(steps >= 1, "--steps must be at least 1, got {steps}");
     // the whole motion is checked before any meshing; each step's is checked again
     moved_geometry(case, motions)?;
-    let mut unmoved = unmoved(case, start, options, observer)?;
     // one shape field for every step: its springs and its Newton workspace (pattern,
     // ordering, buffers) serve each step's balance
-    if let Method::Springs(p) = options.method() {
-        unmoved.field = Some(
-            mesh_move::ShapeField::of(&unmoved.layered, p.shape)
-                .map_err(|e| input_error!("moving the mesh: {e}"))?,
-        );
-    }
+    let prepared = Prepared::new(case, start, options, observer)?;
+    let unmoved = &prepared.unmoved;
     // the last three steps' balances, the latest first: the next one starts from their
     // parabola
     let mut last: Vec<Balanced> = Vec::with_capacity(3);
     for k in 0..=steps {
         let at = motion::scaled(motions, k as f64 / steps as f64);
-        let (moved, balanced) = move_from(case, &unmoved, &at, options, observer, None, &last)?;
+        let (moved, balanced) = move_from(case, unmoved, &at, options, observer, None, &last)?;
         last.truncate(2);
         last.insert(0, balanced);
         each(k, moved)?;
@@ -270,7 +333,7 @@ struct Unmoved {
     field: Option<mesh_move::ShapeField>,
     /// The unmoved mesh at the moves' order (its curving decisions, which the moved meshes
     /// keep) and its cells' measures, made by the first move and kept for the next steps.
-    baseline: OnceCell<UnmovedAtOrder>,
+    baseline: OnceLock<UnmovedAtOrder>,
 }
 
 impl Unmoved {
@@ -316,7 +379,7 @@ fn unmoved(
         layered,
         report,
         field: None,
-        baseline: OnceCell::new(),
+        baseline: OnceLock::new(),
     })
 }
 
@@ -492,7 +555,10 @@ fn move_linear(
             };
             mesh_move::move_layered_from(layered, boundary, method, warm)
         }
-        [] => mesh_move::move_layered(layered, boundary, method),
+        [] => match &unmoved.field {
+            Some(field) => mesh_move::move_layered_in(layered, boundary, method, field),
+            None => mesh_move::move_layered(layered, boundary, method),
+        },
     }
     .map_err(|e| input_error!("moving the mesh: {e}"))
 }

@@ -2,7 +2,7 @@
 //! told to the observer in pairs, 2D and 3D; bad input as an error of the right kind; a
 //! case moved with its sensitivities, one per node and design variable.
 
-use curvemesh::movement::{MoveOptions, motion, move_case};
+use curvemesh::movement::{MoveOptions, Prepared, motion, move_case};
 use curvemesh::{AnyCase, ErrorKind, Observer, Options};
 
 /// Records what the library tells an observer.
@@ -160,4 +160,40 @@ fn a_moved_case_has_one_sensitivity_per_node_and_variable() {
     let wrong = motion::parse_str("[[motion]]\nloop = \"flap\"\nrotate_deg = 1.0\n", "m").unwrap();
     let e = move_case(&case, &wrong, None, &options, &mut curvemesh::Silent).unwrap_err();
     assert!(e.to_string().contains("flap"), "{e}");
+}
+
+#[test]
+fn a_prepared_case_moves_as_a_fresh_move_does_in_any_order() {
+    let case = curvemesh::load::load_2d("naca0012").unwrap();
+    let options = MoveOptions {
+        order: Some(2),
+        ..MoveOptions::default()
+    };
+    let pitch = |degrees: f64| {
+        let text = format!("[[motion]]\nloop = \"naca0012\"\nrotate_deg = {degrees}\n");
+        motion::parse_str(&text, "pitch.toml").unwrap()
+    };
+    let prepared = Prepared::new(&case, None, &options, &mut curvemesh::Silent).unwrap();
+    // a motion the case cannot take is refused and leaves the prepared case as it was
+    let wrong = motion::parse_str("[[motion]]\nloop = \"flap\"\nrotate_deg = 1.0\n", "m").unwrap();
+    let e = prepared
+        .move_by(&wrong, &mut curvemesh::Silent)
+        .unwrap_err();
+    assert!(e.to_string().contains("flap"), "{e}");
+    for degrees in [12.0, -4.0, 12.0] {
+        let motions = pitch(degrees);
+        let again = prepared.move_by(&motions, &mut curvemesh::Silent).unwrap();
+        let fresh = move_case(&case, &motions, None, &options, &mut curvemesh::Silent).unwrap();
+        assert!(again.report.is_valid(), "{:?}", again.report.problems);
+        assert_eq!(again.mesh.cells, fresh.mesh.cells);
+        // the same balance, to the Newton solve's tolerance (10⁻¹⁰ of a node's edges)
+        let apart = again
+            .mesh
+            .nodes
+            .iter()
+            .zip(&fresh.mesh.nodes)
+            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+            .fold(0.0, f64::max);
+        assert!(apart < 1e-12, "{degrees}°: {apart:e} apart");
+    }
 }
