@@ -270,16 +270,11 @@ struct LazyField<'a> {
 
 impl LazyField<'_> {
     fn get(&self) -> Result<&ShapeField, MoveError> {
-        if let Some(field) = self.given {
+        if let Some(field) = self.given.or(self.own.get()) {
             return Ok(field);
         }
-        if self.own.get().is_none() {
-            // set only here, so never already set
-            let _ = self.own.set(ShapeField::of(self.layered, self.law)?);
-        }
-        self.own.get().ok_or_else(|| MoveError::Springs {
-            what: "the shape field was not built".into(),
-        })
+        let built = ShapeField::of(self.layered, self.law)?;
+        Ok(self.own.get_or_init(|| built))
     }
 }
 
