@@ -1,8 +1,9 @@
 //! Criterion benches of the movers on two built-in cases (their layered linear meshes grown
 //! once, outside the timed loops): the NACA0012 wall pitched by 30° about the quarter chord,
 //! and the 30P30N flap turned by 10° about its leading edge, each moved by the spring mover
-//! (default, with its polish), the smooth spring mover (the shape balance by Newton), and the
-//! baselines: inverse-distance weighting and radial basis functions (Wendland C2 on the
+//! (the shape balance by Newton), the same with its shape field built once outside the loop
+//! (`move_layered_in`: a prepared case's later moves), and the baselines:
+//! inverse-distance weighting and radial basis functions (Wendland C2 on the
 //! NACA0012, the thin-plate spline on the 30P30N, where the global Wendland system is
 //! singular). Then the sensitivities at the smooth mover's result: the linearised balance
 //! (one factorisation) and one design variable's response.
@@ -13,7 +14,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use mesh_move::{
     IdwParams, Kernel, LoopMotion, Method, Motion, RbfParams, RigidMotion, Section, ShapeField,
-    SpringMoveParams, boundary_motion, move_layered,
+    SpringMoveParams, boundary_motion, move_layered, move_layered_in,
 };
 
 fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Kernel) {
@@ -37,6 +38,11 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
             b.iter(|| move_layered(&layered, &boundary, &method).expect("moves"))
         });
     }
+    let springs = Method::Springs(SpringMoveParams::default());
+    let field = ShapeField::of(&layered, SpringMoveParams::default().shape).expect("a field");
+    group.bench_function("springs, field given", |b| {
+        b.iter(|| move_layered_in(&layered, &boundary, &springs, &field).expect("moves"))
+    });
     // the sensitivities at the spring mover's balance: the boundary nodes held, the others respond
     let smooth = Method::Springs(SpringMoveParams::default());
     let x = move_layered(&layered, &boundary, &smooth)
@@ -48,7 +54,6 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
         .nodes
         .iter()
         .for_each(|&k| fixed[k as usize] = true);
-    let field = ShapeField::of(&layered, SpringMoveParams::default().shape).expect("a field");
     group.bench_function("sensitivities: linearise", |b| {
         b.iter(|| field.linearise(&x, &fixed).expect("stable"))
     });
