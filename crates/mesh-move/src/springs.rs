@@ -370,7 +370,10 @@ fn filled(
         held_turns(&old, &x, &fronts, layering, layer, &held, &fixed, &mut turn);
     }
     pin_wall_cells(mesh, &wall, &old, &mut x, &mut turn, &mut held);
-    let reference = reference_turns(&old, boundary, &bounding_nodes(mesh, &held));
+    // the filled region's cells, and the reference turns of the held nodes bounding it
+    let free: Vec<bool> = held.iter().map(|h| !h).collect();
+    let cells = fill_cells(mesh, &free);
+    let reference = reference_turns(&old, boundary, &bounding_nodes(&cells, &held));
     let placed = x.clone();
     let mut order = vec![p.fill];
     order.extend(
@@ -385,7 +388,7 @@ fn filled(
             ..*p
         };
         let turns = (&turn[..], &reference[..]);
-        fill(mesh, &old, &mut x, turns, &held, &p, stats);
+        fill(mesh, (&old, &mut x), turns, (&free, &cells), &p, stats);
         if inverted(mesh, &x) == 0 {
             break;
         }
@@ -871,19 +874,16 @@ fn balance(
     Ok(())
 }
 
-/// The filled region (every node not held) placed by the fill `p.fill` from its bounding
-/// nodes.
-#[allow(clippy::too_many_arguments)]
+/// The filled region (the `free` nodes, `cells` its cells) placed by the fill `p.fill` from
+/// its bounding nodes.
 fn fill(
     mesh: &Mesh,
-    old: &[[f64; 2]],
-    x: &mut [[f64; 2]],
+    (old, x): (&[[f64; 2]], &mut [[f64; 2]]),
     (turns, reference): (&[[f64; 2]], &[[f64; 2]]),
-    held: &[bool],
+    (free, cells): (&[bool], &[Vec<u32>]),
     p: &SpringMoveParams,
     stats: &mut SpringStats,
 ) {
-    let free: Vec<bool> = held.iter().map(|h| !h).collect();
     let nodes: Vec<u32> = (0..old.len() as u32)
         .filter(|&k| free[k as usize])
         .collect();
@@ -891,8 +891,7 @@ fn fill(
     if nodes.is_empty() {
         return;
     }
-    let cells = fill_cells(mesh, &free);
-    let sources = fill_sources(old, x, turns, reference, &cells, &free);
+    let sources = fill_sources(old, x, turns, reference, cells, free);
     stats.fill = p.fill;
     match p.fill {
         Fill::Idw => {
@@ -913,7 +912,7 @@ fn fill(
         Fill::Screw => screw(old, x, &sources, &nodes, p.screw_exponent),
         Fill::Arap => {
             screw(old, x, &sources, &nodes, p.screw_exponent);
-            let graph = Graph::new(old, &cells, &free);
+            let graph = Graph::new(old, cells, free);
             stats.arap_iterations = arap(old, x, &graph, p.arap_iterations);
         }
         Fill::Rbf => match Rbf::fit(mesh, &sources, &RbfParams::default()) {
@@ -1183,17 +1182,12 @@ impl Columns {
     }
 }
 
-/// The held nodes that bound the filled region: the held corners of the cells with a free
-/// corner (the fill's sources are among them).
-fn bounding_nodes(mesh: &Mesh, held: &[bool]) -> Vec<bool> {
+/// The held nodes that bound the filled region: the held corners of its cells
+/// ([`fill_cells`]; the fill's sources are among them).
+fn bounding_nodes(cells: &[Vec<u32>], held: &[bool]) -> Vec<bool> {
     let mut bounding = vec![false; held.len()];
-    for c in 0..mesh.cells.len() {
-        let corners = mesh.cells.get(c).corners();
-        if corners.iter().any(|&k| !held[k as usize]) {
-            for &k in corners.iter().filter(|&&k| held[k as usize]) {
-                bounding[k as usize] = true;
-            }
-        }
+    for &k in cells.iter().flatten().filter(|&&k| held[k as usize]) {
+        bounding[k as usize] = true;
     }
     bounding
 }
