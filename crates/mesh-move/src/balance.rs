@@ -139,6 +139,17 @@ impl ShapeField {
         Ok(outcome)
     }
 
+    /// Frees the numeric factor of its last balance, keeping its pattern and ordering
+    /// ([`NewtonWorkspace::release_factor`]): for a caller that fills a start before the
+    /// next balance.
+    pub fn release_factor(&self) {
+        if let Ok(mut kept) = self.workspace.lock()
+            && let Some(w) = kept.as_mut()
+        {
+            w.release_factor();
+        }
+    }
+
     /// The linearised balance at `x` (a balance of this field with `fixed` held), for
     /// [`Sensitivity::respond`].
     ///

@@ -285,6 +285,13 @@ impl<const D: usize> Assembly<D> {
         (hash.count, hash.finish())
     }
 
+    /// Frees the numeric factors and the single-precision values ([`NewtonWorkspace::release_factor`]);
+    /// the next factorisation allocates them again.
+    fn release_factor(&mut self) {
+        (self.single, self.double) = (Factor::new(), Factor::new());
+        self.values32 = Vec::new();
+    }
+
     /// Keeps the loaded matrix's diagonal, which the shifts change.
     fn keep_diagonal(&mut self) {
         self.diagonal.clear();
@@ -724,6 +731,14 @@ impl<const D: usize> NewtonWorkspace<D> {
     /// The movable nodes it is for.
     pub fn movable(&self) -> &[bool] {
         &self.movable
+    }
+
+    /// Frees its numeric factor and the factorisation's buffers, keeping the pattern, the
+    /// ordering and the symbolic factorisation: the next solve factorises afresh anyway (its
+    /// first step always does), so between two solves the factor is dead weight for a
+    /// caller whose own work in between would otherwise peak on top of it.
+    pub fn release_factor(&mut self) {
+        self.assembly.release_factor();
     }
 }
 
