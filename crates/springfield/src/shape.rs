@@ -149,7 +149,9 @@ struct Partials {
 /// as `J → 0`. The default, `p = 8` and `s = 0.05`, was measured on the moved NACA0012 and
 /// 30P30N meshes (worst-cell ratio of the moved mesh): against `p = 4, s = 0.25` it gives
 /// 0.770 for 0.733 at a 90° pitch and 0.856/0.867 for 0.820/0.816 on the 30P30N flap turned
-/// ±10°, the same at 10° and 30° (`p = 12` or `16`: within 0.02 either way).
+/// ±10°, the same at 10° and 30° (`p = 12` or `16`: within 0.02 either way). It has no term
+/// against compression alone: one lifts the edge ratios but lowers others and slows the large
+/// turns (measured in `docs/movement.md`, *Measured*).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShapeLaw {
     /// The exponent `p ≥ 1` of `K`.
