@@ -1104,6 +1104,41 @@ mod tests {
         }
     }
 
+    /// A workspace whose factor was released between two solves (`release_factor`) solves
+    /// the second as a kept one does, bit for bit: the next solve factorises afresh anyway.
+    #[test]
+    fn a_released_factor_changes_no_solve() {
+        let (rest, springs, fixed) = grid_springs(6);
+        let params = SpringParams::default();
+        let model = SpringList {
+            springs: &springs,
+            params: &params,
+        };
+        let movable: Vec<bool> = fixed.iter().map(|f| !f).collect();
+        let scale = vec![1.0; rest.len()];
+        let pushed = |by: f64| -> Vec<[f64; 2]> {
+            rest.iter()
+                .map(|p| [p[0] + by * p[1] / 6.0, p[1]])
+                .collect()
+        };
+        let solve_twice = |release: bool| {
+            let mut workspace = NewtonWorkspace::new(&movable);
+            let p = NewtonParams::default();
+            let mut x = pushed(0.1);
+            solve_newton_in(&model, &mut x, &scale, &mut workspace, &p).unwrap();
+            if release {
+                workspace.release_factor();
+            }
+            let mut y = pushed(0.2);
+            let outcome = solve_newton_in(&model, &mut y, &scale, &mut workspace, &p).unwrap();
+            (y, outcome)
+        };
+        let ((kept, a), (released, b)) = (solve_twice(false), solve_twice(true));
+        assert!(a.converged && b.converged);
+        assert_eq!(a, b);
+        assert_eq!(kept, released);
+    }
+
     /// The lower Jacobian of [`grid_springs`] at its rest nodes nudged by `by`, gathered.
     fn grid_jacobian(by: f64) -> (Vec<bool>, Vec<Triplet>) {
         let (rest, springs, fixed) = grid_springs(3);
