@@ -113,8 +113,26 @@ fn run_here(args: &MoveArgs) -> Result<Finished> {
             print!("{}", movement.summary());
         }
     }
-    let verdict = report.verdict(report_path.as_deref(), "the moved mesh was written but");
+    let verdict = report.verdict(report_path.as_deref(), &failed_subject(&report));
     Ok(Finished::of(verdict))
+}
+
+/// The start of a failed move's line: the cells its mover inverted, the cause of the moved
+/// mesh's failure, when it inverted some; else only that the moved mesh was written.
+fn failed_subject(report: &curvemesh::Report) -> String {
+    match report
+        .movement
+        .as_ref()
+        .filter(|m| m.inverted_linear_cells > 0)
+    {
+        Some(m) => format!(
+            "the {} mover inverted {} linear cells (the motion leaves too little room between \
+             the walls, or turns a body further than this mover follows): the moved linear \
+             mesh was written but",
+            m.method, m.inverted_linear_cells
+        ),
+        None => "the moved mesh was written but".into(),
+    }
 }
 
 /// `move --steps N`: the N + 1 meshes of the motion's sequence, each written with its own
@@ -165,7 +183,7 @@ fn run_steps(
             mesh_io::sensitivities::write_sensitivities(&path, &xy, columns)
                 .map_err(|e| anyhow::anyhow!("--sensitivities {}: {e}", path.display()))?;
         }
-        let verdict = report.verdict(written.as_deref(), "the moved mesh was written but");
+        let verdict = report.verdict(written.as_deref(), &failed_subject(&report));
         if !args.quiet {
             let movement = report.movement.as_ref();
             println!(

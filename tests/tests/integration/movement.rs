@@ -296,7 +296,10 @@ fn a_mover_that_inverts_cells_writes_the_mesh_and_fails() {
     assert_eq!(line.code, 2);
     assert_one_line_naming(
         line.stderr.as_deref().unwrap(),
-        &["moved mesh was written but"],
+        &[
+            format!("the rbf mover inverted {inverted} linear cells").as_str(),
+            "moved linear mesh was written but failed validation",
+        ],
     );
 }
 
