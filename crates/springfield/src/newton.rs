@@ -285,8 +285,8 @@ impl<const D: usize> Assembly<D> {
         (hash.count, hash.finish())
     }
 
-    /// Frees the numeric factors and the single-precision values ([`NewtonWorkspace::release_factor`]);
-    /// the next factorisation allocates them again.
+    /// Frees the numeric factors and the single-precision values
+    /// ([`NewtonWorkspace::release_factor`]); the next factorisation allocates them again.
     fn release_factor(&mut self) {
         (self.single, self.double) = (Factor::new(), Factor::new());
         self.values32 = Vec::new();
