@@ -44,8 +44,7 @@ fn bench(c: &mut Criterion, group: &str, case: &str, motion: LoopMotion, rbf: Ke
         b.iter(|| move_layered_in(&layered, &boundary, &springs, &field).expect("moves"))
     });
     // the sensitivities at the spring mover's balance: the boundary nodes held, the others respond
-    let smooth = Method::Springs(SpringMoveParams::default());
-    let x = move_layered(&layered, &boundary, &smooth)
+    let x = move_layered(&layered, &boundary, &springs)
         .expect("moves")
         .mesh;
     let x: Vec<[f64; 2]> = (0..x.nodes.len()).map(|i| x.xy(i as u32)).collect();
